@@ -1,0 +1,114 @@
+# haff: one non-recursive Makefile.  `make help` lists the targets.
+# Sources are found by wildcard: a new engine/, db/, mc/, analysis/ or cli/ file needs no edit here,
+# and every tests/test_*.c is its own cmocka program.
+.SUFFIXES:
+.DEFAULT_GOAL := all
+SHELL := /bin/bash
+
+CC      ?= gcc
+BUILD   ?= build
+PKGS    := gsl sqlite3 inih
+DEPS_PKGS := build-essential pkg-config libgsl-dev libsqlite3-dev sqlite3 libinih-dev gnuplot-nox libcmocka-dev
+WARN    := -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes -Wmissing-prototypes
+# Warnings are errors in CI (CI=true) and whenever WERROR=1.
+ifneq ($(filter true 1,$(CI) $(WERROR)),)
+WARN    += -Werror
+endif
+OPT     ?= -O2 -g
+CFLAGS  := -std=c11 -D_GNU_SOURCE $(OPT) $(WARN) -MMD -MP -Iengine -Idb -Imc -Ianalysis -Icli \
+           $(shell pkg-config --cflags $(PKGS) 2>/dev/null) $(EXTRA_CFLAGS)
+LDLIBS  := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lgsl -lgslcblas -lsqlite3 -linih) -lm
+TESTLIBS:= -lcmocka
+
+LIB_SRC := $(wildcard engine/*.c db/*.c mc/*.c analysis/*.c)
+CLI_SRC := $(wildcard cli/*.c)
+TEST_SRC:= $(wildcard tests/test_*.c)
+LIB_OBJ := $(LIB_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/schema_sql.o
+CLI_OBJ := $(CLI_SRC:%.c=$(BUILD)/%.o)
+TEST_BIN:= $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+LIB     := $(BUILD)/libhaff.a
+DEPS_STAMP := $(BUILD)/.deps-ok
+
+.PHONY: all deps test test-unit demo bench plots clean help format
+all: bin/haff
+
+help:
+	@echo "make deps    install missing Debian packages (run by the other targets as needed)"
+	@echo "make         build bin/haff"
+	@echo "make test    build and run every test (then an ASan+UBSan build), one summary line"
+	@echo "make demo    run the demo scene and print what it logged"
+	@echo "make bench   benchmarks -> bench/results.md"
+	@echo "make plots   the papers' figures and tables -> plots/out/"
+
+# --- dependencies --------------------------------------------------------------------------
+deps:
+	@missing=""; for p in $(DEPS_PKGS); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; done; \
+	if [ -z "$$missing" ]; then echo "deps: all present"; exit 0; fi; \
+	if [ "$$(id -u)" != 0 ]; then echo "deps: missing:$$missing"; \
+	  echo "deps: run: sudo apt-get install -y$$missing"; exit 1; fi; \
+	echo "deps: installing$$missing"; \
+	apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing >/dev/null
+	@mkdir -p $(BUILD) && touch $(DEPS_STAMP)
+
+$(DEPS_STAMP):
+	@$(MAKE) --no-print-directory deps
+
+# --- build ---------------------------------------------------------------------------------
+$(BUILD)/%.o: %.c | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -c $< -o $@
+
+# db/schema.sql is compiled into the binary as a string (hd_schema_sql).
+$(BUILD)/gen/schema_sql.c: db/schema.sql
+	@mkdir -p $(@D)
+	@{ echo '/* generated from db/schema.sql by the Makefile: do not edit */'; \
+	   echo 'extern const char hd_schema_sql[];'; echo 'const char hd_schema_sql[] ='; \
+	   sed -e 's/\\/\\\\/g' -e 's/"/\\"/g' -e 's/^/  "/' -e 's/$$/\\n"/' $<; echo ';'; } > $@
+$(BUILD)/gen/schema_sql.o: $(BUILD)/gen/schema_sql.c
+	$(CC) $(CFLAGS) -c $< -o $@
+
+$(LIB): $(LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+bin/haff: $(CLI_OBJ) $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -o $@ $(CLI_OBJ) $(LIB) $(LDLIBS)
+
+$(BUILD)/tests/%: tests/%.c $(LIB) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Itests -o $@ $< $(LIB) $(LDLIBS) $(TESTLIBS)
+
+# --- tests ---------------------------------------------------------------------------------
+# Each test program is a cmocka group; tests/run-tests sums their results into one line
+# "N passed, N failed" and exits non-zero on any failure.  The ASan+UBSan build of the same
+# tests runs after (HAFF_SANITIZE=1 lets long physics tests shrink their sizes there).
+test-unit: $(TEST_BIN) bin/haff
+	@HAFF_BIN=$(CURDIR)/bin/haff tests/run-tests $(TEST_BIN)
+
+test: | $(DEPS_STAMP)
+	@$(MAKE) --no-print-directory all $(TEST_BIN)
+	@$(MAKE) --no-print-directory BUILD=build-asan \
+	  OPT="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined" \
+	  $(patsubst $(BUILD)/%,build-asan/%,$(TEST_BIN))
+	@HAFF_BIN=$(CURDIR)/bin/haff tests/run-tests \
+	  $(TEST_BIN) -- $(patsubst $(BUILD)/%,build-asan/%,$(TEST_BIN))
+
+# --- user targets --------------------------------------------------------------------------
+demo: bin/haff
+	@scripts=1 ./scenes/demo.sh
+
+bench: bin/haff
+	@bench/run.sh
+
+plots: bin/haff
+	@$(MAKE) --no-print-directory -f plots/plots.mk
+
+format:
+	clang-format -i $(LIB_SRC) $(CLI_SRC) $(TEST_SRC) $(wildcard */*.h)
+
+clean:
+	rm -rf build build-asan bin
+
+-include $(wildcard $(BUILD)/*/*.d $(BUILD)/*/*/*.d)

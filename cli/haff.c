@@ -1,0 +1,45 @@
+/* bin/haff: dispatches to the subcommands listed in commands[] below. */
+#include "haff.h"
+
+#include <stdio.h>
+#include <string.h>
+
+int haff_mc_main(int argc, char **argv);
+
+static const haff_command commands[] = {
+    {"mc", haff_mc_main, "Monte Carlo: `mc fmean` (<f>, D_e) and `mc eps` (rod restitution)"},
+};
+static const size_t n_commands = sizeof commands / sizeof commands[0];
+
+int haff_wants_help(int argc, char **argv) {
+  for (int i = 1; i < argc; i++)
+    if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) return 1;
+  return 0;
+}
+
+static void usage(FILE *out) {
+  fprintf(out, "usage: haff COMMAND [ARGS...]   (haff COMMAND --help for each)\n\ncommands:\n");
+  for (size_t i = 0; i < n_commands; i++)
+    fprintf(out, "  %-12s %s\n", commands[i].name, commands[i].summary);
+  fprintf(out, "\nexit status: 0 ok, 1 failed run (collapse, interrupted, resource), 2 bad usage "
+               "or input\n");
+}
+
+int main(int argc, char **argv) {
+  if (argc < 2) {
+    usage(stderr);
+    return 2;
+  }
+  if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
+    usage(stdout);
+    return 0;
+  }
+  if (!strcmp(argv[1], "--version")) {
+    printf("haff %s\n", HAFF_VERSION);
+    return 0;
+  }
+  for (size_t i = 0; i < n_commands; i++)
+    if (!strcmp(argv[1], commands[i].name)) return commands[i].main(argc - 1, argv + 1);
+  fprintf(stderr, "haff: unknown command '%s' (haff --help lists them)\n", argv[1]);
+  return 2;
+}

@@ -1,0 +1,107 @@
+/* hd_db: the SQLite log of runs (db/schema.sql is the documented schema, compiled in).
+ * One file holds many runs.  Rows are inserted through prepared statements inside batch
+ * transactions (WAL); a batch is committed every `batch_rows` rows and at every checkpoint,
+ * so a killed process leaves whole batches only.  Indexes are built by hd_db_run_end. */
+#ifndef HD_DB_H
+#define HD_DB_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "hd_error.h"
+
+typedef struct hd_db hd_db;
+
+/* Collision kinds, as stored in collisions.kind (text). */
+typedef enum hd_coll_kind {
+  HD_CK_DIMER_DIMER = 0, /* "dimer-dimer" */
+  HD_CK_DIMER_DISK = 1,  /* "dimer-disk" (i is the dimer) */
+  HD_CK_DISK_DISK = 2,   /* "disk-disk" */
+  HD_CK_DIMER_WALL = 3,  /* "dimer-wall" (j = -1 - wall index) */
+  HD_CK_DISK_WALL = 4,   /* "disk-wall" */
+  HD_CK_ROD_ROD = 5      /* "rod-rod" */
+} hd_coll_kind;
+
+/* The text of a collision kind. */
+const char *hd_coll_kind_name(hd_coll_kind k);
+
+/* One row of `collisions`. NaN doubles are stored as NULL. */
+typedef struct hd_collision_row {
+  int64_t seq;              /* 1, 2, ... collision number within the run */
+  double t;                 /* time */
+  hd_coll_kind kind;
+  int64_t i, j;             /* bodies (0-based); j < 0 for a wall */
+  int disk_i, disk_j;       /* which disk of each (0/1; 0 for a disk; -1 for a wall) */
+  double theta_i, theta_j;  /* contact angles, NaN when not defined */
+  double f, de, vn;         /* orientation factor, energy change, normal relative velocity */
+} hd_collision_row;
+
+/* One row of `samples` (energies per particle). */
+typedef struct hd_sample_row {
+  double t;
+  int64_t collisions; /* pair collisions so far (walls not counted) */
+  double cpd;         /* 2 * collisions / N */
+  double e_tr, e_rot; /* translational and rotational kinetic energy per body */
+} hd_sample_row;
+
+/* One row of `states`. */
+typedef struct hd_state_rec {
+  double t;
+  int64_t body;
+  int kind;            /* HD_KIND_* */
+  double x, y, phi, vx, vy, omega;
+} hd_state_rec;
+
+/* Opens (creating if needed) the database at path, applies the schema, sets WAL.
+ * Returns HD_OK or HD_EIO with err set. */
+int hd_db_open(hd_db **out, const char *path, hd_error *err);
+
+/* Commits any open batch and closes. NULL is allowed. Returns HD_OK or HD_EIO. */
+int hd_db_close(hd_db *db, hd_error *err);
+
+/* Rows per batch transaction [10000]. */
+void hd_db_set_batch_rows(hd_db *db, long rows);
+
+/* Inserts a runs row with status 'running' and returns its id in *run. */
+int hd_db_run_begin(hd_db *db, const char *scene_text, unsigned long long seed,
+                    const char *version, int64_t *run, hd_error *err);
+
+/* Sets status ('running','done','interrupted','collapsed','failed'), events, wall_seconds and
+ * (for a final status) finished; commits the open batch first. */
+int hd_db_run_status(hd_db *db, int64_t run, const char *status, int64_t events,
+                     double wall_seconds, hd_error *err);
+
+/* Builds the indexes (after a run). */
+int hd_db_build_indexes(hd_db *db, hd_error *err);
+
+/* Buffered inserts into the open batch (a batch is opened on demand). */
+int hd_db_log_collision(hd_db *db, int64_t run, const hd_collision_row *r, hd_error *err);
+int hd_db_log_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *err);
+/* `label`: 'initial', 'final', 'checkpoint', 'velocities' (snapshots at [log] velocities_at). */
+int hd_db_log_state(hd_db *db, int64_t run, const char *label, const hd_state_rec *r,
+                    hd_error *err);
+
+/* Commits the open batch, if any. */
+int hd_db_commit(hd_db *db, hd_error *err);
+
+/* Writes a checkpoint (an opaque engine blob, exact) for run at collision seq / time t in the
+ * same transaction as the rows logged so far, then commits.  Older checkpoints of the run are
+ * deleted. */
+int hd_db_checkpoint_save(hd_db *db, int64_t run, int64_t seq, double t, const void *blob,
+                          size_t n, hd_error *err);
+
+/* Loads the newest checkpoint of run: *blob malloc'd (free()), *seq and *t as saved.
+ * HD_EINPUT if the run has none. */
+int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_t *seq,
+                          double *t, hd_error *err);
+
+/* Deletes the rows a resumed run will write again: collisions with seq > seq and samples and
+ * non-checkpoint states with t > t. */
+int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error *err);
+
+/* The id of the newest run whose status is 'interrupted' or 'running' (a killed process);
+ * HD_EINPUT if none.  *scene_text malloc'd, *seed its seed. */
+int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene_text,
+                         unsigned long long *seed, hd_error *err);
+
+#endif

@@ -1,0 +1,102 @@
+/* hd_body: rigid bodies (hard disks and dimers) in 2D — shapes, exact free flight, earliest
+ * contact and the collision rules.  Pure functions of the states they are given: no global
+ * state, no allocation.  Conventions are those of DESIGN.md:
+ *   - a dimer is two disks of diameter d and mass m at R +- (a/2)(cos phi, sin phi); disk 0 at -,
+ *     disk 1 at +; total mass 2m; moment of inertia I = m a^2 / 2; omega counter-clockwise > 0;
+ *   - a disk body has one disk (index 0) of diameter d and mass m at R; phi, omega unused (0).
+ *   - contact angle theta of a body in (-pi, pi]: signed angle from the body's outward axis at its
+ *     contacting disk (unit vector from the partner disk to the contacting disk) to the contact
+ *     normal (from its contacting disk to the other body's contacting disk).  Head-on is 0.
+ */
+#ifndef HD_BODY_H
+#define HD_BODY_H
+
+/* The kind of a body. */
+typedef enum hd_kind {
+  HD_KIND_DISK = 0, /* one hard disk */
+  HD_KIND_DIMER = 1 /* two hard disks on a rigid bond */
+} hd_kind;
+
+/* The shape and mass of a body species. */
+typedef struct hd_shape {
+  hd_kind kind; /* disk or dimer */
+  double d;     /* diameter of each disk, > 0 (sigma for a disk body) */
+  double a;     /* dimer bond length, centre to centre, >= 0 (0 for a disk body) */
+  double m;     /* mass of each disk, > 0 (a dimer weighs 2m) */
+} hd_shape;
+
+/* The kinematic state of a body at some time origin. */
+typedef struct hd_kin {
+  double x, y;   /* centre of mass */
+  double vx, vy; /* centre-of-mass velocity */
+  double phi;    /* orientation of the axis disk0 -> disk1 (dimers; 0 for disks), kept in (-pi, pi] */
+  double omega;  /* signed angular velocity (dimers; 0 for disks) */
+} hd_kin;
+
+/* A hard wall: the line {axis coordinate == pos}; bodies live on the side `normal` points to. */
+typedef struct hd_wall {
+  int axis;      /* 0: the wall is x = pos; 1: the wall is y = pos */
+  double pos;    /* the wall's coordinate */
+  double normal; /* +1 or -1: the inward normal's sign along that axis */
+} hd_wall;
+
+/* The earliest contact found by a prediction. */
+typedef struct hd_contact {
+  double t; /* time of contact, measured from the common time origin of the states */
+  int ka;   /* the disk of body A that touches (0 or 1; 0 for a disk body) */
+  int kb;   /* the disk of body B that touches (0 or 1; 0 for a disk or a wall) */
+} hd_contact;
+
+/* What a collision did, for the log. */
+typedef struct hd_collision_info {
+  double theta_i; /* contact angle of body A (DESIGN.md); NaN for a disk body */
+  double theta_j; /* contact angle of body B; NaN for a disk body or a wall */
+  double f;       /* orientation factor mu_eff / m_ref: eq. 36 for dimer-dimer (see hd_body.c) */
+  double de;      /* kinetic energy of the pair after minus before (<= 0 for alpha <= 1) */
+  double vn;      /* normal relative velocity of the contact points before (< 0: approaching) */
+} hd_collision_info;
+
+/* Total mass of a body of shape s. */
+double hd_shape_mass(const hd_shape *s);
+/* Moment of inertia about the centre of mass (m a^2 / 2 for a dimer, 0 for a disk body). */
+double hd_shape_inertia(const hd_shape *s);
+/* Radius of the smallest circle about the centre of mass that holds the body: (a + d) / 2. */
+double hd_shape_radius(const hd_shape *s);
+
+/* Exact free flight of k over dt (any sign): translation, and rotation with phi wrapped to
+ * (-pi, pi].  No division by omega; omega = 0 and |omega| large are exact. */
+void hd_kin_advance(hd_kin *k, double dt);
+
+/* Centre of disk `which` (0 or 1) of a body in state k (at k's time origin). */
+void hd_kin_disk_pos(const hd_kin *k, const hd_shape *s, int which, double *px, double *py);
+
+/* Velocity of the centre of disk `which` of a body in state k. */
+void hd_kin_disk_vel(const hd_kin *k, const hd_shape *s, int which, double *vx, double *vy);
+
+/* Kinetic energy (translational + rotational) of a body. */
+double hd_kin_energy(const hd_kin *k, const hd_shape *s);
+
+/* Earliest time t in [0, tmax] at which bodies A and B, both given at a common time origin and B
+ * already in A's periodic image, come into contact (some disk pair at distance (dA + dB)/2) while
+ * approaching.  Returns 1 and fills *c if they do, 0 if not before tmax.  A pair that overlaps by
+ * round-off at t = 0 while approaching gets t = 0; one that is receding (it has just collided) is
+ * ignored.  Never skips a root (see hd_body.c for the method and its tolerance). */
+int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
+                    double tmax, hd_contact *c);
+
+/* Earliest time t in [0, tmax] at which body A touches wall w while approaching it; as above. */
+int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, double tmax,
+                    hd_contact *c);
+
+/* Collision of A (disk ka) and B (disk kb), in contact now: applies the paper's rule for the
+ * pair's kinds (disk-disk; dimer-disk eq. 21-22; dimer-dimer eq. 13 and 18) with restitution
+ * alpha in [0, 1] along the contact normal, updating the velocities and angular velocities of A
+ * and B.  Fills *info if not NULL.  Returns 0. */
+int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
+                    double alpha, hd_collision_info *info);
+
+/* Collision of disk ka of A with wall w (eq. 24-25 for a dimer), restitution alpha. Returns 0. */
+int hd_collide_wall(hd_kin *A, const hd_shape *sa, int ka, const hd_wall *w, double alpha,
+                    hd_collision_info *info);
+
+#endif

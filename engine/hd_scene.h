@@ -1,0 +1,100 @@
+/* hd_scene: scene files (INI, read with libinih) and `--set SECTION.KEY=VALUE` overrides.
+ * DESIGN.md lists the sections and keys.  A section appears only when the scene needs it;
+ * absent sections leave their counts at 0 and cost nothing.  Every error names the file, the
+ * line and the key, and why: "scene.ini:7: [disks] alpha = 1.5: must be in [0, 1]". */
+#ifndef HD_SCENE_H
+#define HD_SCENE_H
+
+#include "hd_error.h"
+
+#define HD_PATH_MAX 1024
+#define HD_MAX_VEL_AT 64
+
+/* Where the initial state comes from ([init] placement / state). */
+typedef enum hd_placement {
+  HD_PLACE_RANDOM = 0,  /* random non-overlapping placement (default) */
+  HD_PLACE_LATTICE = 1, /* on a lattice, orientations random */
+  HD_PLACE_STATE = 2    /* every body from [init] state = FILE.csv */
+} hd_placement;
+
+/* What [log] collisions = ... keeps. */
+typedef enum hd_logmode {
+  HD_LOG_ALL = 0,  /* every collision (default) */
+  HD_LOG_NONE = 1, /* no collision rows at all */
+  HD_LOG_EVERY = 2 /* every log_every-th collision */
+} hd_logmode;
+
+/* Bits of hd_scene.walls ([walls] sides = left right bottom top). */
+enum { HD_WALL_LEFT = 1, HD_WALL_RIGHT = 2, HD_WALL_BOTTOM = 4, HD_WALL_TOP = 8 };
+
+/* A parsed scene.  Defaults in brackets; 0 counts mean the section is absent. */
+typedef struct hd_scene {
+  char path[HD_PATH_MAX]; /* the scene file as given ("" for a string scene) */
+  char dir[HD_PATH_MAX];  /* its folder, for relative paths ("." for a string scene) */
+  /* [system] */
+  double box_x, box_y;    /* box edges: `box = Lx Ly`, or derived from area_fraction */
+  double area_fraction;   /* `area_fraction = eta` instead of box: square box [0 if box given] */
+  unsigned long long seed; /* `seed` [1]; the CLI's --seed overrides it */
+  /* [dimers] */
+  long n_dimers;        /* `count` [0] */
+  double dimer_d;       /* `d` [1]: disk diameter */
+  double dimer_a;       /* `a` [1]: bond length */
+  double dimer_m;       /* `m` [1]: mass of each disk */
+  double dimer_alpha;   /* `alpha` [1]: dimer-dimer restitution */
+  /* [disks] */
+  long n_disks;            /* `count` [0] */
+  double disk_sigma;       /* `sigma` [1] */
+  double disk_mass;        /* `mass` [1] */
+  double disk_alpha;       /* `alpha` [1]: disk-disk restitution */
+  double disk_alpha_dimer; /* `alpha_dimer` [= alpha]: dimer-disk restitution */
+  /* [walls] */
+  unsigned walls;     /* `sides`: HD_WALL_* bits [0: fully periodic] */
+  double wall_alpha;  /* `alpha` [1] */
+  /* [init] */
+  double temperature;             /* `temperature` [1]: kT per degree of freedom */
+  hd_placement placement;         /* `placement` [random], or HD_PLACE_STATE when `state` given */
+  char state_file[HD_PATH_MAX];   /* `state`: resolved against dir */
+  /* [run] */
+  double stop_time;   /* `stop_time` [0 = unset] */
+  double stop_events; /* `stop_events` [0 = unset]: collisions */
+  double stop_cpd;    /* `stop_cpd` [0 = unset]; at least one stop must be set */
+  int verify;         /* `verify` [0]: check no-overlap and time order at every event */
+  double checkpoint_every; /* `checkpoint_every` [60]: wall-clock seconds between checkpoints */
+  /* [log] */
+  hd_logmode log_collisions;            /* `collisions` = all | none | every N */
+  long log_every;                       /* N of `every N` [1] */
+  double samples_every;                 /* `samples_every` [0 = none], in cpd */
+  double velocities_at[HD_MAX_VEL_AT];  /* `velocities_at`: cpd values, ascending */
+  int n_velocities_at;
+  char *text; /* malloc'd canonical INI of the effective scene (file + overrides), for runs.scene */
+} hd_scene;
+
+/* Fills *sc with the defaults (no bodies, no stop). */
+void hd_scene_defaults(hd_scene *sc);
+
+/* Reads scene file `path`, then applies n_over overrides "SECTION.KEY=VALUE" (errors in them
+ * are reported as "--set SECTION.KEY=VALUE: ..."), then checks the whole (ranges, a stop
+ * condition, bodies fit in the box).  Returns HD_OK, HD_EINPUT or HD_EIO (cannot read). */
+int hd_scene_load(hd_scene *sc, const char *path, const char *const *over, int n_over,
+                  hd_error *err);
+
+/* As hd_scene_load but from INI text in memory; `name` stands for the file name in messages. */
+int hd_scene_load_string(hd_scene *sc, const char *text, const char *name,
+                         const char *const *over, int n_over, hd_error *err);
+
+/* Frees what the scene owns (text).  The struct itself is the caller's. */
+void hd_scene_free(hd_scene *sc);
+
+/* One body of an [init] state CSV. */
+typedef struct hd_state_row {
+  int kind;          /* HD_KIND_DISK or HD_KIND_DIMER (hd_body.h) */
+  double x, y, phi;  /* phi ignored (0) for disks */
+  double vx, vy, omega;
+  long line;         /* line number in the CSV, for messages */
+} hd_state_row;
+
+/* Reads a state CSV with header `kind,x,y,phi,vx,vy,omega`.  *rows is malloc'd (free()).
+ * Errors name file and line. Overlaps are checked by the engine, which knows the shapes. */
+int hd_state_csv_read(const char *path, hd_state_row **rows, long *n, hd_error *err);
+
+#endif

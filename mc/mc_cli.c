@@ -1,0 +1,30 @@
+/* `haff mc SUB ...`: dispatches to the Monte Carlo programs of mc/. */
+#include <stdio.h>
+#include <string.h>
+
+int haff_mc_main(int argc, char **argv);
+
+/* One `haff mc` subcommand. */
+typedef struct mc_command {
+  const char *name;                   /* "fmean", "eps" */
+  int (*main)(int argc, char **argv); /* argv[0] == name; returns the exit code */
+  const char *summary;                /* one line for `haff mc --help` */
+} mc_command;
+
+static const mc_command mc_commands[] = {
+    {NULL, NULL, NULL} /* sentinel; each mc program adds its line above */
+};
+
+int haff_mc_main(int argc, char **argv) {
+  if (argc >= 2) {
+    for (const mc_command *c = mc_commands; c->name; c++)
+      if (!strcmp(argv[1], c->name)) return c->main(argc - 1, argv + 1);
+  }
+  int help = argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"));
+  FILE *out = help ? stdout : stderr;
+  if (argc >= 2 && !help) fprintf(stderr, "haff mc: unknown program '%s'\n", argv[1]);
+  fprintf(out, "usage: haff mc PROGRAM [ARGS...]\n\nprograms:\n");
+  for (const mc_command *c = mc_commands; c->name; c++)
+    fprintf(out, "  %-8s %s\n", c->name, c->summary);
+  return help ? 0 : 2;
+}
