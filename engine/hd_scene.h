@@ -10,6 +10,14 @@
 #define HD_PATH_MAX 1024
 #define HD_MAX_VEL_AT 64
 
+/* Limits checked by hd_scene_load (docs/scene-keys.md explains them). */
+#define HD_MAX_AREA_FRACTION 0.9069 /* `area_fraction` < this: hexagonal close packing pi/(2 sqrt 3) */
+#define HD_RANDOM_MAX_FRACTION 0.5  /* placement = random: covered fraction <= this; random
+                                     * sequential addition of disks jams at 0.547, so a placer
+                                     * that adds bodies one by one must stay below it */
+#define HD_MAX_COUNT 100000000L     /* largest `count` of a species */
+#define HD_SCENE_MAX_LINE 4096      /* longest scene line, in bytes */
+
 /* Where the initial state comes from ([init] placement / state). */
 typedef enum hd_placement {
   HD_PLACE_RANDOM = 0,  /* random non-overlapping placement (default) */
@@ -53,7 +61,7 @@ typedef struct hd_scene {
   /* [init] */
   double temperature;             /* `temperature` [1]: kT per degree of freedom */
   hd_placement placement;         /* `placement` [random], or HD_PLACE_STATE when `state` given */
-  char state_file[HD_PATH_MAX];   /* `state`: resolved against dir */
+  char state_file[HD_PATH_MAX];   /* `state`: resolved against dir, made absolute (realpath) */
   /* [run] */
   double stop_time;   /* `stop_time` [0 = unset] */
   double stop_events; /* `stop_events` [0 = unset]: collisions */
@@ -69,12 +77,17 @@ typedef struct hd_scene {
   char *text; /* malloc'd canonical INI of the effective scene (file + overrides), for runs.scene */
 } hd_scene;
 
-/* Fills *sc with the defaults (no bodies, no stop). */
+/* Fills *sc with the defaults (no bodies, no stop, text NULL). */
 void hd_scene_defaults(hd_scene *sc);
 
-/* Reads scene file `path`, then applies n_over overrides "SECTION.KEY=VALUE" (errors in them
+/* Reads scene file `path` (overwriting *sc, which must not hold a loaded scene: hd_scene_free
+ * it first), then applies n_over overrides "SECTION.KEY=VALUE" (errors in them
  * are reported as "--set SECTION.KEY=VALUE: ..."), then checks the whole (ranges, a stop
- * condition, bodies fit in the box).  Returns HD_OK, HD_EINPUT or HD_EIO (cannot read). */
+ * condition, bodies fit in the box).  Returns HD_OK, HD_EINPUT or HD_EIO (cannot read the scene
+ * or its state file).  With `state`, the state CSV is read to check it and to count its bodies:
+ * an absent `count` is taken from it, a `count` that disagrees is an error.  On error *sc holds
+ * no allocation (text NULL).  Not thread-safe: it sets libinih's line-length option while it
+ * parses (and restores it). */
 int hd_scene_load(hd_scene *sc, const char *path, const char *const *over, int n_over,
                   hd_error *err);
 
@@ -84,6 +97,13 @@ int hd_scene_load_string(hd_scene *sc, const char *text, const char *name,
 
 /* Frees what the scene owns (text).  The struct itself is the caller's. */
 void hd_scene_free(hd_scene *sc);
+
+/* Area of one dimer: the union of two disks of diameter d whose centres are a apart (two whole
+ * disks when a >= d, minus their lens-shaped overlap when a < d; one disk when a = 0). */
+double hd_dimer_area(double d, double a);
+
+/* Total area of the scene's bodies (dimers and disks, overlaps within a dimer counted once). */
+double hd_scene_covered_area(const hd_scene *sc);
 
 /* One body of an [init] state CSV. */
 typedef struct hd_state_row {

@@ -1,0 +1,946 @@
+/* hd_scene: scene files (INI via libinih), `--set SECTION.KEY=VALUE` overrides, the canonical
+ * text of a scene, and [init] state CSV files.
+ *
+ * Line numbers: libinih's handler is not told the line, so the scene is fed to ini_parse_stream
+ * through our own reader, which hands over one physical line per call and counts them; the
+ * handler then knows the line it is called for.  The reader also
+ *   - strips leading blanks, so that an indented key is never taken for a libinih "multi-line
+ *     continuation" of the previous key;
+ *   - checks every `[section]` header itself (libinih does not report headers to the handler),
+ *     so that an unknown or empty section is still an error, and text after `]` is refused;
+ *   - refuses lines longer than HD_SCENE_MAX_LINE.
+ * Every key is remembered with where it was set (file line or --set), so that checks made after
+ * the whole scene is read still name the right line. */
+#include "hd_scene.h"
+
+#include "hd_body.h"
+
+#include <errno.h>
+#include <ini.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { S_SYSTEM, S_DIMERS, S_DISKS, S_WALLS, S_INIT, S_RUN, S_LOG, N_SEC };
+static const char *const sec_name[N_SEC] = {"system", "dimers", "disks", "walls",
+                                            "init",   "run",    "log"};
+
+enum {
+  K_BOX, K_AREA, K_SEED,
+  K_DCOUNT, K_DD, K_DA, K_DM, K_DALPHA,
+  K_SCOUNT, K_SSIGMA, K_SMASS, K_SALPHA, K_SALPHAD,
+  K_WSIDES, K_WALPHA,
+  K_TEMP, K_PLACE, K_STATE,
+  K_STIME, K_SEVENTS, K_SCPD, K_VERIFY, K_CKPT,
+  K_LCOLL, K_LSAMPLES, K_LVEL,
+  N_KEY
+};
+static const struct {
+  int sec;
+  const char *name;
+} key_def[N_KEY] = {
+    {S_SYSTEM, "box"},        {S_SYSTEM, "area_fraction"}, {S_SYSTEM, "seed"},
+    {S_DIMERS, "count"},      {S_DIMERS, "d"},             {S_DIMERS, "a"},
+    {S_DIMERS, "m"},          {S_DIMERS, "alpha"},         {S_DISKS, "count"},
+    {S_DISKS, "sigma"},       {S_DISKS, "mass"},           {S_DISKS, "alpha"},
+    {S_DISKS, "alpha_dimer"}, {S_WALLS, "sides"},          {S_WALLS, "alpha"},
+    {S_INIT, "temperature"},  {S_INIT, "placement"},       {S_INIT, "state"},
+    {S_RUN, "stop_time"},     {S_RUN, "stop_events"},      {S_RUN, "stop_cpd"},
+    {S_RUN, "verify"},        {S_RUN, "checkpoint_every"}, {S_LOG, "collisions"},
+    {S_LOG, "samples_every"}, {S_LOG, "velocities_at"},
+};
+
+static const char *const wall_name[4] = {"left", "right", "bottom", "top"};
+
+/* Where something was set: a line of the file, or the over-th --set (1-based); 0/0 = nowhere. */
+typedef struct loc {
+  long line;
+  int over;
+} loc;
+
+typedef struct ctx {
+  hd_scene *sc;
+  const char *name;        /* file name for messages */
+  const char *const *over; /* the overrides */
+  hd_error *err;
+  int failed;               /* an error has been set: stop */
+  int code;                 /* its hd_status */
+  loc cur;                  /* where the key being handled comes from */
+  loc key_at[N_KEY];        /* where each key was set */
+  char key_val[N_KEY][96];  /* its value as written (shortened), for later messages */
+  int present[N_SEC];       /* the section appears (header or --set) */
+  loc sec_at[N_SEC];        /* its first header */
+  const char *p, *end;      /* reader: rest of the text */
+  long lineno;              /* reader: lines handed out */
+  char state_rel[HD_PATH_MAX]; /* `state` as written */
+} ctx;
+
+static int is_set(loc l) {
+  return l.line > 0 || l.over > 0;
+}
+
+static void where(const ctx *c, loc l, char *buf, size_t n) {
+  if (l.over)
+    snprintf(buf, n, "--set %s", c->over[l.over - 1]);
+  else
+    snprintf(buf, n, "%s:%ld", c->name, l.line);
+}
+
+/* Records a failure: sets c->err and stops the parse.  Returns code. */
+static __attribute__((format(printf, 3, 4))) int cfail(ctx *c, int code, const char *fmt, ...) {
+  char msg[sizeof c->err->msg];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  c->failed = 1;
+  c->code = code;
+  return hd_error_set(c->err, code, "%s", msg);
+}
+
+/* Shortens a value for a message. */
+static void shorten(const char *v, char *buf, size_t n) {
+  size_t len = strlen(v);
+  if (len < n) {
+    memcpy(buf, v, len + 1);
+  } else {
+    memcpy(buf, v, n - 4);
+    memcpy(buf + n - 4, "...", 4);
+  }
+}
+
+/* "WHERE: [sec] key = value: why" (key < 0: "WHERE: [sec]: why"; val NULL: "[sec] key: why"). */
+static __attribute__((format(printf, 7, 8))) int
+fail(ctx *c, int code, loc l, int sec, const char *key, const char *val, const char *fmt, ...) {
+  char at[600], why[400], v[96], what[200];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(why, sizeof why, fmt, ap);
+  va_end(ap);
+  where(c, l, at, sizeof at);
+  if (!key)
+    snprintf(what, sizeof what, "[%s]", sec >= 0 ? sec_name[sec] : "?");
+  else if (!val)
+    snprintf(what, sizeof what, "[%s] %s", sec_name[sec], key);
+  else {
+    shorten(val, v, sizeof v);
+    snprintf(what, sizeof what, "[%s] %s = %s", sec_name[sec], key, v);
+  }
+  return cfail(c, code, "%s: %s: %s", at, what, why);
+}
+
+/* Error about key k where it was set, with its value. */
+#define FAIL_KEY(c, k, ...)                                                                     \
+  fail((c), HD_EINPUT, (c)->key_at[k], key_def[k].sec, key_def[k].name, (c)->key_val[k],      \
+       __VA_ARGS__)
+
+/* ---- value parsing ------------------------------------------------------------------------ */
+
+/* A finite number that is the whole of s (no hex, no nan/inf). 1 on success. */
+static int parse_num(const char *s, double *x) {
+  if (!*s || strpbrk(s, "xX")) return 0;
+  char *e;
+  errno = 0;
+  double v = strtod(s, &e);
+  if (e == s || *e || !isfinite(v)) return 0;
+  *x = v;
+  return 1;
+}
+
+/* Why s is not a finite number (for messages). */
+static const char *num_why(const char *s) {
+  if (!*s) return "missing value: expected a number";
+  double v = strtod(s, NULL);
+  if (!isfinite(v)) return "must be a finite number";
+  return "not a number";
+}
+
+/* A whole number in [lo, hi]; else an error on key k. */
+static int get_whole(ctx *c, int k, const char *s, double lo, double hi, double *x) {
+  double v;
+  if (!parse_num(s, &v)) return FAIL_KEY(c, k, "%s", num_why(s));
+  if (v != floor(v)) return FAIL_KEY(c, k, "must be a whole number");
+  if (v < lo || v > hi) return FAIL_KEY(c, k, "must be in [%.17g, %.17g]", lo, hi);
+  *x = v;
+  return HD_OK;
+}
+
+/* A number checked by kind: 'p' > 0, 'n' >= 0, 'u' in [0, 1]. */
+static int get_num(ctx *c, int k, const char *s, char kind, double *x) {
+  double v;
+  if (!parse_num(s, &v)) return FAIL_KEY(c, k, "%s", num_why(s));
+  if (kind == 'p' && !(v > 0)) return FAIL_KEY(c, k, "must be > 0");
+  if (kind == 'n' && !(v >= 0)) return FAIL_KEY(c, k, "must be >= 0");
+  if (kind == 'u' && !(v >= 0 && v <= 1)) return FAIL_KEY(c, k, "must be in [0, 1]");
+  *x = v;
+  return HD_OK;
+}
+
+/* Splits s at blanks into at most max tokens copied to tok (each < 64 chars). Returns the count,
+ * or -1 if there are more than max or one is too long. */
+static int split(const char *s, char tok[][64], int max) {
+  int n = 0;
+  while (*s) {
+    while (*s == ' ' || *s == '\t') s++;
+    if (!*s) break;
+    size_t len = strcspn(s, " \t");
+    if (n == max || len >= 64) return -1;
+    memcpy(tok[n], s, len);
+    tok[n][len] = '\0';
+    n++;
+    s += len;
+  }
+  return n;
+}
+
+static int set_box(ctx *c, const char *v) {
+  char tok[2][64];
+  double lx, ly;
+  if (split(v, tok, 2) != 2 || !parse_num(tok[0], &lx) || !parse_num(tok[1], &ly))
+    return FAIL_KEY(c, K_BOX, "expected two finite numbers Lx Ly");
+  if (!(lx > 0 && ly > 0)) return FAIL_KEY(c, K_BOX, "box edges must be > 0");
+  c->sc->box_x = lx;
+  c->sc->box_y = ly;
+  return HD_OK;
+}
+
+static int set_seed(ctx *c, const char *v) {
+  char *e;
+  if (!*v || *v == '-' || *v == '+' || strpbrk(v, " \t")) return FAIL_KEY(c, K_SEED, "expected a whole number >= 0");
+  errno = 0;
+  unsigned long long s = strtoull(v, &e, 10);
+  if (*e || e == v) return FAIL_KEY(c, K_SEED, "expected a whole number >= 0");
+  if (errno == ERANGE) return FAIL_KEY(c, K_SEED, "too large (max %llu)", ULLONG_MAX);
+  c->sc->seed = s;
+  return HD_OK;
+}
+
+static int set_sides(ctx *c, const char *v) {
+  char tok[5][64];
+  int n = split(v, tok, 4);
+  if (n < 0) return FAIL_KEY(c, K_WSIDES, "at most the four sides left right bottom top");
+  if (n == 0) return FAIL_KEY(c, K_WSIDES, "missing value: list some of left right bottom top");
+  unsigned w = 0;
+  for (int i = 0; i < n; i++) {
+    int j = 0;
+    while (j < 4 && strcmp(tok[i], wall_name[j])) j++;
+    if (j == 4) return FAIL_KEY(c, K_WSIDES, "unknown side '%s' (left right bottom top)", tok[i]);
+    if (w & (1u << j)) return FAIL_KEY(c, K_WSIDES, "side '%s' repeated", tok[i]);
+    w |= 1u << j;
+  }
+  c->sc->walls = w;
+  return HD_OK;
+}
+
+static int set_bool(ctx *c, int k, const char *v, int *out) {
+  static const char *const yes[] = {"1", "true", "yes", "on"}, *const no[] = {"0", "false", "no", "off"};
+  for (int i = 0; i < 4; i++) {
+    if (!strcmp(v, yes[i])) return *out = 1, HD_OK;
+    if (!strcmp(v, no[i])) return *out = 0, HD_OK;
+  }
+  return FAIL_KEY(c, k, "expected 1 or 0 (true/false, yes/no, on/off)");
+}
+
+static int set_collisions(ctx *c, const char *v) {
+  hd_scene *sc = c->sc;
+  if (!strcmp(v, "all")) {
+    sc->log_collisions = HD_LOG_ALL;
+    sc->log_every = 1;
+    return HD_OK;
+  }
+  if (!strcmp(v, "none")) {
+    sc->log_collisions = HD_LOG_NONE;
+    sc->log_every = 1;
+    return HD_OK;
+  }
+  char tok[3][64];
+  double n;
+  if (split(v, tok, 2) != 2 || strcmp(tok[0], "every"))
+    return FAIL_KEY(c, K_LCOLL, "expected all, none or every N");
+  if (!parse_num(tok[1], &n) || n != floor(n) || n < 1 || n > (double)LONG_MAX / 2)
+    return FAIL_KEY(c, K_LCOLL, "every N needs a whole number N >= 1");
+  sc->log_collisions = HD_LOG_EVERY;
+  sc->log_every = (long)n;
+  return HD_OK;
+}
+
+static int set_vel_at(ctx *c, const char *v) {
+  hd_scene *sc = c->sc;
+  int n = 0;
+  const char *s = v;
+  while (*s) {
+    while (*s == ' ' || *s == '\t') s++;
+    if (!*s) break;
+    size_t len = strcspn(s, " \t");
+    char t[64];
+    double x;
+    if (len >= sizeof t) return FAIL_KEY(c, K_LVEL, "not a number: '%.20s...'", s);
+    memcpy(t, s, len);
+    t[len] = '\0';
+    s += len;
+    if (!parse_num(t, &x)) return FAIL_KEY(c, K_LVEL, "'%s': %s", t, num_why(t));
+    if (x < 0) return FAIL_KEY(c, K_LVEL, "'%s': cpd values must be >= 0", t);
+    if (n == HD_MAX_VEL_AT) return FAIL_KEY(c, K_LVEL, "more than %d values", HD_MAX_VEL_AT);
+    if (n > 0 && !(x > sc->velocities_at[n - 1]))
+      return FAIL_KEY(c, K_LVEL, "'%s': values must be strictly ascending", t);
+    sc->velocities_at[n++] = x;
+  }
+  if (n == 0) return FAIL_KEY(c, K_LVEL, "missing value: list cpd values");
+  sc->n_velocities_at = n;
+  return HD_OK;
+}
+
+/* Parses the value of key k into the scene. */
+static int set_value(ctx *c, int k, const char *v) {
+  hd_scene *sc = c->sc;
+  double x;
+  int rc = HD_OK;
+  switch (k) {
+  case K_BOX: return set_box(c, v);
+  case K_AREA:
+    if (!parse_num(v, &x)) return FAIL_KEY(c, k, "%s", num_why(v));
+    if (!(x > 0 && x < HD_MAX_AREA_FRACTION))
+      return FAIL_KEY(c, k, "must be in (0, %g)", HD_MAX_AREA_FRACTION);
+    sc->area_fraction = x;
+    return HD_OK;
+  case K_SEED: return set_seed(c, v);
+  case K_DCOUNT:
+  case K_SCOUNT:
+    if ((rc = get_whole(c, k, v, 0, (double)HD_MAX_COUNT, &x))) return rc;
+    *(k == K_DCOUNT ? &sc->n_dimers : &sc->n_disks) = (long)x;
+    return HD_OK;
+  case K_DD: return get_num(c, k, v, 'p', &sc->dimer_d);
+  case K_DA: return get_num(c, k, v, 'n', &sc->dimer_a);
+  case K_DM: return get_num(c, k, v, 'p', &sc->dimer_m);
+  case K_DALPHA: return get_num(c, k, v, 'u', &sc->dimer_alpha);
+  case K_SSIGMA: return get_num(c, k, v, 'p', &sc->disk_sigma);
+  case K_SMASS: return get_num(c, k, v, 'p', &sc->disk_mass);
+  case K_SALPHA: return get_num(c, k, v, 'u', &sc->disk_alpha);
+  case K_SALPHAD: return get_num(c, k, v, 'u', &sc->disk_alpha_dimer);
+  case K_WSIDES: return set_sides(c, v);
+  case K_WALPHA: return get_num(c, k, v, 'u', &sc->wall_alpha);
+  case K_TEMP:
+    if (!parse_num(v, &x)) return FAIL_KEY(c, k, "%s", num_why(v));
+    if (x < 0) return FAIL_KEY(c, k, "must be > 0");
+    sc->temperature = x; /* 0 is refused later unless a state file gives the velocities */
+    return HD_OK;
+  case K_PLACE:
+    if (!strcmp(v, "random"))
+      sc->placement = HD_PLACE_RANDOM;
+    else if (!strcmp(v, "lattice"))
+      sc->placement = HD_PLACE_LATTICE;
+    else
+      return FAIL_KEY(c, k, "expected random or lattice");
+    return HD_OK;
+  case K_STATE:
+    if (!*v) return FAIL_KEY(c, k, "missing value: expected a CSV file name");
+    if (strlen(v) >= sizeof c->state_rel) return FAIL_KEY(c, k, "file name too long");
+    strcpy(c->state_rel, v);
+    return HD_OK;
+  case K_STIME: return get_num(c, k, v, 'p', &sc->stop_time);
+  case K_SEVENTS:
+    if ((rc = get_whole(c, k, v, 1, 9007199254740992.0, &x))) return rc;
+    sc->stop_events = x;
+    return HD_OK;
+  case K_SCPD: return get_num(c, k, v, 'p', &sc->stop_cpd);
+  case K_VERIFY: return set_bool(c, k, v, &sc->verify);
+  case K_CKPT: return get_num(c, k, v, 'p', &sc->checkpoint_every);
+  case K_LCOLL: return set_collisions(c, v);
+  case K_LSAMPLES: return get_num(c, k, v, 'n', &sc->samples_every);
+  case K_LVEL: return set_vel_at(c, v);
+  default: return HD_OK;
+  }
+}
+
+static int find_sec(const char *s) {
+  for (int i = 0; i < N_SEC; i++)
+    if (!strcmp(s, sec_name[i])) return i;
+  return -1;
+}
+
+static int unknown_section(ctx *c, const char *s) {
+  char at[600];
+  where(c, c->cur, at, sizeof at);
+  return cfail(c, HD_EINPUT,
+                      "%s: [%.60s]: unknown section (known: system dimers disks walls init run log)",
+                      at, s);
+}
+
+static void mark_section(ctx *c, int s) {
+  if (!c->present[s]) c->sec_at[s] = c->cur;
+  c->present[s] = 1;
+}
+
+/* Handles `name = value` in section `section` at c->cur. */
+static int handle(ctx *c, const char *section, const char *name, const char *value) {
+  char at[600], v[96];
+  if (!*section) {
+    where(c, c->cur, at, sizeof at);
+    shorten(value, v, sizeof v);
+    return cfail(c, HD_EINPUT, "%s: %.60s = %s: key outside any [section]", at, name,
+                        v);
+  }
+  int s = find_sec(section);
+  if (s < 0) return unknown_section(c, section);
+  int k = 0;
+  while (k < N_KEY && !(key_def[k].sec == s && !strcmp(key_def[k].name, name))) k++;
+  if (k == N_KEY) {
+    char known[200] = "";
+    for (int j = 0; j < N_KEY; j++)
+      if (key_def[j].sec == s) {
+        strcat(known, " ");
+        strcat(known, key_def[j].name);
+      }
+    char nm[64];
+    shorten(name, nm, sizeof nm);
+    return fail(c, HD_EINPUT, c->cur, s, nm, value, "unknown key (keys of [%s]:%s)", sec_name[s],
+                known);
+  }
+  loc prev = c->key_at[k];
+  if (!c->cur.over && prev.line > 0)
+    return fail(c, HD_EINPUT, c->cur, s, name, value, "duplicate key (first set at line %ld)",
+                prev.line);
+  if (c->cur.over && prev.over > 0)
+    return fail(c, HD_EINPUT, c->cur, s, name, value, "duplicate key (also set by --set %s)",
+                c->over[prev.over - 1]);
+  c->key_at[k] = c->cur;
+  shorten(value, c->key_val[k], sizeof c->key_val[k]);
+  return set_value(c, k, value);
+}
+
+static int on_key(void *user, const char *section, const char *name, const char *value) {
+  ctx *c = user;
+  if (c->failed) return 0;
+  return handle(c, section, name, value) == HD_OK;
+}
+
+/* Checks a `[section]` line (leading blanks already gone). */
+static int section_line(ctx *c, const char *line) {
+  const char *close = strchr(line, ']');
+  char at[600];
+  where(c, c->cur, at, sizeof at);
+  if (!close) {
+    return cfail(c, HD_EINPUT, "%s: malformed section header: no ']'", at);
+  }
+  const char *r = close + 1;
+  while (*r == ' ' || *r == '\t') r++;
+  if (*r && *r != '\n' && *r != '\r' && *r != ';' && *r != '#') {
+    return cfail(c, HD_EINPUT,
+                        "%s: text after the [section] header: put each key on its own line", at);
+  }
+  char name[64];
+  size_t len = (size_t)(close - line - 1);
+  if (len >= sizeof name) len = sizeof name - 1;
+  memcpy(name, line + 1, len);
+  name[len] = '\0';
+  int s = find_sec(name);
+  if (s < 0) return unknown_section(c, name);
+  mark_section(c, s);
+  return HD_OK;
+}
+
+/* fgets-like reader for ini_parse_stream: one physical line per call, counted. */
+static char *reader(char *str, int num, void *stream) {
+  ctx *c = stream;
+  if (c->failed || c->p >= c->end) return NULL;
+  const char *s = c->p;
+  const char *nl = memchr(s, '\n', (size_t)(c->end - s));
+  const char *stop = nl ? nl + 1 : c->end;
+  c->p = stop;
+  c->cur.line = ++c->lineno;
+  c->cur.over = 0;
+  if (c->lineno == 1 && stop - s >= 3 && !memcmp(s, "\xEF\xBB\xBF", 3)) s += 3;
+  while (s < stop && (*s == ' ' || *s == '\t')) s++;
+  size_t len = (size_t)(stop - s);
+  if (len + 1 > (size_t)num || len > HD_SCENE_MAX_LINE) {
+    char at[600];
+    where(c, c->cur, at, sizeof at);
+    cfail(c, HD_EINPUT, "%s: line too long (max %d bytes)", at, HD_SCENE_MAX_LINE);
+    return NULL;
+  }
+  memcpy(str, s, len);
+  str[len] = '\0';
+  if (str[0] == '[' && section_line(c, str)) return NULL;
+  return str;
+}
+
+/* Parses the scene text (c->p .. c->end). */
+static int parse_text(ctx *c) {
+  int saved = ini_max_line;
+  ini_max_line = HD_SCENE_MAX_LINE + 3;
+  int r = ini_parse_stream(reader, c, on_key, c);
+  ini_max_line = saved;
+  if (c->failed) return c->code;
+  if (r != 0) {
+    if (r < 0) return cfail(c, HD_ENOMEM, "%s: out of memory while parsing", c->name);
+    return cfail(c, HD_EINPUT,
+                        "%s:%d: malformed line: expected [section], key = value or a comment",
+                        c->name, r);
+  }
+  return HD_OK;
+}
+
+static char *trim(char *s) {
+  while (*s == ' ' || *s == '\t') s++;
+  char *e = s + strlen(s);
+  while (e > s && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' || e[-1] == '\n')) *--e = '\0';
+  return s;
+}
+
+/* Applies override i ("SECTION.KEY=VALUE"). */
+static int apply_override(ctx *c, int i) {
+  char buf[HD_SCENE_MAX_LINE + 1], at[600];
+  c->cur.line = 0;
+  c->cur.over = i + 1;
+  where(c, c->cur, at, sizeof at);
+  if (strlen(c->over[i]) > HD_SCENE_MAX_LINE) {
+    return cfail(c, HD_EINPUT, "--set: value too long (max %d bytes)",
+                        HD_SCENE_MAX_LINE);
+  }
+  strcpy(buf, c->over[i]);
+  char *eq = strchr(buf, '=');
+  char *dot = eq ? memchr(buf, '.', (size_t)(eq - buf)) : NULL;
+  if (!eq || !dot) {
+    return cfail(c, HD_EINPUT, "%s: expected SECTION.KEY=VALUE", at);
+  }
+  *dot = *eq = '\0';
+  char *sec = trim(buf), *key = trim(dot + 1), *val = trim(eq + 1);
+  int s = find_sec(sec);
+  if (s < 0) return unknown_section(c, sec);
+  mark_section(c, s);
+  return handle(c, sec, key, val);
+}
+
+/* ---- checks of the whole ------------------------------------------------------------------- */
+
+double hd_dimer_area(double d, double a) {
+  double r = d / 2, disk = M_PI * r * r;
+  if (a >= d) return 2 * disk;
+  /* lens of two circles of radius r at distance a < 2r */
+  double lens = 2 * r * r * acos(a / (2 * r)) - (a / 2) * sqrt(4 * r * r - a * a);
+  return 2 * disk - lens;
+}
+
+double hd_scene_covered_area(const hd_scene *sc) {
+  return (double)sc->n_dimers * hd_dimer_area(sc->dimer_d, sc->dimer_a) +
+         (double)sc->n_disks * M_PI * sc->disk_sigma * sc->disk_sigma / 4;
+}
+
+/* Resolves, checks and counts the state file. */
+static int check_state(ctx *c) {
+  hd_scene *sc = c->sc;
+  char joined[2 * HD_PATH_MAX + 2];
+  if (c->state_rel[0] == '/')
+    snprintf(joined, sizeof joined, "%s", c->state_rel);
+  else
+    snprintf(joined, sizeof joined, "%s/%s", sc->dir, c->state_rel);
+  char *real = realpath(joined, NULL);
+  if (!real)
+    return fail(c, HD_EIO, c->key_at[K_STATE], S_INIT, "state", c->key_val[K_STATE],
+                "cannot read state file '%s': %s", joined, strerror(errno));
+  if (strlen(real) >= sizeof sc->state_file) {
+    free(real);
+    return FAIL_KEY(c, K_STATE, "path too long");
+  }
+  strcpy(sc->state_file, real);
+  free(real);
+  hd_state_row *rows = NULL;
+  long n = 0, nd = 0, ns = 0;
+  int rc = hd_state_csv_read(sc->state_file, &rows, &n, c->err);
+  if (rc) {
+    c->failed = 1;
+    c->code = rc;
+    return rc;
+  }
+  for (long i = 0; i < n; i++) *(rows[i].kind == HD_KIND_DIMER ? &nd : &ns) += 1;
+  free(rows);
+  static const int ck[2] = {K_DCOUNT, K_SCOUNT}, cs[2] = {S_DIMERS, S_DISKS};
+  long *cnt[2] = {&sc->n_dimers, &sc->n_disks}, have[2] = {nd, ns};
+  static const char *const kind[2] = {"dimer", "disk"};
+  for (int j = 0; j < 2; j++) {
+    if (is_set(c->key_at[ck[j]])) {
+      if (*cnt[j] != have[j])
+        return FAIL_KEY(c, ck[j], "the state file %s holds %ld %s rows", c->state_rel, have[j],
+                        kind[j]);
+    } else if (have[j] > 0) {
+      *cnt[j] = have[j];
+      c->present[cs[j]] = 1;
+    }
+  }
+  return HD_OK;
+}
+
+/* The box: given, or derived from area_fraction; then does everything fit. */
+static int check_box(ctx *c) {
+  hd_scene *sc = c->sc;
+  long nb = sc->n_dimers + sc->n_disks;
+  int kb = is_set(c->key_at[K_BOX]) ? K_BOX : K_AREA;
+  if (is_set(c->key_at[K_BOX]) && is_set(c->key_at[K_AREA])) {
+    int later = c->key_at[K_AREA].over > c->key_at[K_BOX].over ||
+                        (c->key_at[K_AREA].over == c->key_at[K_BOX].over &&
+                         c->key_at[K_AREA].line > c->key_at[K_BOX].line)
+                    ? K_AREA
+                    : K_BOX;
+    return FAIL_KEY(c, later, "give either box or area_fraction, not both");
+  }
+  if (nb == 0) {
+    if (is_set(c->key_at[K_AREA]))
+      return FAIL_KEY(c, K_AREA, "needs bodies: a [dimers] or [disks] count > 0");
+    return HD_OK;
+  }
+  if (!is_set(c->key_at[K_BOX]) && !is_set(c->key_at[K_AREA]))
+    return fail(c, HD_EINPUT, c->present[S_SYSTEM] ? c->sec_at[S_SYSTEM] : (loc){0, 0},
+                S_SYSTEM, "box", NULL, "missing: give box = Lx Ly or area_fraction = eta");
+  double area = hd_scene_covered_area(sc);
+  if (kb == K_AREA) sc->box_x = sc->box_y = sqrt(area / sc->area_fraction);
+  double ext = 0;
+  if (sc->n_dimers > 0) ext = sc->dimer_a + sc->dimer_d;
+  if (sc->n_disks > 0 && sc->disk_sigma > ext) ext = sc->disk_sigma;
+  double edge = fmin(sc->box_x, sc->box_y);
+  if (edge < ext)
+    return FAIL_KEY(c, kb, "box too small: edge %.6g is shorter than the largest body (%.6g)",
+                    edge, ext);
+  double frac = area / (sc->box_x * sc->box_y);
+  if (sc->placement == HD_PLACE_RANDOM && frac > HD_RANDOM_MAX_FRACTION)
+    return FAIL_KEY(c, kb,
+                    "box too dense: the bodies cover %.4g of it, above %g for placement = random "
+                    "(use placement = lattice or a larger box)",
+                    frac, HD_RANDOM_MAX_FRACTION);
+  if (sc->placement == HD_PLACE_LATTICE) {
+    double nx = floor(sc->box_x / ext), ny = floor(sc->box_y / ext);
+    if (nx * ny < (double)nb)
+      return FAIL_KEY(c, kb,
+                      "box too dense for placement = lattice: %.0f x %.0f cells of edge %.6g "
+                      "hold fewer than the %ld bodies",
+                      nx, ny, ext, nb);
+  }
+  return HD_OK;
+}
+
+static int check_all(ctx *c) {
+  hd_scene *sc = c->sc;
+  int rc;
+  if (!is_set(c->key_at[K_SALPHAD])) sc->disk_alpha_dimer = sc->disk_alpha;
+  if (is_set(c->key_at[K_STATE])) {
+    if (is_set(c->key_at[K_PLACE]))
+      return FAIL_KEY(c, K_STATE, "cannot be used together with placement (state gives every "
+                                  "body)");
+    sc->placement = HD_PLACE_STATE;
+    if ((rc = check_state(c))) return rc;
+  } else if (!(sc->temperature > 0)) {
+    return FAIL_KEY(c, K_TEMP, "must be > 0 (0 only with a state file)");
+  }
+  static const int req_sec[3] = {S_DIMERS, S_DISKS, S_WALLS};
+  static const int req_key[3] = {K_DCOUNT, K_SCOUNT, K_WSIDES};
+  for (int j = 0; j < 3; j++)
+    if (c->present[req_sec[j]] && !is_set(c->key_at[req_key[j]]) &&
+        !(req_sec[j] != S_WALLS && sc->placement == HD_PLACE_STATE))
+      return fail(c, HD_EINPUT, c->sec_at[req_sec[j]], req_sec[j], key_def[req_key[j]].name,
+                  NULL, "missing: required in [%s]", sec_name[req_sec[j]]);
+  if ((rc = check_box(c))) return rc;
+  if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
+    return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL,
+                NULL, "no stop condition: set stop_time, stop_events or stop_cpd");
+  return HD_OK;
+}
+
+/* ---- canonical text ------------------------------------------------------------------------ */
+
+typedef struct sbuf {
+  char *s;
+  size_t n, cap;
+  int oom;
+} sbuf;
+
+static __attribute__((format(printf, 2, 3))) void put(sbuf *b, const char *fmt, ...) {
+  if (b->oom) return;
+  va_list ap;
+  va_start(ap, fmt);
+  int need = vsnprintf(NULL, 0, fmt, ap);
+  va_end(ap);
+  if (need < 0) return;
+  if (b->n + (size_t)need + 1 > b->cap) {
+    size_t cap = 2 * (b->n + (size_t)need + 1) + 256;
+    char *s = realloc(b->s, cap);
+    if (!s) {
+      b->oom = 1;
+      return;
+    }
+    b->s = s;
+    b->cap = cap;
+  }
+  va_start(ap, fmt);
+  vsnprintf(b->s + b->n, b->cap - b->n, fmt, ap);
+  va_end(ap);
+  b->n += (size_t)need;
+}
+
+static char *canonical_text(const ctx *c) {
+  const hd_scene *sc = c->sc;
+  sbuf b = {0};
+  put(&b, "%s", "");
+  if (c->present[S_SYSTEM]) {
+    put(&b, "[system]\n");
+    if (is_set(c->key_at[K_AREA]))
+      put(&b, "area_fraction = %.17g\n; box = %.17g %.17g (from area_fraction)\n",
+          sc->area_fraction, sc->box_x, sc->box_y);
+    else if (is_set(c->key_at[K_BOX]))
+      put(&b, "box = %.17g %.17g\n", sc->box_x, sc->box_y);
+    put(&b, "seed = %llu\n", sc->seed);
+  }
+  if (c->present[S_DIMERS])
+    put(&b, "[dimers]\ncount = %ld\nd = %.17g\na = %.17g\nm = %.17g\nalpha = %.17g\n", sc->n_dimers,
+        sc->dimer_d, sc->dimer_a, sc->dimer_m, sc->dimer_alpha);
+  if (c->present[S_DISKS])
+    put(&b, "[disks]\ncount = %ld\nsigma = %.17g\nmass = %.17g\nalpha = %.17g\nalpha_dimer = %.17g\n",
+        sc->n_disks, sc->disk_sigma, sc->disk_mass, sc->disk_alpha, sc->disk_alpha_dimer);
+  if (c->present[S_WALLS]) {
+    put(&b, "[walls]\nsides =");
+    for (int j = 0; j < 4; j++)
+      if (sc->walls & (1u << j)) put(&b, " %s", wall_name[j]);
+    put(&b, "\nalpha = %.17g\n", sc->wall_alpha);
+  }
+  if (c->present[S_INIT]) {
+    put(&b, "[init]\ntemperature = %.17g\n", sc->temperature);
+    if (sc->placement == HD_PLACE_STATE)
+      put(&b, "state = %s\n", sc->state_file);
+    else
+      put(&b, "placement = %s\n", sc->placement == HD_PLACE_LATTICE ? "lattice" : "random");
+  }
+  if (c->present[S_RUN]) {
+    put(&b, "[run]\n");
+    if (sc->stop_time > 0) put(&b, "stop_time = %.17g\n", sc->stop_time);
+    if (sc->stop_events > 0) put(&b, "stop_events = %.17g\n", sc->stop_events);
+    if (sc->stop_cpd > 0) put(&b, "stop_cpd = %.17g\n", sc->stop_cpd);
+    put(&b, "verify = %d\ncheckpoint_every = %.17g\n", sc->verify, sc->checkpoint_every);
+  }
+  if (c->present[S_LOG]) {
+    put(&b, "[log]\n");
+    if (sc->log_collisions == HD_LOG_EVERY)
+      put(&b, "collisions = every %ld\n", sc->log_every);
+    else
+      put(&b, "collisions = %s\n", sc->log_collisions == HD_LOG_NONE ? "none" : "all");
+    put(&b, "samples_every = %.17g\n", sc->samples_every);
+    if (sc->n_velocities_at > 0) {
+      put(&b, "velocities_at =");
+      for (int i = 0; i < sc->n_velocities_at; i++) put(&b, " %.17g", sc->velocities_at[i]);
+      put(&b, "\n");
+    }
+  }
+  if (b.oom) {
+    free(b.s);
+    return NULL;
+  }
+  return b.s;
+}
+
+/* ---- public -------------------------------------------------------------------------------- */
+
+void hd_scene_defaults(hd_scene *sc) {
+  memset(sc, 0, sizeof *sc);
+  strcpy(sc->dir, ".");
+  sc->seed = 1;
+  sc->dimer_d = sc->dimer_a = sc->dimer_m = sc->dimer_alpha = 1;
+  sc->disk_sigma = sc->disk_mass = sc->disk_alpha = sc->disk_alpha_dimer = 1;
+  sc->wall_alpha = 1;
+  sc->temperature = 1;
+  sc->placement = HD_PLACE_RANDOM;
+  sc->checkpoint_every = 60;
+  sc->log_collisions = HD_LOG_ALL;
+  sc->log_every = 1;
+  sc->text = NULL;
+}
+
+void hd_scene_free(hd_scene *sc) {
+  if (!sc) return;
+  free(sc->text);
+  sc->text = NULL;
+}
+
+/* Parses text (len bytes) into the already-defaulted *sc. */
+static int load_text(hd_scene *sc, const char *text, size_t len, const char *name,
+                     const char *const *over, int n_over, hd_error *err) {
+  ctx *c = calloc(1, sizeof *c);
+  if (!c) return hd_error_set(err, HD_ENOMEM, "%s: out of memory", name);
+  c->sc = sc;
+  c->name = name;
+  c->over = over;
+  c->err = err;
+  c->p = text;
+  c->end = text + len;
+  int rc = HD_OK;
+  if (memchr(text, '\0', len))
+    rc = hd_error_set(err, HD_EINPUT, "%s: contains a NUL byte: not a text file", name);
+  if (!rc) rc = parse_text(c);
+  for (int i = 0; !rc && i < n_over; i++) rc = apply_override(c, i);
+  if (!rc) rc = check_all(c);
+  if (!rc) {
+    sc->text = canonical_text(c);
+    if (!sc->text) rc = hd_error_set(err, HD_ENOMEM, "%s: out of memory", name);
+  }
+  free(c);
+  if (!rc) hd_error_clear(err);
+  return rc;
+}
+
+int hd_scene_load_string(hd_scene *sc, const char *text, const char *name,
+                         const char *const *over, int n_over, hd_error *err) {
+  hd_scene_defaults(sc);
+  if (!name) name = "<string>";
+  return load_text(sc, text, strlen(text), name, over, n_over, err);
+}
+
+int hd_scene_load(hd_scene *sc, const char *path, const char *const *over, int n_over,
+                  hd_error *err) {
+  hd_scene_defaults(sc);
+  if (strlen(path) >= sizeof sc->path)
+    return hd_error_set(err, HD_EINPUT, "%.100s...: scene path too long", path);
+  strcpy(sc->path, path);
+  const char *slash = strrchr(path, '/');
+  if (slash == path)
+    strcpy(sc->dir, "/");
+  else if (slash) {
+    memcpy(sc->dir, path, (size_t)(slash - path));
+    sc->dir[slash - path] = '\0';
+  }
+  FILE *f = fopen(path, "rb");
+  if (!f) return hd_error_set(err, HD_EIO, "%s: cannot read scene: %s", path, strerror(errno));
+  char *buf = NULL;
+  size_t len = 0, cap = 0;
+  for (;;) {
+    if (len + 4096 + 1 > cap) {
+      cap = 2 * cap + 8192;
+      char *nb = realloc(buf, cap);
+      if (!nb) {
+        free(buf);
+        fclose(f);
+        return hd_error_set(err, HD_ENOMEM, "%s: out of memory", path);
+      }
+      buf = nb;
+    }
+    size_t got = fread(buf + len, 1, 4096, f);
+    len += got;
+    if (got < 4096) break;
+  }
+  int bad = ferror(f);
+  fclose(f);
+  if (bad) {
+    free(buf);
+    return hd_error_set(err, HD_EIO, "%s: cannot read scene: read error", path);
+  }
+  buf[len] = '\0';
+  int rc = load_text(sc, buf, len, path, over, n_over, err);
+  free(buf);
+  return rc;
+}
+
+/* ---- state CSV ----------------------------------------------------------------------------- */
+
+static const char *const csv_col[7] = {"kind", "x", "y", "phi", "vx", "vy", "omega"};
+
+static void rstrip(char *s) {
+  size_t n = strlen(s);
+  while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t' || s[n - 1] == '\r' || s[n - 1] == '\n'))
+    s[--n] = '\0';
+}
+
+/* Parses one data line (already right-stripped) into *r. */
+static int csv_row(char *line, const char *path, long lineno, hd_state_row *r, hd_error *err) {
+  char *f[8];
+  int nf = 0;
+  char *p = line;
+  for (;;) {
+    if (nf < 8) f[nf] = p;
+    nf++;
+    char *comma = strchr(p, ',');
+    if (!comma) break;
+    *comma = '\0';
+    p = comma + 1;
+  }
+  if (nf != 7)
+    return hd_error_set(err, HD_EINPUT, "%s:%ld: expected 7 columns (%s), found %d", path, lineno,
+                        "kind,x,y,phi,vx,vy,omega", nf);
+  char *kind = trim(f[0]);
+  if (!strcmp(kind, "dimer"))
+    r->kind = HD_KIND_DIMER;
+  else if (!strcmp(kind, "disk"))
+    r->kind = HD_KIND_DISK;
+  else
+    return hd_error_set(err, HD_EINPUT, "%s:%ld: column 1 (kind): '%.40s' is not dimer or disk",
+                        path, lineno, kind);
+  double v[7];
+  for (int j = 1; j < 7; j++) {
+    char *t = trim(f[j]);
+    if (!parse_num(t, &v[j]))
+      return hd_error_set(err, HD_EINPUT, "%s:%ld: column %d (%s): '%.40s': %s", path, lineno,
+                          j + 1, csv_col[j], t, num_why(t));
+  }
+  r->x = v[1];
+  r->y = v[2];
+  r->phi = r->kind == HD_KIND_DIMER ? v[3] : 0;
+  r->vx = v[4];
+  r->vy = v[5];
+  r->omega = r->kind == HD_KIND_DIMER ? v[6] : 0;
+  r->line = lineno;
+  return HD_OK;
+}
+
+int hd_state_csv_read(const char *path, hd_state_row **rows, long *n, hd_error *err) {
+  *rows = NULL;
+  *n = 0;
+  FILE *fp = fopen(path, "r");
+  if (!fp) return hd_error_set(err, HD_EIO, "%s: cannot read state file: %s", path, strerror(errno));
+  char *line = NULL;
+  size_t cap = 0;
+  long lineno = 0, nrow = 0, rcap = 0;
+  hd_state_row *out = NULL;
+  int rc = HD_OK;
+  ssize_t got;
+  while (!rc && (got = getline(&line, &cap, fp)) >= 0) {
+    lineno++;
+    if (memchr(line, '\0', (size_t)got)) {
+      rc = hd_error_set(err, HD_EINPUT, "%s:%ld: contains a NUL byte: not a text file", path,
+                        lineno);
+      break;
+    }
+    rstrip(line);
+    if (lineno == 1) {
+      if (strcmp(line, "kind,x,y,phi,vx,vy,omega"))
+        rc = hd_error_set(err, HD_EINPUT,
+                          "%s:1: missing header: expected kind,x,y,phi,vx,vy,omega, found '%.60s'",
+                          path, line);
+      continue;
+    }
+    if (!line[0]) continue; /* blank line */
+    if (nrow == rcap) {
+      rcap = 2 * rcap + 64;
+      hd_state_row *nr = realloc(out, (size_t)rcap * sizeof *out);
+      if (!nr) {
+        rc = hd_error_set(err, HD_ENOMEM, "%s: out of memory", path);
+        break;
+      }
+      out = nr;
+    }
+    rc = csv_row(line, path, lineno, &out[nrow], err);
+    if (!rc) nrow++;
+  }
+  if (!rc && ferror(fp)) rc = hd_error_set(err, HD_EIO, "%s: read error", path);
+  if (!rc && lineno == 0)
+    rc = hd_error_set(err, HD_EINPUT, "%s:1: empty file: expected header kind,x,y,phi,vx,vy,omega",
+                      path);
+  if (!rc && nrow == 0)
+    rc = hd_error_set(err, HD_EINPUT, "%s:%ld: no bodies after the header", path, lineno);
+  free(line);
+  fclose(fp);
+  if (rc) {
+    free(out);
+    return rc;
+  }
+  *rows = out;
+  *n = nrow;
+  hd_error_clear(err);
+  return HD_OK;
+}
