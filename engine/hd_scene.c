@@ -678,33 +678,63 @@ static __attribute__((format(printf, 2, 3))) void put(sbuf *b, const char *fmt, 
   b->n += (size_t)need;
 }
 
+/* The shortest of %.15g, %.16g, %.17g that reads back as exactly x (so the text round-trips
+ * bit for bit, and 0.95 stays "0.95" rather than "0.94999999999999996"). */
+static void shortest(double x, char *buf, size_t n) {
+  for (int prec = 15; prec <= 17; prec++) {
+    snprintf(buf, n, "%.*g", prec, x);
+    if (strtod(buf, NULL) == x) return;
+  }
+}
+
+/* "key = x\n" */
+static void put_kv(sbuf *b, const char *key, double x) {
+  char v[40];
+  shortest(x, v, sizeof v);
+  put(b, "%s = %s\n", key, v);
+}
+
 static char *canonical_text(const ctx *c) {
   const hd_scene *sc = c->sc;
   sbuf b = {0};
+  char v1[40], v2[40];
   put(&b, "%s", "");
   if (c->present[S_SYSTEM]) {
     put(&b, "[system]\n");
-    if (is_set(c->key_at[K_AREA]))
-      put(&b, "area_fraction = %.17g\n; box = %.17g %.17g (from area_fraction)\n",
-          sc->area_fraction, sc->box_x, sc->box_y);
-    else if (is_set(c->key_at[K_BOX]))
-      put(&b, "box = %.17g %.17g\n", sc->box_x, sc->box_y);
+    shortest(sc->box_x, v1, sizeof v1);
+    shortest(sc->box_y, v2, sizeof v2);
+    if (is_set(c->key_at[K_AREA])) {
+      put_kv(&b, "area_fraction", sc->area_fraction);
+      put(&b, "; box = %s %s (from area_fraction)\n", v1, v2);
+    } else if (is_set(c->key_at[K_BOX])) {
+      put(&b, "box = %s %s\n", v1, v2);
+    }
     put(&b, "seed = %llu\n", sc->seed);
   }
-  if (c->present[S_DIMERS])
-    put(&b, "[dimers]\ncount = %ld\nd = %.17g\na = %.17g\nm = %.17g\nalpha = %.17g\n", sc->n_dimers,
-        sc->dimer_d, sc->dimer_a, sc->dimer_m, sc->dimer_alpha);
-  if (c->present[S_DISKS])
-    put(&b, "[disks]\ncount = %ld\nsigma = %.17g\nmass = %.17g\nalpha = %.17g\nalpha_dimer = %.17g\n",
-        sc->n_disks, sc->disk_sigma, sc->disk_mass, sc->disk_alpha, sc->disk_alpha_dimer);
+  if (c->present[S_DIMERS]) {
+    put(&b, "[dimers]\ncount = %ld\n", sc->n_dimers);
+    put_kv(&b, "d", sc->dimer_d);
+    put_kv(&b, "a", sc->dimer_a);
+    put_kv(&b, "m", sc->dimer_m);
+    put_kv(&b, "alpha", sc->dimer_alpha);
+  }
+  if (c->present[S_DISKS]) {
+    put(&b, "[disks]\ncount = %ld\n", sc->n_disks);
+    put_kv(&b, "sigma", sc->disk_sigma);
+    put_kv(&b, "mass", sc->disk_mass);
+    put_kv(&b, "alpha", sc->disk_alpha);
+    put_kv(&b, "alpha_dimer", sc->disk_alpha_dimer);
+  }
   if (c->present[S_WALLS]) {
     put(&b, "[walls]\nsides =");
     for (int j = 0; j < 4; j++)
       if (sc->walls & (1u << j)) put(&b, " %s", wall_name[j]);
-    put(&b, "\nalpha = %.17g\n", sc->wall_alpha);
+    put(&b, "\n");
+    put_kv(&b, "alpha", sc->wall_alpha);
   }
   if (c->present[S_INIT]) {
-    put(&b, "[init]\ntemperature = %.17g\n", sc->temperature);
+    put(&b, "[init]\n");
+    put_kv(&b, "temperature", sc->temperature);
     if (sc->placement == HD_PLACE_STATE)
       put(&b, "state = %s\n", sc->state_file);
     else
@@ -712,10 +742,11 @@ static char *canonical_text(const ctx *c) {
   }
   if (c->present[S_RUN]) {
     put(&b, "[run]\n");
-    if (sc->stop_time > 0) put(&b, "stop_time = %.17g\n", sc->stop_time);
-    if (sc->stop_events > 0) put(&b, "stop_events = %.17g\n", sc->stop_events);
-    if (sc->stop_cpd > 0) put(&b, "stop_cpd = %.17g\n", sc->stop_cpd);
-    put(&b, "verify = %d\ncheckpoint_every = %.17g\n", sc->verify, sc->checkpoint_every);
+    if (sc->stop_time > 0) put_kv(&b, "stop_time", sc->stop_time);
+    if (sc->stop_events > 0) put_kv(&b, "stop_events", sc->stop_events);
+    if (sc->stop_cpd > 0) put_kv(&b, "stop_cpd", sc->stop_cpd);
+    put(&b, "verify = %d\n", sc->verify);
+    put_kv(&b, "checkpoint_every", sc->checkpoint_every);
   }
   if (c->present[S_LOG]) {
     put(&b, "[log]\n");
@@ -723,10 +754,13 @@ static char *canonical_text(const ctx *c) {
       put(&b, "collisions = every %ld\n", sc->log_every);
     else
       put(&b, "collisions = %s\n", sc->log_collisions == HD_LOG_NONE ? "none" : "all");
-    put(&b, "samples_every = %.17g\n", sc->samples_every);
+    put_kv(&b, "samples_every", sc->samples_every);
     if (sc->n_velocities_at > 0) {
       put(&b, "velocities_at =");
-      for (int i = 0; i < sc->n_velocities_at; i++) put(&b, " %.17g", sc->velocities_at[i]);
+      for (int i = 0; i < sc->n_velocities_at; i++) {
+        shortest(sc->velocities_at[i], v1, sizeof v1);
+        put(&b, " %s", v1);
+      }
       put(&b, "\n");
     }
   }
