@@ -29,28 +29,64 @@ static const char *const sec_name[N_SEC] = {"system", "dimers", "disks", "walls"
                                             "init",   "run",    "log"};
 
 enum {
-  K_BOX, K_AREA, K_SEED,
-  K_DCOUNT, K_DD, K_DA, K_DM, K_DALPHA,
-  K_SCOUNT, K_SSIGMA, K_SMASS, K_SALPHA, K_SALPHAD,
-  K_WSIDES, K_WALPHA,
-  K_TEMP, K_PLACE, K_STATE,
-  K_STIME, K_SEVENTS, K_SCPD, K_VERIFY, K_CKPT,
-  K_LCOLL, K_LSAMPLES, K_LVEL,
+  K_BOX,
+  K_AREA,
+  K_SEED,
+  K_DCOUNT,
+  K_DD,
+  K_DA,
+  K_DM,
+  K_DALPHA,
+  K_SCOUNT,
+  K_SSIGMA,
+  K_SMASS,
+  K_SALPHA,
+  K_SALPHAD,
+  K_WSIDES,
+  K_WALPHA,
+  K_TEMP,
+  K_PLACE,
+  K_STATE,
+  K_STIME,
+  K_SEVENTS,
+  K_SCPD,
+  K_VERIFY,
+  K_CKPT,
+  K_LCOLL,
+  K_LSAMPLES,
+  K_LVEL,
   N_KEY
 };
 static const struct {
   int sec;
   const char *name;
 } key_def[N_KEY] = {
-    {S_SYSTEM, "box"},        {S_SYSTEM, "area_fraction"}, {S_SYSTEM, "seed"},
-    {S_DIMERS, "count"},      {S_DIMERS, "d"},             {S_DIMERS, "a"},
-    {S_DIMERS, "m"},          {S_DIMERS, "alpha"},         {S_DISKS, "count"},
-    {S_DISKS, "sigma"},       {S_DISKS, "mass"},           {S_DISKS, "alpha"},
-    {S_DISKS, "alpha_dimer"}, {S_WALLS, "sides"},          {S_WALLS, "alpha"},
-    {S_INIT, "temperature"},  {S_INIT, "placement"},       {S_INIT, "state"},
-    {S_RUN, "stop_time"},     {S_RUN, "stop_events"},      {S_RUN, "stop_cpd"},
-    {S_RUN, "verify"},        {S_RUN, "checkpoint_every"}, {S_LOG, "collisions"},
-    {S_LOG, "samples_every"}, {S_LOG, "velocities_at"},
+    {S_SYSTEM, "box"},
+    {S_SYSTEM, "area_fraction"},
+    {S_SYSTEM, "seed"},
+    {S_DIMERS, "count"},
+    {S_DIMERS, "d"},
+    {S_DIMERS, "a"},
+    {S_DIMERS, "m"},
+    {S_DIMERS, "alpha"},
+    {S_DISKS, "count"},
+    {S_DISKS, "sigma"},
+    {S_DISKS, "mass"},
+    {S_DISKS, "alpha"},
+    {S_DISKS, "alpha_dimer"},
+    {S_WALLS, "sides"},
+    {S_WALLS, "alpha"},
+    {S_INIT, "temperature"},
+    {S_INIT, "placement"},
+    {S_INIT, "state"},
+    {S_RUN, "stop_time"},
+    {S_RUN, "stop_events"},
+    {S_RUN, "stop_cpd"},
+    {S_RUN, "verify"},
+    {S_RUN, "checkpoint_every"},
+    {S_LOG, "collisions"},
+    {S_LOG, "samples_every"},
+    {S_LOG, "velocities_at"},
 };
 
 static const char *const wall_name[4] = {"left", "right", "bottom", "top"};
@@ -66,15 +102,15 @@ typedef struct ctx {
   const char *name;        /* file name for messages */
   const char *const *over; /* the overrides */
   hd_error *err;
-  int failed;               /* an error has been set: stop */
-  int code;                 /* its hd_status */
-  loc cur;                  /* where the key being handled comes from */
-  loc key_at[N_KEY];        /* where each key was set */
-  char key_val[N_KEY][96];  /* its value as written (shortened), for later messages */
-  int present[N_SEC];       /* the section appears (header or --set) */
-  loc sec_at[N_SEC];        /* its first header */
-  const char *p, *end;      /* reader: rest of the text */
-  long lineno;              /* reader: lines handed out */
+  int failed;                  /* an error has been set: stop */
+  int code;                    /* its hd_status */
+  loc cur;                     /* where the key being handled comes from */
+  loc key_at[N_KEY];           /* where each key was set */
+  char key_val[N_KEY][96];     /* its value as written (shortened), for later messages */
+  int present[N_SEC];          /* the section appears (header or --set) */
+  loc sec_at[N_SEC];           /* its first header */
+  const char *p, *end;         /* reader: rest of the text */
+  long lineno;                 /* reader: lines handed out */
   char state_rel[HD_PATH_MAX]; /* `state` as written */
 } ctx;
 
@@ -133,8 +169,8 @@ fail(ctx *c, int code, loc l, int sec, const char *key, const char *val, const c
 }
 
 /* Error about key k where it was set, with its value. */
-#define FAIL_KEY(c, k, ...)                                                                     \
-  fail((c), HD_EINPUT, (c)->key_at[k], key_def[k].sec, key_def[k].name, (c)->key_val[k],      \
+#define FAIL_KEY(c, k, ...)                                                                        \
+  fail((c), HD_EINPUT, (c)->key_at[k], key_def[k].sec, key_def[k].name, (c)->key_val[k],           \
        __VA_ARGS__)
 
 /* ---- value parsing ------------------------------------------------------------------------ */
@@ -184,7 +220,8 @@ static int get_num(ctx *c, int k, const char *s, char kind, double *x) {
 static int split(const char *s, char tok[][64], int max) {
   int n = 0;
   while (*s) {
-    while (*s == ' ' || *s == '\t') s++;
+    while (*s == ' ' || *s == '\t')
+      s++;
     if (!*s) break;
     size_t len = strcspn(s, " \t");
     if (n == max || len >= 64) return -1;
@@ -209,7 +246,8 @@ static int set_box(ctx *c, const char *v) {
 
 static int set_seed(ctx *c, const char *v) {
   char *e;
-  if (!*v || *v == '-' || *v == '+' || strpbrk(v, " \t")) return FAIL_KEY(c, K_SEED, "expected a whole number >= 0");
+  if (!*v || *v == '-' || *v == '+' || strpbrk(v, " \t"))
+    return FAIL_KEY(c, K_SEED, "expected a whole number >= 0");
   errno = 0;
   unsigned long long s = strtoull(v, &e, 10);
   if (*e || e == v) return FAIL_KEY(c, K_SEED, "expected a whole number >= 0");
@@ -226,7 +264,8 @@ static int set_sides(ctx *c, const char *v) {
   unsigned w = 0;
   for (int i = 0; i < n; i++) {
     int j = 0;
-    while (j < 4 && strcmp(tok[i], wall_name[j])) j++;
+    while (j < 4 && strcmp(tok[i], wall_name[j]))
+      j++;
     if (j == 4) return FAIL_KEY(c, K_WSIDES, "unknown side '%s' (left right bottom top)", tok[i]);
     if (w & (1u << j)) return FAIL_KEY(c, K_WSIDES, "side '%s' repeated", tok[i]);
     w |= 1u << j;
@@ -236,7 +275,8 @@ static int set_sides(ctx *c, const char *v) {
 }
 
 static int set_bool(ctx *c, int k, const char *v, int *out) {
-  static const char *const yes[] = {"1", "true", "yes", "on"}, *const no[] = {"0", "false", "no", "off"};
+  static const char *const yes[] = {"1", "true", "yes", "on"}, *const no[] = {"0", "false", "no",
+                                                                              "off"};
   for (int i = 0; i < 4; i++) {
     if (!strcmp(v, yes[i])) return *out = 1, HD_OK;
     if (!strcmp(v, no[i])) return *out = 0, HD_OK;
@@ -272,7 +312,8 @@ static int set_vel_at(ctx *c, const char *v) {
   int n = 0;
   const char *s = v;
   while (*s) {
-    while (*s == ' ' || *s == '\t') s++;
+    while (*s == ' ' || *s == '\t')
+      s++;
     if (!*s) break;
     size_t len = strcspn(s, " \t");
     char t[64];
@@ -299,29 +340,41 @@ static int set_value(ctx *c, int k, const char *v) {
   double x;
   int rc = HD_OK;
   switch (k) {
-  case K_BOX: return set_box(c, v);
+  case K_BOX:
+    return set_box(c, v);
   case K_AREA:
     if (!parse_num(v, &x)) return FAIL_KEY(c, k, "%s", num_why(v));
     if (!(x > 0 && x < HD_MAX_AREA_FRACTION))
       return FAIL_KEY(c, k, "must be in (0, %g)", HD_MAX_AREA_FRACTION);
     sc->area_fraction = x;
     return HD_OK;
-  case K_SEED: return set_seed(c, v);
+  case K_SEED:
+    return set_seed(c, v);
   case K_DCOUNT:
   case K_SCOUNT:
     if ((rc = get_whole(c, k, v, 0, (double)HD_MAX_COUNT, &x))) return rc;
     *(k == K_DCOUNT ? &sc->n_dimers : &sc->n_disks) = (long)x;
     return HD_OK;
-  case K_DD: return get_num(c, k, v, 'p', &sc->dimer_d);
-  case K_DA: return get_num(c, k, v, 'n', &sc->dimer_a);
-  case K_DM: return get_num(c, k, v, 'p', &sc->dimer_m);
-  case K_DALPHA: return get_num(c, k, v, 'u', &sc->dimer_alpha);
-  case K_SSIGMA: return get_num(c, k, v, 'p', &sc->disk_sigma);
-  case K_SMASS: return get_num(c, k, v, 'p', &sc->disk_mass);
-  case K_SALPHA: return get_num(c, k, v, 'u', &sc->disk_alpha);
-  case K_SALPHAD: return get_num(c, k, v, 'u', &sc->disk_alpha_dimer);
-  case K_WSIDES: return set_sides(c, v);
-  case K_WALPHA: return get_num(c, k, v, 'u', &sc->wall_alpha);
+  case K_DD:
+    return get_num(c, k, v, 'p', &sc->dimer_d);
+  case K_DA:
+    return get_num(c, k, v, 'n', &sc->dimer_a);
+  case K_DM:
+    return get_num(c, k, v, 'p', &sc->dimer_m);
+  case K_DALPHA:
+    return get_num(c, k, v, 'u', &sc->dimer_alpha);
+  case K_SSIGMA:
+    return get_num(c, k, v, 'p', &sc->disk_sigma);
+  case K_SMASS:
+    return get_num(c, k, v, 'p', &sc->disk_mass);
+  case K_SALPHA:
+    return get_num(c, k, v, 'u', &sc->disk_alpha);
+  case K_SALPHAD:
+    return get_num(c, k, v, 'u', &sc->disk_alpha_dimer);
+  case K_WSIDES:
+    return set_sides(c, v);
+  case K_WALPHA:
+    return get_num(c, k, v, 'u', &sc->wall_alpha);
   case K_TEMP:
     if (!parse_num(v, &x)) return FAIL_KEY(c, k, "%s", num_why(v));
     if (x < 0) return FAIL_KEY(c, k, "must be > 0");
@@ -340,18 +393,26 @@ static int set_value(ctx *c, int k, const char *v) {
     if (strlen(v) >= sizeof c->state_rel) return FAIL_KEY(c, k, "file name too long");
     strcpy(c->state_rel, v);
     return HD_OK;
-  case K_STIME: return get_num(c, k, v, 'p', &sc->stop_time);
+  case K_STIME:
+    return get_num(c, k, v, 'p', &sc->stop_time);
   case K_SEVENTS:
     if ((rc = get_whole(c, k, v, 1, 9007199254740992.0, &x))) return rc;
     sc->stop_events = x;
     return HD_OK;
-  case K_SCPD: return get_num(c, k, v, 'p', &sc->stop_cpd);
-  case K_VERIFY: return set_bool(c, k, v, &sc->verify);
-  case K_CKPT: return get_num(c, k, v, 'p', &sc->checkpoint_every);
-  case K_LCOLL: return set_collisions(c, v);
-  case K_LSAMPLES: return get_num(c, k, v, 'n', &sc->samples_every);
-  case K_LVEL: return set_vel_at(c, v);
-  default: return HD_OK;
+  case K_SCPD:
+    return get_num(c, k, v, 'p', &sc->stop_cpd);
+  case K_VERIFY:
+    return set_bool(c, k, v, &sc->verify);
+  case K_CKPT:
+    return get_num(c, k, v, 'p', &sc->checkpoint_every);
+  case K_LCOLL:
+    return set_collisions(c, v);
+  case K_LSAMPLES:
+    return get_num(c, k, v, 'n', &sc->samples_every);
+  case K_LVEL:
+    return set_vel_at(c, v);
+  default:
+    return HD_OK;
   }
 }
 
@@ -365,8 +426,8 @@ static int unknown_section(ctx *c, const char *s) {
   char at[600];
   where(c, c->cur, at, sizeof at);
   return cfail(c, HD_EINPUT,
-                      "%s: [%.60s]: unknown section (known: system dimers disks walls init run log)",
-                      at, s);
+               "%s: [%.60s]: unknown section (known: system dimers disks walls init run log)", at,
+               s);
 }
 
 static void mark_section(ctx *c, int s) {
@@ -380,13 +441,13 @@ static int handle(ctx *c, const char *section, const char *name, const char *val
   if (!*section) {
     where(c, c->cur, at, sizeof at);
     shorten(value, v, sizeof v);
-    return cfail(c, HD_EINPUT, "%s: %.60s = %s: key outside any [section]", at, name,
-                        v);
+    return cfail(c, HD_EINPUT, "%s: %.60s = %s: key outside any [section]", at, name, v);
   }
   int s = find_sec(section);
   if (s < 0) return unknown_section(c, section);
   int k = 0;
-  while (k < N_KEY && !(key_def[k].sec == s && !strcmp(key_def[k].name, name))) k++;
+  while (k < N_KEY && !(key_def[k].sec == s && !strcmp(key_def[k].name, name)))
+    k++;
   if (k == N_KEY) {
     char known[200] = "";
     for (int j = 0; j < N_KEY; j++)
@@ -426,10 +487,11 @@ static int section_line(ctx *c, const char *line) {
     return cfail(c, HD_EINPUT, "%s: malformed section header: no ']'", at);
   }
   const char *r = close + 1;
-  while (*r == ' ' || *r == '\t') r++;
+  while (*r == ' ' || *r == '\t')
+    r++;
   if (*r && *r != '\n' && *r != '\r' && *r != ';' && *r != '#') {
-    return cfail(c, HD_EINPUT,
-                        "%s: text after the [section] header: put each key on its own line", at);
+    return cfail(c, HD_EINPUT, "%s: text after the [section] header: put each key on its own line",
+                 at);
   }
   char name[64];
   size_t len = (size_t)(close - line - 1);
@@ -453,7 +515,8 @@ static char *reader(char *str, int num, void *stream) {
   c->cur.line = ++c->lineno;
   c->cur.over = 0;
   if (c->lineno == 1 && stop - s >= 3 && !memcmp(s, "\xEF\xBB\xBF", 3)) s += 3;
-  while (s < stop && (*s == ' ' || *s == '\t')) s++;
+  while (s < stop && (*s == ' ' || *s == '\t'))
+    s++;
   size_t len = (size_t)(stop - s);
   if (len + 1 > (size_t)num || len > HD_SCENE_MAX_LINE) {
     char at[600];
@@ -477,16 +540,17 @@ static int parse_text(ctx *c) {
   if (r != 0) {
     if (r < 0) return cfail(c, HD_ENOMEM, "%s: out of memory while parsing", c->name);
     return cfail(c, HD_EINPUT,
-                        "%s:%d: malformed line: expected [section], key = value or a comment",
-                        c->name, r);
+                 "%s:%d: malformed line: expected [section], key = value or a comment", c->name, r);
   }
   return HD_OK;
 }
 
 static char *trim(char *s) {
-  while (*s == ' ' || *s == '\t') s++;
+  while (*s == ' ' || *s == '\t')
+    s++;
   char *e = s + strlen(s);
-  while (e > s && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' || e[-1] == '\n')) *--e = '\0';
+  while (e > s && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' || e[-1] == '\n'))
+    *--e = '\0';
   return s;
 }
 
@@ -497,8 +561,7 @@ static int apply_override(ctx *c, int i) {
   c->cur.over = i + 1;
   where(c, c->cur, at, sizeof at);
   if (strlen(c->over[i]) > HD_SCENE_MAX_LINE) {
-    return cfail(c, HD_EINPUT, "--set: value too long (max %d bytes)",
-                        HD_SCENE_MAX_LINE);
+    return cfail(c, HD_EINPUT, "--set: value too long (max %d bytes)", HD_SCENE_MAX_LINE);
   }
   strcpy(buf, c->over[i]);
   char *eq = strchr(buf, '=');
@@ -555,7 +618,8 @@ static int check_state(ctx *c) {
     c->code = rc;
     return rc;
   }
-  for (long i = 0; i < n; i++) *(rows[i].kind == HD_KIND_DIMER ? &nd : &ns) += 1;
+  for (long i = 0; i < n; i++)
+    *(rows[i].kind == HD_KIND_DIMER ? &nd : &ns) += 1;
   free(rows);
   static const int ck[2] = {K_DCOUNT, K_SCOUNT}, cs[2] = {S_DIMERS, S_DISKS};
   long *cnt[2] = {&sc->n_dimers, &sc->n_disks}, have[2] = {nd, ns};
@@ -592,8 +656,8 @@ static int check_box(ctx *c) {
     return HD_OK;
   }
   if (!is_set(c->key_at[K_BOX]) && !is_set(c->key_at[K_AREA]))
-    return fail(c, HD_EINPUT, c->present[S_SYSTEM] ? c->sec_at[S_SYSTEM] : (loc){0, 0},
-                S_SYSTEM, "box", NULL, "missing: give box = Lx Ly or area_fraction = eta");
+    return fail(c, HD_EINPUT, c->present[S_SYSTEM] ? c->sec_at[S_SYSTEM] : (loc){0, 0}, S_SYSTEM,
+                "box", NULL, "missing: give box = Lx Ly or area_fraction = eta");
   double area = hd_scene_covered_area(sc);
   if (kb == K_AREA) sc->box_x = sc->box_y = sqrt(area / sc->area_fraction);
   double ext = 0;
@@ -601,8 +665,8 @@ static int check_box(ctx *c) {
   if (sc->n_disks > 0 && sc->disk_sigma > ext) ext = sc->disk_sigma;
   double edge = fmin(sc->box_x, sc->box_y);
   if (edge < ext)
-    return FAIL_KEY(c, kb, "box too small: edge %.6g is shorter than the largest body (%.6g)",
-                    edge, ext);
+    return FAIL_KEY(c, kb, "box too small: edge %.6g is shorter than the largest body (%.6g)", edge,
+                    ext);
   double frac = area / (sc->box_x * sc->box_y);
   if (sc->placement == HD_PLACE_RANDOM && frac > HD_RANDOM_MAX_FRACTION)
     return FAIL_KEY(c, kb,
@@ -626,8 +690,9 @@ static int check_all(ctx *c) {
   if (!is_set(c->key_at[K_SALPHAD])) sc->disk_alpha_dimer = sc->disk_alpha;
   if (is_set(c->key_at[K_STATE])) {
     if (is_set(c->key_at[K_PLACE]))
-      return FAIL_KEY(c, K_STATE, "cannot be used together with placement (state gives every "
-                                  "body)");
+      return FAIL_KEY(c, K_STATE,
+                      "cannot be used together with placement (state gives every "
+                      "body)");
     sc->placement = HD_PLACE_STATE;
     if ((rc = check_state(c))) return rc;
   } else if (!(sc->temperature > 0)) {
@@ -638,12 +703,12 @@ static int check_all(ctx *c) {
   for (int j = 0; j < 3; j++)
     if (c->present[req_sec[j]] && !is_set(c->key_at[req_key[j]]) &&
         !(req_sec[j] != S_WALLS && sc->placement == HD_PLACE_STATE))
-      return fail(c, HD_EINPUT, c->sec_at[req_sec[j]], req_sec[j], key_def[req_key[j]].name,
-                  NULL, "missing: required in [%s]", sec_name[req_sec[j]]);
+      return fail(c, HD_EINPUT, c->sec_at[req_sec[j]], req_sec[j], key_def[req_key[j]].name, NULL,
+                  "missing: required in [%s]", sec_name[req_sec[j]]);
   if ((rc = check_box(c))) return rc;
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
-    return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL,
-                NULL, "no stop condition: set stop_time, stop_events or stop_cpd");
+    return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
+                "no stop condition: set stop_time, stop_events or stop_cpd");
   return HD_OK;
 }
 
@@ -809,7 +874,8 @@ static int load_text(hd_scene *sc, const char *text, size_t len, const char *nam
   if (memchr(text, '\0', len))
     rc = hd_error_set(err, HD_EINPUT, "%s: contains a NUL byte: not a text file", name);
   if (!rc) rc = parse_text(c);
-  for (int i = 0; !rc && i < n_over; i++) rc = apply_override(c, i);
+  for (int i = 0; !rc && i < n_over; i++)
+    rc = apply_override(c, i);
   if (!rc) rc = check_all(c);
   if (!rc) {
     sc->text = canonical_text(c);
@@ -820,8 +886,8 @@ static int load_text(hd_scene *sc, const char *text, size_t len, const char *nam
   return rc;
 }
 
-int hd_scene_load_string(hd_scene *sc, const char *text, const char *name,
-                         const char *const *over, int n_over, hd_error *err) {
+int hd_scene_load_string(hd_scene *sc, const char *text, const char *name, const char *const *over,
+                         int n_over, hd_error *err) {
   hd_scene_defaults(sc);
   if (!name) name = "<string>";
   return load_text(sc, text, strlen(text), name, over, n_over, err);
@@ -926,7 +992,8 @@ int hd_state_csv_read(const char *path, hd_state_row **rows, long *n, hd_error *
   *rows = NULL;
   *n = 0;
   FILE *fp = fopen(path, "r");
-  if (!fp) return hd_error_set(err, HD_EIO, "%s: cannot read state file: %s", path, strerror(errno));
+  if (!fp)
+    return hd_error_set(err, HD_EIO, "%s: cannot read state file: %s", path, strerror(errno));
   char *line = NULL;
   size_t cap = 0;
   long lineno = 0, nrow = 0, rcap = 0;

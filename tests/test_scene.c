@@ -2,11 +2,11 @@
  * Run from the repository root (test inputs under tests/data/scenes/; others go to a mkdtemp
  * folder).  Every expected value below comes from the input text or from geometry, not from the
  * code's own output. */
+#include <cmocka.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <cmocka.h>
 
 #include <limits.h>
 #include <math.h>
@@ -62,7 +62,8 @@ static void good_scene_values(void **state) {
   assert_true(sc.area_fraction == 0);
   assert_true(sc.seed == ULLONG_MAX);
   assert_int_equal(sc.n_dimers, 12);
-  assert_true(sc.dimer_d == 1.25 && sc.dimer_a == 0.75 && sc.dimer_m == 2 && sc.dimer_alpha == 0.95);
+  assert_true(sc.dimer_d == 1.25 && sc.dimer_a == 0.75 && sc.dimer_m == 2 &&
+              sc.dimer_alpha == 0.95);
   assert_int_equal(sc.n_disks, 7);
   assert_true(sc.disk_sigma == 0.5 && sc.disk_mass == 3 && sc.disk_alpha == 0.8);
   assert_true(sc.disk_alpha_dimer == 0.85);
@@ -104,7 +105,8 @@ static void defaults_and_absent_sections(void **state) {
   assert_non_null(strstr(sc.text, "[disks]"));
   hd_scene_free(&sc);
   /* alpha_dimer defaults to the disks' alpha; CRLF line ends are fine */
-  text = "[disks]\r\ncount = 1\r\nalpha = 0.6\r\n[system]\r\nbox = 5 5\r\n[run]\r\nstop_cpd = 1\r\n";
+  text =
+      "[disks]\r\ncount = 1\r\nalpha = 0.6\r\n[system]\r\nbox = 5 5\r\n[run]\r\nstop_cpd = 1\r\n";
   assert_int_equal(hd_scene_load_string(&sc, text, "crlf.ini", NULL, 0, &e), HD_OK);
   assert_true(sc.disk_alpha == 0.6 && sc.disk_alpha_dimer == 0.6);
   hd_scene_free(&sc);
@@ -166,8 +168,7 @@ static const bad_case bad_cases[] = {
     {"[rods]\n" RUN, NULL, HD_EINPUT, "bad.ini:1:", "[rods]", "unknown section"},
     {RUN "stoptime = 2\n", NULL, HD_EINPUT, "bad.ini:3:", "[run] stoptime", "unknown key"},
     {RUN "stop_cpd = 2\n", NULL, HD_EINPUT, "bad.ini:3:", "[run] stop_cpd", "duplicate"},
-    {RUN BOX "[dimers]\nalpha = 0.9\n", NULL, HD_EINPUT, "bad.ini:5:", "[dimers] count",
-     "missing"},
+    {RUN BOX "[dimers]\nalpha = 0.9\n", NULL, HD_EINPUT, "bad.ini:5:", "[dimers] count", "missing"},
     {RUN BOX "[walls]\nalpha = 0.9\n", NULL, HD_EINPUT, "bad.ini:5:", "[walls] sides", "missing"},
     {RUN "[dimers]\ncount = 3\n", NULL, HD_EINPUT, "bad.ini:0:", "[system] box", "missing"},
     {RUN "[dimers]\nalpha = 1.5x\n", NULL, HD_EINPUT, "bad.ini:4:", "[dimers] alpha = 1.5x",
@@ -188,17 +189,15 @@ static const bad_case bad_cases[] = {
     {RUN "[dimers]\na = -0.5\n", NULL, HD_EINPUT, "bad.ini:4:", "[dimers] a", ">= 0"},
     {RUN "[disks]\nsigma = 0\n", NULL, HD_EINPUT, "bad.ini:4:", "[disks] sigma", "> 0"},
     {RUN "[disks]\nmass = 0\n", NULL, HD_EINPUT, "bad.ini:4:", "[disks] mass", "> 0"},
-    {RUN "[init]\ntemperature = 0\n", NULL, HD_EINPUT, "bad.ini:4:", "[init] temperature",
-     "> 0"},
-    {RUN "[init]\ntemperature = -1\n", NULL, HD_EINPUT, "bad.ini:4:", "[init] temperature",
-     "> 0"},
+    {RUN "[init]\ntemperature = 0\n", NULL, HD_EINPUT, "bad.ini:4:", "[init] temperature", "> 0"},
+    {RUN "[init]\ntemperature = -1\n", NULL, HD_EINPUT, "bad.ini:4:", "[init] temperature", "> 0"},
     {RUN "[init]\nplacement = grid\n", NULL, HD_EINPUT, "bad.ini:4:", "[init] placement",
      "random or lattice"},
     {RUN "[system]\nbox = 0 10\n", NULL, HD_EINPUT, "bad.ini:4:", "[system] box", "> 0"},
     {RUN "[system]\nbox = 10\n", NULL, HD_EINPUT, "bad.ini:4:", "[system] box", "two"},
     {RUN "[system]\nseed = -1\n", NULL, HD_EINPUT, "bad.ini:4:", "[system] seed", "whole"},
-    {RUN "[system]\narea_fraction = 0.95\n", NULL, HD_EINPUT, "bad.ini:4:",
-     "[system] area_fraction", "(0, 0.9069)"},
+    {RUN "[system]\narea_fraction = 0.95\n", NULL, HD_EINPUT,
+     "bad.ini:4:", "[system] area_fraction", "(0, 0.9069)"},
     {RUN "[system]\narea_fraction = 0\n", NULL, HD_EINPUT, "bad.ini:4:", "[system] area_fraction",
      "(0, 0.9069)"},
     {RUN "[system]\nbox = 10 10\narea_fraction = 0.1\n[disks]\ncount = 1\n", NULL, HD_EINPUT,
@@ -225,16 +224,16 @@ static const bad_case bad_cases[] = {
      "no stop condition"},
     {RUN "[run]\nstop_time = 0\n", NULL, HD_EINPUT, "bad.ini:4:", "[run] stop_time", "> 0"},
     /* a dimer of a + d = 2 cannot fit an edge of 1.5 */
-    {RUN "[system]\nbox = 1.5 10\n[dimers]\ncount = 1\n", NULL, HD_EINPUT, "bad.ini:4:",
-     "[system] box", "too small"},
+    {RUN "[system]\nbox = 1.5 10\n[dimers]\ncount = 1\n", NULL, HD_EINPUT,
+     "bad.ini:4:", "[system] box", "too small"},
     /* 100 unit disks cover pi/4 = 0.785 of a 10 x 10 box: above the random limit 0.5 */
-    {RUN "[system]\nbox = 10 10\n[disks]\ncount = 100\n", NULL, HD_EINPUT, "bad.ini:4:",
-     "[system] box", "dense"},
+    {RUN "[system]\nbox = 10 10\n[disks]\ncount = 100\n", NULL, HD_EINPUT,
+     "bad.ini:4:", "[system] box", "dense"},
     /* a lattice of 10 x 10 unit cells holds 100 disks, not 101 */
     {RUN "[system]\nbox = 10 10\n[disks]\ncount = 101\n[init]\nplacement = lattice\n", NULL,
      HD_EINPUT, "bad.ini:4:", "[system] box", "lattice"},
-    {RUN "[init]\nplacement = random\nstate = x.csv\n", NULL, HD_EINPUT, "bad.ini:5:",
-     "[init] state", "placement"},
+    {RUN "[init]\nplacement = random\nstate = x.csv\n", NULL, HD_EINPUT,
+     "bad.ini:5:", "[init] state", "placement"},
     {RUN "seed = 1\n", NULL, HD_EINPUT, "bad.ini:3:", "[run] seed", "unknown key"},
     {"seed = 1\n" RUN, NULL, HD_EINPUT, "bad.ini:1:", "seed", "outside"},
     {RUN "stop_time\n", NULL, HD_EINPUT, "bad.ini:3:", "malformed", NULL},
@@ -247,8 +246,8 @@ static const bad_case bad_cases[] = {
     {RUN, "run.stoptime=3", HD_EINPUT, "--set run.stoptime=3:", "[run] stoptime", "unknown key"},
     {RUN, "dimersalpha=1", HD_EINPUT, "--set dimersalpha=1:", "SECTION.KEY=VALUE", NULL},
     {RUN, "dimers.alpha", HD_EINPUT, "--set dimers.alpha:", "SECTION.KEY=VALUE", NULL},
-    {RUN, "log.samples_every=nan", HD_EINPUT, "--set log.samples_every=nan:",
-     "[log] samples_every", "finite"},
+    {RUN, "log.samples_every=nan", HD_EINPUT, "--set log.samples_every=nan:", "[log] samples_every",
+     "finite"},
     {"[system]\nseed = 3\n", "system.seed=4", HD_EINPUT, "bad.ini:0:", "[run]", "stop"},
 };
 
@@ -277,9 +276,9 @@ static void override_message_exact(void **state) {
   assert_int_equal(hd_scene_load_string(&sc, RUN, "s.ini", over, 1, &e), HD_EINPUT);
   assert_string_equal(e.msg, "--set dimers.alpha=1.5: [dimers] alpha = 1.5: must be in [0, 1]");
   /* the same error in a file */
-  assert_int_equal(hd_scene_load_string(&sc, RUN "[dimers]\nalpha = 1.5\n", "scene.ini", NULL, 0,
-                                        &e),
-                   HD_EINPUT);
+  assert_int_equal(
+      hd_scene_load_string(&sc, RUN "[dimers]\nalpha = 1.5\n", "scene.ini", NULL, 0, &e),
+      HD_EINPUT);
   assert_string_equal(e.msg, "scene.ini:4: [dimers] alpha = 1.5: must be in [0, 1]");
 }
 
@@ -289,7 +288,8 @@ static void long_line(void **state) {
   char *text = malloc(n + 64);
   assert_non_null(text);
   strcpy(text, RUN "[log]\nvelocities_at =");
-  while (strlen(text) < n) strcat(text, " 1");
+  while (strlen(text) < n)
+    strcat(text, " 1");
   strcat(text, "\n");
   hd_scene sc;
   hd_error e;
@@ -338,21 +338,41 @@ static void overrides_apply(void **state) {
   /* the same key set twice by --set is a duplicate */
   const char *twice[] = {"run.stop_time=5", "run.stop_time=6"};
   assert_int_equal(hd_scene_load_string(&sc, RUN, "o.ini", twice, 2, &e), HD_EINPUT);
-  assert_has(e.msg, "--set run.stop_time=6:", "[run] stop_time", "duplicate",
-             "run.stop_time=5");
+  assert_has(e.msg, "--set run.stop_time=6:", "[run] stop_time", "duplicate", "run.stop_time=5");
 }
 
 /* ---- canonical text round trip -------------------------------------------------------------- */
 
 #define SAME(f) assert_memory_equal(&a->f, &b->f, sizeof a->f)
 static void assert_same_scene(const hd_scene *a, const hd_scene *b) {
-  SAME(box_x); SAME(box_y); SAME(area_fraction); SAME(seed);
-  SAME(n_dimers); SAME(dimer_d); SAME(dimer_a); SAME(dimer_m); SAME(dimer_alpha);
-  SAME(n_disks); SAME(disk_sigma); SAME(disk_mass); SAME(disk_alpha); SAME(disk_alpha_dimer);
-  SAME(walls); SAME(wall_alpha); SAME(temperature); SAME(placement);
+  SAME(box_x);
+  SAME(box_y);
+  SAME(area_fraction);
+  SAME(seed);
+  SAME(n_dimers);
+  SAME(dimer_d);
+  SAME(dimer_a);
+  SAME(dimer_m);
+  SAME(dimer_alpha);
+  SAME(n_disks);
+  SAME(disk_sigma);
+  SAME(disk_mass);
+  SAME(disk_alpha);
+  SAME(disk_alpha_dimer);
+  SAME(walls);
+  SAME(wall_alpha);
+  SAME(temperature);
+  SAME(placement);
   assert_string_equal(a->state_file, b->state_file);
-  SAME(stop_time); SAME(stop_events); SAME(stop_cpd); SAME(verify); SAME(checkpoint_every);
-  SAME(log_collisions); SAME(log_every); SAME(samples_every); SAME(n_velocities_at);
+  SAME(stop_time);
+  SAME(stop_events);
+  SAME(stop_cpd);
+  SAME(verify);
+  SAME(checkpoint_every);
+  SAME(log_collisions);
+  SAME(log_every);
+  SAME(samples_every);
+  SAME(n_velocities_at);
   assert_memory_equal(a->velocities_at, b->velocities_at,
                       (size_t)a->n_velocities_at * sizeof a->velocities_at[0]);
   assert_string_equal(a->text, b->text);
@@ -380,8 +400,9 @@ static void text_round_trip(void **state) {
                      "a = 0.3\nd = 0.7\nalpha = 0.1\n[run]\nstop_time = 0.3\n[log]\n"
                      "velocities_at = 0.1 0.2 0.30000000000000004\n";
   /* an override replacing the list is checked like the file's own line */
-  const char *over[] = {"log.velocities_at=1e-7 0.1 0.2 0.30000000000000004 2.2250738585072014e-308",
-                        "init.temperature=0.7"};
+  const char *over[] = {
+      "log.velocities_at=1e-7 0.1 0.2 0.30000000000000004 2.2250738585072014e-308",
+      "init.temperature=0.7"};
   assert_int_equal(hd_scene_load_string(&a, text, "rt.ini", over, 1, &e), HD_EINPUT);
   assert_has(e.msg, "--set log.velocities_at=", "ascending", NULL, NULL);
   over[0] = "log.velocities_at=2.2250738585072014e-308 1e-7 0.1 0.2 0.30000000000000004";
@@ -541,19 +562,28 @@ static int setup(void **state) {
 static int teardown(void **state) {
   (void)state;
   const char *names[] = {"good.csv", "bad.csv", "s.ini"};
-  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) unlink(tmp_path(names[i]));
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+    unlink(tmp_path(names[i]));
   return rmdir(tmpdir);
 }
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(good_scene_values),  cmocka_unit_test(defaults_and_absent_sections),
-      cmocka_unit_test(dimer_area_exact),   cmocka_unit_test(area_fraction_box),
-      cmocka_unit_test(bad_scenes),         cmocka_unit_test(override_message_exact),
-      cmocka_unit_test(long_line),          cmocka_unit_test(missing_files),
-      cmocka_unit_test(overrides_apply),    cmocka_unit_test(text_round_trip),
-      cmocka_unit_test(text_round_trip_random), cmocka_unit_test(scene_with_state),   cmocka_unit_test(csv_good),
-      cmocka_unit_test(csv_bad),            cmocka_unit_test(example_scenes),
+      cmocka_unit_test(good_scene_values),
+      cmocka_unit_test(defaults_and_absent_sections),
+      cmocka_unit_test(dimer_area_exact),
+      cmocka_unit_test(area_fraction_box),
+      cmocka_unit_test(bad_scenes),
+      cmocka_unit_test(override_message_exact),
+      cmocka_unit_test(long_line),
+      cmocka_unit_test(missing_files),
+      cmocka_unit_test(overrides_apply),
+      cmocka_unit_test(text_round_trip),
+      cmocka_unit_test(text_round_trip_random),
+      cmocka_unit_test(scene_with_state),
+      cmocka_unit_test(csv_good),
+      cmocka_unit_test(csv_bad),
+      cmocka_unit_test(example_scenes),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
