@@ -2,11 +2,13 @@
  * Run from the repository root (test inputs under tests/data/scenes/; others go to a mkdtemp
  * folder).  Every expected value below comes from the input text or from geometry, not from the
  * code's own output. */
-#include <cmocka.h>
+// clang-format off
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <cmocka.h>
+// clang-format on
 
 #include <limits.h>
 #include <math.h>
