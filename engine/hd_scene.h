@@ -59,7 +59,7 @@ typedef struct hd_scene {
   unsigned walls;     /* `sides`: HD_WALL_* bits [0: fully periodic] */
   double wall_alpha;  /* `alpha` [1] */
   /* [init] */
-  double temperature;             /* `temperature` [1]: kT per degree of freedom; unused with state */
+  double temperature;             /* `temperature` [1]: kT per degree of freedom (not with state) */
   hd_placement placement;         /* `placement` [random], or HD_PLACE_STATE when `state` given */
   char state_file[HD_PATH_MAX];   /* `state`: resolved against dir, made absolute (realpath) */
   /* [run] */
