@@ -199,7 +199,8 @@ int haff_export_main(int argc, char **argv) {
   long long run = 0;
   const char *label = "all", *outpath = NULL;
   int c;
-  optind = 1; /* parse argv + 1 ("xyz" as the program name); callable more than once */
+  optind = 0; /* GNU: full re-initialisation, so the function may be called more than once;
+                 parsing argv + 1 ("xyz" as the program name) */
   opterr = 0;
   while ((c = getopt_long(argc - 1, argv + 1, "o:h", opts, NULL)) != -1) {
     switch (c) {
