@@ -5,9 +5,11 @@
 #include <string.h>
 
 int haff_mc_main(int argc, char **argv);
+int haff_export_main(int argc, char **argv);
 
 static const haff_command commands[] = {
     {"mc", haff_mc_main, "Monte Carlo: `mc fmean` (<f>, D_e) and `mc eps` (rod restitution)"},
+    {"export", haff_export_main, "export xyz DB: extended XYZ snapshots for OVITO and VMD"},
 };
 static const size_t n_commands = sizeof commands / sizeof commands[0];
 

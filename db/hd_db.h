@@ -1,7 +1,9 @@
 /* hd_db: the SQLite log of runs (db/schema.sql is the documented schema, compiled in).
  * One file holds many runs.  Rows are inserted through prepared statements inside batch
  * transactions (WAL); a batch is committed every `batch_rows` rows and at every checkpoint,
- * so a killed process leaves whole batches only.  Indexes are built by hd_db_run_end. */
+ * so a killed process leaves whole batches only.  Indexes are built by hd_db_build_indexes.
+ * Every SQLite failure (disk full, read-only file, I/O error, busy) is returned as HD_EIO with
+ * the message "DBPATH: what failed: sqlite's message"; a failed batch is rolled back whole. */
 #ifndef HD_DB_H
 #define HD_DB_H
 
@@ -11,6 +13,7 @@
 #include "hd_error.h"
 
 typedef struct hd_db hd_db;
+typedef struct sqlite3 sqlite3; /* the same typedef as <sqlite3.h> (C11 allows the repeat) */
 
 /* Collision kinds, as stored in collisions.kind (text). */
 typedef enum hd_coll_kind {
@@ -44,23 +47,38 @@ typedef struct hd_sample_row {
   double e_tr, e_rot; /* translational and rotational kinetic energy per body */
 } hd_sample_row;
 
+/* Body kinds in hd_state_rec.kind, stored as states.kind text: HD_KIND_DISK = 0 'disk',
+ * HD_KIND_DIMER = 1 'dimer' (hd_body.h) and 2 'rod' (rod runs). */
+#define HD_DB_KIND_ROD 2
+
 /* One row of `states`. */
 typedef struct hd_state_rec {
   double t;
   int64_t body;
-  int kind;            /* HD_KIND_* */
+  int kind;            /* HD_KIND_DISK 0, HD_KIND_DIMER 1, HD_DB_KIND_ROD 2 */
   double x, y, phi, vx, vy, omega;
+  double cpd;          /* collisions per particle at t (states.cpd); NaN is stored as NULL */
 } hd_state_rec;
+
+/* The text of a body kind ("disk", "dimer", "rod"), or NULL for an unknown kind. */
+const char *hd_db_kind_name(int kind);
 
 /* Opens (creating if needed) the database at path, applies the schema, sets WAL.
  * Returns HD_OK or HD_EIO with err set. */
 int hd_db_open(hd_db **out, const char *path, hd_error *err);
 
+/* Opens an existing database read-only (for analysis and export): no schema is applied and
+ * every write fails with HD_EIO.  Returns HD_OK or HD_EIO with err set. */
+int hd_db_open_readonly(hd_db **out, const char *path, hd_error *err);
+
 /* Commits any open batch and closes. NULL is allowed. Returns HD_OK or HD_EIO. */
 int hd_db_close(hd_db *db, hd_error *err);
 
-/* Rows per batch transaction [10000]. */
+/* Rows per batch transaction [10000]; rows < 1 is taken as 1. */
 void hd_db_set_batch_rows(hd_db *db, long rows);
+
+/* The path the database was opened with (for messages). */
+const char *hd_db_path(const hd_db *db);
 
 /* Inserts a runs row with status 'running' and returns its id in *run. */
 int hd_db_run_begin(hd_db *db, const char *scene_text, unsigned long long seed,
@@ -71,7 +89,16 @@ int hd_db_run_begin(hd_db *db, const char *scene_text, unsigned long long seed,
 int hd_db_run_status(hd_db *db, int64_t run, const char *status, int64_t events,
                      double wall_seconds, hd_error *err);
 
-/* Builds the indexes (after a run). */
+/* Stores a message for run (why it ended when not 'done': collapse details, an error); NULL
+ * clears it.  Commits the open batch first. */
+int hd_db_run_message(hd_db *db, int64_t run, const char *msg, hd_error *err);
+
+/* Stores the box edges Lx, Ly of run in runs.box_x, runs.box_y (read by `haff export xyz`).
+ * Commits the open batch first. */
+int hd_db_run_box(hd_db *db, int64_t run, double lx, double ly, hd_error *err);
+
+/* Builds the indexes (after a run): collisions(run,seq), collisions(run,kind), samples(run,t),
+ * states(run,label,t), checkpoints(run).  Commits the open batch first. */
 int hd_db_build_indexes(hd_db *db, hd_error *err);
 
 /* Buffered inserts into the open batch (a batch is opened on demand). */
@@ -100,8 +127,17 @@ int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_
 int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error *err);
 
 /* The id of the newest run whose status is 'interrupted' or 'running' (a killed process);
- * HD_EINPUT if none.  *scene_text malloc'd, *seed its seed. */
+ * HD_EINPUT if none.  *scene_text malloc'd, *seed its seed.  want_run <= 0 picks the newest
+ * such run; want_run > 0 asks for that run, and a run that does not exist or has ended
+ * ('done', 'collapsed', 'failed') is HD_EINPUT with a message that says so. */
 int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene_text,
                          unsigned long long *seed, hd_error *err);
+
+/* Runs sql (one or more statements, no result rows wanted) with sqlite3_exec, inside the open
+ * batch if there is one.  Returns HD_OK or HD_EIO. */
+int hd_db_exec(hd_db *db, const char *sql, hd_error *err);
+
+/* The SQLite handle, for analysis code that reads with its own statements.  Owned by db. */
+sqlite3 *hd_db_handle(hd_db *db);
 
 #endif

@@ -15,7 +15,9 @@ CREATE TABLE IF NOT EXISTS runs (
   version      TEXT NOT NULL,      -- haff version that made the run
   events       INTEGER NOT NULL DEFAULT 0,   -- events processed (collisions + cell crossings)
   wall_seconds REAL NOT NULL DEFAULT 0,      -- wall-clock time spent, over all resumes
-  message      TEXT                -- why the run ended when not 'done' (collapse details, error)
+  message      TEXT,               -- why the run ended when not 'done' (collapse details, error)
+  box_x        REAL,               -- box edges Lx, Ly (hd_db_run_box), for export and analysis
+  box_y        REAL
 );
 
 -- One row per logged collision.  kind: dimer-dimer, dimer-disk, disk-disk, dimer-wall,

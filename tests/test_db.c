@@ -1,0 +1,1036 @@
+/* Tests of db/hd_db.c, the example queries of db/queries/ and `haff export xyz`.
+ * Every test works in its own mkdtemp folder.  Crashes are real: a forked child that is
+ * killed with SIGKILL in the middle of a batch. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <signal.h>
+#include <sqlite3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gsl/gsl_rng.h>
+#include <gsl/gsl_statistics_double.h>
+
+#include "hd_db.h"
+
+int haff_export_main(int argc, char **argv);
+
+/* ---------------------------------------------------------------------------------------- */
+/* helpers */
+
+/* |a - b| <= tol * max(1, |b|): relative for large values, absolute below 1. */
+#define assert_close(a, b, tol)                                                                  \
+  do {                                                                                           \
+    double a_ = (a), b_ = (b);                                                                   \
+    if (!(fabs(a_ - b_) <= (tol) * fmax(1.0, fabs(b_))))                                         \
+      fail_msg("%s = %.17g, want %.17g (tol %g)", #a, a_, b_, (double)(tol));                   \
+  } while (0)
+
+typedef struct fixture {
+  char dir[256];
+  char path[320]; /* dir/run.db */
+} fixture;
+
+static int setup(void **state) {
+  fixture *fx = calloc(1, sizeof *fx);
+  if (!fx) return -1;
+  const char *tmp = getenv("TMPDIR");
+  snprintf(fx->dir, sizeof fx->dir, "%s/haff-test-db-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+  if (!mkdtemp(fx->dir)) return -1;
+  snprintf(fx->path, sizeof fx->path, "%s/run.db", fx->dir);
+  *state = fx;
+  return 0;
+}
+
+static int teardown(void **state) {
+  fixture *fx = *state;
+  chmod(fx->dir, 0700);
+  char cmd[600];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", fx->dir);
+  int rc = system(cmd);
+  free(fx);
+  return rc == 0 ? 0 : -1;
+}
+
+static hd_db *open_ok(const char *path) {
+  hd_db *db = NULL;
+  hd_error err;
+  hd_error_clear(&err);
+  int rc = hd_db_open(&db, path, &err);
+  if (rc) fprintf(stderr, "open: %s\n", err.msg);
+  assert_int_equal(rc, HD_OK);
+  return db;
+}
+
+static void close_ok(hd_db *db) {
+  hd_error err;
+  hd_error_clear(&err);
+  int rc = hd_db_close(db, &err);
+  if (rc) fprintf(stderr, "close: %s\n", err.msg);
+  assert_int_equal(rc, HD_OK);
+}
+
+/* A single integer from sql on handle h. */
+static long long q_int(sqlite3 *h, const char *sql) {
+  sqlite3_stmt *st = NULL;
+  assert_int_equal(sqlite3_prepare_v2(h, sql, -1, &st, NULL), SQLITE_OK);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  long long v = sqlite3_column_int64(st, 0);
+  sqlite3_finalize(st);
+  return v;
+}
+
+/* A count through a second, independent connection (what another process would see). */
+static long long count_other(const char *path, const char *sql) {
+  sqlite3 *h = NULL;
+  assert_int_equal(sqlite3_open_v2(path, &h, SQLITE_OPEN_READWRITE, NULL), SQLITE_OK);
+  long long v = q_int(h, sql);
+  sqlite3_close(h);
+  return v;
+}
+
+static void assert_integrity_ok(const char *path) {
+  sqlite3 *h = NULL;
+  assert_int_equal(sqlite3_open_v2(path, &h, SQLITE_OPEN_READWRITE, NULL), SQLITE_OK);
+  sqlite3_stmt *st = NULL;
+  assert_int_equal(sqlite3_prepare_v2(h, "PRAGMA integrity_check", -1, &st, NULL), SQLITE_OK);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  assert_string_equal((const char *)sqlite3_column_text(st, 0), "ok");
+  sqlite3_finalize(st);
+  sqlite3_close(h);
+}
+
+static hd_collision_row coll(int64_t seq) {
+  hd_collision_row r = {seq, 0.01 * (double)seq, HD_CK_DIMER_DIMER, seq % 7, seq % 5 + 7, 0, 1,
+                        0.25, -0.5, 0.7, -0.01, -0.3};
+  return r;
+}
+
+static int64_t begin_run(hd_db *db, const char *scene, unsigned long long seed) {
+  int64_t run = 0;
+  hd_error err;
+  assert_int_equal(hd_db_run_begin(db, scene, seed, "test", &run, &err), HD_OK);
+  assert_true(run > 0);
+  return run;
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* round trip */
+
+static void round_trip(void **state) {
+  fixture *fx = *state;
+  hd_error err;
+  hd_db *db = open_ok(fx->path);
+  const unsigned long long seed = 0x8000000000000005ULL; /* >= 2^63: stored as int64 */
+  int64_t run = begin_run(db, "[system]\nbox = 3 4\n", seed);
+  assert_int_equal(hd_db_run_box(db, run, 3.0, 4.0, &err), HD_OK);
+
+  /* every collision kind once, with NaN in theta_j, f and vn for some */
+  for (int k = 0; k <= HD_CK_ROD_ROD; k++) {
+    hd_collision_row r = {k + 1, 0.5 + k, (hd_coll_kind)k, k, k == 3 ? -2 : k + 1, k % 2, -1,
+                          0.125 * k, k % 2 ? NAN : -0.25, k == 2 ? NAN : 0.6, -0.5 * k,
+                          k == 4 ? NAN : -1.0};
+    assert_int_equal(hd_db_log_collision(db, run, &r, &err), HD_OK);
+  }
+  hd_sample_row s = {1.25, 42, 0.84, 0.75, 0.5};
+  assert_int_equal(hd_db_log_sample(db, run, &s, &err), HD_OK);
+  hd_state_rec st0 = {0.0, 0, 1, 1.5, 2.5, -0.5, 0.1, 0.2, 3.0, NAN};
+  hd_state_rec st1 = {2.0, 1, 0, 0.5, 0.25, 0.0, -0.1, 0.3, 0.0, 1.5};
+  hd_state_rec st2 = {2.0, 2, HD_DB_KIND_ROD, 7.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.5};
+  assert_int_equal(hd_db_log_state(db, run, "initial", &st0, &err), HD_OK);
+  assert_int_equal(hd_db_log_state(db, run, "final", &st1, &err), HD_OK);
+  assert_int_equal(hd_db_log_state(db, run, "final", &st2, &err), HD_OK);
+  hd_state_rec bad = st1;
+  bad.kind = 9;
+  assert_int_equal(hd_db_log_state(db, run, "final", &bad, &err), HD_EINPUT);
+  assert_int_equal(hd_db_run_status(db, run, "bogus", 1, 1.0, &err), HD_EINPUT);
+  assert_non_null(strstr(err.msg, "bogus"));
+  assert_int_equal(hd_db_run_status(db, run, "done", 1234, 5.5, &err), HD_OK);
+  assert_int_equal(hd_db_run_message(db, run, "all fine", &err), HD_OK);
+  assert_int_equal(hd_db_run_status(db, 999, "done", 1, 1.0, &err), HD_EINPUT);
+  assert_int_equal(hd_db_build_indexes(db, &err), HD_OK);
+  close_ok(db);
+
+  sqlite3 *h = NULL;
+  assert_int_equal(sqlite3_open(fx->path, &h), SQLITE_OK);
+  /* runs */
+  sqlite3_stmt *q = NULL;
+  assert_int_equal(sqlite3_prepare_v2(h,
+                                      "SELECT scene, seed, status, started, finished, version, "
+                                      "events, wall_seconds, message, box_x, box_y FROM runs",
+                                      -1, &q, NULL),
+                   SQLITE_OK);
+  assert_int_equal(sqlite3_step(q), SQLITE_ROW);
+  assert_string_equal((const char *)sqlite3_column_text(q, 0), "[system]\nbox = 3 4\n");
+  assert_true((unsigned long long)sqlite3_column_int64(q, 1) == seed);
+  assert_string_equal((const char *)sqlite3_column_text(q, 2), "done");
+  const char *started = (const char *)sqlite3_column_text(q, 3);
+  /* ISO 8601 UTC: YYYY-MM-DDTHH:MM:SSZ */
+  assert_int_equal(strlen(started), 20);
+  assert_true(started[4] == '-' && started[10] == 'T' && started[19] == 'Z');
+  assert_int_not_equal(sqlite3_column_type(q, 4), SQLITE_NULL);
+  assert_string_equal((const char *)sqlite3_column_text(q, 5), "test");
+  assert_int_equal(sqlite3_column_int64(q, 6), 1234);
+  assert_true(sqlite3_column_double(q, 7) == 5.5);
+  assert_string_equal((const char *)sqlite3_column_text(q, 8), "all fine");
+  assert_true(sqlite3_column_double(q, 9) == 3.0 && sqlite3_column_double(q, 10) == 4.0);
+  sqlite3_finalize(q);
+
+  /* collisions */
+  static const char *const kinds[] = {"dimer-dimer", "dimer-disk", "disk-disk",
+                                      "dimer-wall",  "disk-wall",  "rod-rod"};
+  assert_int_equal(sqlite3_prepare_v2(h,
+                                      "SELECT seq, t, kind, i, j, disk_i, disk_j, theta_i, "
+                                      "theta_j, f, de, vn FROM collisions ORDER BY seq",
+                                      -1, &q, NULL),
+                   SQLITE_OK);
+  for (int k = 0; k <= HD_CK_ROD_ROD; k++) {
+    assert_int_equal(sqlite3_step(q), SQLITE_ROW);
+    assert_int_equal(sqlite3_column_int64(q, 0), k + 1);
+    assert_true(sqlite3_column_double(q, 1) == 0.5 + k);
+    assert_string_equal((const char *)sqlite3_column_text(q, 2), kinds[k]);
+    assert_string_equal(hd_coll_kind_name((hd_coll_kind)k), kinds[k]);
+    assert_int_equal(sqlite3_column_int64(q, 3), k);
+    assert_int_equal(sqlite3_column_int64(q, 4), k == 3 ? -2 : k + 1);
+    assert_int_equal(sqlite3_column_int(q, 5), k % 2);
+    assert_int_equal(sqlite3_column_int(q, 6), -1);
+    assert_true(sqlite3_column_double(q, 7) == 0.125 * k);
+    if (k % 2) assert_int_equal(sqlite3_column_type(q, 8), SQLITE_NULL);
+    else assert_true(sqlite3_column_double(q, 8) == -0.25);
+    if (k == 2) assert_int_equal(sqlite3_column_type(q, 9), SQLITE_NULL);
+    else assert_true(sqlite3_column_double(q, 9) == 0.6);
+    assert_true(sqlite3_column_double(q, 10) == -0.5 * k);
+    if (k == 4) assert_int_equal(sqlite3_column_type(q, 11), SQLITE_NULL);
+    else assert_true(sqlite3_column_double(q, 11) == -1.0);
+  }
+  assert_int_equal(sqlite3_step(q), SQLITE_DONE);
+  sqlite3_finalize(q);
+
+  /* samples (NaN in them: nan_in_not_null_column) */
+  assert_int_equal(q_int(h, "SELECT count(*) FROM samples WHERE t = 1.25 AND collisions = 42 "
+                            "AND cpd = 0.84 AND e_tr = 0.75 AND e_rot = 0.5"),
+                   1);
+  /* states: kinds as text, cpd NaN -> NULL */
+  assert_int_equal(q_int(h, "SELECT count(*) FROM states WHERE label = 'initial' AND body = 0 "
+                            "AND kind = 'dimer' AND x = 1.5 AND y = 2.5 AND phi = -0.5 AND "
+                            "vx = 0.1 AND vy = 0.2 AND omega = 3.0 AND cpd IS NULL AND t = 0"),
+                   1);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM states WHERE label = 'final' AND body = 1 "
+                            "AND kind = 'disk' AND cpd = 1.5 AND t = 2.0 AND vy = 0.3"),
+                   1);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM states WHERE kind = 'rod' AND x = 7"), 1);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM sqlite_schema WHERE type = 'index' AND "
+                            "name IN ('collisions_run_seq', 'collisions_run_kind', "
+                            "'samples_run_t', 'states_run_label_t', 'checkpoints_run')"),
+                   5);
+  assert_int_equal(sqlite3_prepare_v2(h, "PRAGMA journal_mode", -1, &q, NULL), SQLITE_OK);
+  assert_int_equal(sqlite3_step(q), SQLITE_ROW);
+  assert_string_equal((const char *)sqlite3_column_text(q, 0), "wal");
+  sqlite3_finalize(q);
+  sqlite3_close(h);
+}
+
+/* The samples row with e_rot = NaN: e_rot is NOT NULL in the schema, so NaN there is an
+ * error that names the column, not a silent 0. */
+static void nan_in_not_null_column(void **state) {
+  fixture *fx = *state;
+  hd_error err;
+  hd_db *db = open_ok(fx->path);
+  int64_t run = begin_run(db, "", 1);
+  hd_sample_row ok = {1.0, 1, 0.5, 1.0, 2.0};
+  assert_int_equal(hd_db_log_sample(db, run, &ok, &err), HD_OK);
+  assert_int_equal(hd_db_commit(db, &err), HD_OK);
+  hd_sample_row s = {1.0, 1, 0.5, 1.0, 2.0};
+  assert_int_equal(hd_db_log_sample(db, run, &s, &err), HD_OK); /* batch opened */
+  s.e_rot = NAN;
+  assert_int_equal(hd_db_log_sample(db, run, &s, &err), HD_EIO);
+  assert_non_null(strstr(err.msg, fx->path));
+  assert_non_null(strstr(err.msg, "samples.e_rot"));
+  /* the failed batch is rolled back whole: only the committed first row remains */
+  assert_int_equal(count_other(fx->path, "SELECT count(*) FROM samples"), 1);
+  assert_int_equal(hd_db_log_sample(db, run, &ok, &err), HD_OK); /* usable afterwards */
+  close_ok(db);
+  assert_int_equal(count_other(fx->path, "SELECT count(*) FROM samples"), 2);
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* batches and crashes */
+
+static void batches_and_kill9(void **state) {
+  fixture *fx = *state;
+  hd_error err;
+  hd_db *db = open_ok(fx->path);
+  hd_db_set_batch_rows(db, 100);
+  int64_t run = begin_run(db, "", 7);
+  for (int64_t k = 1; k <= 250; k++) {
+    hd_collision_row r = coll(k);
+    assert_int_equal(hd_db_log_collision(db, run, &r, &err), HD_OK);
+    /* another connection sees whole batches only, while this one is writing */
+    if (k == 150) assert_int_equal(count_other(fx->path, "SELECT count(*) FROM collisions"), 100);
+  }
+  assert_int_equal(count_other(fx->path, "SELECT count(*) FROM collisions"), 200);
+  assert_int_equal(hd_db_commit(db, &err), HD_OK);
+  assert_int_equal(count_other(fx->path, "SELECT count(*) FROM collisions"), 250);
+  close_ok(db);
+
+  /* A child logs 250 rows of a new run in batches of 100 and is killed with SIGKILL. */
+  fflush(NULL);
+  pid_t pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) {
+    hd_db *c = NULL;
+    hd_error e;
+    if (hd_db_open(&c, fx->path, &e)) _exit(10);
+    hd_db_set_batch_rows(c, 100);
+    int64_t r2 = 0;
+    if (hd_db_run_begin(c, "child", 8, "test", &r2, &e) || r2 != 2) _exit(11);
+    for (int64_t k = 1; k <= 250; k++) {
+      hd_collision_row r = coll(k);
+      if (hd_db_log_collision(c, r2, &r, &e)) _exit(12);
+    }
+    raise(SIGKILL);
+    _exit(13);
+  }
+  int ws = 0;
+  assert_int_equal(waitpid(pid, &ws, 0), pid);
+  assert_true(WIFSIGNALED(ws) && WTERMSIG(ws) == SIGKILL);
+  assert_integrity_ok(fx->path);
+  assert_int_equal(count_other(fx->path, "SELECT count(*) FROM collisions WHERE run = 2"), 200);
+  assert_int_equal(count_other(fx->path, "SELECT max(seq) FROM collisions WHERE run = 2"), 200);
+  assert_int_equal(count_other(fx->path, "SELECT count(*) FROM collisions WHERE run = 1"), 250);
+  /* the killed run is left 'running', which hd_db_find_resumable accepts */
+  db = open_ok(fx->path);
+  int64_t found = 0;
+  char *scene = NULL;
+  unsigned long long seed = 0;
+  assert_int_equal(hd_db_find_resumable(db, 0, &found, &scene, &seed, &err), HD_OK);
+  assert_int_equal(found, 2);
+  assert_string_equal(scene, "child");
+  assert_true(seed == 8);
+  free(scene);
+  close_ok(db);
+  assert_integrity_ok(fx->path);
+}
+
+/* A checkpoint is committed in one transaction with the rows logged before it: a child logs
+ * 5 rows, saves a checkpoint, logs 3 more and is killed. */
+static void checkpoint_with_its_rows(void **state) {
+  fixture *fx = *state;
+  hd_error err;
+  hd_db *db = open_ok(fx->path);
+  int64_t run = begin_run(db, "", 3);
+  close_ok(db);
+  fflush(NULL);
+  pid_t pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) {
+    hd_db *c = NULL;
+    hd_error e;
+    if (hd_db_open(&c, fx->path, &e)) _exit(10);
+    for (int64_t k = 1; k <= 8; k++) {
+      hd_collision_row r = coll(k);
+      if (hd_db_log_collision(c, run, &r, &e)) _exit(11);
+      if (k == 5 && hd_db_checkpoint_save(c, run, 5, r.t, "state-at-5", 10, &e)) _exit(12);
+    }
+    raise(SIGKILL);
+    _exit(13);
+  }
+  int ws = 0;
+  assert_int_equal(waitpid(pid, &ws, 0), pid);
+  assert_true(WIFSIGNALED(ws));
+  assert_integrity_ok(fx->path);
+  assert_int_equal(count_other(fx->path, "SELECT count(*) FROM collisions"), 5);
+  db = open_ok(fx->path);
+  void *blob = NULL;
+  size_t n = 0;
+  int64_t seq = 0;
+  double t = 0;
+  assert_int_equal(hd_db_checkpoint_load(db, run, &blob, &n, &seq, &t, &err), HD_OK);
+  assert_int_equal(n, 10);
+  assert_memory_equal(blob, "state-at-5", 10);
+  assert_int_equal(seq, 5);
+  assert_true(t == 0.01 * 5.0);
+  free(blob);
+  close_ok(db);
+}
+
+static void checkpoint_save_load_truncate(void **state) {
+  fixture *fx = *state;
+  hd_error err;
+  hd_db *db = open_ok(fx->path);
+  int64_t r1 = begin_run(db, "", 1), r2 = begin_run(db, "", 2);
+  void *blob = NULL;
+  size_t n = 0;
+  int64_t seq = 0;
+  double t = 0;
+  assert_int_equal(hd_db_checkpoint_load(db, r1, &blob, &n, &seq, &t, &err), HD_EINPUT);
+  assert_non_null(strstr(err.msg, "no checkpoint"));
+  assert_null(blob);
+
+  /* rows of r1: collisions seq 1..30 at t = seq - 1, samples at t = 0..29, states */
+  for (int64_t k = 1; k <= 30; k++) {
+    hd_collision_row r = coll(k);
+    r.t = (double)(k - 1);
+    assert_int_equal(hd_db_log_collision(db, r1, &r, &err), HD_OK);
+    assert_int_equal(hd_db_log_collision(db, r2, &r, &err), HD_OK);
+    hd_sample_row s = {(double)(k - 1), k, 0.1 * (double)k, 1.0, 0.5};
+    assert_int_equal(hd_db_log_sample(db, r1, &s, &err), HD_OK);
+    assert_int_equal(hd_db_log_sample(db, r2, &s, &err), HD_OK);
+  }
+  struct {
+    const char *label;
+    double t;
+  } sts[] = {{"initial", 0},      {"velocities", 5}, {"checkpoint", 20},
+             {"velocities", 25},  {"checkpoint", 25}, {"final", 29}};
+  for (size_t k = 0; k < sizeof sts / sizeof sts[0]; k++) {
+    hd_state_rec s = {sts[k].t, 0, 1, 0, 0, 0, 0, 0, 0, NAN};
+    assert_int_equal(hd_db_log_state(db, r1, sts[k].label, &s, &err), HD_OK);
+    assert_int_equal(hd_db_log_state(db, r2, sts[k].label, &s, &err), HD_OK);
+  }
+
+  /* two checkpoints of r1 and one of r2: the newest of r1 replaces the older */
+  unsigned char b1[64], b2[300];
+  for (size_t k = 0; k < sizeof b1; k++) b1[k] = (unsigned char)(k * 7);
+  for (size_t k = 0; k < sizeof b2; k++) b2[k] = (unsigned char)(255 - k % 256);
+  const double t1 = 0.1 + 0.2, t2 = 1.0 / 3.0;
+  assert_int_equal(hd_db_checkpoint_save(db, r1, 10, t1, b1, sizeof b1, &err), HD_OK);
+  /* the rows logged before the checkpoint are committed with it */
+  assert_int_equal(count_other(fx->path, "SELECT count(*) FROM collisions"), 60);
+  assert_int_equal(hd_db_checkpoint_save(db, r2, 11, t1, b1, sizeof b1, &err), HD_OK);
+  assert_int_equal(hd_db_checkpoint_save(db, r1, 20, t2, b2, sizeof b2, &err), HD_OK);
+  assert_int_equal(q_int(hd_db_handle(db), "SELECT count(*) FROM checkpoints WHERE run = 1"), 1);
+  assert_int_equal(q_int(hd_db_handle(db), "SELECT count(*) FROM checkpoints WHERE run = 2"), 1);
+  assert_int_equal(hd_db_checkpoint_load(db, r1, &blob, &n, &seq, &t, &err), HD_OK);
+  assert_int_equal(n, sizeof b2);
+  assert_memory_equal(blob, b2, sizeof b2);
+  assert_int_equal(seq, 20);
+  assert_true(memcmp(&t, &t2, sizeof t) == 0); /* bit-exact */
+  free(blob);
+  assert_int_equal(hd_db_checkpoint_load(db, r2, &blob, &n, &seq, &t, &err), HD_OK);
+  assert_int_equal(n, sizeof b1);
+  assert_memory_equal(blob, b1, sizeof b1);
+  assert_true(seq == 11 && memcmp(&t, &t1, sizeof t) == 0);
+  free(blob);
+  /* an empty blob is a valid checkpoint */
+  int64_t r3 = begin_run(db, "", 3);
+  assert_int_equal(hd_db_checkpoint_save(db, r3, 0, 0.0, NULL, 0, &err), HD_OK);
+  assert_int_equal(hd_db_checkpoint_load(db, r3, &blob, &n, &seq, &t, &err), HD_OK);
+  assert_int_equal(n, 0);
+  assert_non_null(blob);
+  free(blob);
+
+  /* truncate r1 after seq 20 / t = 20 */
+  assert_int_equal(hd_db_truncate_after(db, r1, 20, 20.0, &err), HD_OK);
+  sqlite3 *h = hd_db_handle(db);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM collisions WHERE run = 1"), 20);
+  assert_int_equal(q_int(h, "SELECT max(seq) FROM collisions WHERE run = 1"), 20);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM samples WHERE run = 1"), 21); /* t 0..20 */
+  /* states: initial 0, velocities 5, checkpoint 20 and checkpoint 25 stay; velocities 25 and
+   * final 29 go */
+  assert_int_equal(q_int(h, "SELECT count(*) FROM states WHERE run = 1"), 4);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM states WHERE run = 1 AND "
+                            "label IN ('final') OR (run = 1 AND label = 'velocities' AND t = 25)"),
+                   0);
+  /* r2 untouched */
+  assert_int_equal(q_int(h, "SELECT count(*) FROM collisions WHERE run = 2"), 30);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM samples WHERE run = 2"), 30);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM states WHERE run = 2"), 6);
+  close_ok(db);
+  assert_integrity_ok(fx->path);
+}
+
+static void find_resumable(void **state) {
+  fixture *fx = *state;
+  hd_error err;
+  hd_db *db = open_ok(fx->path);
+  int64_t run = 0;
+  char *scene = NULL;
+  unsigned long long seed = 0;
+  assert_int_equal(hd_db_find_resumable(db, 0, &run, &scene, &seed, &err), HD_EINPUT);
+  assert_non_null(strstr(err.msg, "no interrupted run"));
+  const char *status[] = {"done", "interrupted", "running", "collapsed", "failed", "done"};
+  for (int k = 0; k < 6; k++) {
+    char sc[32];
+    snprintf(sc, sizeof sc, "scene %d", k + 1);
+    int64_t r = begin_run(db, sc, 100 + (unsigned)k);
+    assert_int_equal(r, k + 1);
+    assert_int_equal(hd_db_run_status(db, r, status[k], 10, 1.0, &err), HD_OK);
+  }
+  /* newest resumable: run 3 ('running': a killed process) */
+  assert_int_equal(hd_db_find_resumable(db, 0, &run, &scene, &seed, &err), HD_OK);
+  assert_int_equal(run, 3);
+  assert_string_equal(scene, "scene 3");
+  assert_true(seed == 102);
+  free(scene);
+  assert_int_equal(hd_db_find_resumable(db, 2, &run, &scene, &seed, &err), HD_OK);
+  assert_int_equal(run, 2);
+  assert_string_equal(scene, "scene 2");
+  assert_true(seed == 101);
+  free(scene);
+  scene = NULL;
+  assert_int_equal(hd_db_find_resumable(db, 1, &run, &scene, &seed, &err), HD_EINPUT);
+  assert_non_null(strstr(err.msg, "run 1 is done"));
+  assert_null(scene);
+  assert_int_equal(hd_db_find_resumable(db, 4, &run, &scene, &seed, &err), HD_EINPUT);
+  assert_non_null(strstr(err.msg, "collapsed"));
+  assert_int_equal(hd_db_find_resumable(db, 99, &run, &scene, &seed, &err), HD_EINPUT);
+  assert_non_null(strstr(err.msg, "no run 99"));
+  /* 'finished' is set for final statuses and cleared for 'running' */
+  sqlite3 *h = hd_db_handle(db);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM runs WHERE finished IS NULL"), 1);
+  assert_int_equal(q_int(h, "SELECT id FROM runs WHERE finished IS NULL"), 3);
+  close_ok(db);
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* read-only and disk full */
+
+/* The checks on a read-only file and folder; returns a bit mask of failures (0: all passed).
+ * Runs in a child without root privileges when the tests run as root. */
+static int readonly_checks(const char *dir, const char *path) {
+  int bad = 0;
+  hd_db *db = NULL;
+  hd_error err;
+  hd_error_clear(&err);
+  if (hd_db_open(&db, path, &err) != HD_EIO || db) bad |= 1;
+  if (!strstr(err.msg, path) || !strstr(err.msg, "read-only")) bad |= 2;
+  char fresh[400];
+  snprintf(fresh, sizeof fresh, "%s/new.db", dir);
+  hd_error_clear(&err);
+  if (hd_db_open(&db, fresh, &err) != HD_EIO || db) bad |= 4;
+  if (!strstr(err.msg, fresh) || !strstr(err.msg, "open")) bad |= 8;
+  if (bad) fprintf(stderr, "readonly_checks: %d: %s\n", bad, err.msg);
+  return bad;
+}
+
+static void read_only_file(void **state) {
+  fixture *fx = *state;
+  hd_db *db = open_ok(fx->path);
+  begin_run(db, "", 1);
+  close_ok(db);
+  assert_int_equal(chmod(fx->path, 0444), 0);
+  assert_int_equal(chmod(fx->dir, 0555), 0);
+  if (geteuid() != 0) {
+    assert_int_equal(readonly_checks(fx->dir, fx->path), 0);
+  } else {
+    /* root writes any file: check as an unprivileged user in a child */
+    fflush(NULL);
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+      if (setgid(65534) || setuid(65534)) _exit(100);
+      _exit(readonly_checks(fx->dir, fx->path));
+    }
+    int ws = 0;
+    assert_int_equal(waitpid(pid, &ws, 0), pid);
+    assert_true(WIFEXITED(ws));
+    if (WEXITSTATUS(ws) == 100) skip();
+    assert_int_equal(WEXITSTATUS(ws), 0);
+  }
+  chmod(fx->dir, 0700);
+  chmod(fx->path, 0644);
+}
+
+/* A connection that may not write (query_only): every write is HD_EIO, nothing crashes, and
+ * the database is still sound and writable once allowed again. */
+static void read_only_connection(void **state) {
+  fixture *fx = *state;
+  hd_error err;
+  hd_db *db = open_ok(fx->path);
+  int64_t run = begin_run(db, "", 1);
+  assert_int_equal(hd_db_exec(db, "PRAGMA query_only = 1", &err), HD_OK);
+  hd_collision_row r = coll(1);
+  assert_int_equal(hd_db_log_collision(db, run, &r, &err), HD_EIO);
+  assert_true(strncmp(err.msg, fx->path, strlen(fx->path)) == 0);
+  assert_non_null(strstr(err.msg, "readonly"));
+  int64_t r2 = 0;
+  assert_int_equal(hd_db_run_begin(db, "", 2, "test", &r2, &err), HD_EIO);
+  assert_int_equal(hd_db_checkpoint_save(db, run, 1, 0.0, "x", 1, &err), HD_EIO);
+  assert_int_equal(hd_db_exec(db, "INSERT INTO runs (scene) VALUES ('x')", &err), HD_EIO);
+  assert_int_equal(hd_db_exec(db, "PRAGMA query_only = 0", &err), HD_OK);
+  assert_int_equal(hd_db_log_collision(db, run, &r, &err), HD_OK);
+  close_ok(db);
+  assert_integrity_ok(fx->path);
+  assert_int_equal(count_other(fx->path, "SELECT count(*) FROM collisions"), 1);
+
+  /* a readonly handle refuses writes with a clear message */
+  assert_int_equal(hd_db_open_readonly(&db, fx->path, &err), HD_OK);
+  assert_int_equal(hd_db_log_collision(db, run, &r, &err), HD_EIO);
+  assert_non_null(strstr(err.msg, "read-only"));
+  assert_int_equal(hd_db_close(db, &err), HD_OK);
+  /* and a file that is not a database is an error, not a crash */
+  char junk[400];
+  snprintf(junk, sizeof junk, "%s/junk.db", fx->dir);
+  FILE *f = fopen(junk, "w");
+  assert_non_null(f);
+  for (int k = 0; k < 200; k++) fputs("this is not an SQLite database\n", f);
+  fclose(f);
+  db = NULL;
+  assert_int_equal(hd_db_open(&db, junk, &err), HD_EIO);
+  assert_null(db);
+  assert_non_null(strstr(err.msg, "not a database"));
+}
+
+static void disk_full(void **state) {
+  fixture *fx = *state;
+  hd_error err;
+  hd_db *db = open_ok(fx->path);
+  int64_t run = begin_run(db, "", 1);
+  hd_db_set_batch_rows(db, 50);
+  sqlite3 *h = hd_db_handle(db);
+  long long pages = q_int(h, "PRAGMA page_count");
+  char sql[80];
+  /* a few pages more than now: room for some hundreds of rows, then SQLITE_FULL */
+  snprintf(sql, sizeof sql, "PRAGMA max_page_count = %lld", pages + 6);
+  assert_int_equal(hd_db_exec(db, sql, &err), HD_OK);
+  int rc = HD_OK;
+  int64_t k;
+  for (k = 1; k <= 100000 && rc == HD_OK; k++) {
+    hd_collision_row r = coll(k);
+    rc = hd_db_log_collision(db, run, &r, &err);
+  }
+  assert_int_equal(rc, HD_EIO);
+  assert_true(k > 51); /* at least one batch fitted */
+  assert_true(strncmp(err.msg, fx->path, strlen(fx->path)) == 0);
+  assert_non_null(strstr(err.msg, "full"));
+  long long n = count_other(fx->path, "SELECT count(*) FROM collisions");
+  assert_true(n > 0 && n % 50 == 0); /* whole batches only */
+  assert_int_equal(count_other(fx->path, "SELECT max(seq) FROM collisions"), n);
+  assert_integrity_ok(fx->path);
+  /* still full: the next batch fails before it is whole too (the failed one did), and then
+   * nothing is pending, so close has nothing to commit */
+  hd_collision_row r = coll(k);
+  rc = HD_OK;
+  for (int m = 0; m < 50 && rc == HD_OK; m++) rc = hd_db_log_collision(db, run, &r, &err);
+  assert_int_equal(rc, HD_EIO);
+  close_ok(db);
+  assert_integrity_ok(fx->path);
+  assert_int_equal(count_other(fx->path, "SELECT count(*) FROM collisions"), n);
+  /* the limit is per connection: reopened, the database takes rows again */
+  db = open_ok(fx->path);
+  assert_int_equal(hd_db_log_collision(db, run, &r, &err), HD_OK);
+  close_ok(db);
+  assert_int_equal(count_other(fx->path, "SELECT count(*) FROM collisions"), n + 1);
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* the example queries of db/queries/ */
+
+/* The result of the last statement of a query file that returned rows. */
+typedef struct qres {
+  int ncol, nrow, cap;
+  char *names[32];
+  double *v;   /* nrow x ncol, NAN for NULL */
+  char **txt;  /* nrow x ncol, strdup'd text of TEXT cells, else NULL */
+} qres;
+
+static void qres_free(qres *r) {
+  for (int c = 0; c < r->ncol; c++) free(r->names[c]);
+  for (long k = 0; k < (long)r->nrow * r->ncol; k++) free(r->txt[k]);
+  free(r->v);
+  free(r->txt);
+  memset(r, 0, sizeof *r);
+}
+
+static int col(const qres *r, const char *name) {
+  for (int c = 0; c < r->ncol; c++)
+    if (!strcmp(r->names[c], name)) return c;
+  fail_msg("no column %s", name);
+  return -1;
+}
+
+static double val(const qres *r, int row, const char *name) {
+  return r->v[(long)row * r->ncol + col(r, name)];
+}
+
+static char *read_text(const char *name) {
+  const char *dirs[] = {"db/queries", "../db/queries"};
+  for (size_t d = 0; d < 2; d++) {
+    char p[256];
+    snprintf(p, sizeof p, "%s/%s", dirs[d], name);
+    FILE *f = fopen(p, "rb");
+    if (!f) continue;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *s = malloc((size_t)n + 1);
+    assert_non_null(s);
+    assert_int_equal(fread(s, 1, (size_t)n, f), (size_t)n);
+    s[n] = 0;
+    fclose(f);
+    return s;
+  }
+  fail_msg("cannot find db/queries/%s (run from the source tree)", name);
+  return NULL;
+}
+
+/* Runs a query file as the sqlite3 shell would, with @run and @block set (0: unset). */
+static void run_query(sqlite3 *h, const char *file, long long run, long long block, qres *out) {
+  char *sql = read_text(file);
+  memset(out, 0, sizeof *out);
+  const char *p = sql;
+  while (*p) {
+    sqlite3_stmt *st = NULL;
+    const char *tail = NULL;
+    int rc = sqlite3_prepare_v2(h, p, -1, &st, &tail);
+    if (rc != SQLITE_OK) fail_msg("%s: %s", file, sqlite3_errmsg(h));
+    p = tail;
+    if (!st) continue; /* comments or white space */
+    int ip = sqlite3_bind_parameter_index(st, "@run");
+    if (ip && run > 0) sqlite3_bind_int64(st, ip, run);
+    ip = sqlite3_bind_parameter_index(st, "@block");
+    if (ip && block > 0) sqlite3_bind_int64(st, ip, block);
+    qres r = {0};
+    int s;
+    while ((s = sqlite3_step(st)) == SQLITE_ROW) {
+      if (r.nrow == 0) {
+        r.ncol = sqlite3_column_count(st);
+        assert_true(r.ncol <= 32);
+        for (int c = 0; c < r.ncol; c++) r.names[c] = strdup(sqlite3_column_name(st, c));
+      }
+      if (r.nrow == r.cap) {
+        r.cap = r.cap ? 2 * r.cap : 64;
+        r.v = realloc(r.v, sizeof *r.v * (size_t)r.cap * (size_t)r.ncol);
+        r.txt = realloc(r.txt, sizeof *r.txt * (size_t)r.cap * (size_t)r.ncol);
+        assert_true(r.v && r.txt);
+      }
+      for (int c = 0; c < r.ncol; c++) {
+        long k = (long)r.nrow * r.ncol + c;
+        int ty = sqlite3_column_type(st, c);
+        r.v[k] = ty == SQLITE_NULL ? NAN : sqlite3_column_double(st, c);
+        r.txt[k] = ty == SQLITE_TEXT ? strdup((const char *)sqlite3_column_text(st, c)) : NULL;
+      }
+      r.nrow++;
+    }
+    if (s != SQLITE_DONE) fail_msg("%s: %s", file, sqlite3_errmsg(h));
+    sqlite3_finalize(st);
+    if (r.nrow > 0) {
+      qres_free(out);
+      *out = r;
+    } else {
+      qres_free(&r);
+    }
+  }
+  free(sql);
+}
+
+/* The synthetic database of the query tests, with what the queries must find, computed here. */
+#define Q_RUNS 2
+#define Q_BLOCK 1000
+typedef struct qdata {
+  long n_coll[Q_RUNS];
+  long kind_n[Q_RUNS][6];
+  double kind_de[Q_RUNS][6];
+  long hist[Q_RUNS][3][36]; /* [run][block of Q_BLOCK][bin] */
+  long hist_all[Q_RUNS][36];
+  double *f[Q_RUNS];        /* f of the dimer-dimer collisions */
+  long nf[Q_RUNS];
+  double e_tr[Q_RUNS][20], e_rot[Q_RUNS][20];
+} qdata;
+
+/* Bin of theta in (-pi, pi]: k with -pi + k w < theta <= -pi + (k+1) w, found by comparing
+ * with the bin edges (not by the query's formula). */
+static int bin_of(double theta) {
+  const double w = 2 * M_PI / 36;
+  for (int k = 0; k < 36; k++)
+    if (theta <= -M_PI + (k + 1) * w) return k;
+  return 35;
+}
+
+static void fill_query_db(const char *path, qdata *q) {
+  memset(q, 0, sizeof *q);
+  hd_error err;
+  hd_db *db = open_ok(path);
+  hd_db_set_batch_rows(db, 500);
+  gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(rng, 2024);
+  const long ncoll[Q_RUNS] = {2500, 700};
+  for (int r = 0; r < Q_RUNS; r++) {
+    int64_t run = begin_run(db, "", (unsigned)r);
+    assert_int_equal(run, r + 1);
+    q->f[r] = malloc(sizeof(double) * (size_t)ncoll[r]);
+    assert_non_null(q->f[r]);
+    for (int64_t s = 1; s <= ncoll[r]; s++) {
+      hd_collision_row c = coll(s);
+      c.kind = (hd_coll_kind)gsl_rng_uniform_int(rng, 6);
+      /* theta uniform in (-2pi/3, 2pi/3] for dimers, NaN for others; some exactly +-pi/bin
+       * edges are avoided by the random draw */
+      int has_i = c.kind == HD_CK_DIMER_DIMER || c.kind == HD_CK_DIMER_DISK ||
+                  c.kind == HD_CK_DIMER_WALL;
+      c.theta_i = has_i ? (2 * gsl_rng_uniform(rng) - 1) * 2 * M_PI / 3 : NAN;
+      if (has_i && s % 97 == 0) c.theta_i = M_PI; /* the closed end of the last bin */
+      c.theta_j = c.kind == HD_CK_DIMER_DIMER ? (2 * gsl_rng_uniform(rng) - 1) * 2 * M_PI / 3
+                                              : NAN;
+      if (c.kind == HD_CK_DIMER_DIMER) {
+        double ci = cos(c.theta_i), cj = cos(c.theta_j);
+        c.f = 1.0 / (2.0 - (ci * ci + cj * cj) / 2.0);
+        q->f[r][q->nf[r]++] = c.f;
+      } else {
+        c.f = c.kind == HD_CK_DISK_DISK ? 0.5 : NAN;
+      }
+      c.de = -gsl_rng_uniform(rng);
+      assert_int_equal(hd_db_log_collision(db, run, &c, &err), HD_OK);
+      q->n_coll[r]++;
+      q->kind_n[r][c.kind]++;
+      q->kind_de[r][c.kind] += c.de;
+      if (has_i) {
+        q->hist[r][(s - 1) / Q_BLOCK][bin_of(c.theta_i)]++;
+        q->hist_all[r][bin_of(c.theta_i)]++;
+      }
+    }
+    for (int k = 0; k < 20; k++) {
+      q->e_tr[r][k] = 2.0 * exp(-0.1 * k) + r;
+      q->e_rot[r][k] = 1.0 * exp(-0.05 * k);
+      hd_sample_row sm = {0.5 * k, 100 * k, 0.2 * k, q->e_tr[r][k], q->e_rot[r][k]};
+      assert_int_equal(hd_db_log_sample(db, run, &sm, &err), HD_OK);
+    }
+    assert_int_equal(hd_db_run_status(db, run, r ? "interrupted" : "done", 1000 * (r + 1),
+                                      4.0, &err), HD_OK);
+  }
+  gsl_rng_free(rng);
+  close_ok(db);
+}
+
+static void queries(void **state) {
+  fixture *fx = *state;
+  qdata q;
+  fill_query_db(fx->path, &q);
+  sqlite3 *h = NULL;
+  assert_int_equal(sqlite3_open(fx->path, &h), SQLITE_OK);
+  qres r;
+  const double w = 2 * M_PI / 36;
+
+  /* angle histogram of run 1 in blocks of 1000: 3 blocks x 36 bins, exact counts */
+  run_query(h, "angle_histogram_per_block.sql", 1, Q_BLOCK, &r);
+  assert_int_equal(r.nrow, 3 * 36);
+  long total = 0;
+  for (int row = 0; row < r.nrow; row++) {
+    int b = (int)val(&r, row, "block"), k = (int)val(&r, row, "bin");
+    assert_int_equal(val(&r, row, "run"), 1);
+    assert_int_equal(b, row / 36);
+    assert_int_equal(k, row % 36);
+    assert_int_equal((long)val(&r, row, "n"), q.hist[0][b][k]);
+    long nb = 0;
+    for (int j = 0; j < 36; j++) nb += q.hist[0][b][j];
+    assert_int_equal((long)val(&r, row, "n_block"), nb);
+    assert_close(val(&r, row, "density"), (double)q.hist[0][b][k] / ((double)nb * w),
+                        1e-12);
+    assert_close(val(&r, row, "theta_lo"), -M_PI + k * w, 1e-12);
+    total += (long)val(&r, row, "n");
+  }
+  long want = q.kind_n[0][0] + q.kind_n[0][1] + q.kind_n[0][3];
+  assert_int_equal(total, want);
+  assert_true(q.hist[0][0][35] + q.hist[0][1][35] + q.hist[0][2][35] > 0); /* theta = pi */
+  qres_free(&r);
+  /* default block (10000): one block per run, every run */
+  run_query(h, "angle_histogram_per_block.sql", 0, 0, &r);
+  assert_int_equal(r.nrow, 2 * 36);
+  for (int row = 0; row < r.nrow; row++)
+    assert_int_equal((long)val(&r, row, "n"), q.hist_all[row / 36][row % 36]);
+  qres_free(&r);
+
+  /* mean f per run, with the standard error from GSL's sample standard deviation */
+  run_query(h, "mean_f_per_run.sql", 0, 0, &r);
+  assert_int_equal(r.nrow, Q_RUNS);
+  for (int k = 0; k < Q_RUNS; k++) {
+    double mean = gsl_stats_mean(q.f[k], 1, (size_t)q.nf[k]);
+    double sd = gsl_stats_sd(q.f[k], 1, (size_t)q.nf[k]);
+    assert_int_equal(val(&r, k, "run"), k + 1);
+    assert_int_equal((long)val(&r, k, "n"), q.nf[k]);
+    /* sums of ~10^3 terms in another order: agree to ~1e-13 relative */
+    assert_close(val(&r, k, "mean_f"), mean, 1e-12);
+    assert_close(val(&r, k, "sd_f"), sd, 1e-12);
+    assert_close(val(&r, k, "stderr_f"), sd / sqrt((double)q.nf[k]), 1e-12);
+    assert_close(val(&r, k, "d_e"), 2.0 / mean, 1e-11);
+    /* f for theta uniform on |theta| <= 2pi/3 averages to about 0.64 (paper, sec. 5).  Seed
+     * 2024; ~420 and ~120 dimer-dimer rows, sd(f) ~ 0.1, so the standard error is <= 0.01 and
+     * the window +-0.04 is more than 3 sigma wide. */
+    assert_true(mean > 0.6 && mean < 0.68);
+  }
+  qres_free(&r);
+  run_query(h, "mean_f_per_run.sql", 2, 0, &r);
+  assert_int_equal(r.nrow, 1);
+  assert_int_equal(val(&r, 0, "run"), 2);
+  qres_free(&r);
+
+  /* energy against cpd */
+  run_query(h, "energy_vs_cpd.sql", 2, 0, &r);
+  assert_int_equal(r.nrow, 20);
+  for (int k = 0; k < 20; k++) {
+    double e = q.e_tr[1][k] + q.e_rot[1][k], e0 = q.e_tr[1][0] + q.e_rot[1][0];
+    assert_close(val(&r, k, "cpd"), 0.2 * k, 1e-15);
+    assert_close(val(&r, k, "e"), e, 1e-14);
+    assert_close(val(&r, k, "t_rot"), 2 * q.e_rot[1][k], 1e-14);
+    assert_close(val(&r, k, "k"), q.e_tr[1][k] / q.e_rot[1][k], 1e-13);
+    assert_close(val(&r, k, "e_over_e0"), e / e0, 1e-14);
+  }
+  qres_free(&r);
+
+  /* collisions per kind: every run, kinds in alphabetical order */
+  run_query(h, "collisions_per_kind.sql", 0, 0, &r);
+  assert_int_equal(r.nrow, 2 * 6);
+  for (int row = 0; row < r.nrow; row++) {
+    int run = (int)val(&r, row, "run") - 1;
+    const char *kind = r.txt[(long)row * r.ncol + col(&r, "kind")];
+    int k = 0;
+    while (k < 6 && strcmp(hd_coll_kind_name((hd_coll_kind)k), kind)) k++;
+    assert_true(k < 6);
+    assert_int_equal((long)val(&r, row, "n"), q.kind_n[run][k]);
+    assert_close(val(&r, row, "fraction"),
+                        (double)q.kind_n[run][k] / (double)q.n_coll[run], 1e-15);
+    assert_close(val(&r, row, "mean_de"), q.kind_de[run][k] / (double)q.kind_n[run][k],
+                        1e-12);
+  }
+  qres_free(&r);
+
+  /* runs overview */
+  run_query(h, "runs_overview.sql", 0, 0, &r);
+  assert_int_equal(r.nrow, 2);
+  for (int k = 0; k < 2; k++) {
+    assert_string_equal(r.txt[(long)k * r.ncol + col(&r, "status")],
+                        k ? "interrupted" : "done");
+    assert_int_equal((long)val(&r, k, "collisions_logged"), q.n_coll[k]);
+    assert_close(val(&r, k, "events_per_s"), 1000.0 * (k + 1) / 4.0, 1e-12);
+    assert_close(val(&r, k, "last_cpd"), 0.2 * 19, 1e-15);
+    assert_int_equal((long)val(&r, k, "samples"), 20);
+  }
+  qres_free(&r);
+
+  /* the views */
+  run_query(h, "views.sql", 0, 0, &r);
+  qres_free(&r);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM v_dimer_collisions"),
+                   q.kind_n[0][0] + q.kind_n[1][0]);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM v_dimer_collisions "
+                            "WHERE abs(f - f_eq36) > 1e-14"),
+                   0);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM v_wall_collisions"),
+                   q.kind_n[0][3] + q.kind_n[0][4] + q.kind_n[1][3] + q.kind_n[1][4]);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM v_energy WHERE abs(e - e_tr - e_rot) < 1e-15"),
+                   40);
+  assert_int_equal(q_int(h, "SELECT collisions_logged FROM v_runs WHERE id = 2"), q.n_coll[1]);
+  sqlite3_close(h);
+  for (int k = 0; k < Q_RUNS; k++) free(q.f[k]);
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* haff export xyz */
+
+static char *slurp(const char *path) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return NULL;
+  static char buf[8192];
+  size_t n = fread(buf, 1, sizeof buf - 1, f);
+  buf[n] = 0;
+  fclose(f);
+  return buf;
+}
+
+static int export_run(char *a1, char *a2, char *a3, char *a4, char *a5, char *a6, char *a7,
+                      char *a8) {
+  char *argv[] = {"export", "xyz", a1, a2, a3, a4, a5, a6, a7, a8, NULL};
+  int argc = 2;
+  while (argv[argc]) argc++;
+  return haff_export_main(argc, argv);
+}
+
+static void export_xyz(void **state) {
+  fixture *fx = *state;
+  hd_error err;
+  hd_db *db = open_ok(fx->path);
+  int64_t run = begin_run(db,
+                          "[system]\nbox = 10 8   ; periodic\nseed = 3\n[dimers]\ncount = 1\n"
+                          "d = 1\na = 1\n[disks]\ncount = 1\nsigma = 0.5\n",
+                          3);
+  /* a dimer at (2.5, 3), phi = 0, V = (1, 0), omega = 2; a disk at (6, 4), v = (0, -1) */
+  hd_state_rec d0 = {0.0, 0, 1, 2.5, 3.0, 0.0, 1.0, 0.0, 2.0, NAN};
+  hd_state_rec s0 = {0.0, 1, 0, 6.0, 4.0, 0.0, 0.0, -1.0, 0.0, NAN};
+  hd_state_rec d1 = {1.5, 0, 1, 4.0, 3.0, M_PI, 1.0, 0.0, 2.0, 0.25};
+  hd_state_rec s1 = {1.5, 1, 0, 6.0, 2.5, 0.0, 0.0, -1.0, 0.0, 0.25};
+  assert_int_equal(hd_db_log_state(db, run, "final", &d1, &err), HD_OK);
+  assert_int_equal(hd_db_log_state(db, run, "final", &s1, &err), HD_OK);
+  assert_int_equal(hd_db_log_state(db, run, "initial", &s0, &err), HD_OK);
+  assert_int_equal(hd_db_log_state(db, run, "initial", &d0, &err), HD_OK);
+  int64_t empty = begin_run(db, "[system]\nbox = 1 1\n", 4);
+  close_ok(db);
+
+  char out[400];
+  snprintf(out, sizeof out, "%s/out.xyz", fx->dir);
+  assert_int_equal(export_run(fx->path, "--run", "1", "--label", "initial", "-o", out, NULL), 0);
+  /* Disk 0 of the dimer at R - (a/2)(1, 0) = (2, 3) with velocity V + omega z x (-1/2, 0) =
+   * (1, -1); disk 1 at (3, 3) with (1, 1).  Radii d/2 = 0.5 and sigma/2 = 0.25. */
+  const char *want =
+      "3\n"
+      "Lattice=\"10 0 0 0 8 0 0 0 1\" "
+      "Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:body:I:1 Time=0 Label=initial\n"
+      "D 2 3 0 1 -1 0 0.5 0\n"
+      "D 3 3 0 1 1 0 0.5 0\n"
+      "S 6 4 0 0 -1 0 0.25 1\n";
+  assert_string_equal(slurp(out), want);
+
+  /* all labels: two frames in time order; phi = pi puts disk 0 at R + (a/2, 0) */
+  const char *want_final =
+      "3\n"
+      "Lattice=\"10 0 0 0 8 0 0 0 1\" "
+      "Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:body:I:1 Time=1.5 Label=final "
+      "Cpd=0.25\n"
+      "D 4.5 3 0 1 1 0 0.5 0\n"
+      "D 3.5 3 0 1 -1 0 0.5 0\n"
+      "S 6 2.5 0 0 -1 0 0.25 1\n";
+  char both[2048];
+  snprintf(both, sizeof both, "%s%s", want, want_final);
+  /* the newest run (2) has no states: exit 2 with a message; so give --run 1 */
+  assert_int_equal(export_run(fx->path, "--run", "1", "-o", out, NULL, NULL, NULL), 0);
+  assert_string_equal(slurp(out), both);
+
+  /* a box stored with hd_db_run_box wins over the scene's */
+  db = open_ok(fx->path);
+  assert_int_equal(hd_db_run_box(db, run, 12.0, 9.0, &err), HD_OK);
+  close_ok(db);
+  assert_int_equal(export_run(fx->path, "--run", "1", "--label", "final", "-o", out, NULL), 0);
+  assert_non_null(strstr(slurp(out), "Lattice=\"12 0 0 0 9 0 0 0 1\""));
+  assert_null(strstr(slurp(out), "initial"));
+
+  /* errors: bad label, unknown run, run without states, missing file, bad format */
+  char rid[32];
+  snprintf(rid, sizeof rid, "%lld", (long long)empty);
+  assert_int_equal(export_run(fx->path, "--label", "middle", NULL, NULL, NULL, NULL, NULL), 2);
+  assert_int_equal(export_run(fx->path, "--run", "77", NULL, NULL, NULL, NULL, NULL), 2);
+  assert_int_equal(export_run(fx->path, "--run", rid, "-o", out, NULL, NULL, NULL), 2);
+  assert_int_equal(export_run(fx->path, NULL, NULL, NULL, NULL, NULL, NULL, NULL), 2); /* newest */
+  char missing[400];
+  snprintf(missing, sizeof missing, "%s/nope.db", fx->dir);
+  assert_int_equal(export_run(missing, NULL, NULL, NULL, NULL, NULL, NULL, NULL), 2);
+  char *argv_bad[] = {"export", "pdb", fx->path, NULL};
+  assert_int_equal(haff_export_main(3, argv_bad), 2);
+  char *argv_help[] = {"export", "--help", NULL};
+  assert_int_equal(haff_export_main(2, argv_help), 0);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test_setup_teardown(round_trip, setup, teardown),
+      cmocka_unit_test_setup_teardown(nan_in_not_null_column, setup, teardown),
+      cmocka_unit_test_setup_teardown(batches_and_kill9, setup, teardown),
+      cmocka_unit_test_setup_teardown(checkpoint_with_its_rows, setup, teardown),
+      cmocka_unit_test_setup_teardown(checkpoint_save_load_truncate, setup, teardown),
+      cmocka_unit_test_setup_teardown(find_resumable, setup, teardown),
+      cmocka_unit_test_setup_teardown(read_only_file, setup, teardown),
+      cmocka_unit_test_setup_teardown(read_only_connection, setup, teardown),
+      cmocka_unit_test_setup_teardown(disk_full, setup, teardown),
+      cmocka_unit_test_setup_teardown(queries, setup, teardown),
+      cmocka_unit_test_setup_teardown(export_xyz, setup, teardown),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
