@@ -75,21 +75,28 @@ static void print_row(const hd_fmean_opts *o, const hd_fmean_result *r) {
  * positions of B's contacting disk, 3 the allowed wedge, 4 bonds and normal as vectors. */
 static void print_fig4(double a) {
   double tm = hd_fmean_theta_max(a);
-  double th = 0.55 * tm; /* example contact angle of A; B head-on (theta_B = 0) */
+  double th = 0.55 * tm; /* example contact angle of A */
   double nx = cos(th), ny = sin(th);
+  /* B tilted by theta_B = -0.5 rad if that overlaps nothing, else head-on (theta_B = 0). */
+  double tb = -0.5, phib = th + M_PI - tb;
+  double b2x = nx - a * cos(phib), b2y = ny - a * sin(phib);
+  if (hypot(b2x, b2y) < 1.0 || hypot(b2x + a, b2y) < 1.0) {
+    tb = 0.0;
+    b2x = (1.0 + a) * nx, b2y = (1.0 + a) * ny;
+  }
   printf("# Fig. 4 data, lengths in units of d: a/d = %.6g, theta_max = %.10g rad = %.6g deg\n",
          a, tm, tm * 180.0 / M_PI);
   printf("# index 0: dimer A disks (x y r): contacting disk A1, partner A2\n");
   printf("0\t0\t0.5\n%.10g\t0\t0.5\n\n\n", -a);
-  printf("# index 1: dimer B disks at theta_A = %.6g rad, theta_B = 0\n", th);
-  printf("%.10g\t%.10g\t0.5\n%.10g\t%.10g\t0.5\n\n\n", nx, ny, (1.0 + a) * nx, (1.0 + a) * ny);
+  printf("# index 1: dimer B disks (B1, B2) at theta_A = %.6g rad, theta_B = %.6g rad\n", th, tb);
+  printf("%.10g\t%.10g\t0.5\n%.10g\t%.10g\t0.5\n\n\n", nx, ny, b2x, b2y);
   printf("# index 2: B's contacting disk at the limits theta = +-theta_max\n");
   printf("%.10g\t%.10g\t0.5\n%.10g\t%.10g\t0.5\n\n\n", cos(tm), sin(tm), cos(tm), -sin(tm));
   printf("# index 3: allowed wedge of the contact normal (x y r start_deg end_deg)\n");
-  printf("0\t0\t1\t%.10g\t%.10g\n\n\n", -tm * 180.0 / M_PI, tm * 180.0 / M_PI);
+  printf("0\t0\t1.6\t%.10g\t%.10g\n\n\n", -tm * 180.0 / M_PI, tm * 180.0 / M_PI);
   printf("# index 4: vectors (x y dx dy): A's bond A2->A1, B's bond B2->B1, normal A1->B1\n");
   printf("%.10g\t0\t%.10g\t0\n", -a, a);
-  printf("%.10g\t%.10g\t%.10g\t%.10g\n", (1.0 + a) * nx, (1.0 + a) * ny, -a * nx, -a * ny);
+  printf("%.10g\t%.10g\t%.10g\t%.10g\n", b2x, b2y, nx - b2x, ny - b2y);
   printf("0\t0\t%.10g\t%.10g\n", nx, ny);
 }
 
