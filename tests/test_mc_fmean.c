@@ -2,8 +2,8 @@
  * Carlo, the exclusion and collision models, and the convergence study.
  *
  * Statistical checks use fixed seeds and a tolerance of 4 standard errors: for a Gaussian
- * estimator the two-sided false-alarm rate is 2 (1 - Phi(4)) = 6.3e-5 per check, so the ~20
- * such checks below together fail by chance with probability ~1e-3 for a new seed, while a real
+ * estimator the two-sided false-alarm rate is 2 (1 - Phi(4)) = 6.3e-5 per check, so the ~30
+ * such checks below together fail by chance with probability ~2e-3 for a new seed, while a real
  * bias of a few standard errors is still caught.  (With the fixed seeds they are deterministic.) */
 #include <setjmp.h>
 #include <stdarg.h>
