@@ -3,6 +3,7 @@
 #include <string.h>
 
 int haff_mc_main(int argc, char **argv);
+int hd_mc_fmean_main(int argc, char **argv);
 
 /* One `haff mc` subcommand. */
 typedef struct mc_command {
@@ -12,6 +13,7 @@ typedef struct mc_command {
 } mc_command;
 
 static const mc_command mc_commands[] = {
+    {"fmean", hd_mc_fmean_main, "<f> and D_e = D/<f> for an elongation a/d"},
     {NULL, NULL, NULL} /* sentinel; each mc program adds its line above */
 };
 
