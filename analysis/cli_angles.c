@@ -13,8 +13,9 @@ int haff_angles_main(int argc, char **argv) {
       "Fig. 5: histogram of the contact angles theta (both bodies of every dimer-dimer\n"
       "collision, in (-pi, pi]) per block of N logged collisions, normalised to unit area.\n"
       "Columns: block first last theta density density_err   (first/last: collision numbers\n"
-      "among the logged dimer-dimer collisions, 1-based; blocks separated by two blank lines;\n"
-      "an incomplete last block is dropped)\n"
+      "among the logged dimer-dimer collisions, 1-based; blocks separated by two blank lines,\n"
+      "each headed by a line whose first field is its legend title; an incomplete last block\n"
+      "is dropped)\n"
       "  --block N        collisions per block [10000]\n"
       "  --bins B         histogram bins on (-pi, pi] [36]\n"
       "  --fmean          instead: one line 'run n f_mean f_err batches batch_size', <f> over\n"
@@ -72,7 +73,6 @@ int haff_angles_main(int argc, char **argv) {
     gsl_histogram_set_ranges_uniform(h, -M_PI, M_PI + 1e-12);
     size_t bs = (size_t)a.block, nb = n / bs;
     if (nb == 0) fprintf(stderr, "haff %s: fewer than %zu collisions: no block\n", argv[0], bs);
-    fprintf(out, "# block\tfirst\tlast\ttheta\tdensity\tdensity_err\n");
     for (size_t b = 0; b < nb; b++) {
       gsl_histogram_reset(h);
       for (size_t i = b * bs; i < (b + 1) * bs; i++) {
@@ -80,6 +80,9 @@ int haff_angles_main(int argc, char **argv) {
         gsl_histogram_increment(h, tj[i]);
       }
       double tot = gsl_histogram_sum(h), w = 2 * M_PI / bins;
+      /* header: column 1's name is the block's legend title (gnuplot: title columnheader(1)) */
+      fprintf(out, "collisions %zu-%zu\tfirst\tlast\ttheta\tdensity\tdensity_err\n", b * bs + 1,
+              (b + 1) * bs);
       for (size_t k = 0; k < (size_t)bins; k++) {
         double lo, hi, c = gsl_histogram_get(h, k);
         gsl_histogram_get_range(h, k, &lo, &hi);

@@ -29,7 +29,12 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
     nu = nfit ? nu / (double)nfit : NAN;
     fprintf(out, "# %s alpha=%g a_over_d=%g runs=%zu D_e=%.6g nu0_eff=%.6g\n",
             ri->species == HD_ANA_DIMERS ? "dimers" : "disks", al, ri->a_over_d, m, De, nu);
-    fprintf(out, "# t\tcpd\tE\tE_over_E0\te_tr\te_rot\tx\tnu0t\thaff_E_over_E0\tx_eq31\thomog\n");
+    /* header: column 1's name is the block's legend title (gnuplot: title columnheader(1)) */
+    if (ri->species == HD_ANA_DIMERS)
+      fprintf(out, "alpha=%g a/d=%g (%zu runs)", al, ri->a_over_d, m);
+    else
+      fprintf(out, "disks alpha=%g (%zu runs)", al, m);
+    fprintf(out, "\tcpd\tE\tE_over_E0\te_tr\te_rot\tx\tnu0t\thaff_E_over_E0\tx_eq31\thomog\n");
     double E0 = 0;
     for (size_t k = 0; k < m; k++) E0 += s[k].e_tr[0] + s[k].e_rot[0];
     E0 /= (double)m;
@@ -55,7 +60,8 @@ int haff_energy_main(int argc, char **argv) {
       "usage: haff energy DB [--run ID | --all] [fit options] [-o FILE]\n"
       "Energy per body and collisions per particle against time, for Figs. 2 and 3: one block\n"
       "per run (--run) or per (alpha, a/d) group averaged sample by sample (--all, default),\n"
-      "blocks separated by two blank lines, each headed by '# species alpha=.. a_over_d=.. ...'.\n"
+      "blocks separated by two blank lines, each headed by '# species alpha=.. a_over_d=.. ...'\n"
+      "and a header line whose first field is the block's legend title (column 1 holds t).\n"
       "Columns: t cpd E E_over_E0 e_tr e_rot x=(1-alpha^2)cpd nu0t=nu0_eff*t\n"
       "         haff_E_over_E0=1/(1+gamma nu0 t)^2 x_eq31=(1-alpha^2)*eq.(31) homog (1 if fitted)\n"
       "  --no-detect, --thr X, --min-coll N, --cpd-max X: as for haff-fit (the fitted part)\n"

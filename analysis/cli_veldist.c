@@ -20,7 +20,8 @@ int haff_veldist_main(int argc, char **argv) {
       "Fig. 6: histograms of the scaled velocities c = (v - <v>)/s of every snapshot (label\n"
       "'velocities', taken at [log] velocities_at), s the snapshot's own per-component rms\n"
       "(vx, vy: sqrt(<|V-<V>|^2>/2); omega: sqrt(<omega^2>), not centred), so that a Maxwellian\n"
-      "gives the standard normal.  One block per snapshot, two blank lines between.\n"
+      "gives the standard normal.  One block per snapshot, two blank lines between, each headed\n"
+      "by a line whose first field is its legend title 'cpd=X'.\n"
       "Columns: snap cpd c p_vx p_vy p_omega gauss   (p_omega NaN for disks)\n"
       "  --stats          instead: one line per snapshot and variable (vx, vy, omega, v2d):\n"
       "                   snap t cpd var n scale kurt a2 a2_err ks_d ks_p (docs/analysis.md)\n"
@@ -65,7 +66,6 @@ int haff_veldist_main(int argc, char **argv) {
     gsl_histogram_set_ranges_uniform(h[k], -a.range, a.range);
   }
   if (a.stats) fprintf(out, "snap\tt\tcpd\tvar\tn\tscale\tkurt\ta2\ta2_err\tks_d\tks_p\n");
-  else fprintf(out, "# snap\tcpd\tc\tp_vx\tp_vy\tp_omega\tgauss\n");
   for (size_t s = 0; s < ns && !rc; s++) {
     hd_velstats vx, vy, vw, v2;
     int have_w = dimers;
@@ -91,6 +91,8 @@ int haff_veldist_main(int argc, char **argv) {
       if (have_w) gsl_histogram_increment(h[2], sn[s].omega[i] / vw.scale);
     }
     double w = 2 * a.range / bins, dn = (double)sn[s].n;
+    /* header: column 1's name is the block's legend title (gnuplot: title columnheader(1)) */
+    fprintf(out, "cpd=%.4g\tcpd\tc\tp_vx\tp_vy\tp_omega\tgauss\n", sn[s].cpd);
     for (size_t k = 0; k < (size_t)bins; k++) {
       double lo, hi;
       gsl_histogram_get_range(h[0], k, &lo, &hi);
