@@ -19,7 +19,7 @@ int haff_angles_main(int argc, char **argv) {
       "  --block N        collisions per block [10000]\n"
       "  --bins B         histogram bins on (-pi, pi] [36]\n"
       "  --fmean          instead: one line 'run n f_mean f_err batches batch_size', <f> over\n"
-      "                   the run with a batch-means standard error (batches of N, >= 10 of them)\n"
+      "                   the run with a batch-means standard error (batches of N, >= 20 of them)\n"
       "  -o FILE          write to FILE instead of stdout\n";
   hd_cli_args a;
   int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_BLOCK | HD_OPT_BINS, usage, &a);
@@ -54,7 +54,7 @@ int haff_angles_main(int argc, char **argv) {
   }
   if (a.fmean) {
     size_t bs = (size_t)a.block;
-    if (n / bs < 10) bs = n / 10;
+    if (n / bs < 20) bs = n / 20;
     if (bs < 1) {
       fprintf(stderr, "haff %s: %zu collisions are too few for batch means\n", argv[0], n);
       free(ti), free(tj), free(f), hd_cli_close(out, &a);
@@ -80,6 +80,7 @@ int haff_angles_main(int argc, char **argv) {
         gsl_histogram_increment(h, tj[i]);
       }
       double tot = gsl_histogram_sum(h), w = 2 * M_PI / bins;
+      if (b) fprintf(out, "\n\n"); /* blank lines between blocks, none after the last */
       /* header: column 1's name is the block's legend title (gnuplot: title columnheader(1)) */
       fprintf(out, "collisions %zu-%zu\tfirst\tlast\ttheta\tdensity\tdensity_err\n", b * bs + 1,
               (b + 1) * bs);
@@ -89,7 +90,6 @@ int haff_angles_main(int argc, char **argv) {
         fprintf(out, "%zu\t%zu\t%zu\t%.6g\t%.6g\t%.3g\n", b, b * bs + 1, (b + 1) * bs,
                 0.5 * (lo + hi), c / (tot * w), sqrt(c) / (tot * w));
       }
-      fprintf(out, "\n\n");
     }
     gsl_histogram_free(h);
   }

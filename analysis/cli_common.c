@@ -59,8 +59,10 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
     }
     for (size_t i = 0; i < sizeof need / sizeof need[0]; i++)
       if (need[i].c == c && !(allowed & need[i].bit)) {
-        fprintf(stderr, "haff %s: option '%s' does not apply here (see --help)\n", cmd,
-                argv[optind - 1]);
+        const char *name = "?";
+        for (const struct option *o = lo; o->name; o++)
+          if (o->val == c) name = o->name;
+        fprintf(stderr, "haff %s: option '--%s' does not apply here (see --help)\n", cmd, name);
         return 2;
       }
     switch (c) {

@@ -8,7 +8,7 @@
 /* Writes one block: the sample-by-sample mean over the runs idx[0..m-1] (truncated to the
  * shortest) with the Haff and eq. (31) curves of the mean fitted D_e and nu0. */
 static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const size_t *idx,
-                       size_t m, hd_error *err) {
+                       size_t m, int first, hd_error *err) {
   hd_series *s = calloc(m, sizeof *s);
   if (!s) return hd_error_set(err, HD_ENOMEM, "out of memory");
   int rc = HD_OK;
@@ -27,6 +27,7 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
     double al = ri->alpha, c = 1 - al * al;
     De = nfit ? De / (double)nfit : NAN;
     nu = nfit ? nu / (double)nfit : NAN;
+    if (!first) fprintf(out, "\n\n"); /* blank lines between blocks, none after the last */
     fprintf(out, "# %s alpha=%g a_over_d=%g runs=%zu D_e=%.6g nu0_eff=%.6g\n",
             ri->species == HD_ANA_DIMERS ? "dimers" : "disks", al, ri->a_over_d, m, De, nu);
     /* header: column 1's name is the block's legend title (gnuplot: title columnheader(1)) */
@@ -48,7 +49,6 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
       fprintf(out, "%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%d\n", t, cpd,
               et + er, (et + er) / E0, et, er, c * cpd, nu * t, haff, xeq, i < homog);
     }
-    fprintf(out, "\n\n");
   }
   for (size_t k = 0; k < m; k++) hd_series_free(&s[k]);
   free(s);
@@ -82,7 +82,7 @@ int haff_energy_main(int argc, char **argv) {
   FILE *out = hd_cli_out(&a);
   rc = out ? 0 : 1;
   for (size_t j = 0; out && j < ng && !rc; j++)
-    if (write_block(out, db, fits, g[j].idx, g[j].n, &err)) rc = hd_cli_fail(argv[0], &err);
+    if (write_block(out, db, fits, g[j].idx, g[j].n, j == 0, &err)) rc = hd_cli_fail(argv[0], &err);
   free(fits), hd_groups_free(g, ng), sqlite3_close(db);
   if (out) {
     int c = hd_cli_close(out, &a);

@@ -59,7 +59,7 @@ int haff_fit_main(int argc, char **argv) {
       free(fits), sqlite3_close(db), hd_cli_close(out, &a);
       return hd_cli_fail(argv[0], &err);
     }
-    fprintf(out, "species\talpha\ta_over_d\truns\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\tratio\tratio_err\n");
+    fprintf(out, "alpha\ta_over_d\tspecies\truns\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\tratio\tratio_err\n");
     double *v = malloc(4 * n * sizeof *v);
     for (size_t j = 0; v && j < ng; j++) {
       double *dv = v, *de = v + n, *nv = v + 2 * n, *ne = v + 3 * n, r[6];
@@ -76,8 +76,8 @@ int haff_fit_main(int argc, char **argv) {
         if (f->haff_ok) nv[q] = f->ratio, ne[q++] = f->ratio_err;
       }
       hd_ensemble_mean(nv, ne, m, &r[4], &r[5]);
-      fprintf(out, "%s\t%g\t%g\t%zu\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.3g\n", species_name(g[j].species),
-              g[j].alpha, g[j].a_over_d, m, r[0], r[1], r[2], r[3], r[4], r[5]);
+      fprintf(out, "%g\t%g\t%s\t%zu\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.3g\n", g[j].alpha,
+              g[j].a_over_d, species_name(g[j].species), m, r[0], r[1], r[2], r[3], r[4], r[5]);
     }
     free(v);
     hd_groups_free(g, ng);

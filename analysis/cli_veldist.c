@@ -91,6 +91,7 @@ int haff_veldist_main(int argc, char **argv) {
       if (have_w) gsl_histogram_increment(h[2], sn[s].omega[i] / vw.scale);
     }
     double w = 2 * a.range / bins, dn = (double)sn[s].n;
+    if (s) fprintf(out, "\n\n"); /* blank lines between blocks, none after the last */
     /* header: column 1's name is the block's legend title (gnuplot: title columnheader(1)) */
     fprintf(out, "cpd=%.4g\tcpd\tc\tp_vx\tp_vy\tp_omega\tgauss\n", sn[s].cpd);
     for (size_t k = 0; k < (size_t)bins; k++) {
@@ -101,7 +102,6 @@ int haff_veldist_main(int argc, char **argv) {
               gsl_histogram_get(h[0], k) / (dn * w), gsl_histogram_get(h[1], k) / (dn * w),
               have_w ? gsl_histogram_get(h[2], k) / (dn * w) : NAN, exp(-0.5 * c * c) / sqrt(2 * M_PI));
     }
-    fprintf(out, "\n\n");
   }
   for (int k = 0; k < 3; k++) gsl_histogram_free(h[k]);
   hd_snapshots_free(sn, ns);

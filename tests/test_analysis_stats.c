@@ -50,8 +50,8 @@ static void gaussian_and_uniform(void **state) {
   assert_true(fabs(s.a2) < 3.3 * s.a2_err);
   assert_true(fabs(s.kurt) < 3.3 * 3 * s.a2_err);
   assert_true(fabs(s.a2_err / sqrt(8.0 / (3.0 * (double)n)) - 1) < 0.2);
-  assert_true(fabs(s.scale / 2.0 - 1) < 0.01);
-  assert_true(fabs(s.mean - 3) < 0.05);
+  assert_true(fabs(s.scale / 2.0 - 1) < 5 / sqrt(2.0 * (double)n)); /* sd of a sample sd: 1/sqrt(2n) */
+  assert_true(fabs(s.mean - 3) < 5 * 2 / sqrt((double)n));
   assert_true(s.ks_d < 1.63 / sqrt((double)n) && s.ks_p > 0.01);
   assert_int_equal(hd_velstats_2d(x, y, n, &v, &e), HD_OK);
   printf("# gauss 2D: a2 %.4g +- %.3g\n", v.a2, v.a2_err);
