@@ -6,10 +6,23 @@
 
 int haff_mc_main(int argc, char **argv);
 int haff_export_main(int argc, char **argv);
+/* analysis/ (analysis/hd_ana_cli.h) */
+int haff_fit_main(int argc, char **argv);
+int haff_table1_main(int argc, char **argv);
+int haff_table2_main(int argc, char **argv);
+int haff_energy_main(int argc, char **argv);
+int haff_angles_main(int argc, char **argv);
+int haff_veldist_main(int argc, char **argv);
 
 static const haff_command commands[] = {
     {"mc", haff_mc_main, "Monte Carlo: `mc fmean` (<f>, D_e) and `mc eps` (rod restitution)"},
     {"export", haff_export_main, "export xyz DB: extended XYZ snapshots for OVITO and VMD"},
+    {"haff-fit", haff_fit_main, "fit eq. (31) (D_e, nu0_eff) per run or per (alpha, a/d) group"},
+    {"table1", haff_table1_main, "Table I: D_e and nu0_eff/nu0 per (alpha, a/d), TSV or --md"},
+    {"table2", haff_table2_main, "Table II: K = E_tr/E_rot = a0 + a1 tau with 99% intervals"},
+    {"energy", haff_energy_main, "Figs. 2-3 data: E, (1-alpha^2) cpd, nu0_eff t per group"},
+    {"angles", haff_angles_main, "Fig. 5 data: contact-angle histograms per block; --fmean"},
+    {"veldist", haff_veldist_main, "Fig. 6 data: scaled velocity histograms; --stats a2, KS"},
 };
 static const size_t n_commands = sizeof commands / sizeof commands[0];
 

@@ -1,0 +1,202 @@
+/* cli_common: option parsing and shared plumbing of the analysis subcommands. */
+#include "cli_common.h"
+
+#include <errno.h>
+#include <getopt.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int parse_num(const char *cmd, const char *opt, const char *s, double lo, double *out) {
+  char *end;
+  errno = 0;
+  double v = strtod(s, &end);
+  if (end == s || *end || errno || !(v >= lo)) {
+    fprintf(stderr, "haff %s: %s '%s': expected a number >= %g\n", cmd, opt, s, lo);
+    return 2;
+  }
+  *out = v;
+  return 0;
+}
+
+int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_cli_args *a) {
+  memset(a, 0, sizeof *a);
+  a->run = -1;
+  a->fit = hd_fit_opts_defaults();
+  a->block = 10000;
+  a->bins = 0;
+  a->label = "velocities";
+  a->range = 5;
+  a->kmode = HD_K_AC;
+  const char *cmd = argv[0];
+  static const struct option lo[] = {
+      {"help", no_argument, 0, 'h'},     {"run", required_argument, 0, 'r'},
+      {"all", no_argument, 0, 'A'},      {"no-detect", no_argument, 0, 'N'},
+      {"thr", required_argument, 0, 'T'}, {"min-coll", required_argument, 0, 'C'},
+      {"cpd-max", required_argument, 0, 'X'}, {"cpd-min-k", required_argument, 0, 'K'},
+      {"md", no_argument, 0, 'M'},       {"alpha-group", no_argument, 0, 'G'},
+      {"block", required_argument, 0, 'b'}, {"fmean", no_argument, 0, 'F'},
+      {"bins", required_argument, 0, 'B'}, {"stats", no_argument, 0, 'S'},
+      {"label", required_argument, 0, 'L'}, {"range", required_argument, 0, 'R'},
+      {"k-ci", required_argument, 0, 'k'}, {0, 0, 0, 0}};
+  static const struct { int c; unsigned bit; } need[] = {
+      {'r', HD_OPT_RUN},   {'A', HD_OPT_ALL},   {'N', HD_OPT_FIT},   {'T', HD_OPT_FIT},
+      {'C', HD_OPT_FIT},   {'X', HD_OPT_FIT},   {'K', HD_OPT_FIT},   {'M', HD_OPT_MD},
+      {'G', HD_OPT_GROUP}, {'b', HD_OPT_BLOCK}, {'F', HD_OPT_BLOCK}, {'B', HD_OPT_BINS},
+      {'S', HD_OPT_STATS}, {'L', HD_OPT_STATS}, {'R', HD_OPT_STATS}, {'k', HD_OPT_KCI}};
+  optind = 0; /* full re-initialisation: the subcommands may run more than once per process */
+  opterr = 0;
+  int c, li;
+  double v;
+  while ((c = getopt_long(argc, argv, "ho:", lo, &li)) != -1) {
+    if (c == 'h') {
+      printf("%s", usage);
+      return -1;
+    }
+    if (c == '?') {
+      fprintf(stderr, "haff %s: unknown option or missing value '%s' (see --help)\n", cmd,
+              argv[optind - 1]);
+      return 2;
+    }
+    for (size_t i = 0; i < sizeof need / sizeof need[0]; i++)
+      if (need[i].c == c && !(allowed & need[i].bit)) {
+        const char *name = "?";
+        for (const struct option *o = lo; o->name; o++)
+          if (o->val == c) name = o->name;
+        fprintf(stderr, "haff %s: option '--%s' does not apply here (see --help)\n", cmd, name);
+        return 2;
+      }
+    switch (c) {
+    case 'o': a->out = optarg; break;
+    case 'r':
+      if (parse_num(cmd, "--run", optarg, 0, &v)) return 2;
+      a->run = (int64_t)v;
+      break;
+    case 'A': a->all = 1; break;
+    case 'N': a->fit.detect = 0; break;
+    case 'T':
+      if (parse_num(cmd, "--thr", optarg, 1e-6, &a->fit.homog.thr)) return 2;
+      break;
+    case 'C':
+      if (parse_num(cmd, "--min-coll", optarg, 1, &a->fit.homog.min_coll)) return 2;
+      break;
+    case 'X':
+      if (parse_num(cmd, "--cpd-max", optarg, 0, &a->fit.cpd_max)) return 2;
+      break;
+    case 'K':
+      if (parse_num(cmd, "--cpd-min-k", optarg, 0, &a->fit.cpd_min_k)) return 2;
+      break;
+    case 'M': a->md = 1; break;
+    case 'G': a->group = 1; break;
+    case 'b':
+      if (parse_num(cmd, "--block", optarg, 1, &v)) return 2;
+      a->block = (long)v;
+      break;
+    case 'F': a->fmean = 1; break;
+    case 'B':
+      if (parse_num(cmd, "--bins", optarg, 1, &v) || v > 100000) return 2;
+      a->bins = (int)v;
+      break;
+    case 'S': a->stats = 1; break;
+    case 'L': a->label = optarg; break;
+    case 'R':
+      if (parse_num(cmd, "--range", optarg, 1e-9, &a->range)) return 2;
+      break;
+    case 'k':
+      if (!strcmp(optarg, "ac")) a->kmode = HD_K_AC;
+      else if (!strcmp(optarg, "ols")) a->kmode = HD_K_OLS;
+      else if (!strcmp(optarg, "runs")) a->kmode = HD_K_RUNS;
+      else {
+        fprintf(stderr, "haff %s: --k-ci '%s': expected ac, ols or runs\n", cmd, optarg);
+        return 2;
+      }
+      break;
+    default: return 2;
+    }
+  }
+  if (optind != argc - 1) {
+    fprintf(stderr, "haff %s: expected one database argument (see --help)\n", cmd);
+    return 2;
+  }
+  a->db = argv[optind];
+  if (a->run >= 0 && a->all) {
+    fprintf(stderr, "haff %s: --run and --all exclude each other\n", cmd);
+    return 2;
+  }
+  return 0;
+}
+
+FILE *hd_cli_out(const hd_cli_args *a) {
+  if (!a->out) return stdout;
+  FILE *f = fopen(a->out, "w");
+  if (!f) fprintf(stderr, "haff: %s: cannot write: %s\n", a->out, strerror(errno));
+  return f;
+}
+
+int hd_cli_close(FILE *f, const hd_cli_args *a) {
+  int bad = ferror(f);
+  if (f != stdout) bad |= fclose(f);
+  else bad |= fflush(f);
+  if (bad) {
+    fprintf(stderr, "haff: %s: write error\n", a->out ? a->out : "stdout");
+    return 1;
+  }
+  return 0;
+}
+
+int hd_cli_fail(const char *cmd, const hd_error *err) {
+  fprintf(stderr, "haff %s: %s\n", cmd, err->msg);
+  return hd_exit_code(err->code);
+}
+
+int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits,
+                size_t *n) {
+  hd_error err;
+  hd_error_clear(&err);
+  *fits = NULL, *n = 0;
+  if (hd_ana_open(db, a->db, &err)) return hd_cli_fail(cmd, &err);
+  hd_run_info *runs;
+  size_t nr;
+  if (hd_ana_runs(*db, a->run, &runs, &nr, &err)) {
+    sqlite3_close(*db), *db = NULL;
+    return hd_cli_fail(cmd, &err);
+  }
+  if (nr == 0) {
+    free(runs);
+    sqlite3_close(*db), *db = NULL;
+    fprintf(stderr, "haff %s: %s: no finished runs\n", cmd, a->db);
+    return 2;
+  }
+  *fits = calloc(nr, sizeof **fits);
+  if (!*fits) {
+    free(runs);
+    sqlite3_close(*db), *db = NULL;
+    fprintf(stderr, "haff %s: out of memory\n", cmd);
+    return 1;
+  }
+  size_t m = 0;
+  for (size_t i = 0; i < nr; i++) {
+    if (runs[i].species == HD_ANA_OTHER) continue;
+    int rc = hd_run_fit_do(*db, &runs[i], &a->fit, &(*fits)[m], &err);
+    if (rc == HD_EINPUT && a->run < 0) { /* skip short runs in an ensemble, say so */
+      fprintf(stderr, "haff %s: skipping: %s\n", cmd, err.msg);
+      continue;
+    }
+    if (rc) {
+      free(runs), free(*fits), *fits = NULL;
+      sqlite3_close(*db), *db = NULL;
+      return hd_cli_fail(cmd, &err);
+    }
+    if ((*fits)[m].why[0])
+      fprintf(stderr, "haff %s: run %lld: %s\n", cmd, (long long)runs[i].id, (*fits)[m].why);
+    m++;
+  }
+  free(runs);
+  *n = m;
+  if (m == 0) {
+    free(*fits), *fits = NULL;
+    sqlite3_close(*db), *db = NULL;
+    fprintf(stderr, "haff %s: no run with dimers or disks and enough samples\n", cmd);
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,62 @@
+/* cli_common: the command-line plumbing shared by the analysis subcommands (cli_*.c):
+ * option parsing, output files and loading the per-run fits.  CLI code: may print to stderr. */
+#ifndef HD_CLI_COMMON_H
+#define HD_CLI_COMMON_H
+
+#include <sqlite3.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "hd_runfit.h"
+
+/* Options an analysis subcommand may accept (bits for hd_cli_parse's `allowed`). */
+enum {
+  HD_OPT_RUN = 1,     /* --run ID */
+  HD_OPT_ALL = 2,     /* --all */
+  HD_OPT_FIT = 4,     /* --no-detect --thr X --min-coll N --cpd-max X --cpd-min-k X */
+  HD_OPT_MD = 8,      /* --md */
+  HD_OPT_GROUP = 16,  /* --alpha-group */
+  HD_OPT_BLOCK = 32,  /* --block N --fmean */
+  HD_OPT_BINS = 64,   /* --bins N */
+  HD_OPT_STATS = 128, /* --stats --label L --range X */
+  HD_OPT_KCI = 256    /* --k-ci ac|ols|runs */
+};
+
+/* Parsed arguments. */
+typedef struct hd_cli_args {
+  const char *db;      /* the database (positional) */
+  const char *out;     /* -o FILE, NULL for stdout */
+  int64_t run;         /* --run ID, -1 when absent */
+  int all;             /* --all */
+  int md;              /* --md: Markdown table */
+  int group;           /* --alpha-group */
+  hd_fit_opts fit;     /* fit options */
+  long block;          /* --block N [10000] */
+  int fmean;           /* --fmean */
+  int bins;            /* --bins N [36 angles, 40 velocities] */
+  int stats;           /* --stats */
+  const char *label;   /* --label [velocities] */
+  double range;        /* --range X [5]: histogram of scaled velocities on [-X, X] */
+  hd_kmode kmode;      /* --k-ci [ac] */
+} hd_cli_args;
+
+/* Parses argv (argv[0] the subcommand) accepting the `allowed` options; usage is printed for
+ * --help.  Returns 0 to go on, 2 after printing one line on stderr for bad usage, or -1 after
+ * printing help (the caller returns 0). */
+int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_cli_args *a);
+
+/* Opens a->out for writing (stdout when NULL).  Returns NULL after printing the error. */
+FILE *hd_cli_out(const hd_cli_args *a);
+
+/* Closes what hd_cli_out opened (not stdout).  Returns 0, or 1 after printing a write error. */
+int hd_cli_close(FILE *f, const hd_cli_args *a);
+
+/* Opens the database and fits the selected runs (--run ID or every finished run).  Prints the
+ * error and returns its exit code (1 or 2) on failure; 0 with *fits malloc'd on success. */
+int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits,
+                size_t *n);
+
+/* Prints the error of a failed library call as "haff CMD: msg" and returns its exit code. */
+int hd_cli_fail(const char *cmd, const hd_error *err);
+
+#endif

@@ -1,0 +1,92 @@
+/* `haff energy`: energy and collision count against time for Figs. 2 and 3. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "cli_common.h"
+#include "hd_ana_cli.h"
+
+/* Writes one block: the sample-by-sample mean over the runs idx[0..m-1] (truncated to the
+ * shortest) with the Haff and eq. (31) curves of the mean fitted D_e and nu0. */
+static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const size_t *idx,
+                       size_t m, int first, hd_error *err) {
+  hd_series *s = calloc(m, sizeof *s);
+  if (!s) return hd_error_set(err, HD_ENOMEM, "out of memory");
+  int rc = HD_OK;
+  size_t len = (size_t)-1, homog = (size_t)-1, nfit = 0;
+  double De = 0, nu = 0;
+  for (size_t k = 0; k < m && rc == HD_OK; k++) {
+    const hd_run_fit *f = &fits[idx[k]];
+    rc = hd_ana_samples(db, f->info.id, &s[k], err);
+    if (rc) break;
+    if (s[k].n < len) len = s[k].n;
+    if (f->n_used < homog) homog = f->n_used;
+    if (f->haff_ok) De += f->haff.D_e, nu += f->haff.nu0, nfit++;
+  }
+  if (rc == HD_OK) {
+    const hd_run_info *ri = &fits[idx[0]].info;
+    double al = ri->alpha, c = 1 - al * al;
+    De = nfit ? De / (double)nfit : NAN;
+    nu = nfit ? nu / (double)nfit : NAN;
+    if (!first) fprintf(out, "\n\n"); /* blank lines between blocks, none after the last */
+    fprintf(out, "# %s alpha=%g a_over_d=%g runs=%zu D_e=%.6g nu0_eff=%.6g\n",
+            ri->species == HD_ANA_DIMERS ? "dimers" : "disks", al, ri->a_over_d, m, De, nu);
+    /* header: column 1's name is the block's legend title (gnuplot: title columnheader(1)) */
+    if (ri->species == HD_ANA_DIMERS)
+      fprintf(out, "alpha=%g a/d=%g (%zu runs)", al, ri->a_over_d, m);
+    else
+      fprintf(out, "disks alpha=%g (%zu runs)", al, m);
+    fprintf(out, "\tcpd\tE\tE_over_E0\te_tr\te_rot\tx\tnu0t\thaff_E_over_E0\tx_eq31\thomog\n");
+    double E0 = 0;
+    for (size_t k = 0; k < m; k++) E0 += s[k].e_tr[0] + s[k].e_rot[0];
+    E0 /= (double)m;
+    for (size_t i = 0; i < len; i++) {
+      double t = 0, cpd = 0, et = 0, er = 0;
+      for (size_t k = 0; k < m; k++) t += s[k].t[i], cpd += s[k].cpd[i], et += s[k].e_tr[i], er += s[k].e_rot[i];
+      t /= (double)m, cpd /= (double)m, et /= (double)m, er /= (double)m;
+      double g = c / (2 * De), haff = 1 / ((1 + g * nu * t) * (1 + g * nu * t));
+      double xeq = c * hd_haff_tau(t, al, De, nu);
+      if (c == 0) haff = 1;
+      fprintf(out, "%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%d\n", t, cpd,
+              et + er, (et + er) / E0, et, er, c * cpd, nu * t, haff, xeq, i < homog);
+    }
+  }
+  for (size_t k = 0; k < m; k++) hd_series_free(&s[k]);
+  free(s);
+  return rc;
+}
+
+int haff_energy_main(int argc, char **argv) {
+  static const char usage[] =
+      "usage: haff energy DB [--run ID | --all] [fit options] [-o FILE]\n"
+      "Energy per body and collisions per particle against time, for Figs. 2 and 3: one block\n"
+      "per run (--run) or per (alpha, a/d) group averaged sample by sample (--all, default),\n"
+      "blocks separated by two blank lines, each headed by '# species alpha=.. a_over_d=.. ...'\n"
+      "and a header line whose first field is the block's legend title (column 1 holds t).\n"
+      "Columns: t cpd E E_over_E0 e_tr e_rot x=(1-alpha^2)cpd nu0t=nu0_eff*t\n"
+      "         haff_E_over_E0=1/(1+gamma nu0 t)^2 x_eq31=(1-alpha^2)*eq.(31) homog (1 if fitted)\n"
+      "  --no-detect, --thr X, --min-coll N, --cpd-max X: as for haff-fit (the fitted part)\n"
+      "  -o FILE          write to FILE instead of stdout\n";
+  hd_cli_args a;
+  int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT, usage, &a);
+  if (rc) return rc < 0 ? 0 : rc;
+  sqlite3 *db;
+  hd_run_fit *fits;
+  size_t n, ng;
+  if ((rc = hd_cli_fits(&a, argv[0], &db, &fits, &n))) return rc;
+  hd_group *g;
+  hd_error err;
+  if (hd_group_runs(fits, n, &g, &ng, &err)) {
+    free(fits), sqlite3_close(db);
+    return hd_cli_fail(argv[0], &err);
+  }
+  FILE *out = hd_cli_out(&a);
+  rc = out ? 0 : 1;
+  for (size_t j = 0; out && j < ng && !rc; j++)
+    if (write_block(out, db, fits, g[j].idx, g[j].n, j == 0, &err)) rc = hd_cli_fail(argv[0], &err);
+  free(fits), hd_groups_free(g, ng), sqlite3_close(db);
+  if (out) {
+    int c = hd_cli_close(out, &a);
+    if (!rc) rc = c;
+  }
+  return rc;
+}

@@ -1,0 +1,197 @@
+/* `haff haff-fit`, `haff table1`, `haff table2`: fits of eq. (31) and of K(tau), per run and
+ * per group of runs with equal (alpha, a/d). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_common.h"
+#include "hd_ana_cli.h"
+
+#define FIT_OPTS_HELP                                                                           \
+  "  --run ID         one run (any status); default: every done/collapsed/interrupted run\n"   \
+  "  --no-detect      fit the whole run, not only the homogeneous part\n"                      \
+  "  --thr X          homogeneity: relative change of rate/sqrt(E) that ends it [0.1]\n"        \
+  "  --min-coll N     homogeneity: pair collisions per window [2000]\n"                        \
+  "  --cpd-max X      fit only samples with cpd <= X\n"                                        \
+  "  -o FILE          write to FILE instead of stdout\n"
+
+static const char *species_name(int s) { return s == HD_ANA_DIMERS ? "dimers" : "disks"; }
+
+int haff_fit_main(int argc, char **argv) {
+  static const char usage[] =
+      "usage: haff haff-fit DB [--run ID | --all] [--alpha-group] [fit options] [-o FILE]\n"
+      "Fits eq. (31) tau(t) = ln(1 + gamma nu0 t)/gamma, gamma = (1-alpha^2)/(2 D_e), to the\n"
+      "homogeneous part of each run (tau = cpd).  One line per run, or per group of runs with\n"
+      "equal (alpha, a/d) with --alpha-group (mean +- standard error over the runs).\n"
+      "  --all            every finished run (the default)\n"
+      "  --alpha-group    one line per (alpha, a/d) group\n" FIT_OPTS_HELP;
+  hd_cli_args a;
+  int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP, usage, &a);
+  if (rc) return rc < 0 ? 0 : rc;
+  sqlite3 *db;
+  hd_run_fit *fits;
+  size_t n;
+  if ((rc = hd_cli_fits(&a, argv[0], &db, &fits, &n))) return rc;
+  FILE *out = hd_cli_out(&a);
+  if (!out) {
+    free(fits), sqlite3_close(db);
+    return 1;
+  }
+  if (!a.group) {
+    fprintf(out, "run\tspecies\talpha\ta_over_d\tn_used\tdetected\tt_end\tcpd_end\tD_e\tD_e_err\t"
+                 "nu0_eff\tnu0_eff_err\tnu0_enskog\tratio\tratio_err\tchi2_dof\n");
+    for (size_t i = 0; i < n; i++) {
+      const hd_run_fit *f = &fits[i];
+      double nan = NAN;
+      const hd_haff_fit *h = &f->haff;
+      fprintf(out, "%lld\t%s\t%g\t%g\t%zu\t%d\t%.6g\t%.6g\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.6g\t%.3g\t%.3g\n",
+              (long long)f->info.id, species_name(f->info.species), f->info.alpha,
+              f->info.a_over_d, f->n_used, f->homog.detected, f->t_end, f->cpd_end,
+              f->haff_ok ? h->D_e : nan, f->haff_ok ? h->D_e_err : nan, f->haff_ok ? h->nu0 : nan,
+              f->haff_ok ? h->nu0_err : nan, f->nu0_enskog, f->ratio, f->ratio_err,
+              f->haff_ok ? h->chi2 / (double)h->dof : nan);
+    }
+  } else {
+    hd_group *g;
+    size_t ng;
+    hd_error err;
+    if (hd_group_runs(fits, n, &g, &ng, &err)) {
+      free(fits), sqlite3_close(db), hd_cli_close(out, &a);
+      return hd_cli_fail(argv[0], &err);
+    }
+    fprintf(out, "alpha\ta_over_d\tspecies\truns\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\tratio\tratio_err\n");
+    double *v = malloc(4 * n * sizeof *v);
+    for (size_t j = 0; v && j < ng; j++) {
+      double *dv = v, *de = v + n, *nv = v + 2 * n, *ne = v + 3 * n, r[6];
+      size_t m = 0;
+      for (size_t k = 0; k < g[j].n; k++) {
+        const hd_run_fit *f = &fits[g[j].idx[k]];
+        if (!f->haff_ok) continue;
+        dv[m] = f->haff.D_e, de[m] = f->haff.D_e_err, nv[m] = f->haff.nu0, ne[m++] = f->haff.nu0_err;
+      }
+      hd_ensemble_mean(dv, de, m, &r[0], &r[1]);
+      hd_ensemble_mean(nv, ne, m, &r[2], &r[3]);
+      for (size_t k = 0, q = 0; k < g[j].n; k++) {
+        const hd_run_fit *f = &fits[g[j].idx[k]];
+        if (f->haff_ok) nv[q] = f->ratio, ne[q++] = f->ratio_err;
+      }
+      hd_ensemble_mean(nv, ne, m, &r[4], &r[5]);
+      fprintf(out, "%g\t%g\t%s\t%zu\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.3g\n", g[j].alpha,
+              g[j].a_over_d, species_name(g[j].species), m, r[0], r[1], r[2], r[3], r[4], r[5]);
+    }
+    free(v);
+    hd_groups_free(g, ng);
+  }
+  free(fits);
+  sqlite3_close(db);
+  return hd_cli_close(out, &a);
+}
+
+int haff_table1_main(int argc, char **argv) {
+  static const char usage[] =
+      "usage: haff table1 DB [--md] [fit options] [-o FILE]\n"
+      "Table I: D_e and nu0_eff/nu0 (nu0: Enskog eq. 29 for disks of diameter d, the body mass and\n"
+      "density, at the initial translational temperature) per (alpha, a/d), mean +- standard error\n"
+      "over the runs (the fit's own error when a group has one run).  a_over_d = 0: hard disks.\n"
+      "Columns: alpha a_over_d D_e D_e_err nu0_eff nu0_eff_err runs\n"
+      "  --md             a Markdown table instead of TSV\n" FIT_OPTS_HELP;
+  hd_cli_args a;
+  int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD, usage, &a);
+  if (rc) return rc < 0 ? 0 : rc;
+  sqlite3 *db;
+  hd_run_fit *fits;
+  size_t n, ng;
+  if ((rc = hd_cli_fits(&a, argv[0], &db, &fits, &n))) return rc;
+  hd_group *g;
+  hd_error err;
+  if (hd_group_runs(fits, n, &g, &ng, &err)) {
+    free(fits), sqlite3_close(db);
+    return hd_cli_fail(argv[0], &err);
+  }
+  FILE *out = hd_cli_out(&a);
+  double *v = malloc(4 * n * sizeof *v);
+  if (!out || !v) {
+    free(v), free(fits), hd_groups_free(g, ng), sqlite3_close(db);
+    if (out) hd_cli_close(out, &a);
+    return 1;
+  }
+  if (a.md)
+    fprintf(out, "| α | a/d | D_e | ±ΔD_e | ν0_eff/ν0 | ±Δ | runs |\n|---|---|---|---|---|---|---|\n");
+  else
+    fprintf(out, "alpha\ta_over_d\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\truns\n");
+  for (size_t j = 0; j < ng; j++) {
+    double *dv = v, *de = v + n, *rv = v + 2 * n, *re = v + 3 * n, D, Derr, R, Rerr;
+    size_t m = 0;
+    for (size_t k = 0; k < g[j].n; k++) {
+      const hd_run_fit *f = &fits[g[j].idx[k]];
+      if (!f->haff_ok) continue;
+      dv[m] = f->haff.D_e, de[m] = f->haff.D_e_err, rv[m] = f->ratio, re[m++] = f->ratio_err;
+    }
+    hd_ensemble_mean(dv, de, m, &D, &Derr);
+    hd_ensemble_mean(rv, re, m, &R, &Rerr);
+    if (a.md)
+      fprintf(out, "| %g | %g | %.4f | %.2g | %.4f | %.2g | %zu |\n", g[j].alpha, g[j].a_over_d, D,
+              Derr, R, Rerr, m);
+    else
+      fprintf(out, "%g\t%g\t%.6g\t%.3g\t%.6g\t%.3g\t%zu\n", g[j].alpha, g[j].a_over_d, D, Derr, R,
+              Rerr, m);
+  }
+  free(v), free(fits), hd_groups_free(g, ng), sqlite3_close(db);
+  return hd_cli_close(out, &a);
+}
+
+int haff_table2_main(int argc, char **argv) {
+  static const char usage[] =
+      "usage: haff table2 DB [--md] [--k-ci ac|ols|runs] [--cpd-min-k X] [fit options] [-o FILE]\n"
+      "Table II: K = E_tr/E_rot fitted as a0 + a1 tau (tau = cpd) by least squares on the\n"
+      "homogeneous part of each dimer run, with 99% Student-t intervals, per (alpha, a/d).\n"
+      "Columns: alpha a_over_d a0 a0_lo a0_hi a1 a1_lo a1_hi\n"
+      "  --k-ci ac        [default] runs combined by inverse-variance weights, each run's errors\n"
+      "                   widened by its residuals' autocorrelation time (docs/analysis.md)\n"
+      "  --k-ci ols       the same with plain OLS errors (the paper's test; too narrow)\n"
+      "  --k-ci runs      mean over runs, t interval with runs-1 dof (needs >= 2 runs)\n"
+      "  --cpd-min-k X    skip the transient cpd < X [0]\n"
+      "  --md             a Markdown table instead of TSV\n" FIT_OPTS_HELP;
+  hd_cli_args a;
+  int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD | HD_OPT_KCI,
+                        usage, &a);
+  if (rc) return rc < 0 ? 0 : rc;
+  sqlite3 *db;
+  hd_run_fit *fits;
+  size_t n, ng;
+  if ((rc = hd_cli_fits(&a, argv[0], &db, &fits, &n))) return rc;
+  hd_group *g;
+  hd_error err;
+  if (hd_group_runs(fits, n, &g, &ng, &err)) {
+    free(fits), sqlite3_close(db);
+    return hd_cli_fail(argv[0], &err);
+  }
+  FILE *out = hd_cli_out(&a);
+  if (!out) {
+    free(fits), hd_groups_free(g, ng), sqlite3_close(db);
+    return 1;
+  }
+  if (a.md)
+    fprintf(out, "| α | a/d | a0 | 99%% CI a0 | a1 | 99%% CI a1 |\n|---|---|---|---|---|---|\n");
+  else
+    fprintf(out, "alpha\ta_over_d\ta0\ta0_lo\ta0_hi\ta1\ta1_lo\ta1_hi\n");
+  int bad = 0;
+  for (size_t j = 0; j < ng; j++) {
+    if (g[j].species != HD_ANA_DIMERS) continue;
+    double r[6];
+    if (hd_combine_k(fits, g[j].idx, g[j].n, a.kmode, a.fit.level, r, &err)) {
+      fprintf(stderr, "haff %s: alpha %g a/d %g: %s\n", argv[0], g[j].alpha, g[j].a_over_d, err.msg);
+      bad = 2;
+      continue;
+    }
+    if (a.md)
+      fprintf(out, "| %g | %g | %.4f | [%.4f, %.4f] | %.3e | [%.3e, %.3e] |\n", g[j].alpha,
+              g[j].a_over_d, r[0], r[1], r[2], r[3], r[4], r[5]);
+    else
+      fprintf(out, "%g\t%g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\n", g[j].alpha, g[j].a_over_d, r[0],
+              r[1], r[2], r[3], r[4], r[5]);
+  }
+  free(fits), hd_groups_free(g, ng), sqlite3_close(db);
+  rc = hd_cli_close(out, &a);
+  return rc ? rc : bad;
+}

@@ -1,0 +1,110 @@
+/* `haff veldist`: scaled velocity distributions of the stored snapshots (Fig. 6). */
+#include <gsl/gsl_histogram.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_common.h"
+#include "hd_ana_cli.h"
+#include "hd_velstats.h"
+
+static void stat_line(FILE *out, size_t s, const hd_snapshot *sn, const char *var,
+                      const hd_velstats *v) {
+  fprintf(out, "%zu\t%.8g\t%.6g\t%s\t%zu\t%.6g\t%.5f\t%.5f\t%.3g\t%.5f\t%.3g\n", s, sn->t, sn->cpd,
+          var, v->n, v->scale, v->kurt, v->a2, v->a2_err, v->ks_d, v->ks_p);
+}
+
+int haff_veldist_main(int argc, char **argv) {
+  static const char usage[] =
+      "usage: haff veldist DB --run ID [--stats] [--bins B] [--range X] [--label L] [-o FILE]\n"
+      "Fig. 6: histograms of the scaled velocities c = (v - <v>)/s of every snapshot (label\n"
+      "'velocities', taken at [log] velocities_at), s the snapshot's own per-component rms\n"
+      "(vx, vy: sqrt(<|V-<V>|^2>/2); omega: sqrt(<omega^2>), not centred), so that a Maxwellian\n"
+      "gives the standard normal.  One block per snapshot, two blank lines between, each headed\n"
+      "by a line whose first field is its legend title 'cpd=X'.\n"
+      "Columns: snap cpd c p_vx p_vy p_omega gauss   (p_omega NaN for disks)\n"
+      "  --stats          instead: one line per snapshot and variable (vx, vy, omega, v2d):\n"
+      "                   snap t cpd var n scale kurt a2 a2_err ks_d ks_p (docs/analysis.md)\n"
+      "  --bins B         bins [40]     --range X   histogram on [-X, X] [5]\n"
+      "  --label L        states label [velocities] (e.g. initial, final)\n"
+      "  -o FILE          write to FILE instead of stdout\n";
+  hd_cli_args a;
+  int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS, usage, &a);
+  if (rc) return rc < 0 ? 0 : rc;
+  if (a.run < 0) {
+    fprintf(stderr, "haff %s: --run ID is required\n", argv[0]);
+    return 2;
+  }
+  int bins = a.bins ? a.bins : 40;
+  hd_error err;
+  sqlite3 *db;
+  if (hd_ana_open(&db, a.db, &err)) return hd_cli_fail(argv[0], &err);
+  hd_run_info *ri;
+  size_t nr, ns;
+  hd_snapshot *sn;
+  if (hd_ana_runs(db, a.run, &ri, &nr, &err)) {
+    sqlite3_close(db);
+    return hd_cli_fail(argv[0], &err);
+  }
+  int dimers = ri[0].species != HD_ANA_DISKS;
+  free(ri);
+  rc = hd_ana_snapshots(db, a.run, a.label, dimers ? "dimer" : "disk", &sn, &ns, &err);
+  sqlite3_close(db);
+  if (rc) return hd_cli_fail(argv[0], &err);
+  if (ns == 0) {
+    fprintf(stderr, "haff %s: run %lld has no '%s' snapshots\n", argv[0], (long long)a.run, a.label);
+    return 2;
+  }
+  FILE *out = hd_cli_out(&a);
+  if (!out) {
+    hd_snapshots_free(sn, ns);
+    return 1;
+  }
+  gsl_histogram *h[3];
+  for (int k = 0; k < 3; k++) {
+    h[k] = gsl_histogram_alloc((size_t)bins);
+    gsl_histogram_set_ranges_uniform(h[k], -a.range, a.range);
+  }
+  if (a.stats) fprintf(out, "snap\tt\tcpd\tvar\tn\tscale\tkurt\ta2\ta2_err\tks_d\tks_p\n");
+  for (size_t s = 0; s < ns && !rc; s++) {
+    hd_velstats vx, vy, vw, v2;
+    int have_w = dimers;
+    if (hd_velstats_1d(sn[s].vx, sn[s].n, 1, &vx, &err) ||
+        hd_velstats_1d(sn[s].vy, sn[s].n, 1, &vy, &err) ||
+        hd_velstats_2d(sn[s].vx, sn[s].vy, sn[s].n, &v2, &err)) {
+      rc = hd_cli_fail(argv[0], &err);
+      break;
+    }
+    if (have_w && hd_velstats_1d(sn[s].omega, sn[s].n, 0, &vw, &err)) have_w = 0;
+    if (a.stats) {
+      stat_line(out, s, &sn[s], "vx", &vx);
+      stat_line(out, s, &sn[s], "vy", &vy);
+      if (have_w) stat_line(out, s, &sn[s], "omega", &vw);
+      stat_line(out, s, &sn[s], "v2d", &v2);
+      continue;
+    }
+    double sc = v2.scale; /* one per-component scale for both components */
+    for (int k = 0; k < 3; k++) gsl_histogram_reset(h[k]);
+    for (size_t i = 0; i < sn[s].n; i++) {
+      gsl_histogram_increment(h[0], (sn[s].vx[i] - v2.mean_x) / sc);
+      gsl_histogram_increment(h[1], (sn[s].vy[i] - v2.mean_y) / sc);
+      if (have_w) gsl_histogram_increment(h[2], sn[s].omega[i] / vw.scale);
+    }
+    double w = 2 * a.range / bins, dn = (double)sn[s].n;
+    if (s) fprintf(out, "\n\n"); /* blank lines between blocks, none after the last */
+    /* header: column 1's name is the block's legend title (gnuplot: title columnheader(1)) */
+    fprintf(out, "cpd=%.4g\tcpd\tc\tp_vx\tp_vy\tp_omega\tgauss\n", sn[s].cpd);
+    for (size_t k = 0; k < (size_t)bins; k++) {
+      double lo, hi;
+      gsl_histogram_get_range(h[0], k, &lo, &hi);
+      double c = 0.5 * (lo + hi);
+      fprintf(out, "%zu\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\n", s, sn[s].cpd, c,
+              gsl_histogram_get(h[0], k) / (dn * w), gsl_histogram_get(h[1], k) / (dn * w),
+              have_w ? gsl_histogram_get(h[2], k) / (dn * w) : NAN, exp(-0.5 * c * c) / sqrt(2 * M_PI));
+    }
+  }
+  for (int k = 0; k < 3; k++) gsl_histogram_free(h[k]);
+  hd_snapshots_free(sn, ns);
+  int c = hd_cli_close(out, &a);
+  return rc ? rc : c;
+}

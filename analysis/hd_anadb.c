@@ -1,0 +1,300 @@
+/* hd_anadb: read-only queries of the analysis programs. */
+#include "hd_anadb.h"
+
+#include <ini.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+int hd_ana_open(sqlite3 **db, const char *path, hd_error *err) {
+  *db = NULL;
+  if (sqlite3_open_v2(path, db, SQLITE_OPEN_READONLY, NULL) != SQLITE_OK) {
+    hd_error_set(err, HD_EIO, "%s: cannot open database: %s", path,
+                 *db ? sqlite3_errmsg(*db) : "out of memory");
+    sqlite3_close(*db);
+    *db = NULL;
+    return HD_EIO;
+  }
+  sqlite3_busy_timeout(*db, 5000);
+  sqlite3_stmt *st = NULL;
+  const char *q = "SELECT count(*) FROM sqlite_master WHERE type='table' AND name IN "
+                  "('runs','samples')";
+  int ok = sqlite3_prepare_v2(*db, q, -1, &st, NULL) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW;
+  int have = ok ? sqlite3_column_int(st, 0) : -1;
+  sqlite3_finalize(st);
+  if (have != 2) {
+    hd_error_set(err, have < 0 ? HD_EIO : HD_EINPUT, "%s: not a haff database (%s)", path,
+                 have < 0 ? sqlite3_errmsg(*db) : "no runs/samples tables");
+    sqlite3_close(*db);
+    *db = NULL;
+    return err ? err->code : HD_EINPUT;
+  }
+  return HD_OK;
+}
+
+/* Raw keys collected by the INI handler. */
+typedef struct scene_keys {
+  double box_x, box_y, eta;
+  double dim_count, dim_alpha, dim_a, dim_d, dim_m;
+  double disk_count, disk_alpha, disk_sigma, disk_mass;
+  int bad;
+  char badkey[96];
+} scene_keys;
+
+static int num(const char *v, double *out) {
+  char *end;
+  double x = strtod(v, &end);
+  while (*end == ' ' || *end == '\t') end++;
+  if (end == v || *end) return 0;
+  *out = x;
+  return 1;
+}
+
+static int on_key(void *user, const char *sec, const char *key, const char *val) {
+  scene_keys *k = user;
+  double *dst = NULL;
+  if (!strcmp(sec, "system") && !strcmp(key, "box")) {
+    char *end;
+    k->box_x = strtod(val, &end);
+    k->box_y = strtod(end, NULL);
+    return 1;
+  }
+  if (!strcmp(sec, "system") && !strcmp(key, "area_fraction")) dst = &k->eta;
+  if (!strcmp(sec, "dimers")) {
+    if (!strcmp(key, "count")) dst = &k->dim_count;
+    if (!strcmp(key, "alpha")) dst = &k->dim_alpha;
+    if (!strcmp(key, "a")) dst = &k->dim_a;
+    if (!strcmp(key, "d")) dst = &k->dim_d;
+    if (!strcmp(key, "m")) dst = &k->dim_m;
+  }
+  if (!strcmp(sec, "disks")) {
+    if (!strcmp(key, "count")) dst = &k->disk_count;
+    if (!strcmp(key, "alpha")) dst = &k->disk_alpha;
+    if (!strcmp(key, "sigma")) dst = &k->disk_sigma;
+    if (!strcmp(key, "mass")) dst = &k->disk_mass;
+  }
+  if (dst && !num(val, dst) && !k->bad) {
+    k->bad = 1;
+    snprintf(k->badkey, sizeof k->badkey, "[%s] %s", sec, key);
+  }
+  return 1;
+}
+
+int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
+  scene_keys k = {0, 0, 0, 0, 1, 1, 1, 1, 0, 1, 1, 1, 0, ""};
+  int line = ini_parse_string(text, on_key, &k);
+  if (line != 0) return hd_error_set(err, HD_EINPUT, "runs.scene: INI syntax error at line %d", line);
+  if (k.bad) return hd_error_set(err, HD_EINPUT, "runs.scene: %s is not a number", k.badkey);
+  double body_area;
+  if (k.dim_count > 0) {
+    ri->species = HD_ANA_DIMERS;
+    ri->n = (long)k.dim_count;
+    ri->alpha = k.dim_alpha, ri->a = k.dim_a, ri->d = k.dim_d, ri->m = k.dim_m;
+    ri->mass = 2.0 * k.dim_m;
+    ri->a_over_d = k.dim_a / k.dim_d;
+    /* two disks minus their lens overlap when a < d */
+    double r = 0.5 * k.dim_d, a = k.dim_a, lens = 0;
+    if (a < 2 * r) lens = 2 * r * r * acos(a / (2 * r)) - 0.5 * a * sqrt(4 * r * r - a * a);
+    body_area = 2 * M_PI * r * r - lens;
+  } else if (k.disk_count > 0) {
+    ri->species = HD_ANA_DISKS;
+    ri->n = (long)k.disk_count;
+    ri->alpha = k.disk_alpha, ri->a = 0, ri->d = k.disk_sigma, ri->m = k.disk_mass;
+    ri->mass = k.disk_mass;
+    ri->a_over_d = 0;
+    body_area = M_PI * k.disk_sigma * k.disk_sigma / 4;
+  } else {
+    ri->species = HD_ANA_OTHER;
+    ri->n = 0, ri->alpha = 1, ri->a = 0, ri->d = 1, ri->m = 1, ri->mass = 1, ri->a_over_d = 0;
+    body_area = 0;
+  }
+  ri->box_x = k.box_x, ri->box_y = k.box_y, ri->area_fraction = k.eta;
+  double area = k.box_x * k.box_y;
+  if (!(area > 0) && k.eta > 0 && ri->n > 0) area = (double)ri->n * body_area / k.eta;
+  ri->density = area > 0 ? (double)ri->n / area : NAN;
+  ri->eta_disk = M_PI * ri->density * ri->d * ri->d / 4;
+  return HD_OK;
+}
+
+int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_error *err) {
+  *runs = NULL, *n = 0;
+  const char *q = want >= 0 ? "SELECT id, scene, seed, status FROM runs WHERE id = ?1"
+                            : "SELECT id, scene, seed, status FROM runs WHERE status IN "
+                              "('done','collapsed','interrupted') ORDER BY id";
+  sqlite3_stmt *st;
+  if (sqlite3_prepare_v2(db, q, -1, &st, NULL) != SQLITE_OK)
+    return hd_error_set(err, HD_EIO, "reading runs: %s", sqlite3_errmsg(db));
+  if (want >= 0) sqlite3_bind_int64(st, 1, want);
+  size_t cap = 0;
+  int rc = HD_OK, s;
+  while ((s = sqlite3_step(st)) == SQLITE_ROW) {
+    if (*n == cap) {
+      cap = cap ? 2 * cap : 16;
+      hd_run_info *nr = realloc(*runs, cap * sizeof *nr);
+      if (!nr) {
+        rc = hd_error_set(err, HD_ENOMEM, "reading runs: out of memory");
+        break;
+      }
+      *runs = nr;
+    }
+    hd_run_info *ri = &(*runs)[*n];
+    memset(ri, 0, sizeof *ri);
+    ri->id = sqlite3_column_int64(st, 0);
+    const char *scene = (const char *)sqlite3_column_text(st, 1);
+    ri->seed = (unsigned long long)sqlite3_column_int64(st, 2);
+    const char *status = (const char *)sqlite3_column_text(st, 3);
+    snprintf(ri->status, sizeof ri->status, "%s", status ? status : "");
+    rc = hd_ana_parse_scene(scene ? scene : "", ri, err);
+    if (rc) {
+      char why[1024];
+      snprintf(why, sizeof why, "%s", err ? err->msg : "");
+      hd_error_set(err, rc, "run %lld: %.900s", (long long)ri->id, why);
+      break;
+    }
+    (*n)++;
+  }
+  if (rc == HD_OK && s != SQLITE_DONE)
+    rc = hd_error_set(err, HD_EIO, "reading runs: %s", sqlite3_errmsg(db));
+  sqlite3_finalize(st);
+  if (rc == HD_OK && want >= 0 && *n == 0)
+    rc = hd_error_set(err, HD_EINPUT, "no run with id %lld", (long long)want);
+  if (rc) free(*runs), *runs = NULL, *n = 0;
+  return rc;
+}
+
+void hd_series_free(hd_series *s) {
+  free(s->t), free(s->coll), free(s->cpd), free(s->e_tr), free(s->e_rot);
+  memset(s, 0, sizeof *s);
+}
+
+int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err) {
+  memset(s, 0, sizeof *s);
+  sqlite3_stmt *st;
+  if (sqlite3_prepare_v2(db, "SELECT t, collisions, cpd, e_tr, e_rot FROM samples WHERE run = ?1 "
+                             "ORDER BY t, collisions", -1, &st, NULL) != SQLITE_OK)
+    return hd_error_set(err, HD_EIO, "reading samples: %s", sqlite3_errmsg(db));
+  sqlite3_bind_int64(st, 1, run);
+  size_t cap = 0;
+  int rc = HD_OK, r;
+  while ((r = sqlite3_step(st)) == SQLITE_ROW) {
+    if (s->n == cap) {
+      cap = cap ? 2 * cap : 256;
+      double **cols[5] = {&s->t, &s->coll, &s->cpd, &s->e_tr, &s->e_rot};
+      for (int c = 0; c < 5 && rc == HD_OK; c++) {
+        double *p = realloc(*cols[c], cap * sizeof *p);
+        if (!p) rc = hd_error_set(err, HD_ENOMEM, "reading samples: out of memory");
+        else *cols[c] = p;
+      }
+      if (rc) break;
+    }
+    s->t[s->n] = sqlite3_column_double(st, 0);
+    s->coll[s->n] = sqlite3_column_double(st, 1);
+    s->cpd[s->n] = sqlite3_column_double(st, 2);
+    s->e_tr[s->n] = sqlite3_column_double(st, 3);
+    s->e_rot[s->n] = sqlite3_column_double(st, 4);
+    s->n++;
+  }
+  if (rc == HD_OK && r != SQLITE_DONE)
+    rc = hd_error_set(err, HD_EIO, "reading samples: %s", sqlite3_errmsg(db));
+  sqlite3_finalize(st);
+  if (rc) hd_series_free(s);
+  return rc;
+}
+
+void hd_snapshots_free(hd_snapshot *snaps, size_t n) {
+  for (size_t i = 0; snaps && i < n; i++) free(snaps[i].vx), free(snaps[i].vy), free(snaps[i].omega);
+  free(snaps);
+}
+
+int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *kind,
+                     hd_snapshot **snaps, size_t *n, hd_error *err) {
+  *snaps = NULL, *n = 0;
+  sqlite3_stmt *st;
+  if (sqlite3_prepare_v2(db, "SELECT t, cpd, vx, vy, omega FROM states WHERE run = ?1 AND "
+                             "label = ?2 AND kind = ?3 ORDER BY t, body", -1, &st, NULL) != SQLITE_OK)
+    return hd_error_set(err, HD_EIO, "reading states: %s", sqlite3_errmsg(db));
+  sqlite3_bind_int64(st, 1, run);
+  sqlite3_bind_text(st, 2, label, -1, SQLITE_STATIC);
+  sqlite3_bind_text(st, 3, kind, -1, SQLITE_STATIC);
+  size_t cap = 0, bcap = 0;
+  hd_snapshot *cur = NULL;
+  int rc = HD_OK, r;
+  while ((r = sqlite3_step(st)) == SQLITE_ROW) {
+    double t = sqlite3_column_double(st, 0);
+    if (!cur || t != cur->t) {
+      if (*n == cap) {
+        cap = cap ? 2 * cap : 8;
+        hd_snapshot *p = realloc(*snaps, cap * sizeof *p);
+        if (!p) {
+          rc = hd_error_set(err, HD_ENOMEM, "reading states: out of memory");
+          break;
+        }
+        *snaps = p;
+      }
+      cur = &(*snaps)[(*n)++];
+      memset(cur, 0, sizeof *cur);
+      cur->t = t;
+      cur->cpd = sqlite3_column_type(st, 1) == SQLITE_NULL ? NAN : sqlite3_column_double(st, 1);
+      bcap = 0;
+    }
+    if (cur->n == bcap) {
+      bcap = bcap ? 2 * bcap : 1024;
+      double *a = realloc(cur->vx, bcap * sizeof *a);
+      if (a) cur->vx = a;
+      double *b = a ? realloc(cur->vy, bcap * sizeof *b) : NULL;
+      if (b) cur->vy = b;
+      double *c = b ? realloc(cur->omega, bcap * sizeof *c) : NULL;
+      if (c) cur->omega = c;
+      if (!c) {
+        rc = hd_error_set(err, HD_ENOMEM, "reading states: out of memory");
+        break;
+      }
+    }
+    cur->vx[cur->n] = sqlite3_column_double(st, 2);
+    cur->vy[cur->n] = sqlite3_column_double(st, 3);
+    cur->omega[cur->n] = sqlite3_column_double(st, 4);
+    cur->n++;
+  }
+  if (rc == HD_OK && r != SQLITE_DONE)
+    rc = hd_error_set(err, HD_EIO, "reading states: %s", sqlite3_errmsg(db));
+  sqlite3_finalize(st);
+  if (rc) hd_snapshots_free(*snaps, *n), *snaps = NULL, *n = 0;
+  return rc;
+}
+
+int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **theta_j,
+                         double **f, size_t *n, hd_error *err) {
+  *theta_i = *theta_j = *f = NULL, *n = 0;
+  sqlite3_stmt *st;
+  if (sqlite3_prepare_v2(db, "SELECT theta_i, theta_j, f FROM collisions WHERE run = ?1 AND "
+                             "kind = 'dimer-dimer' AND theta_i IS NOT NULL AND theta_j IS NOT NULL "
+                             "ORDER BY seq", -1, &st, NULL) != SQLITE_OK)
+    return hd_error_set(err, HD_EIO, "reading collisions: %s", sqlite3_errmsg(db));
+  sqlite3_bind_int64(st, 1, run);
+  size_t cap = 0;
+  int rc = HD_OK, r;
+  while ((r = sqlite3_step(st)) == SQLITE_ROW) {
+    if (*n == cap) {
+      cap = cap ? 2 * cap : 4096;
+      double *a = realloc(*theta_i, cap * sizeof *a);
+      if (a) *theta_i = a;
+      double *b = a ? realloc(*theta_j, cap * sizeof *b) : NULL;
+      if (b) *theta_j = b;
+      double *c = b ? realloc(*f, cap * sizeof *c) : NULL;
+      if (c) *f = c;
+      if (!c) {
+        rc = hd_error_set(err, HD_ENOMEM, "reading collisions: out of memory");
+        break;
+      }
+    }
+    (*theta_i)[*n] = sqlite3_column_double(st, 0);
+    (*theta_j)[*n] = sqlite3_column_double(st, 1);
+    (*f)[*n] = sqlite3_column_type(st, 2) == SQLITE_NULL ? NAN : sqlite3_column_double(st, 2);
+    (*n)++;
+  }
+  if (rc == HD_OK && r != SQLITE_DONE)
+    rc = hd_error_set(err, HD_EIO, "reading collisions: %s", sqlite3_errmsg(db));
+  sqlite3_finalize(st);
+  if (rc) free(*theta_i), free(*theta_j), free(*f), *theta_i = *theta_j = *f = NULL, *n = 0;
+  return rc;
+}

@@ -1,0 +1,72 @@
+/* hd_anadb: read-only access of the analysis programs to a haff database (db/schema.sql),
+ * through the sqlite3 C API: runs with the scene parameters they need, the `samples` series,
+ * `states` snapshots and dimer-dimer collision angles. */
+#ifndef HD_ANADB_H
+#define HD_ANADB_H
+
+#include <sqlite3.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "hd_error.h"
+
+/* Species a run is analysed as. */
+enum { HD_ANA_DIMERS = 0, HD_ANA_DISKS = 1, HD_ANA_OTHER = 2 };
+
+/* One run and the scene parameters the analysis needs (parsed from runs.scene). */
+typedef struct hd_run_info {
+  int64_t id;
+  char status[16];      /* runs.status */
+  unsigned long long seed;
+  int species;          /* HD_ANA_DIMERS if [dimers] count > 0, else HD_ANA_DISKS if [disks]
+                           count > 0, else HD_ANA_OTHER (rods) */
+  long n;               /* bodies of that species */
+  double alpha;         /* its restitution with itself ([dimers] or [disks] alpha, default 1) */
+  double a, d;          /* bond length and disk diameter (disks: a = 0, d = sigma) */
+  double m;             /* disk mass ([dimers] m or [disks] mass, default 1) */
+  double mass;          /* body mass: 2 m for a dimer, m for a disk */
+  double a_over_d;      /* a / d (0 for disks) */
+  double box_x, box_y;  /* [system] box; 0 when the scene gives area_fraction instead */
+  double area_fraction; /* [system] area_fraction (0 if absent) */
+  double density;       /* n / area (area = box, else the bodies' area / area_fraction) */
+  double eta_disk;      /* pi n d^2 / 4: area fraction of the reference disks (eq. 30) */
+} hd_run_info;
+
+/* Opens path read-only and checks that the tables runs and samples exist.  HD_EIO/HD_EINPUT. */
+int hd_ana_open(sqlite3 **db, const char *path, hd_error *err);
+
+/* Parses an INI scene text into ri (everything but id, status, seed).  HD_EINPUT if the text is
+ * not INI or a value is not a number. */
+int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err);
+
+/* The runs to analyse: want >= 0 gives that run (any status; HD_EINPUT if absent), want < 0
+ * every run with status done, collapsed or interrupted, by id.  *runs malloc'd (free()). */
+int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_error *err);
+
+/* The `samples` series of one run, ordered by t (arrays malloc'd; hd_series_free). */
+typedef struct hd_series {
+  size_t n;
+  double *t, *coll, *cpd, *e_tr, *e_rot;
+} hd_series;
+int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err);
+void hd_series_free(hd_series *s);
+
+/* One snapshot of body velocities (rows of `states` with one label and one t). */
+typedef struct hd_snapshot {
+  double t, cpd;        /* cpd NaN when NULL */
+  size_t n;             /* bodies of the analysed species in it */
+  double *vx, *vy, *omega;
+} hd_snapshot;
+
+/* Every snapshot of run with the given label, by t, keeping rows whose kind is `kind`
+ * ("dimer" or "disk").  *snaps malloc'd; free with hd_snapshots_free. */
+int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *kind,
+                     hd_snapshot **snaps, size_t *n, hd_error *err);
+void hd_snapshots_free(hd_snapshot *snaps, size_t n);
+
+/* Dimer-dimer collisions of one run by seq: theta_i, theta_j, f (malloc'd arrays; NULL
+ * angles are skipped).  HD_OK with *n = 0 when there are none. */
+int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **theta_j,
+                         double **f, size_t *n, hd_error *err);
+
+#endif

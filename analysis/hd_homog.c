@@ -1,0 +1,68 @@
+/* hd_homog_detect: end of homogeneous cooling from the collision rate per sqrt(energy). */
+#include <gsl/gsl_sort.h>
+#include <gsl/gsl_statistics_double.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "hd_homog.h"
+
+hd_homog_opts hd_homog_defaults(void) {
+  hd_homog_opts o = {0.1, 2000.0, 5, 3};
+  return o;
+}
+
+int hd_homog_detect(const double *t, const double *coll, const double *e, size_t n,
+                    const hd_homog_opts *o, hd_homog *out, hd_error *err) {
+  if (n < 2) return hd_error_set(err, HD_EINPUT, "homogeneity: need >= 2 samples, got %zu", n);
+  if (!(o->thr > 0) || !(o->min_coll >= 1) || o->n_ref < 1 || o->persist < 1)
+    return hd_error_set(err, HD_EINPUT, "homogeneity: bad options");
+  for (size_t i = 0; i < n; i++)
+    if (!(e[i] > 0)) return hd_error_set(err, HD_EINPUT, "homogeneity: energy <= 0 at sample %zu", i);
+  out->n_end = n, out->detected = 0;
+  out->t_end = t[n - 1], out->cpd_end = NAN;
+  out->r0 = NAN, out->n_windows = 0, out->max_dev = 0;
+
+  /* windows [start[w], end[w]] of sample indices, each >= min_coll collisions */
+  size_t *start = malloc(n * sizeof *start), *end = malloc(n * sizeof *end);
+  double *r = malloc(n * sizeof *r), *tmp = malloc(n * sizeof *tmp);
+  if (!start || !end || !r || !tmp) {
+    free(start), free(end), free(r), free(tmp);
+    return hd_error_set(err, HD_ENOMEM, "homogeneity: out of memory");
+  }
+  size_t nw = 0, s = 0;
+  for (size_t i = 1; i < n; i++) {
+    if (coll[i] - coll[s] >= o->min_coll && t[i] > t[s]) {
+      double rate = (coll[i] - coll[s]) / (t[i] - t[s]);
+      start[nw] = s, end[nw] = i;
+      r[nw] = rate / sqrt(sqrt(e[s] * e[i])); /* geometric mean of E at the window ends */
+      nw++;
+      s = i;
+    }
+  }
+  out->n_windows = nw;
+  if (nw >= (size_t)(o->n_ref + o->persist)) {
+    for (int k = 0; k < o->n_ref; k++) tmp[k] = r[k];
+    gsl_sort(tmp, 1, (size_t)o->n_ref);
+    double r0 = gsl_stats_median_from_sorted_data(tmp, 1, (size_t)o->n_ref);
+    out->r0 = r0;
+    int run = 0;
+    for (size_t w = 0; w < nw; w++) {
+      double dev = fabs(r[w] / r0 - 1.0);
+      if (dev > o->thr) {
+        if (++run >= o->persist) {
+          size_t first = w + 1 - (size_t)o->persist;
+          out->detected = 1;
+          out->n_end = start[first] + 1; /* the deviating window's first sample is kept */
+          break;
+        }
+      } else {
+        run = 0;
+      }
+    }
+    for (size_t w = 0; w < nw && end[w] < out->n_end; w++)
+      out->max_dev = fmax(out->max_dev, fabs(r[w] / r0 - 1.0));
+  }
+  out->t_end = t[out->n_end - 1];
+  free(start), free(end), free(r), free(tmp);
+  return HD_OK;
+}

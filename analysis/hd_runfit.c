@@ -1,0 +1,165 @@
+/* hd_runfit: per-run fits and ensembles of runs. */
+#include "hd_runfit.h"
+
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_statistics_double.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hd_enskog.h"
+
+hd_fit_opts hd_fit_opts_defaults(void) {
+  hd_fit_opts o;
+  o.homog = hd_homog_defaults();
+  o.detect = 1;
+  o.cpd_max = 0;
+  o.cpd_min_k = 0;
+  o.level = 0.99;
+  return o;
+}
+
+int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_run_fit *out,
+                  hd_error *err) {
+  memset(out, 0, sizeof *out);
+  out->info = *ri;
+  hd_series s;
+  int rc = hd_ana_samples(db, ri->id, &s, err);
+  if (rc) return rc;
+  out->n_samples = s.n;
+  if (s.n < 3) {
+    hd_series_free(&s);
+    return hd_error_set(err, HD_EINPUT, "run %lld: %zu samples, need >= 3", (long long)ri->id,
+                        out->n_samples);
+  }
+  double *e = malloc(s.n * sizeof *e), *k = malloc(s.n * sizeof *k), *x = malloc(s.n * sizeof *x);
+  if (!e || !k || !x) {
+    rc = hd_error_set(err, HD_ENOMEM, "out of memory");
+    goto done;
+  }
+  for (size_t i = 0; i < s.n; i++) e[i] = s.e_tr[i] + s.e_rot[i];
+  out->E0 = e[0];
+  out->T0 = s.e_tr[0];
+  size_t nu = s.n;
+  if (o->detect) {
+    hd_error e2;
+    if (hd_homog_detect(s.t, s.coll, e, s.n, &o->homog, &out->homog, &e2) != HD_OK) {
+      snprintf(out->why, sizeof out->why, "%.200s", e2.msg);
+    } else {
+      nu = out->homog.n_end;
+    }
+  } else {
+    out->homog.n_end = s.n;
+  }
+  if (o->cpd_max > 0)
+    while (nu > 1 && s.cpd[nu - 1] > o->cpd_max) nu--;
+  out->n_used = nu;
+  out->t_end = s.t[nu - 1];
+  out->cpd_end = s.cpd[nu - 1];
+
+  hd_error fe;
+  out->haff_ok = hd_fit_haff_log(s.t, s.cpd, nu, ri->alpha, &out->haff, &fe) == HD_OK;
+  if (!out->haff_ok) snprintf(out->why, sizeof out->why, "eq. 31 fit: %.200s", fe.msg);
+  out->nu0_enskog = hd_enskog_nu0(ri->density, ri->d, out->T0, ri->mass, ri->eta_disk);
+  if (out->haff_ok && out->nu0_enskog > 0) {
+    out->ratio = out->haff.nu0 / out->nu0_enskog;
+    out->ratio_err = out->haff.nu0_err / out->nu0_enskog;
+  } else {
+    out->ratio = out->ratio_err = NAN;
+  }
+  size_t m = 0;
+  for (size_t i = 0; i < nu; i++)
+    if (s.cpd[i] >= o->cpd_min_k && s.e_rot[i] > 0) x[m] = s.cpd[i], k[m++] = s.e_tr[i] / s.e_rot[i];
+  if (ri->species == HD_ANA_DIMERS) {
+    out->K_ok = hd_fit_linear_t(x, k, m, o->level, &out->K, &fe) == HD_OK;
+    if (!out->K_ok && !out->why[0]) snprintf(out->why, sizeof out->why, "K fit: %.200s", fe.msg);
+  }
+done:
+  free(e), free(k), free(x);
+  hd_series_free(&s);
+  return rc;
+}
+
+int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *ng, hd_error *err) {
+  *groups = calloc(n ? n : 1, sizeof **groups);
+  *ng = 0;
+  if (!*groups) return hd_error_set(err, HD_ENOMEM, "out of memory");
+  for (size_t i = 0; i < n; i++) {
+    const hd_run_info *r = &fits[i].info;
+    hd_group *g = NULL;
+    for (size_t j = 0; j < *ng && !g; j++)
+      if ((*groups)[j].species == r->species && fabs((*groups)[j].alpha - r->alpha) < 1e-9 &&
+          fabs((*groups)[j].a_over_d - r->a_over_d) < 1e-9)
+        g = &(*groups)[j];
+    if (!g) {
+      g = &(*groups)[(*ng)++];
+      g->species = r->species, g->alpha = r->alpha, g->a_over_d = r->a_over_d;
+      g->idx = malloc(n * sizeof *g->idx);
+      if (!g->idx) {
+        hd_groups_free(*groups, *ng), *groups = NULL, *ng = 0;
+        return hd_error_set(err, HD_ENOMEM, "out of memory");
+      }
+    }
+    g->idx[g->n++] = i;
+  }
+  return HD_OK;
+}
+
+void hd_groups_free(hd_group *g, size_t ng) {
+  for (size_t i = 0; g && i < ng; i++) free(g[i].idx);
+  free(g);
+}
+
+void hd_ensemble_mean(const double *vals, const double *errs, size_t n, double *mean, double *se) {
+  if (n == 0) {
+    *mean = *se = NAN;
+  } else if (n == 1) {
+    *mean = vals[0], *se = errs[0];
+  } else {
+    *mean = gsl_stats_mean(vals, 1, n);
+    *se = gsl_stats_sd_m(vals, 1, n, *mean) / sqrt((double)n);
+  }
+}
+
+int hd_combine_k(const hd_run_fit *fits, const size_t *idx, size_t n, hd_kmode mode,
+                 double level, double out[6], hd_error *err) {
+  double p = 0.5 * (1 + level);
+  size_t m = 0;
+  for (size_t i = 0; i < n; i++) m += fits[idx[i]].K_ok != 0;
+  if (m == 0) return hd_error_set(err, HD_EINPUT, "no K fit in the group");
+  if (mode == HD_K_RUNS) {
+    if (m < 2) return hd_error_set(err, HD_EINPUT, "--k-ci runs needs >= 2 runs per group");
+    double *a0 = malloc(m * sizeof *a0), *a1 = malloc(m * sizeof *a1);
+    if (!a0 || !a1) {
+      free(a0), free(a1);
+      return hd_error_set(err, HD_ENOMEM, "out of memory");
+    }
+    size_t j = 0;
+    for (size_t i = 0; i < n; i++)
+      if (fits[idx[i]].K_ok) a0[j] = fits[idx[i]].K.a0, a1[j++] = fits[idx[i]].K.a1;
+    double m0 = gsl_stats_mean(a0, 1, m), m1 = gsl_stats_mean(a1, 1, m);
+    double s0 = gsl_stats_sd_m(a0, 1, m, m0) / sqrt((double)m);
+    double s1 = gsl_stats_sd_m(a1, 1, m, m1) / sqrt((double)m);
+    double tq = gsl_cdf_tdist_Pinv(p, (double)(m - 1));
+    out[0] = m0, out[1] = m0 - tq * s0, out[2] = m0 + tq * s0;
+    out[3] = m1, out[4] = m1 - tq * s1, out[5] = m1 + tq * s1;
+    free(a0), free(a1);
+    return HD_OK;
+  }
+  double w0 = 0, w1 = 0, s0 = 0, s1 = 0, dof = 0;
+  for (size_t i = 0; i < n; i++) {
+    const hd_run_fit *f = &fits[idx[i]];
+    if (!f->K_ok) continue;
+    double e0 = mode == HD_K_AC ? f->K.a0_err_ac : f->K.a0_err;
+    double e1 = mode == HD_K_AC ? f->K.a1_err_ac : f->K.a1_err;
+    double v0 = 1 / (e0 * e0), v1 = 1 / (e1 * e1);
+    w0 += v0, w1 += v1, s0 += v0 * f->K.a0, s1 += v1 * f->K.a1;
+    dof += mode == HD_K_AC ? fmax(f->K.n_eff - 2, 1) : (double)f->K.n - 2;
+  }
+  double m0 = s0 / w0, m1 = s1 / w1, tq = gsl_cdf_tdist_Pinv(p, dof);
+  double h0 = tq / sqrt(w0), h1 = tq / sqrt(w1);
+  out[0] = m0, out[1] = m0 - h0, out[2] = m0 + h0;
+  out[3] = m1, out[4] = m1 - h1, out[5] = m1 + h1;
+  return HD_OK;
+}

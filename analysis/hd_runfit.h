@@ -1,0 +1,80 @@
+/* hd_runfit: the per-run analysis behind `haff haff-fit`, `table1`, `table2` and `energy`
+ * (detect the homogeneous part, fit eq. 31 to it, fit K = e_tr/e_rot = a0 + a1 cpd), and the
+ * grouping of runs with equal scene parameters (species, alpha, a/d) into ensembles. */
+#ifndef HD_RUNFIT_H
+#define HD_RUNFIT_H
+
+#include <sqlite3.h>
+#include <stddef.h>
+
+#include "hd_anadb.h"
+#include "hd_error.h"
+#include "hd_fit.h"
+#include "hd_homog.h"
+
+/* What part of a run the fits use. */
+typedef struct hd_fit_opts {
+  hd_homog_opts homog; /* detector settings */
+  int detect;          /* 1 [default]: stop at the end of homogeneous cooling (hd_homog) */
+  double cpd_max;      /* > 0: also stop at this cpd [0: no limit] */
+  double cpd_min_k;    /* the K fit skips samples with cpd < this (initial transient) [0] */
+  double level;        /* confidence level of the K intervals [0.99] */
+} hd_fit_opts;
+
+/* The defaults above. */
+hd_fit_opts hd_fit_opts_defaults(void);
+
+/* Everything measured on one run. */
+typedef struct hd_run_fit {
+  hd_run_info info;
+  size_t n_samples;   /* rows in samples */
+  size_t n_used;      /* samples used by the fits: [0, n_used) */
+  hd_homog homog;     /* detector result (n_end = n_samples when detect = 0) */
+  double t_end, cpd_end; /* last sample used */
+  double E0;          /* e_tr + e_rot of the first sample */
+  double T0;          /* translational temperature of the first sample (= e_tr in 2D) */
+  int haff_ok;        /* 1 if the eq. (31) fit succeeded */
+  hd_haff_fit haff;   /* its result */
+  double nu0_enskog;  /* eq. (29) for disks of diameter d, body mass, density n, T0, eta_disk */
+  double ratio, ratio_err; /* nu0_eff / nu0_enskog and its standard error */
+  int K_ok;           /* 1 if the K fit succeeded */
+  hd_linfit K;        /* K = e_tr/e_rot = a0 + a1 cpd */
+  char why[256];      /* why a fit failed ("" if both succeeded) */
+} hd_run_fit;
+
+/* Reads the samples of ri and fills *out.  A failed fit is not an error (haff_ok/K_ok = 0 and
+ * `why` says why); HD_EIO/HD_ENOMEM when the database cannot be read; HD_EINPUT when the run
+ * has fewer than 3 samples. */
+int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_run_fit *out,
+                  hd_error *err);
+
+/* A group of runs with the same species, alpha and a/d (equal to 1e-9). */
+typedef struct hd_group {
+  int species;
+  double alpha, a_over_d;
+  size_t n;      /* runs in the group */
+  size_t *idx;   /* their indices in the array given to hd_group_runs */
+} hd_group;
+
+/* Groups fits[0..n-1] (in order of first appearance).  *groups malloc'd; hd_groups_free. */
+int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *ng, hd_error *err);
+void hd_groups_free(hd_group *g, size_t ng);
+
+/* Ensemble of one quantity over runs: the mean of vals[0..n-1] and its standard error
+ * sd/sqrt(n) (n >= 2); with n == 1, vals[0] and errs[0] (the fit's own error). */
+void hd_ensemble_mean(const double *vals, const double *errs, size_t n, double *mean,
+                      double *se);
+
+/* How table2 combines the K fits of the runs of a group. */
+typedef enum hd_kmode {
+  HD_K_AC = 0,   /* inverse-variance mean with autocorrelation-corrected errors [default] */
+  HD_K_OLS = 1,  /* the same with plain OLS errors (the paper's t-test, too narrow) */
+  HD_K_RUNS = 2  /* plain mean over runs, sd/sqrt(R), t with R-1 dof (needs R >= 2) */
+} hd_kmode;
+
+/* Combined a0 and a1 with their intervals at fits[idx[0..n-1]].K's level.  Returns HD_OK or
+ * HD_EINPUT (no K fit, or HD_K_RUNS with fewer than 2 runs). */
+int hd_combine_k(const hd_run_fit *fits, const size_t *idx, size_t n, hd_kmode mode,
+                 double level, double out[6], hd_error *err);
+
+#endif

@@ -1,0 +1,31 @@
+# Fig. 5 of Costantini et al. (2005): distribution of the contact angle theta (between r12 and
+# r13), one curve per block of collisions; optionally a second run (e.g. alpha = 1) as bullets;
+# the uniform model on |theta| <= pi - acos(a/2d) (2 pi/3 for a = d) dashed.
+# Input: `haff angles DB --run ID -o in` (and the same for in2).
+# usage: gnuplot -e "in='angles.tsv'; out='fig5.png'[; in2='angles_elastic.tsv'; ad=1]" plots/fig5.gp
+if (!exists("in")) in = 'angles.tsv'
+if (!exists("out")) out = 'fig5.png'
+if (!exists("ad")) ad = 1.0
+if (out[strlen(out)-3:] eq ".svg") { set terminal svg size 800,600 enhanced font "Helvetica,14" } \
+else { set terminal pngcairo size 800,600 enhanced font "DejaVu Sans,11" }
+set output out
+set encoding utf8
+set datafile separator "\t"
+stats in using 4 nooutput
+nb = STATS_blocks
+tmax = ad < 2 ? pi - acos(ad / 2.0) : pi
+uniform(x) = abs(x) <= tmax ? 1.0 / (2 * tmax) : 0
+set samples 1000
+set xlabel "θ (rad)"
+set ylabel "P(θ)"
+set xrange [-pi:pi]
+set yrange [0:*]
+set key top right
+if (exists("in2")) {
+  plot for [i=0:nb-1] in index i using 4:5 with lines title columnheader(1), \
+       in2 index 0 using 4:5 with points pt 7 ps 1 lc rgb "black" title "elastic (α = 1)", \
+       uniform(x) with lines dt 2 lw 2 lc rgb "gray40" title "uniform on |θ| < θ_{max}"
+} else {
+  plot for [i=0:nb-1] in index i using 4:5 with lines title columnheader(1), \
+       uniform(x) with lines dt 2 lw 2 lc rgb "gray40" title "uniform on |θ| < θ_{max}"
+}

@@ -1,0 +1,463 @@
+/* Tests of the analysis subcommands on a small synthetic database written here with sqlite3
+ * following db/schema.sql, and of the gnuplot scripts (skipped without gnuplot).
+ * The database: runs 1-3 dimers alpha = 0.9, a = d = 1, N = 900 in a 100 x 100 box, following
+ * Haff's law with D_e = 3 and nu0_eff = 1.25 nu0 (Enskog, eq. 29), K = 2.05 + noise; run 4
+ * dimers alpha = 0.8 whose collision rate per sqrt(E) rises by 50% over cpd 60..80
+ * (clustering); run 5 hard disks alpha = 0.9 (D_e = 2, nu0_eff = nu0); run 6 'failed' (must be
+ * ignored).  The time of every 0.5-cpd step (225 collisions) carries Poisson-like noise
+ * 1/sqrt(225), as a real run of N = 900 would.  Run 1 also has 20000 dimer-dimer collisions with
+ * contact angles uniform on |theta| < 2 pi/3 and f of eq. (36), and three 'velocities' snapshots
+ * of 4000 dimers: two Maxwellian, one uniform. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <sqlite3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "hd_ana_cli.h"
+#include "hd_enskog.h"
+
+extern const char hd_schema_sql[];
+
+static char dir[256], dbpath[300];
+
+static void exec(sqlite3 *db, const char *sql) {
+  char *msg = NULL;
+  if (sqlite3_exec(db, sql, NULL, NULL, &msg) != SQLITE_OK) fail_msg("sql: %s: %s", sql, msg);
+}
+
+static double nu0_enskog_test(double T0) {
+  /* independent of analysis/hd_runfit.c's bookkeeping: n = 900/100^2, sigma = d = 1, body
+   * mass 2 (two disks of mass 1), eta = pi n / 4 */
+  double n = 900.0 / 1e4;
+  return hd_enskog_nu0(n, 1.0, T0, 2.0, M_PI * n / 4);
+}
+
+static void add_run(sqlite3 *db, gsl_rng *r, int id, const char *scene, const char *status,
+                    double alpha, double De, double nu_ratio, int disks, double boost_from) {
+  char sql[1024];
+  snprintf(sql, sizeof sql,
+           "INSERT INTO runs(id, scene, seed, status, started, version) VALUES (%d, '%s', %d, '%s', "
+           "'2024-01-01T00:00:00Z', 'test')", id, scene, id, status);
+  exec(db, sql);
+  sqlite3_stmt *st;
+  sqlite3_prepare_v2(db, "INSERT INTO samples(run, t, collisions, cpd, e_tr, e_rot) VALUES (?,?,?,?,?,?)",
+                     -1, &st, NULL);
+  double K0 = 2.05, T0 = 1.0, t = 0;
+  double nu0 = nu_ratio * nu0_enskog_test(T0);
+  if (disks) nu0 = nu_ratio * hd_enskog_nu0(900.0 / 1e4, 1.0, T0, 1.0, M_PI * 0.09 / 4);
+  double c = 1 - alpha * alpha, Eprev = 1;
+  for (int k = 0; k <= 200; k++) {
+    double cpd = 0.5 * k, E = exp(-c * cpd / De); /* E/E0 = exp(-2 gamma tau) */
+    if (k > 0) {
+      double boost = 1;
+      if (boost_from > 0 && cpd > boost_from) boost = 1 + 0.5 * fmin(1, (cpd - boost_from) / 20);
+      t += 0.5 / (nu0 * sqrt(sqrt(E * Eprev)) * boost) * (1 + gsl_ran_gaussian(r, 1 / 15.0));
+    }
+    Eprev = E;
+    double K = K0 + gsl_ran_gaussian(r, 0.01);
+    double etr = disks ? T0 * E : T0 * E, erot = disks ? 0 : T0 * E / K;
+    if (k == 0) etr = T0, erot = disks ? 0 : T0 / K;
+    sqlite3_bind_int(st, 1, id);
+    sqlite3_bind_double(st, 2, t);
+    sqlite3_bind_int(st, 3, 225 * k);
+    sqlite3_bind_double(st, 4, cpd);
+    sqlite3_bind_double(st, 5, etr);
+    sqlite3_bind_double(st, 6, erot);
+    if (sqlite3_step(st) != SQLITE_DONE) fail_msg("insert sample");
+    sqlite3_reset(st);
+  }
+  sqlite3_finalize(st);
+}
+
+static double f_eq36(double ti, double tj) {
+  return 1 / (2 - 0.5 * (cos(ti) * cos(ti) + cos(tj) * cos(tj)));
+}
+
+static int setup(void **state) {
+  (void)state;
+  snprintf(dir, sizeof dir, "/tmp/haff-test-analysis-XXXXXX");
+  if (!mkdtemp(dir)) return -1;
+  snprintf(dbpath, sizeof dbpath, "%s/t.db", dir);
+  sqlite3 *db;
+  if (sqlite3_open(dbpath, &db) != SQLITE_OK) return -1;
+  exec(db, hd_schema_sql);
+  exec(db, "BEGIN");
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(r, 2005);
+  const char *dimer9 = "[system]\nbox = 100 100\n[dimers]\ncount = 900\nalpha = 0.9\na = 1\nd = 1\n";
+  const char *dimer8 = "[system]\nbox = 100 100\n[dimers]\ncount = 900\nalpha = 0.8 ; comment\n";
+  const char *disk9 = "[system]\nbox = 100 100\n[disks]\ncount = 900\nalpha = 0.9\n";
+  for (int id = 1; id <= 3; id++) add_run(db, r, id, dimer9, "done", 0.9, 3.0, 1.25, 0, 0);
+  add_run(db, r, 4, dimer8, "collapsed", 0.8, 3.0, 1.25, 0, 60);
+  add_run(db, r, 5, disk9, "done", 0.9, 2.0, 1.0, 1, 0);
+  add_run(db, r, 6, dimer8, "failed", 0.8, 1.0, 3.0, 0, 0);
+  /* collisions of run 1 */
+  sqlite3_stmt *st;
+  sqlite3_prepare_v2(db, "INSERT INTO collisions(run, seq, t, kind, i, j, theta_i, theta_j, f) "
+                         "VALUES (1, ?, ?, 'dimer-dimer', 0, 1, ?, ?, ?)", -1, &st, NULL);
+  const double tm = 2 * M_PI / 3;
+  for (int k = 1; k <= 20000; k++) {
+    double ti = gsl_ran_flat(r, -tm, tm), tj = gsl_ran_flat(r, -tm, tm);
+    sqlite3_bind_int(st, 1, k);
+    sqlite3_bind_double(st, 2, 0.01 * k);
+    sqlite3_bind_double(st, 3, ti);
+    sqlite3_bind_double(st, 4, tj);
+    sqlite3_bind_double(st, 5, f_eq36(ti, tj));
+    sqlite3_step(st);
+    sqlite3_reset(st);
+  }
+  sqlite3_finalize(st);
+  /* one disk-disk row that must not count */
+  exec(db, "INSERT INTO collisions(run, seq, t, kind, i, j) VALUES (1, 20001, 300, 'disk-disk', 0, 1)");
+  sqlite3_prepare_v2(db, "INSERT INTO states(run, label, t, cpd, body, kind, x, y, phi, vx, vy, omega) "
+                         "VALUES (1, 'velocities', ?, ?, ?, 'dimer', 0, 0, 0, ?, ?, ?)", -1, &st, NULL);
+  for (int s = 0; s < 3; s++) {
+    for (int b = 0; b < 4000; b++) {
+      double vx, vy, w;
+      if (s < 2) {
+        vx = 0.3 + gsl_ran_gaussian(r, 0.7 / (s + 1)), vy = gsl_ran_gaussian(r, 0.7 / (s + 1));
+        w = gsl_ran_gaussian(r, 1.3 / (s + 1));
+      } else {
+        vx = gsl_ran_flat(r, -1, 1), vy = gsl_ran_flat(r, -1, 1), w = gsl_ran_flat(r, -2, 2);
+      }
+      sqlite3_bind_double(st, 1, 10.0 * (s + 1));
+      sqlite3_bind_double(st, 2, 20.0 * (s + 1));
+      sqlite3_bind_int(st, 3, b);
+      sqlite3_bind_double(st, 4, vx);
+      sqlite3_bind_double(st, 5, vy);
+      sqlite3_bind_double(st, 6, w);
+      sqlite3_step(st);
+      sqlite3_reset(st);
+    }
+  }
+  sqlite3_finalize(st);
+  exec(db, "COMMIT");
+  sqlite3_close(db);
+  gsl_rng_free(r);
+  return 0;
+}
+
+static int teardown(void **state) {
+  (void)state;
+  if (getenv("HAFF_KEEP")) return 0;
+  char cmd[400];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  return system(cmd) == 0 ? 0 : -1;
+}
+
+/* Runs a subcommand with -o DIR/name and returns its exit code. */
+static int run_cmd(int (*m)(int, char **), const char *name, char **args, int nargs, char *outp) {
+  char *argv[16];
+  int argc = 0;
+  argv[argc++] = (char *)name;
+  for (int i = 0; i < nargs; i++) argv[argc++] = args[i];
+  if (outp) argv[argc++] = "-o", argv[argc++] = outp;
+  argv[argc] = NULL;
+  return m(argc, argv);
+}
+
+/* Reads the data rows (not '#', not empty, numeric first field) of a TSV into rows[][cols]. */
+static int read_rows(const char *path, double rows[][16], int maxrows, int skip_header) {
+  FILE *f = fopen(path, "r");
+  assert_non_null(f);
+  char line[4096];
+  int n = 0, first = 1;
+  while (fgets(line, sizeof line, f) && n < maxrows) {
+    if (line[0] == '#' || line[0] == '\n') continue;
+    if (first && skip_header) {
+      first = 0;
+      continue;
+    }
+    char *end, *p = line;
+    double v = strtod(p, &end);
+    if (end == p) continue; /* a block's header line */
+    int c = 0;
+    rows[n][c++] = v;
+    p = end;
+    while (*p == '\t' && c < 16) {
+      p++;
+      v = strtod(p, &end);
+      rows[n][c++] = end == p ? NAN : v; /* text fields read as NaN */
+      p = end;
+      while (*p && *p != '\t' && *p != '\n') p++;
+    }
+    n++;
+  }
+  fclose(f);
+  return n;
+}
+
+static double rows[4000][16];
+
+/* haff-fit per run: D_e and nu0_eff/nu0 recovered (true 3, 1.25; disks 2, 1).  Tolerances:
+ * the Poisson-like time noise of 225-collision steps gives per-run scatters of about 0.03 in
+ * D_e and 0.01 in the ratio (the fits' own errors, printed); we allow 0.15 and 0.04, and the
+ * run 4 end of homogeneity within cpd 58..75 (the rate deviation reaches 10% at cpd 64). */
+static void haff_fit_runs(void **state) {
+  (void)state;
+  char out[400], *args[] = {dbpath};
+  snprintf(out, sizeof out, "%s/fit.tsv", dir);
+  assert_int_equal(run_cmd(haff_fit_main, "haff-fit", args, 1, out), 0);
+  int n = read_rows(out, rows, 100, 1);
+  assert_int_equal(n, 5); /* the failed run 6 is left out */
+  for (int i = 0; i < n; i++) {
+    double *r = rows[i]; /* run species alpha a_over_d n_used detected t_end cpd_end D_e D_e_err
+                            nu0_eff nu0_eff_err nu0_enskog ratio ratio_err chi2_dof */
+    printf("# run %g: D_e %.4f +- %.3g ratio %.4f +- %.3g detected %g cpd_end %g\n", r[0], r[8],
+           r[9], r[13], r[14], r[5], r[7]);
+    double De = r[0] == 5 ? 2.0 : 3.0, ratio = r[0] == 5 ? 1.0 : 1.25;
+    assert_true(fabs(r[8] - De) < 0.15);
+    assert_true(fabs(r[13] - ratio) < 0.04);
+    if (r[0] == 4) {
+      assert_int_equal((int)r[5], 1);
+      assert_true(r[7] >= 58 && r[7] <= 75);
+    } else {
+      assert_int_equal((int)r[5], 0);
+      assert_true(fabs(r[7] - 100) < 1e-9);
+    }
+  }
+  /* one run, --alpha-group */
+  char *a2[] = {dbpath, "--alpha-group"};
+  assert_int_equal(run_cmd(haff_fit_main, "haff-fit", a2, 2, out), 0);
+  assert_int_equal(read_rows(out, rows, 100, 1), 3);
+  /* bad usage */
+  char *bad[] = {dbpath, "--bins", "3"};
+  assert_int_equal(run_cmd(haff_fit_main, "haff-fit", bad, 3, NULL), 2);
+  char *missing[] = {"/nonexistent/x.db"};
+  assert_int_not_equal(run_cmd(haff_fit_main, "haff-fit", missing, 1, NULL), 0);
+  char *norun[] = {dbpath, "--run", "77"};
+  assert_int_equal(run_cmd(haff_fit_main, "haff-fit", norun, 3, NULL), 2);
+  char *help[] = {"--help"};
+  assert_int_equal(run_cmd(haff_fit_main, "haff-fit", help, 1, NULL), 0);
+}
+
+/* table1: three groups; the alpha = 0.9 dimer group has 3 runs, its mean D_e within 3 standard
+ * errors + 0.02 of 3 and the ratio likewise of 1.25; disks D_e 2. */
+static void table1(void **state) {
+  (void)state;
+  char out[400], *args[] = {dbpath};
+  snprintf(out, sizeof out, "%s/t1.tsv", dir);
+  assert_int_equal(run_cmd(haff_table1_main, "table1", args, 1, out), 0);
+  FILE *f = fopen(out, "r");
+  char head[256];
+  assert_non_null(fgets(head, sizeof head, f));
+  fclose(f);
+  assert_string_equal(head, "alpha\ta_over_d\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\truns\n");
+  int n = read_rows(out, rows, 10, 1);
+  assert_int_equal(n, 3);
+  int seen = 0;
+  for (int i = 0; i < n; i++) {
+    double *r = rows[i];
+    printf("# table1: alpha %g a/d %g D_e %.4f +- %.3g ratio %.4f +- %.3g runs %g\n", r[0], r[1],
+           r[2], r[3], r[4], r[5], r[6]);
+    if (r[0] == 0.9 && r[1] == 1) {
+      seen++;
+      assert_int_equal((int)r[6], 3);
+      assert_true(fabs(r[2] - 3) < 3 * r[3] + 0.02);
+      assert_true(fabs(r[4] - 1.25) < 3 * r[5] + 0.01);
+    }
+    if (r[1] == 0) seen++, assert_true(fabs(r[2] - 2) < 0.1);
+  }
+  assert_int_equal(seen, 2);
+  char *md[] = {dbpath, "--md"};
+  assert_int_equal(run_cmd(haff_table1_main, "table1", md, 2, out), 0);
+  f = fopen(out, "r");
+  assert_non_null(fgets(head, sizeof head, f));
+  fclose(f);
+  assert_true(head[0] == '|');
+}
+
+/* table2: K = 2.05 constant: a0's interval holds 2.05 and a1's holds 0 for both dimer groups
+ * (99% intervals, 2 groups: a false failure has probability ~4%... so the check uses the
+ * intervals widened by 1.5: probability < 1e-4); no disk row. */
+static void table2(void **state) {
+  (void)state;
+  char out[400], *args[] = {dbpath};
+  snprintf(out, sizeof out, "%s/t2.tsv", dir);
+  assert_int_equal(run_cmd(haff_table2_main, "table2", args, 1, out), 0);
+  int n = read_rows(out, rows, 10, 1);
+  assert_int_equal(n, 2);
+  for (int i = 0; i < n; i++) {
+    double *r = rows[i];
+    printf("# table2: alpha %g a0 %.5f [%.5f, %.5f] a1 %.3g [%.3g, %.3g]\n", r[0], r[2], r[3], r[4],
+           r[5], r[6], r[7]);
+    assert_true(r[3] < r[2] && r[2] < r[4] && r[6] < r[5] && r[5] < r[7]);
+    assert_true(fabs(r[2] - 2.05) < 1.5 * (r[4] - r[3]) / 2);
+    assert_true(fabs(r[5]) < 1.5 * (r[7] - r[6]) / 2);
+  }
+  char *runs[] = {dbpath, "--k-ci", "runs"};
+  assert_int_equal(run_cmd(haff_table2_main, "table2", runs, 3, out), 2); /* alpha 0.8: 1 run */
+  char *bad[] = {dbpath, "--k-ci", "xx"};
+  assert_int_equal(run_cmd(haff_table2_main, "table2", bad, 3, out), 2);
+}
+
+/* energy: 3 blocks; x = (1 - alpha^2) cpd; within the fitted part the data follow Haff's law
+ * with the fitted parameters within 5% (energy noise is only through K and the fit). */
+static void energy(void **state) {
+  (void)state;
+  char out[400], *args[] = {dbpath};
+  snprintf(out, sizeof out, "%s/energy.tsv", dir);
+  assert_int_equal(run_cmd(haff_energy_main, "energy", args, 1, out), 0);
+  int n = read_rows(out, rows, 4000, 0);
+  assert_int_equal(n, 3 * 201);
+  int homog = 0;
+  for (int i = 0; i < 201; i++) { /* first block: alpha 0.9 dimers */
+    double *r = rows[i];
+    assert_true(fabs(r[6] - 0.19 * r[1]) < 1e-9);
+    if (r[10] == 1) {
+      homog++;
+      assert_true(fabs(r[3] / r[8] - 1) < 0.05);
+      assert_true(fabs(r[6] - r[9]) < 0.05 * r[6] + 0.1);
+    }
+  }
+  assert_int_equal(homog, 201);
+  char *one[] = {dbpath, "--run", "4"};
+  assert_int_equal(run_cmd(haff_energy_main, "energy", one, 3, out), 0);
+  n = read_rows(out, rows, 4000, 0);
+  assert_int_equal(n, 201);
+  int h4 = 0;
+  for (int i = 0; i < n; i++) h4 += rows[i][10] == 1;
+  assert_true(h4 > 100 && h4 < 160); /* cpd 58..75 at 0.5 per sample */
+}
+
+/* angles: 4 blocks of 5000 collisions; each bin inside |theta| < 2pi/3 has density 3/(4 pi)
+ * within 5 of its Poisson errors, each bin outside is empty; <f> within 5 batch errors of the
+ * exact mean of eq. (36) under uniform angles (midpoint rule, 400^2 points), and the batch
+ * error (40 batches of 500: its own relative scatter is 1/sqrt(78) = 11%) within 35% of the
+ * iid error sd(f)/sqrt(n) (the synthetic samples are independent). */
+static void angles(void **state) {
+  (void)state;
+  char out[400], *args[] = {dbpath, "--run", "1", "--block", "5000"};
+  snprintf(out, sizeof out, "%s/angles.tsv", dir);
+  assert_int_equal(run_cmd(haff_angles_main, "angles", args, 5, out), 0);
+  int n = read_rows(out, rows, 4000, 0);
+  assert_int_equal(n, 4 * 36);
+  for (int i = 0; i < n; i++) {
+    double *r = rows[i], th = r[3];
+    if (fabs(th) < 2 * M_PI / 3 - 0.1)
+      assert_true(fabs(r[4] - 3 / (4 * M_PI)) < 5 * r[5]);
+    else if (fabs(th) > 2 * M_PI / 3 + 0.1)
+      assert_true(r[4] == 0);
+  }
+  char *fa[] = {dbpath, "--run", "1", "--fmean", "--block", "500"};
+  assert_int_equal(run_cmd(haff_angles_main, "angles", fa, 6, out), 0);
+  assert_int_equal(read_rows(out, rows, 10, 1), 1);
+  double tm = 2 * M_PI / 3, sum = 0, sum2 = 0;
+  int m = 400;
+  for (int i = 0; i < m; i++)
+    for (int j = 0; j < m; j++) {
+      double f = f_eq36(-tm + (i + 0.5) * 2 * tm / m, -tm + (j + 0.5) * 2 * tm / m);
+      sum += f, sum2 += f * f;
+    }
+  double fm = sum / (m * m), fsd = sqrt(sum2 / (m * m) - fm * fm);
+  printf("# <f> measured %.5f +- %.2g, exact (uniform angles) %.5f (paper: 0.64)\n", rows[0][2],
+         rows[0][3], fm);
+  assert_true(fabs(rows[0][2] - fm) < 5 * rows[0][3]);
+  assert_true(fabs(rows[0][3] / (fsd / sqrt(20000.0)) - 1) < 0.35);
+  assert_int_equal((int)rows[0][4], 40);
+  char *norun[] = {dbpath};
+  assert_int_equal(run_cmd(haff_angles_main, "angles", norun, 1, out), 2);
+}
+
+/* veldist --stats: the Maxwellian snapshots have |a2| < 4 a2_err and KS p > 0.001 for vx, vy,
+ * omega (4000 values; 12 checks at p = 0.001: false failure < 2%); the uniform one has KS
+ * p < 1e-6 and a2 within 5 errors of -0.4 for the components.  Histograms: the density at
+ * c = 0 within 5 Poisson errors of 1/sqrt(2 pi) for the Maxwellian snapshots. */
+static void veldist(void **state) {
+  (void)state;
+  char out[400], *args[] = {dbpath, "--run", "1", "--stats"};
+  snprintf(out, sizeof out, "%s/vstats.tsv", dir);
+  assert_int_equal(run_cmd(haff_veldist_main, "veldist", args, 4, out), 0);
+  int n = read_rows(out, rows, 100, 1);
+  assert_int_equal(n, 12);
+  for (int i = 0; i < n; i++) {
+    double *r = rows[i]; /* snap t cpd var n scale kurt a2 a2_err ks_d ks_p */
+    int comp = !isnan(r[10]);
+    if (r[0] < 2) {
+      assert_true(fabs(r[7]) < 4 * r[8]);
+      if (comp) assert_true(r[10] > 0.001);
+    } else if (comp) {
+      assert_true(r[10] < 1e-6);
+      assert_true(fabs(r[7] + 0.4) < 5 * r[8]);
+    }
+  }
+  char *h[] = {dbpath, "--run", "1", "--bins", "41"};
+  assert_int_equal(run_cmd(haff_veldist_main, "veldist", h, 5, out), 0);
+  n = read_rows(out, rows, 4000, 0);
+  assert_int_equal(n, 3 * 41);
+  for (int s = 0; s < 2; s++) {
+    double *r = rows[s * 41 + 20]; /* c = 0 */
+    double p0 = 1 / sqrt(2 * M_PI), err = sqrt(p0 * (10.0 / 41) * 4000) / (4000 * 10.0 / 41);
+    assert_true(fabs(r[2]) < 1e-9);
+    for (int k = 3; k <= 5; k++) assert_true(fabs(r[k] - p0) < 5 * err);
+  }
+}
+
+/* Renders each gnuplot script to PNG and SVG from the files written above (run after them)
+ * and requires exit status 0, an empty stderr and a non-empty output. */
+static void gnuplot_scripts(void **state) {
+  (void)state;
+  if (system("command -v gnuplot >/dev/null 2>&1") != 0) skip();
+  char src[512];
+  snprintf(src, sizeof src, "%s", __FILE__);
+  char *slash = strrchr(src, '/');
+  if (slash) *slash = '\0';
+  else snprintf(src, sizeof src, ".");
+  const char *figs[][2] = {{"fig2", "energy.tsv"}, {"fig3", "energy.tsv"}, {"fig5", "angles.tsv"},
+                           {"fig6", "veldist.tsv"}};
+  /* the angles and veldist files must hold histograms, not the --fmean / --stats tables */
+  char out[400], *aa[] = {dbpath, "--run", "1", "--block", "5000"};
+  snprintf(out, sizeof out, "%s/angles.tsv", dir);
+  assert_int_equal(run_cmd(haff_angles_main, "angles", aa, 5, out), 0);
+  char *va[] = {dbpath, "--run", "1"};
+  snprintf(out, sizeof out, "%s/veldist.tsv", dir);
+  assert_int_equal(run_cmd(haff_veldist_main, "veldist", va, 3, out), 0);
+  char *ea[] = {dbpath};
+  snprintf(out, sizeof out, "%s/energy.tsv", dir);
+  assert_int_equal(run_cmd(haff_energy_main, "energy", ea, 1, out), 0);
+  for (int i = 0; i < 4; i++)
+    for (int e = 0; e < 2; e++) {
+      const char *ext = e ? "svg" : "png";
+      char cmd[2048], errf[400], outf[400];
+      snprintf(errf, sizeof errf, "%s/%s.%s.err", dir, figs[i][0], ext);
+      snprintf(outf, sizeof outf, "%s/%s.%s", dir, figs[i][0], ext);
+      snprintf(cmd, sizeof cmd, "gnuplot -e \"in='%s/%s'; out='%s'%s\" '%s/../plots/%s.gp' 2>'%s'",
+               dir, figs[i][1], outf, i == 2 ? "; in2='" : "", src, figs[i][0], errf);
+      if (i == 2) { /* fig5 with a second (elastic) input: the same file stands in */
+        char tmp[2048];
+        snprintf(tmp, sizeof tmp, "gnuplot -e \"in='%s/%s'; out='%s'; in2='%s/%s'\" '%s/../plots/%s.gp' 2>'%s'",
+                 dir, figs[i][1], outf, dir, figs[i][1], src, figs[i][0], errf);
+        memcpy(cmd, tmp, sizeof tmp);
+      }
+      int rc = system(cmd);
+      FILE *f = fopen(errf, "r");
+      assert_non_null(f);
+      char buf[512] = "";
+      size_t got = fread(buf, 1, sizeof buf - 1, f);
+      fclose(f);
+      if (rc != 0 || got != 0) fail_msg("%s.%s: rc %d, stderr: %s", figs[i][0], ext, rc, buf);
+      f = fopen(outf, "r");
+      assert_non_null(f);
+      fseek(f, 0, SEEK_END);
+      assert_true(ftell(f) > 1000);
+      fclose(f);
+    }
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(haff_fit_runs), cmocka_unit_test(table1),  cmocka_unit_test(table2),
+      cmocka_unit_test(energy),        cmocka_unit_test(angles),  cmocka_unit_test(veldist),
+      cmocka_unit_test(gnuplot_scripts),
+  };
+  return cmocka_run_group_tests(tests, setup, teardown);
+}
