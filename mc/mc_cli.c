@@ -3,6 +3,7 @@
 #include <string.h>
 
 int haff_mc_main(int argc, char **argv);
+int hd_mc_eps_main(int argc, char **argv); /* mc/eps_cli.c */
 
 /* One `haff mc` subcommand. */
 typedef struct mc_command {
@@ -12,6 +13,7 @@ typedef struct mc_command {
 } mc_command;
 
 static const mc_command mc_commands[] = {
+    {"eps", hd_mc_eps_main, "sample or tabulate p_beta(eps), the rods' stochastic restitution"},
     {NULL, NULL, NULL} /* sentinel; each mc program adds its line above */
 };
 
