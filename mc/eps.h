@@ -109,9 +109,9 @@ int hd_eps_table_build(hd_eps_table **out, hd_eps_sampler *s, double beta_min, d
 void hd_eps_table_free(hd_eps_table *t);
 
 /* One eps from the table: u ~ U(0,1), Q linear in u within a node and linear in ln beta between
- * nodes (same u).  Outside [beta_min, beta_max] the nearest node is rescaled: below,
- * eps = Q(beta_min) sqrt(beta_min/beta); above, eps = g + (Q(beta_max) - g) sqrt(beta_max/beta)
- * with g = gamma_eff (so beta = +inf gives g).  Returns NaN for a NaN or non-positive beta. */
+ * nodes (same u).  Below beta_min the beta_min node is used as is (p_beta has no simple scaling
+ * there, docs/mc-eps.md); above beta_max, eps = g + (Q(beta_max) - g) sqrt(beta_max/beta) with
+ * g = gamma_eff (the O(sigma) approach to the cold limit; beta = +inf gives g).  Returns NaN for a NaN or non-positive beta. */
 double hd_eps_table_sample(const hd_eps_table *t, double beta, gsl_rng *rng);
 
 /* The inverse CDF of the table at (beta, u), u in [0,1], with the interpolation above. */

@@ -92,6 +92,11 @@ static int convergence(double gamma, double beta, double beta2, long n, double s
   double *col = malloc(sizeof(double) * (size_t)n);
   if (!e || !d1 || !d2 || !col) {
     fprintf(stderr, "haff mc eps: out of memory\n");
+    free(e);
+    free(d1);
+    free(d2);
+    free(col);
+    hd_eps_sampler_free(s);
     return 1;
   }
   for (long i = 0; i < n; i++) {
@@ -197,7 +202,10 @@ static int tabulate(hd_eps_sampler *s, const char *dbpath, double bmin, double b
   /* the table's error at off-node betas (geometric midpoints) against fresh direct samples */
   printf("table\tbeta\tks\tks_noise\tmean_direct\tmean_table\tmean_err\tmean_err_se\n");
   double *x = malloc(sizeof(double) * (size_t)n);
-  if (!x) return 1;
+  if (!x) {
+    hd_eps_table_free(t);
+    return 1;
+  }
   double lr = log(bmax / bmin) / (nbeta - 1);
   for (int k = 0; k + 1 < nbeta; k += (nbeta > 6 ? (nbeta - 1) / 6 : 1)) {
     double b = bmin * exp(lr * (k + 0.5));
@@ -315,6 +323,8 @@ int hd_mc_eps_main(int argc, char **argv) {
   double *x = malloc(sizeof(double) * (size_t)n);
   if (!x) {
     fprintf(stderr, "haff mc eps: out of memory\n");
+    hd_eps_sampler_free(s);
+    gsl_rng_free(rng);
     return 1;
   }
   double t0 = seconds_now();

@@ -94,7 +94,7 @@ static double node_quantile(const hd_eps_table *t, int k, double u) {
 
 double hd_eps_table_quantile(const hd_eps_table *t, double beta, double u) {
   if (isnan(beta) || !(beta > 0)) return NAN;
-  if (beta <= t->beta_min) return node_quantile(t, 0, u) * sqrt(t->beta_min / beta);
+  if (beta <= t->beta_min) return node_quantile(t, 0, u); /* no scaling law: docs/mc-eps.md */
   if (beta >= t->beta_max) {
     double g = t->gamma_eff;
     if (isinf(beta)) return g;
