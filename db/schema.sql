@@ -77,3 +77,30 @@ CREATE TABLE IF NOT EXISTS checkpoints (
   t     REAL NOT NULL,
   blob  BLOB NOT NULL
 );
+
+-- Tabulated p_beta(eps) of the rod paper (`haff mc eps --tabulate`, mc/eps_table.c): inverse
+-- CDFs Q_k(u_j) on a logarithmic beta grid for one length ratio; docs/mc-eps.md.
+CREATE TABLE IF NOT EXISTS eps_tables (
+  id         INTEGER PRIMARY KEY,
+  gamma      REAL NOT NULL,     -- length ratio l1/l2 as requested
+  gamma_eff  REAL NOT NULL,     -- canonical ratio N1/N2 <= 1 actually simulated
+  nbeta      INTEGER NOT NULL,  -- beta nodes, beta_k = beta_min (beta_max/beta_min)^(k/(nbeta-1))
+  nu         INTEGER NOT NULL,  -- quantiles per node, u_j = j/(nu-1)
+  beta_min   REAL NOT NULL,
+  beta_max   REAL NOT NULL,
+  samples    INTEGER NOT NULL,  -- direct samples per node
+  step       REAL NOT NULL,     -- grid step of the direct sampler (at beta >= 1)
+  adapt      INTEGER NOT NULL,  -- its step reduction at small beta
+  richardson INTEGER NOT NULL,  -- 1 if per-path Richardson extrapolation was used
+  seed       INTEGER NOT NULL,
+  seconds    REAL NOT NULL,     -- build time
+  created    TEXT NOT NULL      -- ISO 8601 UTC
+);
+CREATE TABLE IF NOT EXISTS eps_table_points (
+  tab   INTEGER NOT NULL REFERENCES eps_tables(id),
+  k     INTEGER NOT NULL,       -- beta node
+  beta  REAL NOT NULL,
+  j     INTEGER NOT NULL,       -- quantile index
+  u     REAL NOT NULL,          -- j/(nu-1)
+  eps   REAL NOT NULL           -- Q_k(u_j)
+);

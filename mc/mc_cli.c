@@ -4,6 +4,7 @@
 
 int haff_mc_main(int argc, char **argv);
 int hd_mc_fmean_main(int argc, char **argv);
+int hd_mc_eps_main(int argc, char **argv); /* mc/eps_cli.c */
 
 /* One `haff mc` subcommand. */
 typedef struct mc_command {
@@ -14,6 +15,7 @@ typedef struct mc_command {
 
 static const mc_command mc_commands[] = {
     {"fmean", hd_mc_fmean_main, "<f> and D_e = D/<f> for an elongation a/d"},
+    {"eps", hd_mc_eps_main, "sample or tabulate p_beta(eps), the rods' stochastic restitution"},
     {NULL, NULL, NULL} /* sentinel; each mc program adds its line above */
 };
 

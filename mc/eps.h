@@ -1,0 +1,132 @@
+/* hd_eps: the stochastic coefficient of restitution of two elastic rods (Aspelmeier, Giese,
+ * Zippelius 1998, Sec. II A-B), solved in the hard-core limit (eqs. 13-14) for one collision,
+ * and tabulated as inverse CDFs on a logarithmic beta grid.  docs/mc-eps.md states exactly what
+ * is solved, the numerical scheme, its bias and the paper's ambiguities.
+ *
+ * Rod 1 is the rod of length l1, rod 2 of length l2, gamma = l1/l2 (any gamma > 0; the law of
+ * eps depends on gamma only through {gamma, 1/gamma}).  beta = E_tr/T_B, where E_tr is the
+ * translational energy of the relative motion before the collision and T_B the bath
+ * temperature; the noise of rod i has sigma_i^2 = T_B(i)/(2 E_tr) = 1/(2 beta_i) (eq. 12). */
+#ifndef HD_EPS_H
+#define HD_EPS_H
+
+#include <gsl/gsl_rng.h>
+#include <sqlite3.h>
+#include <stdint.h>
+
+#include "hd_error.h"
+
+/* Options of the direct sampler.  hd_eps_opts_default() fills the defaults in brackets. */
+typedef struct hd_eps_opts {
+  double step;    /* target grid step in tau = c t / l; the actual step divides both round-trip
+                     times Gamma_1 = 1+gamma, Gamma_2 = 1+1/gamma exactly [0.01] */
+  int adapt;      /* the step is halved for each halving of beta below 1, down to step/adapt
+                     (a power of 2), because the grid bias grows with the noise [16] */
+  int richardson; /* 1: solve each path also on a 4x finer grid and return
+                     2 eps_fine - eps_coarse (bias ~ sqrt(step) removed per path; widens the
+                     distribution at beta < 1, see docs/mc-eps.md); 0: plain grid [0] */
+  double max_tau; /* cap on the duration of one collision, in tau [1e4] */
+} hd_eps_opts;
+
+/* Fills opts with the defaults. */
+void hd_eps_opts_default(hd_eps_opts *opts);
+
+/* A direct sampler for one length ratio (owns its work arrays; not thread-safe). */
+typedef struct hd_eps_sampler hd_eps_sampler;
+
+/* Allocates a sampler for length ratio gamma > 0 (opts NULL = defaults).  gamma is replaced by
+ * the nearest rational N1/N2 that the grid resolves (exact for gamma = 4/5 and other small
+ * denominators; see hd_eps_sampler_gamma).  Returns HD_OK, HD_EINPUT (bad gamma or options) or
+ * HD_ENOMEM, with err set. */
+int hd_eps_sampler_alloc(hd_eps_sampler **out, double gamma, const hd_eps_opts *opts,
+                         hd_error *err);
+
+/* Frees the sampler.  NULL is allowed. */
+void hd_eps_sampler_free(hd_eps_sampler *s);
+
+/* One eps for equal bath temperatures (the paper's rule: T_B = mean of the two rods' bath
+ * temperatures, beta = E_tr/T_B).  beta = +inf (cold baths) gives min(gamma, 1/gamma).
+ * Returns eps >= 0, or NaN if beta is NaN or <= 0. */
+double hd_eps_sample(hd_eps_sampler *s, double beta, gsl_rng *rng);
+
+/* One eps for unequal bath temperatures: beta1 = E_tr/T_B(rod 1), beta2 = E_tr/T_B(rod 2),
+ * each may be +inf.  Returns eps >= 0, or NaN on a NaN or non-positive beta. */
+double hd_eps_sample2(hd_eps_sampler *s, double beta1, double beta2, gsl_rng *rng);
+
+/* The canonical length ratio actually simulated, min(gamma', 1/gamma') with gamma' = N1/N2. */
+double hd_eps_sampler_gamma(const hd_eps_sampler *s);
+
+/* The length ratio given to hd_eps_sampler_alloc. */
+double hd_eps_sampler_gamma_in(const hd_eps_sampler *s);
+
+/* The grid step actually used at beta >= 1 (Gamma_2 / N2). */
+double hd_eps_sampler_step(const hd_eps_sampler *s);
+
+/* The options the sampler was made with. */
+void hd_eps_sampler_opts(const hd_eps_sampler *s, hd_eps_opts *opts);
+
+/* Counters since allocation: samples drawn, collisions cut at max_tau (eps then is the value
+ * reached), Richardson estimates clamped to 0, and grid steps solved (fine + coarse). */
+typedef struct hd_eps_stats {
+  long samples;   /* calls that solved a collision */
+  long truncated; /* collisions still running at max_tau */
+  long clamped;   /* Richardson combinations < 0 set to 0 */
+  double steps;   /* grid steps solved, all levels */
+} hd_eps_stats;
+
+/* Copies the counters. */
+void hd_eps_sampler_stats(const hd_eps_sampler *s, hd_eps_stats *st);
+
+/* Solves one collision on one sampled path at several grid steps: out[m] is eps on the grid of
+ * step (opts step)*strides[m]/R, R = adapt (times 4 with richardson), each stride a divisor of
+ * R and a multiple of the smallest, all on the same path and the same random phase.  No extrapolation.
+ * Used by the convergence study (`haff mc eps --convergence`).  Returns HD_OK or HD_EINPUT. */
+int hd_eps_sample_strides(hd_eps_sampler *s, double beta1, double beta2, const int *strides,
+                          int n, double *out, gsl_rng *rng);
+
+/* ---- tables: p_beta(eps) as inverse CDFs on a logarithmic beta grid (equal temperatures) --- */
+
+/* A table Q_k(u_j), k < nbeta, j < nu, u_j = j/(nu-1), beta_k = beta_min (beta_max/beta_min)^(k/(nbeta-1)). */
+typedef struct hd_eps_table {
+  double gamma;      /* length ratio requested */
+  double gamma_eff;  /* canonical ratio simulated (<= 1) */
+  int nbeta, nu;     /* grid sizes, nbeta >= 2, nu >= 2 */
+  double beta_min, beta_max; /* beta grid ends, 0 < beta_min < beta_max */
+  long samples;      /* direct samples per beta node */
+  double step;       /* grid step of the direct sampler */
+  int adapt;         /* its adapt option */
+  int richardson;    /* its richardson option */
+  double seconds;    /* build time */
+  double *q;         /* nbeta*nu quantiles, q[k*nu + j], nondecreasing in j */
+} hd_eps_table;
+
+/* Builds a table by direct sampling (samples per node, sorted, empirical quantiles).  The
+ * sampler fixes gamma, step, adapt and richardson.  Returns HD_OK, HD_EINPUT or HD_ENOMEM. */
+int hd_eps_table_build(hd_eps_table **out, hd_eps_sampler *s, double beta_min, double beta_max,
+                       int nbeta, int nu, long samples, gsl_rng *rng, hd_error *err);
+
+/* Frees a table.  NULL is allowed. */
+void hd_eps_table_free(hd_eps_table *t);
+
+/* One eps from the table: u ~ U(0,1), Q linear in u within a node and linear in ln beta between
+ * nodes (same u).  Below beta_min the beta_min node is used as is (p_beta has no simple scaling
+ * there, docs/mc-eps.md); above beta_max, eps = g + (Q(beta_max) - g) sqrt(beta_max/beta) with
+ * g = gamma_eff (the O(sigma) approach to the cold limit; beta = +inf gives g).  Returns NaN for a NaN or non-positive beta. */
+double hd_eps_table_sample(const hd_eps_table *t, double beta, gsl_rng *rng);
+
+/* The inverse CDF of the table at (beta, u), u in [0,1], with the interpolation above. */
+double hd_eps_table_quantile(const hd_eps_table *t, double beta, double u);
+
+/* Writes the table to db (tables eps_tables and eps_table_points of db/schema.sql, created if
+ * missing) in one transaction; *id (if not NULL) gets its eps_tables.id.  HD_OK or HD_EIO. */
+int hd_eps_table_save(const hd_eps_table *t, sqlite3 *db, unsigned long seed, int64_t *id,
+                      hd_error *err);
+
+/* Loads table id from db; id <= 0 loads the newest table whose gamma equals gamma (within
+ * 1e-12).  Returns HD_OK, HD_EINPUT (no such table) or HD_EIO. */
+int hd_eps_table_load(hd_eps_table **out, sqlite3 *db, int64_t id, double gamma, hd_error *err);
+
+/* The `haff mc eps` program. */
+int hd_mc_eps_main(int argc, char **argv);
+
+#endif

@@ -1,0 +1,360 @@
+/* `haff mc eps`: sample, study the convergence of, or tabulate p_beta(eps) (mc/eps.h). */
+#include <getopt.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_sort.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "eps.h"
+
+static void usage(FILE *out) {
+  fprintf(out,
+          "usage: haff mc eps --gamma G [--beta B] [--beta2 B2] [--samples N] [--seed K]\n"
+          "                   [--step H] [--adapt A] [--richardson] [--dump FILE]\n"
+          "       haff mc eps --gamma G [--beta B] --convergence [--samples N] [--step H]\n"
+          "       haff mc eps --gamma G --tabulate --db DB [--beta-min B0] [--beta-max B1]\n"
+          "                   [--nbeta K] [--nu M] [--samples N] [--step H]\n\n"
+          "Samples the rods' stochastic coefficient of restitution eps (Aspelmeier et al. 1998,\n"
+          "eqs. 13-14, hard-core limit) for length ratio G = l1/l2 and beta = E_tr/T_B.\n"
+          "Prints TSV: gamma beta eps_mean eps_stderr eps_sd samples seconds.\n\n"
+          "  --gamma G       length ratio l1/l2 > 0 (required)\n"
+          "  --beta B        E_tr/T_B, T_B the mean bath temperature (paper's rule) [1]; inf = cold\n"
+          "  --beta2 B2      unequal baths: B = E_tr/T_B(rod 1), B2 = E_tr/T_B(rod 2)\n"
+          "  --samples N     samples [10000] (per beta node with --tabulate [2000])\n"
+          "  --seed K        RNG seed (mt19937) [1]\n"
+          "  --step H        grid step in tau at beta >= 1 [0.01]\n"
+          "  --adapt A       step reduced down to H/A at beta < 1 (power of 2) [16]\n"
+          "  --richardson    per-path Richardson extrapolation (4x finer grid)\n"
+          "  --dump FILE     write the samples, one per line\n"
+          "  --convergence   bias against the step: TSV of mean eps at steps H..H/64 on coupled\n"
+          "                  paths, and the detailed-balance yardsticks <beta(eps^2-1)> and\n"
+          "                  <ln eps> with beta ~ Exp(1) (both 0 exactly)\n"
+          "  --tabulate      build inverse-CDF tables on a log beta grid and store them in --db;\n"
+          "                  prints the table's KS distance and mean error against direct sampling\n"
+          "  --beta-min B0, --beta-max B1, --nbeta K, --nu M   table grid [1e-3, 1e3, 25, 129]\n");
+}
+
+static double seconds_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int parse_d(const char *s, double *out) {
+  char *end;
+  if (!strcmp(s, "inf")) {
+    *out = INFINITY;
+    return 1;
+  }
+  *out = strtod(s, &end);
+  return *s && !*end && !isnan(*out);
+}
+
+static int parse_l(const char *s, long *out) {
+  char *end;
+  *out = strtol(s, &end, 10);
+  return *s && !*end;
+}
+
+/* Mean, stderr, sd of x[0..n). */
+static void moments(const double *x, long n, double *mean, double *se, double *sd) {
+  double m = 0, v = 0;
+  for (long i = 0; i < n; i++) m += x[i];
+  m /= (double)n;
+  for (long i = 0; i < n; i++) v += (x[i] - m) * (x[i] - m);
+  v = n > 1 ? v / (double)(n - 1) : 0;
+  *mean = m;
+  *sd = sqrt(v);
+  *se = sqrt(v / (double)n);
+}
+
+/* The convergence study (docs/mc-eps.md, "Bias against the step"). */
+static int convergence(double gamma, double beta, double beta2, long n, double step,
+                       gsl_rng *rng) {
+  enum { NS = 7 };
+  hd_eps_opts o;
+  hd_eps_opts_default(&o);
+  o.step = step;
+  o.adapt = 64;
+  hd_eps_sampler *s;
+  hd_error err;
+  if (hd_eps_sampler_alloc(&s, gamma, &o, &err)) {
+    fprintf(stderr, "haff mc eps: %s\n", err.msg);
+    return 2;
+  }
+  const int strides[NS] = {64, 32, 16, 8, 4, 2, 1};
+  double out[NS];
+  double *e = malloc(sizeof(double) * (size_t)n * NS);
+  double *d1 = malloc(sizeof(double) * (size_t)n * NS), *d2 = malloc(sizeof(double) * (size_t)n * NS);
+  double *col = malloc(sizeof(double) * (size_t)n);
+  if (!e || !d1 || !d2 || !col) {
+    fprintf(stderr, "haff mc eps: out of memory\n");
+    free(e);
+    free(d1);
+    free(d2);
+    free(col);
+    hd_eps_sampler_free(s);
+    return 1;
+  }
+  for (long i = 0; i < n; i++) {
+    hd_eps_sample_strides(s, beta, beta2, strides, NS, out, rng);
+    for (int m = 0; m < NS; m++) e[m * n + i] = out[m];
+    double b = gsl_ran_exponential(rng, 1.0); /* detailed-balance yardsticks */
+    hd_eps_sample_strides(s, b, b, strides, NS, out, rng);
+    for (int m = 0; m < NS; m++) {
+      d1[m * n + i] = b * (out[m] * out[m] - 1.0);
+      d2[m * n + i] = log(out[m]);
+    }
+  }
+  printf("scheme\tstep\teps_mean\teps_sd\tbias_vs_finest\tbias_stderr\tdb_energy\tdb_energy_se"
+         "\tdb_log\tdb_log_se\tus_per_sample\n");
+  double h0 = hd_eps_sampler_step(s) / 64.0;
+  for (int pass = 0; pass < 2; pass++)
+    for (int m = 0; m < NS; m++) {
+      if (pass == 1 && m + 2 >= NS) break;
+      double mean, se, sd, bm, bse, bsd, em, ese, lm, lse;
+      /* plain grid at stride m, or Richardson 2 eps(stride/4) - eps(stride) */
+      for (long i = 0; i < n; i++)
+        col[i] = pass == 0 ? e[m * n + i] : fmax(0, 2 * e[(m + 2) * n + i] - e[m * n + i]);
+      moments(col, n, &mean, &se, &sd);
+      for (long i = 0; i < n; i++) col[i] -= e[(NS - 1) * n + i];
+      moments(col, n, &bm, &bse, &bsd);
+      for (long i = 0; i < n; i++)
+        col[i] = pass == 0 ? d1[m * n + i]
+                           : 2 * d1[(m + 2) * n + i] - d1[m * n + i];
+      moments(col, n, &em, &ese, &bsd);
+      for (long i = 0; i < n; i++)
+        col[i] = pass == 0 ? d2[m * n + i] : 2 * d2[(m + 2) * n + i] - d2[m * n + i];
+      moments(col, n, &lm, &lse, &bsd);
+      /* cost: time the plain sampler at this step on a fresh sampler */
+      hd_eps_opts oc;
+      hd_eps_opts_default(&oc);
+      oc.step = h0 * strides[m];
+      oc.adapt = 1;
+      oc.richardson = pass;
+      hd_eps_sampler *sc;
+      double us = NAN;
+      if (hd_eps_sampler_alloc(&sc, gamma, &oc, &err) == HD_OK) {
+        long nt = n < 2000 ? n : 2000;
+        double t0 = seconds_now();
+        for (long i = 0; i < nt; i++) hd_eps_sample2(sc, beta, beta2, rng);
+        us = (seconds_now() - t0) / (double)nt * 1e6;
+        hd_eps_sampler_free(sc);
+      }
+      printf("%s\t%.6g\t%.6f\t%.6f\t%.6f\t%.6f\t%.5f\t%.5f\t%.5f\t%.5f\t%.2f\n",
+             pass ? "richardson" : "grid", h0 * strides[m], mean, sd, bm, bse, em, ese, lm, lse,
+             us);
+    }
+  free(e);
+  free(d1);
+  free(d2);
+  free(col);
+  hd_eps_sampler_free(s);
+  return 0;
+}
+
+/* KS distance between the sorted sample x and the table's CDF at beta (u found by bisection). */
+static double ks_table(const hd_eps_table *t, double beta, const double *x, long n) {
+  double d = 0;
+  for (long i = 0; i < n; i++) {
+    double lo = 0, hi = 1;
+    for (int it = 0; it < 40; it++) {
+      double mid = 0.5 * (lo + hi);
+      if (hd_eps_table_quantile(t, beta, mid) <= x[i])
+        lo = mid;
+      else
+        hi = mid;
+    }
+    double a = fabs(lo - (double)i / (double)n), b = fabs(lo - (double)(i + 1) / (double)n);
+    d = fmax(d, fmax(a, b));
+  }
+  return d;
+}
+
+static int tabulate(hd_eps_sampler *s, const char *dbpath, double bmin, double bmax, int nbeta,
+                    int nu, long n, unsigned long seed, gsl_rng *rng) {
+  hd_error err;
+  hd_eps_table *t;
+  if (hd_eps_table_build(&t, s, bmin, bmax, nbeta, nu, n, rng, &err)) {
+    fprintf(stderr, "haff mc eps: %s\n", err.msg);
+    return hd_exit_code(err.code);
+  }
+  sqlite3 *db;
+  if (sqlite3_open(dbpath, &db) != SQLITE_OK) {
+    fprintf(stderr, "haff mc eps: cannot open %s: %s\n", dbpath, sqlite3_errmsg(db));
+    sqlite3_close(db);
+    hd_eps_table_free(t);
+    return 1;
+  }
+  int64_t id = 0;
+  int rc = hd_eps_table_save(t, db, seed, &id, &err);
+  sqlite3_close(db);
+  if (rc) {
+    fprintf(stderr, "haff mc eps: %s\n", err.msg);
+    hd_eps_table_free(t);
+    return 1;
+  }
+  fprintf(stderr, "eps table %lld: gamma %g, %d x %d, %ld samples per node, %.1f s\n",
+          (long long)id, t->gamma, t->nbeta, t->nu, t->samples, t->seconds);
+  /* the table's error at off-node betas (geometric midpoints) against fresh direct samples */
+  printf("table\tbeta\tks\tks_noise\tmean_direct\tmean_table\tmean_err\tmean_err_se\n");
+  double *x = malloc(sizeof(double) * (size_t)n);
+  if (!x) {
+    hd_eps_table_free(t);
+    return 1;
+  }
+  double lr = log(bmax / bmin) / (nbeta - 1);
+  for (int k = 0; k + 1 < nbeta; k += (nbeta > 6 ? (nbeta - 1) / 6 : 1)) {
+    double b = bmin * exp(lr * (k + 0.5));
+    for (long i = 0; i < n; i++) x[i] = hd_eps_sample(s, b, rng);
+    gsl_sort(x, 1, (size_t)n);
+    double ks = ks_table(t, b, x, n);
+    double md = 0, mt = 0, vd = 0;
+    for (long i = 0; i < n; i++) {
+      md += x[i];
+      vd += x[i] * x[i];
+      mt += hd_eps_table_quantile(t, b, ((double)i + 0.5) / (double)n);
+    }
+    md /= (double)n;
+    mt /= (double)n;
+    vd = vd / (double)n - md * md;
+    printf("%lld\t%.6g\t%.4f\t%.4f\t%.5f\t%.5f\t%.5f\t%.5f\n", (long long)id, b, ks,
+           1.36 * sqrt(2.0 / (double)n), md, mt, mt - md, sqrt(2 * vd / (double)n));
+  }
+  free(x);
+  hd_eps_table_free(t);
+  return 0;
+}
+
+int hd_mc_eps_main(int argc, char **argv) {
+  static const struct option opts[] = {
+      {"gamma", required_argument, 0, 'g'},    {"beta", required_argument, 0, 'b'},
+      {"beta2", required_argument, 0, 'B'},    {"samples", required_argument, 0, 'n'},
+      {"seed", required_argument, 0, 's'},     {"step", required_argument, 0, 'h'},
+      {"adapt", required_argument, 0, 'a'},    {"richardson", no_argument, 0, 'r'},
+      {"dump", required_argument, 0, 'd'},     {"convergence", no_argument, 0, 'c'},
+      {"tabulate", no_argument, 0, 't'},       {"db", required_argument, 0, 'D'},
+      {"beta-min", required_argument, 0, 'm'}, {"beta-max", required_argument, 0, 'M'},
+      {"nbeta", required_argument, 0, 'K'},    {"nu", required_argument, 0, 'U'},
+      {"help", no_argument, 0, '?' + 256},     {0, 0, 0, 0}};
+  double gamma = NAN, beta = 1, beta2 = NAN, bmin = 1e-3, bmax = 1e3;
+  long n = -1, seed = 1, nbeta = 25, nu = 129, adapt = -1;
+  int conv = 0, tab = 0;
+  const char *dump = NULL, *dbpath = NULL;
+  hd_eps_opts o;
+  hd_eps_opts_default(&o);
+  optind = 1;
+  opterr = 0;
+  int c, li = 0;
+  while ((c = getopt_long(argc, argv, "", opts, &li)) != -1) {
+    int ok = 1;
+    switch (c) {
+    case 'g': ok = parse_d(optarg, &gamma); break;
+    case 'b': ok = parse_d(optarg, &beta); break;
+    case 'B': ok = parse_d(optarg, &beta2); break;
+    case 'n': ok = parse_l(optarg, &n) && n >= 1; break;
+    case 's': ok = parse_l(optarg, &seed) && seed >= 0; break;
+    case 'h': ok = parse_d(optarg, &o.step); break;
+    case 'a': ok = parse_l(optarg, &adapt); break;
+    case 'r': o.richardson = 1; break;
+    case 'd': dump = optarg; break;
+    case 'c': conv = 1; break;
+    case 't': tab = 1; break;
+    case 'D': dbpath = optarg; break;
+    case 'm': ok = parse_d(optarg, &bmin); break;
+    case 'M': ok = parse_d(optarg, &bmax); break;
+    case 'K': ok = parse_l(optarg, &nbeta); break;
+    case 'U': ok = parse_l(optarg, &nu); break;
+    case '?' + 256: usage(stdout); return 0;
+    default:
+      fprintf(stderr, "haff mc eps: unknown or incomplete option '%s' (see --help)\n",
+              argv[optind - 1]);
+      return 2;
+    }
+    if (!ok) {
+      fprintf(stderr, "haff mc eps: bad value '%s' for --%s\n", optarg, opts[li].name);
+      return 2;
+    }
+  }
+  if (optind < argc) {
+    fprintf(stderr, "haff mc eps: unexpected argument '%s'\n", argv[optind]);
+    return 2;
+  }
+  if (isnan(gamma)) {
+    fprintf(stderr, "haff mc eps: --gamma is required (see --help)\n");
+    return 2;
+  }
+  if (isnan(beta2)) beta2 = beta;
+  if (!(beta > 0) || !(beta2 > 0)) {
+    fprintf(stderr, "haff mc eps: --beta and --beta2 must be > 0\n");
+    return 2;
+  }
+  if (tab && !dbpath) {
+    fprintf(stderr, "haff mc eps: --tabulate needs --db DB\n");
+    return 2;
+  }
+  if (adapt >= 0) o.adapt = (int)adapt;
+  if (n < 0) n = tab ? 2000 : 10000;
+  gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+  if (!rng) return 1;
+  gsl_rng_set(rng, (unsigned long)seed);
+  int rc;
+  if (conv) {
+    rc = convergence(gamma, beta, beta2, n, o.step, rng);
+    gsl_rng_free(rng);
+    return rc;
+  }
+  hd_eps_sampler *s;
+  hd_error err;
+  if (hd_eps_sampler_alloc(&s, gamma, &o, &err)) {
+    fprintf(stderr, "haff mc eps: %s\n", err.msg);
+    gsl_rng_free(rng);
+    return hd_exit_code(err.code);
+  }
+  if (tab) {
+    rc = tabulate(s, dbpath, bmin, bmax, (int)nbeta, (int)nu, n, (unsigned long)seed, rng);
+    hd_eps_sampler_free(s);
+    gsl_rng_free(rng);
+    return rc;
+  }
+  double *x = malloc(sizeof(double) * (size_t)n);
+  if (!x) {
+    fprintf(stderr, "haff mc eps: out of memory\n");
+    hd_eps_sampler_free(s);
+    gsl_rng_free(rng);
+    return 1;
+  }
+  double t0 = seconds_now();
+  for (long i = 0; i < n; i++) x[i] = hd_eps_sample2(s, beta, beta2, rng);
+  double sec = seconds_now() - t0;
+  rc = 0;
+  if (dump) {
+    FILE *f = fopen(dump, "w");
+    if (!f) {
+      fprintf(stderr, "haff mc eps: cannot write %s\n", dump);
+      rc = 1;
+    } else {
+      for (long i = 0; i < n; i++) fprintf(f, "%.10g\n", x[i]);
+      if (fclose(f)) {
+        fprintf(stderr, "haff mc eps: error writing %s\n", dump);
+        rc = 1;
+      }
+    }
+  }
+  double mean, se, sd;
+  moments(x, n, &mean, &se, &sd);
+  printf("gamma\tbeta\teps_mean\teps_stderr\teps_sd\tsamples\tseconds\n");
+  printf("%g\t%g\t%.6f\t%.6f\t%.6f\t%ld\t%.3f\n", gamma, beta, mean, se, sd, n, sec);
+  hd_eps_stats st;
+  hd_eps_sampler_stats(s, &st);
+  if (st.truncated || st.clamped)
+    fprintf(stderr, "haff mc eps: %ld collisions cut at max_tau, %ld Richardson values clamped\n",
+            st.truncated, st.clamped);
+  free(x);
+  hd_eps_sampler_free(s);
+  gsl_rng_free(rng);
+  return rc;
+}

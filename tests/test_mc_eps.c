@@ -1,0 +1,289 @@
+/* Tests of mc/eps: the rods' stochastic coefficient of restitution (docs/mc-eps.md). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <gsl/gsl_randist.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "eps.h"
+
+static int sanitize(void) {
+  const char *s = getenv("HAFF_SANITIZE");
+  return s && *s == '1';
+}
+
+static hd_eps_sampler *make(double gamma, double step) {
+  hd_eps_opts o;
+  hd_eps_opts_default(&o);
+  if (step > 0) o.step = step;
+  hd_eps_sampler *s = NULL;
+  hd_error err;
+  assert_int_equal(hd_eps_sampler_alloc(&s, gamma, &o, &err), HD_OK);
+  return s;
+}
+
+static gsl_rng *rng_seeded(unsigned long seed) {
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(r, seed);
+  return r;
+}
+
+/* Cold baths (q = 0): eps = l_short/l_long = min(gamma, 1/gamma) (paper Sec. II B, wave theory);
+ * the solver runs (q = 0 is not special-cased), so this checks the echo bookkeeping. The
+ * tolerance 1e-9 is round-off on ~1e3 grid sums. */
+static void cold_baths_give_gamma(void **state) {
+  (void)state;
+  const double g[] = {0.8, 1.25, 0.5, 0.3};
+  const double want[] = {0.8, 0.8, 0.5, 0.3};
+  gsl_rng *r = rng_seeded(1);
+  for (int i = 0; i < 4; i++) {
+    hd_eps_sampler *s = make(g[i], 0);
+    for (int k = 0; k < 5; k++) assert_true(fabs(hd_eps_sample(s, INFINITY, r) - want[i]) < 1e-9);
+    /* nearly cold: sigma = 7e-7 moves eps by O(sigma) at most */
+    assert_true(fabs(hd_eps_sample(s, 1e12, r) - want[i]) < 1e-4);
+    hd_eps_sampler_free(s);
+  }
+  gsl_rng_free(r);
+}
+
+/* gamma = 1: eps = 1 for every realisation (paper Sec. II B; the grid scheme keeps this exactly
+ * because the contact is snapped to a grid point, docs/mc-eps.md). Tolerance: round-off. */
+static void equal_rods_are_elastic(void **state) {
+  (void)state;
+  hd_eps_sampler *s = make(1.0, 0);
+  gsl_rng *r = rng_seeded(2);
+  const double betas[] = {0.05, 1, 30};
+  int n = sanitize() ? 50 : 300;
+  for (int b = 0; b < 3; b++)
+    for (int i = 0; i < n; i++) assert_true(fabs(hd_eps_sample(s, betas[b], r) - 1.0) < 1e-9);
+  gsl_rng_free(r);
+  hd_eps_sampler_free(s);
+}
+
+/* The paper's footnote: a cold LONGER rod makes the collision deterministic (eps = gamma) however
+ * hot the shorter one is; a cold shorter rod does not.  Checks the assignment of the bridges to
+ * the rods (period 1+gamma belongs to rod 1 of length l1), also for gamma > 1. */
+static void cold_longer_rod_is_deterministic(void **state) {
+  (void)state;
+  gsl_rng *r = rng_seeded(3);
+  hd_eps_sampler *s = make(0.8, 0);
+  double sum = 0, sum2 = 0;
+  int n = sanitize() ? 50 : 400;
+  for (int i = 0; i < n; i++) {
+    assert_true(fabs(hd_eps_sample2(s, 0.5, INFINITY, r) - 0.8) < 1e-9);
+    double e = hd_eps_sample2(s, INFINITY, 0.5, r); /* shorter rod cold, longer hot */
+    sum += e;
+    sum2 += e * e;
+  }
+  double sd = sqrt(sum2 / n - (sum / n) * (sum / n));
+  assert_true(sd > 0.05); /* at beta = 0.5 the spread is O(0.3) */
+  hd_eps_sampler_free(s);
+  s = make(1.25, 0); /* now rod 1 is the longer one */
+  for (int i = 0; i < n / 4; i++) assert_true(fabs(hd_eps_sample2(s, INFINITY, 0.5, r) - 0.8) < 1e-9);
+  hd_eps_sampler_free(s);
+  gsl_rng_free(r);
+}
+
+/* eps >= 0 and finite over a wide range of temperatures; eps <= a + b - 1 = 8 for gamma = a/b =
+ * 4/5 (q is periodic with period a + b, docs/mc-eps.md; approached at small beta); and
+ * gamma <-> 1/gamma gives the same law (the equation depends on {Gamma_1, Gamma_2} only): same
+ * seed, same samples. */
+static void nonnegative_and_symmetric(void **state) {
+  (void)state;
+  hd_eps_sampler *a = make(0.8, 0), *b = make(1.25, 0);
+  gsl_rng *ra = rng_seeded(4), *rb = rng_seeded(4);
+  const double betas[] = {0.003, 0.1, 1, 10, 100};
+  int n = sanitize() ? 40 : 400;
+  for (int k = 0; k < 5; k++)
+    for (int i = 0; i < n; i++) {
+      double x = hd_eps_sample(a, betas[k], ra), y = hd_eps_sample(b, betas[k], rb);
+      assert_true(isfinite(x) && x >= 0 && x <= 8 + 1e-9);
+      assert_true(x == y);
+    }
+  hd_eps_stats st;
+  hd_eps_sampler_stats(a, &st);
+  assert_int_equal(st.truncated, 0);
+  gsl_rng_free(ra);
+  gsl_rng_free(rb);
+  hd_eps_sampler_free(a);
+  hd_eps_sampler_free(b);
+}
+
+/* Detailed balance, eq. (19): with E ~ Exp(1) (the collision-weighted Boltzmann law, eq. 18,
+ * T_B = 1) and E' = eps^2 E, eps ~ p_E, the pair (E, E') is exchangeable.  Three consequences:
+ * <E' - E> = 0, <ln(E'/E)> = 2 <ln eps> = 0, and P(E < 1/2, E' > 3/2) = P(E' < 1/2, E > 3/2).
+ * Each is tested at 4.5 standard errors (false alarm 1e-5 each); the grid bias (~0.2% in eps at
+ * step 0.01) is far below the resolution of n = 20000 samples.  Power: the same statistics must
+ * reject a wrong temperature scale (sigma^2 = 1/beta instead of 1/(2 beta), eq. 12). */
+static void detailed_balance(void **state) {
+  (void)state;
+  hd_eps_sampler *s = make(0.8, 0);
+  gsl_rng *r = rng_seeded(5);
+  int n = sanitize() ? 3000 : 20000;
+  for (int wrong = 0; wrong < 2; wrong++) {
+    double m[3] = {0}, m2[3] = {0};
+    for (long i = 0; i < n; i++) {
+      double E = gsl_ran_exponential(r, 1.0);
+      double e = hd_eps_sample(s, wrong ? E / 2 : E, r);
+      double E2 = e * e * E;
+      double v[3] = {E2 - E, log(e),
+                     (double)(E < 0.5 && E2 > 1.5) - (double)(E2 < 0.5 && E > 1.5)};
+      for (int k = 0; k < 3; k++) {
+        m[k] += v[k];
+        m2[k] += v[k] * v[k];
+      }
+    }
+    double z[3];
+    for (int k = 0; k < 3; k++) {
+      double mean = m[k] / n, se = sqrt((m2[k] / n - mean * mean) / n);
+      z[k] = mean / se;
+    }
+    if (!wrong) {
+      for (int k = 0; k < 3; k++) {
+        if (fabs(z[k]) >= 4.5) fprintf(stderr, "detailed balance statistic %d: z = %g\n", k, z[k]);
+        assert_true(fabs(z[k]) < 4.5);
+      }
+    } else {
+      assert_true(z[0] > 4.5); /* a twice hotter bath heats the rods on average */
+    }
+  }
+  gsl_rng_free(r);
+  hd_eps_sampler_free(s);
+}
+
+/* Discretisation bias: on coupled paths, eps at step 0.01 and at step 0.01/16 differ on average by
+ * c (sqrt(0.01) - sqrt(0.01/16)) with c ~ 0.02 at beta = 1 (docs/mc-eps.md); we require < 0.006,
+ * and that the strides API rejects a stride that is not a divisor. */
+static void step_bias_is_small(void **state) {
+  (void)state;
+  hd_eps_opts o;
+  hd_eps_opts_default(&o);
+  o.adapt = 16;
+  hd_eps_sampler *s;
+  assert_int_equal(hd_eps_sampler_alloc(&s, 0.8, &o, NULL), HD_OK);
+  gsl_rng *r = rng_seeded(6);
+  const int strides[2] = {16, 1};
+  double out[2], d = 0, d2 = 0;
+  int n = sanitize() ? 300 : 3000;
+  for (long i = 0; i < n; i++) {
+    assert_int_equal(hd_eps_sample_strides(s, 1, 1, strides, 2, out, r), HD_OK);
+    d += out[0] - out[1];
+    d2 += (out[0] - out[1]) * (out[0] - out[1]);
+  }
+  double mean = d / n, se = sqrt((d2 / n - mean * mean) / n);
+  assert_true(fabs(mean) < 0.006 + 3 * se);
+  const int bad[1] = {3};
+  assert_int_equal(hd_eps_sample_strides(s, 1, 1, bad, 1, out, r), HD_EINPUT);
+  gsl_rng_free(r);
+  hd_eps_sampler_free(s);
+}
+
+static void bad_input(void **state) {
+  (void)state;
+  hd_eps_sampler *s = NULL;
+  hd_error err;
+  hd_error_clear(&err);
+  assert_int_equal(hd_eps_sampler_alloc(&s, 0, NULL, &err), HD_EINPUT);
+  assert_null(s);
+  assert_true(strlen(err.msg) > 0);
+  hd_eps_opts o;
+  hd_eps_opts_default(&o);
+  o.adapt = 3;
+  assert_int_equal(hd_eps_sampler_alloc(&s, 0.8, &o, &err), HD_EINPUT);
+  s = make(0.8, 0);
+  gsl_rng *r = rng_seeded(7);
+  assert_true(isnan(hd_eps_sample(s, 0, r)));
+  assert_true(isnan(hd_eps_sample(s, NAN, r)));
+  assert_true(isnan(hd_eps_sample2(s, 1, -1, r)));
+  gsl_rng_free(r);
+  hd_eps_sampler_free(s);
+}
+
+/* Tables: monotone quantiles, the cold limit, agreement with direct sampling at an off-node beta
+ * (mean within 4.5 standard errors of the difference plus 0.01 for interpolation in ln beta),
+ * and a lossless round trip through SQLite. */
+static void table_build_sample_store(void **state) {
+  (void)state;
+  hd_eps_sampler *s = make(0.8, 0);
+  gsl_rng *r = rng_seeded(8);
+  int n = sanitize() ? 200 : 1500;
+  hd_eps_table *t;
+  hd_error err;
+  assert_int_equal(hd_eps_table_build(&t, s, 0.1, 100, 7, 65, n, r, &err), HD_OK);
+  for (int k = 0; k < t->nbeta; k++)
+    for (int j = 1; j < t->nu; j++) assert_true(t->q[k * t->nu + j] >= t->q[k * t->nu + j - 1]);
+  assert_true(fabs(hd_eps_table_sample(t, INFINITY, r) - 0.8) < 1e-12);
+  assert_true(isnan(hd_eps_table_sample(t, -1, r)));
+  double b = 0.1 * pow(1000.0, 2.5 / 6); /* between nodes 2 and 3 */
+  double md = 0, mt = 0, vd = 0;
+  for (long i = 0; i < n; i++) {
+    double x = hd_eps_sample(s, b, r), y = hd_eps_table_sample(t, b, r);
+    md += x;
+    mt += y;
+    vd += x * x;
+  }
+  md /= n;
+  mt /= n;
+  vd = vd / n - md * md;
+  assert_true(fabs(md - mt) < 4.5 * sqrt(2 * vd / n) + 0.01);
+
+  char path[] = "/tmp/haff_test_eps_XXXXXX";
+  int fd = mkstemp(path);
+  assert_true(fd >= 0);
+  close(fd);
+  sqlite3 *db;
+  assert_int_equal(sqlite3_open(path, &db), SQLITE_OK);
+  int64_t id = 0;
+  assert_int_equal(hd_eps_table_save(t, db, 8, &id, &err), HD_OK);
+  assert_true(id > 0);
+  hd_eps_table *u = NULL;
+  assert_int_equal(hd_eps_table_load(&u, db, id, 0, &err), HD_OK);
+  assert_int_equal(u->nbeta, t->nbeta);
+  assert_int_equal(u->nu, t->nu);
+  assert_memory_equal(u->q, t->q, sizeof(double) * (size_t)(t->nbeta * t->nu));
+  hd_eps_table_free(u);
+  assert_int_equal(hd_eps_table_load(&u, db, 0, 0.8, &err), HD_OK); /* newest for gamma */
+  assert_true(u->beta_max == 100);
+  hd_eps_table_free(u);
+  assert_int_equal(hd_eps_table_load(&u, db, id + 1, 0, &err), HD_EINPUT);
+  assert_int_equal(hd_eps_table_load(&u, db, 0, 0.5, &err), HD_EINPUT);
+  sqlite3_close(db);
+  unlink(path);
+  char wal[64];
+  snprintf(wal, sizeof wal, "%s-wal", path);
+  unlink(wal);
+  snprintf(wal, sizeof wal, "%s-shm", path);
+  unlink(wal);
+  hd_eps_table_free(t);
+  gsl_rng_free(r);
+  hd_eps_sampler_free(s);
+}
+
+/* CLI exit codes: --help 0, missing --gamma 2, bad value 2, --tabulate without --db 2. */
+static void cli_usage(void **state) {
+  (void)state;
+  char *a1[] = {"eps", "--gamma", "0.8", "--beta", "zero", NULL};
+  assert_int_equal(hd_mc_eps_main(5, a1), 2);
+  char *a2[] = {"eps", "--beta", "1", NULL};
+  assert_int_equal(hd_mc_eps_main(3, a2), 2);
+  char *a3[] = {"eps", "--gamma", "0.8", "--tabulate", NULL};
+  assert_int_equal(hd_mc_eps_main(4, a3), 2);
+  char *a4[] = {"eps", "--gamma", "-1", "--samples", "3", NULL};
+  assert_int_equal(hd_mc_eps_main(5, a4), 2);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(cold_baths_give_gamma),   cmocka_unit_test(equal_rods_are_elastic),
+      cmocka_unit_test(cold_longer_rod_is_deterministic),
+      cmocka_unit_test(nonnegative_and_symmetric), cmocka_unit_test(detailed_balance),
+      cmocka_unit_test(step_bias_is_small),      cmocka_unit_test(bad_input),
+      cmocka_unit_test(table_build_sample_store), cmocka_unit_test(cli_usage)};
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
