@@ -4,6 +4,8 @@
 #include <stdio.h>
 #include <string.h>
 
+int haff_run_main(int argc, char **argv);
+int haff_resume_main(int argc, char **argv);
 int haff_mc_main(int argc, char **argv);
 int haff_export_main(int argc, char **argv);
 /* analysis/ (analysis/hd_ana_cli.h) */
@@ -15,6 +17,8 @@ int haff_angles_main(int argc, char **argv);
 int haff_veldist_main(int argc, char **argv);
 
 static const haff_command commands[] = {
+    {"run", haff_run_main, "run a scene and append one run to a database"},
+    {"resume", haff_resume_main, "continue an interrupted run from its last checkpoint"},
     {"mc", haff_mc_main, "Monte Carlo: `mc fmean` (<f>, D_e) and `mc eps` (rod restitution)"},
     {"export", haff_export_main, "export xyz DB: extended XYZ snapshots for OVITO and VMD"},
     {"haff-fit", haff_fit_main, "fit eq. (31) (D_e, nu0_eff) per run or per (alpha, a/d) group"},

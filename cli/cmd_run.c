@@ -1,0 +1,145 @@
+/* `haff run` and `haff resume`. */
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "haff.h"
+#include "hd_run.h"
+#include "hd_scene.h"
+
+int haff_run_main(int argc, char **argv);
+int haff_resume_main(int argc, char **argv);
+
+#define MAX_SET 256
+
+static const char run_usage[] =
+    "usage: haff run SCENE [-o DB] [--set SECTION.KEY=VALUE]... [--seed N] [--quiet]\n"
+    "  Runs the scene file SCENE and appends one run to DB (default: SCENE's name with .db,\n"
+    "  in the current folder).  --set overrides a scene key; --seed overrides [system] seed.\n"
+    "  Exit status: 0 done, 1 failed run (collapse, interrupted, database), 2 bad usage/input.\n"
+    "  SIGINT/SIGTERM: the run is checkpointed, marked 'interrupted'; continue with haff resume.\n";
+
+/* DB name from the scene path: dir/name.ini -> name.db */
+static void default_db(const char *scene, char *out, size_t n) {
+  const char *base = strrchr(scene, '/');
+  base = base ? base + 1 : scene;
+  snprintf(out, n, "%s", base);
+  char *dot = strrchr(out, '.');
+  if (dot && dot != out) *dot = '\0';
+  size_t len = strlen(out);
+  snprintf(out + len, n - len, ".db");
+}
+
+int haff_run_main(int argc, char **argv) {
+  static const struct option opts[] = {{"set", required_argument, 0, 's'},
+                                       {"seed", required_argument, 0, 'S'},
+                                       {"quiet", no_argument, 0, 'q'},
+                                       {"help", no_argument, 0, 'h'},
+                                       {0, 0, 0, 0}};
+  const char *db = NULL, *sets[MAX_SET];
+  int nset = 0, quiet = 0, have_seed = 0, c;
+  unsigned long long seed = 0;
+  optind = 1;
+  while ((c = getopt_long(argc, argv, "o:qh", opts, NULL)) != -1) {
+    switch (c) {
+    case 'o': db = optarg; break;
+    case 's':
+      if (nset == MAX_SET) {
+        fprintf(stderr, "haff run: more than %d --set options\n", MAX_SET);
+        return 2;
+      }
+      sets[nset++] = optarg;
+      break;
+    case 'S': {
+      char *end;
+      seed = strtoull(optarg, &end, 10);
+      if (!*optarg || *end || optarg[0] == '-') {
+        fprintf(stderr, "haff run: --seed %s: not a non-negative integer\n", optarg);
+        return 2;
+      }
+      have_seed = 1;
+      break;
+    }
+    case 'q': quiet = 1; break;
+    case 'h': fputs(run_usage, stdout); return 0;
+    default: fputs(run_usage, stderr); return 2;
+    }
+  }
+  if (optind != argc - 1) {
+    fprintf(stderr, "haff run: expected one scene file (haff run --help)\n");
+    return 2;
+  }
+  const char *scene = argv[optind];
+  char dbbuf[HD_PATH_MAX];
+  if (!db) {
+    default_db(scene, dbbuf, sizeof dbbuf);
+    db = dbbuf;
+  }
+  hd_error err;
+  hd_error_clear(&err);
+  hd_scene sc;
+  int rc = hd_scene_load(&sc, scene, sets, nset, &err);
+  if (rc) { /* a scene that cannot be read is bad input too */
+    fprintf(stderr, "haff run: %s\n", err.msg);
+    return 2;
+  }
+  if (have_seed) sc.seed = seed;
+  hd_run_opts o = {db, quiet, HAFF_VERSION};
+  int64_t run = 0;
+  rc = hd_run_new(&sc, &o, &run, &err);
+  hd_scene_free(&sc);
+  if (rc) {
+    fprintf(stderr, "haff run: %s%s\n", err.msg,
+            rc == HD_EINTR ? " (continue with: haff resume DB)" : "");
+    return hd_exit_code(rc);
+  }
+  if (!quiet) fprintf(stderr, "haff run: run %lld done, in %s\n", (long long)run, db);
+  return 0;
+}
+
+static const char resume_usage[] =
+    "usage: haff resume DB [--run ID] [--quiet]\n"
+    "  Continues an interrupted (or killed) run from its last checkpoint; the result is the\n"
+    "  same as that of an uninterrupted run.  Without --run: the newest resumable run.\n";
+
+int haff_resume_main(int argc, char **argv) {
+  static const struct option opts[] = {{"run", required_argument, 0, 'r'},
+                                       {"quiet", no_argument, 0, 'q'},
+                                       {"help", no_argument, 0, 'h'},
+                                       {0, 0, 0, 0}};
+  long long want = 0;
+  int quiet = 0, c;
+  optind = 1;
+  while ((c = getopt_long(argc, argv, "qh", opts, NULL)) != -1) {
+    switch (c) {
+    case 'r': {
+      char *end;
+      want = strtoll(optarg, &end, 10);
+      if (!*optarg || *end || want <= 0) {
+        fprintf(stderr, "haff resume: --run %s: not a run id\n", optarg);
+        return 2;
+      }
+      break;
+    }
+    case 'q': quiet = 1; break;
+    case 'h': fputs(resume_usage, stdout); return 0;
+    default: fputs(resume_usage, stderr); return 2;
+    }
+  }
+  if (optind != argc - 1) {
+    fprintf(stderr, "haff resume: expected one database (haff resume --help)\n");
+    return 2;
+  }
+  hd_error err;
+  hd_error_clear(&err);
+  hd_run_opts o = {argv[optind], quiet, HAFF_VERSION};
+  int64_t run = 0;
+  int rc = hd_run_resume(want, &o, &run, &err);
+  if (rc) {
+    fprintf(stderr, "haff resume: %s\n", err.msg);
+    return hd_exit_code(rc);
+  }
+  if (!quiet) fprintf(stderr, "haff resume: run %lld done, in %s\n", (long long)run, argv[optind]);
+  return 0;
+}

@@ -1,0 +1,61 @@
+/* Cell lists: a grid of cells at least as wide as the largest body, each holding a doubly
+ * linked list of the bodies whose centre of mass is in it. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "hd_sim_internal.h"
+
+int hd_cells_alloc(hd_sim *s, hd_error *err) {
+  double range = 0.0; /* largest centre distance at contact: the largest body's diameter */
+  for (int sp = 0; sp < HD_NSPECIES; sp++)
+    if (s->n_species[sp] > 0) range = fmax(range, 2.0 * hd_shape_radius(&s->shape[sp]));
+  if (range <= 0.0) range = 1.0;
+  double fx = floor(s->lx / range), fy = floor(s->ly / range);
+  /* cap the grid at ~4 cells per body so that a dilute gas does not pay for empty cells */
+  double cap = fmax(1.0, 4.0 * (double)s->n);
+  while (fx * fy > cap && (fx > 1 || fy > 1)) {
+    if (fx >= fy) fx = floor(fx / 2); else fy = floor(fy / 2);
+  }
+  s->ncx = (int32_t)fmax(1.0, fx);
+  s->ncy = (int32_t)fmax(1.0, fy);
+  s->cwx = s->lx / s->ncx;
+  s->cwy = s->ly / s->ncy;
+  free(s->head);
+  s->head = malloc(sizeof(int32_t) * (size_t)s->ncx * (size_t)s->ncy);
+  if (!s->head) return hd_error_set(err, HD_ENOMEM, "out of memory for %d x %d cells", s->ncx, s->ncy);
+  for (int64_t c = 0; c < (int64_t)s->ncx * s->ncy; c++) s->head[c] = -1;
+  return HD_OK;
+}
+
+int32_t hd_cells_of(const hd_sim *s, double x, double y) {
+  int32_t cx = (int32_t)floor(x / s->cwx), cy = (int32_t)floor(y / s->cwy);
+  if (cx < 0) cx = 0;
+  if (cx >= s->ncx) cx = s->ncx - 1;
+  if (cy < 0) cy = 0;
+  if (cy >= s->ncy) cy = s->ncy - 1;
+  return cy * s->ncx + cx;
+}
+
+void hd_cells_insert(hd_sim *s, int32_t i, int32_t c) {
+  hd_body *b = &s->b[i];
+  b->cell = c;
+  b->prev = -1;
+  b->next = s->head[c];
+  if (b->next >= 0) s->b[b->next].prev = i;
+  s->head[c] = i;
+}
+
+void hd_cells_remove(hd_sim *s, int32_t i) {
+  hd_body *b = &s->b[i];
+  if (b->prev >= 0)
+    s->b[b->prev].next = b->next;
+  else
+    s->head[b->cell] = b->next;
+  if (b->next >= 0) s->b[b->next].prev = b->prev;
+  b->next = b->prev = -1;
+}
+
+void hd_cells_rebuild(hd_sim *s) {
+  for (int64_t c = 0; c < (int64_t)s->ncx * s->ncy; c++) s->head[c] = -1;
+  for (int32_t i = s->n - 1; i >= 0; i--) hd_cells_insert(s, i, s->b[i].cell);
+}

@@ -1,0 +1,203 @@
+/* The initial state: placement (random sequential addition, a lattice, or a state file) and
+ * Maxwellian velocities with zero total momentum at the scene's temperature. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_randist.h>
+
+#include "hd_sim_internal.h"
+
+/* Does body i overlap any body already in the cells (or a wall)? */
+static int overlaps_any(const hd_sim *s, int32_t i) {
+  const hd_body *bi = &s->b[i];
+  const hd_shape *si = &s->shape[bi->species];
+  int nd = si->kind == HD_KIND_DIMER ? 2 : 1;
+  for (int a = 0; a < nd; a++) { /* inside the walls */
+    double x, y;
+    hd_kin_disk_pos(&bi->k, si, a, &x, &y);
+    double r = 0.5 * si->d;
+    if (((s->walls & HD_WALL_LEFT) && x < r) || ((s->walls & HD_WALL_RIGHT) && x > s->lx - r) ||
+        ((s->walls & HD_WALL_BOTTOM) && y < r) || ((s->walls & HD_WALL_TOP) && y > s->ly - r))
+      return -2;
+  }
+  HD_FOR_NEIGHBOURS(s, bi->cell, {
+    if (j == i) continue;
+    const hd_body *bj = &s->b[j];
+    const hd_shape *sj = &s->shape[bj->species];
+    int nj = sj->kind == HD_KIND_DIMER ? 2 : 1;
+    double D = 0.5 * (si->d + sj->d);
+    hd_kin kj = bj->k;
+    kj.x += sx;
+    kj.y += sy;
+    for (int a = 0; a < nd; a++) {
+      double xa, ya;
+      hd_kin_disk_pos(&bi->k, si, a, &xa, &ya);
+      for (int c = 0; c < nj; c++) {
+        double xb, yb;
+        hd_kin_disk_pos(&kj, sj, c, &xb, &yb);
+        if ((xb - xa) * (xb - xa) + (yb - ya) * (yb - ya) < D * D) return j;
+      }
+    }
+  });
+  return -1;
+}
+
+static double uniform_phi(gsl_rng *r) {
+  return M_PI * (2.0 * gsl_rng_uniform(r) - 1.0);
+}
+
+/* Random sequential addition: each body at a uniform position and orientation, retried until it
+ * overlaps nothing.  Fails after max_tries attempts for one body (the box is too full). */
+static int place_random(hd_sim *s, hd_error *err) {
+  const long max_tries = 100000;
+  for (int32_t i = 0; i < s->n; i++) {
+    hd_body *b = &s->b[i];
+    long k;
+    for (k = 0; k < max_tries; k++) {
+      b->k.x = s->lx * gsl_rng_uniform(s->rng);
+      b->k.y = s->ly * gsl_rng_uniform(s->rng);
+      b->k.phi = b->species == HD_SP_DIMER ? uniform_phi(s->rng) : 0.0;
+      hd_cells_insert(s, i, hd_cells_of(s, b->k.x, b->k.y));
+      if (overlaps_any(s, i) == -1) break;
+      hd_cells_remove(s, i);
+    }
+    if (k == max_tries)
+      return hd_error_set(err, HD_EINPUT,
+                          "[init] placement = random: could not place body %d of %d without "
+                          "overlap after %ld tries; use placement = lattice or a larger box",
+                          i + 1, s->n, max_tries);
+  }
+  return HD_OK;
+}
+
+/* A rectangular lattice with spacing >= the largest body, orientations random. */
+static int place_lattice(hd_sim *s, hd_error *err) {
+  double range = 0.0;
+  for (int sp = 0; sp < HD_NSPECIES; sp++)
+    if (s->n_species[sp] > 0) range = fmax(range, 2.0 * hd_shape_radius(&s->shape[sp]));
+  int32_t nx = (int32_t)ceil(sqrt((double)s->n * s->lx / s->ly));
+  if (nx < 1) nx = 1;
+  int32_t ny = (s->n + nx - 1) / nx;
+  double ax = s->lx / nx, ay = s->ly / ny;
+  if (ax < range * (1 + 1e-12) || ay < range * (1 + 1e-12))
+    return hd_error_set(err, HD_EINPUT,
+                        "[init] placement = lattice: %d bodies need a %d x %d lattice of spacing "
+                        ">= %g, but the box %g x %g gives %g x %g; enlarge [system] box",
+                        s->n, nx, ny, range, s->lx, s->ly, ax, ay);
+  for (int32_t i = 0; i < s->n; i++) {
+    hd_body *b = &s->b[i];
+    b->k.x = (i % nx + 0.5) * ax;
+    b->k.y = (i / nx + 0.5) * ay;
+    b->k.phi = b->species == HD_SP_DIMER ? uniform_phi(s->rng) : 0.0;
+    hd_cells_insert(s, i, hd_cells_of(s, b->k.x, b->k.y));
+  }
+  return HD_OK;
+}
+
+/* Maxwellian velocities at temperature T, zero total momentum, rescaled so that the kinetic
+ * energy is exactly (dof/2) T per body in each of translation and rotation. */
+static void draw_velocities(hd_sim *s, double T) {
+  double px = 0.0, py = 0.0, mtot = 0.0;
+  for (int32_t i = 0; i < s->n; i++) {
+    hd_body *b = &s->b[i];
+    const hd_shape *sh = &s->shape[b->species];
+    double m = hd_shape_mass(sh), I = hd_shape_inertia(sh);
+    b->k.vx = gsl_ran_gaussian_ziggurat(s->rng, sqrt(T / m));
+    b->k.vy = gsl_ran_gaussian_ziggurat(s->rng, sqrt(T / m));
+    b->k.omega = I > 0.0 ? gsl_ran_gaussian_ziggurat(s->rng, sqrt(T / I)) : 0.0;
+    px += m * b->k.vx;
+    py += m * b->k.vy;
+    mtot += m;
+  }
+  double ux = px / mtot, uy = py / mtot, e_tr = 0.0, e_rot = 0.0;
+  long n_rot = 0;
+  for (int32_t i = 0; i < s->n; i++) {
+    hd_body *b = &s->b[i];
+    const hd_shape *sh = &s->shape[b->species];
+    b->k.vx -= ux;
+    b->k.vy -= uy;
+    e_tr += 0.5 * hd_shape_mass(sh) * (b->k.vx * b->k.vx + b->k.vy * b->k.vy);
+    e_rot += 0.5 * hd_shape_inertia(sh) * b->k.omega * b->k.omega;
+    n_rot += hd_shape_inertia(sh) > 0.0;
+  }
+  double ftr = s->n > 1 && e_tr > 0.0 ? sqrt(T * (double)s->n / e_tr) : 1.0;
+  double frot = n_rot > 0 && e_rot > 0.0 ? sqrt(0.5 * T * (double)n_rot / e_rot) : 1.0;
+  for (int32_t i = 0; i < s->n; i++) {
+    s->b[i].k.vx *= ftr;
+    s->b[i].k.vy *= ftr;
+    s->b[i].k.omega *= frot;
+  }
+}
+
+/* Bodies from a state CSV; the counts must agree with the scene's where the scene gives them. */
+static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
+  hd_state_row *rows = NULL;
+  long n = 0;
+  int rc = hd_state_csv_read(sc->state_file, &rows, &n, err);
+  if (rc) return rc;
+  int32_t cnt[HD_NSPECIES] = {0, 0};
+  for (long r = 0; r < n; r++) cnt[rows[r].kind == HD_KIND_DIMER ? HD_SP_DIMER : HD_SP_DISK]++;
+  if ((sc->n_dimers && sc->n_dimers != cnt[0]) || (sc->n_disks && sc->n_disks != cnt[1])) {
+    free(rows);
+    return hd_error_set(err, HD_EINPUT, "%s: holds %d dimers and %d disks but the scene's "
+                        "[dimers]/[disks] count say %ld and %ld", sc->state_file, cnt[0], cnt[1],
+                        sc->n_dimers, sc->n_disks);
+  }
+  s->n_species[0] = cnt[0];
+  s->n_species[1] = cnt[1];
+  s->n = cnt[0] + cnt[1];
+  free(s->b);
+  s->b = calloc((size_t)(s->n > 0 ? s->n : 1), sizeof(hd_body));
+  if (!s->b) {
+    free(rows);
+    return hd_error_set(err, HD_ENOMEM, "out of memory");
+  }
+  rc = hd_cells_alloc(s, err);
+  int32_t next[HD_NSPECIES] = {0, cnt[0]};
+  long *line = malloc(sizeof(long) * (size_t)(s->n > 0 ? s->n : 1));
+  for (long r = 0; rc == HD_OK && r < n; r++) {
+    int sp = rows[r].kind == HD_KIND_DIMER ? HD_SP_DIMER : HD_SP_DISK;
+    int32_t i = next[sp]++;
+    hd_body *b = &s->b[i];
+    b->species = sp;
+    b->next = b->prev = -1;
+    b->k = (hd_kin){rows[r].x, rows[r].y, rows[r].vx, rows[r].vy,
+                    sp == HD_SP_DIMER ? remainder(rows[r].phi, 2 * M_PI) : 0.0,
+                    sp == HD_SP_DIMER ? rows[r].omega : 0.0};
+    if (line) line[i] = rows[r].line;
+    if (b->k.x < 0 || b->k.x >= s->lx || b->k.y < 0 || b->k.y >= s->ly) {
+      rc = hd_error_set(err, HD_EINPUT, "%s:%ld: body at (%g, %g) is outside the box %g x %g",
+                        sc->state_file, rows[r].line, b->k.x, b->k.y, s->lx, s->ly);
+      break;
+    }
+    hd_cells_insert(s, i, hd_cells_of(s, b->k.x, b->k.y));
+    int o = overlaps_any(s, i);
+    if (o == -2)
+      rc = hd_error_set(err, HD_EINPUT, "%s:%ld: body crosses a wall", sc->state_file,
+                        rows[r].line);
+    else if (o >= 0)
+      rc = hd_error_set(err, HD_EINPUT, "%s:%ld: body overlaps the body on line %ld",
+                        sc->state_file, rows[r].line, line ? line[o] : -1L);
+  }
+  free(line);
+  free(rows);
+  return rc;
+}
+
+int hd_init_state(hd_sim *s, const hd_scene *sc, hd_error *err) {
+  if (sc->placement == HD_PLACE_STATE) return place_from_file(s, sc, err);
+  s->n = s->n_species[0] + s->n_species[1];
+  s->b = calloc((size_t)(s->n > 0 ? s->n : 1), sizeof(hd_body));
+  if (!s->b) return hd_error_set(err, HD_ENOMEM, "out of memory for %d bodies", s->n);
+  int rc = hd_cells_alloc(s, err);
+  if (rc) return rc;
+  for (int32_t i = 0; i < s->n; i++) {
+    s->b[i].species = i < s->n_species[0] ? HD_SP_DIMER : HD_SP_DISK;
+    s->b[i].next = s->b[i].prev = -1;
+  }
+  rc = sc->placement == HD_PLACE_LATTICE ? place_lattice(s, err) : place_random(s, err);
+  if (rc) return rc;
+  draw_velocities(s, sc->temperature);
+  return HD_OK;
+}

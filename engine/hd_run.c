@@ -1,0 +1,300 @@
+#include "hd_run.h"
+
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "hd_db.h"
+#include "hd_sim.h"
+
+static volatile sig_atomic_t stop_flag = 0;
+static void on_signal(int sig) {
+  (void)sig;
+  stop_flag = 1;
+}
+void hd_run_request_stop(void) {
+  stop_flag = 1;
+}
+
+/* Runner state that a checkpoint carries besides the engine's. */
+typedef struct run_state {
+  int64_t seq;           /* collisions so far (pair + wall): the seq of the last one */
+  int64_t next_sample;   /* index k of the next sample, taken when cpd >= k * samples_every */
+  int32_t next_vel;      /* index of the next velocities_at snapshot */
+  int32_t pad;
+  double wall_seconds;   /* wall-clock seconds spent before this process */
+} run_state;
+
+/* Everything one driving of a run needs. */
+typedef struct runner {
+  const hd_scene *sc;
+  const hd_run_opts *o;
+  hd_sim *s;
+  hd_db *db;
+  int64_t run;
+  run_state st;
+  double t0_wall;        /* monotonic clock at start of this process's driving */
+  double last_ckpt_wall; /* monotonic time of the last checkpoint */
+  double last_tick_wall; /* monotonic time of the last progress line */
+  int64_t last_tick_events;
+  int progress;          /* print a progress line */
+} runner;
+
+static double now_wall(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static double elapsed(const runner *r) {
+  return r->st.wall_seconds + now_wall() - r->t0_wall;
+}
+
+/* Writes one states row per body (positions at the current time) under label. */
+static int log_states(runner *r, const char *label, hd_error *err) {
+  hd_sim *s = r->s;
+  for (int32_t i = 0; i < s->n; i++) {
+    hd_kin k;
+    hd_sim_body_now(s, i, &k);
+    hd_state_rec rec = {hd_sim_time(s), i, s->shape[s->b[i].species].kind, k.x, k.y, k.phi,
+                        k.vx, k.vy, k.omega, hd_sim_cpd(s)};
+    int rc = hd_db_log_state(r->db, r->run, label, &rec, err);
+    if (rc) return rc;
+  }
+  return HD_OK;
+}
+
+static int log_sample(runner *r, hd_error *err) {
+  hd_sim *s = r->s;
+  double e_tr, e_rot;
+  hd_sim_energy(s, -1, &e_tr, &e_rot);
+  hd_sample_row row = {hd_sim_time(s), s->c.collisions, hd_sim_cpd(s), e_tr / s->n, e_rot / s->n};
+  return hd_db_log_sample(r->db, r->run, &row, err);
+}
+
+static int checkpoint(runner *r, hd_error *err) {
+  void *blob = NULL;
+  size_t n = 0;
+  r->st.wall_seconds = elapsed(r);
+  r->t0_wall = now_wall();
+  size_t hs = sizeof r->st;
+  int rc = hd_sim_checkpoint(r->s, &blob, &n, err);
+  if (rc) return rc;
+  unsigned char *all = malloc(hs + n);
+  if (!all) {
+    free(blob);
+    return hd_error_set(err, HD_ENOMEM, "out of memory for a checkpoint");
+  }
+  memcpy(all, &r->st, hs);
+  memcpy(all + hs, blob, n);
+  free(blob);
+  rc = hd_db_checkpoint_save(r->db, r->run, r->st.seq, hd_sim_time(r->s), all, hs + n, err);
+  free(all);
+  r->last_ckpt_wall = now_wall();
+  return rc;
+}
+
+/* Fraction of the run done, from whichever stop condition is furthest along. */
+static double fraction_done(const runner *r) {
+  const hd_scene *sc = r->sc;
+  double f = 0.0;
+  if (sc->stop_time > 0) f = fmax(f, hd_sim_time(r->s) / sc->stop_time);
+  if (sc->stop_events > 0) f = fmax(f, (double)r->st.seq / sc->stop_events);
+  if (sc->stop_cpd > 0) f = fmax(f, hd_sim_cpd(r->s) / sc->stop_cpd);
+  return fmin(f, 1.0);
+}
+
+static void tick(runner *r) {
+  double w = now_wall();
+  if (w - r->last_tick_wall < 0.5) return;
+  hd_sim *s = r->s;
+  double rate = (double)(s->c.events - r->last_tick_events) / (w - r->last_tick_wall);
+  double f = fraction_done(r), spent = elapsed(r);
+  double eta = f > 0 ? spent * (1 - f) / f : NAN;
+  double dof = 2.0 * s->n + s->n_species[HD_SP_DIMER];
+  fprintf(stderr, "\r%12lld events  %9.3g ev/s  cpd %9.4g  T %9.3g  ETA %6.0f s   ",
+          (long long)s->c.events, rate, hd_sim_cpd(s), 2.0 * s->c.e_kin / dof, eta);
+  r->last_tick_wall = w;
+  r->last_tick_events = s->c.events;
+}
+
+static int stop_reached(const runner *r) {
+  const hd_scene *sc = r->sc;
+  return (sc->stop_events > 0 && (double)r->st.seq >= sc->stop_events) ||
+         (sc->stop_cpd > 0 && hd_sim_cpd(r->s) >= sc->stop_cpd);
+}
+
+/* Samples and velocity snapshots due at the current cpd. */
+static int observe(runner *r, hd_error *err) {
+  const hd_scene *sc = r->sc;
+  double cpd = hd_sim_cpd(r->s);
+  while (sc->samples_every > 0 && cpd >= (double)r->st.next_sample * sc->samples_every) {
+    int rc = log_sample(r, err);
+    if (rc) return rc;
+    r->st.next_sample++;
+  }
+  while (r->st.next_vel < sc->n_velocities_at && cpd >= sc->velocities_at[r->st.next_vel]) {
+    int rc = log_states(r, "velocities", err);
+    if (rc) return rc;
+    r->st.next_vel++;
+  }
+  return HD_OK;
+}
+
+/* The loop: events until a stop condition, a signal, a collapse or an error. */
+static int drive(runner *r, hd_error *err) {
+  const hd_scene *sc = r->sc;
+  hd_sim *s = r->s;
+  double t_stop = sc->stop_time > 0 ? sc->stop_time : INFINITY;
+  int rc = observe(r, err);
+  while (rc == HD_OK && !stop_reached(r)) {
+    hd_event_out ev;
+    rc = hd_sim_next(s, t_stop, &ev, err);
+    if (rc == HD_SIM_STOPTIME || rc == HD_SIM_IDLE) {
+      rc = HD_OK;
+      break;
+    }
+    if (rc) break;
+    r->st.seq++;
+    if (sc->log_collisions == HD_LOG_ALL ||
+        (sc->log_collisions == HD_LOG_EVERY && r->st.seq % sc->log_every == 0)) {
+      hd_collision_row row = {r->st.seq, ev.t, (hd_coll_kind)ev.kind, ev.i, ev.j, ev.ka, ev.kb,
+                              ev.info.theta_i, ev.info.theta_j, ev.info.f, ev.info.de,
+                              ev.info.vn};
+      rc = hd_db_log_collision(r->db, r->run, &row, err);
+      if (rc) break;
+    }
+    rc = observe(r, err);
+    if (rc) break;
+    if (stop_flag) {
+      rc = hd_error_set(err, HD_EINTR, "interrupted at t = %.10g after %lld collisions",
+                        hd_sim_time(s), (long long)r->st.seq);
+      break;
+    }
+    if ((r->st.seq & 1023) == 0) {
+      double w = now_wall();
+      if (r->progress) tick(r);
+      if (sc->checkpoint_every > 0 && w - r->last_ckpt_wall >= sc->checkpoint_every) {
+        rc = checkpoint(r, err);
+        if (rc) break;
+      }
+    }
+  }
+  if (r->progress) fprintf(stderr, "\n");
+  return rc;
+}
+
+/* Ends the run in the database according to rc: final state and status. */
+static int finish(runner *r, int rc, hd_error *err) {
+  hd_error e2;
+  hd_error_clear(&e2);
+  const char *status = "done";
+  if (rc == HD_EINTR) status = "interrupted";
+  else if (rc == HD_ECOLLAPSE) status = "collapsed";
+  else if (rc != HD_OK) status = "failed";
+  int wrc = HD_OK;
+  if (rc == HD_OK || rc == HD_EINTR || rc == HD_ECOLLAPSE) {
+    if (rc == HD_OK) wrc = log_states(r, "final", &e2);
+    if (!wrc) wrc = checkpoint(r, &e2);
+  }
+  if (rc != HD_OK) hd_db_run_message(r->db, r->run, err->msg, &e2);
+  int src = hd_db_run_status(r->db, r->run, status, r->s->c.events, elapsed(r), &e2);
+  if (!wrc) wrc = src;
+  if (!wrc && rc == HD_OK) wrc = hd_db_build_indexes(r->db, &e2);
+  if (rc == HD_OK && wrc) {
+    *err = e2;
+    return wrc;
+  }
+  return rc;
+}
+
+static int drive_and_finish(runner *r, hd_error *err) {
+  struct sigaction sa, old_int, old_term;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  stop_flag = 0;
+  sigaction(SIGINT, &sa, &old_int);
+  sigaction(SIGTERM, &sa, &old_term);
+  r->t0_wall = r->last_ckpt_wall = r->last_tick_wall = now_wall();
+  r->last_tick_events = r->s->c.events;
+  r->progress = !r->o->quiet && isatty(2);
+  int rc = drive(r, err);
+  rc = finish(r, rc, err);
+  sigaction(SIGINT, &old_int, NULL);
+  sigaction(SIGTERM, &old_term, NULL);
+  return rc;
+}
+
+int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error *err) {
+  runner r = {.sc = sc, .o = o};
+  *run = 0;
+  int rc = hd_sim_alloc(&r.s, sc, err); /* bad input fails here, before anything is written */
+  if (rc) return rc;
+  rc = hd_db_open(&r.db, o->db_path, err);
+  if (!rc) rc = hd_db_run_begin(r.db, sc->text ? sc->text : "", sc->seed, o->version, &r.run, err);
+  if (!rc) rc = hd_db_run_box(r.db, r.run, r.s->lx, r.s->ly, err);
+  if (!rc) {
+    *run = r.run;
+    rc = log_states(&r, "initial", err);
+    if (!rc) rc = checkpoint(&r, err); /* so that even a run killed at once can be resumed */
+    if (rc) {
+      hd_error e2;
+      hd_db_run_status(r.db, r.run, "failed", 0, 0.0, &e2);
+    } else {
+      rc = drive_and_finish(&r, err);
+    }
+  }
+  hd_error e3;
+  int crc = hd_db_close(r.db, &e3);
+  if (!rc && crc) *err = e3, rc = crc;
+  hd_sim_free(r.s);
+  return rc;
+}
+
+int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error *err) {
+  runner r = {.o = o};
+  hd_scene sc;
+  char *text = NULL;
+  void *blob = NULL;
+  size_t n = 0;
+  int64_t seq = 0;
+  double t = 0;
+  unsigned long long seed = 0;
+  *run = 0;
+  int rc = hd_db_open(&r.db, o->db_path, err);
+  if (!rc) rc = hd_db_find_resumable(r.db, want_run, &r.run, &text, &seed, err);
+  if (!rc) {
+    char name[64];
+    snprintf(name, sizeof name, "run %lld scene", (long long)r.run);
+    rc = hd_scene_load_string(&sc, text, name, NULL, 0, err);
+    if (!rc) sc.seed = seed;
+  }
+  free(text);
+  if (rc) {
+    hd_db_close(r.db, NULL);
+    return rc;
+  }
+  r.sc = &sc;
+  *run = r.run;
+  rc = hd_db_checkpoint_load(r.db, r.run, &blob, &n, &seq, &t, err);
+  if (!rc && n < sizeof r.st) rc = hd_error_set(err, HD_EINPUT, "checkpoint of run %lld is truncated", (long long)r.run);
+  if (!rc) {
+    memcpy(&r.st, blob, sizeof r.st);
+    rc = hd_sim_alloc_restore(&r.s, &sc, (unsigned char *)blob + sizeof r.st, n - sizeof r.st, err);
+  }
+  free(blob);
+  if (!rc) rc = hd_db_truncate_after(r.db, r.run, seq, t, err);
+  if (!rc) rc = hd_db_run_status(r.db, r.run, "running", r.s->c.events, r.st.wall_seconds, err);
+  if (!rc) rc = drive_and_finish(&r, err);
+  hd_error e3;
+  int crc = hd_db_close(r.db, &e3);
+  if (!rc && crc) *err = e3, rc = crc;
+  hd_sim_free(r.s);
+  hd_scene_free(&sc);
+  return rc;
+}

@@ -1,0 +1,32 @@
+/* hd_run: drives a simulation to its stop condition and logs it to the database — collisions,
+ * samples, velocity snapshots, checkpoints — with SIGINT/SIGTERM handling, a progress line and
+ * `resume`.  The one place where hd_sim and hd_db meet. */
+#ifndef HD_RUN_H
+#define HD_RUN_H
+
+#include <stdint.h>
+
+#include "hd_error.h"
+#include "hd_scene.h"
+
+/* How a run is driven. */
+typedef struct hd_run_opts {
+  const char *db_path; /* database to append the run to (created if missing) */
+  int quiet;           /* no progress line */
+  const char *version; /* written to runs.version */
+} hd_run_opts;
+
+/* Runs scene sc as a new run in the database; *run gets its id (0 if none was created).
+ * Returns HD_OK (done), HD_EINTR (signal: checkpointed, status 'interrupted'), HD_ECOLLAPSE
+ * (status 'collapsed'), HD_EIO (database: status 'failed' when it could still be written),
+ * HD_EINPUT (the scene cannot be set up: nothing is written), HD_EPHYS (verification). */
+int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error *err);
+
+/* Continues run want_run (<= 0: the newest resumable) from its last checkpoint, exactly as if
+ * it had never stopped.  Returns as hd_run_new. */
+int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error *err);
+
+/* Asks a running hd_run_* to stop at the next event as if SIGINT had arrived (tests). */
+void hd_run_request_stop(void);
+
+#endif

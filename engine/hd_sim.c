@@ -1,0 +1,348 @@
+/* The event loop: hd_sim_alloc builds a simulation from a scene, hd_sim_next processes events
+ * until the next collision.  Collision rules and contact times live in hd_body.c, prediction in
+ * hd_predict.c, cells in hd_cells.c, the initial state in hd_init.c. */
+#include <assert.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hd_sim_internal.h"
+
+/* Collisions whose |vn| is below this fraction of the thermal speed count as "slow"; this many
+ * slow collisions in a row is inelastic collapse (the collision rate diverges while the
+ * relative velocities vanish: an event-driven code cannot get past it). */
+#define HD_SLOW_VN 1e-9
+#define HD_SLOW_RUN 2000
+/* Relative tolerance on the contact distance and on overlaps in verification mode. */
+#define HD_VERIFY_TOL 1e-9
+
+static const hd_wall default_walls[4] = {
+    {0, 0.0, +1.0}, {0, 0.0, -1.0}, {1, 0.0, +1.0}, {1, 0.0, -1.0}};
+
+/* Everything hd_sim_alloc and hd_sim_alloc_restore share: species, box, walls, RNG. */
+static int sim_setup(hd_sim **out, const hd_scene *sc, hd_error *err) {
+  *out = NULL;
+  hd_sim *s = calloc(1, sizeof *s);
+  if (!s) return hd_error_set(err, HD_ENOMEM, "out of memory");
+  s->n_species[HD_SP_DIMER] = (int32_t)sc->n_dimers;
+  s->n_species[HD_SP_DISK] = (int32_t)sc->n_disks;
+  s->shape[HD_SP_DIMER] = (hd_shape){HD_KIND_DIMER, sc->dimer_d, sc->dimer_a, sc->dimer_m};
+  s->shape[HD_SP_DISK] = (hd_shape){HD_KIND_DISK, sc->disk_sigma, 0.0, sc->disk_mass};
+  s->alpha[HD_SP_DIMER][HD_SP_DIMER] = sc->dimer_alpha;
+  s->alpha[HD_SP_DISK][HD_SP_DISK] = sc->disk_alpha;
+  s->alpha[HD_SP_DIMER][HD_SP_DISK] = s->alpha[HD_SP_DISK][HD_SP_DIMER] = sc->disk_alpha_dimer;
+  s->wall_alpha = sc->wall_alpha;
+  s->lx = sc->box_x;
+  s->ly = sc->box_y;
+  s->walls = sc->walls;
+  memcpy(s->wall, default_walls, sizeof s->wall);
+  s->wall[1].pos = s->lx;
+  s->wall[3].pos = s->ly;
+  s->verify = sc->verify;
+  s->rng = gsl_rng_alloc(gsl_rng_mt19937);
+  if (!s->rng) {
+    hd_sim_free(s);
+    return hd_error_set(err, HD_ENOMEM, "out of memory");
+  }
+  gsl_rng_set(s->rng, (unsigned long)sc->seed);
+  s->rebase_every = 100000;
+  s->last_i = s->last_j = -1;
+  *out = s;
+  return HD_OK;
+}
+
+int hd_sim_queue_init(hd_sim *s, hd_error *err) {
+  s->q = hd_queue_alloc(s->n, &s->b[0].ev_t, (int32_t)(sizeof(hd_body) / sizeof(double)));
+  if (!s->q) return hd_error_set(err, HD_ENOMEM, "out of memory for the event queue");
+  s->rebase_every = s->n > 1000 ? 100 * (int64_t)s->n : 100000;
+  return HD_OK;
+}
+
+int hd_sim_alloc(hd_sim **out, const hd_scene *sc, hd_error *err) {
+  hd_sim *s;
+  int rc = sim_setup(&s, sc, err);
+  if (rc) return rc;
+  rc = hd_init_state(s, sc, err); /* sets n, b and the cells */
+  if (!rc) rc = hd_sim_queue_init(s, err);
+  if (rc) {
+    hd_sim_free(s);
+    return rc;
+  }
+  for (int32_t i = 0; i < s->n; i++) s->b[i].ev_t = INFINITY;
+  hd_queue_build(s->q, s->n);
+  for (int32_t i = 0; i < s->n; i++) hd_predict(s, i);
+  s->c.next_rebase = s->rebase_every;
+  double e_tr, e_rot;
+  hd_sim_energy(s, -1, &e_tr, &e_rot);
+  s->c.e_kin = e_tr + e_rot;
+  *out = s;
+  return HD_OK;
+}
+
+int hd_sim_alloc_restore(hd_sim **out, const hd_scene *sc, const void *blob, size_t n,
+                         hd_error *err) {
+  hd_sim *s;
+  int rc = sim_setup(&s, sc, err);
+  if (rc) return rc;
+  rc = hd_sim_restore_blob(s, blob, n, err);
+  if (rc) {
+    hd_sim_free(s);
+    return rc;
+  }
+  *out = s;
+  return HD_OK;
+}
+
+void hd_sim_free(hd_sim *s) {
+  if (!s) return;
+  hd_queue_free(s->q);
+  gsl_rng_free(s->rng);
+  free(s->head);
+  free(s->b);
+  free(s);
+}
+
+void hd_sim_body_now(const hd_sim *s, int32_t i, hd_kin *k) {
+  *k = s->b[i].k;
+  hd_kin_advance(k, s->c.t - s->b[i].t);
+}
+
+void hd_sim_energy(const hd_sim *s, int sp, double *e_tr, double *e_rot) {
+  double tr = 0.0, rot = 0.0;
+  for (int32_t i = 0; i < s->n; i++) {
+    const hd_body *b = &s->b[i];
+    if (sp >= 0 && b->species != sp) continue;
+    const hd_shape *sh = &s->shape[b->species];
+    tr += 0.5 * hd_shape_mass(sh) * (b->k.vx * b->k.vx + b->k.vy * b->k.vy);
+    rot += 0.5 * hd_shape_inertia(sh) * b->k.omega * b->k.omega;
+  }
+  *e_tr = tr;
+  *e_rot = rot;
+}
+
+void hd_sim_momentum(const hd_sim *s, double *px, double *py) {
+  double x = 0.0, y = 0.0;
+  for (int32_t i = 0; i < s->n; i++) {
+    double m = hd_shape_mass(&s->shape[s->b[i].species]);
+    x += m * s->b[i].k.vx;
+    y += m * s->b[i].k.vy;
+  }
+  *px = x;
+  *py = y;
+}
+
+/* Largest relative overlap (D - dist)/D between any disks of bodies i and j (j shifted). */
+static double pair_overlap(const hd_sim *s, const hd_kin *ki, const hd_shape *si, const hd_kin *kj,
+                           const hd_shape *sj) {
+  double worst = -INFINITY;
+  int ni = si->kind == HD_KIND_DIMER ? 2 : 1, nj = sj->kind == HD_KIND_DIMER ? 2 : 1;
+  double D = 0.5 * (si->d + sj->d);
+  (void)s;
+  for (int a = 0; a < ni; a++) {
+    double xa, ya;
+    hd_kin_disk_pos(ki, si, a, &xa, &ya);
+    for (int b = 0; b < nj; b++) {
+      double xb, yb;
+      hd_kin_disk_pos(kj, sj, b, &xb, &yb);
+      double dist = hypot(xb - xa, yb - ya);
+      worst = fmax(worst, (D - dist) / D);
+    }
+  }
+  return worst;
+}
+
+/* Largest overlap of body i with its neighbours at the current time. */
+static double body_overlap(const hd_sim *s, int32_t i, int32_t *with) {
+  hd_kin ki;
+  hd_sim_body_now(s, i, &ki);
+  double worst = -INFINITY;
+  HD_FOR_NEIGHBOURS(s, s->b[i].cell, {
+    if (j == i) continue;
+    hd_kin kj;
+    hd_sim_body_now(s, j, &kj);
+    kj.x += sx;
+    kj.y += sy;
+    double o = pair_overlap(s, &ki, &s->shape[s->b[i].species], &kj, &s->shape[s->b[j].species]);
+    if (o > worst) worst = o, *with = j;
+  });
+  return worst;
+}
+
+double hd_sim_max_overlap(const hd_sim *s, int32_t *i, int32_t *j) {
+  double worst = -INFINITY;
+  *i = *j = -1;
+  for (int32_t k = 0; k < s->n; k++) {
+    int32_t w = -1;
+    double o = body_overlap(s, k, &w);
+    if (o > worst) worst = o, *i = k, *j = w;
+  }
+  return worst;
+}
+
+/* Moves body i across the cell face its event names, wrapping through the periodic box. */
+static void cross_cell(hd_sim *s, int32_t i) {
+  hd_body *b = &s->b[i];
+  int32_t cx = b->cell % s->ncx, cy = b->cell / s->ncx;
+  switch (b->ev_partner) {
+  case 0:
+    if (++cx == s->ncx) cx = 0, b->k.x -= s->lx;
+    break;
+  case 1:
+    if (--cx < 0) cx = s->ncx - 1, b->k.x += s->lx;
+    break;
+  case 2:
+    if (++cy == s->ncy) cy = 0, b->k.y -= s->ly;
+    break;
+  default:
+    if (--cy < 0) cy = s->ncy - 1, b->k.y += s->ly;
+    break;
+  }
+  hd_cells_remove(s, i);
+  hd_cells_insert(s, i, cy * s->ncx + cx);
+}
+
+/* Shifts the time origin to the current time (keeps times small: precision does not decay). */
+static void rebase(hd_sim *s) {
+  double now = s->c.t;
+  for (int32_t i = 0; i < s->n; i++) {
+    s->b[i].t -= now;
+    s->b[i].ev_t -= now; /* INFINITY stays INFINITY */
+  }
+  s->c.t_offset += now;
+  s->c.t = 0.0;
+  hd_queue_build(s->q, s->n); /* rounding may have created ties: restore the heap order */
+}
+
+static int collision_kind(const hd_sim *s, int32_t i, int32_t j) {
+  int di = s->b[i].species == HD_SP_DIMER, dj = j >= 0 && s->b[j].species == HD_SP_DIMER;
+  if (j < 0) return di ? 3 : 4;
+  if (di && dj) return 0;
+  if (di || dj) return 1;
+  return 2;
+}
+
+/* Collapse bookkeeping after a collision with normal relative velocity vn. */
+static int check_collapse(hd_sim *s, double vn, hd_error *err) {
+  double mass = 0.0;
+  for (int sp = 0; sp < HD_NSPECIES; sp++)
+    mass += s->n_species[sp] * hd_shape_mass(&s->shape[sp]);
+  double vth = sqrt(2.0 * fmax(s->c.e_kin, 0.0) / mass);
+  if (fabs(vn) < HD_SLOW_VN * vth || vth == 0.0) {
+    if (++s->c.slow_run >= HD_SLOW_RUN)
+      return hd_error_set(err, HD_ECOLLAPSE,
+                          "inelastic collapse at t = %.17g after %lld collisions: %d collisions "
+                          "in a row with |vn| < %g of the thermal speed, last between bodies %d "
+                          "and %d",
+                          hd_sim_time(s), (long long)s->c.collisions, HD_SLOW_RUN, HD_SLOW_VN,
+                          s->last_i, s->last_j);
+  } else {
+    s->c.slow_run = 0;
+  }
+  return HD_OK;
+}
+
+/* Verification of a collision: the touching disks are at contact distance and neither body
+ * overlaps anything. */
+static int verify_collision(hd_sim *s, int32_t i, int32_t j, hd_error *err) {
+  int32_t who = -1;
+  double o = body_overlap(s, i, &who);
+  if (j >= 0) {
+    int32_t w2 = -1;
+    double o2 = body_overlap(s, j, &w2);
+    if (o2 > o) o = o2, i = j, who = w2;
+  }
+  if (o > s->max_overlap) s->max_overlap = o;
+  if (o > HD_VERIFY_TOL)
+    return hd_error_set(err, HD_EPHYS, "verification: bodies %d and %d overlap by %.3g of a "
+                                       "diameter at t = %.17g", i, who, o, hd_sim_time(s));
+  return HD_OK;
+}
+
+int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
+  for (;;) {
+    if (s->c.events >= s->c.next_rebase) {
+      rebase(s);
+      s->c.next_rebase += s->rebase_every;
+    }
+    int32_t i = hd_queue_top(s->q);
+    hd_body *bi = &s->b[i];
+    double te = bi->ev_t;
+    double stop_rel = t_stop - s->c.t_offset;
+    if (te > stop_rel) {
+      if (stop_rel > s->c.t && stop_rel < INFINITY) s->c.t = stop_rel;
+      return te == INFINITY && stop_rel == INFINITY ? HD_SIM_IDLE : HD_SIM_STOPTIME;
+    }
+    assert(te >= s->c.t); /* event times never decrease */
+    if (te < s->c.t)
+      return hd_error_set(err, HD_EPHYS, "event time went backwards at body %d", i);
+    s->c.t = te;
+    s->c.events++;
+
+    if (bi->ev_type == HD_EV_CELL) {
+      hd_body_sync(s, i);
+      cross_cell(s, i);
+      hd_predict(s, i);
+      continue;
+    }
+    if (bi->ev_type == HD_EV_WALL) {
+      hd_body_sync(s, i);
+      int w = bi->ev_partner, ka = bi->ev_ka;
+      hd_collide_wall(&bi->k, &s->shape[bi->species], ka, &s->wall[w], s->wall_alpha, &ev->info);
+      bi->ncoll++;
+      s->c.wall_hits++;
+      s->c.e_kin += ev->info.de;
+      *ev = (hd_event_out){hd_sim_time(s), collision_kind(s, i, -1), i, -1 - w, ka, -1, ev->info};
+      if (s->verify) {
+        int rc = verify_collision(s, i, -1, err);
+        if (rc) return rc;
+      }
+      hd_predict(s, i);
+      return HD_OK;
+    }
+    /* pair event */
+    int32_t j = bi->ev_partner;
+    hd_body *bj = &s->b[j];
+    if (bj->ncoll != bi->ev_pcount) { /* the partner changed course: stale */
+      s->c.stale++;
+      hd_body_sync(s, i);
+      hd_predict(s, i);
+      continue;
+    }
+    hd_body_sync(s, i);
+    hd_body_sync(s, j);
+    int sh = bi->ev_shift;
+    double sx = (sh % 3 - 1) * s->lx, sy = (sh / 3 - 1) * s->ly;
+    hd_kin kj = bj->k;
+    kj.x += sx;
+    kj.y += sy;
+    int ka = bi->ev_ka, kb = bi->ev_kb;
+    hd_collide_pair(&bi->k, &s->shape[bi->species], &kj, &s->shape[bj->species], ka, kb,
+                    s->alpha[bi->species][bj->species], &ev->info);
+    bj->k.vx = kj.vx;
+    bj->k.vy = kj.vy;
+    bj->k.omega = kj.omega;
+    bi->ncoll++;
+    bj->ncoll++;
+    s->c.collisions++;
+    s->c.e_kin += ev->info.de;
+    s->last_i = i;
+    s->last_j = j;
+    *ev = (hd_event_out){hd_sim_time(s), collision_kind(s, i, j), i, j, ka, kb, ev->info};
+    if (bi->species == HD_SP_DISK && bj->species == HD_SP_DIMER) { /* log the dimer first */
+      ev->i = j, ev->j = i, ev->ka = kb, ev->kb = ka;
+      double th = ev->info.theta_i;
+      ev->info.theta_i = ev->info.theta_j, ev->info.theta_j = th;
+    }
+    if (s->verify) {
+      int rc = verify_collision(s, i, j, err);
+      if (rc) return rc;
+    }
+    hd_predict(s, i);
+    hd_predict(s, j);
+    if (s->alpha[bi->species][bj->species] < 1.0) {
+      int rc = check_collapse(s, ev->info.vn, err);
+      if (rc) return rc;
+    }
+    return HD_OK;
+  }
+}

@@ -1,0 +1,142 @@
+/* hd_sim: the event-driven engine.  Bodies (disks and dimers) in a 2D box, periodic in every
+ * direction that no wall closes.  One event per body in an indexed heap (hd_queue.h): the
+ * earliest of its predicted contacts, its wall contacts and its next cell crossing.  Bodies are
+ * advanced lazily (each keeps the time of its own state) and the time origin is rebased every
+ * `rebase_every` events, so precision does not decay over long runs.
+ *
+ * Invalidation: every velocity change bumps a body's ncoll; a pair event remembers the partner's
+ * ncoll and is stale when it differs.  Cell crossings do not change velocities and invalidate
+ * nothing.  Predictions are made only up to the body's next cell crossing (a partner that could
+ * be met later is found again after the crossing), which bounds every root search. */
+#ifndef HD_SIM_H
+#define HD_SIM_H
+
+#include <stdint.h>
+
+#include <gsl/gsl_rng.h>
+
+#include "hd_body.h"
+#include "hd_error.h"
+#include "hd_queue.h"
+#include "hd_scene.h"
+
+/* Species index of a body (its shape is sim->shape[species]). */
+enum { HD_SP_DIMER = 0, HD_SP_DISK = 1, HD_NSPECIES = 2 };
+
+/* Event types. */
+enum { HD_EV_NONE = 0, HD_EV_PAIR = 1, HD_EV_CELL = 2, HD_EV_WALL = 3 };
+
+/* One body.  ev_t must stay the first field: the queue reads it with a stride. */
+typedef struct hd_body {
+  double ev_t;        /* time of the next event (INFINITY if none); the heap key */
+  double t;           /* time of the state k */
+  hd_kin k;           /* centre of mass, velocity, orientation, angular velocity at t */
+  int32_t species;    /* HD_SP_DIMER or HD_SP_DISK */
+  int32_t cell;       /* cell index (cy * ncx + cx) */
+  int32_t next, prev; /* neighbours in the cell's list, -1 at the ends */
+  uint32_t ncoll;     /* velocity changes so far; invalidates partners' pair events */
+  int32_t ev_type;    /* HD_EV_* */
+  int32_t ev_partner; /* PAIR: partner body; CELL: new cell; WALL: wall index */
+  uint32_t ev_pcount; /* PAIR: partner's ncoll when predicted */
+  int16_t ev_ka;      /* PAIR/WALL: touching disk of this body */
+  int16_t ev_kb;      /* PAIR: touching disk of the partner */
+  int32_t ev_shift;   /* CELL: wrap code (bit0 x+L, bit1 x-L, bit2 y+L, bit3 y-L) */
+} hd_body;
+
+/* Counters and clocks: everything a checkpoint needs besides the bodies, cells and RNG. */
+typedef struct hd_sim_clock {
+  double t;              /* current time, relative to t_offset */
+  double t_offset;       /* absolute time = t_offset + t */
+  int64_t events;        /* events processed (collisions, crossings, stale events) */
+  int64_t collisions;    /* pair collisions (cpd counts these) */
+  int64_t wall_hits;     /* body-wall collisions */
+  int64_t stale;         /* stale events discarded */
+  int64_t next_rebase;   /* events count at which the time origin is next rebased */
+  double e_kin;          /* total kinetic energy, updated by each collision's de */
+  int64_t slow_run;      /* consecutive collisions with |vn| tiny against the thermal speed */
+} hd_sim_clock;
+
+/* What one collision did, for the log. */
+typedef struct hd_event_out {
+  double t;               /* absolute time */
+  int kind;               /* hd_coll_kind (hd_db.h numbering: 0 dimer-dimer ... 4 disk-wall) */
+  int32_t i, j;           /* bodies; j = -1 - wall index for a wall */
+  int ka, kb;             /* touching disks (kb = -1 for a wall) */
+  hd_collision_info info; /* angles, f, de, vn */
+} hd_event_out;
+
+/* The simulation. */
+typedef struct hd_sim {
+  int32_t n;                       /* bodies */
+  int32_t n_species[HD_NSPECIES];  /* bodies per species */
+  hd_body *b;                      /* the bodies: dimers first, then disks */
+  hd_shape shape[HD_NSPECIES];     /* shapes by species */
+  double alpha[HD_NSPECIES][HD_NSPECIES]; /* pair restitution by species */
+  double wall_alpha;               /* body-wall restitution */
+  double lx, ly;                   /* box */
+  unsigned walls;                  /* HD_WALL_* bits */
+  hd_wall wall[4];                 /* walls by index: left, right, bottom, top */
+  int32_t ncx, ncy;                /* cells per direction (>= 1) */
+  double cwx, cwy;                 /* cell widths (>= largest body diameter) */
+  int32_t *head;                   /* first body of each cell, -1 if empty */
+  hd_queue *q;                     /* the event queue */
+  gsl_rng *rng;                    /* seeded generator (initial state; stochastic rules) */
+  hd_sim_clock c;                  /* clocks and counters */
+  int64_t rebase_every;            /* events between rebases of the time origin */
+  int verify;                      /* check invariants at every event (slow) */
+  double max_overlap;              /* verification: largest relative overlap seen */
+  int32_t last_i, last_j;          /* bodies of the last collision (collapse report) */
+} hd_sim;
+
+/* Builds a simulation from a scene: bodies placed and given velocities (seeded by sc->seed),
+ * no event processed yet.  HD_EINPUT for a scene the bodies do not fit in or a bad state file
+ * (message names the file, line and key), HD_ENOMEM.  *out is NULL on failure. */
+int hd_sim_alloc(hd_sim **out, const hd_scene *sc, hd_error *err);
+
+/* Frees everything (NULL allowed). */
+void hd_sim_free(hd_sim *s);
+
+/* Status of hd_sim_next besides HD_OK (a collision happened). */
+enum { HD_SIM_STOPTIME = 100, HD_SIM_IDLE = 101 };
+
+/* Processes events until the next collision, which it describes in *ev, and returns HD_OK; or
+ * returns HD_SIM_STOPTIME when the next event is after t_stop (absolute; the clock is then at
+ * t_stop), HD_SIM_IDLE when no event is left, HD_ECOLLAPSE on inelastic collapse, HD_EPHYS when
+ * verification finds an overlap or time going backwards (err says which bodies). */
+int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err);
+
+/* Absolute current time. */
+static inline double hd_sim_time(const hd_sim *s) {
+  return s->c.t_offset + s->c.t;
+}
+
+/* Collisions per particle: 2 * pair collisions / N. */
+static inline double hd_sim_cpd(const hd_sim *s) {
+  return s->n ? 2.0 * (double)s->c.collisions / (double)s->n : 0.0;
+}
+
+/* State of body i at the current time, without changing the simulation. */
+void hd_sim_body_now(const hd_sim *s, int32_t i, hd_kin *k);
+
+/* Kinetic energies summed over species sp (or all if sp < 0), recomputed from the bodies:
+ * translational and rotational. */
+void hd_sim_energy(const hd_sim *s, int sp, double *e_tr, double *e_rot);
+
+/* Total momentum and angular momentum about the origin (unwrapped positions not tracked, so the
+ * angular momentum is meaningful only without walls or for spin). */
+void hd_sim_momentum(const hd_sim *s, double *px, double *py);
+
+/* Checks every pair of nearby bodies for overlap at the current time: returns the largest
+ * relative overlap (D - |r|)/D found (<= 0 when none), with the pair in *i, *j. O(N). */
+double hd_sim_max_overlap(const hd_sim *s, int32_t *i, int32_t *j);
+
+/* Serialises the exact state (bodies, cells, clocks, RNG) into a malloc'd blob. */
+int hd_sim_checkpoint(const hd_sim *s, void **blob, size_t *n, hd_error *err);
+
+/* Builds a simulation from a scene and a blob saved by hd_sim_checkpoint for a run of that scene
+ * (no placement is done, no file read): the continuation is bit-identical to the uninterrupted
+ * run.  HD_EINPUT if the blob does not fit the scene or this build. */
+int hd_sim_alloc_restore(hd_sim **out, const hd_scene *sc, const void *blob, size_t n,
+                         hd_error *err);
+
+#endif

@@ -1,0 +1,82 @@
+/* Functions shared by the engine's own files (not part of the public API). */
+#ifndef HD_SIM_INTERNAL_H
+#define HD_SIM_INTERNAL_H
+
+#include "hd_sim.h"
+
+/* --- cells (hd_cells.c) --- */
+/* Sizes the cell grid for the largest body and allocates head[]; HD_ENOMEM. */
+int hd_cells_alloc(hd_sim *s, hd_error *err);
+/* Cell index of a position (wrapped into the box). */
+int32_t hd_cells_of(const hd_sim *s, double x, double y);
+/* Links body i into cell c / unlinks it from its cell. */
+void hd_cells_insert(hd_sim *s, int32_t i, int32_t c);
+void hd_cells_remove(hd_sim *s, int32_t i);
+/* Rebuilds every list from the bodies' cell fields, in body order. */
+void hd_cells_rebuild(hd_sim *s);
+
+/* --- prediction (hd_predict.c) --- */
+/* Predicts body i's next event at the current time (i must be advanced to it) and updates
+ * the queue. */
+void hd_predict(hd_sim *s, int32_t i);
+
+/* Brings body i's state to the current time. */
+static inline void hd_body_sync(hd_sim *s, int32_t i) {
+  hd_body *b = &s->b[i];
+  double dt = s->c.t - b->t;
+  if (dt != 0.0) {
+    hd_kin_advance(&b->k, dt);
+    b->t = s->c.t;
+  }
+}
+
+/* Runs BODY for every body j in the 3x3 cells around cell c (j may be the caller's own body),
+ * with (sx, sy) the periodic shift that brings j next to cell c.  With fewer than 3 cells in a
+ * periodic direction the same cell is visited at its distinct images (shifts -L, 0, +L), which
+ * is what a small box needs. */
+#define HD_FOR_NEIGHBOURS(s, c, ...)                                                            \
+  do {                                                                                          \
+    int32_t cx_ = (c) % (s)->ncx, cy_ = (c) / (s)->ncx;                                         \
+    for (int32_t dy_ = -1; dy_ <= 1; dy_++) {                                                    \
+      int32_t yy_ = cy_ + dy_;                                                                  \
+      double sy = 0.0;                                                                          \
+      if (yy_ < 0) {                                                                            \
+        if ((s)->walls & HD_WALL_BOTTOM) continue;                                              \
+        yy_ += (s)->ncy;                                                                        \
+        sy = -(s)->ly;                                                                          \
+      } else if (yy_ >= (s)->ncy) {                                                             \
+        if ((s)->walls & HD_WALL_TOP) continue;                                                 \
+        yy_ -= (s)->ncy;                                                                        \
+        sy = (s)->ly;                                                                           \
+      }                                                                                         \
+      for (int32_t dx_ = -1; dx_ <= 1; dx_++) {                                                  \
+        int32_t xx_ = cx_ + dx_;                                                                \
+        double sx = 0.0;                                                                        \
+        if (xx_ < 0) {                                                                          \
+          if ((s)->walls & HD_WALL_LEFT) continue;                                              \
+          xx_ += (s)->ncx;                                                                      \
+          sx = -(s)->lx;                                                                        \
+        } else if (xx_ >= (s)->ncx) {                                                           \
+          if ((s)->walls & HD_WALL_RIGHT) continue;                                             \
+          xx_ -= (s)->ncx;                                                                      \
+          sx = (s)->lx;                                                                         \
+        }                                                                                       \
+        for (int32_t j = (s)->head[yy_ * (s)->ncx + xx_]; j >= 0; j = (s)->b[j].next) {         \
+          __VA_ARGS__                                                                           \
+        }                                                                                       \
+      }                                                                                         \
+    }                                                                                           \
+  } while (0)
+
+/* --- set-up (hd_sim.c, hd_checkpoint.c) --- */
+/* Allocates the queue for s->n bodies (keys not yet set). */
+int hd_sim_queue_init(hd_sim *s, hd_error *err);
+/* Fills a set-up simulation (species, box, RNG) from a checkpoint blob: bodies, cells, clocks,
+ * RNG state, queue. */
+int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err);
+
+/* --- initial state (hd_init.c) --- */
+/* Places the bodies and draws velocities as the scene says. */
+int hd_init_state(hd_sim *s, const hd_scene *sc, hd_error *err);
+
+#endif
