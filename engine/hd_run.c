@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "hd_db.h"
+#include "hd_model.h"
 #include "hd_sim.h"
 
 static volatile sig_atomic_t stop_flag = 0;
@@ -33,7 +34,8 @@ typedef struct run_state {
 typedef struct runner {
   const hd_scene *sc;
   const hd_run_opts *o;
-  hd_sim *s;
+  const hd_model_ops *ops; /* the model that runs the scene */
+  void *s;                 /* its state */
   hd_db *db;
   int64_t run;
   run_state st;
@@ -54,25 +56,14 @@ static double elapsed(const runner *r) {
   return r->st.wall_seconds + now_wall() - r->t0_wall;
 }
 
-/* Writes one states row per body (positions at the current time) under label. */
+/* Writes one states row per body at the current time under label. */
 static int log_states(runner *r, const char *label, hd_error *err) {
-  hd_sim *s = r->s;
-  for (int32_t i = 0; i < s->n; i++) {
-    hd_kin k;
-    hd_sim_body_now(s, i, &k);
-    hd_state_rec rec = {hd_sim_time(s), i, s->shape[s->b[i].species].kind, k.x, k.y, k.phi,
-                        k.vx, k.vy, k.omega, hd_sim_cpd(s)};
-    int rc = hd_db_log_state(r->db, r->run, label, &rec, err);
-    if (rc) return rc;
-  }
-  return HD_OK;
+  return r->ops->log_states(r->s, r->db, r->run, label, err);
 }
 
 static int log_sample(runner *r, hd_error *err) {
-  hd_sim *s = r->s;
-  double e_tr, e_rot;
-  hd_sim_energy(s, -1, &e_tr, &e_rot);
-  hd_sample_row row = {hd_sim_time(s), s->c.collisions, hd_sim_cpd(s), e_tr / s->n, e_rot / s->n};
+  hd_sample_row row;
+  r->ops->sample(r->s, &row);
   return hd_db_log_sample(r->db, r->run, &row, err);
 }
 
@@ -82,7 +73,7 @@ static int checkpoint(runner *r, hd_error *err) {
   r->st.wall_seconds = elapsed(r);
   r->t0_wall = now_wall();
   size_t hs = sizeof r->st;
-  int rc = hd_sim_checkpoint(r->s, &blob, &n, err);
+  int rc = r->ops->checkpoint(r->s, &blob, &n, err);
   if (rc) return rc;
   unsigned char *all = malloc(hs + n);
   if (!all) {
@@ -92,7 +83,7 @@ static int checkpoint(runner *r, hd_error *err) {
   memcpy(all, &r->st, hs);
   memcpy(all + hs, blob, n);
   free(blob);
-  rc = hd_db_checkpoint_save(r->db, r->run, r->st.seq, hd_sim_time(r->s), all, hs + n, err);
+  rc = hd_db_checkpoint_save(r->db, r->run, r->st.seq, r->ops->time(r->s), all, hs + n, err);
   free(all);
   r->last_ckpt_wall = now_wall();
   return rc;
@@ -102,36 +93,35 @@ static int checkpoint(runner *r, hd_error *err) {
 static double fraction_done(const runner *r) {
   const hd_scene *sc = r->sc;
   double f = 0.0;
-  if (sc->stop_time > 0) f = fmax(f, hd_sim_time(r->s) / sc->stop_time);
+  if (sc->stop_time > 0) f = fmax(f, r->ops->time(r->s) / sc->stop_time);
   if (sc->stop_events > 0) f = fmax(f, (double)r->st.seq / sc->stop_events);
-  if (sc->stop_cpd > 0) f = fmax(f, hd_sim_cpd(r->s) / sc->stop_cpd);
+  if (sc->stop_cpd > 0) f = fmax(f, r->ops->cpd(r->s) / sc->stop_cpd);
   return fmin(f, 1.0);
 }
 
 static void tick(runner *r) {
   double w = now_wall();
   if (w - r->last_tick_wall < 0.5) return;
-  hd_sim *s = r->s;
-  double rate = (double)(s->c.events - r->last_tick_events) / (w - r->last_tick_wall);
+  int64_t ev = r->ops->events(r->s);
+  double rate = (double)(ev - r->last_tick_events) / (w - r->last_tick_wall);
   double f = fraction_done(r), spent = elapsed(r);
   double eta = f > 0 ? spent * (1 - f) / f : NAN;
-  double dof = 2.0 * s->n + s->n_species[HD_SP_DIMER];
   fprintf(stderr, "\r%12lld events  %9.3g ev/s  cpd %9.4g  T %9.3g  ETA %6.0f s   ",
-          (long long)s->c.events, rate, hd_sim_cpd(s), 2.0 * s->c.e_kin / dof, eta);
+          (long long)ev, rate, r->ops->cpd(r->s), r->ops->temperature(r->s), eta);
   r->last_tick_wall = w;
-  r->last_tick_events = s->c.events;
+  r->last_tick_events = ev;
 }
 
 static int stop_reached(const runner *r) {
   const hd_scene *sc = r->sc;
   return (sc->stop_events > 0 && (double)r->st.seq >= sc->stop_events) ||
-         (sc->stop_cpd > 0 && hd_sim_cpd(r->s) >= sc->stop_cpd);
+         (sc->stop_cpd > 0 && r->ops->cpd(r->s) >= sc->stop_cpd);
 }
 
 /* Samples and velocity snapshots due at the current cpd. */
 static int observe(runner *r, hd_error *err) {
   const hd_scene *sc = r->sc;
-  double cpd = hd_sim_cpd(r->s);
+  double cpd = r->ops->cpd(r->s);
   while (sc->samples_every > 0 && cpd >= (double)r->st.next_sample * sc->samples_every) {
     int rc = log_sample(r, err);
     if (rc) return rc;
@@ -148,23 +138,19 @@ static int observe(runner *r, hd_error *err) {
 /* The loop: events until a stop condition, a signal, a collapse or an error. */
 static int drive(runner *r, hd_error *err) {
   const hd_scene *sc = r->sc;
-  hd_sim *s = r->s;
   double t_stop = sc->stop_time > 0 ? sc->stop_time : INFINITY;
   int rc = observe(r, err);
   while (rc == HD_OK && !stop_reached(r)) {
-    hd_event_out ev;
-    rc = hd_sim_next(s, t_stop, &ev, err);
+    hd_collision_row row;
+    rc = r->ops->next(r->s, t_stop, &row, err);
     if (rc == HD_SIM_STOPTIME || rc == HD_SIM_IDLE) {
       rc = HD_OK;
       break;
     }
     if (rc) break;
-    r->st.seq++;
+    row.seq = ++r->st.seq;
     if (sc->log_collisions == HD_LOG_ALL ||
         (sc->log_collisions == HD_LOG_EVERY && r->st.seq % sc->log_every == 0)) {
-      hd_collision_row row = {r->st.seq, ev.t, (hd_coll_kind)ev.kind, ev.i, ev.j, ev.ka, ev.kb,
-                              ev.info.theta_i, ev.info.theta_j, ev.info.f, ev.info.de,
-                              ev.info.vn};
       rc = hd_db_log_collision(r->db, r->run, &row, err);
       if (rc) break;
     }
@@ -172,7 +158,7 @@ static int drive(runner *r, hd_error *err) {
     if (rc) break;
     if (stop_flag) {
       rc = hd_error_set(err, HD_EINTR, "interrupted at t = %.10g after %lld collisions",
-                        hd_sim_time(s), (long long)r->st.seq);
+                        r->ops->time(r->s), (long long)r->st.seq);
       break;
     }
     if ((r->st.seq & 1023) == 0) {
@@ -202,7 +188,7 @@ static int finish(runner *r, int rc, hd_error *err) {
     if (!wrc) wrc = checkpoint(r, &e2);
   }
   if (rc != HD_OK) hd_db_run_message(r->db, r->run, err->msg, &e2);
-  int src = hd_db_run_status(r->db, r->run, status, r->s->c.events, elapsed(r), &e2);
+  int src = hd_db_run_status(r->db, r->run, status, r->ops->events(r->s), elapsed(r), &e2);
   if (!wrc) wrc = src;
   if (!wrc && rc == HD_OK) wrc = hd_db_build_indexes(r->db, &e2);
   if (rc == HD_OK && wrc) {
@@ -221,7 +207,7 @@ static int drive_and_finish(runner *r, hd_error *err) {
   sigaction(SIGINT, &sa, &old_int);
   sigaction(SIGTERM, &sa, &old_term);
   r->t0_wall = r->last_ckpt_wall = r->last_tick_wall = now_wall();
-  r->last_tick_events = r->s->c.events;
+  r->last_tick_events = r->ops->events(r->s);
   r->progress = !r->o->quiet && isatty(2);
   int rc = drive(r, err);
   rc = finish(r, rc, err);
@@ -231,13 +217,15 @@ static int drive_and_finish(runner *r, hd_error *err) {
 }
 
 int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error *err) {
-  runner r = {.sc = sc, .o = o};
+  runner r = {.sc = sc, .o = o, .ops = hd_model_for_scene(sc)};
   *run = 0;
-  int rc = hd_sim_alloc(&r.s, sc, err); /* bad input fails here, before anything is written */
+  int rc = r.ops->alloc(&r.s, sc, err); /* bad input fails here, before anything is written */
   if (rc) return rc;
+  double lx, ly;
+  r.ops->box(r.s, &lx, &ly);
   rc = hd_db_open(&r.db, o->db_path, err);
   if (!rc) rc = hd_db_run_begin(r.db, sc->text ? sc->text : "", sc->seed, o->version, &r.run, err);
-  if (!rc) rc = hd_db_run_box(r.db, r.run, r.s->lx, r.s->ly, err);
+  if (!rc) rc = hd_db_run_box(r.db, r.run, lx, ly, err);
   if (!rc) {
     *run = r.run;
     rc = log_states(&r, "initial", err);
@@ -252,7 +240,7 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
   hd_error e3;
   int crc = hd_db_close(r.db, &e3);
   if (!rc && crc) *err = e3, rc = crc;
-  hd_sim_free(r.s);
+  r.ops->free(r.s);
   return rc;
 }
 
@@ -280,21 +268,23 @@ int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error
     return rc;
   }
   r.sc = &sc;
+  r.ops = hd_model_for_scene(&sc);
   *run = r.run;
   rc = hd_db_checkpoint_load(r.db, r.run, &blob, &n, &seq, &t, err);
   if (!rc && n < sizeof r.st) rc = hd_error_set(err, HD_EINPUT, "checkpoint of run %lld is truncated", (long long)r.run);
   if (!rc) {
     memcpy(&r.st, blob, sizeof r.st);
-    rc = hd_sim_alloc_restore(&r.s, &sc, (unsigned char *)blob + sizeof r.st, n - sizeof r.st, err);
+    rc = r.ops->alloc_restore(&r.s, &sc, (unsigned char *)blob + sizeof r.st, n - sizeof r.st,
+                              err);
   }
   free(blob);
   if (!rc) rc = hd_db_truncate_after(r.db, r.run, seq, t, err);
-  if (!rc) rc = hd_db_run_status(r.db, r.run, "running", r.s->c.events, r.st.wall_seconds, err);
+  if (!rc) rc = hd_db_run_status(r.db, r.run, "running", r.ops->events(r.s), r.st.wall_seconds, err);
   if (!rc) rc = drive_and_finish(&r, err);
   hd_error e3;
   int crc = hd_db_close(r.db, &e3);
   if (!rc && crc) *err = e3, rc = crc;
-  hd_sim_free(r.s);
+  if (r.s) r.ops->free(r.s);
   hd_scene_free(&sc);
   return rc;
 }

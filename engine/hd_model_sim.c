@@ -1,0 +1,76 @@
+/* The 2D engine (hd_sim: disks and dimers) seen through hd_model_ops. */
+#include "hd_model.h"
+#include "hd_sim.h"
+
+static int m_alloc(void **m, const hd_scene *sc, hd_error *err) {
+  return hd_sim_alloc((hd_sim **)m, sc, err);
+}
+static int m_alloc_restore(void **m, const hd_scene *sc, const void *blob, size_t n,
+                           hd_error *err) {
+  return hd_sim_alloc_restore((hd_sim **)m, sc, blob, n, err);
+}
+static void m_free(void *m) {
+  hd_sim_free(m);
+}
+
+static int m_next(void *m, double t_stop, hd_collision_row *row, hd_error *err) {
+  hd_event_out ev;
+  int rc = hd_sim_next(m, t_stop, &ev, err);
+  if (rc) return rc;
+  *row = (hd_collision_row){0, ev.t, (hd_coll_kind)ev.kind, ev.i, ev.j, ev.ka, ev.kb,
+                            ev.info.theta_i, ev.info.theta_j, ev.info.f, ev.info.de, ev.info.vn};
+  return HD_OK;
+}
+
+static int m_checkpoint(const void *m, void **blob, size_t *n, hd_error *err) {
+  return hd_sim_checkpoint(m, blob, n, err);
+}
+static double m_time(const void *m) {
+  return hd_sim_time(m);
+}
+static double m_cpd(const void *m) {
+  return hd_sim_cpd(m);
+}
+static int64_t m_events(const void *m) {
+  return ((const hd_sim *)m)->c.events;
+}
+static double m_temperature(const void *m) {
+  const hd_sim *s = m;
+  double dof = 2.0 * s->n + s->n_species[HD_SP_DIMER];
+  return 2.0 * s->c.e_kin / dof;
+}
+
+static void m_sample(const void *m, hd_sample_row *row) {
+  const hd_sim *s = m;
+  double e_tr, e_rot;
+  hd_sim_energy(s, -1, &e_tr, &e_rot);
+  *row = (hd_sample_row){hd_sim_time(s), s->c.collisions, hd_sim_cpd(s), e_tr / s->n,
+                         e_rot / s->n};
+}
+
+static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label, hd_error *err) {
+  const hd_sim *s = m;
+  for (int32_t i = 0; i < s->n; i++) {
+    hd_kin k;
+    hd_sim_body_now(s, i, &k);
+    hd_state_rec rec = {hd_sim_time(s), i, s->shape[s->b[i].species].kind, k.x, k.y, k.phi,
+                        k.vx, k.vy, k.omega, hd_sim_cpd(s)};
+    int rc = hd_db_log_state(db, run, label, &rec, err);
+    if (rc) return rc;
+  }
+  return HD_OK;
+}
+
+static void m_box(const void *m, double *lx, double *ly) {
+  *lx = ((const hd_sim *)m)->lx;
+  *ly = ((const hd_sim *)m)->ly;
+}
+
+const hd_model_ops hd_model_bodies2d = {
+    "bodies2d", m_alloc,  m_alloc_restore, m_free,   m_next,        m_checkpoint, m_time,
+    m_cpd,      m_events, m_temperature,   m_sample, m_log_states, m_box};
+
+const hd_model_ops *hd_model_for_scene(const hd_scene *sc) {
+  (void)sc; /* the rod model adds its case here */
+  return &hd_model_bodies2d;
+}
