@@ -99,8 +99,13 @@ test: | $(DEPS_STAMP)
 demo: bin/haff
 	@scripts=1 ./scenes/demo.sh
 
-bench: bin/haff
-	@bench/run.sh
+BENCH_BIN := $(BUILD)/bench/bench_engine
+$(BENCH_BIN): bench/bench_engine.c $(LIB) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS)
+
+bench: bin/haff $(BENCH_BIN)
+	@BENCH_BIN=$(BENCH_BIN) bench/run.sh
 
 plots: bin/haff
 	@$(MAKE) --no-print-directory -f plots/plots.mk

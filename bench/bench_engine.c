@@ -1,7 +1,7 @@
 /* Benchmark of the engine: collisions per second against N, area fraction and logging.
  * usage: bench_engine KIND N ETA LOG [COLLISIONS]   KIND disk|dimer, LOG 0|1 (every collision
  * to an SQLite file in $TMPDIR).  Prints one TSV line:
- * kind n eta log collisions seconds coll_per_s events_per_s */
+ * kind n eta log collisions seconds coll_per_s events_per_s stale_fraction */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -78,8 +78,9 @@ int main(int argc, char **argv) {
   }
   if (db && hd_db_commit(db, &err)) return 1;
   double dt = now() - t0;
-  printf("%s\t%ld\t%.2f\t%d\t%ld\t%.3f\t%.4g\t%.4g\n", dimer ? "dimer" : "disk", n, eta, log,
-         ncoll, dt, (double)ncoll / dt, (double)(s->c.events - e0) / dt);
+  printf("%s\t%ld\t%.2f\t%d\t%ld\t%.3f\t%.4g\t%.4g\t%.3f\n", dimer ? "dimer" : "disk", n, eta,
+         log, ncoll, dt, (double)ncoll / dt, (double)(s->c.events - e0) / dt,
+         (double)s->c.stale / (double)(s->c.events - e0));
   if (db) {
     hd_db_close(db, &err);
     unlink(path);

@@ -70,6 +70,6 @@ int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err) {
   memcpy(gsl_rng_state(s->rng), q, h.rng_size);
   rc = hd_sim_queue_init(s, err);
   if (rc) return rc;
-  hd_queue_build(s->q, s->n);
+  hd_queue_build(s->q, s->n, &s->b[0].ev_t, HD_BODY_STRIDE);
   return HD_OK;
 }

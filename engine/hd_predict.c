@@ -1,34 +1,39 @@
-/* Event prediction for one body: its next cell crossing, its wall contacts (edge cells only)
- * and its contacts with the bodies of the 3x3 neighbouring cells, all searched only up to the
- * earliest event found so far (the crossing bounds the search; see hd_sim.h). */
+/* Event prediction for one body.  A body holds two pending events (hd_sim.h): its earliest
+ * contact (with a body of the 3x3 neighbouring cells, or with a wall from an edge cell) and its
+ * next cell crossing.  A full prediction searches all 9 cells.  After a crossing in a pure disk
+ * scene only the 3 cells that became adjacent are searched, and the stored contact is kept if
+ * still valid: disk-disk contact times are exact and unbounded (closed form), so the stored one
+ * is the earliest with every body of the cells that stay adjacent.  Contacts involving a dimer
+ * are searched only up to the body's next crossing (which bounds the root search); a partner
+ * met later is found again after that crossing, by a full prediction. */
 #include <math.h>
 
 #include "hd_disk.h"
 #include "hd_sim_internal.h"
 
-/* Time until body b leaves its cell, or INFINITY; *dir: 0 +x, 1 -x, 2 +y, 3 -y. */
-static double crossing_time(const hd_sim *s, const hd_body *b, int32_t *dir) {
+/* Time until body b leaves its cell (>= 0), or INFINITY; sets b->c_dir. */
+static double crossing_time(const hd_sim *s, hd_body *b) {
   int32_t cx = b->cell % s->ncx, cy = b->cell / s->ncx;
   double best = INFINITY, t;
   if (b->k.vx > 0.0 && !(cx == s->ncx - 1 && (s->walls & HD_WALL_RIGHT))) {
     t = ((cx + 1) * s->cwx - b->k.x) / b->k.vx;
-    if (t < best) best = t, *dir = 0;
+    if (t < best) best = t, b->c_dir = 0;
   } else if (b->k.vx < 0.0 && !(cx == 0 && (s->walls & HD_WALL_LEFT))) {
     t = (cx * s->cwx - b->k.x) / b->k.vx;
-    if (t < best) best = t, *dir = 1;
+    if (t < best) best = t, b->c_dir = 1;
   }
   if (b->k.vy > 0.0 && !(cy == s->ncy - 1 && (s->walls & HD_WALL_TOP))) {
     t = ((cy + 1) * s->cwy - b->k.y) / b->k.vy;
-    if (t < best) best = t, *dir = 2;
+    if (t < best) best = t, b->c_dir = 2;
   } else if (b->k.vy < 0.0 && !(cy == 0 && (s->walls & HD_WALL_BOTTOM))) {
     t = (cy * s->cwy - b->k.y) / b->k.vy;
-    if (t < best) best = t, *dir = 3;
+    if (t < best) best = t, b->c_dir = 3;
   }
   return best < 0.0 ? 0.0 : best;
 }
 
-/* Wall contacts of body i (only bodies in edge cells can reach a wall). */
-static void predict_walls(hd_sim *s, int32_t i, double *best) {
+/* Wall contacts of body i, if it is in an edge cell; *best is relative to now. */
+static void predict_walls(hd_sim *s, int32_t i, double horizon, double *best) {
   hd_body *b = &s->b[i];
   int32_t cx = b->cell % s->ncx, cy = b->cell / s->ncx;
   int near[4] = {cx == 0, cx == s->ncx - 1, cy == 0, cy == s->ncy - 1};
@@ -36,62 +41,122 @@ static void predict_walls(hd_sim *s, int32_t i, double *best) {
   for (int w = 0; w < 4; w++) {
     if (!near[w] || !(s->walls & bit[w])) continue;
     hd_contact c;
-    if (hd_predict_wall(&b->k, &s->shape[b->species], &s->wall[w], *best, &c) && c.t < *best) {
+    double lim = fmin(*best, horizon);
+    if (hd_predict_wall(&b->k, &s->shape[b->species], &s->wall[w], lim, &c) && c.t < *best) {
       *best = c.t;
-      b->ev_type = HD_EV_WALL;
-      b->ev_partner = w;
-      b->ev_ka = (int16_t)c.ka;
+      b->p_type = HD_EV_WALL;
+      b->p_partner = w;
+      b->p_ka = (int16_t)c.ka;
     }
   }
+}
+
+/* Records a contact of i with j found at relative time t, seen through shift code (ix, iy). */
+static inline void take_pair(hd_body *bi, const hd_body *bj, int32_t j, int ka, int kb, int ix,
+                             int iy) {
+  bi->p_type = HD_EV_PAIR;
+  bi->p_partner = j;
+  bi->p_pcount = bj->ncoll;
+  bi->p_ka = (int16_t)ka;
+  bi->p_kb = (int16_t)kb;
+  bi->p_imx = (int16_t)(ix - bj->wx + bi->wx);
+  bi->p_imy = (int16_t)(iy - bj->wy + bi->wy);
+}
+
+/* Contacts of body i with body j (shifted by sx, sy); *best relative to now. */
+static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, double sy,
+                               double horizon, double *best) {
+  const hd_body *bj = &s->b[j];
+  const double dtj = s->c.t - bj->t;
+  const hd_shape *si = &s->shape[bi->species];
+  int ix = (sx > 0) - (sx < 0), iy = (sy > 0) - (sy < 0);
+  if (bi->species == HD_SP_DISK && bj->species == HD_SP_DISK) {
+    /* disk-disk: closed form, no copies, no horizon */
+    double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x;
+    double ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
+    double t = hd_disk_contact_time(rx, ry, bj->k.vx - bi->k.vx, bj->k.vy - bi->k.vy, si->d);
+    if (t < *best) {
+      *best = t;
+      take_pair(bi, bj, j, 0, 0, ix, iy);
+    }
+    return;
+  }
+  hd_kin kj = bj->k;
+  hd_kin_advance(&kj, dtj);
+  kj.x += sx;
+  kj.y += sy;
+  hd_contact c;
+  double lim = fmin(*best, horizon);
+  if (hd_predict_pair(&bi->k, si, &kj, &s->shape[bj->species], lim, &c) && c.t < *best) {
+    *best = c.t;
+    take_pair(bi, bj, j, c.ka, c.kb, ix, iy);
+  }
+}
+
+/* Sets ev_t from the two slots and updates the queue. */
+static inline void commit(hd_sim *s, int32_t i) {
+  hd_body *b = &s->b[i];
+  b->ev_t = b->p_t < b->c_t ? b->p_t : b->c_t;
+  hd_queue_update(s->q, i, b->ev_t);
 }
 
 void hd_predict(hd_sim *s, int32_t i) {
   hd_body *bi = &s->b[i];
   const double now = s->c.t;
-  int32_t dir = -1;
-  double best = crossing_time(s, bi, &dir); /* relative to now */
-  bi->ev_type = best < INFINITY ? HD_EV_CELL : HD_EV_NONE;
-  bi->ev_partner = dir;
-
-  if (s->walls) predict_walls(s, i, &best);
-
-  const hd_shape *si = &s->shape[bi->species];
-  const int disk_i = bi->species == HD_SP_DISK;
+  double cross = crossing_time(s, bi);
+  double best = INFINITY; /* earliest contact, relative to now */
+  bi->p_type = HD_EV_NONE;
+  if (s->walls) predict_walls(s, i, cross, &best);
   HD_FOR_NEIGHBOURS(s, bi->cell, {
-    if (j == i) continue;
-    const hd_body *bj = &s->b[j];
-    const double dtj = now - bj->t;
-    if (disk_i && bj->species == HD_SP_DISK) {
-      /* disk-disk: closed form, no copies */
-      double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x;
-      double ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
-      double D = 0.5 * (si->d + s->shape[HD_SP_DISK].d);
-      double t = hd_disk_contact_time(rx, ry, bj->k.vx - bi->k.vx, bj->k.vy - bi->k.vy, D);
-      if (t < best) {
-        best = t;
-        bi->ev_type = HD_EV_PAIR;
-        bi->ev_partner = j;
-        bi->ev_pcount = bj->ncoll;
-        bi->ev_ka = bi->ev_kb = 0;
-        bi->ev_shift = (int32_t)((sx > 0) - (sx < 0) + 1 + 3 * ((sy > 0) - (sy < 0) + 1));
-      }
-    } else {
-      hd_kin kj = bj->k;
-      hd_kin_advance(&kj, dtj);
-      kj.x += sx;
-      kj.y += sy;
-      hd_contact c;
-      if (hd_predict_pair(&bi->k, si, &kj, &s->shape[bj->species], best, &c) && c.t < best) {
-        best = c.t;
-        bi->ev_type = HD_EV_PAIR;
-        bi->ev_partner = j;
-        bi->ev_pcount = bj->ncoll;
-        bi->ev_ka = (int16_t)c.ka;
-        bi->ev_kb = (int16_t)c.kb;
-        bi->ev_shift = (int32_t)((sx > 0) - (sx < 0) + 1 + 3 * ((sy > 0) - (sy < 0) + 1));
-      }
-    }
+    if (j != i) predict_one(s, bi, j, sx, sy, cross, &best);
   });
-  bi->ev_t = bi->ev_type == HD_EV_NONE ? INFINITY : now + best;
-  hd_queue_update(s->q, i);
+  bi->c_t = now + cross;
+  bi->p_t = now + best;
+  commit(s, i);
+}
+
+/* After body i crossed face `dir` (without wrapping) in a pure disk scene: searches the 3 cells
+ * that became adjacent, keeping the stored contact if it is still valid.  Returns 0 when a full
+ * prediction is needed instead (the stored contact is stale). */
+static int predict_after_crossing(hd_sim *s, int32_t i) {
+  hd_body *bi = &s->b[i];
+  if (bi->p_type == HD_EV_PAIR && s->b[bi->p_partner].ncoll != bi->p_pcount) return 0;
+  const double now = s->c.t;
+  int dir = bi->c_dir;
+  double cross = crossing_time(s, bi);
+  double best = bi->p_type == HD_EV_NONE ? INFINITY : bi->p_t - now;
+  if (s->walls) predict_walls(s, i, cross, &best);
+  int32_t cx = bi->cell % s->ncx, cy = bi->cell / s->ncx;
+  for (int k = -1; k <= 1; k++) {
+    /* the new column (dir 0/1) or row (dir 2/3), k along it */
+    int32_t xx = cx, yy = cy;
+    if (dir < 2) xx += dir == 0 ? 1 : -1, yy += k;
+    else yy += dir == 2 ? 1 : -1, xx += k;
+    double sx = 0.0, sy = 0.0;
+    if (xx < 0) {
+      if (s->walls & HD_WALL_LEFT) continue;
+      xx += s->ncx, sx = -s->lx;
+    } else if (xx >= s->ncx) {
+      if (s->walls & HD_WALL_RIGHT) continue;
+      xx -= s->ncx, sx = s->lx;
+    }
+    if (yy < 0) {
+      if (s->walls & HD_WALL_BOTTOM) continue;
+      yy += s->ncy, sy = -s->ly;
+    } else if (yy >= s->ncy) {
+      if (s->walls & HD_WALL_TOP) continue;
+      yy -= s->ncy, sy = s->ly;
+    }
+    for (int32_t j = s->head[yy * s->ncx + xx]; j >= 0; j = s->b[j].next)
+      predict_one(s, bi, j, sx, sy, cross, &best);
+  }
+  bi->c_t = now + cross;
+  bi->p_t = now + best;
+  commit(s, i);
+  return 1;
+}
+
+void hd_predict_crossed(hd_sim *s, int32_t i, int wrapped) {
+  if (s->partial_cross && !wrapped && predict_after_crossing(s, i)) return;
+  hd_predict(s, i);
 }

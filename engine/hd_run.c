@@ -139,7 +139,7 @@ static int observe(runner *r, hd_error *err) {
 static int drive(runner *r, hd_error *err) {
   const hd_scene *sc = r->sc;
   double t_stop = sc->stop_time > 0 ? sc->stop_time : INFINITY;
-  int rc = observe(r, err);
+  int rc = HD_OK;
   while (rc == HD_OK && !stop_reached(r)) {
     hd_collision_row row;
     rc = r->ops->next(r->s, t_stop, &row, err);
@@ -229,6 +229,7 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
   if (!rc) {
     *run = r.run;
     rc = log_states(&r, "initial", err);
+    if (!rc) rc = observe(&r, err);    /* the t = 0 sample */
     if (!rc) rc = checkpoint(&r, err); /* so that even a run killed at once can be resumed */
     if (rc) {
       hd_error e2;

@@ -52,9 +52,10 @@ static int sim_setup(hd_sim **out, const hd_scene *sc, hd_error *err) {
 }
 
 int hd_sim_queue_init(hd_sim *s, hd_error *err) {
-  s->q = hd_queue_alloc(s->n, &s->b[0].ev_t, (int32_t)(sizeof(hd_body) / sizeof(double)));
+  s->q = hd_queue_alloc(s->n);
   if (!s->q) return hd_error_set(err, HD_ENOMEM, "out of memory for the event queue");
   s->rebase_every = s->n > 1000 ? 100 * (int64_t)s->n : 100000;
+  s->partial_cross = s->n_species[HD_SP_DIMER] == 0 && s->ncx >= 3 && s->ncy >= 3;
   return HD_OK;
 }
 
@@ -68,8 +69,8 @@ int hd_sim_alloc(hd_sim **out, const hd_scene *sc, hd_error *err) {
     hd_sim_free(s);
     return rc;
   }
-  for (int32_t i = 0; i < s->n; i++) s->b[i].ev_t = INFINITY;
-  hd_queue_build(s->q, s->n);
+  for (int32_t i = 0; i < s->n; i++) s->b[i].ev_t = s->b[i].p_t = s->b[i].c_t = INFINITY;
+  hd_queue_build(s->q, s->n, &s->b[0].ev_t, HD_BODY_STRIDE);
   for (int32_t i = 0; i < s->n; i++) hd_predict(s, i);
   s->c.next_rebase = s->rebase_every;
   double e_tr, e_rot;
@@ -179,38 +180,44 @@ double hd_sim_max_overlap(const hd_sim *s, int32_t *i, int32_t *j) {
   return worst;
 }
 
-/* Moves body i across the cell face its event names, wrapping through the periodic box. */
-static void cross_cell(hd_sim *s, int32_t i) {
+/* Moves body i across the cell face of its crossing event, wrapping through the periodic box;
+ * returns 1 if it wrapped. */
+static int cross_cell(hd_sim *s, int32_t i) {
   hd_body *b = &s->b[i];
   int32_t cx = b->cell % s->ncx, cy = b->cell / s->ncx;
-  switch (b->ev_partner) {
+  int wrapped = 0;
+  switch (b->c_dir) {
   case 0:
-    if (++cx == s->ncx) cx = 0, b->k.x -= s->lx;
+    if (++cx == s->ncx) cx = 0, b->k.x -= s->lx, b->wx++, wrapped = 1;
     break;
   case 1:
-    if (--cx < 0) cx = s->ncx - 1, b->k.x += s->lx;
+    if (--cx < 0) cx = s->ncx - 1, b->k.x += s->lx, b->wx--, wrapped = 1;
     break;
   case 2:
-    if (++cy == s->ncy) cy = 0, b->k.y -= s->ly;
+    if (++cy == s->ncy) cy = 0, b->k.y -= s->ly, b->wy++, wrapped = 1;
     break;
   default:
-    if (--cy < 0) cy = s->ncy - 1, b->k.y += s->ly;
+    if (--cy < 0) cy = s->ncy - 1, b->k.y += s->ly, b->wy--, wrapped = 1;
     break;
   }
   hd_cells_remove(s, i);
   hd_cells_insert(s, i, cy * s->ncx + cx);
+  return wrapped;
 }
 
 /* Shifts the time origin to the current time (keeps times small: precision does not decay). */
 static void rebase(hd_sim *s) {
   double now = s->c.t;
   for (int32_t i = 0; i < s->n; i++) {
-    s->b[i].t -= now;
-    s->b[i].ev_t -= now; /* INFINITY stays INFINITY */
+    hd_body *b = &s->b[i];
+    b->t -= now; /* INFINITY stays INFINITY below */
+    b->ev_t -= now;
+    b->p_t -= now;
+    b->c_t -= now;
   }
   s->c.t_offset += now;
   s->c.t = 0.0;
-  hd_queue_build(s->q, s->n); /* rounding may have created ties: restore the heap order */
+  hd_queue_build(s->q, s->n, &s->b[0].ev_t, HD_BODY_STRIDE); /* rounding may have created ties: restore the heap order */
 }
 
 static int collision_kind(const hd_sim *s, int32_t i, int32_t j) {
@@ -238,6 +245,20 @@ static int check_collapse(hd_sim *s, double vn, hd_error *err) {
   } else {
     s->c.slow_run = 0;
   }
+  return HD_OK;
+}
+
+/* Verification of a pair collision: the touching disks are at contact distance. */
+static int verify_contact(const hd_sim *s, const hd_kin *ki, const hd_kin *kj, int32_t i,
+                          int32_t j, int ka, int kb, hd_error *err) {
+  const hd_shape *si = &s->shape[s->b[i].species], *sj = &s->shape[s->b[j].species];
+  double xa, ya, xb, yb;
+  hd_kin_disk_pos(ki, si, ka, &xa, &ya);
+  hd_kin_disk_pos(kj, sj, kb, &xb, &yb);
+  double D = 0.5 * (si->d + sj->d), gap = (hypot(xb - xa, yb - ya) - D) / D;
+  if (fabs(gap) > HD_VERIFY_TOL)
+    return hd_error_set(err, HD_EPHYS, "verification: bodies %d and %d collide at distance "
+                        "%.3g of a diameter from contact, t = %.17g", i, j, gap, hd_sim_time(s));
   return HD_OK;
 }
 
@@ -278,20 +299,21 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
     s->c.t = te;
     s->c.events++;
 
-    if (bi->ev_type == HD_EV_CELL) {
+    if (bi->c_t <= bi->p_t) { /* cell crossing */
       hd_body_sync(s, i);
-      cross_cell(s, i);
-      hd_predict(s, i);
+      int wrapped = cross_cell(s, i);
+      hd_predict_crossed(s, i, wrapped);
       continue;
     }
-    if (bi->ev_type == HD_EV_WALL) {
+    if (bi->p_type == HD_EV_WALL) {
       hd_body_sync(s, i);
-      int w = bi->ev_partner, ka = bi->ev_ka;
-      hd_collide_wall(&bi->k, &s->shape[bi->species], ka, &s->wall[w], s->wall_alpha, &ev->info);
+      int w = bi->p_partner, ka = bi->p_ka;
+      hd_collision_info info;
+      hd_collide_wall(&bi->k, &s->shape[bi->species], ka, &s->wall[w], s->wall_alpha, &info);
       bi->ncoll++;
       s->c.wall_hits++;
-      s->c.e_kin += ev->info.de;
-      *ev = (hd_event_out){hd_sim_time(s), collision_kind(s, i, -1), i, -1 - w, ka, -1, ev->info};
+      s->c.e_kin += info.de;
+      *ev = (hd_event_out){hd_sim_time(s), collision_kind(s, i, -1), i, -1 - w, ka, -1, info};
       if (s->verify) {
         int rc = verify_collision(s, i, -1, err);
         if (rc) return rc;
@@ -300,9 +322,9 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
       return HD_OK;
     }
     /* pair event */
-    int32_t j = bi->ev_partner;
+    int32_t j = bi->p_partner;
     hd_body *bj = &s->b[j];
-    if (bj->ncoll != bi->ev_pcount) { /* the partner changed course: stale */
+    if (bj->ncoll != bi->p_pcount) { /* the partner changed course: stale */
       s->c.stale++;
       hd_body_sync(s, i);
       hd_predict(s, i);
@@ -310,14 +332,17 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
     }
     hd_body_sync(s, i);
     hd_body_sync(s, j);
-    int sh = bi->ev_shift;
-    double sx = (sh % 3 - 1) * s->lx, sy = (sh / 3 - 1) * s->ly;
+    double sx = (bi->p_imx + bj->wx - bi->wx) * s->lx, sy = (bi->p_imy + bj->wy - bi->wy) * s->ly;
     hd_kin kj = bj->k;
     kj.x += sx;
     kj.y += sy;
-    int ka = bi->ev_ka, kb = bi->ev_kb;
+    int ka = bi->p_ka, kb = bi->p_kb;
     hd_collide_pair(&bi->k, &s->shape[bi->species], &kj, &s->shape[bj->species], ka, kb,
                     s->alpha[bi->species][bj->species], &ev->info);
+    if (s->verify) {
+      int rc = verify_contact(s, &bi->k, &kj, i, j, ka, kb, err);
+      if (rc) return rc;
+    }
     bj->k.vx = kj.vx;
     bj->k.vy = kj.vy;
     bj->k.omega = kj.omega;

@@ -26,21 +26,28 @@ enum { HD_SP_DIMER = 0, HD_SP_DISK = 1, HD_NSPECIES = 2 };
 /* Event types. */
 enum { HD_EV_NONE = 0, HD_EV_PAIR = 1, HD_EV_CELL = 2, HD_EV_WALL = 3 };
 
-/* One body.  ev_t must stay the first field: the queue reads it with a stride. */
+/* One body.  It carries two pending events: a contact (pair or wall, `p_*`) and its next cell
+ * crossing (`c_*`); ev_t is the earlier of the two and its key in the queue. */
 typedef struct hd_body {
-  double ev_t;        /* time of the next event (INFINITY if none); the heap key */
   double t;           /* time of the state k */
   hd_kin k;           /* centre of mass, velocity, orientation, angular velocity at t */
+  double ev_t;        /* min(p_t, c_t): time of the next event (INFINITY if none) */
+  double p_t;         /* time of the predicted contact (INFINITY if none) */
+  double c_t;         /* time of the next cell crossing (INFINITY if none) */
   int32_t species;    /* HD_SP_DIMER or HD_SP_DISK */
   int32_t cell;       /* cell index (cy * ncx + cx) */
   int32_t next, prev; /* neighbours in the cell's list, -1 at the ends */
   uint32_t ncoll;     /* velocity changes so far; invalidates partners' pair events */
-  int32_t ev_type;    /* HD_EV_* */
-  int32_t ev_partner; /* PAIR: partner body; CELL: new cell; WALL: wall index */
-  uint32_t ev_pcount; /* PAIR: partner's ncoll when predicted */
-  int16_t ev_ka;      /* PAIR/WALL: touching disk of this body */
-  int16_t ev_kb;      /* PAIR: touching disk of the partner */
-  int32_t ev_shift;   /* CELL: wrap code (bit0 x+L, bit1 x-L, bit2 y+L, bit3 y-L) */
+  int32_t p_type;     /* HD_EV_PAIR, HD_EV_WALL or HD_EV_NONE */
+  int32_t p_partner;  /* PAIR: partner body; WALL: wall index */
+  uint32_t p_pcount;  /* PAIR: partner's ncoll when predicted */
+  int16_t p_ka;       /* touching disk of this body */
+  int16_t p_kb;       /* touching disk of the partner */
+  int16_t p_imx;      /* PAIR: image offset of the partner, invariant under wrapping: */
+  int16_t p_imy;      /*   shift = (p_im + wrap(partner) - wrap(this)) * L */
+  int32_t wx, wy;     /* times this body was wrapped through the box (+1 for x -= lx) */
+  int32_t c_dir;      /* crossing face: 0 +x, 1 -x, 2 +y, 3 -y */
+  int32_t pad;
 } hd_body;
 
 /* Counters and clocks: everything a checkpoint needs besides the bodies, cells and RNG. */
@@ -84,6 +91,7 @@ typedef struct hd_sim {
   hd_sim_clock c;                  /* clocks and counters */
   int64_t rebase_every;            /* events between rebases of the time origin */
   int verify;                      /* check invariants at every event (slow) */
+  int partial_cross;               /* pure disks, >= 3x3 cells: crossings search 3 new cells */
   double max_overlap;              /* verification: largest relative overlap seen */
   int32_t last_i, last_j;          /* bodies of the last collision (collapse report) */
 } hd_sim;

@@ -4,6 +4,9 @@
 
 #include "hd_sim.h"
 
+/* Distance in doubles between consecutive bodies' ev_t (for hd_queue_build). */
+#define HD_BODY_STRIDE ((int32_t)(sizeof(hd_body) / sizeof(double)))
+
 /* --- cells (hd_cells.c) --- */
 /* Sizes the cell grid for the largest body and allocates head[]; HD_ENOMEM. */
 int hd_cells_alloc(hd_sim *s, hd_error *err);
@@ -19,13 +22,20 @@ void hd_cells_rebuild(hd_sim *s);
 /* Predicts body i's next event at the current time (i must be advanced to it) and updates
  * the queue. */
 void hd_predict(hd_sim *s, int32_t i);
+/* Predicts body i's events after it crossed a cell face (wrapped: through the box edge). */
+void hd_predict_crossed(hd_sim *s, int32_t i, int wrapped);
 
 /* Brings body i's state to the current time. */
 static inline void hd_body_sync(hd_sim *s, int32_t i) {
   hd_body *b = &s->b[i];
   double dt = s->c.t - b->t;
   if (dt != 0.0) {
-    hd_kin_advance(&b->k, dt);
+    if (b->k.omega != 0.0) {
+      hd_kin_advance(&b->k, dt);
+    } else { /* pure translation: no trigonometry, no wrapping of phi */
+      b->k.x += b->k.vx * dt;
+      b->k.y += b->k.vy * dt;
+    }
     b->t = s->c.t;
   }
 }

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# make bench: collisions per second on one core against N, area fraction and logging, for disks
+# and dimers (a = d), written to bench/results.md with the machine and date.  Every figure comes
+# from this one invocation, so ratios between rows are measured under the same conditions.
+# BENCH_QUICK=1 runs only N <= 1e4 (a minute instead of ~15).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin=${BENCH_BIN:-build/bench/bench_engine}
+out=bench/results.md
+raw=$(mktemp)
+ns="1000 10000 100000 1000000"
+[ "${BENCH_QUICK:-0}" = 1 ] && ns="1000 10000"
+run() { # kind n eta log
+  echo "bench: $*" >&2
+  taskset -c 0 "$bin" "$@" >>"$raw" 2>/dev/null || "$bin" "$@" >>"$raw"
+}
+for kind in disk dimer; do
+  if [ $kind = disk ]; then etas="0.25 0.45"; else etas="0.15 0.30"; fi
+  for eta in $etas; do for n in $ns; do for log in 0 1; do
+    run $kind $n $eta $log
+  done; done; done
+done
+cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
+{
+  echo "# haff benchmark"
+  echo
+  echo "Measured $(date -u '+%Y-%m-%d %H:%M UTC') on: $cpu, $(nproc) cores (one used), $(free -g | awk '/Mem/{print $2}') GiB;"
+  echo "haff $(git rev-parse --short HEAD 2>/dev/null || echo '?'), gcc $(gcc -dumpversion), -O2."
+  echo "Elastic gas, unit diameter and mass, T = 1; each row is $(basename "$bin") KIND N ETA LOG:"
+  echo "timed over >= 2e6 collisions after a warm-up of N/2; logging = every collision to SQLite."
+  echo
+  echo "| kind | N | area fraction | logging | collisions/s | events/s | stale events | logged/unlogged | vs N = 1e3 |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+  awk -F'\t' '
+    { key=$1 FS $3; r[$1 FS $2 FS $3 FS $4]=$7; if ($2==1000) base[$1 FS $3 FS $4]=$7; rows[NR]=$0 }
+    END { for (k=1; k<=NR; k++) { split(rows[k], f, FS);
+      un=r[f[1] FS f[2] FS f[3] FS 0]; b=base[f[1] FS f[3] FS f[4]];
+      printf "| %s | %d | %.2f | %s | %.3g | %.3g | %.1f%% | %s | %.2f |\n", f[1], f[2], f[3],
+        f[4]==1 ? "every collision" : "off", f[7], f[8], 100*f[9],
+        f[4]==1 ? sprintf("%.0f%%", 100*f[7]/un) : "", b/f[7] } }' "$raw"
+  echo
+  echo "\"vs N = 1e3\": slowdown factor against N = 1000 at the same kind, fraction and logging."
+} >"$out"
+rm -f "$raw"
+cat "$out"
