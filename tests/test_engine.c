@@ -93,6 +93,25 @@ static void oblique_grazing_periodic(void **state) {
   hd_sim_free(s);
 }
 
+/* A pending collision survives the partner's wrap through the box: disk 1 wraps (x: 9.7 ->
+ * 10 = 0) at t = 0.3 and meets disk 0 at t = 0.8 + ... with the right periodic image.  Before
+ * the wrap-invariant image offsets this collision was computed with a stale image. */
+static void collision_across_wrap(void **state) {
+  (void)state;
+  hd_event_out ev;
+  hd_error err;
+  hd_sim *s = two_disks(10.0, 1.5, 5.0, 0.0, 0.0, 9.7, 5.5, 1.0, 0.0, 1.0);
+  assert_int_equal(hd_sim_next(s, INFINITY, &ev, &err), HD_OK);
+  double dx = sqrt(1.0 - 0.25); /* x-distance at contact */
+  double tc = (1.5 - dx) - (9.7 - 10.0);
+  assert_true(fabs(ev.t - tc) < 1e-13);
+  double nx = dx, ny = 0.5; /* unit normal from disk 1 to disk 0 */
+  /* elastic, equal masses, disk 0 at rest: it leaves along the normal with speed v.n = nx */
+  assert_true(fabs(s->b[0].k.vx - nx * nx) < 1e-12 && fabs(s->b[0].k.vy + nx * ny) < 1e-12);
+  assert_true(fabs(s->b[1].k.vx - (1 - nx * nx)) < 1e-12 && fabs(s->b[1].k.vy - nx * ny) < 1e-12);
+  hd_sim_free(s);
+}
+
 /* Elastic N = 1000 at eta = 0.2 for 10^6 collisions (10^5 sanitized), verification on:
  * relative energy drift < 1e-10, momentum < 1e-12 (absolute, per unit total |p| scale
  * sqrt(N m T)), no overlap beyond 1e-9 of a diameter at any event (checked by the engine
@@ -239,6 +258,7 @@ static void haff_law(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(head_on),       cmocka_unit_test(oblique_grazing_periodic),
+      cmocka_unit_test(collision_across_wrap),
       cmocka_unit_test(elastic_conservation), cmocka_unit_test(enskog_rate),
       cmocka_unit_test(maxwellian),    cmocka_unit_test(haff_law),
   };
