@@ -559,17 +559,20 @@ int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene
   const char *sql = want_run > 0
                         ? "SELECT id, status, scene, seed FROM runs WHERE id = ?1"
                         : "SELECT id, status, scene, seed FROM runs "
-                          "WHERE status IN ('running','interrupted') ORDER BY id DESC LIMIT 1";
+                          "WHERE status IN ('running','interrupted','failed') ORDER BY id DESC "
+                          "LIMIT 1";
   if (sqlite3_prepare_v2(db->db, sql, -1, &st, NULL) != SQLITE_OK)
     return sql_error(db, err, "find resumable run");
   if (want_run > 0) sqlite3_bind_int64(st, 1, want_run);
   int rc = HD_OK, s = sqlite3_step(st);
   if (s == SQLITE_ROW) {
     const char *status = (const char *)sqlite3_column_text(st, 1);
-    if (!status || (strcmp(status, "running") && strcmp(status, "interrupted"))) {
-      rc = hd_error_set(err, HD_EINPUT, "%s: run %lld is %s: only an interrupted or killed "
-                        "('running') run can be resumed", db->path, (long long)want_run,
-                        status ? status : "(no status)");
+    if (!status ||
+        (strcmp(status, "running") && strcmp(status, "interrupted") && strcmp(status, "failed"))) {
+      rc = hd_error_set(err, HD_EINPUT, "%s: run %lld is %s: only an interrupted, failed (disk "
+                        "full, I/O) or killed ('running') run can be resumed; a collapsed run "
+                        "keeps its state at the collapse in `states` and `checkpoints`",
+                        db->path, (long long)want_run, status ? status : "(no status)");
     } else {
       const char *scene = (const char *)sqlite3_column_text(st, 2);
       if (scene_text) {

@@ -126,7 +126,8 @@ int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_
  * non-checkpoint states with t > t. */
 int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error *err);
 
-/* The id of the newest run whose status is 'interrupted' or 'running' (a killed process);
+/* The id of the newest run whose status is 'interrupted', 'failed' (disk full: resumable once
+ * there is room) or 'running' (a killed process);
  * HD_EINPUT if none.  *scene_text malloc'd, *seed its seed.  want_run <= 0 picks the newest
  * such run; want_run > 0 asks for that run, and a run that does not exist or has ended
  * ('done', 'collapsed', 'failed') is HD_EINPUT with a message that says so. */

@@ -467,11 +467,14 @@ static void find_resumable(void **state) {
     assert_int_equal(r, k + 1);
     assert_int_equal(hd_db_run_status(db, r, status[k], 10, 1.0, &err), HD_OK);
   }
-  /* newest resumable: run 3 ('running': a killed process) */
+  /* newest resumable: run 5 ('failed': a full disk, resumable once there is room) */
   assert_int_equal(hd_db_find_resumable(db, 0, &run, &scene, &seed, &err), HD_OK);
-  assert_int_equal(run, 3);
-  assert_string_equal(scene, "scene 3");
-  assert_true(seed == 102);
+  assert_int_equal(run, 5);
+  assert_string_equal(scene, "scene 5");
+  assert_true(seed == 104);
+  free(scene);
+  assert_int_equal(hd_db_find_resumable(db, 3, &run, &scene, &seed, &err), HD_OK);
+  assert_int_equal(run, 3); /* 'running': a killed process */
   free(scene);
   assert_int_equal(hd_db_find_resumable(db, 2, &run, &scene, &seed, &err), HD_OK);
   assert_int_equal(run, 2);
