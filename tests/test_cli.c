@@ -223,6 +223,32 @@ static void bad_input(void **state) {
   assert_non_null(strstr(e, "overlap"));
 }
 
+/* A full disk (the file size limit of RLIMIT_FSIZE, with SIGXFSZ ignored so that writes fail
+ * with EFBIG as on a full disk): exit 1 and a clear message, a sound database, and once there is
+ * room again resume completes the very same run. */
+static void disk_full_then_resume(void **state) {
+  (void)state;
+  if (!haff) skip();
+  char e[2048];
+  int rc = sh("(trap '' XFSZ; ulimit -f 3000; exec %s run s.ini -o full.db --quiet)", haff);
+  read_err(e, sizeof e);
+  assert_int_equal(rc, 1);
+  assert_true(strstr(e, "full") || strstr(e, "I/O") || strstr(e, "disk"));
+  char p[300];
+  snprintf(p, sizeof p, "%s/full.db", dir);
+  sqlite3 *h;
+  assert_int_equal(sqlite3_open(p, &h), SQLITE_OK);
+  sqlite3_stmt *st;
+  sqlite3_prepare_v2(h, "PRAGMA integrity_check", -1, &st, 0);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  assert_string_equal((const char *)sqlite3_column_text(st, 0), "ok");
+  sqlite3_finalize(st);
+  sqlite3_close(h);
+  assert_int_equal(q1("full.db", "SELECT count(*) = coalesce(max(seq), 0) FROM collisions"), 1);
+  assert_int_equal(sh("%s resume full.db --quiet", haff), 0);
+  same_as_reference("full.db");
+}
+
 /* A read-only database directory: exit 1 with a clear message, no crash. */
 static void unwritable_db(void **state) {
   (void)state;
@@ -236,6 +262,7 @@ static void unwritable_db(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(bad_input), cmocka_unit_test(unwritable_db),
+      cmocka_unit_test(disk_full_then_resume),
       cmocka_unit_test(sigint_then_resume), cmocka_unit_test(sigterm_then_resume),
       cmocka_unit_test(kill9_then_resume),
   };
