@@ -71,6 +71,15 @@ int haff_run_main(int argc, char **argv) {
     return 2;
   }
   const char *scene = argv[optind];
+  char seedset[64];
+  if (have_seed) { /* as an override, so that runs.scene records the seed */
+    if (nset == MAX_SET) {
+      fprintf(stderr, "haff run: more than %d --set options\n", MAX_SET);
+      return 2;
+    }
+    snprintf(seedset, sizeof seedset, "system.seed=%llu", seed);
+    sets[nset++] = seedset;
+  }
   char dbbuf[HD_PATH_MAX];
   if (!db) {
     default_db(scene, dbbuf, sizeof dbbuf);
@@ -84,7 +93,6 @@ int haff_run_main(int argc, char **argv) {
     fprintf(stderr, "haff run: %s\n", err.msg);
     return 2;
   }
-  if (have_seed) sc.seed = seed;
   hd_run_opts o = {db, quiet, HAFF_VERSION};
   int64_t run = 0;
   rc = hd_run_new(&sc, &o, &run, &err);
