@@ -97,7 +97,7 @@ test: | $(DEPS_STAMP)
 
 # --- user targets --------------------------------------------------------------------------
 demo: bin/haff
-	@scripts=1 ./scenes/demo.sh
+	@scenes/demo.sh
 
 BENCH_BIN := $(BUILD)/bench/bench_engine
 $(BENCH_BIN): bench/bench_engine.c $(LIB) | $(DEPS_STAMP)
