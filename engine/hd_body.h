@@ -51,7 +51,9 @@ typedef struct hd_contact {
 typedef struct hd_collision_info {
   double theta_i; /* contact angle of body A (DESIGN.md); NaN for a disk body */
   double theta_j; /* contact angle of body B; NaN for a disk body or a wall */
-  double f;       /* orientation factor mu_eff / m_ref: eq. 36 for dimer-dimer (see hd_body.c) */
+  double f;       /* orientation factor mu_eff / m_ref: eq. 36 for dimer-dimer; m_ref is the disk
+                   * mass m of the dimer (of A if both are dimers), or A's mass for disk-disk and
+                   * disk-wall (see hd_body_collide.c) */
   double de;      /* kinetic energy of the pair after minus before (<= 0 for alpha <= 1) */
   double vn;      /* normal relative velocity of the contact points before (< 0: approaching) */
 } hd_collision_info;
@@ -83,6 +85,13 @@ double hd_kin_energy(const hd_kin *k, const hd_shape *s);
  * ignored.  Never skips a root (see hd_body.c for the method and its tolerance). */
 int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
                     double tmax, hd_contact *c);
+
+/* Closed-form contact of two disks in linear relative motion (the engine's disk fast path, and
+ * hd_predict_pair without rotation): separation d = (dx, dy) (B - A), relative velocity
+ * (dvx, dvy) (B - A), contact distance D.  Returns 1 with the earliest contact time *t in
+ * [0, tmax] while approaching, 0 if none.  Same t = 0 and grazing rules as hd_predict_pair. */
+int hd_predict_disks(double dx, double dy, double dvx, double dvy, double D, double tmax,
+                     double *t);
 
 /* Earliest time t in [0, tmax] at which body A touches wall w while approaching it; as above. */
 int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, double tmax,
