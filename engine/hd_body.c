@@ -1,33 +1,463 @@
-/* PLACEHOLDER (disk bodies only) until the dimer kinematics of the body branch land: hd_body.h
- * is the contract; this file implements it for disk bodies so that the engine builds. */
-#include <math.h>
+/* hd_body.c: shapes, exact free flight and contact prediction for hard disks and dimers.
+ * (The collision rules are in hd_body_collide.c, the generic impulse rule in hd_body_impulse.c.)
+ *
+ * Contact prediction
+ * ------------------
+ * For a disk pair p (disk i of A, disk j of B) the separation vector is
+ *   r(t) = R_B - R_A + (V_B - V_A) t + rho_Bj(phi_B + w_B t) - rho_Ai(phi_A + w_A t),
+ * rho = -+(a/2)(cos, sin) for disk 0 / 1, and the gap is h(t) = |r(t)| - D with D = (dA + dB)/2.
+ *
+ * No rotation (disk bodies, or dimers with omega == 0 exactly): r is linear in t and the first
+ * root of |r|^2 = D^2 is the closed form t = c / (-b + sqrt(b^2 - v^2 c)), c = r^2 - D^2,
+ * b = r.v (hd_predict_disks; the engine's disk fast path uses the same function).
+ *
+ * With rotation: conservative advancement (CA) over all disk pairs at once, from the time the
+ * enclosing circles (radius (a + d)/2 each) first meet to the time they part for good (or tmax).
+ * At a time t with gap h and gap rate h' = r.r'/|r| for a pair, two rigorous lower bounds hold
+ * for every tau >= 0:
+ *   (i)  h(t + tau) >= h - L tau,               L = |V_B - V_A| + |w_A| a_A/2 + |w_B| a_B/2
+ *        (L bounds |r'|, hence |d|r|/dt|);
+ *   (ii) h(t + tau) >= h + h' tau - K tau^2/2,  K = w_A^2 a_A/2 + w_B^2 a_B/2 >= |r''|
+ *        (Taylor with |r''| <= K, then |x + y| >= |x| + x.y/|x| by convexity of the norm).
+ * The step is the larger of the first positive roots of the two bounds, minimised over pairs:
+ * every pair keeps h > 0 over the step, so no root is ever skipped.  Far from contact (ii) takes
+ * long steps (a near-miss is passed in a few steps: (ii) is exact in h and h'); near a transversal
+ * root (ii) converges quadratically, near a tangential one linearly.  sincos is called once per
+ * body per step.  Fast spinners take steps of order sqrt(h/K) ~ 1/omega: exact but slower.
+ *
+ * Tolerances (all relative to D; velocities relative to L) and their effect:
+ *   TOL_C = 1e-12  a pair is "in contact" when CA brings its gap to h <= TOL_C D.  One or two
+ *                  Newton steps then polish t to the root (accepted only if they stay inside
+ *                  the safe step of the other pairs and improve |h| while still approaching), so
+ *                  t is exact to round-off for transversal contacts.  Consequence for grazing
+ *                  contacts: a trajectory whose minimum gap lies in (0, TOL_C D] is treated as a
+ *                  touching contact (its |vn| is then tiny, and so is the impulse); one whose
+ *                  minimum gap exceeds TOL_C D is a miss.
+ *   VTOL  = 1e-12  "approaching" means the normal relative velocity of the two contact points
+ *                  (rotation included), h' = r.r'/|r|, is < -VTOL L.  A touching pair with
+ *                  |h'| <= VTOL L is sliding, not colliding: it is skipped (this also keeps an
+ *                  alpha = 0 collision, after which h' = 0 up to round-off, from re-colliding).
+ *   TOL_0 = 1e-10  at t = 0 a pair with h <= TOL_0 D (a gap or an overlap left by round-off) is in
+ *                  contact now: approaching -> t = 0 is returned; otherwise (the pair has just
+ *                  collided) it is ignored until it has separated to h > TOL_SEP = 2 TOL_0 or
+ *                  approaches again from h > TOL_C; after that it is an ordinary pair, so its
+ *                  next real contact (a fast spinner swinging its other disk round, or the same
+ *                  disk pair coming back) is found.  While a pair is ignored the step is bounded
+ *                  by the time its gap could reach TOL_SEP D (h'' <= 2 L^2/D + K), so CA cannot
+ *                  jump over its separation and return.
+ * Linear (closed-form) pairs use the same TOL_0 and VTOL rules and report a contact whose normal
+ * velocity at contact is below -VTOL |v|.
+ *
+ * Termination: each step is >= min(h)/L > TOL_C D / L or, for ignored pairs, bounded below by the
+ * time to reach TOL_SEP; the loop stops at min(tmax, parting time).  As a guard against a
+ * misuse (tmax = INFINITY for two dimers spinning in place that never touch) the loop gives up
+ * after HD_CA_MAXIT steps and reports no contact.
+ */
 #include "hd_body.h"
-#include "hd_disk.h"
-double hd_shape_mass(const hd_shape *s) { return s->kind == HD_KIND_DIMER ? 2 * s->m : s->m; }
-double hd_shape_inertia(const hd_shape *s) { return s->kind == HD_KIND_DIMER ? 0.5 * s->m * s->a * s->a : 0; }
-double hd_shape_radius(const hd_shape *s) { return 0.5 * (s->a + s->d); }
-void hd_kin_advance(hd_kin *k, double dt) { k->x += k->vx * dt; k->y += k->vy * dt; k->phi = remainder(k->phi + k->omega * dt, 2 * M_PI); }
-void hd_kin_disk_pos(const hd_kin *k, const hd_shape *s, int w, double *px, double *py) {
-  double h = s->kind == HD_KIND_DIMER ? (w ? 0.5 : -0.5) * s->a : 0;
-  *px = k->x + h * cos(k->phi); *py = k->y + h * sin(k->phi); }
-int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb, double tmax, hd_contact *c) {
-  double t = hd_disk_contact_time(B->x - A->x, B->y - A->y, B->vx - A->vx, B->vy - A->vy, 0.5 * (sa->d + sb->d));
-  if (t > tmax) return 0;
-  c->t = t; c->ka = c->kb = 0; return 1; }
-int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, double tmax, hd_contact *c) {
-  double p = w->axis ? A->y : A->x, v = w->axis ? A->vy : A->vx;
-  if (v * w->normal >= 0) return 0;
-  double t = (w->pos + w->normal * 0.5 * sa->d - p) / v;
-  if (t < 0) t = 0;
-  if (t > tmax) return 0;
-  c->t = t; c->ka = 0; c->kb = 0; return 1; }
-int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb, double alpha, hd_collision_info *info) {
-  (void)ka; (void)kb;
-  double rx = B->x - A->x, ry = B->y - A->y, r = hypot(rx, ry); rx /= r; ry /= r;
-  double vn = (B->vx - A->vx) * rx + (B->vy - A->vy) * ry;
-  double ma = sa->m, mb = sb->m, mu = ma * mb / (ma + mb), J = -(1 + alpha) * mu * vn;
-  A->vx -= J / ma * rx; A->vy -= J / ma * ry; B->vx += J / mb * rx; B->vy += J / mb * ry;
-  info->theta_i = info->theta_j = NAN; info->f = mu / ma; info->vn = vn; info->de = -0.5 * (1 - alpha * alpha) * mu * vn * vn; return 0; }
-int hd_collide_wall(hd_kin *A, const hd_shape *sa, int ka, const hd_wall *w, double alpha, hd_collision_info *info) {
-  (void)ka; double *v = w->axis ? &A->vy : &A->vx; double vn = *v * w->normal;
-  info->de = -0.5 * sa->m * (1 - alpha * alpha) * vn * vn; *v = -alpha * *v; info->vn = vn; info->f = 1; info->theta_i = info->theta_j = NAN; return 0; }
+
+#include <math.h>
+
+#define TOL_C 1e-12
+#define TOL_0 1e-10
+#define TOL_SEP 2e-10
+#define VTOL 1e-12
+#define HD_CA_MAXIT 100000000L
+
+double hd_shape_mass(const hd_shape *s) {
+  return s->kind == HD_KIND_DIMER ? 2.0 * s->m : s->m;
+}
+
+double hd_shape_inertia(const hd_shape *s) {
+  return s->kind == HD_KIND_DIMER ? 0.5 * s->m * s->a * s->a : 0.0;
+}
+
+double hd_shape_radius(const hd_shape *s) {
+  return s->kind == HD_KIND_DIMER ? 0.5 * (s->a + s->d) : 0.5 * s->d;
+}
+
+void hd_kin_advance(hd_kin *k, double dt) {
+  k->x += k->vx * dt;
+  k->y += k->vy * dt;
+  if (k->omega != 0.0) {
+    double p = remainder(k->phi + k->omega * dt, 2.0 * M_PI); /* in [-pi, pi] */
+    k->phi = p <= -M_PI ? M_PI : p;
+  }
+}
+
+/* Half bond length of a shape (0 for a disk body). */
+static double half_a(const hd_shape *s) {
+  return s->kind == HD_KIND_DIMER ? 0.5 * s->a : 0.0;
+}
+
+/* Sign of disk `which` along the axis: -1 for disk 0, +1 for disk 1. */
+static double disk_sign(int which) {
+  return which ? 1.0 : -1.0;
+}
+
+void hd_kin_disk_pos(const hd_kin *k, const hd_shape *s, int which, double *px, double *py) {
+  double h = half_a(s) * disk_sign(which);
+  if (h == 0.0) {
+    *px = k->x;
+    *py = k->y;
+    return;
+  }
+  double sn, cs;
+  sincos(k->phi, &sn, &cs);
+  *px = k->x + h * cs;
+  *py = k->y + h * sn;
+}
+
+void hd_kin_disk_vel(const hd_kin *k, const hd_shape *s, int which, double *vx, double *vy) {
+  double h = half_a(s) * disk_sign(which) * k->omega;
+  if (h == 0.0) {
+    *vx = k->vx;
+    *vy = k->vy;
+    return;
+  }
+  double sn, cs;
+  sincos(k->phi, &sn, &cs);
+  *vx = k->vx - h * sn;
+  *vy = k->vy + h * cs;
+}
+
+double hd_kin_energy(const hd_kin *k, const hd_shape *s) {
+  double e = 0.5 * hd_shape_mass(s) * (k->vx * k->vx + k->vy * k->vy);
+  if (s->kind == HD_KIND_DIMER) e += 0.5 * hd_shape_inertia(s) * k->omega * k->omega;
+  return e;
+}
+
+/* ---- linear motion: closed form ----------------------------------------------------------- */
+
+int hd_predict_disks(double dx, double dy, double dvx, double dvy, double D, double tmax,
+                     double *t) {
+  double r2 = dx * dx + dy * dy, b = dx * dvx + dy * dvy, v2 = dvx * dvx + dvy * dvy;
+  double r = sqrt(r2), vtol = VTOL * sqrt(v2);
+  if (r - D <= TOL_0 * D) {
+    /* in contact now: collide if approaching; otherwise |r(t)| (convex) only grows from here */
+    if (b < -vtol * r) {
+      *t = 0.0;
+      return 1;
+    }
+    return 0;
+  }
+  if (b >= 0.0) return 0;
+  double c = r2 - D * D, disc = b * b - v2 * c;
+  if (!(disc >= 0.0)) return 0;
+  double s = sqrt(disc);
+  if (s <= vtol * D) return 0; /* grazing: normal velocity at contact is -s/D ~ 0 */
+  double tc = c / (s - b);
+  if (!(tc <= tmax)) return 0;
+  *t = tc;
+  return 1;
+}
+
+/* ---- conservative advancement ------------------------------------------------------------- */
+
+/* The moving geometry of up to four "pairs": disk pairs of two bodies, or disks against a wall. */
+typedef struct ca_ctx {
+  int wall;              /* 0: body pair, 1: body against a wall */
+  int na, nb;            /* disks of A and B (nb = 1 for a wall) */
+  double dx, dy;         /* pair: R_B - R_A at t = 0; wall: (gap of A's centre, unused) */
+  double dvx, dvy;       /* pair: V_B - V_A; wall: (rate of the centre's gap, unused) */
+  double ha, hb;         /* half bond lengths */
+  double pa, wa, pb, wb; /* orientations and angular velocities */
+  double wsin;           /* wall: the axis coordinate of the offset is sin (1) or cos (0) */
+  double wn;             /* wall: inward normal sign */
+  double D;              /* contact distance (pair) or disk diameter (wall) */
+  double L, K, K2u;      /* bounds on |h'|, the lower bound on h'' (-K), an upper bound on h'' */
+} ca_ctx;
+
+/* Gaps h[p] and gap rates hd[p] of every pair at time t. */
+static void ca_eval(const ca_ctx *c, double t, double *h, double *hd) {
+  double sa, ca;
+  sincos(c->pa + c->wa * t, &sa, &ca);
+  if (c->wall) {
+    double g = c->dx + c->dvx * t;
+    for (int i = 0; i < c->na; i++) {
+      double s = disk_sign(i) * c->ha * c->wn;
+      if (c->na == 1) s = 0.0;
+      h[i] = g + s * (c->wsin ? sa : ca);
+      hd[i] = c->dvx + s * c->wa * (c->wsin ? ca : -sa);
+    }
+    return;
+  }
+  double sb, cb;
+  sincos(c->pb + c->wb * t, &sb, &cb);
+  double rx0 = c->dx + c->dvx * t, ry0 = c->dy + c->dvy * t;
+  for (int i = 0; i < c->na; i++) {
+    double ka = c->na == 1 ? 0.0 : disk_sign(i) * c->ha;
+    double oax = ka * ca, oay = ka * sa, wax = -ka * c->wa * sa, way = ka * c->wa * ca;
+    for (int j = 0; j < c->nb; j++) {
+      double kb = c->nb == 1 ? 0.0 : disk_sign(j) * c->hb;
+      double rx = rx0 + kb * cb - oax, ry = ry0 + kb * sb - oay;
+      double vx = c->dvx - kb * c->wb * sb - wax, vy = c->dvy + kb * c->wb * cb - way;
+      double r = sqrt(rx * rx + ry * ry);
+      int p = i * c->nb + j;
+      h[p] = r - c->D;
+      hd[p] = r > 0.0 ? (rx * vx + ry * vy) / r : -HUGE_VAL;
+    }
+  }
+}
+
+/* A step over which the gap stays positive: the larger first root of bounds (i) and (ii). */
+static double safe_step(double h, double hd, double L, double K) {
+  double tl = h / L, tq;
+  if (K > 0.0) {
+    double s = sqrt(hd * hd + 2.0 * K * h);
+    tq = hd < 0.0 ? 2.0 * h / (s - hd) : (hd + s) / K;
+  } else {
+    tq = hd < 0.0 ? h / (-hd) : HUGE_VAL;
+  }
+  return tl > tq ? tl : tq;
+}
+
+/* The earliest time at which the gap of an ignored pair could reach hsep (h'' <= K2u). */
+static double sep_step(double h, double hd, double hsep, double hc, double K2u) {
+  double d = hsep - h;
+  if (d < hc) d = hc;
+  double s = sqrt(hd * hd + 2.0 * K2u * d);
+  if (hd + s <= 0.0) return HUGE_VAL;
+  return 2.0 * d / (hd + s);
+}
+
+/* CA from t0 to tend; the pair state at t0 = 0 is checked for contacts and just-collided pairs.
+ * Returns 1 and (t, pair index) on a contact. */
+static int ca_solve(const ca_ctx *c, double t, double tend, double tmax, double *tout, int *pout) {
+  const int np = c->na * c->nb;
+  const double D = c->D, hc = TOL_C * D, h0 = TOL_0 * D, hsep = TOL_SEP * D, vtol = VTOL * c->L;
+  double h[4], hd[4];
+  unsigned ign = 0;
+  if (t == 0.0) {
+    ca_eval(c, 0.0, h, hd);
+    int best = -1;
+    for (int p = 0; p < np; p++) {
+      if (!(h[p] <= h0)) continue;
+      if (hd[p] < -vtol) {
+        if (best < 0 || h[p] < h[best]) best = p;
+      } else {
+        ign |= 1u << p;
+      }
+    }
+    if (best >= 0) {
+      *tout = 0.0;
+      *pout = best;
+      return 1;
+    }
+  }
+  for (long it = 0; it < HD_CA_MAXIT; it++) {
+    ca_eval(c, t, h, hd);
+    double step = HUGE_VAL;
+    unsigned cand = 0;
+    for (int p = 0; p < np; p++) {
+      unsigned bit = 1u << p;
+      if (h[p] != h[p] || hd[p] != hd[p]) return 0; /* NaN state */
+      if (ign & bit) {
+        if (h[p] > hsep || (hd[p] < -vtol && h[p] > hc)) {
+          ign &= ~bit;
+        } else if (hd[p] >= -vtol) {
+          double s = sep_step(h[p], hd[p], hsep, hc, c->K2u);
+          if (s < step) step = s;
+          continue;
+        }
+      }
+      if (h[p] <= hc) {
+        if (hd[p] < -vtol) {
+          cand |= bit;
+        } else {
+          ign |= bit;
+          double s = sep_step(h[p], hd[p], hsep, hc, c->K2u);
+          if (s < step) step = s;
+        }
+      } else {
+        double s = safe_step(h[p], hd[p], c->L, c->K);
+        if (s < step) step = s;
+      }
+    }
+    if (cand) {
+      /* polish each candidate by Newton steps inside [t, t + step) and keep the earliest */
+      double tbest = HUGE_VAL;
+      int pbest = -1;
+      for (int p = 0; p < np; p++) {
+        if (!(cand & (1u << p))) continue;
+        double tp = t, hp = h[p], hdp = hd[p];
+        for (int k = 0; k < 3 && hp > 0.0; k++) {
+          double t1 = tp + hp / (-hdp);
+          if (!(t1 < t + step) || !(t1 <= tmax)) break;
+          double h1[4], hd1[4];
+          ca_eval(c, t1, h1, hd1);
+          if (!(fabs(h1[p]) < hp) || !(hd1[p] < 0.0)) break;
+          tp = t1;
+          hp = h1[p];
+          hdp = hd1[p];
+        }
+        if (tp < tbest) {
+          tbest = tp;
+          pbest = p;
+        }
+      }
+      *tout = tbest;
+      *pout = pbest;
+      return 1;
+    }
+    double tn = t + step;
+    if (!(tn > t)) tn = nextafter(t, HUGE_VAL);
+    t = tn;
+    if (!(t <= tend)) return 0;
+  }
+  return 0;
+}
+
+/* The interval [t_in, t_out] in which |d + v t| <= R, intersected with t >= 0. Returns 0 if empty. */
+static int circle_window(double dx, double dy, double vx, double vy, double R, double *t_in,
+                         double *t_out) {
+  double c = dx * dx + dy * dy - R * R, b = dx * vx + dy * vy, v2 = vx * vx + vy * vy;
+  if (c <= 0.0) {
+    *t_in = 0.0;
+    if (v2 == 0.0) {
+      *t_out = HUGE_VAL;
+    } else {
+      double disc = b * b - v2 * c, s = sqrt(disc);
+      /* positive root (-b + s)/v2, written without cancellation */
+      *t_out = b <= 0.0 ? (s - b) / v2 : -c / (b + s);
+    }
+    return 1;
+  }
+  if (b >= 0.0) return 0;
+  double disc = b * b - v2 * c;
+  if (!(disc >= 0.0)) return 0;
+  double s = sqrt(disc);
+  *t_in = c / (s - b);
+  *t_out = (s - b) / v2;
+  return 1;
+}
+
+int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
+                    double tmax, hd_contact *c) {
+  ca_ctx x;
+  x.wall = 0;
+  x.na = sa->kind == HD_KIND_DIMER ? 2 : 1;
+  x.nb = sb->kind == HD_KIND_DIMER ? 2 : 1;
+  x.dx = B->x - A->x;
+  x.dy = B->y - A->y;
+  x.dvx = B->vx - A->vx;
+  x.dvy = B->vy - A->vy;
+  x.ha = half_a(sa);
+  x.hb = half_a(sb);
+  x.pa = x.na == 2 ? A->phi : 0.0;
+  x.wa = x.na == 2 ? A->omega : 0.0;
+  x.pb = x.nb == 2 ? B->phi : 0.0;
+  x.wb = x.nb == 2 ? B->omega : 0.0;
+  x.wsin = 0.0;
+  x.wn = 0.0;
+  x.D = 0.5 * (sa->d + sb->d);
+  if (!(tmax >= 0.0)) return 0;
+
+  if (x.wa * x.ha == 0.0 && x.wb * x.hb == 0.0) {
+    /* no rotation: closed form for every disk pair, earliest wins */
+    double sa_, ca_, sb_, cb_;
+    sincos(x.pa, &sa_, &ca_);
+    sincos(x.pb, &sb_, &cb_);
+    double best = HUGE_VAL;
+    int found = 0;
+    for (int i = 0; i < x.na; i++) {
+      double ka = x.na == 1 ? 0.0 : disk_sign(i) * x.ha;
+      for (int j = 0; j < x.nb; j++) {
+        double kb = x.nb == 1 ? 0.0 : disk_sign(j) * x.hb, tc;
+        double rx = x.dx + kb * cb_ - ka * ca_, ry = x.dy + kb * sb_ - ka * sa_;
+        if (hd_predict_disks(rx, ry, x.dvx, x.dvy, x.D, tmax, &tc) && tc < best) {
+          best = tc;
+          c->ka = i;
+          c->kb = j;
+          found = 1;
+        }
+      }
+    }
+    if (found) c->t = best;
+    return found;
+  }
+
+  /* pre-filter: the enclosing circles must meet */
+  double t_in, t_out;
+  double R = x.ha + x.hb + x.D * (1.0 + 2.0 * TOL_SEP);
+  if (!circle_window(x.dx, x.dy, x.dvx, x.dvy, R, &t_in, &t_out)) return 0;
+  if (t_in > tmax) return 0;
+  x.L = sqrt(x.dvx * x.dvx + x.dvy * x.dvy) + fabs(x.wa) * x.ha + fabs(x.wb) * x.hb;
+  x.K = x.wa * x.wa * x.ha + x.wb * x.wb * x.hb;
+  x.K2u = 2.0 * x.L * x.L / x.D + x.K;
+  double tc;
+  int p;
+  if (!ca_solve(&x, t_in, t_out < tmax ? t_out : tmax, tmax, &tc, &p)) return 0;
+  c->t = tc;
+  c->ka = p / x.nb;
+  c->kb = p % x.nb;
+  return 1;
+}
+
+int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, double tmax,
+                    hd_contact *c) {
+  ca_ctx x;
+  x.wall = 1;
+  x.na = sa->kind == HD_KIND_DIMER ? 2 : 1;
+  x.nb = 1;
+  double yc = w->axis ? A->y : A->x, vy = w->axis ? A->vy : A->vx;
+  x.dx = w->normal * (yc - w->pos) - 0.5 * sa->d; /* gap of a disk at the centre */
+  x.dvx = w->normal * vy;
+  x.dy = x.dvy = 0.0;
+  x.ha = half_a(sa);
+  x.hb = 0.0;
+  x.pa = x.na == 2 ? A->phi : 0.0;
+  x.wa = x.na == 2 ? A->omega : 0.0;
+  x.pb = x.wb = 0.0;
+  x.wsin = w->axis ? 1.0 : 0.0;
+  x.wn = w->normal;
+  x.D = sa->d;
+  if (!(tmax >= 0.0)) return 0;
+  x.L = fabs(x.dvx) + fabs(x.wa) * x.ha;
+  x.K = x.wa * x.wa * x.ha;
+  x.K2u = x.K;
+  const double vtol = VTOL * x.L;
+
+  if (x.wa * x.ha == 0.0) {
+    double h[2], hd[2], best = HUGE_VAL;
+    int found = 0;
+    ca_eval(&x, 0.0, h, hd);
+    for (int i = 0; i < x.na; i++) {
+      double tc;
+      if (h[i] <= TOL_0 * x.D) {
+        if (!(hd[i] < -vtol)) continue;
+        tc = 0.0;
+      } else {
+        if (!(hd[i] < -vtol)) continue;
+        tc = h[i] / (-hd[i]);
+      }
+      if (tc <= tmax && tc < best) {
+        best = tc;
+        c->ka = i;
+        found = 1;
+      }
+    }
+    if (found) {
+      c->t = best;
+      c->kb = 0;
+    }
+    return found;
+  }
+
+  /* pre-filter: the body's extreme point must reach the wall; window where
+   * G(t) = gap - a/2 + rate t <= hsep */
+  double hsep = TOL_SEP * x.D, G0 = x.dx - x.ha - hsep, t_in = 0.0, t_out = HUGE_VAL;
+  if (G0 > 0.0) {
+    if (!(x.dvx < 0.0)) return 0;
+    t_in = G0 / (-x.dvx);
+  } else if (x.dvx > 0.0) {
+    t_out = -G0 / x.dvx;
+  }
+  if (t_in > tmax) return 0;
+  double tc;
+  int p;
+  if (!ca_solve(&x, t_in, t_out < tmax ? t_out : tmax, tmax, &tc, &p)) return 0;
+  c->t = tc;
+  c->ka = p;
+  c->kb = 0;
+  return 1;
+}

@@ -51,8 +51,11 @@ typedef struct hd_contact {
 typedef struct hd_collision_info {
   double theta_i; /* contact angle of body A (DESIGN.md); NaN for a disk body */
   double theta_j; /* contact angle of body B; NaN for a disk body or a wall */
-  double f;       /* orientation factor mu_eff / m_ref: eq. 36 for dimer-dimer (see hd_body.c) */
-  double de;      /* kinetic energy of the pair after minus before (<= 0 for alpha <= 1) */
+  double f;       /* orientation factor mu_eff / m_ref: eq. 36 for dimer-dimer; m_ref is the disk
+                   * mass m of the dimer (of A if both are dimers), or A's mass for disk-disk and
+                   * disk-wall (see hd_body_collide.c) */
+  double de;      /* kinetic energy of the pair after minus before (<= 0 for alpha <= 1), computed
+                   * as -(1 - alpha^2) mu_eff vn^2 / 2 (no cancellation); 0 if not approaching */
   double vn;      /* normal relative velocity of the contact points before (< 0: approaching) */
 } hd_collision_info;
 
@@ -84,6 +87,13 @@ double hd_kin_energy(const hd_kin *k, const hd_shape *s);
 int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
                     double tmax, hd_contact *c);
 
+/* Closed-form contact of two disks in linear relative motion (the engine's disk fast path, and
+ * hd_predict_pair without rotation): separation d = (dx, dy) (B - A), relative velocity
+ * (dvx, dvy) (B - A), contact distance D.  Returns 1 with the earliest contact time *t in
+ * [0, tmax] while approaching, 0 if none.  Same t = 0 and grazing rules as hd_predict_pair. */
+int hd_predict_disks(double dx, double dy, double dvx, double dvy, double D, double tmax,
+                     double *t);
+
 /* Earliest time t in [0, tmax] at which body A touches wall w while approaching it; as above. */
 int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, double tmax,
                     hd_contact *c);
@@ -91,11 +101,13 @@ int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, doubl
 /* Collision of A (disk ka) and B (disk kb), in contact now: applies the paper's rule for the
  * pair's kinds (disk-disk; dimer-disk eq. 21-22; dimer-dimer eq. 13 and 18) with restitution
  * alpha in [0, 1] along the contact normal, updating the velocities and angular velocities of A
- * and B.  Fills *info if not NULL.  Returns 0. */
+ * and B.  A pair whose contact points are not approaching (vn >= 0) is left unchanged.  Dimers
+ * need a > 0 (a = 0 exactly moves as a disk of mass 2m).  Fills *info if not NULL.  Returns 0. */
 int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
                     double alpha, hd_collision_info *info);
 
-/* Collision of disk ka of A with wall w (eq. 24-25 for a dimer), restitution alpha. Returns 0. */
+/* Collision of disk ka of A with wall w (eq. 24-25 for a dimer), restitution alpha; left unchanged
+ * if the disk is not moving towards the wall.  Fills *info if not NULL.  Returns 0. */
 int hd_collide_wall(hd_kin *A, const hd_shape *sa, int ka, const hd_wall *w, double alpha,
                     hd_collision_info *info);
 
