@@ -36,7 +36,11 @@
  *   VTOL  = 1e-12  "approaching" means the normal relative velocity of the two contact points
  *                  (rotation included), h' = r.r'/|r|, is < -VTOL L.  A touching pair with
  *                  |h'| <= VTOL L is sliding, not colliding: it is skipped (this also keeps an
- *                  alpha = 0 collision, after which h' = 0 up to round-off, from re-colliding).
+ *                  alpha = 0 collision, after which h' = 0 up to round-off, from re-colliding)
+ *                  until rotation drives it into contact again (h' < -VTOL L while h <= TOL_C
+ *                  D): then it collides at once.  At alpha = 0 a sustained sliding contact is
+ *                  thus a train of ever smaller collisions, which the engine reports as
+ *                  inelastic collapse (the rigid-body limit of a lasting contact).
  *   TOL_0 = 1e-10  at t = 0 a pair with h <= TOL_0 D (a gap or an overlap left by round-off) is in
  *                  contact now: approaching -> t = 0 is returned; otherwise (the pair has just
  *                  collided) it is ignored until it has separated to h > TOL_SEP = 2 TOL_0 or
@@ -220,6 +224,14 @@ static double sep_step(double h, double hd, double hsep, double hc, double K2u) 
   return 2.0 * d / (hd + s);
 }
 
+/* For a touching pair (h <= hc) that is not approaching: a step short enough that rotation
+ * (|h''| <= K2u) cannot make it approach faster than 2 vtol before the next look, so that a
+ * sliding contact is caught at once instead of sinking in (alpha = 0). */
+static double slide_step(double h, double hd, double hc, double vtol, double K2u) {
+  if (h > hc || !(K2u > 0.0)) return HUGE_VAL;
+  return (hd + 2.0 * vtol) / K2u;
+}
+
 /* CA from t0 to tend; the pair state at t0 = 0 is checked for contacts and just-collided pairs.
  * Returns 1 and (t, pair index) on a contact. */
 static int ca_solve(const ca_ctx *c, double t, double tend, double tmax, double *tout, int *pout) {
@@ -252,10 +264,19 @@ static int ca_solve(const ca_ctx *c, double t, double tend, double tmax, double 
       unsigned bit = 1u << p;
       if (h[p] != h[p] || hd[p] != hd[p]) return 0; /* NaN state */
       if (ign & bit) {
+        if (hd[p] < -vtol && h[p] <= hc) {
+          /* a touching pair that was sliding (|h'| tiny after an alpha = 0 collision) and that
+           * rotation now drives into each other: it collides now, before any overlap grows */
+          cand |= bit;
+          ign &= ~bit;
+          continue;
+        }
         if (h[p] > hsep || (hd[p] < -vtol && h[p] > hc)) {
           ign &= ~bit;
         } else if (hd[p] >= -vtol) {
           double s = sep_step(h[p], hd[p], hsep, hc, c->K2u);
+          if (s < step) step = s;
+          s = slide_step(h[p], hd[p], hc, vtol, c->K2u);
           if (s < step) step = s;
           continue;
         }
@@ -266,6 +287,8 @@ static int ca_solve(const ca_ctx *c, double t, double tend, double tmax, double 
         } else {
           ign |= bit;
           double s = sep_step(h[p], hd[p], hsep, hc, c->K2u);
+          if (s < step) step = s;
+          s = slide_step(h[p], hd[p], hc, vtol, c->K2u);
           if (s < step) step = s;
         }
       } else {

@@ -1,0 +1,310 @@
+/* The engine with dimers (and dimer-disk mixtures, walls): conservation over long elastic runs
+ * in verification mode, equipartition and Maxwellian velocities, the singular and elongated
+ * limits, alpha = 0 and 1, walls that keep every body inside, and inelastic cooling. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_sort.h>
+
+#include "hd_sim_internal.h"
+#include "test_util.h"
+
+/* A scene of n dimers (d = 1, bond a) at area fraction eta, plus nd disks. */
+static void dimer_scene(hd_scene *sc, long n, long nd, double a, double eta, double alpha,
+                        unsigned long long seed) {
+  test_disk_scene(sc, nd, 0.1, alpha, seed);
+  sc->n_dimers = n;
+  sc->dimer_a = a;
+  sc->dimer_alpha = alpha;
+  double ad = a < 1 ? 2 * M_PI / 4 - (2 * 0.25 * acos(a) - 0.5 * a * sqrt(1 - a * a)) : M_PI / 2;
+  double area = (double)n * ad + (double)nd * M_PI / 4;
+  sc->box_x = sc->box_y = sqrt(area / eta);
+  sc->placement = HD_PLACE_RANDOM;
+}
+
+/* Runs ncoll collisions (verification on when verify), returning the relative energy drift and
+ * |total momentum|; fails on any engine error (an overlap, time going backwards). */
+static void run_checked(hd_sim *s, long ncoll, double *drift, double *pabs) {
+  double e0t, e0r, px, py;
+  hd_sim_energy(s, -1, &e0t, &e0r);
+  hd_error err;
+  double tlast = 0;
+  for (long k = 0; k < ncoll; k++) {
+    hd_event_out ev;
+    int rc = hd_sim_next(s, INFINITY, &ev, &err);
+    if (rc) fail_msg("collision %ld: %s", k, err.msg);
+    assert_true(ev.t >= tlast);
+    tlast = ev.t;
+    assert_false(isnan(ev.info.de) || isnan(ev.info.f));
+  }
+  double e1t, e1r;
+  hd_sim_energy(s, -1, &e1t, &e1r);
+  hd_sim_momentum(s, &px, &py);
+  *drift = fabs(e1t + e1r - e0t - e0r) / (e0t + e0r);
+  *pabs = hypot(px, py);
+}
+
+/* KS p-value of x[0..n) against the unit Gaussian (asymptotic Kolmogorov distribution). */
+static double ks_p(double *x, size_t n) {
+  gsl_sort(x, 1, n);
+  double d = 0;
+  for (size_t i = 0; i < n; i++) {
+    double F = gsl_cdf_ugaussian_P(x[i]);
+    d = fmax(d, fmax((double)(i + 1) / (double)n - F, F - (double)i / (double)n));
+  }
+  double lam = (sqrt((double)n) + 0.12 + 0.11 / sqrt((double)n)) * d, p = 0;
+  for (int k = 1; k < 100; k++) p += 2 * ((k & 1) ? 1 : -1) * exp(-2.0 * k * k * lam * lam);
+  return fmin(fmax(p, 0), 1);
+}
+
+/* Elastic dimers, N = 400, a = d, eta = 0.2, 10^6 collisions (10^5 sanitized), verification
+ * on (contact distance at every collision, overlap of both colliders with every neighbour,
+ * time order): relative energy drift < 1e-9, |momentum| < 1e-12 sqrt(N).  At equilibrium
+ * E_tr/E_rot = 2 (2 translational, 1 rotational degree of freedom): the time average over the
+ * second half, 2e3 samples of a quantity with relative fluctuation ~sqrt(2/N) ~ 7 %, correlated
+ * over ~N collisions, has an error ~1 %; tolerance 3 %.  V and omega scaled by their
+ * temperatures pass KS at the 1 % level. */
+static void elastic_dimers(void **state) {
+  (void)state;
+  hd_scene sc;
+  long N = 400;
+  dimer_scene(&sc, N, 0, 1.0, 0.2, 1.0, 17);
+  sc.verify = 1;
+  hd_sim *s;
+  hd_error err;
+  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+  long n = test_size(1000000, 10);
+  double drift, p;
+  run_checked(s, n / 2, &drift, &p);
+  double ksum = 0;
+  int nk = 0;
+  for (long k = 0; k < n / 2; k++) {
+    hd_event_out ev;
+    if (hd_sim_next(s, INFINITY, &ev, &err)) fail_msg("%s", err.msg);
+    if (k % 200 == 0) {
+      double et, er;
+      hd_sim_energy(s, -1, &et, &er);
+      ksum += et / er;
+      nk++;
+    }
+  }
+  double d2, p2;
+  run_checked(s, 0, &d2, &p2);
+  hd_sim_momentum(s, &p, &p2);
+  double et, er;
+  hd_sim_energy(s, -1, &et, &er);
+  double K = ksum / nk;
+  printf("# elastic dimers: %ld collisions, drift %.3g, |p| %.3g, max overlap %.3g, <K> %.4f\n",
+         n, drift, hypot(p, p2), s->max_overlap, K);
+  assert_true(drift < 1e-9);
+  assert_true(hypot(p, p2) < 1e-12 * sqrt((double)N));
+  assert_true(s->max_overlap < 1e-9);
+  int32_t i, j;
+  assert_true(hd_sim_max_overlap(s, &i, &j) < 1e-9);
+  if (!test_sanitized()) assert_true(fabs(K / 2 - 1) < 0.03);
+  /* Maxwellian: V components scaled by sqrt(T_tr/M), omega by sqrt(T_rot/I) */
+  double Ttr = et / (double)N, Trot = 2 * er / (double)N, M = 2.0, I = 0.5;
+  double v[800], w[400];
+  for (long b = 0; b < N; b++) {
+    v[2 * b] = s->b[b].k.vx / sqrt(Ttr / M);
+    v[2 * b + 1] = s->b[b].k.vy / sqrt(Ttr / M);
+    w[b] = s->b[b].k.omega / sqrt(Trot / I);
+  }
+  double pv = ks_p(v, 800), pw = ks_p(w, 400);
+  printf("# KS p: V %.3f, omega %.3f\n", pv, pw);
+  assert_true(pv > 0.01 && pw > 0.01);
+  hd_sim_free(s);
+}
+
+/* Limits and extremes, each elastic for 2e5 collisions in verification mode (2e4 sanitized):
+ * a = 1e-3 d (singular: rotation keeps exchanging energy, omega ~ 1/a after collisions), a = 2d
+ * and a = 3d (the disks no longer shadow each other), a dense gas (eta = 0.45, near the random
+ * placement limit).  Energy drift < 1e-9, no NaN, no overlap. */
+static void limits(void **state) {
+  (void)state;
+  struct { double a, eta; } cases[] = {{1e-3, 0.2}, {2.0, 0.2}, {3.0, 0.15}, {1.0, 0.45}};
+  for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    hd_scene sc;
+    dimer_scene(&sc, 300, 0, cases[c].a, cases[c].eta, 1.0, 23 + c);
+    if (cases[c].eta > 0.4) sc.placement = HD_PLACE_LATTICE, sc.box_x = sc.box_y = 20 * (1 + cases[c].a) * 1.0001;
+    sc.verify = 1;
+    hd_sim *s;
+    hd_error err;
+    int rc = hd_sim_alloc(&s, &sc, &err);
+    if (rc) fail_msg("a = %g: %s", cases[c].a, err.msg);
+    double drift, p;
+    run_checked(s, test_size(200000, 10), &drift, &p);
+    printf("# a = %g, eta = %g: drift %.3g, |p| %.3g, max overlap %.3g\n", cases[c].a,
+           cases[c].eta, drift, p, s->max_overlap);
+    assert_true(drift < 1e-9);
+    assert_true(s->max_overlap < 1e-9);
+    hd_sim_free(s);
+  }
+}
+
+/* alpha = 0: every collision ends with zero normal relative velocity, energy only decreases;
+ * the run goes on (or stops with a reported collapse) without overlaps or NaN. */
+static void alpha_zero(void **state) {
+  (void)state;
+  hd_scene sc;
+  dimer_scene(&sc, 200, 0, 1.0, 0.1, 0.0, 31);
+  sc.verify = 1;
+  hd_sim *s;
+  hd_error err;
+  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+  double eprev = s->c.e_kin;
+  long k, n = test_size(20000, 4);
+  int rc = HD_OK;
+  for (k = 0; k < n; k++) {
+    hd_event_out ev;
+    rc = hd_sim_next(s, INFINITY, &ev, &err);
+    if (rc) break;
+    assert_true(ev.info.de <= 1e-15 * eprev);
+    eprev = s->c.e_kin;
+  }
+  if (rc) { /* a collapse is allowed, and must be reported as such */
+    if (rc != HD_ECOLLAPSE) fail_msg("after %ld collisions: %s", k, err.msg);
+    printf("# alpha = 0: %s\n", err.msg);
+  }
+  assert_true(s->max_overlap < 1e-9);
+  hd_sim_free(s);
+}
+
+/* Walls on all four sides: no disk centre ever closer than d/2 to a wall (checked at every
+ * collision through verification and over all bodies at the end), energy conserved at
+ * alpha = 1, and wall collisions happen. */
+static void walls_keep_inside(void **state) {
+  (void)state;
+  hd_scene sc;
+  dimer_scene(&sc, 200, 100, 1.0, 0.2, 1.0, 37);
+  sc.walls = HD_WALL_LEFT | HD_WALL_RIGHT | HD_WALL_BOTTOM | HD_WALL_TOP;
+  sc.verify = 1;
+  hd_sim *s;
+  hd_error err;
+  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+  double e0t, e0r;
+  hd_sim_energy(s, -1, &e0t, &e0r);
+  long n = test_size(300000, 10);
+  for (long k = 0; k < n; k++) {
+    hd_event_out ev;
+    if (hd_sim_next(s, INFINITY, &ev, &err)) fail_msg("%s", err.msg);
+    if (k % 97 == 0 || ev.j < 0) { /* the bodies of this event stay inside */
+      int32_t ids[2] = {ev.i, ev.j};
+      for (int q = 0; q < 2; q++) {
+        if (ids[q] < 0) continue;
+        hd_kin kk;
+        hd_sim_body_now(s, ids[q], &kk);
+        const hd_shape *sh = &s->shape[s->b[ids[q]].species];
+        for (int dsk = 0; dsk < (sh->kind == HD_KIND_DIMER ? 2 : 1); dsk++) {
+          double x, y;
+          hd_kin_disk_pos(&kk, sh, dsk, &x, &y);
+          double r = 0.5 * sh->d * (1 - 1e-9);
+          assert_true(x >= r && x <= s->lx - r && y >= r && y <= s->ly - r);
+        }
+      }
+    }
+  }
+  double e1t, e1r;
+  hd_sim_energy(s, -1, &e1t, &e1r);
+  printf("# walls: %lld wall hits, drift %.3g\n", (long long)s->c.wall_hits,
+         fabs(e1t + e1r - e0t - e0r) / (e0t + e0r));
+  assert_true(s->c.wall_hits > 100);
+  assert_true(fabs(e1t + e1r - e0t - e0r) / (e0t + e0r) < 1e-9);
+  for (int32_t i = 0; i < s->n; i++) {
+    hd_kin kk;
+    hd_sim_body_now(s, i, &kk);
+    const hd_shape *sh = &s->shape[s->b[i].species];
+    for (int dsk = 0; dsk < (sh->kind == HD_KIND_DIMER ? 2 : 1); dsk++) {
+      double x, y;
+      hd_kin_disk_pos(&kk, sh, dsk, &x, &y);
+      double r = 0.5 * sh->d * (1 - 1e-9);
+      assert_true(x >= r && x <= s->lx - r && y >= r && y <= s->ly - r);
+    }
+  }
+  hd_sim_free(s);
+}
+
+/* Elastic dimer-disk mixture: every degree of freedom gets T (equipartition): dimer
+ * translation, dimer rotation, disk translation, time-averaged over the second half of 4e5
+ * collisions (300 dimers, 300 disks); tolerance 4 % (as for K above, with fewer bodies per
+ * species). */
+static void mixture_equipartition(void **state) {
+  (void)state;
+  hd_scene sc;
+  dimer_scene(&sc, 300, 300, 1.0, 0.2, 1.0, 41);
+  hd_sim *s;
+  hd_error err;
+  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+  long n = test_size(400000, 10);
+  double sum_dt = 0, sum_dr = 0, sum_st = 0;
+  int m = 0;
+  for (long k = 0; k < n; k++) {
+    hd_event_out ev;
+    if (hd_sim_next(s, INFINITY, &ev, &err)) fail_msg("%s", err.msg);
+    if (k >= n / 2 && k % 200 == 0) {
+      double dt, dr, st, sr;
+      hd_sim_energy(s, HD_SP_DIMER, &dt, &dr);
+      hd_sim_energy(s, HD_SP_DISK, &st, &sr);
+      sum_dt += dt / 300.0, sum_dr += 2 * dr / 300.0, sum_st += st / 300.0; /* each in units of T */
+      m++;
+    }
+  }
+  double Tdt = sum_dt / m, Tdr = sum_dr / m, Tst = sum_st / m;
+  printf("# mixture: T dimer tr %.4f, dimer rot %.4f, disk tr %.4f\n", Tdt, Tdr, Tst);
+  if (!test_sanitized()) {
+    assert_true(fabs(Tdr / Tdt - 1) < 0.04);
+    assert_true(fabs(Tst / Tdt - 1) < 0.04);
+  }
+  hd_sim_free(s);
+}
+
+/* Inelastic dimers (alpha = 0.9, a = d, dilute): the energy decays (by > 5x over 40 cpd), and
+ * K = E_tr/E_rot settles to a constant near 2: its mean over cpd 20-40 is within 10 % of 2 and
+ * its drift between cpd 20-30 and 30-40 below 5 %. */
+static void inelastic_cooling(void **state) {
+  (void)state;
+  hd_scene sc;
+  long N = test_size(1000, 4);
+  dimer_scene(&sc, N, 0, 1.0, 0.05, 0.9, 43);
+  hd_sim *s;
+  hd_error err;
+  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+  double e0 = s->c.e_kin, k1 = 0, k2 = 0;
+  int n1 = 0, n2 = 0;
+  double next = 20;
+  while (hd_sim_cpd(s) < 40) {
+    hd_event_out ev;
+    if (hd_sim_next(s, INFINITY, &ev, &err)) fail_msg("%s", err.msg);
+    if (hd_sim_cpd(s) >= next) {
+      double et, er;
+      hd_sim_energy(s, -1, &et, &er);
+      if (next < 30) k1 += et / er, n1++;
+      else k2 += et / er, n2++;
+      next += 0.25;
+    }
+  }
+  double K1 = k1 / n1, K2 = k2 / n2;
+  printf("# inelastic: E(40 cpd)/E(0) = %.4g, K over cpd 20-30 %.4f, 30-40 %.4f\n",
+         s->c.e_kin / e0, K1, K2);
+  assert_true(s->c.e_kin < e0 / 5);
+  if (!test_sanitized()) {
+    assert_true(fabs((K1 + K2) / 4 - 1) < 0.10);
+    assert_true(fabs(K2 / K1 - 1) < 0.05);
+  }
+  hd_sim_free(s);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(elastic_dimers),    cmocka_unit_test(limits),
+      cmocka_unit_test(alpha_zero),        cmocka_unit_test(walls_keep_inside),
+      cmocka_unit_test(mixture_equipartition), cmocka_unit_test(inelastic_cooling),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
