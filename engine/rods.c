@@ -112,7 +112,10 @@ static int alloc_bare(hd_rods **out, const hd_rods_params *p, hd_error *err) {
     r->tl[i] = -INFINITY;
   }
   if (p->model == HD_RODS_STOCHASTIC && p->gamma < 1) {
-    rc = hd_eps_sampler_alloc(&r->sampler, p->gamma, NULL, err);
+    hd_eps_opts o;
+    hd_eps_opts_default(&o);
+    if (p->eps_step > 0) o.step = p->eps_step;
+    rc = hd_eps_sampler_alloc(&r->sampler, p->gamma, &o, err);
     if (!rc && p->table) {
       gsl_rng *tr = gsl_rng_alloc(gsl_rng_mt19937);
       if (!tr) rc = hd_error_set(err, HD_ENOMEM, "rods: out of memory");
@@ -257,9 +260,11 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
   }
   long a = k, b = nxt(r, k), n = r->p.n;
   double u = r->v[b] - r->v[a];
-  /* collapse detection, before anything changes */
+  /* collapse detection, before anything changes: the collision rate diverges, i.e. the time
+   * since the previous collision falls below HD_RODS_TINY t */
+  long kl = prv(r, a), kr = b;
   r->stall = tk == r->t ? r->stall + 1 : 0;
-  if (fabs(u) < HD_RODS_TINY * sqrt(r->p.temperature)) {
+  if (tk - r->t <= HD_RODS_TINY * tk) {
     r->recent[r->tiny_run % HD_RODS_TINY_RUN] = (int32_t)k;
     r->tiny_run++;
   } else {
@@ -274,13 +279,12 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
                         "of rods %ld..%ld (%ld rods)",
                         tk, (long long)r->collisions,
                         r->tiny_run >= HD_RODS_TINY_RUN
-                            ? "64 successive collisions with relative speed < 1e-10 sqrt(T0)"
+                            ? "64 successive collisions less than 1e-12 t apart"
                             : "100000 successive collisions at the same time",
                         c0, c1, size);
   }
   r->t = tk;
   /* gaps next to the pair move with the old velocities up to now */
-  long kl = prv(r, a), kr = b;
   advance_gap(r, kl);
   if (kr != kl) advance_gap(r, kr);
   if (a == 0 || b == 0) {

@@ -41,12 +41,19 @@ typedef struct hd_rods_params {
   int table;           /* 1: eps from a tabulated p_beta (built at allocation, fixed seed) */
   int unequal;         /* 1: beta_i = E_tr / T_B(i) per rod (hd_eps_sample2); 0: mean T_B */
   unsigned long long seed; /* seeds the initial state and every eps draw (mt19937) */
+  double eps_step;     /* grid step of the direct eps sampler (hd_eps_opts.step); 0 = its
+                          default 0.01 */
 } hd_rods_params;
 
-/* Collapse detection: a collision whose relative speed |u| is below HD_RODS_TINY * sqrt(T0)
- * is "tiny"; HD_RODS_TINY_RUN consecutive tiny collisions, or HD_RODS_STALL consecutive
- * collisions at one and the same time, end the run with HD_ECOLLAPSE. */
-#define HD_RODS_TINY 1e-10
+/* Collapse detection (a finite-time divergence of the collision rate): a collision is "tiny"
+ * when it comes less than HD_RODS_TINY t after the previous one (t the time now).
+ * HD_RODS_TINY_RUN consecutive tiny collisions, or HD_RODS_STALL consecutive collisions at one
+ * and the same time, end the run with HD_ECOLLAPSE; the cluster reported is the shortest arc of
+ * rods holding the pairs of the last HD_RODS_TINY_RUN collisions.  Criteria on speeds or gaps
+ * alone are wrong: a ring below McNamara-Young's N_c cools homogeneously with speeds falling
+ * exponentially in the number of collisions, and the damped model's final cluster has gaps
+ * falling like 1/t, neither a collapse; but in both the time between collisions grows. */
+#define HD_RODS_TINY 1e-12
 #define HD_RODS_TINY_RUN 64
 #define HD_RODS_STALL 100000
 
