@@ -6,9 +6,6 @@ HAFF=${1:-bin/haff}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 dir=$(dirname "$0")/../scenes
-for model in "table = yes" "table = no" ; do
-  :
-done
 run() { # name scene-file extra --set args
   name=$1; shift
   s=$(date +%s.%N)
