@@ -15,6 +15,14 @@ int haff_table2_main(int argc, char **argv);
 int haff_energy_main(int argc, char **argv);
 int haff_angles_main(int argc, char **argv);
 int haff_veldist_main(int argc, char **argv);
+/* analysis/rods_cli.c */
+int haff_rods_energy_main(int argc, char **argv);
+int haff_rods_density_main(int argc, char **argv);
+int haff_rods_phase_main(int argc, char **argv);
+int haff_rods_gofr_main(int argc, char **argv);
+int haff_rods_veldist_main(int argc, char **argv);
+int haff_rods_clusters_main(int argc, char **argv);
+int haff_rods_collapse_main(int argc, char **argv);
 
 static const haff_command commands[] = {
     {"run", haff_run_main, "run a scene and append one run to a database"},
@@ -27,6 +35,13 @@ static const haff_command commands[] = {
     {"energy", haff_energy_main, "Figs. 2-3 data: E, (1-alpha^2) cpd, nu0_eff t per group"},
     {"angles", haff_angles_main, "Fig. 5 data: contact-angle histograms per block; --fmean"},
     {"veldist", haff_veldist_main, "Fig. 6 data: scaled velocity histograms; --stats a2, KS"},
+    {"rods-energy", haff_rods_energy_main, "rods Figs. 1-2, 9-11: energy, collisions vs t, theory"},
+    {"rods-density", haff_rods_density_main, "rods Figs. 3, 4, 6: coarse-grained density, local E"},
+    {"rods-phase", haff_rods_phase_main, "rods Fig. 5: phase space (x, v, T_B) at a time"},
+    {"rods-gofr", haff_rods_gofr_main, "rods Fig. 8: pair correlation g(x) at a time"},
+    {"rods-veldist", haff_rods_veldist_main, "rods Fig. 7: velocities of all rods and of a cluster"},
+    {"rods-clusters", haff_rods_clusters_main, "rods: clusters per snapshot (count, largest)"},
+    {"rods-collapse", haff_rods_collapse_main, "rods: (N, eps) scan of collapse vs McNamara-Young"},
 };
 static const size_t n_commands = sizeof commands / sizeof commands[0];
 

@@ -166,8 +166,9 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err) {
                         err);
   if (!rc) rc = prepare(db, &db->ins_coll,
                         "INSERT INTO collisions (run, seq, t, kind, i, j, disk_i, disk_j, "
-                        "theta_i, theta_j, f, de, vn) VALUES "
-                        "(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)",
+                        "theta_i, theta_j, f, de, vn, eps, e_tr, tb_i, tb_j) VALUES "
+                        "(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, "
+                        "?17)",
                         err);
   if (!rc) rc = prepare(db, &db->ins_sample,
                         "INSERT INTO samples (run, t, collisions, cpd, e_tr, e_rot) VALUES "
@@ -295,6 +296,11 @@ int hd_db_log_collision(hd_db *db, int64_t run, const hd_collision_row *r, hd_er
   bind_real(st, 11, r->f);
   bind_real(st, 12, r->de);
   bind_real(st, 13, r->vn);
+  int rod = r->kind == HD_CK_ROD_ROD;
+  bind_real(st, 14, rod ? r->eps : NAN);
+  bind_real(st, 15, rod ? r->e_tr : NAN);
+  bind_real(st, 16, rod ? r->tb_i : NAN);
+  bind_real(st, 17, rod ? r->tb_j : NAN);
   return batch_step(db, st, err, "insert collision");
 }
 

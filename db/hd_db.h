@@ -37,6 +37,10 @@ typedef struct hd_collision_row {
   int disk_i, disk_j;       /* which disk of each (0/1; 0 for a disk; -1 for a wall) */
   double theta_i, theta_j;  /* contact angles, NaN when not defined */
   double f, de, vn;         /* orientation factor, energy change, normal relative velocity */
+  /* rod-rod only (stored as NULL for the other kinds, whatever their value): */
+  double eps;               /* coefficient of restitution drawn */
+  double e_tr;              /* energy of the relative motion before, mu u^2 / 2 */
+  double tb_i, tb_j;        /* bath temperatures of rods i and j after the collision */
 } hd_collision_row;
 
 /* One row of `samples` (energies per particle). */

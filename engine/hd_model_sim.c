@@ -1,6 +1,9 @@
 /* The 2D engine (hd_sim: disks and dimers) seen through hd_model_ops. */
+#include <math.h>
+
 #include "hd_model.h"
 #include "hd_sim.h"
+#include "rods_model.h"
 
 static int m_alloc(void **m, const hd_scene *sc, hd_error *err) {
   return hd_sim_alloc((hd_sim **)m, sc, err);
@@ -18,7 +21,8 @@ static int m_next(void *m, double t_stop, hd_collision_row *row, hd_error *err) 
   int rc = hd_sim_next(m, t_stop, &ev, err);
   if (rc) return rc;
   *row = (hd_collision_row){0, ev.t, (hd_coll_kind)ev.kind, ev.i, ev.j, ev.ka, ev.kb,
-                            ev.info.theta_i, ev.info.theta_j, ev.info.f, ev.info.de, ev.info.vn};
+                            ev.info.theta_i, ev.info.theta_j, ev.info.f, ev.info.de, ev.info.vn,
+                            NAN, NAN, NAN, NAN};
   return HD_OK;
 }
 
@@ -71,6 +75,5 @@ const hd_model_ops hd_model_bodies2d = {
     m_cpd,      m_events, m_temperature,   m_sample, m_log_states, m_box};
 
 const hd_model_ops *hd_model_for_scene(const hd_scene *sc) {
-  (void)sc; /* the rod model adds its case here */
-  return &hd_model_bodies2d;
+  return sc->n_rods > 0 ? &hd_model_rods : &hd_model_bodies2d;
 }

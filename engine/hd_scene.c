@@ -24,9 +24,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { S_SYSTEM, S_DIMERS, S_DISKS, S_WALLS, S_INIT, S_RUN, S_LOG, N_SEC };
+enum { S_SYSTEM, S_DIMERS, S_DISKS, S_WALLS, S_INIT, S_RUN, S_LOG, S_RODS, N_SEC };
 static const char *const sec_name[N_SEC] = {"system", "dimers", "disks", "walls",
-                                            "init",   "run",    "log"};
+                                            "init",   "run",    "log",   "rods"};
 
 enum {
   K_BOX,
@@ -55,6 +55,16 @@ enum {
   K_LCOLL,
   K_LSAMPLES,
   K_LVEL,
+  K_RCOUNT,
+  K_RGAMMA,
+  K_RNMOD,
+  K_RMODEL,
+  K_REPS,
+  K_RDAMP,
+  K_RTC,
+  K_RTEMP,
+  K_RTABLE,
+  K_RBATHS,
   N_KEY
 };
 static const struct {
@@ -87,6 +97,16 @@ static const struct {
     {S_LOG, "collisions"},
     {S_LOG, "samples_every"},
     {S_LOG, "velocities_at"},
+    {S_RODS, "count"},
+    {S_RODS, "gamma"},
+    {S_RODS, "nmod"},
+    {S_RODS, "model"},
+    {S_RODS, "eps"},
+    {S_RODS, "damping"},
+    {S_RODS, "tc"},
+    {S_RODS, "temperature"},
+    {S_RODS, "table"},
+    {S_RODS, "baths"},
 };
 
 static const char *const wall_name[4] = {"left", "right", "bottom", "top"};
@@ -411,6 +431,46 @@ static int set_value(ctx *c, int k, const char *v) {
     return get_num(c, k, v, 'n', &sc->samples_every);
   case K_LVEL:
     return set_vel_at(c, v);
+  case K_RCOUNT:
+    if ((rc = get_whole(c, k, v, 2, (double)HD_MAX_COUNT, &x))) return rc;
+    if (fmod(x, 2) != 0) return FAIL_KEY(c, k, "must be even: the rod lengths alternate round the ring");
+    sc->n_rods = (long)x;
+    return HD_OK;
+  case K_RGAMMA:
+    if ((rc = get_num(c, k, v, 'u', &x))) return rc;
+    if (!(x > 0)) return FAIL_KEY(c, k, "must be in (0, 1]");
+    sc->rod_gamma = x;
+    return HD_OK;
+  case K_RNMOD:
+    if ((rc = get_whole(c, k, v, 1, 1e9, &x))) return rc;
+    sc->rod_nmod = (long)x;
+    return HD_OK;
+  case K_RMODEL:
+    if (!strcmp(v, "stochastic"))
+      sc->rod_model = 0;
+    else if (!strcmp(v, "constant"))
+      sc->rod_model = 1;
+    else
+      return FAIL_KEY(c, k, "expected stochastic or constant");
+    return HD_OK;
+  case K_REPS:
+    return get_num(c, k, v, 'u', &sc->rod_eps);
+  case K_RDAMP:
+    return get_num(c, k, v, 'n', &sc->rod_damping);
+  case K_RTC:
+    return get_num(c, k, v, 'n', &sc->rod_tc);
+  case K_RTEMP:
+    return get_num(c, k, v, 'p', &sc->rod_temperature);
+  case K_RTABLE:
+    return set_bool(c, k, v, &sc->rod_table);
+  case K_RBATHS:
+    if (!strcmp(v, "mean"))
+      sc->rod_unequal = 0;
+    else if (!strcmp(v, "unequal"))
+      sc->rod_unequal = 1;
+    else
+      return FAIL_KEY(c, k, "expected mean or unequal");
+    return HD_OK;
   default:
     return HD_OK;
   }
@@ -426,7 +486,7 @@ static int unknown_section(ctx *c, const char *s) {
   char at[600];
   where(c, c->cur, at, sizeof at);
   return cfail(c, HD_EINPUT,
-               "%s: [%.60s]: unknown section (known: system dimers disks walls init run log)", at,
+               "%s: [%.60s]: unknown section (known: system dimers disks walls init run log rods)", at,
                s);
 }
 
@@ -684,9 +744,32 @@ static int check_box(ctx *c) {
   return HD_OK;
 }
 
+/* A [rods] scene: a ring of count rods, nothing 2D. */
+static int check_rods(ctx *c) {
+  hd_scene *sc = c->sc;
+  if (!is_set(c->key_at[K_RCOUNT]))
+    return fail(c, HD_EINPUT, c->sec_at[S_RODS], S_RODS, "count", NULL, "missing: required in [rods]");
+  static const int other[4] = {S_DIMERS, S_DISKS, S_WALLS, S_INIT};
+  for (int j = 0; j < 4; j++)
+    if (c->present[other[j]])
+      return fail(c, HD_EINPUT, c->sec_at[other[j]], other[j], NULL, NULL,
+                  "cannot be combined with [rods] (the ring has its own count and temperature)");
+  if (is_set(c->key_at[K_BOX])) return FAIL_KEY(c, K_BOX, "not used with [rods]: the ring length is the rod count");
+  if (is_set(c->key_at[K_AREA])) return FAIL_KEY(c, K_AREA, "not used with [rods]: the ring length is the rod count");
+  if (!is_set(c->key_at[K_REPS])) sc->rod_eps = sc->rod_gamma;
+  else if (sc->rod_model != 1) return FAIL_KEY(c, K_REPS, "only with model = constant");
+  if (sc->rod_table && sc->rod_unequal)
+    return FAIL_KEY(c, K_RTABLE, "the table is for equal bath temperatures: not with baths = unequal");
+  if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
+    return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
+                "no stop condition: set stop_time, stop_events or stop_cpd");
+  return HD_OK;
+}
+
 static int check_all(ctx *c) {
   hd_scene *sc = c->sc;
   int rc;
+  if (c->present[S_RODS]) return check_rods(c);
   if (!is_set(c->key_at[K_SALPHAD])) sc->disk_alpha_dimer = sc->disk_alpha;
   if (is_set(c->key_at[K_STATE])) {
     if (is_set(c->key_at[K_PLACE]))
@@ -829,6 +912,16 @@ static char *canonical_text(const ctx *c) {
       put(&b, "\n");
     }
   }
+  if (c->present[S_RODS]) {
+    put(&b, "[rods]\ncount = %ld\n", sc->n_rods);
+    put_kv(&b, "gamma", sc->rod_gamma);
+    put(&b, "nmod = %ld\nmodel = %s\n", sc->rod_nmod, sc->rod_model ? "constant" : "stochastic");
+    if (sc->rod_model) put_kv(&b, "eps", sc->rod_eps);
+    put_kv(&b, "damping", sc->rod_damping);
+    put_kv(&b, "tc", sc->rod_tc);
+    put_kv(&b, "temperature", sc->rod_temperature);
+    put(&b, "table = %s\nbaths = %s\n", sc->rod_table ? "yes" : "no", sc->rod_unequal ? "unequal" : "mean");
+  }
   if (b.oom) {
     free(b.s);
     return NULL;
@@ -850,6 +943,10 @@ void hd_scene_defaults(hd_scene *sc) {
   sc->checkpoint_every = 60;
   sc->log_collisions = HD_LOG_ALL;
   sc->log_every = 1;
+  sc->rod_gamma = 0.8;
+  sc->rod_nmod = 1000;
+  sc->rod_eps = 0.8;
+  sc->rod_temperature = 1;
   sc->text = NULL;
 }
 

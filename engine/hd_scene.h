@@ -74,6 +74,17 @@ typedef struct hd_scene {
   double samples_every;                 /* `samples_every` [0 = none], in cpd */
   double velocities_at[HD_MAX_VEL_AT];  /* `velocities_at`: cpd values, ascending */
   int n_velocities_at;
+  /* [rods] (engine/rods.h, docs/rods.md): a rods scene has no bodies, box, walls or [init] */
+  long n_rods;          /* `count` [0]: rods on the ring (even, >= 2), ring length = count */
+  double rod_gamma;     /* `gamma` [0.8]: length (and mass) ratio short/long, in (0, 1] */
+  long rod_nmod;        /* `nmod` [1000]: vibrational modes per rod */
+  int rod_model;        /* `model` = stochastic (0) | constant (1) [stochastic] */
+  double rod_eps;       /* `eps` [= gamma]: the constant model's restitution, in [0, 1] */
+  double rod_damping;   /* `damping` [0]: nu, bath temperatures decay as exp(-nu t) */
+  double rod_tc;        /* `tc` [0 = off]: TC model, eps = 1 if a rod collided within tc */
+  double rod_temperature; /* `temperature` [1]: initial <m v^2> (sets the units: 1) */
+  int rod_table;        /* `table` [no]: draw eps from a tabulated p_beta (mc/eps_table.c) */
+  int rod_unequal;      /* `baths` = mean (0) | unequal (1) [mean]: beta of each rod separately */
   char *text; /* malloc'd canonical INI of the effective scene (file + overrides), for runs.scene */
 } hd_scene;
 

@@ -113,7 +113,7 @@ static void assert_integrity_ok(const char *path) {
 
 static hd_collision_row coll(int64_t seq) {
   hd_collision_row r = {seq, 0.01 * (double)seq, HD_CK_DIMER_DIMER, seq % 7, seq % 5 + 7, 0, 1,
-                        0.25, -0.5, 0.7, -0.01, -0.3};
+                        0.25, -0.5, 0.7, -0.01, -0.3, NAN, NAN, NAN, NAN};
   return r;
 }
 
@@ -140,7 +140,7 @@ static void round_trip(void **state) {
   for (int k = 0; k <= HD_CK_ROD_ROD; k++) {
     hd_collision_row r = {k + 1, 0.5 + k, (hd_coll_kind)k, k, k == 3 ? -2 : k + 1, k % 2, -1,
                           0.125 * k, k % 2 ? NAN : -0.25, k == 2 ? NAN : 0.6, -0.5 * k,
-                          k == 4 ? NAN : -1.0};
+                          k == 4 ? NAN : -1.0, 0.5, 1.0, 2.0, 3.0};
     assert_int_equal(hd_db_log_collision(db, run, &r, &err), HD_OK);
   }
   hd_sample_row s = {1.25, 42, 0.84, 0.75, 0.5};
@@ -192,7 +192,8 @@ static void round_trip(void **state) {
                                       "dimer-wall",  "disk-wall",  "rod-rod"};
   assert_int_equal(sqlite3_prepare_v2(h,
                                       "SELECT seq, t, kind, i, j, disk_i, disk_j, theta_i, "
-                                      "theta_j, f, de, vn FROM collisions ORDER BY seq",
+                                      "theta_j, f, de, vn, eps, e_tr, tb_i, tb_j FROM collisions "
+                                      "ORDER BY seq",
                                       -1, &q, NULL),
                    SQLITE_OK);
   for (int k = 0; k <= HD_CK_ROD_ROD; k++) {
@@ -213,6 +214,10 @@ static void round_trip(void **state) {
     assert_true(sqlite3_column_double(q, 10) == -0.5 * k);
     if (k == 4) assert_int_equal(sqlite3_column_type(q, 11), SQLITE_NULL);
     else assert_true(sqlite3_column_double(q, 11) == -1.0);
+    /* rod columns: stored for rod-rod only, NULL for the other kinds */
+    for (int c = 12; c < 16; c++)
+      if (k == HD_CK_ROD_ROD) assert_true(sqlite3_column_double(q, c) == (c == 12 ? 0.5 : c - 12.0));
+      else assert_int_equal(sqlite3_column_type(q, c), SQLITE_NULL);
   }
   assert_int_equal(sqlite3_step(q), SQLITE_DONE);
   sqlite3_finalize(q);

@@ -166,8 +166,8 @@ typedef struct bad_case {
 #define BOX "[system]\nbox = 50 50\n"
 
 static const bad_case bad_cases[] = {
-    {"[rods]\ncount = 5\n" RUN, NULL, HD_EINPUT, "bad.ini:1:", "[rods]", "unknown section"},
-    {"[rods]\n" RUN, NULL, HD_EINPUT, "bad.ini:1:", "[rods]", "unknown section"},
+    {"[rods]\ncount = 5\n" RUN, NULL, HD_EINPUT, "bad.ini:2:", "[rods] count = 5", "even"},
+    {"[rods]\n" RUN, NULL, HD_EINPUT, "bad.ini:1:", "[rods] count", "missing"},
     {RUN "stoptime = 2\n", NULL, HD_EINPUT, "bad.ini:3:", "[run] stoptime", "unknown key"},
     {RUN "stop_cpd = 2\n", NULL, HD_EINPUT, "bad.ini:3:", "[run] stop_cpd", "duplicate"},
     {RUN BOX "[dimers]\nalpha = 0.9\n", NULL, HD_EINPUT, "bad.ini:5:", "[dimers] count", "missing"},
@@ -244,7 +244,7 @@ static const bad_case bad_cases[] = {
     /* overrides: the same checks, named by the --set */
     {RUN, "dimers.alpha=1.5", HD_EINPUT, "--set dimers.alpha=1.5:", "[dimers] alpha = 1.5",
      "[0, 1]"},
-    {RUN, "rods.count=3", HD_EINPUT, "--set rods.count=3:", "[rods]", "unknown section"},
+    {RUN, "rods.count=3", HD_EINPUT, "--set rods.count=3:", "[rods] count = 3", "even"},
     {RUN, "run.stoptime=3", HD_EINPUT, "--set run.stoptime=3:", "[run] stoptime", "unknown key"},
     {RUN, "dimersalpha=1", HD_EINPUT, "--set dimersalpha=1:", "SECTION.KEY=VALUE", NULL},
     {RUN, "dimers.alpha", HD_EINPUT, "--set dimers.alpha:", "SECTION.KEY=VALUE", NULL},
@@ -569,6 +569,72 @@ static int teardown(void **state) {
   return rmdir(tmpdir);
 }
 
+
+/* ---- [rods] ------------------------------------------------------------------------------- */
+
+/* A rods-only scene needs no box; values and defaults as written; text round trip. */
+static void rods_scene(void **state) {
+  (void)state;
+  hd_scene sc, sc2;
+  hd_error e;
+  const char *txt = "[system]\nseed = 7\n[rods]\ncount = 50\ngamma = 0.5\nnmod = 20\n"
+                    "model = constant\neps = 0.3\ndamping = 0.01\ntc = 0.001\ntable = no\n"
+                    "[run]\nstop_time = 10\n";
+  assert_int_equal(hd_scene_load_string(&sc, txt, "r.ini", NULL, 0, &e), HD_OK);
+  assert_int_equal(sc.n_rods, 50);
+  assert_true(sc.rod_gamma == 0.5 && sc.rod_nmod == 20 && sc.rod_model == 1);
+  assert_true(sc.rod_eps == 0.3 && sc.rod_damping == 0.01 && sc.rod_tc == 0.001);
+  assert_true(sc.rod_temperature == 1 && sc.rod_table == 0 && sc.rod_unequal == 0);
+  assert_true(sc.n_dimers == 0 && sc.n_disks == 0);
+  assert_int_equal(hd_scene_load_string(&sc2, sc.text, "canon", NULL, 0, &e), HD_OK);
+  assert_string_equal(sc.text, sc2.text);
+  hd_scene_free(&sc);
+  hd_scene_free(&sc2);
+  /* defaults: gamma 0.8, nmod 1000, stochastic, eps = gamma */
+  assert_int_equal(hd_scene_load_string(&sc, "[rods]\ncount = 4\n[run]\nstop_events = 5\n",
+                                        "d.ini", NULL, 0, &e), HD_OK);
+  assert_true(sc.rod_gamma == 0.8 && sc.rod_nmod == 1000 && sc.rod_model == 0);
+  assert_true(sc.rod_eps == 0.8);
+  hd_scene_free(&sc);
+  const char *over[] = {"rods.baths=unequal", "rods.count=8"};
+  assert_int_equal(hd_scene_load_string(&sc, "[rods]\ncount = 4\n[run]\nstop_events = 5\n",
+                                        "d.ini", over, 2, &e), HD_OK);
+  assert_true(sc.rod_unequal == 1 && sc.n_rods == 8);
+  hd_scene_free(&sc);
+}
+
+/* Each bad [rods] scene fails with file:line, the key and why. */
+static void rods_bad(void **state) {
+  (void)state;
+  static const struct {
+    const char *text, *a, *b, *c;
+  } cases[] = {
+      {"[rods]\ncount = 5\n[run]\nstop_time = 1\n", "r.ini:2", "[rods] count = 5", "even"},
+      {"[rods]\ncount = 0\n[run]\nstop_time = 1\n", "r.ini:2", "[rods] count = 0", "["},
+      {"[rods]\ncount = 4\ngamma = 1.5\n[run]\nstop_time = 1\n", "r.ini:3", "gamma = 1.5", "[0, 1]"},
+      {"[rods]\ncount = 4\ngamma = 0\n[run]\nstop_time = 1\n", "r.ini:3", "gamma = 0", "(0, 1]"},
+      {"[rods]\ncount = 4\nmodel = fixed\n[run]\nstop_time = 1\n", "r.ini:3", "model = fixed", "stochastic or constant"},
+      {"[rods]\ncount = 4\neps = 0.5\n[run]\nstop_time = 1\n", "r.ini:3", "eps = 0.5", "model = constant"},
+      {"[rods]\ncount = 4\nnmod = 0\n[run]\nstop_time = 1\n", "r.ini:3", "nmod = 0", "["},
+      {"[rods]\ncount = 4\ndamping = -1\n[run]\nstop_time = 1\n", "r.ini:3", "damping = -1", ">= 0"},
+      {"[rods]\ncount = 4\ntable = maybe\n[run]\nstop_time = 1\n", "r.ini:3", "table = maybe", "yes/no"},
+      {"[rods]\ncount = 4\nbaths = hot\n[run]\nstop_time = 1\n", "r.ini:3", "baths = hot", "mean or unequal"},
+      {"[rods]\ncount = 4\ntable = yes\nbaths = unequal\n[run]\nstop_time = 1\n", "r.ini:3", "table = yes", "equal"},
+      {"[rods]\ncount = 4\nlength = 2\n[run]\nstop_time = 1\n", "r.ini:3", "[rods] length", "unknown key"},
+      {"[rods]\ngamma = 0.5\n[run]\nstop_time = 1\n", "r.ini:1", "[rods] count", "missing"},
+      {"[rods]\ncount = 4\n[disks]\ncount = 3\n[run]\nstop_time = 1\n", "r.ini:3", "[disks]", "cannot be combined"},
+      {"[system]\nbox = 5 5\n[rods]\ncount = 4\n[run]\nstop_time = 1\n", "r.ini:2", "box = 5 5", "ring length"},
+      {"[rods]\ncount = 4\n", "r.ini", "no stop condition", NULL},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    hd_scene sc;
+    hd_error e;
+    assert_int_equal(hd_scene_load_string(&sc, cases[i].text, "r.ini", NULL, 0, &e), HD_EINPUT);
+    assert_has(e.msg, cases[i].a, cases[i].b, cases[i].c, NULL);
+    assert_null(sc.text);
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(good_scene_values),
@@ -586,6 +652,8 @@ int main(void) {
       cmocka_unit_test(csv_good),
       cmocka_unit_test(csv_bad),
       cmocka_unit_test(example_scenes),
+      cmocka_unit_test(rods_scene),
+      cmocka_unit_test(rods_bad),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

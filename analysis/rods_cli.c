@@ -1,0 +1,578 @@
+/* The rod figures (docs/rods.md): `haff rods-energy`, `rods-density`, `rods-phase`,
+ * `rods-gofr`, `rods-veldist`, `rods-clusters` read a rods run from a database and write TSV;
+ * `rods-collapse` scans (N, eps) of the constant model for inelastic collapse.  CLI code. */
+#include <getopt.h>
+#include <math.h>
+#include <sqlite3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hd_scene.h"
+#include "hd_sim.h"
+#include "rods.h"
+
+int haff_rods_energy_main(int argc, char **argv);
+int haff_rods_density_main(int argc, char **argv);
+int haff_rods_phase_main(int argc, char **argv);
+int haff_rods_gofr_main(int argc, char **argv);
+int haff_rods_veldist_main(int argc, char **argv);
+int haff_rods_clusters_main(int argc, char **argv);
+int haff_rods_collapse_main(int argc, char **argv);
+
+/* Options shared by the DB readers. */
+typedef struct ropts {
+  const char *db;
+  long run;      /* -1: newest rods run */
+  int bins;      /* histogram bins */
+  double t;      /* snapshot time wanted (nearest), NAN: every snapshot */
+  double gap;    /* cluster finder: gap below which neighbours are in one cluster */
+  long minsize;  /* cluster finder: smallest cluster counted */
+  double x;      /* rods-veldist: the cluster nearest x (NAN: the largest) */
+  double range;  /* rods-gofr: largest distance */
+} ropts;
+
+static int parse(int argc, char **argv, const char *usage, ropts *o) {
+  static const struct option lo[] = {{"run", 1, 0, 'r'},  {"bins", 1, 0, 'b'},
+                                     {"t", 1, 0, 't'},    {"gap", 1, 0, 'g'},
+                                     {"min-size", 1, 0, 'm'}, {"x", 1, 0, 'x'},
+                                     {"range", 1, 0, 'R'}, {"help", 0, 0, 'h'},
+                                     {0, 0, 0, 0}};
+  o->run = -1;
+  o->t = NAN;
+  o->x = NAN;
+  o->gap = 0.1;
+  o->minsize = 10;
+  o->range = 50;
+  optind = 1;
+  int c;
+  while ((c = getopt_long(argc, argv, "h", lo, NULL)) != -1) {
+    char *e = NULL;
+    switch (c) {
+    case 'r': o->run = strtol(optarg, &e, 10); break;
+    case 'b': o->bins = (int)strtol(optarg, &e, 10); break;
+    case 't': o->t = strtod(optarg, &e); break;
+    case 'g': o->gap = strtod(optarg, &e); break;
+    case 'm': o->minsize = strtol(optarg, &e, 10); break;
+    case 'x': o->x = strtod(optarg, &e); break;
+    case 'R': o->range = strtod(optarg, &e); break;
+    case 'h': fputs(usage, stdout); return -1;
+    default: fprintf(stderr, "%s: bad option (see --help)\n", argv[0]); return 2;
+    }
+    if (e && *e) {
+      fprintf(stderr, "%s: --%s: '%s' is not a number\n", argv[0], lo[0].name, optarg);
+      return 2;
+    }
+  }
+  if (optind != argc - 1) {
+    fprintf(stderr, "%s: expected one database (see --help)\n", argv[0]);
+    return 2;
+  }
+  if (o->bins < 0 || o->gap <= 0 || o->range <= 0) {
+    fprintf(stderr, "%s: --bins, --gap and --range must be > 0\n", argv[0]);
+    return 2;
+  }
+  o->db = argv[optind];
+  return 0;
+}
+
+/* The run: its id and its scene (a [rods] scene). */
+typedef struct rrun {
+  sqlite3 *db;
+  long id;
+  hd_scene sc;
+} rrun;
+
+static int open_run(const char *cmd, const ropts *o, rrun *r) {
+  memset(r, 0, sizeof *r);
+  if (sqlite3_open_v2(o->db, &r->db, SQLITE_OPEN_READONLY, NULL) != SQLITE_OK) {
+    fprintf(stderr, "%s: %s: cannot open: %s\n", cmd, o->db, sqlite3_errmsg(r->db));
+    sqlite3_close(r->db);
+    return 1;
+  }
+  sqlite3_stmt *st;
+  const char *sql = o->run >= 0 ? "SELECT id, scene FROM runs WHERE id = ?1"
+                                : "SELECT id, scene FROM runs WHERE scene LIKE '%[rods]%' "
+                                  "ORDER BY id DESC LIMIT 1";
+  if (sqlite3_prepare_v2(r->db, sql, -1, &st, NULL) != SQLITE_OK) {
+    fprintf(stderr, "%s: %s: not a haff database: %s\n", cmd, o->db, sqlite3_errmsg(r->db));
+    sqlite3_close(r->db);
+    return 2;
+  }
+  if (o->run >= 0) sqlite3_bind_int64(st, 1, o->run);
+  int rc = 2;
+  if (sqlite3_step(st) == SQLITE_ROW) {
+    r->id = (long)sqlite3_column_int64(st, 0);
+    hd_error err;
+    if (hd_scene_load_string(&r->sc, (const char *)sqlite3_column_text(st, 1), "runs.scene", NULL,
+                             0, &err) == HD_OK &&
+        r->sc.n_rods > 0)
+      rc = 0;
+    else
+      fprintf(stderr, "%s: %s: run %ld is not a rods run\n", cmd, o->db, r->id);
+  } else {
+    fprintf(stderr, "%s: %s: no rods run%s\n", cmd, o->db, o->run >= 0 ? " with that id" : "");
+  }
+  sqlite3_finalize(st);
+  if (rc) {
+    hd_scene_free(&r->sc);
+    sqlite3_close(r->db);
+  }
+  return rc;
+}
+
+static void close_run(rrun *r) {
+  hd_scene_free(&r->sc);
+  sqlite3_close(r->db);
+}
+
+/* Snapshot times of the run (labels initial, velocities, final), ascending; malloc'd. */
+static long snap_times(rrun *r, double **t) {
+  sqlite3_stmt *st;
+  *t = NULL;
+  if (sqlite3_prepare_v2(r->db,
+                         "SELECT DISTINCT t FROM states WHERE run = ?1 AND kind = 'rod' AND "
+                         "label IN ('initial','velocities','final') ORDER BY t",
+                         -1, &st, NULL) != SQLITE_OK)
+    return -1;
+  sqlite3_bind_int64(st, 1, r->id);
+  long n = 0, cap = 0;
+  while (sqlite3_step(st) == SQLITE_ROW) {
+    if (n == cap) {
+      cap = 2 * cap + 16;
+      double *nt = realloc(*t, (size_t)cap * sizeof *nt);
+      if (!nt) break;
+      *t = nt;
+    }
+    (*t)[n++] = sqlite3_column_double(st, 0);
+  }
+  sqlite3_finalize(st);
+  return n;
+}
+
+/* The rods at snapshot time t: x, v, T_B by body index (arrays of sc.n_rods, malloc'd). */
+static int snapshot(rrun *r, double t, double **x, double **v, double **tb) {
+  long n = r->sc.n_rods;
+  *x = calloc((size_t)n, sizeof(double));
+  *v = calloc((size_t)n, sizeof(double));
+  *tb = calloc((size_t)n, sizeof(double));
+  if (!*x || !*v || !*tb) return 1;
+  sqlite3_stmt *st;
+  if (sqlite3_prepare_v2(r->db,
+                         "SELECT body, x, vx, omega FROM states WHERE run = ?1 AND kind = 'rod' "
+                         "AND t = ?2 AND label IN ('initial','velocities','final')",
+                         -1, &st, NULL) != SQLITE_OK)
+    return 1;
+  sqlite3_bind_int64(st, 1, r->id);
+  sqlite3_bind_double(st, 2, t);
+  while (sqlite3_step(st) == SQLITE_ROW) {
+    long b = (long)sqlite3_column_int64(st, 0);
+    if (b < 0 || b >= n) continue;
+    (*x)[b] = sqlite3_column_double(st, 1);
+    (*v)[b] = sqlite3_column_double(st, 2);
+    (*tb)[b] = sqlite3_column_double(st, 3);
+  }
+  sqlite3_finalize(st);
+  return 0;
+}
+
+static double mass(const hd_scene *sc, long i) {
+  return i % 2 ? 1 + 1 / sc->rod_gamma : 1 + sc->rod_gamma;
+}
+
+/* The snapshot nearest o->t (or the last). */
+static int pick_time(const char *cmd, rrun *r, const ropts *o, double *t) {
+  double *ts;
+  long n = snap_times(r, &ts);
+  if (n <= 0) {
+    fprintf(stderr, "%s: run %ld has no rod snapshots ([log] velocities_at)\n", cmd, r->id);
+    free(ts);
+    return 1;
+  }
+  long best = n - 1;
+  if (!isnan(o->t))
+    for (long k = 0; k < n; k++)
+      if (fabs(ts[k] - o->t) < fabs(ts[best] - o->t)) best = k;
+  *t = ts[best];
+  free(ts);
+  return 0;
+}
+
+/* ---- rods-energy ------------------------------------------------------------------------------ */
+
+int haff_rods_energy_main(int argc, char **argv) {
+  static const char usage[] =
+      "usage: haff rods-energy DB [--run ID]\n"
+      "Figs. 1, 2, 9-11 data: per sample of a rods run (newest by default) the columns\n"
+      "  t collisions cpd e_kin e_bath e_kin_over_e0 e_mode e_kin_stat coll_ideal coll_eq35\n"
+      "e_kin, e_bath per rod; e_mode = e_bath / nmod (energy per vibrational mode);\n"
+      "e_kin_stat = the equipartition value (docs/rods.md); coll_ideal and coll_eq35: the\n"
+      "stationary collision count rate*t from the 1D ideal gas and from the paper's eq. (35).\n";
+  ropts o;
+  int rc = parse(argc, argv, usage, &o);
+  if (rc) return rc < 0 ? 0 : rc;
+  rrun r;
+  if ((rc = open_run(argv[0], &o, &r))) return rc;
+  const hd_scene *sc = &r.sc;
+  long N = sc->n_rods, nmod = sc->rod_nmod;
+  double e0 = 0.5 * sc->rod_temperature; /* E_kin(0) per rod */
+  double es = hd_rods_ekin_stat(N, nmod, e0 * (double)N) / (double)N;
+  double rate_i = hd_rods_rate_ideal(N, 2 * es * (double)N / (double)(N - 1));
+  double rate_35 = hd_rods_rate_eq35(N, nmod) * sqrt(sc->rod_temperature);
+  sqlite3_stmt *st;
+  sqlite3_prepare_v2(r.db, "SELECT t, collisions, cpd, e_tr, e_rot FROM samples WHERE run = ?1 "
+                           "ORDER BY t", -1, &st, NULL);
+  sqlite3_bind_int64(st, 1, r.id);
+  printf("# run %ld: N=%ld gamma=%g nmod=%ld model=%s damping=%g\n", r.id, N, sc->rod_gamma,
+         nmod, sc->rod_model ? "constant" : "stochastic", sc->rod_damping);
+  printf("t\tcollisions\tcpd\te_kin\te_bath\te_kin_over_e0\te_mode\te_kin_stat\tcoll_ideal\t"
+         "coll_eq35\n");
+  while (sqlite3_step(st) == SQLITE_ROW) {
+    double t = sqlite3_column_double(st, 0);
+    double ek = sqlite3_column_double(st, 3), eb = sqlite3_column_double(st, 4);
+    printf("%.10g\t%lld\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\n", t,
+           (long long)sqlite3_column_int64(st, 1), sqlite3_column_double(st, 2), ek, eb, ek / e0,
+           eb / (double)nmod, es, rate_i * t, rate_35 * t);
+  }
+  sqlite3_finalize(st);
+  close_run(&r);
+  return 0;
+}
+
+/* ---- rods-density ----------------------------------------------------------------------------- */
+
+int haff_rods_density_main(int argc, char **argv) {
+  static const char usage[] =
+      "usage: haff rods-density DB [--run ID] [--bins N] [--t T]\n"
+      "Figs. 3, 4, 6 data: the coarse-grained density rho (rods per bin over the mean, N bins\n"
+      "[100] on the ring) and the local kinetic energy per rod in each bin, for every snapshot\n"
+      "(or the one nearest --t).  Columns t bin x rho e_local; a blank line after each\n"
+      "snapshot (gnuplot pm3d).\n";
+  ropts o;
+  int rc = parse(argc, argv, usage, &o);
+  if (rc) return rc < 0 ? 0 : rc;
+  if (o.bins == 0) o.bins = 100;
+  rrun r;
+  if ((rc = open_run(argv[0], &o, &r))) return rc;
+  long N = r.sc.n_rods;
+  double *ts;
+  long nt = snap_times(&r, &ts);
+  if (!isnan(o.t)) {
+    double t;
+    if (pick_time(argv[0], &r, &o, &t)) nt = 0;
+    else ts[0] = t, nt = 1;
+  }
+  long *cnt = calloc((size_t)o.bins, sizeof *cnt);
+  double *ek = calloc((size_t)o.bins, sizeof *ek);
+  printf("t\tbin\tx\trho\te_local\n");
+  for (long k = 0; k < nt; k++) {
+    double *x, *v, *tb;
+    snapshot(&r, ts[k], &x, &v, &tb);
+    memset(cnt, 0, (size_t)o.bins * sizeof *cnt);
+    memset(ek, 0, (size_t)o.bins * sizeof *ek);
+    for (long i = 0; i < N; i++) {
+      long b = (long)(x[i] / (double)N * o.bins);
+      if (b >= o.bins) b = o.bins - 1;
+      if (b < 0) b = 0;
+      cnt[b]++;
+      ek[b] += 0.5 * mass(&r.sc, i) * v[i] * v[i];
+    }
+    double mean = (double)N / o.bins;
+    for (int b = 0; b < o.bins; b++)
+      printf("%.10g\t%d\t%.6g\t%.6g\t%.6g\n", ts[k], b, (b + 0.5) * (double)N / o.bins,
+             (double)cnt[b] / mean, cnt[b] ? ek[b] / (double)cnt[b] : NAN);
+    printf("\n");
+    free(x), free(v), free(tb);
+  }
+  free(cnt), free(ek), free(ts);
+  close_run(&r);
+  return 0;
+}
+
+/* ---- rods-phase ------------------------------------------------------------------------------- */
+
+int haff_rods_phase_main(int argc, char **argv) {
+  static const char usage[] =
+      "usage: haff rods-phase DB [--run ID] [--t T]\n"
+      "Fig. 5 data: phase space of the snapshot nearest --t (default the last): columns\n"
+      "body x v tb (bath temperature).\n";
+  ropts o;
+  int rc = parse(argc, argv, usage, &o);
+  if (rc) return rc < 0 ? 0 : rc;
+  rrun r;
+  if ((rc = open_run(argv[0], &o, &r))) return rc;
+  double t, *x, *v, *tb;
+  if (pick_time(argv[0], &r, &o, &t)) {
+    close_run(&r);
+    return 1;
+  }
+  snapshot(&r, t, &x, &v, &tb);
+  printf("# t = %.10g\nbody\tx\tv\ttb\n", t);
+  for (long i = 0; i < r.sc.n_rods; i++)
+    printf("%ld\t%.8g\t%.8g\t%.6g\n", i, x[i], v[i], tb[i]);
+  free(x), free(v), free(tb);
+  close_run(&r);
+  return 0;
+}
+
+/* ---- rods-gofr -------------------------------------------------------------------------------- */
+
+int haff_rods_gofr_main(int argc, char **argv) {
+  static const char usage[] =
+      "usage: haff rods-gofr DB [--run ID] [--t T] [--bins N] [--range X]\n"
+      "Fig. 8 data: g(x) = 1/(N-1) sum_{i!=j} delta(x - |x_i - x_j|) (ring distance), normalised\n"
+      "so that uniformly placed rods give 1, on N bins [200] of [0, X] [50], at the snapshot\n"
+      "nearest --t.  Columns x g.\n";
+  ropts o;
+  int rc = parse(argc, argv, usage, &o);
+  if (rc) return rc < 0 ? 0 : rc;
+  if (o.bins == 0) o.bins = 200;
+  rrun r;
+  if ((rc = open_run(argv[0], &o, &r))) return rc;
+  double t, *x, *v, *tb;
+  if (pick_time(argv[0], &r, &o, &t)) {
+    close_run(&r);
+    return 1;
+  }
+  snapshot(&r, t, &x, &v, &tb);
+  long N = r.sc.n_rods;
+  double L = (double)N, dx = o.range / o.bins;
+  double *h = calloc((size_t)o.bins, sizeof *h);
+  for (long i = 0; i < N; i++)
+    for (long j = i + 1; j < N; j++) {
+      double d = fabs(x[i] - x[j]);
+      if (d > L / 2) d = L - d;
+      long b = (long)(d / dx);
+      if (b < o.bins) h[b] += 2;
+    }
+  printf("# t = %.10g\nx\tg\n", t);
+  for (int b = 0; b < o.bins; b++) /* uniform: N (N-1) 2 dx / L ordered pairs per bin */
+    printf("%.6g\t%.6g\n", (b + 0.5) * dx, h[b] / ((double)N * (double)(N - 1) * 2 * dx / L));
+  free(h), free(x), free(v), free(tb);
+  close_run(&r);
+  return 0;
+}
+
+/* ---- clusters --------------------------------------------------------------------------------- */
+
+/* Clusters of a snapshot: maximal runs of ring neighbours (in position order) closer than gap.
+ * start[c], size[c]; returns the count.  order[] gets the rods sorted by x. */
+static long *g_sort_x;
+static int by_x(const void *a, const void *b) {
+  double xa = ((const double *)g_sort_x)[*(const long *)a],
+         xb = ((const double *)g_sort_x)[*(const long *)b];
+  return (xa > xb) - (xa < xb);
+}
+static long find_clusters(const double *x, long n, double gap, long *order, long *start,
+                          long *size) {
+  for (long i = 0; i < n; i++)
+    order[i] = i;
+  g_sort_x = (long *)(void *)x;
+  qsort(order, (size_t)n, sizeof *order, by_x);
+  /* start after the largest hole, so that no cluster wraps */
+  long k0 = 0;
+  double big = -1;
+  for (long k = 0; k < n; k++) {
+    double d = x[order[(k + 1) % n]] - x[order[k]];
+    if (d < 0) d += (double)n;
+    if (d > big) big = d, k0 = (k + 1) % n;
+  }
+  long nc = 0;
+  for (long m = 0; m < n; m++) {
+    long k = (k0 + m) % n;
+    double d = m == 0 ? INFINITY : x[order[k]] - x[order[(k + n - 1) % n]];
+    if (d < 0) d += (double)n;
+    if (d >= gap) {
+      start[nc] = m;
+      size[nc++] = 0;
+    }
+    size[nc - 1]++;
+  }
+  for (long c = 0; c < nc; c++)
+    start[c] = (k0 + start[c]) % n;
+  return nc;
+}
+
+int haff_rods_veldist_main(int argc, char **argv) {
+  static const char usage[] =
+      "usage: haff rods-veldist DB [--run ID] [--t T] [--bins N] [--gap G] [--x X]\n"
+      "Fig. 7 data: histograms of w = sqrt(m_i) v_i (mass-scaled so that both species share one\n"
+      "Maxwellian) for all rods and for one cluster (the largest, or the one nearest --x) at the\n"
+      "snapshot nearest --t.  Clusters: maximal runs of rods whose neighbour distance is < G\n"
+      "[0.1 mean spacings].  Columns w p_all p_cluster gauss_all gauss_cluster (Gaussians with\n"
+      "the sample's mean and variance); header comments give the cluster and the moments.\n";
+  ropts o;
+  int rc = parse(argc, argv, usage, &o);
+  if (rc) return rc < 0 ? 0 : rc;
+  if (o.bins == 0) o.bins = 40;
+  rrun r;
+  if ((rc = open_run(argv[0], &o, &r))) return rc;
+  double t, *x, *v, *tb;
+  if (pick_time(argv[0], &r, &o, &t)) {
+    close_run(&r);
+    return 1;
+  }
+  snapshot(&r, t, &x, &v, &tb);
+  long N = r.sc.n_rods;
+  long *order = malloc((size_t)N * sizeof *order), *start = malloc((size_t)N * sizeof *start),
+       *size = malloc((size_t)N * sizeof *size);
+  long nc = find_clusters(x, N, o.gap, order, start, size), pick = 0;
+  for (long c = 0; c < nc; c++) {
+    if (isnan(o.x)) {
+      if (size[c] > size[pick]) pick = c;
+    } else {
+      double xc = x[order[(start[c] + size[c] / 2) % N]],
+             xp = x[order[(start[pick] + size[pick] / 2) % N]];
+      double dc = fabs(xc - o.x), dp = fabs(xp - o.x);
+      if (size[c] >= o.minsize && (size[pick] < o.minsize || dc < dp)) pick = c;
+    }
+  }
+  double *w = malloc((size_t)N * sizeof *w);
+  double ma = 0, sa = 0, mc = 0, scl = 0, lo = INFINITY, hi = -INFINITY;
+  for (long i = 0; i < N; i++) {
+    w[i] = sqrt(mass(&r.sc, i)) * v[i];
+    ma += w[i], sa += w[i] * w[i];
+    lo = fmin(lo, w[i]), hi = fmax(hi, w[i]);
+  }
+  ma /= (double)N, sa = sqrt(sa / (double)N - ma * ma);
+  long ncl = size[pick];
+  for (long m = 0; m < ncl; m++) {
+    double y = w[order[(start[pick] + m) % N]];
+    mc += y, scl += y * y;
+  }
+  mc /= (double)ncl, scl = sqrt(fmax(scl / (double)ncl - mc * mc, 0));
+  double dw = (hi - lo) / o.bins;
+  if (!(dw > 0)) dw = 1;
+  double *ha = calloc((size_t)o.bins, sizeof *ha), *hc = calloc((size_t)o.bins, sizeof *hc);
+  for (long i = 0; i < N; i++) {
+    long b = (long)((w[i] - lo) / dw);
+    ha[b < o.bins ? b : o.bins - 1] += 1.0 / ((double)N * dw);
+  }
+  for (long m = 0; m < ncl; m++) {
+    long b = (long)((w[order[(start[pick] + m) % N]] - lo) / dw);
+    hc[b < o.bins ? b : o.bins - 1] += 1.0 / ((double)ncl * dw);
+  }
+  printf("# t = %.10g; %ld clusters (gap < %g); cluster: %ld rods around x = %.6g\n", t, nc, o.gap,
+         ncl, x[order[(start[pick] + ncl / 2) % N]]);
+  printf("# all: mean %.6g sd %.6g; cluster: mean %.6g sd %.6g\n", ma, sa, mc, scl);
+  printf("w\tp_all\tp_cluster\tgauss_all\tgauss_cluster\n");
+  for (int b = 0; b < o.bins; b++) {
+    double c = lo + (b + 0.5) * dw;
+    double ga = exp(-0.5 * (c - ma) * (c - ma) / (sa * sa)) / (sa * sqrt(2 * M_PI));
+    double gc = scl > 0 ? exp(-0.5 * (c - mc) * (c - mc) / (scl * scl)) / (scl * sqrt(2 * M_PI))
+                        : NAN;
+    printf("%.6g\t%.6g\t%.6g\t%.6g\t%.6g\n", c, ha[b], hc[b], ga, gc);
+  }
+  free(w), free(ha), free(hc), free(order), free(start), free(size), free(x), free(v), free(tb);
+  close_run(&r);
+  return 0;
+}
+
+int haff_rods_clusters_main(int argc, char **argv) {
+  static const char usage[] =
+      "usage: haff rods-clusters DB [--run ID] [--gap G] [--min-size M]\n"
+      "Clusters per snapshot (maximal runs of rods closer than G [0.1] to their neighbour, at\n"
+      "least M [10] rods): columns t clusters largest in_clusters (fraction of rods in them).\n";
+  ropts o;
+  int rc = parse(argc, argv, usage, &o);
+  if (rc) return rc < 0 ? 0 : rc;
+  rrun r;
+  if ((rc = open_run(argv[0], &o, &r))) return rc;
+  long N = r.sc.n_rods;
+  double *ts;
+  long nt = snap_times(&r, &ts);
+  long *order = malloc((size_t)N * sizeof *order), *start = malloc((size_t)N * sizeof *start),
+       *size = malloc((size_t)N * sizeof *size);
+  printf("t\tclusters\tlargest\tin_clusters\n");
+  for (long k = 0; k < nt; k++) {
+    double *x, *v, *tb;
+    snapshot(&r, ts[k], &x, &v, &tb);
+    long nc = find_clusters(x, N, o.gap, order, start, size), big = 0, cnt = 0, in = 0;
+    for (long c = 0; c < nc; c++)
+      if (size[c] >= o.minsize) cnt++, in += size[c], big = size[c] > big ? size[c] : big;
+    printf("%.10g\t%ld\t%ld\t%.6g\n", ts[k], cnt, big, (double)in / (double)N);
+    free(x), free(v), free(tb);
+  }
+  free(order), free(start), free(size), free(ts);
+  close_run(&r);
+  return 0;
+}
+
+/* ---- rods-collapse ---------------------------------------------------------------------------- */
+
+int haff_rods_collapse_main(int argc, char **argv) {
+  static const char usage[] =
+      "usage: haff rods-collapse [--n LIST] [--eps LIST] [--seeds K] [--cpd C] [--gamma G]\n"
+      "Scans the constant-eps ring for inelastic collapse: for every N in LIST [4,8,16,32,64,128]\n"
+      "and eps in LIST [0.3,0.5,0.7,0.8,0.9,0.95], K [4] rings (seeds 1..K) run to C [2000]\n"
+      "collisions per rod or collapse.  Columns N eps collapsed runs frac n_my (McNamara and\n"
+      "Young's -ln(1-eps)/(1-eps)) my_predicts (1 if N > n_my) median_cpd_at_collapse.\n"
+      "Masses alternate with ratio G [1: equal masses, as in McNamara and Young].\n";
+  const char *nl = "4,8,16,32,64,128", *el = "0.3,0.5,0.7,0.8,0.9,0.95";
+  long seeds = 4;
+  double cpd = 2000, gamma = 1;
+  static const struct option lo[] = {{"n", 1, 0, 'n'},     {"eps", 1, 0, 'e'},
+                                     {"seeds", 1, 0, 's'}, {"cpd", 1, 0, 'c'},
+                                     {"gamma", 1, 0, 'g'}, {"help", 0, 0, 'h'},
+                                     {0, 0, 0, 0}};
+  optind = 1;
+  int c;
+  while ((c = getopt_long(argc, argv, "h", lo, NULL)) != -1) {
+    switch (c) {
+    case 'n': nl = optarg; break;
+    case 'e': el = optarg; break;
+    case 's': seeds = atol(optarg); break;
+    case 'c': cpd = atof(optarg); break;
+    case 'g': gamma = atof(optarg); break;
+    case 'h': fputs(usage, stdout); return 0;
+    default: fprintf(stderr, "%s: bad option (see --help)\n", argv[0]); return 2;
+    }
+  }
+  if (optind != argc || seeds < 1 || !(cpd > 0) || !(gamma > 0 && gamma <= 1)) {
+    fprintf(stderr, "%s: bad arguments (see --help)\n", argv[0]);
+    return 2;
+  }
+  printf("N\teps\tcollapsed\truns\tfrac\tn_my\tmy_predicts\tmedian_cpd_at_collapse\n");
+  char nbuf[512];
+  snprintf(nbuf, sizeof nbuf, "%s", nl);
+  for (char *sn = strtok(nbuf, ","); sn; sn = strtok(NULL, ",")) {
+    long N = atol(sn);
+    char ebuf[512];
+    snprintf(ebuf, sizeof ebuf, "%s", el);
+    char *save = NULL;
+    for (char *se = strtok_r(ebuf, ",", &save); se; se = strtok_r(NULL, ",", &save)) {
+      double eps = atof(se);
+      long col = 0;
+      double at[64];
+      for (long s = 1; s <= seeds; s++) {
+        hd_rods_params p;
+        hd_rods_params_default(&p);
+        p.n = N, p.gamma = gamma, p.nmod = 1, p.model = HD_RODS_CONSTANT, p.eps = eps;
+        p.seed = (unsigned long long)s;
+        hd_rods *r;
+        hd_error err;
+        if (hd_rods_alloc(&r, &p, &err)) {
+          fprintf(stderr, "%s: %s\n", argv[0], err.msg);
+          return 2;
+        }
+        hd_rods_event ev;
+        long nc = (long)(cpd * (double)N / 2);
+        int rr = HD_OK;
+        for (long k = 0; k < nc && rr == HD_OK; k++)
+          rr = hd_rods_next(r, INFINITY, &ev, &err);
+        if (rr == HD_ECOLLAPSE && col < 64) at[col++] = 2.0 * (double)r->collisions / (double)N;
+        hd_rods_free(r);
+      }
+      for (long a = 1; a < col; a++) /* median */
+        for (long b = a; b > 0 && at[b - 1] > at[b]; b--) {
+          double tmp = at[b];
+          at[b] = at[b - 1], at[b - 1] = tmp;
+        }
+      double nmy = hd_rods_my_ncrit(eps);
+      printf("%ld\t%g\t%ld\t%ld\t%.3g\t%.4g\t%d\t%.6g\n", N, eps, col, seeds,
+             (double)col / (double)seeds, nmy, (double)N > nmy, col ? at[col / 2] : NAN);
+      fflush(stdout);
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,425 @@
+/* hd_rods: the ring of rods (rods.h).  Gaps are stored, not positions: gap k at time gt[k]
+ * is g[k], and it changes only when one of its two rods changes velocity, so a collision
+ * touches three gaps and three heap entries (O(log N)), and a small gap keeps its full
+ * relative precision however far the rods are from the origin. */
+#include "rods.h"
+
+#include <gsl/gsl_randist.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hd_sim.h"
+
+void hd_rods_params_default(hd_rods_params *p) {
+  memset(p, 0, sizeof *p);
+  p->gamma = 0.8;
+  p->nmod = 1000;
+  p->model = HD_RODS_STOCHASTIC;
+  p->eps = 0.8;
+  p->temperature = 1;
+  p->seed = 1;
+}
+
+void hd_rods_free(hd_rods *r) {
+  if (!r) return;
+  free(r->m);
+  free(r->v);
+  free(r->tb);
+  free(r->tl);
+  free(r->g);
+  free(r->gt);
+  free(r->key);
+  hd_queue_free(r->q);
+  if (r->rng) gsl_rng_free(r->rng);
+  hd_eps_sampler_free(r->sampler);
+  hd_eps_table_free(r->table);
+  free(r);
+}
+
+static long nxt(const hd_rods *r, long i) {
+  return i + 1 == r->p.n ? 0 : i + 1;
+}
+static long prv(const hd_rods *r, long i) {
+  return i == 0 ? r->p.n - 1 : i - 1;
+}
+
+/* exp(-nu (t - tl)) for a bath last updated at tl. */
+static double decay(const hd_rods *r, double tl, double t) {
+  if (!(r->p.damping > 0) || !isfinite(tl)) return 1.0;
+  return exp(-r->p.damping * (t - tl));
+}
+
+/* Predicts gap k's closing time into key[k] (>= now). */
+static void predict(hd_rods *r, long k) {
+  long j = nxt(r, k);
+  double dv = r->v[j] - r->v[k];
+  if (!(dv < 0)) {
+    r->key[k] = INFINITY;
+    return;
+  }
+  double tk = r->gt[k] + fmax(r->g[k], 0.0) / -dv;
+  r->key[k] = fmax(tk, r->t);
+}
+
+/* Brings gap k to the current time. */
+static void advance_gap(hd_rods *r, long k) {
+  if (r->gt[k] == r->t) return;
+  r->g[k] += (r->v[nxt(r, k)] - r->v[k]) * (r->t - r->gt[k]);
+  r->gt[k] = r->t;
+}
+
+static int check_params(const hd_rods_params *p, hd_error *err) {
+  if (p->n < 2 || p->n % 2) return hd_error_set(err, HD_EINPUT, "rods: count %ld must be even and >= 2", p->n);
+  if (p->n > INT32_MAX / 2) return hd_error_set(err, HD_EINPUT, "rods: count %ld too large", p->n);
+  if (!(p->gamma > 0 && p->gamma <= 1))
+    return hd_error_set(err, HD_EINPUT, "rods: gamma %g must be in (0, 1]", p->gamma);
+  if (p->nmod < 1) return hd_error_set(err, HD_EINPUT, "rods: nmod %ld must be >= 1", p->nmod);
+  if (!(p->eps >= 0 && p->eps <= 1)) return hd_error_set(err, HD_EINPUT, "rods: eps %g must be in [0, 1]", p->eps);
+  if (!(p->damping >= 0) || !(p->tc >= 0) || !(p->temperature > 0))
+    return hd_error_set(err, HD_EINPUT, "rods: damping and tc must be >= 0, temperature > 0");
+  if (p->table && p->unequal)
+    return hd_error_set(err, HD_EINPUT, "rods: the eps table needs equal (mean) bath temperatures");
+  return HD_OK;
+}
+
+/* Everything but the initial state. */
+static int alloc_bare(hd_rods **out, const hd_rods_params *p, hd_error *err) {
+  *out = NULL;
+  int rc = check_params(p, err);
+  if (rc) return rc;
+  hd_rods *r = calloc(1, sizeof *r);
+  if (!r) return hd_error_set(err, HD_ENOMEM, "rods: out of memory");
+  r->p = *p;
+  size_t n = (size_t)p->n;
+  r->m = malloc(n * sizeof(double));
+  r->v = calloc(n, sizeof(double));
+  r->tb = calloc(n, sizeof(double));
+  r->tl = malloc(n * sizeof(double));
+  r->g = calloc(n, sizeof(double));
+  r->gt = calloc(n, sizeof(double));
+  r->key = malloc(n * sizeof(double));
+  r->rng = gsl_rng_alloc(gsl_rng_mt19937);
+  r->q = hd_queue_alloc((int32_t)n, r->key, 1);
+  if (!r->m || !r->v || !r->tb || !r->tl || !r->g || !r->gt || !r->key || !r->rng || !r->q) {
+    hd_rods_free(r);
+    return hd_error_set(err, HD_ENOMEM, "rods: out of memory for %ld rods", p->n);
+  }
+  gsl_rng_set(r->rng, (unsigned long)p->seed);
+  double g1 = 1 + p->gamma, g2 = 1 + 1 / p->gamma;
+  for (size_t i = 0; i < n; i++) {
+    r->m[i] = i % 2 ? g2 : g1;
+    r->tl[i] = -INFINITY;
+  }
+  if (p->model == HD_RODS_STOCHASTIC && p->gamma < 1) {
+    hd_eps_opts o;
+    hd_eps_opts_default(&o);
+    if (p->eps_step > 0) o.step = p->eps_step;
+    rc = hd_eps_sampler_alloc(&r->sampler, p->gamma, &o, err);
+    if (!rc && p->table) {
+      gsl_rng *tr = gsl_rng_alloc(gsl_rng_mt19937);
+      if (!tr) rc = hd_error_set(err, HD_ENOMEM, "rods: out of memory");
+      else {
+        gsl_rng_set(tr, HD_RODS_TABLE_SEED);
+        rc = hd_eps_table_build(&r->table, r->sampler, 1e-3, 1e3, 25, 129, 1000, tr, err);
+        gsl_rng_free(tr);
+      }
+    }
+    if (rc) {
+      hd_rods_free(r);
+      return rc;
+    }
+  }
+  *out = r;
+  return HD_OK;
+}
+
+int hd_rods_alloc(hd_rods **out, const hd_rods_params *p, hd_error *err) {
+  hd_rods *r;
+  int rc = alloc_bare(&r, p, err);
+  if (rc) return rc;
+  long n = p->n;
+  /* uniform positions: exponential spacings normalised to the ring length n */
+  double sum = 0;
+  for (long k = 0; k < n; k++)
+    sum += r->g[k] = gsl_ran_exponential(r->rng, 1.0);
+  for (long k = 0; k < n; k++)
+    r->g[k] *= (double)n / sum;
+  r->x0 = gsl_rng_uniform(r->rng) * (double)n;
+  /* Maxwell velocities, zero momentum, E_kin = n T0 / 2 exactly */
+  double P = 0, M = 0;
+  for (long i = 0; i < n; i++) {
+    r->v[i] = gsl_ran_gaussian_ziggurat(r->rng, sqrt(p->temperature / r->m[i]));
+    P += r->m[i] * r->v[i];
+    M += r->m[i];
+  }
+  double ek = 0;
+  for (long i = 0; i < n; i++) {
+    r->v[i] -= P / M;
+    ek += 0.5 * r->m[i] * r->v[i] * r->v[i];
+  }
+  double s = sqrt(0.5 * (double)n * p->temperature / ek);
+  for (long i = 0; i < n; i++)
+    r->v[i] *= s;
+  for (long k = 0; k < n; k++)
+    predict(r, k);
+  hd_queue_build(r->q, (int32_t)n);
+  *out = r;
+  return HD_OK;
+}
+
+void hd_rods_positions(const hd_rods *r, double *x) {
+  double L = (double)r->p.n, xi = r->x0 + r->v[0] * (r->t - r->x0t);
+  for (long i = 0; i < r->p.n; i++) {
+    double y = fmod(xi, L);
+    x[i] = y < 0 ? y + L : y;
+    if (i + 1 < r->p.n) xi += r->g[i] + (r->v[i + 1] - r->v[i]) * (r->t - r->gt[i]);
+  }
+}
+
+double hd_rods_tb(const hd_rods *r, long i) {
+  return r->tb[i] * decay(r, r->tl[i], r->t);
+}
+
+void hd_rods_energy(const hd_rods *r, double *e_kin, double *e_bath, double *e_lost) {
+  double ek = 0, eb = 0, el = r->e_lost;
+  for (long i = 0; i < r->p.n; i++) {
+    ek += 0.5 * r->m[i] * r->v[i] * r->v[i];
+    double tb = hd_rods_tb(r, i);
+    eb += (double)r->p.nmod * tb;
+    el += (double)r->p.nmod * (r->tb[i] - tb);
+  }
+  if (e_kin) *e_kin = ek;
+  if (e_bath) *e_bath = eb;
+  if (e_lost) *e_lost = el;
+}
+
+/* The cluster of the last tiny collisions: the shortest arc of rods covering their gaps. */
+static void cluster(const hd_rods *r, long *first, long *last) {
+  long n = r->p.n, m = HD_RODS_TINY_RUN;
+  long gs[HD_RODS_TINY_RUN];
+  for (long k = 0; k < m; k++)
+    gs[k] = r->recent[k];
+  /* sort the gap indices (insertion sort, m is small) */
+  for (long a = 1; a < m; a++) {
+    long x = gs[a], b = a - 1;
+    while (b >= 0 && gs[b] > x) {
+      gs[b + 1] = gs[b];
+      b--;
+    }
+    gs[b + 1] = x;
+  }
+  /* the largest circular hole between consecutive marked gaps; the arc is its complement */
+  long best = -1, at = 0;
+  for (long k = 0; k < m; k++) {
+    long a = gs[k], b = k + 1 < m ? gs[k + 1] : gs[0] + n;
+    if (b - a > best) best = b - a, at = k;
+  }
+  long g_first = at + 1 < m ? gs[at + 1] : gs[0], g_last = gs[at];
+  *first = g_first;
+  *last = (g_last + 1) % n;
+}
+
+/* Draws eps for a collision of rods a (left) and b with relative energy e_tr. */
+static double draw_eps(hd_rods *r, long a, long b, double e_tr, double tba, double tbb) {
+  const hd_rods_params *p = &r->p;
+  if (p->tc > 0 && (r->t - r->tl[a] < p->tc || r->t - r->tl[b] < p->tc)) return 1.0;
+  if (p->model == HD_RODS_CONSTANT) return p->eps;
+  if (!r->sampler) return 1.0; /* gamma = 1: eps = 1 for every realisation */
+  /* the two baths hold 2 N_mod T_B: eps^2 <= 1 + 2 N_mod T_B / E_tr */
+  double tbm = 0.5 * (tba + tbb), cap = 1 + 2 * (double)p->nmod * tbm / e_tr, eps = 1;
+  for (int tries = 0; tries < 1000; tries++) {
+    if (p->unequal) {
+      long s = a % 2 ? b : a, l = a % 2 ? a : b; /* short (even) and long (odd) rod */
+      double ts = s == a ? tba : tbb, tl = l == a ? tba : tbb;
+      eps = hd_eps_sample2(r->sampler, e_tr / ts, e_tr / tl, r->rng);
+    } else if (r->table) {
+      eps = hd_eps_table_sample(r->table, e_tr / tbm, r->rng);
+    } else {
+      eps = hd_eps_sample(r->sampler, e_tr / tbm, r->rng);
+    }
+    if (eps * eps <= cap) return eps;
+    r->resampled++;
+  }
+  return sqrt(cap);
+}
+
+int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
+  long k = hd_queue_top(r->q);
+  double tk = r->key[k];
+  if (tk == INFINITY) {
+    if (isfinite(t_stop)) {
+      r->t = t_stop;
+      return HD_SIM_STOPTIME;
+    }
+    return HD_SIM_IDLE;
+  }
+  if (tk > t_stop) {
+    r->t = t_stop;
+    return HD_SIM_STOPTIME;
+  }
+  long a = k, b = nxt(r, k), n = r->p.n;
+  double u = r->v[b] - r->v[a];
+  /* collapse detection, before anything changes: the collision rate diverges, i.e. the time
+   * since the previous collision falls below HD_RODS_TINY t */
+  long kl = prv(r, a), kr = b;
+  r->stall = tk == r->t ? r->stall + 1 : 0;
+  if (tk - r->t <= HD_RODS_TINY * tk) {
+    r->recent[r->tiny_run % HD_RODS_TINY_RUN] = (int32_t)k;
+    r->tiny_run++;
+  } else {
+    r->tiny_run = 0;
+  }
+  if (r->tiny_run >= HD_RODS_TINY_RUN || r->stall >= HD_RODS_STALL) {
+    long c0 = a, c1 = b;
+    if (r->tiny_run >= HD_RODS_TINY_RUN) cluster(r, &c0, &c1);
+    long size = (c1 - c0 + n) % n + 1;
+    return hd_error_set(err, HD_ECOLLAPSE,
+                        "inelastic collapse at t = %.10g after %lld collisions: %s in the cluster "
+                        "of rods %ld..%ld (%ld rods)",
+                        tk, (long long)r->collisions,
+                        r->tiny_run >= HD_RODS_TINY_RUN
+                            ? "64 successive collisions less than 1e-12 t apart"
+                            : "100000 successive collisions at the same time",
+                        c0, c1, size);
+  }
+  r->t = tk;
+  /* gaps next to the pair move with the old velocities up to now */
+  advance_gap(r, kl);
+  if (kr != kl) advance_gap(r, kr);
+  if (a == 0 || b == 0) {
+    r->x0 += r->v[0] * (r->t - r->x0t);
+    r->x0t = r->t;
+  }
+  /* baths up to now (damping) */
+  double da = decay(r, r->tl[a], r->t), db = decay(r, r->tl[b], r->t);
+  double tba = r->tb[a] * da, tbb = r->tb[b] * db;
+  r->e_lost += (double)r->p.nmod * (r->tb[a] - tba + r->tb[b] - tbb);
+  double e_tr = 0.5 * u * u;
+  double eps = draw_eps(r, a, b, e_tr, tba, tbb);
+  /* eq. (28-29): both baths take the mean plus their share of the loss */
+  double tbn = 0.5 * (tba + tbb) + (1 - eps * eps) * e_tr / (2 * (double)r->p.nmod);
+  if (eps == 1.0) tbn = 0.5 * (tba + tbb);
+  if (tbn < 0) tbn = 0; /* round-off only: draw_eps keeps eps^2 within what the baths hold */
+  r->tb[a] = r->tb[b] = tbn;
+  r->tl[a] = r->tl[b] = r->t;
+  /* momentum conservation with the true masses: u -> -eps u (eq. 30-32 are gamma = 1) */
+  double mu = r->m[a] * r->m[b] / (r->m[a] + r->m[b]);
+  r->v[a] += (1 + eps) * u * mu / r->m[a];
+  r->v[b] -= (1 + eps) * u * mu / r->m[b];
+  r->g[k] = 0;
+  r->gt[k] = r->t;
+  predict(r, k);
+  hd_queue_update(r->q, (int32_t)k);
+  predict(r, kl);
+  hd_queue_update(r->q, (int32_t)kl);
+  if (kr != kl) {
+    predict(r, kr);
+    hd_queue_update(r->q, (int32_t)kr);
+  }
+  r->collisions++;
+  *ev = (hd_rods_event){r->t, a, b, eps, e_tr, u, tbn, tbn, -(1 - eps * eps) * e_tr};
+  return HD_OK;
+}
+
+/* ---- checkpoints ---------------------------------------------------------------------------- */
+
+/* Scalars of the blob. */
+typedef struct ck_head {
+  uint64_t magic;
+  int64_t n, collisions, resampled, tiny_run, stall;
+  double t, x0, x0t, e_lost;
+  int32_t recent[HD_RODS_TINY_RUN];
+  uint64_t rng_size;
+} ck_head;
+#define CK_MAGIC 0x68646f7230303031ULL /* "hdor0001" */
+
+int hd_rods_checkpoint(const hd_rods *r, void **blob, size_t *n, hd_error *err) {
+  size_t nr = (size_t)r->p.n, rs = gsl_rng_size(r->rng);
+  size_t total = sizeof(ck_head) + 6 * nr * sizeof(double) + rs;
+  unsigned char *b = malloc(total);
+  if (!b) return hd_error_set(err, HD_ENOMEM, "rods: out of memory for a checkpoint");
+  ck_head h;
+  memset(&h, 0, sizeof h);
+  h.magic = CK_MAGIC;
+  h.n = r->p.n;
+  h.collisions = r->collisions;
+  h.resampled = r->resampled;
+  h.tiny_run = r->tiny_run;
+  h.stall = r->stall;
+  h.t = r->t;
+  h.x0 = r->x0;
+  h.x0t = r->x0t;
+  h.e_lost = r->e_lost;
+  memcpy(h.recent, r->recent, sizeof h.recent);
+  h.rng_size = rs;
+  unsigned char *p = b;
+  memcpy(p, &h, sizeof h);
+  p += sizeof h;
+  const double *arr[6] = {r->v, r->tb, r->tl, r->g, r->gt, r->key};
+  for (int j = 0; j < 6; j++) {
+    memcpy(p, arr[j], nr * sizeof(double));
+    p += nr * sizeof(double);
+  }
+  memcpy(p, gsl_rng_state(r->rng), rs);
+  *blob = b;
+  *n = total;
+  return HD_OK;
+}
+
+int hd_rods_alloc_restore(hd_rods **out, const hd_rods_params *p, const void *blob, size_t n,
+                          hd_error *err) {
+  *out = NULL;
+  ck_head h;
+  if (n < sizeof h) return hd_error_set(err, HD_EINPUT, "rods checkpoint: truncated");
+  memcpy(&h, blob, sizeof h);
+  if (h.magic != CK_MAGIC || h.n != p->n)
+    return hd_error_set(err, HD_EINPUT, "rods checkpoint: not a checkpoint of this ring");
+  hd_rods *r;
+  int rc = alloc_bare(&r, p, err);
+  if (rc) return rc;
+  size_t nr = (size_t)p->n, rs = gsl_rng_size(r->rng);
+  if (h.rng_size != rs || n != sizeof h + 6 * nr * sizeof(double) + rs) {
+    hd_rods_free(r);
+    return hd_error_set(err, HD_EINPUT, "rods checkpoint: wrong size");
+  }
+  r->collisions = h.collisions;
+  r->resampled = h.resampled;
+  r->tiny_run = h.tiny_run;
+  r->stall = h.stall;
+  r->t = h.t;
+  r->x0 = h.x0;
+  r->x0t = h.x0t;
+  r->e_lost = h.e_lost;
+  memcpy(r->recent, h.recent, sizeof h.recent);
+  const unsigned char *q = (const unsigned char *)blob + sizeof h;
+  double *arr[6] = {r->v, r->tb, r->tl, r->g, r->gt, r->key};
+  for (int j = 0; j < 6; j++) {
+    memcpy(arr[j], q, nr * sizeof(double));
+    q += nr * sizeof(double);
+  }
+  memcpy(gsl_rng_state(r->rng), q, rs);
+  hd_queue_build(r->q, (int32_t)nr);
+  *out = r;
+  return HD_OK;
+}
+
+/* ---- theory --------------------------------------------------------------------------------- */
+
+double hd_rods_ekin_stat(long n, long nmod, double e_tot) {
+  double f = (double)(n - 1);
+  return e_tot * f / (f + 2.0 * (double)n * (double)nmod);
+}
+
+double hd_rods_rate_ideal(long n, double T) {
+  return (double)(n - 1) * sqrt(T / (2 * M_PI));
+}
+
+double hd_rods_rate_eq35(long n, long nmod) {
+  return (double)n / (2 * sqrt(M_PI * (2.0 * (double)nmod + 1)));
+}
+
+double hd_rods_my_ncrit(double r) {
+  if (!(r < 1)) return INFINITY;
+  return -log(1 - r) / (1 - r);
+}
