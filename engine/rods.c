@@ -100,7 +100,7 @@ static int alloc_bare(hd_rods **out, const hd_rods_params *p, hd_error *err) {
   r->gt = calloc(n, sizeof(double));
   r->key = malloc(n * sizeof(double));
   r->rng = gsl_rng_alloc(gsl_rng_mt19937);
-  r->q = hd_queue_alloc((int32_t)n, r->key, 1);
+  r->q = hd_queue_alloc((int32_t)n);
   if (!r->m || !r->v || !r->tb || !r->tl || !r->g || !r->gt || !r->key || !r->rng || !r->q) {
     hd_rods_free(r);
     return hd_error_set(err, HD_ENOMEM, "rods: out of memory for %ld rods", p->n);
@@ -163,7 +163,7 @@ int hd_rods_alloc(hd_rods **out, const hd_rods_params *p, hd_error *err) {
     r->v[i] *= s;
   for (long k = 0; k < n; k++)
     predict(r, k);
-  hd_queue_build(r->q, (int32_t)n);
+  hd_queue_build(r->q, (int32_t)n, r->key, 1);
   *out = r;
   return HD_OK;
 }
@@ -310,12 +310,12 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
   r->g[k] = 0;
   r->gt[k] = r->t;
   predict(r, k);
-  hd_queue_update(r->q, (int32_t)k);
+  hd_queue_update(r->q, (int32_t)k, r->key[k]);
   predict(r, kl);
-  hd_queue_update(r->q, (int32_t)kl);
+  hd_queue_update(r->q, (int32_t)kl, r->key[kl]);
   if (kr != kl) {
     predict(r, kr);
-    hd_queue_update(r->q, (int32_t)kr);
+    hd_queue_update(r->q, (int32_t)kr, r->key[kr]);
   }
   r->collisions++;
   *ev = (hd_rods_event){r->t, a, b, eps, e_tr, u, tbn, tbn, -(1 - eps * eps) * e_tr};
@@ -399,7 +399,7 @@ int hd_rods_alloc_restore(hd_rods **out, const hd_rods_params *p, const void *bl
     q += nr * sizeof(double);
   }
   memcpy(gsl_rng_state(r->rng), q, rs);
-  hd_queue_build(r->q, (int32_t)nr);
+  hd_queue_build(r->q, (int32_t)nr, r->key, 1);
   *out = r;
   return HD_OK;
 }
