@@ -39,7 +39,7 @@ int main(int argc, char **argv) {
   sc.box_x = sc.box_y = sqrt((double)n * area / eta);
   sc.seed = 1;
   sc.temperature = 1.0;
-  sc.placement = eta > (dimer ? 0.25 : 0.4) ? HD_PLACE_LATTICE : HD_PLACE_RANDOM;
+  sc.placement = !dimer && eta > 0.4 ? HD_PLACE_LATTICE : HD_PLACE_RANDOM;
   hd_sim *s;
   hd_error err;
   if (hd_sim_alloc(&s, &sc, &err)) {
@@ -69,7 +69,8 @@ int main(int argc, char **argv) {
     }
     if (db) {
       hd_collision_row row = {k, ev.t, (hd_coll_kind)ev.kind, ev.i, ev.j, ev.ka, ev.kb,
-                              ev.info.theta_i, ev.info.theta_j, ev.info.f, ev.info.de, ev.info.vn};
+                              ev.info.theta_i, ev.info.theta_j, ev.info.f, ev.info.de, ev.info.vn,
+                              NAN, NAN, NAN, NAN};
       if (hd_db_log_collision(db, run, &row, &err)) {
         fprintf(stderr, "bench: %s\n", err.msg);
         return 1;
