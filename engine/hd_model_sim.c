@@ -20,7 +20,9 @@ static int m_next(void *m, double t_stop, hd_collision_row *row, hd_error *err) 
   hd_event_out ev;
   int rc = hd_sim_next(m, t_stop, &ev, err);
   if (rc) return rc;
-  *row = (hd_collision_row){0, ev.t, (hd_coll_kind)ev.kind, ev.i, ev.j, ev.ka, ev.kb,
+  const hd_sim *s = m;
+  *row = (hd_collision_row){0, ev.t, (hd_coll_kind)ev.kind, s->id[ev.i],
+                            ev.j >= 0 ? s->id[ev.j] : ev.j, ev.ka, ev.kb,
                             ev.info.theta_i, ev.info.theta_j, ev.info.f, ev.info.de, ev.info.vn,
                             NAN, NAN, NAN, NAN};
   return HD_OK;
@@ -57,7 +59,7 @@ static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label
   for (int32_t i = 0; i < s->n; i++) {
     hd_kin k;
     hd_sim_body_now(s, i, &k);
-    hd_state_rec rec = {hd_sim_time(s), i, s->shape[s->b[i].species].kind, k.x, k.y, k.phi,
+    hd_state_rec rec = {hd_sim_time(s), s->id[i], s->shape[s->b[i].species].kind, k.x, k.y, k.phi,
                         k.vx, k.vy, k.omega, hd_sim_cpd(s)};
     int rc = hd_db_log_state(db, run, label, &rec, err);
     if (rc) return rc;

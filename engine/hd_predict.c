@@ -4,8 +4,9 @@
  * scene only the 3 cells that became adjacent are searched, and the stored contact is kept if
  * still valid: disk-disk contact times are exact and unbounded (closed form), so the stored one
  * is the earliest with every body of the cells that stay adjacent.  Contacts involving a dimer
- * are searched only up to the body's next crossing (which bounds the root search); a partner
- * met later is found again after that crossing, by a full prediction. */
+ * are searched only up to the earlier next crossing of the two bodies (which bounds the root
+ * search): a contact after it is found by the full prediction that follows that crossing, since
+ * bodies in contact are in adjacent cells. */
 #include <math.h>
 
 #include "hd_disk.h"
@@ -81,12 +82,15 @@ static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, dou
     }
     return;
   }
+  /* the search ends at the first crossing of either body: whichever crosses first predicts
+   * again against its new neighbourhood, which holds the other if they can still meet */
+  double lim = fmin(*best, fmin(horizon, bj->c_t - s->c.t));
+  if (lim < 0.0) lim = 0.0;
   hd_kin kj = bj->k;
   hd_kin_advance(&kj, dtj);
   kj.x += sx;
   kj.y += sy;
   hd_contact c;
-  double lim = fmin(*best, horizon);
   if (hd_predict_pair(&bi->k, si, &kj, &s->shape[bj->species], lim, &c) && c.t < *best) {
     *best = c.t;
     take_pair(bi, bj, j, c.ka, c.kb, ix, iy);

@@ -64,6 +64,11 @@ int hd_sim_alloc(hd_sim **out, const hd_scene *sc, hd_error *err) {
   int rc = sim_setup(&s, sc, err);
   if (rc) return rc;
   rc = hd_init_state(s, sc, err); /* sets n, b and the cells */
+  if (!rc) {
+    s->id = malloc(sizeof(int32_t) * (size_t)(s->n > 0 ? s->n : 1));
+    if (!s->id) rc = hd_error_set(err, HD_ENOMEM, "out of memory");
+    for (int32_t i = 0; !rc && i < s->n; i++) s->id[i] = i;
+  }
   if (!rc) rc = hd_sim_queue_init(s, err);
   if (rc) {
     hd_sim_free(s);
@@ -71,6 +76,7 @@ int hd_sim_alloc(hd_sim **out, const hd_scene *sc, hd_error *err) {
   }
   for (int32_t i = 0; i < s->n; i++) s->b[i].ev_t = s->b[i].p_t = s->b[i].c_t = INFINITY;
   hd_queue_build(s->q, s->n, &s->b[0].ev_t, HD_BODY_STRIDE);
+  hd_sim_sort(s);
   for (int32_t i = 0; i < s->n; i++) hd_predict(s, i);
   s->c.next_rebase = s->rebase_every;
   double e_tr, e_rot;
@@ -100,6 +106,7 @@ void hd_sim_free(hd_sim *s) {
   gsl_rng_free(s->rng);
   free(s->head);
   free(s->b);
+  free(s->id);
   free(s);
 }
 
@@ -205,6 +212,38 @@ static int cross_cell(hd_sim *s, int32_t i) {
   return wrapped;
 }
 
+void hd_sim_sort(hd_sim *s) {
+  int32_t n = s->n;
+  int32_t *order = malloc(sizeof(int32_t) * (size_t)(n > 0 ? n : 1));
+  int32_t *newidx = malloc(sizeof(int32_t) * (size_t)(n > 0 ? n : 1));
+  int32_t *newid = malloc(sizeof(int32_t) * (size_t)(n > 0 ? n : 1));
+  hd_body *nb = malloc(sizeof(hd_body) * (size_t)(n > 0 ? n : 1));
+  if (!order || !newidx || !newid || !nb) { /* sorting is an optimisation: skip it */
+    free(order), free(newidx), free(newid), free(nb);
+    hd_queue_build(s->q, n, &s->b[0].ev_t, HD_BODY_STRIDE);
+    return;
+  }
+  int32_t k = 0;
+  for (int64_t c = 0; c < (int64_t)s->ncx * s->ncy; c++)
+    for (int32_t j = s->head[c]; j >= 0; j = s->b[j].next) order[k++] = j;
+  for (k = 0; k < n; k++) newidx[order[k]] = k;
+  for (k = 0; k < n; k++) {
+    nb[k] = s->b[order[k]];
+    newid[k] = s->id[order[k]];
+    if (nb[k].p_type == HD_EV_PAIR) nb[k].p_partner = newidx[nb[k].p_partner];
+  }
+  if (s->last_i >= 0) s->last_i = newidx[s->last_i];
+  if (s->last_j >= 0) s->last_j = newidx[s->last_j];
+  free(s->b);
+  free(s->id);
+  s->b = nb;
+  s->id = newid;
+  free(order);
+  free(newidx);
+  hd_cells_rebuild(s);
+  hd_queue_build(s->q, n, &s->b[0].ev_t, HD_BODY_STRIDE);
+}
+
 /* Shifts the time origin to the current time (keeps times small: precision does not decay). */
 static void rebase(hd_sim *s) {
   double now = s->c.t;
@@ -217,7 +256,7 @@ static void rebase(hd_sim *s) {
   }
   s->c.t_offset += now;
   s->c.t = 0.0;
-  hd_queue_build(s->q, s->n, &s->b[0].ev_t, HD_BODY_STRIDE); /* rounding may have created ties: restore the heap order */
+  hd_sim_sort(s); /* also rebuilds the heap, whose order rounding may have changed */
 }
 
 static int collision_kind(const hd_sim *s, int32_t i, int32_t j) {
@@ -241,7 +280,7 @@ static int check_collapse(hd_sim *s, double vn, hd_error *err) {
                           "in a row with |vn| < %g of the thermal speed, last between bodies %d "
                           "and %d",
                           hd_sim_time(s), (long long)s->c.collisions, HD_SLOW_RUN, HD_SLOW_VN,
-                          s->last_i, s->last_j);
+                          s->id[s->last_i], s->id[s->last_j]);
   } else {
     s->c.slow_run = 0;
   }
@@ -258,7 +297,8 @@ static int verify_contact(const hd_sim *s, const hd_kin *ki, const hd_kin *kj, i
   double D = 0.5 * (si->d + sj->d), gap = (hypot(xb - xa, yb - ya) - D) / D;
   if (fabs(gap) > HD_VERIFY_TOL)
     return hd_error_set(err, HD_EPHYS, "verification: bodies %d and %d collide at distance "
-                        "%.3g of a diameter from contact, t = %.17g", i, j, gap, hd_sim_time(s));
+                        "%.3g of a diameter from contact, t = %.17g", s->id[i], s->id[j], gap,
+                        hd_sim_time(s));
   return HD_OK;
 }
 
@@ -275,7 +315,8 @@ static int verify_collision(hd_sim *s, int32_t i, int32_t j, hd_error *err) {
   if (o > s->max_overlap) s->max_overlap = o;
   if (o > HD_VERIFY_TOL)
     return hd_error_set(err, HD_EPHYS, "verification: bodies %d and %d overlap by %.3g of a "
-                                       "diameter at t = %.17g", i, who, o, hd_sim_time(s));
+                                       "diameter at t = %.17g", s->id[i], who >= 0 ? s->id[who] : -1,
+                                       o, hd_sim_time(s));
   return HD_OK;
 }
 

@@ -76,7 +76,9 @@ typedef struct hd_event_out {
 typedef struct hd_sim {
   int32_t n;                       /* bodies */
   int32_t n_species[HD_NSPECIES];  /* bodies per species */
-  hd_body *b;                      /* the bodies: dimers first, then disks */
+  hd_body *b;                      /* the bodies, kept sorted by cell (see hd_sim_sort) */
+  int32_t *id;                     /* id[i]: the user's number of body i (dimers first, then
+                                      disks, as created); stable while b is re-sorted */
   hd_shape shape[HD_NSPECIES];     /* shapes by species */
   double alpha[HD_NSPECIES][HD_NSPECIES]; /* pair restitution by species */
   double wall_alpha;               /* body-wall restitution */
@@ -122,6 +124,10 @@ static inline double hd_sim_time(const hd_sim *s) {
 static inline double hd_sim_cpd(const hd_sim *s) {
   return s->n ? 2.0 * (double)s->c.collisions / (double)s->n : 0.0;
 }
+
+/* Renumbers the bodies in cell order (memory locality for large N); done at every rebase of the
+ * time origin.  Body numbers seen by users go through s->id. */
+void hd_sim_sort(hd_sim *s);
 
 /* State of body i at the current time, without changing the simulation. */
 void hd_sim_body_now(const hd_sim *s, int32_t i, hd_kin *k);
