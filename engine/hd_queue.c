@@ -1,6 +1,9 @@
 #include "hd_queue.h"
 
+#include <math.h>
 #include <stdlib.h>
+
+enum { HD_Q_HEAP = -1, HD_Q_OVERFLOW = -2, HD_Q_NEVER = -3 };
 
 /* a before b: earlier time, ties by lower index. */
 static inline int before(const hd_qentry *a, const hd_qentry *b) {
@@ -11,66 +14,225 @@ hd_queue *hd_queue_alloc(int32_t cap) {
   hd_queue *q = calloc(1, sizeof *q);
   if (!q) return NULL;
   size_t c = (size_t)(cap > 0 ? cap : 1);
-  q->e = malloc(sizeof(hd_qentry) * c);
-  q->slot = malloc(sizeof(int32_t) * c);
-  if (!q->e || !q->slot) {
+  int32_t nb = 16;
+  while (nb < cap && nb < (1 << 30)) nb *= 2;
+  q->t = malloc(sizeof(double) * c);
+  q->where = malloc(sizeof(int32_t) * c);
+  q->pos = malloc(sizeof(int32_t) * c);
+  q->next = malloc(sizeof(int32_t) * c);
+  q->prev = malloc(sizeof(int32_t) * c);
+  q->heap = malloc(sizeof(hd_qentry) * c);
+  q->head = malloc(sizeof(int32_t) * (size_t)nb);
+  if (!q->t || !q->where || !q->pos || !q->next || !q->prev || !q->heap || !q->head) {
     hd_queue_free(q);
     return NULL;
   }
   q->cap = cap;
+  q->nb = nb;
   return q;
 }
 
 void hd_queue_free(hd_queue *q) {
   if (!q) return;
-  free(q->e);
-  free(q->slot);
+  free(q->t);
+  free(q->where);
+  free(q->pos);
+  free(q->next);
+  free(q->prev);
+  free(q->heap);
+  free(q->head);
   free(q);
 }
 
-static void sift_up(hd_queue *q, int32_t k) {
-  hd_qentry x = q->e[k];
+/* --- the current bucket's heap --- */
+
+static void heap_up(hd_queue *q, int32_t k) {
+  hd_qentry x = q->heap[k];
   while (k > 0) {
     int32_t p = (k - 1) / 2;
-    if (!before(&x, &q->e[p])) break;
-    q->e[k] = q->e[p];
-    q->slot[q->e[k].id] = k;
+    if (!before(&x, &q->heap[p])) break;
+    q->heap[k] = q->heap[p];
+    q->pos[q->heap[k].id] = k;
     k = p;
   }
-  q->e[k] = x;
-  q->slot[x.id] = k;
+  q->heap[k] = x;
+  q->pos[x.id] = k;
 }
 
-static void sift_down(hd_queue *q, int32_t k) {
-  hd_qentry x = q->e[k];
-  int32_t n = q->n;
+static void heap_down(hd_queue *q, int32_t k) {
+  hd_qentry x = q->heap[k];
   for (;;) {
     int32_t c = 2 * k + 1;
-    if (c >= n) break;
-    if (c + 1 < n && before(&q->e[c + 1], &q->e[c])) c++;
-    if (!before(&q->e[c], &x)) break;
-    q->e[k] = q->e[c];
-    q->slot[q->e[k].id] = k;
+    if (c >= q->hn) break;
+    if (c + 1 < q->hn && before(&q->heap[c + 1], &q->heap[c])) c++;
+    if (!before(&q->heap[c], &x)) break;
+    q->heap[k] = q->heap[c];
+    q->pos[q->heap[k].id] = k;
     k = c;
   }
-  q->e[k] = x;
-  q->slot[x.id] = k;
+  q->heap[k] = x;
+  q->pos[x.id] = k;
+}
+
+static void heap_push(hd_queue *q, int32_t i) {
+  q->where[i] = HD_Q_HEAP;
+  q->heap[q->hn] = (hd_qentry){q->t[i], i, 0};
+  heap_up(q, q->hn++);
+}
+
+static void heap_remove(hd_queue *q, int32_t i) {
+  int32_t k = q->pos[i];
+  q->hn--;
+  if (k == q->hn) return;
+  q->heap[k] = q->heap[q->hn];
+  q->pos[q->heap[k].id] = k;
+  if (k > 0 && before(&q->heap[k], &q->heap[(k - 1) / 2]))
+    heap_up(q, k);
+  else
+    heap_down(q, k);
+}
+
+/* --- lists --- */
+
+static void list_push(hd_queue *q, int32_t *head, int32_t i) {
+  q->prev[i] = -1;
+  q->next[i] = *head;
+  if (*head >= 0) q->prev[*head] = i;
+  *head = i;
+}
+
+static void list_remove(hd_queue *q, int32_t *head, int32_t i) {
+  if (q->prev[i] >= 0)
+    q->next[q->prev[i]] = q->next[i];
+  else
+    *head = q->next[i];
+  if (q->next[i] >= 0) q->prev[q->next[i]] = q->prev[i];
+}
+
+static inline int64_t bucket_of(const hd_queue *q, double t) {
+  double b = floor(t / q->w);
+  return b < 4e18 ? (b > -4e18 ? (int64_t)b : -(int64_t)4e18) : (int64_t)4e18; /* no overflow */
+}
+
+/* Files body i (key already in t[i]) where its time says. */
+static void insert(hd_queue *q, int32_t i) {
+  double t = q->t[i];
+  if (t == INFINITY) {
+    q->where[i] = HD_Q_NEVER;
+    list_push(q, &q->never, i);
+    return;
+  }
+  int64_t b = bucket_of(q, t);
+  if (b <= q->cur) {
+    heap_push(q, i);
+  } else if (b < q->cur + q->nb) {
+    int32_t slot = (int32_t)(b & (q->nb - 1));
+    q->where[i] = slot;
+    list_push(q, &q->head[slot], i);
+    q->in_buckets++;
+  } else {
+    q->where[i] = HD_Q_OVERFLOW;
+    list_push(q, &q->overflow, i);
+  }
+}
+
+static void detach(hd_queue *q, int32_t i) {
+  int32_t w = q->where[i];
+  if (w == HD_Q_HEAP)
+    heap_remove(q, i);
+  else if (w == HD_Q_OVERFLOW)
+    list_remove(q, &q->overflow, i);
+  else if (w == HD_Q_NEVER)
+    list_remove(q, &q->never, i);
+  else {
+    list_remove(q, &q->head[w], i);
+    q->in_buckets--;
+  }
+}
+
+/* Moves the overflow entries that now fall within the year into their buckets. */
+static void redistribute(hd_queue *q) {
+  int32_t i = q->overflow;
+  q->overflow = -1;
+  while (i >= 0) {
+    int32_t nx = q->next[i];
+    insert(q, i);
+    i = nx;
+  }
+}
+
+/* Makes the next non-empty bucket current; 0 when only never-entries are left. */
+static int advance(hd_queue *q) {
+  if (q->in_buckets == 0) {
+    if (q->overflow < 0) return 0;
+    double tmin = INFINITY; /* jump straight to the earliest overflow entry */
+    for (int32_t i = q->overflow; i >= 0; i = q->next[i])
+      if (q->t[i] < tmin) tmin = q->t[i];
+    q->cur = bucket_of(q, tmin);
+    redistribute(q);
+    return 1;
+  }
+  q->cur++;
+  if ((q->cur & (q->nb - 1)) == 0) redistribute(q); /* a new year */
+  int32_t slot = (int32_t)(q->cur & (q->nb - 1));
+  int32_t i = q->head[slot];
+  q->head[slot] = -1;
+  while (i >= 0) {
+    int32_t nx = q->next[i];
+    q->in_buckets--;
+    heap_push(q, i);
+    i = nx;
+  }
+  return 1;
+}
+
+int32_t hd_queue_top(hd_queue *q) {
+  while (q->hn == 0)
+    if (!advance(q)) return q->never;
+  return q->heap[0].id;
+}
+
+void hd_queue_update(hd_queue *q, int32_t i, double t) {
+  detach(q, i);
+  q->t[i] = t;
+  insert(q, i);
+}
+
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
 }
 
 void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride) {
   q->n = n;
+  double tmin = INFINITY;
+  int64_t finite = 0;
   for (int32_t i = 0; i < n; i++) {
-    q->e[i] = (hd_qentry){t[(int64_t)i * stride], i, 0};
-    q->slot[i] = i;
+    double ti = t[(int64_t)i * stride];
+    q->t[i] = ti;
+    if (ti < INFINITY) {
+      if (ti < tmin) tmin = ti;
+      finite++;
+    }
   }
-  for (int32_t k = n / 2 - 1; k >= 0; k--) sift_down(q, k);
-}
-
-void hd_queue_update(hd_queue *q, int32_t i, double t) {
-  int32_t k = q->slot[i];
-  q->e[k].t = t;
-  if (k > 0 && before(&q->e[k], &q->e[(k - 1) / 2]))
-    sift_up(q, k);
-  else
-    sift_down(q, k);
+  /* Bucket width from the median lead time of up to 1023 sampled keys (the mean would be
+   * dragged by a few slow bodies): w = 2 median / finite, about one entry per bucket, most
+   * entries within a year of nb >= n buckets. */
+  double sample[1023];
+  int ns = 0;
+  int32_t stride_s = n > 1023 ? n / 1023 : 1;
+  for (int32_t i = 0; i < n && ns < 1023; i += stride_s)
+    if (q->t[i] < INFINITY) sample[ns++] = q->t[i] - tmin;
+  q->w = 1.0;
+  if (ns > 2 && finite > 1) {
+    qsort(sample, (size_t)ns, sizeof(double), cmp_double);
+    q->w = 2.0 * sample[ns / 2] / (double)finite;
+  }
+  if (!(q->w > 0.0) || !isfinite(q->w)) q->w = 1.0;
+  q->cur = finite ? bucket_of(q, tmin) : 0;
+  q->hn = 0;
+  q->in_buckets = 0;
+  q->overflow = q->never = -1;
+  for (int32_t s = 0; s < q->nb; s++) q->head[s] = -1;
+  for (int32_t i = 0; i < n; i++) insert(q, i);
 }

@@ -1,40 +1,54 @@
-/* hd_queue: the event queue — an indexed binary min-heap of bodies keyed by each body's next
- * event time.  Every body has exactly one entry (its earliest predicted event); an event is
- * invalidated cheaply by a collision counter (see hd_sim.h), so the queue never holds stale
- * duplicates.  Keys live in the heap entries themselves (16 bytes: time and body), so that a
- * sift touches the heap array only.  Ties are broken by body index, which makes the order
- * total and the run deterministic however the heap was built. */
+/* hd_queue: the event queue — one entry per body (its earliest predicted event), an O(1)
+ * calendar queue in the manner of G. Paul, J. Comput. Phys. 221, 615 (2007):
+ *   - time is cut into buckets of width w; bucket b holds the entries with floor(t/w) == b;
+ *     the nb buckets ahead of the current one are an array of linked lists (a "year");
+ *     entries further ahead wait in an overflow list, redistributed at each new year;
+ *   - only the current bucket is ordered: a small binary heap, filled when the queue reaches it;
+ *   - entries with t = INFINITY (bodies with nothing ahead) wait in a list of their own.
+ * Insertion and removal are O(1), the minimum O(1) on average when w is about the mean spacing
+ * of events (hd_queue_build tunes it from the keys; the engine rebuilds the queue every 100 N
+ * events).  The order is the total order (time, then body index), so the sequence of events is
+ * the same whatever the bucket layout: runs are deterministic and checkpoints exact. */
 #ifndef HD_QUEUE_H
 #define HD_QUEUE_H
 
 #include <stdint.h>
 
-/* One heap entry. */
+/* An entry of the current bucket's heap. */
 typedef struct hd_qentry {
   double t;   /* event time */
   int32_t id; /* body */
   int32_t pad;
 } hd_qentry;
 
-/* The heap. */
+/* The queue.  Fields are private to hd_queue.c. */
 typedef struct hd_queue {
-  int32_t n;     /* entries */
-  int32_t cap;   /* capacity (number of bodies) */
-  hd_qentry *e;  /* e[k]: entry at heap slot k */
-  int32_t *slot; /* slot[i]: heap slot of body i */
+  int32_t n, cap;       /* bodies held, capacity */
+  double *t;            /* t[i]: key of body i */
+  int32_t *where;       /* where body i is: >= 0 bucket slot, or one of the HD_Q_* below */
+  int32_t *pos;         /* in the heap: its index there */
+  int32_t *next, *prev; /* links in a bucket, overflow or never list */
+  hd_qentry *heap;      /* the current bucket, ordered */
+  int32_t hn;           /* entries in heap */
+  int32_t nb;           /* buckets in a year (a power of two) */
+  int32_t *head;        /* head[slot]: first body of bucket slot, -1 if empty */
+  int32_t overflow, never; /* heads of the overflow and never lists */
+  int64_t in_buckets;   /* bodies in bucket lists */
+  int64_t cur;          /* index of the current bucket (floor(t / w)) */
+  double w;             /* bucket width */
 } hd_queue;
 
 /* Allocates a queue for cap bodies; NULL on failure. */
 hd_queue *hd_queue_alloc(int32_t cap);
 /* Frees the queue (NULL allowed). */
 void hd_queue_free(hd_queue *q);
-/* Builds the heap holding bodies 0..n-1 with times t[i * stride] (in doubles): O(n). */
+/* Fills the queue with bodies 0..n-1 with times t[i * stride] (in doubles), choosing the bucket
+ * width from their spread: O(n). */
 void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride);
-/* Sets body i's time to t and restores the heap (up or down). */
+/* Sets body i's time to t (any value >= the last minimum, or INFINITY). O(1). */
 void hd_queue_update(hd_queue *q, int32_t i, double t);
-/* The body with the earliest event (the heap must not be empty). */
-static inline int32_t hd_queue_top(const hd_queue *q) {
-  return q->e[0].id;
-}
+/* The body with the earliest event (ties: lowest index); a body with t = INFINITY when nothing
+ * else is left.  The queue must hold at least one body. */
+int32_t hd_queue_top(hd_queue *q);
 
 #endif

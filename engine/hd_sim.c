@@ -78,6 +78,7 @@ int hd_sim_alloc(hd_sim **out, const hd_scene *sc, hd_error *err) {
   hd_queue_build(s->q, s->n, &s->b[0].ev_t, HD_BODY_STRIDE);
   hd_sim_sort(s);
   for (int32_t i = 0; i < s->n; i++) hd_predict(s, i);
+  hd_queue_build(s->q, s->n, &s->b[0].ev_t, HD_BODY_STRIDE); /* tunes it to the real times */
   s->c.next_rebase = s->rebase_every;
   double e_tr, e_rot;
   hd_sim_energy(s, -1, &e_tr, &e_rot);
@@ -326,6 +327,7 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
       rebase(s);
       s->c.next_rebase += s->rebase_every;
     }
+    if (s->n == 0) return HD_SIM_IDLE;
     int32_t i = hd_queue_top(s->q);
     hd_body *bi = &s->b[i];
     double te = bi->ev_t;
