@@ -171,8 +171,8 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err) {
                         "?17)",
                         err);
   if (!rc) rc = prepare(db, &db->ins_sample,
-                        "INSERT INTO samples (run, t, collisions, cpd, e_tr, e_rot) VALUES "
-                        "(?1, ?2, ?3, ?4, ?5, ?6)",
+                        "INSERT INTO samples (run, t, collisions, cpd, e_tr, e_rot, e_tr_dimer, "
+                        "e_rot_dimer, e_tr_disk) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)",
                         err);
   if (!rc) rc = prepare(db, &db->ins_state,
                         "INSERT INTO states (run, label, t, cpd, body, kind, x, y, phi, vx, vy, "
@@ -314,6 +314,9 @@ int hd_db_log_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *e
   bind_real(st, 4, r->cpd);
   bind_real(st, 5, r->e_tr);
   bind_real(st, 6, r->e_rot);
+  bind_real(st, 7, r->e_tr_dimer);
+  bind_real(st, 8, r->e_rot_dimer);
+  bind_real(st, 9, r->e_tr_disk);
   return batch_step(db, st, err, "insert sample");
 }
 

@@ -49,6 +49,9 @@ typedef struct hd_sample_row {
   int64_t collisions; /* pair collisions so far (walls not counted) */
   double cpd;         /* 2 * collisions / N */
   double e_tr, e_rot; /* translational and rotational kinetic energy per body */
+  double e_tr_dimer;  /* per dimer, in mixtures: translational (NaN -> NULL when absent) */
+  double e_rot_dimer; /*   rotational */
+  double e_tr_disk;   /* per disk, in mixtures (NaN -> NULL when absent) */
 } hd_sample_row;
 
 /* Body kinds in hd_state_rec.kind, stored as states.kind text: HD_KIND_DISK = 0 'disk',

@@ -48,10 +48,14 @@ static double m_temperature(const void *m) {
 
 static void m_sample(const void *m, hd_sample_row *row) {
   const hd_sim *s = m;
-  double e_tr, e_rot;
+  double e_tr, e_rot, dt, dr, st, sr;
   hd_sim_energy(s, -1, &e_tr, &e_rot);
+  int nd = s->n_species[HD_SP_DIMER], nk = s->n_species[HD_SP_DISK], mixed = nd > 0 && nk > 0;
+  hd_sim_energy(s, HD_SP_DIMER, &dt, &dr);
+  hd_sim_energy(s, HD_SP_DISK, &st, &sr);
   *row = (hd_sample_row){hd_sim_time(s), s->c.collisions, hd_sim_cpd(s), e_tr / s->n,
-                         e_rot / s->n};
+                         e_rot / s->n, mixed ? dt / nd : NAN, mixed ? dr / nd : NAN,
+                         mixed ? st / nk : NAN};
 }
 
 static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label, hd_error *err) {
