@@ -206,7 +206,7 @@ static int drive_and_finish(runner *r, hd_error *err) {
   stop_flag = 0;
   sigaction(SIGINT, &sa, &old_int);
   sigaction(SIGTERM, &sa, &old_term);
-  r->t0_wall = r->last_ckpt_wall = r->last_tick_wall = now_wall();
+  r->last_ckpt_wall = r->last_tick_wall = now_wall();
   r->last_tick_events = r->ops->events(r->s);
   r->progress = !r->o->quiet && isatty(2);
   int rc = drive(r, err);
@@ -218,6 +218,7 @@ static int drive_and_finish(runner *r, hd_error *err) {
 
 int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error *err) {
   runner r = {.sc = sc, .o = o, .ops = hd_model_for_scene(sc)};
+  r.t0_wall = r.last_ckpt_wall = now_wall();
   *run = 0;
   int rc = r.ops->alloc(&r.s, sc, err); /* bad input fails here, before anything is written */
   if (rc) return rc;
@@ -247,6 +248,7 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
 
 int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error *err) {
   runner r = {.o = o};
+  r.t0_wall = r.last_ckpt_wall = now_wall();
   hd_scene sc;
   char *text = NULL;
   void *blob = NULL;

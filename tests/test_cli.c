@@ -262,6 +262,8 @@ static void logged_restitution(void **state) {
                         "[log]\nsamples_every = 1\n");
   assert_int_equal(sh("%s run mix.ini -o mix.db --quiet", haff), 0);
   assert_true(q1("mix.db", "SELECT count(DISTINCT kind) FROM collisions") == 5);
+  /* wall_seconds is this run's own time (it once included the machine's uptime) */
+  assert_int_equal(q1("mix.db", "SELECT wall_seconds > 0 AND wall_seconds < 60 FROM runs"), 1);
   /* the restitution of each kind, from the scene */
   assert_int_equal(q1("mix.db", "SELECT count(*) FROM collisions WHERE abs(de + 0.5 * (1 - "
                                 "(CASE kind WHEN 'dimer-dimer' THEN 0.8 WHEN 'disk-disk' THEN 0.7 "
