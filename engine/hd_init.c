@@ -48,9 +48,10 @@ static double uniform_phi(gsl_rng *r) {
 }
 
 /* Random sequential addition: each body at a uniform position and orientation, retried until it
- * overlaps nothing.  Fails after max_tries attempts for one body (the box is too full). */
-static int place_random(hd_sim *s, hd_error *err) {
-  const long max_tries = 100000;
+ * overlaps nothing.  Returns 1 when some body needed more than max_tries attempts (the box is
+ * too full for it: the caller then melts a lattice instead). */
+static int place_random(hd_sim *s) {
+  const long max_tries = 20000;
   for (int32_t i = 0; i < s->n; i++) {
     hd_body *b = &s->b[i];
     long k;
@@ -62,12 +63,41 @@ static int place_random(hd_sim *s, hd_error *err) {
       if (overlaps_any(s, i) == -1) break;
       hd_cells_remove(s, i);
     }
-    if (k == max_tries)
-      return hd_error_set(err, HD_EINPUT,
-                          "[init] placement = random: could not place body %d of %d without "
-                          "overlap after %ld tries; use placement = lattice or a larger box",
-                          i + 1, s->n, max_tries);
+    if (k == max_tries) {
+      for (int32_t j = 0; j < i; j++) hd_cells_remove(s, j);
+      return 1;
+    }
   }
+  return 0;
+}
+
+/* The densest simple lattice for a melt: dimers all along x on an (a + d) x d grid (a dimer-only
+ * scene), or a square grid of the largest body. */
+static int place_dense_lattice(hd_sim *s, hd_error *err) {
+  const double eps = 1.0 + 1e-9;
+  double ex, ey;
+  if (s->n_species[HD_SP_DISK] == 0) {
+    ex = (s->shape[HD_SP_DIMER].a + s->shape[HD_SP_DIMER].d) * eps;
+    ey = s->shape[HD_SP_DIMER].d * eps;
+  } else {
+    ex = ey = fmax(s->n_species[HD_SP_DIMER] ? 2.0 * hd_shape_radius(&s->shape[HD_SP_DIMER]) : 0.0,
+                   s->shape[HD_SP_DISK].d) * eps;
+  }
+  int32_t nx = (int32_t)floor(s->lx / ex), ny = (int32_t)floor(s->ly / ey);
+  if ((int64_t)nx * ny < s->n)
+    return hd_error_set(err, HD_EINPUT,
+                        "[init] placement = random: %d bodies do not fit even on a dense lattice "
+                        "(%d x %d sites of %g x %g) to melt; enlarge [system] box",
+                        s->n, nx, ny, ex, ey);
+  double ax = s->lx / nx, ay = s->ly / ny;
+  for (int32_t i = 0; i < s->n; i++) {
+    hd_body *b = &s->b[i];
+    b->k.x = (i % nx + 0.5) * ax;
+    b->k.y = (i / nx + 0.5) * ay;
+    b->k.phi = 0.0;
+    hd_cells_insert(s, i, hd_cells_of(s, b->k.x, b->k.y));
+  }
+  s->melt = 1;
   return HD_OK;
 }
 
@@ -95,9 +125,7 @@ static int place_lattice(hd_sim *s, hd_error *err) {
   return HD_OK;
 }
 
-/* Maxwellian velocities at temperature T, zero total momentum, rescaled so that the kinetic
- * energy is exactly (dof/2) T per body in each of translation and rotation. */
-static void draw_velocities(hd_sim *s, double T) {
+void hd_init_velocities(hd_sim *s, double T) {
   double px = 0.0, py = 0.0, mtot = 0.0;
   for (int32_t i = 0; i < s->n; i++) {
     hd_body *b = &s->b[i];
@@ -196,8 +224,11 @@ int hd_init_state(hd_sim *s, const hd_scene *sc, hd_error *err) {
     s->b[i].species = i < s->n_species[0] ? HD_SP_DIMER : HD_SP_DISK;
     s->b[i].next = s->b[i].prev = -1;
   }
-  rc = sc->placement == HD_PLACE_LATTICE ? place_lattice(s, err) : place_random(s, err);
+  if (sc->placement == HD_PLACE_LATTICE)
+    rc = place_lattice(s, err);
+  else if (place_random(s))
+    rc = place_dense_lattice(s, err); /* too dense for random addition: melt a lattice */
   if (rc) return rc;
-  draw_velocities(s, sc->temperature);
+  hd_init_velocities(s, sc->temperature);
   return HD_OK;
 }

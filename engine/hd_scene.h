@@ -12,9 +12,9 @@
 
 /* Limits checked by hd_scene_load (docs/scene-keys.md explains them). */
 #define HD_MAX_AREA_FRACTION 0.9069 /* `area_fraction` < this: hexagonal packing pi/(2 sqrt 3) */
-#define HD_RANDOM_MAX_FRACTION 0.5  /* placement = random: covered fraction <= this; random
-                                     * sequential addition of disks jams at 0.547, so a placer
-                                     * that adds bodies one by one must stay below it */
+#define HD_RANDOM_MAX_FRACTION 0.75 /* placement = random: covered fraction <= this; beyond
+                                     * what random addition reaches (disks jam at 0.547) the
+                                     * engine melts a dense lattice (pi/4 for disks) */
 #define HD_MAX_COUNT 100000000L     /* largest `count` of a species */
 #define HD_SCENE_MAX_LINE 4096      /* longest scene line, in bytes */
 

@@ -59,6 +59,46 @@ int hd_sim_queue_init(hd_sim *s, hd_error *err) {
   return HD_OK;
 }
 
+/* Predicts every body's events from the current state, at clock 0. */
+static void start(hd_sim *s) {
+  hd_sim_sort(s);
+  for (int32_t i = 0; i < s->n; i++) hd_predict(s, i);
+  hd_queue_build(s->q, s->n, &s->b[0].ev_t, HD_BODY_STRIDE); /* tunes it to the real times */
+  s->c.next_rebase = s->rebase_every;
+  double e_tr, e_rot;
+  hd_sim_energy(s, -1, &e_tr, &e_rot);
+  s->c.e_kin = e_tr + e_rot;
+}
+
+/* Melts a lattice (placement too dense for random addition): elastic dynamics for 20
+ * collisions per body, then fresh Maxwellian velocities and the clocks back to zero. */
+static int melt(hd_sim *s, const hd_scene *sc, hd_error *err) {
+  double alpha[HD_NSPECIES][HD_NSPECIES], wall_alpha = s->wall_alpha;
+  memcpy(alpha, s->alpha, sizeof alpha);
+  for (int a = 0; a < HD_NSPECIES; a++)
+    for (int b = 0; b < HD_NSPECIES; b++) s->alpha[a][b] = 1.0;
+  s->wall_alpha = 1.0;
+  int rc = HD_OK;
+  while (rc == HD_OK && hd_sim_cpd(s) < 40.0) {
+    hd_event_out ev;
+    rc = hd_sim_next(s, INFINITY, &ev, err);
+    if (rc == HD_SIM_IDLE) rc = HD_OK; /* nothing moves: nothing to melt */
+    if (rc == HD_SIM_IDLE || (rc == HD_OK && s->c.events > 1000 * (int64_t)s->n + 1000)) break;
+  }
+  memcpy(s->alpha, alpha, sizeof alpha);
+  s->wall_alpha = wall_alpha;
+  if (rc) return rc;
+  for (int32_t i = 0; i < s->n; i++) { /* positions at the current time become time 0 */
+    hd_body_sync(s, i);
+    s->b[i].t = 0.0;
+  }
+  memset(&s->c, 0, sizeof s->c);
+  hd_init_velocities(s, sc->temperature);
+  s->melt = 0;
+  start(s);
+  return HD_OK;
+}
+
 int hd_sim_alloc(hd_sim **out, const hd_scene *sc, hd_error *err) {
   hd_sim *s;
   int rc = sim_setup(&s, sc, err);
@@ -76,13 +116,14 @@ int hd_sim_alloc(hd_sim **out, const hd_scene *sc, hd_error *err) {
   }
   for (int32_t i = 0; i < s->n; i++) s->b[i].ev_t = s->b[i].p_t = s->b[i].c_t = INFINITY;
   hd_queue_build(s->q, s->n, &s->b[0].ev_t, HD_BODY_STRIDE);
-  hd_sim_sort(s);
-  for (int32_t i = 0; i < s->n; i++) hd_predict(s, i);
-  hd_queue_build(s->q, s->n, &s->b[0].ev_t, HD_BODY_STRIDE); /* tunes it to the real times */
-  s->c.next_rebase = s->rebase_every;
-  double e_tr, e_rot;
-  hd_sim_energy(s, -1, &e_tr, &e_rot);
-  s->c.e_kin = e_tr + e_rot;
+  start(s);
+  if (s->melt) {
+    rc = melt(s, sc, err);
+    if (rc) {
+      hd_sim_free(s);
+      return rc;
+    }
+  }
   *out = s;
   return HD_OK;
 }

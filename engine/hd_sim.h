@@ -94,6 +94,7 @@ typedef struct hd_sim {
   int64_t rebase_every;            /* events between rebases of the time origin */
   int verify;                      /* check invariants at every event (slow) */
   int partial_cross;               /* pure disks, >= 3x3 cells: crossings search 3 new cells */
+  int melt;                        /* set-up only: the lattice placed must be melted */
   double max_overlap;              /* verification: largest relative overlap seen */
   int32_t last_i, last_j;          /* bodies of the last collision (collapse report) */
 } hd_sim;

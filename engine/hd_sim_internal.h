@@ -86,7 +86,11 @@ int hd_sim_queue_init(hd_sim *s, hd_error *err);
 int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err);
 
 /* --- initial state (hd_init.c) --- */
-/* Places the bodies and draws velocities as the scene says. */
+/* Places the bodies and draws velocities as the scene says; sets s->melt when the bodies were
+ * put on a dense lattice that hd_sim_alloc must melt. */
 int hd_init_state(hd_sim *s, const hd_scene *sc, hd_error *err);
+/* Maxwellian velocities at temperature T, zero total momentum, rescaled so that the kinetic
+ * energy is exactly T per body in translation and T/2 per rotating body in rotation. */
+void hd_init_velocities(hd_sim *s, double T);
 
 #endif

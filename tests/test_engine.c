@@ -152,6 +152,35 @@ static void elastic_conservation(void **state) {
   hd_sim_free(s);
 }
 
+/* Near jamming: 1000 elastic disks at area fraction 0.72 (a melted lattice; hard disks freeze
+ * near 0.70), 2e5 collisions in verification mode: energy drift < 1e-10, no overlap, and the
+ * melt left no overlap and a Maxwellian start (exact T). */
+static void near_jamming(void **state) {
+  (void)state;
+  hd_scene sc;
+  test_disk_scene(&sc, 1000, 0.72, 1.0, 3);
+  sc.verify = 1;
+  hd_sim *s;
+  hd_error err;
+  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+  int32_t i, j;
+  assert_true(hd_sim_max_overlap(s, &i, &j) < 1e-12);
+  double e0t, e0r;
+  hd_sim_energy(s, -1, &e0t, &e0r);
+  assert_true(fabs(e0t / 1000.0 - 1.0) < 1e-12);
+  hd_event_out ev;
+  long n = test_size(200000, 10);
+  for (long k = 0; k < n; k++)
+    if (hd_sim_next(s, INFINITY, &ev, &err)) fail_msg("%s", err.msg);
+  double e1t, e1r;
+  hd_sim_energy(s, -1, &e1t, &e1r);
+  printf("# near jamming (eta 0.72): drift %.3g, max overlap %.3g\n", fabs(e1t - e0t) / e0t,
+         s->max_overlap);
+  assert_true(fabs(e1t - e0t) / e0t < 1e-10);
+  assert_true(s->max_overlap < 1e-9);
+  hd_sim_free(s);
+}
+
 /* Enskog: elastic disks collide at nu0 = 2 sqrt(pi) n sigma g(sigma) sqrt(T/m) per particle
  * (cpd per unit time), Henderson g = (1 - 7 eta/16)/(1 - eta)^2.  Measured over 2e5 collisions
  * (N = 2000) after 5e4 of equilibration; the statistical error of the rate is ~0.5 %, and
@@ -259,6 +288,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(head_on),       cmocka_unit_test(oblique_grazing_periodic),
       cmocka_unit_test(collision_across_wrap),
+      cmocka_unit_test(near_jamming),
       cmocka_unit_test(elastic_conservation), cmocka_unit_test(enskog_rate),
       cmocka_unit_test(maxwellian),    cmocka_unit_test(haff_law),
   };

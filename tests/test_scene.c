@@ -228,7 +228,7 @@ static const bad_case bad_cases[] = {
     /* a dimer of a + d = 2 cannot fit an edge of 1.5 */
     {RUN "[system]\nbox = 1.5 10\n[dimers]\ncount = 1\n", NULL, HD_EINPUT,
      "bad.ini:4:", "[system] box", "too small"},
-    /* 100 unit disks cover pi/4 = 0.785 of a 10 x 10 box: above the random limit 0.5 */
+    /* 100 unit disks cover pi/4 = 0.785 of a 10 x 10 box: above the random limit 0.75 */
     {RUN "[system]\nbox = 10 10\n[disks]\ncount = 100\n", NULL, HD_EINPUT,
      "bad.ini:4:", "[system] box", "dense"},
     /* a lattice of 10 x 10 unit cells holds 100 disks, not 101 */
