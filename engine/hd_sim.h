@@ -61,6 +61,9 @@ typedef struct hd_sim_clock {
   int64_t next_rebase;   /* events count at which the time origin is next rebased */
   double e_kin;          /* total kinetic energy, updated by each collision's de */
   int64_t slow_run;      /* consecutive collisions with |vn| tiny against the thermal speed */
+  int64_t pile_run;      /* consecutive collisions with a vanishing time step (a pile-up) */
+  double dt_mean;        /* running mean of the time between collisions (pile-ups excluded) */
+  double t_last;         /* time of the last collision (relative, like t) */
 } hd_sim_clock;
 
 /* What one collision did, for the log. */
