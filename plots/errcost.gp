@@ -1,6 +1,7 @@
 # Error against run time (issue 5): standard error of the ensemble mean of D_e (eq. 31 fits,
 # one per run) against the total CPU seconds of the runs, one curve per run length (points:
-# 2, 4, 8, ... runs), with the 1/sqrt(CPU) law through the longest runs' last point.
+# 2, 4, 8, ... runs, their own sd/sqrt(R); thin dashed, same colour: sd of all the runs of that
+# length / sqrt(R)), with the 1/sqrt(CPU) law through the longest runs' last point.
 # Input: `plots/scripts/errcost.sh HAFF L:DB... > in` (blocks per run length).
 # usage: gnuplot -e "in='errcost.tsv'; out='errcost.png'[; title='...']" plots/errcost.gp
 if (!exists("in")) in = 'errcost.tsv'
@@ -23,7 +24,8 @@ set format y "10^{%L}"
 set xlabel "total CPU time of the runs (s)"
 set ylabel "standard error of ⟨D_e⟩ over the runs"
 set title title
-set key top right
+set key top right spacing 1.4
 set grid lc rgb "#dddddd"
-plot for [i=0:nb-1] in index i using 3:5 with linespoints pt 7 ps 0.9 title columnheader(1), \
+plot for [i=0:nb-1] in index i using 3:5 with linespoints pt 7 ps 0.9 lc i+1 title columnheader(1), \
+     for [i=0:nb-1] in index i using 3:7 with lines dt 2 lw 1 lc i+1 notitle, \
      e1 * sqrt(c1 / x) with lines dt 2 lw 2 lc rgb "black" title "∝ (CPU time)^{-1/2}"

@@ -32,7 +32,7 @@ if (exists("ref")) {
 }
 # inset: against nu0_eff t, Haff's law 1/(1 + gamma nu0 t)^2 for each group
 set size 0.45, 0.45
-set origin 0.5, 0.5
+set origin 0.53, 0.5
 set logscale xy
 set format x "10^{%L}"
 set xlabel "ν_0^{eff} t"

@@ -5,7 +5,7 @@
 # parameters below rewrites $(DATA)/config.txt, which the merged databases depend on).
 # plots/README.md says what each output is; this build's numbers go to $(OUT)/README.md.
 #
-#   make plots                 default ensembles (about 10 minutes on 2 cores, make -j2)
+#   make plots                 default ensembles (2.5 minutes with make -j2 on 2 shared cores)
 #   make plots PAPER=1         larger ensembles and longer runs
 #   make plots ETA=0.1         another area fraction (runs go to their own folder)
 #   make -f plots/plots.mk plots-clean   removes $(OUT)
@@ -30,6 +30,9 @@ AOVERD     ?= 0.5 1 1.5
 # these runs (alpha = GAP_ALPHA, NRUNS seeds) show why a = 2d is not in the tables (README)
 GAP_A      ?= 1.9 2 2.1
 GAP_ALPHA  ?= 0.9
+# long runs (NRUNS seeds, a = d) that go on until the homogeneity detector cuts them (README)
+LONG_ALPHA ?= 0.8
+LONG_CPD   ?= 300
 # the hard-disk reference (Fig. 2 dashed, Table I a/d = 0)
 DISK_ALPHAS ?= 0.95 0.9
 # Figs. 2-3 show these at a/d = FIG2_A
@@ -47,14 +50,14 @@ ifeq ($(PAPER),1)
 NRUNS      ?= 20
 # runs stop at (1 - alpha^2) cpd = XMAX
 XMAX       ?= 24
-ERR_RUNS   ?= 64
+ERR_RUNS   ?= 128
 ERR_CPD    ?= 20 40 80 160 320
 FIG5_CPD   ?= 300
 MC_SAMPLES ?= 10000000
 else
-NRUNS      ?= 4
+NRUNS      ?= 8
 XMAX       ?= 16
-ERR_RUNS   ?= 16
+ERR_RUNS   ?= 32
 ERR_CPD    ?= 20 40 80 160
 FIG5_CPD   ?= 100
 MC_SAMPLES ?= 1000000
@@ -66,6 +69,7 @@ SEEDS   := $(shell seq 1 $(NRUNS))
 ESEEDS  := $(shell seq 1001 $$((1000 + $(ERR_RUNS))))
 COMMON  := --set system.area_fraction=$(ETA)
 CONFIG  := ETA=$(ETA) NDIM=$(NDIM) NRUNS=$(NRUNS) XMAX=$(XMAX) ALPHAS=$(ALPHAS) AOVERD=$(AOVERD) GAP_A=$(GAP_A) GAP_ALPHA=$(GAP_ALPHA) \
+           LONG_ALPHA=$(LONG_ALPHA) LONG_CPD=$(LONG_CPD) \
            DISK_ALPHAS=$(DISK_ALPHAS) FIG2_ALPHAS=$(FIG2_ALPHAS) FIG2_A=$(FIG2_A) \
            ELASTIC_CPD=$(ELASTIC_CPD) ERR_ALPHA=$(ERR_ALPHA) ERR_A=$(ERR_A) ERR_RUNS=$(ERR_RUNS) \
            ERR_CPD=$(ERR_CPD) FIG5_CPD=$(FIG5_CPD) FMEAN_A=$(FMEAN_A) MC_SAMPLES=$(MC_SAMPLES)
@@ -107,6 +111,10 @@ $(foreach a,$(filter-out $(AOVERD),$(GAP_A)),$(foreach s,$(SEEDS),$(eval $(call 
   dimer_db,$(a),$(GAP_ALPHA),$(s)),scenes/paper-dimers.ini,--set dimers.count=$(NDIM) --set \
   dimers.a=$(a) --set dimers.alpha=$(GAP_ALPHA) --set run.stop_cpd=$(call stopcpd,$(GAP_ALPHA)) \
   --seed $(s)))))
+LONG_DBS  := $(foreach s,$(SEEDS),$(RD)/long-a1-al$(LONG_ALPHA)-c$(LONG_CPD)-s$(s).db)
+$(foreach s,$(SEEDS),$(eval $(call RUN,$(RD)/long-a1-al$(LONG_ALPHA)-c$(LONG_CPD)-s$(s).db,\
+  scenes/paper-dimers.ini,--set dimers.count=$(NDIM) --set dimers.alpha=$(LONG_ALPHA) --set \
+  run.stop_cpd=$(LONG_CPD) --seed $(s))))
 GRID_DBS  := $(foreach a,$(AOVERD),$(foreach al,$(ALPHAS),$(foreach s,$(SEEDS),$(call dimer_db,$(a),$(al),$(s)))))
 DISK_DBS  := $(foreach al,$(DISK_ALPHAS),$(foreach s,$(SEEDS),$(call disk_db,$(al),$(s))))
 FIG23_DBS := $(foreach al,$(FIG2_ALPHAS),$(foreach s,$(SEEDS),$(call dimer_db,$(FIG2_A),$(al),$(s))))
@@ -121,6 +129,7 @@ $(eval $(call MERGE,$(DATA)/tables.db,$(GRID_DBS) $(DISK_DBS)))
 $(eval $(call MERGE,$(DATA)/fig23.db,$(FIG23_DBS)))
 $(eval $(call MERGE,$(DATA)/disks.db,$(DISK_DBS)))
 $(eval $(call MERGE,$(DATA)/gap.db,$(GAP_DBS)))
+$(eval $(call MERGE,$(DATA)/long.db,$(LONG_DBS)))
 
 $(OUT)/table1.tsv: $(DATA)/tables.db $(HAFF)
 	$(HAFF) table1 $< -o $@
@@ -142,6 +151,8 @@ $(DATA)/gap.tsv: $(DATA)/gap.db
 	  JOIN plots_runs p ON p.run = r.id JOIN samples s ON s.run = r.id GROUP BY r.id ORDER BY r.id" > $@
 $(DATA)/gap-fits.tsv: $(DATA)/gap.db $(HAFF)
 	$(HAFF) haff-fit $< -o $@ 2> $(DATA)/gap-fits.err
+$(DATA)/long-fits.tsv: $(DATA)/long.db $(HAFF)
+	$(HAFF) haff-fit $< -o $@
 $(DATA)/energy.tsv: $(DATA)/fig23.db $(HAFF)
 	$(HAFF) energy $< -o $@
 $(DATA)/energy_disks.tsv: $(DATA)/disks.db $(HAFF)
@@ -200,7 +211,8 @@ $(OUT)/errcost.png $(OUT)/errcost.svg: $(OUT)/errcost.%: $(DATA)/errcost.tsv plo
 
 # --- plots/out/README.md: plots/README.md and this build's numbers ---------------------------
 $(OUT)/README.md: plots/README.md $(SCRIPTS)/readme.sh $(TABLES) $(DATA)/fits.tsv \
-                  $(DATA)/fits-groups.tsv $(DATA)/gap.tsv $(DATA)/gap-fits.tsv $(DATA)/errcost.tsv $(DATA)/veldist_stats.tsv $(DATA)/config.txt
+                  $(DATA)/fits-groups.tsv $(DATA)/gap.tsv $(DATA)/gap-fits.tsv \
+                  $(DATA)/long-fits.tsv $(DATA)/errcost.tsv $(DATA)/veldist_stats.tsv $(DATA)/config.txt
 	$(SCRIPTS)/readme.sh $(OUT) $(DATA) '$(CONFIG)' $(HAFF) > $@
 
 plots-clean: fmean-clean

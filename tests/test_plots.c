@@ -178,7 +178,7 @@ static void tsv_columns(void **state) {
       {"table1.tsv", "alpha\ta_over_d\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\truns"},
       {"table2.tsv", "alpha\ta_over_d\ta0\ta0_lo\ta0_hi\ta1\ta1_lo\ta1_hi"},
       {"fmean_vs_engine.tsv", "source\ta_over_d\talpha\tf_mean\tf_err\tD_over_f\tn"},
-      {"data/errcost.tsv", "runs to 20 cpd\truns\tcpu_seconds\tD_e\tD_e_err\tcpd_fit_end"}};
+      {"data/errcost.tsv", "runs to 20 cpd\truns\tcpu_seconds\tD_e\tD_e_err\tcpd_fit_end\tD_e_err_all"}};
   char buf[512];
   for (size_t i = 0; i < sizeof want / sizeof want[0]; i++) {
     header(want[i][0], buf, sizeof buf);

@@ -16,18 +16,24 @@ for arg in "$@"; do
   L=${arg%%:*} db=${arg#*:}
   [ $first = 1 ] || printf '\n\n'
   first=0
-  printf 'runs to %s cpd\truns\tcpu_seconds\tD_e\tD_e_err\tcpd_fit_end\n' "$L"
+  printf 'runs to %s cpd\truns\tcpu_seconds\tD_e\tD_e_err\tcpd_fit_end\tD_e_err_all\n' "$L"
   fits=$("$haff" haff-fit "$db" | awk -F '\t' 'NR > 1 { print $1 "\t" $9 "\t" $8 }')
   cpu=$(sqlite3 -separator $'\t' "$db" "SELECT run, cpu_seconds FROM plots_runs ORDER BY run")
   join -t $'\t' <(sort -k1,1 <<< "$fits") <(sort -k1,1 <<< "$cpu") | sort -n -k1,1 |
     awk -F '\t' -v L="$L" '
       { n++; de[n] = $2; ce[n] = $3; cpu[n] = $4 }
-      function row(R,   i, s, ss, c, e, m) {
-        s = ss = c = e = 0
-        for (i = 1; i <= R; i++) { s += de[i]; c += cpu[i]; e += ce[i] }
+      function sd(R,   i, s, ss, m) {
+        s = ss = 0
+        for (i = 1; i <= R; i++) s += de[i]
         m = s / R
         for (i = 1; i <= R; i++) ss += (de[i] - m) ^ 2
-        printf "%s\t%d\t%.4g\t%.6g\t%.4g\t%.4g\n", L, R, c, m, sqrt(ss / (R - 1) / R), e / R
+        return sqrt(ss / (R - 1))
+      }
+      function row(R,   i, s, c, e) {
+        s = c = e = 0
+        for (i = 1; i <= R; i++) { s += de[i]; c += cpu[i]; e += ce[i] }
+        printf "%s\t%d\t%.4g\t%.6g\t%.4g\t%.4g\t%.4g\n", L, R, c, s / R, sd(R) / sqrt(R), e / R,
+               sd(n) / sqrt(R)
       }
       END { for (R = 2; R < n; R *= 2) row(R); if (n >= 2) row(n) }'
 done

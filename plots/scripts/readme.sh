@@ -38,6 +38,11 @@ awk -F '\t' 'NR == 1 { next }
           printf "| %s | %s | %s | %d | %d | %.1f | %.1f | %.1f |\n", f[1], f[2], f[3], n[k], det[k],
                  s[k] / n[k], lo[k], hi[k] } }' "$data/fits.tsv"
 echo
+echo "Long runs that go on until the detector cuts them (α = LONG_ALPHA, a = d, LONG_CPD cpd;"
+echo "\`data/long-fits.tsv\`): detected = 1 where it cut, cpd_end where; D_e fitted up to there."
+echo
+tsv2md "$data/long-fits.tsv"
+echo
 echo "### a/d near 2 (\`data/gap.tsv\`, \`data/gap-fits.tsv\`): the fate of each run"
 echo
 tsv2md "$data/gap.tsv"
@@ -54,9 +59,9 @@ tsv2md "$out/fmean_vs_engine.tsv"
 echo
 echo "### Error of D_e against CPU time (\`data/errcost.tsv\`, \`errcost.png\`)"
 echo
-awk -F '\t' 'BEGIN { print "| stop_cpd | runs | CPU s | ⟨D_e⟩ | standard error | fit ended at cpd |"
-                     print "|---|---|---|---|---|---|" }
-             NF > 1 && $1 ~ /^[0-9.]+$/ { printf "| %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6 }' \
+awk -F '\t' 'BEGIN { print "| stop_cpd | runs | CPU s | ⟨D_e⟩ | standard error | fit ended at cpd | sd(all)/√R |"
+                     print "|---|---|---|---|---|---|---|" }
+             NF > 1 && $1 ~ /^[0-9.]+$/ { printf "| %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7 }' \
   "$data/errcost.tsv"
 echo
 echo "### Fig. 6: velocity statistics per snapshot (\`data/veldist_stats.tsv\`)"
