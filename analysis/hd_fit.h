@@ -29,7 +29,9 @@ typedef struct hd_haff_fit {
  * Starting guess: nu0 from the slope through the origin of the first tenth of the points,
  * D_e = 3.  alpha == 1 fits tau = nu0 t only (D_e = NaN).  Needs n >= 3 (2 for alpha == 1),
  * t >= 0 and tau increasing on average.  Returns HD_OK, or HD_EINPUT (too few points, no
- * convergence, non-finite data) with err set. */
+ * convergence, non-finite data, or a diverged fit: D_e >= HD_HAFF_DE_MAX or a non-finite
+ * D_e_err) with err set. */
+#define HD_HAFF_DE_MAX 1000.0
 int hd_fit_haff_log(const double *t, const double *tau, size_t n, double alpha, hd_haff_fit *out,
                     hd_error *err);
 

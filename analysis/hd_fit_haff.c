@@ -135,6 +135,13 @@ int hd_fit_haff_log(const double *t, const double *tau, size_t n, double alpha, 
   out->iter = gsl_multifit_nlinear_niter(w);
   if (!isfinite(out->D_e) || !isfinite(out->nu0))
     rc = hd_error_set(err, HD_EINPUT, "haff fit: diverged (D_e or nu0 not finite)");
+  /* tau(t) without the curvature of cooling (e.g. collisions piling up at one instant) drives
+   * gamma -> 0: D_e runs off to 1e60 (and its error to 0 or inf).  No body has D_e > HD_HAFF_DE_MAX
+   * quadratic degrees of freedom here, so such a fit is reported as failed, not returned. */
+  else if (!(out->D_e < HD_HAFF_DE_MAX) || !isfinite(out->D_e_err))
+    rc = hd_error_set(err, HD_EINPUT,
+                      "haff fit: diverged (D_e = %.3g +- %.3g: no cooling curvature in tau(t))",
+                      out->D_e, out->D_e_err);
 done:
   gsl_matrix_free(cov);
   if (w) gsl_multifit_nlinear_free(w);

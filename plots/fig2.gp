@@ -1,7 +1,9 @@
 # Fig. 2 of Costantini et al. (2005): energy per dimer against (1 - alpha^2) cpd, one curve per
 # (alpha, a/d) group, with the hard-disk Haff reference (dashed); inset: against nu0_eff t with
-# Haff's law.  Input: `haff energy DB --all -o in`.
-# usage: gnuplot -e "in='energy.tsv'; out='fig2.png'" plots/fig2.gp      (.png or .svg)
+# Haff's law.  Input: `haff energy DB --all -o in`; optional ref: the same for a database of
+# hard-disk runs (drawn as dashed lines; without it the analytic exp(-x/2) is dashed).
+# usage: gnuplot -e "in='energy.tsv'; out='fig2.png'[; ref='energy_disks.tsv']" plots/fig2.gp
+#        (.png or .svg)
 if (!exists("in")) in = 'energy.tsv'
 if (!exists("out")) out = 'fig2.png'
 if (out[strlen(out)-3:] eq ".svg") { set terminal svg size 800,600 enhanced font "Helvetica,14" } \
@@ -18,11 +20,19 @@ set xlabel "(1 - α^2) N_{atcoll}/N"
 set ylabel "E(t) / E(0)"
 set key bottom left
 set xrange [0:*]
-plot for [i=0:nb-1] in index i using 7:4 with points pt 7 ps 0.5 title columnheader(1), \
-     exp(-x/2) with lines dt 2 lw 2 lc rgb "black" title "hard disks, Haff: exp(-x/2)"
+if (exists("ref")) {
+  stats ref using 1 nooutput
+  nr = STATS_blocks
+  plot for [i=0:nb-1] in index i using 7:4 with points pt 7 ps 0.5 title columnheader(1), \
+       for [i=0:nr-1] ref index i using 7:4 with lines dt 2 lw 2 lc rgb "black" title columnheader(1), \
+       exp(-x/3) with lines dt 3 lw 1 lc rgb "gray50" title "exp(-x/3)"
+} else {
+  plot for [i=0:nb-1] in index i using 7:4 with points pt 7 ps 0.5 title columnheader(1), \
+       exp(-x/2) with lines dt 2 lw 2 lc rgb "black" title "hard disks, Haff: exp(-x/2)"
+}
 # inset: against nu0_eff t, Haff's law 1/(1 + gamma nu0 t)^2 for each group
 set size 0.45, 0.45
-set origin 0.5, 0.5
+set origin 0.53, 0.5
 set logscale xy
 set format x "10^{%L}"
 set xlabel "ν_0^{eff} t"

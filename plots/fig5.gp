@@ -2,7 +2,9 @@
 # r13), one curve per block of collisions; optionally a second run (e.g. alpha = 1) as bullets;
 # the uniform model on |theta| <= pi - acos(a/2d) (2 pi/3 for a = d) dashed.
 # Input: `haff angles DB --run ID -o in` (and the same for in2).
-# usage: gnuplot -e "in='angles.tsv'; out='fig5.png'[; in2='angles_elastic.tsv'; ad=1]" plots/fig5.gp
+# Optional fm: plots/scripts/fmean_engine.sh output; its rows at a/d = ad are written in a box
+# (<f> of each run's log beside the three Monte Carlo models).
+# usage: gnuplot -e "in='angles.tsv'; out='fig5.png'[; in2='angles_elastic.tsv'; ad=1; fm='f.tsv']" plots/fig5.gp
 if (!exists("in")) in = 'angles.tsv'
 if (!exists("out")) out = 'fig5.png'
 if (!exists("ad")) ad = 1.0
@@ -21,6 +23,12 @@ set ylabel "P(θ)"
 set xrange [-pi:pi]
 set yrange [0:*]
 set key top right
+if (exists("fm")) {
+  ftxt = system(sprintf("awk -F'\t' 'NR > 1 && $2 + 0 == %g { n = $1; if (n ~ /^engine/) n = sprintf(\"run, α = %%s\", $3); printf \"%%s: ⟨f⟩ = %%.4f ± %%.1g\\n\", n, $4, $5 }' '%s'", ad, fm))
+  set label 1 ftxt at graph 0.02, graph 0.95 left front font ",9"
+  set yrange [0:*]
+  set offsets 0, 0, graph 0.35, 0
+}
 if (exists("in2")) {
   plot for [i=0:nb-1] in index i using 4:5 with lines title columnheader(1), \
        in2 index 0 using 4:5 with points pt 7 ps 1 lc rgb "black" title "elastic (α = 1)", \

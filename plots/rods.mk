@@ -3,6 +3,8 @@
 # rods-* subcommands and draws plots/rods*.gp into $(OUT)/rods-*.png and .svg.
 # Default sizes: 1000 rods to t = 1e4 (a few minutes on one core in all); PAPER=1: the
 # paper's 10^4 rods to t = 1e5.  A run that ends in collapse (the constant model) is expected.
+# Included by plots/plots.mk (`make plots`); the figure rules that write several files are
+# grouped targets (&:) so that make -j runs each gnuplot script once.
 HAFF ?= bin/haff
 OUT  ?= plots/out
 D    := $(OUT)/data
@@ -47,9 +49,9 @@ $(D)/rods-collapse.tsv: $(HAFF)
 	$(HAFF) rods-collapse --n 4,8,16,32,64 --eps 0.3,0.5,0.7,0.8,0.9,0.95 --seeds 3 --cpd 1000 > $@
 
 ENERGY := $(RUNS:%=$(D)/rods-%.energy.tsv)
-$(OUT)/rods-energy.png $(OUT)/rods-collisions.png $(OUT)/rods-damped.png $(OUT)/rods-damped50.png: $(ENERGY) plots/rods.gp
+$(OUT)/rods-energy.png $(OUT)/rods-collisions.png $(OUT)/rods-damped.png $(OUT)/rods-damped50.png &: $(ENERGY) plots/rods.gp
 	gnuplot -e "D='$(D)'; O='$(OUT)'" plots/rods.gp
-$(OUT)/rods-density.png $(OUT)/rods-phase.png $(OUT)/rods-local.png $(OUT)/rods-veldist.png $(OUT)/rods-gofr.png: $(D)/rods-stochastic.density.tsv $(D)/rods-stochastic.phase1.tsv $(D)/rods-stochastic.phase2.tsv $(D)/rods-stochastic.local.tsv $(D)/rods-stochastic.veldist.tsv $(D)/rods-stochastic.gofr.tsv plots/rods-local.gp
+$(OUT)/rods-density.png $(OUT)/rods-phase.png $(OUT)/rods-local.png $(OUT)/rods-veldist.png $(OUT)/rods-gofr.png &: $(D)/rods-stochastic.density.tsv $(D)/rods-stochastic.phase1.tsv $(D)/rods-stochastic.phase2.tsv $(D)/rods-stochastic.local.tsv $(D)/rods-stochastic.veldist.tsv $(D)/rods-stochastic.gofr.tsv plots/rods-local.gp
 	gnuplot -e "D='$(D)'; O='$(OUT)'" plots/rods-local.gp
 $(OUT)/rods-collapse.png: $(D)/rods-collapse.tsv plots/rods-collapse.gp
 	gnuplot -e "D='$(D)'; O='$(OUT)'" plots/rods-collapse.gp

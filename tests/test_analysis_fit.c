@@ -13,6 +13,7 @@
 #include <gsl/gsl_rng.h>
 #include <gsl/gsl_statistics_double.h>
 #include <math.h>
+#include <string.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -74,6 +75,28 @@ static void haff_fit_exact(void **state) {
   /* bad input */
   assert_int_equal(hd_fit_haff_log(t, tau, 2, 0.9, &f, &e), HD_EINPUT);
   tau[3] = NAN;
+  assert_int_equal(hd_fit_haff_log(t, tau, N, 0.9, &f, &e), HD_EINPUT);
+}
+
+/* Bug found on real runs (a = 2d dimers, plots/plots.mk): a run whose collisions pile up at one
+ * instant (a disk clamped in the gap of a dimer) has tau(t) with no cooling curvature; the fit
+ * used to return D_e ~ 1e64 with D_e_err = 0 as a success and Table I printed it.  Such fits
+ * must fail.  Data shaped like that run: 7 samples of normal cooling, then 160 more samples of
+ * 0.5 cpd each within 0.016 time units. */
+static void haff_fit_diverged(void **state) {
+  (void)state;
+  enum { N = 169 };
+  double t[N], tau[N];
+  for (int i = 0; i < N; i++) {
+    t[i] = i < 8 ? 0.85 * i : 6.8 + 1e-4 * (i - 7);
+    tau[i] = 0.5 * i;
+  }
+  hd_haff_fit f;
+  hd_error e;
+  assert_int_equal(hd_fit_haff_log(t, tau, N, 0.9, &f, &e), HD_EINPUT);
+  assert_non_null(strstr(e.msg, "diverged"));
+  /* a straight line tau = nu0 t at alpha < 1 (no cooling at all) also has no finite D_e */
+  for (int i = 0; i < N; i++) t[i] = 0.1 * i, tau[i] = 0.4 * t[i];
   assert_int_equal(hd_fit_haff_log(t, tau, N, 0.9, &f, &e), HD_EINPUT);
 }
 
@@ -158,6 +181,7 @@ static void linear_bad_input(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(haff_fit_coverage),        cmocka_unit_test(haff_fit_exact),
+      cmocka_unit_test(haff_fit_diverged),
       cmocka_unit_test(linear_ols_coverage),      cmocka_unit_test(linear_autocorr_coverage),
       cmocka_unit_test(linear_bad_input),
   };

@@ -1,0 +1,219 @@
+# plots/plots.mk: `make plots` (the top Makefile runs `$(MAKE) -f plots/plots.mk`).
+# Scene -> one database per run -> merged databases -> analysis -> figures and tables in
+# $(OUT); only what changed is rebuilt (every run depends on $(HAFF), its scene file and
+# plots/scripts/run.sh; every figure on its data and its .gp script; a change of the
+# parameters below rewrites $(DATA)/config.txt, which the merged databases depend on).
+# plots/README.md says what each output is; this build's numbers go to $(OUT)/README.md.
+#
+#   make plots                 default ensembles (2.5 minutes with make -j2 on 2 shared cores)
+#   make plots PAPER=1         larger ensembles and longer runs
+#   make plots ETA=0.1         another area fraction (runs go to their own folder)
+#   make -f plots/plots.mk plots-clean   removes $(OUT)
+# Also included: plots/fmean.mk (fig4, fmean) and plots/rods.mk (the rod paper's figures).
+.SUFFIXES:
+.DELETE_ON_ERROR:
+SHELL   := /bin/bash
+HAFF    ?= bin/haff
+OUT     ?= plots/out
+GNUPLOT ?= gnuplot
+SCRIPTS := plots/scripts
+DATA    := $(OUT)/data
+
+# --- parameters ------------------------------------------------------------------------------
+# area fraction of every dimer and disk scene
+ETA        ?= 0.05
+# dimers (and disks) in the Tables I-II / Figs. 2-3 runs
+NDIM       ?= 900
+ALPHAS     ?= 1 0.99 0.98 0.95 0.9 0.85 0.8
+AOVERD     ?= 0.5 1 1.5
+# a/d near 2: a disk of another dimer fits the gap between a dimer's disks (exactly at 2d):
+# these runs (alpha = GAP_ALPHA, NRUNS seeds) show why a = 2d is not in the tables (README)
+GAP_A      ?= 1.9 2 2.1
+GAP_ALPHA  ?= 0.9
+# long runs (NRUNS seeds, a = d) that go on until the homogeneity detector cuts them (README)
+LONG_ALPHA ?= 0.8
+LONG_CPD   ?= 300
+# the hard-disk reference (Fig. 2 dashed, Table I a/d = 0)
+DISK_ALPHAS ?= 0.95 0.9
+# Figs. 2-3 show these at a/d = FIG2_A
+FIG2_ALPHAS ?= 0.98 0.95 0.9 0.8
+FIG2_A     ?= 1
+# run length at alpha = 1
+ELASTIC_CPD ?= 200
+# errcost: D_e at this (alpha, a/d)
+ERR_ALPHA  ?= 0.9
+ERR_A      ?= 1
+# elastic runs with logged collisions for <f> (fmean_vs_engine)
+FMEAN_A    ?= 0.5 1 2
+ifeq ($(PAPER),1)
+# runs (seeds 1..NRUNS) per (alpha, a/d)
+NRUNS      ?= 20
+# runs stop at (1 - alpha^2) cpd = XMAX
+XMAX       ?= 24
+ERR_RUNS   ?= 128
+ERR_CPD    ?= 20 40 80 160 320
+FIG5_CPD   ?= 300
+MC_SAMPLES ?= 10000000
+else
+NRUNS      ?= 8
+XMAX       ?= 16
+ERR_RUNS   ?= 32
+ERR_CPD    ?= 20 40 80 160
+FIG5_CPD   ?= 100
+MC_SAMPLES ?= 1000000
+endif
+
+# run databases, in a folder per (ETA, NDIM, XMAX): runs of other settings stay and are reused
+RD      := $(DATA)/runs/eta$(ETA)-n$(NDIM)-x$(XMAX)
+SEEDS   := $(shell seq 1 $(NRUNS))
+ESEEDS  := $(shell seq 1001 $$((1000 + $(ERR_RUNS))))
+COMMON  := --set system.area_fraction=$(ETA)
+CONFIG  := ETA=$(ETA) NDIM=$(NDIM) NRUNS=$(NRUNS) XMAX=$(XMAX) ALPHAS=$(ALPHAS) AOVERD=$(AOVERD) GAP_A=$(GAP_A) GAP_ALPHA=$(GAP_ALPHA) \
+           LONG_ALPHA=$(LONG_ALPHA) LONG_CPD=$(LONG_CPD) \
+           DISK_ALPHAS=$(DISK_ALPHAS) FIG2_ALPHAS=$(FIG2_ALPHAS) FIG2_A=$(FIG2_A) \
+           ELASTIC_CPD=$(ELASTIC_CPD) ERR_ALPHA=$(ERR_ALPHA) ERR_A=$(ERR_A) ERR_RUNS=$(ERR_RUNS) \
+           ERR_CPD=$(ERR_CPD) FIG5_CPD=$(FIG5_CPD) FMEAN_A=$(FMEAN_A) MC_SAMPLES=$(MC_SAMPLES)
+# $(DATA)/config.txt is rewritten only when the parameters change
+$(shell mkdir -p $(DATA); echo '$(CONFIG)' | cmp -s - $(DATA)/config.txt || echo '$(CONFIG)' > $(DATA)/config.txt)
+
+PAPER_FIGS := fig1 fig2 fig3 fig5 fig6 errcost
+TABLES  := $(OUT)/table1.tsv $(OUT)/table1.md $(OUT)/table2.tsv $(OUT)/table2.md \
+           $(OUT)/fmean_vs_engine.tsv
+.PHONY: plots plots-clean
+plots: $(foreach f,$(PAPER_FIGS),$(OUT)/$(f).png $(OUT)/$(f).svg) $(TABLES) $(OUT)/README.md \
+       fmean-plots rods-plots
+
+include plots/fmean.mk
+include plots/rods.mk
+
+# stop_cpd for alpha $(1): (1 - alpha^2) cpd = XMAX, ELASTIC_CPD at alpha = 1
+stopcpd = $(shell awk 'BEGIN { a = $(1); printf "%.6g", a == 1 ? $(ELASTIC_CPD) : $(XMAX) / (1 - a * a) }')
+
+# RUN(db, scene, haff run options): one database per run (plots/scripts/run.sh)
+define RUN
+$(1): $(2) $(HAFF) $(SCRIPTS)/run.sh
+	@echo "run  $$@"
+	@$(SCRIPTS)/run.sh $(HAFF) $$@ $(2) $(COMMON) $(3)
+endef
+
+# --- Tables I-II, Figs. 2-3: dimers on the (alpha, a/d) grid, disks as the reference ----------
+dimer_db = $(RD)/dimers-a$(1)-al$(2)-s$(3).db
+disk_db  = $(RD)/disks-al$(1)-s$(2).db
+$(foreach a,$(AOVERD),$(foreach al,$(ALPHAS),$(foreach s,$(SEEDS),$(eval $(call RUN,$(call \
+  dimer_db,$(a),$(al),$(s)),scenes/paper-dimers.ini,--set dimers.count=$(NDIM) --set \
+  dimers.a=$(a) --set dimers.alpha=$(al) --set run.stop_cpd=$(call stopcpd,$(al)) --seed $(s))))))
+$(foreach al,$(DISK_ALPHAS),$(foreach s,$(SEEDS),$(eval $(call RUN,$(call disk_db,$(al),$(s)),\
+  scenes/paper-disks.ini,--set disks.count=$(NDIM) --set disks.alpha=$(al) --set \
+  run.stop_cpd=$(call stopcpd,$(al)) --seed $(s)))))
+
+GAP_DBS   := $(foreach a,$(GAP_A),$(foreach s,$(SEEDS),$(call dimer_db,$(a),$(GAP_ALPHA),$(s))))
+$(foreach a,$(filter-out $(AOVERD),$(GAP_A)),$(foreach s,$(SEEDS),$(eval $(call RUN,$(call \
+  dimer_db,$(a),$(GAP_ALPHA),$(s)),scenes/paper-dimers.ini,--set dimers.count=$(NDIM) --set \
+  dimers.a=$(a) --set dimers.alpha=$(GAP_ALPHA) --set run.stop_cpd=$(call stopcpd,$(GAP_ALPHA)) \
+  --seed $(s)))))
+LONG_DBS  := $(foreach s,$(SEEDS),$(RD)/long-a1-al$(LONG_ALPHA)-c$(LONG_CPD)-s$(s).db)
+$(foreach s,$(SEEDS),$(eval $(call RUN,$(RD)/long-a1-al$(LONG_ALPHA)-c$(LONG_CPD)-s$(s).db,\
+  scenes/paper-dimers.ini,--set dimers.count=$(NDIM) --set dimers.alpha=$(LONG_ALPHA) --set \
+  run.stop_cpd=$(LONG_CPD) --seed $(s))))
+GRID_DBS  := $(foreach a,$(AOVERD),$(foreach al,$(ALPHAS),$(foreach s,$(SEEDS),$(call dimer_db,$(a),$(al),$(s)))))
+DISK_DBS  := $(foreach al,$(DISK_ALPHAS),$(foreach s,$(SEEDS),$(call disk_db,$(al),$(s))))
+FIG23_DBS := $(foreach al,$(FIG2_ALPHAS),$(foreach s,$(SEEDS),$(call dimer_db,$(FIG2_A),$(al),$(s))))
+
+# MERGE(out, inputs): one database with every run of the inputs (plots/scripts/merge.sh)
+define MERGE
+$(1): $(2) $(SCRIPTS)/merge.sh $(DATA)/config.txt
+	@echo "merge $$@ ($(words $(2)) runs)"
+	@$(SCRIPTS)/merge.sh $$@ $(2)
+endef
+$(eval $(call MERGE,$(DATA)/tables.db,$(GRID_DBS) $(DISK_DBS)))
+$(eval $(call MERGE,$(DATA)/fig23.db,$(FIG23_DBS)))
+$(eval $(call MERGE,$(DATA)/disks.db,$(DISK_DBS)))
+$(eval $(call MERGE,$(DATA)/gap.db,$(GAP_DBS)))
+$(eval $(call MERGE,$(DATA)/long.db,$(LONG_DBS)))
+
+$(OUT)/table1.tsv: $(DATA)/tables.db $(HAFF)
+	$(HAFF) table1 $< -o $@
+$(OUT)/table1.md: $(DATA)/tables.db $(HAFF)
+	$(HAFF) table1 $< --md -o $@
+$(OUT)/table2.tsv: $(DATA)/tables.db $(HAFF)
+	$(HAFF) table2 $< -o $@
+$(OUT)/table2.md: $(DATA)/tables.db $(HAFF)
+	$(HAFF) table2 $< --md -o $@
+# per run: where the homogeneity detector cut the fit (README)
+$(DATA)/fits.tsv: $(DATA)/tables.db $(HAFF)
+	$(HAFF) haff-fit $< -o $@
+$(DATA)/fits-groups.tsv: $(DATA)/tables.db $(HAFF)
+	$(HAFF) haff-fit $< --alpha-group -o $@
+# a/d near 2 (README): per run its fate
+$(DATA)/gap.tsv: $(DATA)/gap.db
+	sqlite3 -header -separator $$'\t' $< "SELECT p.file, r.status, round(max(s.t), 4) AS t_end, \
+	  max(s.cpd) AS cpd_end, r.events, coalesce(r.message, '') AS message FROM runs r \
+	  JOIN plots_runs p ON p.run = r.id JOIN samples s ON s.run = r.id GROUP BY r.id ORDER BY r.id" > $@
+$(DATA)/gap-fits.tsv: $(DATA)/gap.db $(HAFF)
+	$(HAFF) haff-fit $< -o $@ 2> $(DATA)/gap-fits.err
+$(DATA)/long-fits.tsv: $(DATA)/long.db $(HAFF)
+	$(HAFF) haff-fit $< -o $@
+$(DATA)/energy.tsv: $(DATA)/fig23.db $(HAFF)
+	$(HAFF) energy $< -o $@
+$(DATA)/energy_disks.tsv: $(DATA)/disks.db $(HAFF)
+	$(HAFF) energy $< -o $@
+
+$(OUT)/fig2.png $(OUT)/fig2.svg: $(OUT)/fig2.%: $(DATA)/energy.tsv $(DATA)/energy_disks.tsv plots/fig2.gp
+	$(GNUPLOT) -e "in='$<'; ref='$(DATA)/energy_disks.tsv'; out='$@'" plots/fig2.gp
+$(OUT)/fig3.png $(OUT)/fig3.svg: $(OUT)/fig3.%: $(DATA)/energy.tsv plots/fig3.gp
+	$(GNUPLOT) -e "in='$<'; out='$@'" plots/fig3.gp
+
+# --- Fig. 1: 400 dimers, a = d, alpha = 0.95 -----------------------------------------------
+$(eval $(call RUN,$(RD)/fig1.db,scenes/paper-fig1.ini,--seed 1))
+$(DATA)/fig1.tsv: $(RD)/fig1.db $(SCRIPTS)/fig1data.sh
+	$(SCRIPTS)/fig1data.sh $< final > $@
+$(OUT)/fig1.png $(OUT)/fig1.svg: $(OUT)/fig1.%: $(DATA)/fig1.tsv plots/fig1.gp
+	$(GNUPLOT) -e "in='$<'; out='$@'; title='400 dimers, a = d, α = 0.95, η = $(ETA): final state'" plots/fig1.gp
+
+# --- Fig. 5 and <f>: logged collisions, alpha = 0.98 and 1 (a = d), elastic a/d = FMEAN_A ----
+$(eval $(call RUN,$(RD)/fig5-al0.98.db,scenes/paper-fig5.ini,--set dimers.alpha=0.98 --set run.stop_cpd=$(FIG5_CPD) --seed 1))
+$(eval $(call RUN,$(RD)/fig5-al1.db,scenes/paper-fig5.ini,--set dimers.alpha=1 --set run.stop_cpd=$(FIG5_CPD) --seed 2))
+FMEAN_DBS := $(foreach a,$(filter-out 1,$(FMEAN_A)),$(RD)/fmean-a$(a).db)
+$(foreach a,$(filter-out 1,$(FMEAN_A)),$(eval $(call RUN,$(RD)/fmean-a$(a).db,scenes/paper-fig5.ini,\
+  --set dimers.alpha=1 --set dimers.a=$(a) --set run.stop_cpd=$(FIG5_CPD) --seed 3)))
+$(eval $(call MERGE,$(DATA)/fig5.db,$(RD)/fig5-al0.98.db $(RD)/fig5-al1.db))
+$(eval $(call MERGE,$(DATA)/fmean.db,$(RD)/fig5-al0.98.db $(RD)/fig5-al1.db $(FMEAN_DBS)))
+$(DATA)/angles.tsv: $(DATA)/fig5.db $(HAFF)
+	$(HAFF) angles $< --run 1 -o $@
+# the elastic run as one block (its whole log): the bullets of Fig. 5
+$(DATA)/angles_elastic.tsv: $(DATA)/fig5.db $(HAFF)
+	$(HAFF) angles $< --run 2 -o $@ --block $$(sqlite3 $< \
+	  "SELECT count(*) FROM collisions WHERE run = 2 AND kind = 'dimer-dimer'")
+$(OUT)/fmean_vs_engine.tsv: $(DATA)/fmean.db $(HAFF) $(SCRIPTS)/fmean_engine.sh
+	$(SCRIPTS)/fmean_engine.sh $(HAFF) $< $(MC_SAMPLES) > $@
+$(OUT)/fig5.png $(OUT)/fig5.svg: $(OUT)/fig5.%: $(DATA)/angles.tsv $(DATA)/angles_elastic.tsv $(OUT)/fmean_vs_engine.tsv plots/fig5.gp
+	$(GNUPLOT) -e "in='$<'; in2='$(DATA)/angles_elastic.tsv'; fm='$(OUT)/fmean_vs_engine.tsv'; ad=1; out='$@'" plots/fig5.gp
+
+# --- Fig. 6: velocity snapshots at [log] velocities_at --------------------------------------
+$(eval $(call RUN,$(RD)/fig6.db,scenes/paper-fig6.ini,--seed 1))
+$(DATA)/veldist.tsv: $(RD)/fig6.db $(HAFF)
+	$(HAFF) veldist $< --run 1 -o $@
+$(DATA)/veldist_stats.tsv: $(RD)/fig6.db $(HAFF)
+	$(HAFF) veldist $< --run 1 --stats -o $@
+$(OUT)/fig6.png $(OUT)/fig6.svg: $(OUT)/fig6.%: $(DATA)/veldist.tsv plots/fig6.gp
+	$(GNUPLOT) -e "in='$<'; out='$@'" plots/fig6.gp
+
+# --- error of D_e against CPU time (issue 5) -------------------------------------------------
+err_db = $(RD)/err-a$(ERR_A)-al$(ERR_ALPHA)-c$(1)-s$(2).db
+$(foreach c,$(ERR_CPD),$(foreach s,$(ESEEDS),$(eval $(call RUN,$(call err_db,$(c),$(s)),\
+  scenes/paper-dimers.ini,--set dimers.count=$(NDIM) --set dimers.a=$(ERR_A) --set \
+  dimers.alpha=$(ERR_ALPHA) --set run.stop_cpd=$(c) --seed $(s)))))
+$(foreach c,$(ERR_CPD),$(eval $(call MERGE,$(DATA)/err-c$(c).db,$(foreach s,$(ESEEDS),$(call err_db,$(c),$(s))))))
+$(DATA)/errcost.tsv: $(foreach c,$(ERR_CPD),$(DATA)/err-c$(c).db) $(HAFF) $(SCRIPTS)/errcost.sh
+	$(SCRIPTS)/errcost.sh $(HAFF) $(foreach c,$(ERR_CPD),$(c):$(DATA)/err-c$(c).db) > $@
+$(OUT)/errcost.png $(OUT)/errcost.svg: $(OUT)/errcost.%: $(DATA)/errcost.tsv plots/errcost.gp
+	$(GNUPLOT) -e "in='$<'; out='$@'; title='D_e at α = $(ERR_ALPHA), a/d = $(ERR_A), $(NDIM) dimers, η = $(ETA)'" plots/errcost.gp
+
+# --- plots/out/README.md: plots/README.md and this build's numbers ---------------------------
+$(OUT)/README.md: plots/README.md $(SCRIPTS)/readme.sh $(TABLES) $(DATA)/fits.tsv \
+                  $(DATA)/fits-groups.tsv $(DATA)/gap.tsv $(DATA)/gap-fits.tsv \
+                  $(DATA)/long-fits.tsv $(DATA)/errcost.tsv $(DATA)/veldist_stats.tsv $(DATA)/config.txt
+	$(SCRIPTS)/readme.sh $(OUT) $(DATA) '$(CONFIG)' $(HAFF) > $@
+
+plots-clean: fmean-clean
+	rm -rf $(OUT)

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# plots/scripts/errcost.sh HAFF STOP_CPD:DB... > errcost.tsv
+# Error of D_e against the CPU time spent (issue 5).  Each DB holds the runs (same alpha, a/d,
+# different seeds) of one run length STOP_CPD, made by run.sh (table plots_runs has each run's
+# CPU seconds).  For R = 2, 4, 8, ... up to all the runs (and all of them), the first R runs
+# (in seed order) give the ensemble mean of the per-run fits of eq. (31) (`haff haff-fit`,
+# homogeneous part only) and its standard error sd/sqrt(R); cpu_seconds is the CPU time of those
+# R runs.  Columns: stop_cpd runs cpu_seconds D_e D_e_err cpd_fit_end
+# (cpd_fit_end: mean over the R runs of the cpd where the fit stopped: the run's end, or the
+# end of homogeneous cooling found by the detector).
+set -eu
+haff=$1
+shift
+first=1
+for arg in "$@"; do
+  L=${arg%%:*} db=${arg#*:}
+  [ $first = 1 ] || printf '\n\n'
+  first=0
+  printf 'runs to %s cpd\truns\tcpu_seconds\tD_e\tD_e_err\tcpd_fit_end\tD_e_err_all\n' "$L"
+  fits=$("$haff" haff-fit "$db" | awk -F '\t' 'NR > 1 { print $1 "\t" $9 "\t" $8 }')
+  cpu=$(sqlite3 -separator $'\t' "$db" "SELECT run, cpu_seconds FROM plots_runs ORDER BY run")
+  join -t $'\t' <(sort -k1,1 <<< "$fits") <(sort -k1,1 <<< "$cpu") | sort -n -k1,1 |
+    awk -F '\t' -v L="$L" '
+      { n++; de[n] = $2; ce[n] = $3; cpu[n] = $4 }
+      function sd(R,   i, s, ss, m) {
+        s = ss = 0
+        for (i = 1; i <= R; i++) s += de[i]
+        m = s / R
+        for (i = 1; i <= R; i++) ss += (de[i] - m) ^ 2
+        return sqrt(ss / (R - 1))
+      }
+      function row(R,   i, s, c, e) {
+        s = c = e = 0
+        for (i = 1; i <= R; i++) { s += de[i]; c += cpu[i]; e += ce[i] }
+        printf "%s\t%d\t%.4g\t%.6g\t%.4g\t%.4g\t%.4g\n", L, R, c, s / R, sd(R) / sqrt(R), e / R,
+               sd(n) / sqrt(R)
+      }
+      END { for (R = 2; R < n; R *= 2) row(R); if (n >= 2) row(n) }'
+done

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# plots/scripts/readme.sh OUT DATA CONFIG HAFF > OUT/README.md
+# plots/README.md followed by the numbers of this build: parameters, Tables I-II, where the
+# homogeneity detector cut the fits, <f> from the runs beside the Monte Carlo models, the
+# error-against-cost table and the velocity statistics of Fig. 6.
+set -eu
+out=$1 data=$2 config=$3 haff=$4
+cat plots/README.md
+tsv2md() { # TSV with a header row -> Markdown table
+  awk -F '\t' 'NR == 1 { h = "|"; s = "|"; for (i = 1; i <= NF; i++) { h = h " " $i " |"; s = s "---|" }
+                         print h; print s; next }
+               NF > 0 && $1 !~ /^#/ { r = "|"; for (i = 1; i <= NF; i++) r = r " " $i " |"; print r }' "$@"; }
+echo
+echo "## This build"
+echo
+echo "Made $(date -u '+%Y-%m-%d %H:%M UTC') by \`$("$haff" --version)\`."
+echo "Parameters (plots/plots.mk): \`$config\`."
+echo
+echo "### Table I (\`table1.tsv\`): D_e and ν0_eff/ν0, mean ± standard error over the runs"
+echo
+cat "$out/table1.md"
+echo
+echo "### Table II (\`table2.tsv\`): K = E_tr/E_rot = a0 + a1 τ, 99 % intervals"
+echo
+cat "$out/table2.md"
+echo
+echo "### Where the fits stopped (homogeneity detector, \`data/fits.tsv\` per run)"
+echo
+echo "Per (α, a/d): runs, how many the detector cut, the cpd where the fit ended (mean, min,"
+echo "max over the runs; a run not cut is fitted to its end) and the mean run length in cpd."
+echo
+awk -F '\t' 'NR == 1 { next }
+  { k = $2 "\t" $3 "\t" $4; if (!(k in n)) { ord[++m] = k; lo[k] = 1e300; hi[k] = -1 }
+    n[k]++; det[k] += $6; s[k] += $8; if ($8 < lo[k]) lo[k] = $8; if ($8 > hi[k]) hi[k] = $8 }
+  END { print "| species | α | a/d | runs | cut | cpd_end mean | min | max |"
+        print "|---|---|---|---|---|---|---|---|"
+        for (i = 1; i <= m; i++) { k = ord[i]; split(k, f, "\t")
+          printf "| %s | %s | %s | %d | %d | %.1f | %.1f | %.1f |\n", f[1], f[2], f[3], n[k], det[k],
+                 s[k] / n[k], lo[k], hi[k] } }' "$data/fits.tsv"
+echo
+echo "Long runs that go on until the detector cuts them (α = LONG_ALPHA, a = d, LONG_CPD cpd;"
+echo "\`data/long-fits.tsv\`): detected = 1 where it cut, cpd_end where; D_e fitted up to there."
+echo
+tsv2md "$data/long-fits.tsv"
+echo
+echo "### a/d near 2 (\`data/gap.tsv\`, \`data/gap-fits.tsv\`): the fate of each run"
+echo
+tsv2md "$data/gap.tsv"
+echo
+echo "Fits of eq. (31) to those runs (\`haff haff-fit\`; a failed fit shows nan, its reason below):"
+echo
+tsv2md "$data/gap-fits.tsv"
+echo
+sed 's/^/    /' "$data/gap-fits.err"
+echo
+echo "### ⟨f⟩ from the collision logs beside the Monte Carlo models (\`fmean_vs_engine.tsv\`)"
+echo
+tsv2md "$out/fmean_vs_engine.tsv"
+echo
+echo "### Error of D_e against CPU time (\`data/errcost.tsv\`, \`errcost.png\`)"
+echo
+awk -F '\t' 'BEGIN { print "| stop_cpd | runs | CPU s | ⟨D_e⟩ | standard error | fit ended at cpd | sd(all)/√R |"
+                     print "|---|---|---|---|---|---|---|" }
+             NF > 1 && $1 ~ /^[0-9.]+$/ { printf "| %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7 }' \
+  "$data/errcost.tsv"
+echo
+echo "### Fig. 6: velocity statistics per snapshot (\`data/veldist_stats.tsv\`)"
+echo
+tsv2md "$data/veldist_stats.tsv"

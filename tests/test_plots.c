@@ -1,0 +1,238 @@
+/* test_plots: the `make plots` pipeline (plots/plots.mk, plots/scripts, the plots .gp scripts) on tiny
+ * real data: runs of 50 dimers through bin/haff (env HAFF_BIN), merged databases, the analysis
+ * subcommands, then every gnuplot script of the pipeline rendered to PNG and SVG with nothing on
+ * stderr.  Also: the merge keeps every row and gives unique run ids, the TSV tables have their
+ * documented columns, and make rebuilds only what changed.  Skipped without gnuplot or
+ * HAFF_BIN, and in the sanitizer build (HAFF_SANITIZE=1: bin/haff is not instrumented there and
+ * the test would only repeat the normal build's work).  About 5 s. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <sqlite3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static char root[512], tmp[256], haff[512];
+
+/* make -f plots/plots.mk with the tiny parameters, from the repository root; MAKEFLAGS of an
+ * enclosing `make test` (jobserver descriptors) must not leak in */
+#define TINY                                                                                   \
+  "NDIM=50 NRUNS=2 ALPHAS='1 0.9 0.8' AOVERD=1 GAP_A=1.5 DISK_ALPHAS=0.9 "              \
+  "FIG2_ALPHAS='0.9 0.8' ELASTIC_CPD=40 ERR_RUNS=2 ERR_CPD='20 40' FIG5_CPD=25 FMEAN_A=1 "    \
+  "MC_SAMPLES=20000 XMAX=8"
+
+static int make(const char *flags, const char *targets, const char *log) {
+  char cmd[4096];
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -f "
+           "plots/plots.mk %s HAFF='%s' OUT='%s/out' " TINY " %s > '%s/%s' 2>&1",
+           root, flags, haff, tmp, targets, tmp, log);
+  return system(cmd);
+}
+
+static const char *data_targets =
+    "$T/data/energy.tsv $T/data/energy_disks.tsv $T/data/fig1.tsv $T/data/angles.tsv "
+    "$T/data/angles_elastic.tsv $T/data/veldist.tsv $T/data/errcost.tsv $T/table1.tsv "
+    "$T/table2.tsv $T/fmean_vs_engine.tsv";
+
+/* data_targets with $T replaced by tmp/out */
+static void targets(char *buf, size_t n) {
+  buf[0] = '\0';
+  for (const char *p = data_targets; *p; p++) {
+    size_t l = strlen(buf);
+    if (p[0] == '$' && p[1] == 'T') {
+      snprintf(buf + l, n - l, "%s/out", tmp);
+      p++;
+    } else if (l + 1 < n) {
+      buf[l] = *p, buf[l + 1] = '\0';
+    }
+  }
+}
+
+static int setup(void **state) {
+  (void)state;
+  const char *h = getenv("HAFF_BIN"), *san = getenv("HAFF_SANITIZE");
+  if (!h || !*h || (san && san[0] == '1')) return 0;
+  if (system("command -v gnuplot >/dev/null 2>&1 && command -v sqlite3 >/dev/null 2>&1") != 0)
+    return 0;
+  snprintf(haff, sizeof haff, "%s", h);
+  snprintf(root, sizeof root, "%s", h);
+  for (int k = 0; k < 2; k++) { /* HAFF_BIN = ROOT/bin/haff */
+    char *s = strrchr(root, '/');
+    if (!s) return 0;
+    *s = '\0';
+  }
+  snprintf(tmp, sizeof tmp, "/tmp/haff_test_plots_XXXXXX");
+  if (!mkdtemp(tmp)) tmp[0] = '\0';
+  return 0;
+}
+
+static int teardown(void **state) {
+  (void)state;
+  if (tmp[0]) {
+    char cmd[400];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
+    if (system(cmd) != 0) return -1;
+  }
+  return 0;
+}
+
+static void need(void) {
+  if (!root[0] || !tmp[0]) skip();
+}
+
+static void show_log(const char *log) {
+  char cmd[600];
+  snprintf(cmd, sizeof cmd, "tail -n 20 '%s/%s' >&2", tmp, log);
+  if (system(cmd) != 0) fprintf(stderr, "(no log)\n");
+}
+
+/* Builds every data file of the figures and tables through plots.mk; a second make has
+ * nothing to do; touching one run database remakes its merged database and what depends on
+ * it, and runs no simulation. */
+static void pipeline_and_rebuild(void **state) {
+  (void)state;
+  need();
+  char t[4096];
+  targets(t, sizeof t);
+  if (make("", t, "make1.log") != 0) {
+    show_log("make1.log");
+    fail_msg("make -f plots/plots.mk (tiny) failed");
+  }
+  assert_int_equal(make("-q", t, "make2.log"), 0); /* up to date */
+  char cmd[1024];
+  snprintf(cmd, sizeof cmd, "touch '%s/out/data/runs/eta0.05-n50-x8/dimers-a1-al0.9-s2.db'", tmp);
+  assert_int_equal(system(cmd), 0);
+  assert_int_equal(make("-n", t, "make3.log"), 0);
+  snprintf(cmd, sizeof cmd, "grep -q 'merge.sh .*/tables.db' '%s/make3.log'", tmp);
+  assert_int_equal(system(cmd), 0); /* the merged databases holding that run are remade */
+  snprintf(cmd, sizeof cmd, "grep -q 'table1 ' '%s/make3.log'", tmp);
+  assert_int_equal(system(cmd), 0);
+  snprintf(cmd, sizeof cmd, "grep -v 'is up to date' '%s/make3.log' | grep -q 'run\\.sh'", tmp);
+  assert_int_not_equal(system(cmd), 0); /* and no run */
+  snprintf(cmd, sizeof cmd, "grep -v 'is up to date' '%s/make3.log' | grep -q 'fig6\\|veldist'", tmp);
+  assert_int_not_equal(system(cmd), 0); /* nor what does not depend on it */
+  assert_int_equal(make("", t, "make4.log"), 0);
+}
+
+static long long count(sqlite3 *db, const char *sql) {
+  sqlite3_stmt *st;
+  if (sqlite3_prepare_v2(db, sql, -1, &st, NULL) != SQLITE_OK) fail_msg("%s: %s", sql, sqlite3_errmsg(db));
+  long long n = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int64(st, 0) : -1;
+  sqlite3_finalize(st);
+  return n;
+}
+
+/* The merged Fig. 5 database holds both runs with ids 1, 2 and every row of both inputs, each
+ * row under its own run (its scene's alpha). */
+static void merge_keeps_rows(void **state) {
+  (void)state;
+  need();
+  const char *in[2] = {"fig5-al0.98.db", "fig5-al1.db"};
+  char path[700];
+  long long sum[3] = {0, 0, 0}, per[2][3];
+  const char *q[3] = {"SELECT count(*) FROM collisions", "SELECT count(*) FROM samples",
+                      "SELECT count(*) FROM states"};
+  for (int k = 0; k < 2; k++) {
+    sqlite3 *db;
+    snprintf(path, sizeof path, "%s/out/data/runs/eta0.05-n50-x8/%s", tmp, in[k]);
+    assert_int_equal(sqlite3_open_v2(path, &db, SQLITE_OPEN_READONLY, NULL), SQLITE_OK);
+    assert_int_equal(count(db, "SELECT count(*) FROM runs"), 1);
+    for (int j = 0; j < 3; j++) sum[j] += per[k][j] = count(db, q[j]);
+    sqlite3_close(db);
+  }
+  assert_true(per[0][0] > 10000); /* FIG5_CPD = 25: 900 * 25 / 2 collisions logged */
+  sqlite3 *db;
+  snprintf(path, sizeof path, "%s/out/data/fig5.db", tmp);
+  assert_int_equal(sqlite3_open_v2(path, &db, SQLITE_OPEN_READONLY, NULL), SQLITE_OK);
+  assert_int_equal(count(db, "SELECT count(*) FROM runs"), 2);
+  assert_int_equal(count(db, "SELECT count(DISTINCT id) FROM runs WHERE id IN (1, 2)"), 2);
+  for (int j = 0; j < 3; j++) assert_int_equal(count(db, q[j]), sum[j]);
+  assert_int_equal(count(db, "SELECT count(*) FROM collisions WHERE run = 2"), per[1][0]);
+  assert_int_equal(count(db, "SELECT count(*) FROM runs WHERE id = 2 AND scene LIKE '%alpha = 1\n%'"), 1);
+  assert_int_equal(count(db, "SELECT count(*) FROM plots_runs WHERE run = 2 AND file = 'fig5-al1.db' "
+                             "AND cpu_seconds > 0"), 1);
+  sqlite3_close(db);
+}
+
+/* First line of a file, without the newline. */
+static void header(const char *file, char *buf, size_t n) {
+  char path[600];
+  snprintf(path, sizeof path, "%s/out/%s", tmp, file);
+  FILE *f = fopen(path, "r");
+  if (!f) fail_msg("%s: missing", path);
+  if (!fgets(buf, (int)n, f)) buf[0] = '\0';
+  fclose(f);
+  buf[strcspn(buf, "\n")] = '\0';
+}
+
+/* The TSV tables have the columns docs and plots/README.md promise, and at least one row. */
+static void tsv_columns(void **state) {
+  (void)state;
+  need();
+  const char *want[][2] = {
+      {"table1.tsv", "alpha\ta_over_d\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\truns"},
+      {"table2.tsv", "alpha\ta_over_d\ta0\ta0_lo\ta0_hi\ta1\ta1_lo\ta1_hi"},
+      {"fmean_vs_engine.tsv", "source\ta_over_d\talpha\tf_mean\tf_err\tD_over_f\tn"},
+      {"data/errcost.tsv", "runs to 20 cpd\truns\tcpu_seconds\tD_e\tD_e_err\tcpd_fit_end\tD_e_err_all"}};
+  char buf[512];
+  for (size_t i = 0; i < sizeof want / sizeof want[0]; i++) {
+    header(want[i][0], buf, sizeof buf);
+    if (strcmp(buf, want[i][1])) fail_msg("%s: header '%s', want '%s'", want[i][0], buf, want[i][1]);
+    char cmd[700];
+    snprintf(cmd, sizeof cmd, "test $(grep -c . '%s/out/%s') -ge 2", tmp, want[i][0]);
+    assert_int_equal(system(cmd), 0);
+  }
+  /* Table I holds the inelastic a = d rows with a finite D_e */
+  snprintf(buf, sizeof buf, "awk -F'\\t' '$1 == 0.9 && $2 == 1 && $3 > 2 && $3 < 5 { ok = 1 } "
+                            "END { exit !ok }' '%s/out/table1.tsv'", tmp);
+  assert_int_equal(system(buf), 0);
+}
+
+/* Every .gp script of the pipeline renders PNG and SVG from the tiny data, exit 0, nothing on
+ * stderr, a non-trivial file. */
+static void gnuplot_render(void **state) {
+  (void)state;
+  need();
+  const char *D = "out/data", *O = "out";
+  struct { const char *gp, *args; } s[] = {
+      {"fig1", "in='%1$s/%2$s/fig1.tsv'; title='test'"},
+      {"fig2", "in='%1$s/%2$s/energy.tsv'; ref='%1$s/%2$s/energy_disks.tsv'"},
+      {"fig3", "in='%1$s/%2$s/energy.tsv'"},
+      {"fig5", "in='%1$s/%2$s/angles.tsv'; in2='%1$s/%2$s/angles_elastic.tsv'; fm='%1$s/%3$s/fmean_vs_engine.tsv'; ad=1"},
+      {"fig6", "in='%1$s/%2$s/veldist.tsv'"},
+      {"errcost", "in='%1$s/%2$s/errcost.tsv'"}};
+  for (size_t i = 0; i < sizeof s / sizeof s[0]; i++)
+    for (int e = 0; e < 2; e++) {
+      const char *ext = e ? "svg" : "png";
+      char args[1024], cmd[4096], outf[400], errf[400];
+      snprintf(args, sizeof args, s[i].args, tmp, D, O);
+      snprintf(outf, sizeof outf, "%s/%s.%s", tmp, s[i].gp, ext);
+      snprintf(errf, sizeof errf, "%s/%s.%s.err", tmp, s[i].gp, ext);
+      snprintf(cmd, sizeof cmd, "gnuplot -e \"%s; out='%s'\" '%s/plots/%s.gp' 2>'%s'", args, outf,
+               root, s[i].gp, errf);
+      int rc = system(cmd);
+      FILE *f = fopen(errf, "r");
+      assert_non_null(f);
+      char buf[512] = "";
+      size_t got = fread(buf, 1, sizeof buf - 1, f);
+      fclose(f);
+      if (rc != 0 || got != 0) fail_msg("%s.%s: rc %d, stderr: %s", s[i].gp, ext, rc, buf);
+      f = fopen(outf, "r");
+      assert_non_null(f);
+      fseek(f, 0, SEEK_END);
+      assert_true(ftell(f) > 2000);
+      fclose(f);
+    }
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(pipeline_and_rebuild), cmocka_unit_test(merge_keeps_rows),
+      cmocka_unit_test(tsv_columns), cmocka_unit_test(gnuplot_render)};
+  return cmocka_run_group_tests(tests, setup, teardown);
+}
