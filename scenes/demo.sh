@@ -18,10 +18,10 @@ echo
 echo "== mean orientation factor <f> of the dimer-dimer collisions (paper: 0.64 for a = d)"
 sqlite3 -header -column "$db" < db/queries/mean_f_per_run.sql
 echo
-echo "== energy per dimer and K = E_tr/E_rot every 20 cpd (Haff's law: E falls as the cpd grow)"
-sqlite3 -header -column "$db" "SELECT round(cpd, 1) AS cpd, printf('%.4g', t) AS t,
+echo "== energy per dimer and K = E_tr/E_rot every 50 cpd (Haff: ln E falls linearly in cpd)"
+sqlite3 -header -column "$db" "SELECT round(cpd, 1) AS cpd, printf('%.4g', s.t) AS time,
   printf('%.5g', e_tr + e_rot) AS energy, printf('%.4f', e_tr / e_rot) AS K
-  FROM samples WHERE abs(cpd - 20 * round(cpd / 20)) < 1e-9 ORDER BY t"
+  FROM samples s WHERE abs(cpd - 50 * round(cpd / 50)) < 1e-9 ORDER BY s.t"
 echo
 echo "== eq. (31) fitted to this run: D_e and nu0_eff (paper, Table I: D_e ~ 3)"
 bin/haff haff-fit "$db" || true
