@@ -38,6 +38,7 @@ static int parse(int argc, char **argv, const char *usage, ropts *o) {
                                      {"min-size", 1, 0, 'm'}, {"x", 1, 0, 'x'},
                                      {"range", 1, 0, 'R'}, {"help", 0, 0, 'h'},
                                      {0, 0, 0, 0}};
+  memset(o, 0, sizeof *o); /* --bins was read uninitialised: its defaults never applied */
   o->run = -1;
   o->t = NAN;
   o->x = NAN;
