@@ -22,25 +22,18 @@ int haff_angles_main(int argc, char **argv) {
       "                   the run with a batch-means standard error (batches of N, >= 20 of them)\n"
       "  -o FILE          write to FILE instead of stdout\n";
   hd_cli_args a;
-  int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_BLOCK | HD_OPT_BINS, usage, &a);
+  sqlite3 *db;
+  hd_run_info ri;
+  int rc = hd_cli_one_run(argc, argv, HD_OPT_RUN | HD_OPT_BLOCK | HD_OPT_BINS, usage, &a, &db, &ri);
   if (rc) return rc < 0 ? 0 : rc;
-  if (a.run < 0) {
-    fprintf(stderr, "haff %s: --run ID is required\n", argv[0]);
-    return 2;
-  }
   int bins = a.bins ? a.bins : 36;
   hd_error err;
-  sqlite3 *db;
-  if (hd_ana_open(&db, a.db, &err)) return hd_cli_fail(argv[0], &err);
-  hd_run_info *ri;
-  size_t nr, n;
+  size_t n;
   double *ti, *tj, *f;
-  if (hd_ana_runs(db, a.run, &ri, &nr, &err) ||
-      hd_ana_dd_collisions(db, a.run, &ti, &tj, &f, &n, &err)) {
+  if (hd_ana_dd_collisions(db, a.run, &ti, &tj, &f, &n, &err)) {
     sqlite3_close(db);
     return hd_cli_fail(argv[0], &err);
   }
-  free(ri);
   sqlite3_close(db);
   if (n == 0) {
     free(ti), free(tj), free(f);

@@ -200,3 +200,41 @@ int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit 
   }
   return 0;
 }
+
+int hd_cli_groups(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits,
+                  size_t *n, hd_group **g, size_t *ng) {
+  int rc = hd_cli_fits(a, cmd, db, fits, n);
+  if (rc) return rc;
+  hd_error err;
+  if (hd_group_runs(*fits, *n, g, ng, &err)) {
+    free(*fits), *fits = NULL;
+    sqlite3_close(*db), *db = NULL;
+    return hd_cli_fail(cmd, &err);
+  }
+  return 0;
+}
+
+void hd_cli_groups_free(sqlite3 *db, hd_run_fit *fits, hd_group *g, size_t ng) {
+  free(fits), hd_groups_free(g, ng), sqlite3_close(db);
+}
+
+int hd_cli_one_run(int argc, char **argv, unsigned allowed, const char *usage, hd_cli_args *a,
+                   sqlite3 **db, hd_run_info *info) {
+  int rc = hd_cli_parse(argc, argv, allowed, usage, a);
+  if (rc) return rc;
+  if (a->run < 0) {
+    fprintf(stderr, "haff %s: --run ID is required\n", argv[0]);
+    return 2;
+  }
+  hd_error err;
+  if (hd_ana_open(db, a->db, &err)) return hd_cli_fail(argv[0], &err);
+  hd_run_info *ri;
+  size_t nr;
+  if (hd_ana_runs(*db, a->run, &ri, &nr, &err)) {
+    sqlite3_close(*db), *db = NULL;
+    return hd_cli_fail(argv[0], &err);
+  }
+  *info = ri[0];
+  free(ri);
+  return 0;
+}

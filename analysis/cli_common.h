@@ -56,6 +56,20 @@ int hd_cli_close(FILE *f, const hd_cli_args *a);
 int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits,
                 size_t *n);
 
+/* hd_cli_fits, then the fits grouped by (species, alpha, a/d) (hd_group_runs).  Returns as
+ * hd_cli_fits (nothing left open on failure); on 0 free with hd_cli_groups_free. */
+int hd_cli_groups(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits,
+                  size_t *n, hd_group **g, size_t *ng);
+
+/* Frees what hd_cli_groups returned and closes the database. */
+void hd_cli_groups_free(sqlite3 *db, hd_run_fit *fits, hd_group *g, size_t ng);
+
+/* The start of a subcommand on one run: hd_cli_parse, then --run ID is required, the database
+ * is opened and the run's info read into *info.  Returns as hd_cli_parse (-1 after --help), or
+ * the exit code after printing one line; on 0 *db is open (the caller closes it). */
+int hd_cli_one_run(int argc, char **argv, unsigned allowed, const char *usage, hd_cli_args *a,
+                   sqlite3 **db, hd_run_info *info);
+
 /* Prints the error of a failed library call as "haff CMD: msg" and returns its exit code. */
 int hd_cli_fail(const char *cmd, const hd_error *err);
 

@@ -71,19 +71,15 @@ int haff_energy_main(int argc, char **argv) {
   if (rc) return rc < 0 ? 0 : rc;
   sqlite3 *db;
   hd_run_fit *fits;
-  size_t n, ng;
-  if ((rc = hd_cli_fits(&a, argv[0], &db, &fits, &n))) return rc;
   hd_group *g;
+  size_t n, ng;
+  if ((rc = hd_cli_groups(&a, argv[0], &db, &fits, &n, &g, &ng))) return rc;
   hd_error err;
-  if (hd_group_runs(fits, n, &g, &ng, &err)) {
-    free(fits), sqlite3_close(db);
-    return hd_cli_fail(argv[0], &err);
-  }
   FILE *out = hd_cli_out(&a);
   rc = out ? 0 : 1;
   for (size_t j = 0; out && j < ng && !rc; j++)
     if (write_block(out, db, fits, g[j].idx, g[j].n, j == 0, &err)) rc = hd_cli_fail(argv[0], &err);
-  free(fits), hd_groups_free(g, ng), sqlite3_close(db);
+  hd_cli_groups_free(db, fits, g, ng);
   if (out) {
     int c = hd_cli_close(out, &a);
     if (!rc) rc = c;

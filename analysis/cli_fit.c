@@ -100,18 +100,13 @@ int haff_table1_main(int argc, char **argv) {
   if (rc) return rc < 0 ? 0 : rc;
   sqlite3 *db;
   hd_run_fit *fits;
-  size_t n, ng;
-  if ((rc = hd_cli_fits(&a, argv[0], &db, &fits, &n))) return rc;
   hd_group *g;
-  hd_error err;
-  if (hd_group_runs(fits, n, &g, &ng, &err)) {
-    free(fits), sqlite3_close(db);
-    return hd_cli_fail(argv[0], &err);
-  }
+  size_t n, ng;
+  if ((rc = hd_cli_groups(&a, argv[0], &db, &fits, &n, &g, &ng))) return rc;
   FILE *out = hd_cli_out(&a);
   double *v = malloc(4 * n * sizeof *v);
   if (!out || !v) {
-    free(v), free(fits), hd_groups_free(g, ng), sqlite3_close(db);
+    free(v), hd_cli_groups_free(db, fits, g, ng);
     if (out) hd_cli_close(out, &a);
     return 1;
   }
@@ -136,7 +131,7 @@ int haff_table1_main(int argc, char **argv) {
       fprintf(out, "%g\t%g\t%.6g\t%.3g\t%.6g\t%.3g\t%zu\n", g[j].alpha, g[j].a_over_d, D, Derr, R,
               Rerr, m);
   }
-  free(v), free(fits), hd_groups_free(g, ng), sqlite3_close(db);
+  free(v), hd_cli_groups_free(db, fits, g, ng);
   return hd_cli_close(out, &a);
 }
 
@@ -158,17 +153,12 @@ int haff_table2_main(int argc, char **argv) {
   if (rc) return rc < 0 ? 0 : rc;
   sqlite3 *db;
   hd_run_fit *fits;
-  size_t n, ng;
-  if ((rc = hd_cli_fits(&a, argv[0], &db, &fits, &n))) return rc;
   hd_group *g;
-  hd_error err;
-  if (hd_group_runs(fits, n, &g, &ng, &err)) {
-    free(fits), sqlite3_close(db);
-    return hd_cli_fail(argv[0], &err);
-  }
+  size_t n, ng;
+  if ((rc = hd_cli_groups(&a, argv[0], &db, &fits, &n, &g, &ng))) return rc;
   FILE *out = hd_cli_out(&a);
   if (!out) {
-    free(fits), hd_groups_free(g, ng), sqlite3_close(db);
+    hd_cli_groups_free(db, fits, g, ng);
     return 1;
   }
   if (a.md)
@@ -176,6 +166,7 @@ int haff_table2_main(int argc, char **argv) {
   else
     fprintf(out, "alpha\ta_over_d\ta0\ta0_lo\ta0_hi\ta1\ta1_lo\ta1_hi\n");
   int bad = 0;
+  hd_error err;
   for (size_t j = 0; j < ng; j++) {
     if (g[j].species != HD_ANA_DIMERS) continue;
     double r[6];
@@ -191,7 +182,7 @@ int haff_table2_main(int argc, char **argv) {
       fprintf(out, "%g\t%g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\n", g[j].alpha, g[j].a_over_d, r[0],
               r[1], r[2], r[3], r[4], r[5]);
   }
-  free(fits), hd_groups_free(g, ng), sqlite3_close(db);
+  hd_cli_groups_free(db, fits, g, ng);
   rc = hd_cli_close(out, &a);
   return rc ? rc : bad;
 }

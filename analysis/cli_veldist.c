@@ -29,25 +29,15 @@ int haff_veldist_main(int argc, char **argv) {
       "  --label L        states label [velocities] (e.g. initial, final)\n"
       "  -o FILE          write to FILE instead of stdout\n";
   hd_cli_args a;
-  int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS, usage, &a);
+  sqlite3 *db;
+  hd_run_info ri;
+  int rc = hd_cli_one_run(argc, argv, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS, usage, &a, &db, &ri);
   if (rc) return rc < 0 ? 0 : rc;
-  if (a.run < 0) {
-    fprintf(stderr, "haff %s: --run ID is required\n", argv[0]);
-    return 2;
-  }
   int bins = a.bins ? a.bins : 40;
   hd_error err;
-  sqlite3 *db;
-  if (hd_ana_open(&db, a.db, &err)) return hd_cli_fail(argv[0], &err);
-  hd_run_info *ri;
-  size_t nr, ns;
+  size_t ns;
   hd_snapshot *sn;
-  if (hd_ana_runs(db, a.run, &ri, &nr, &err)) {
-    sqlite3_close(db);
-    return hd_cli_fail(argv[0], &err);
-  }
-  int dimers = ri[0].species != HD_ANA_DISKS;
-  free(ri);
+  int dimers = ri.species != HD_ANA_DISKS;
   rc = hd_ana_snapshots(db, a.run, a.label, dimers ? "dimer" : "disk", &sn, &ns, &err);
   sqlite3_close(db);
   if (rc) return hd_cli_fail(argv[0], &err);

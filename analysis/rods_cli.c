@@ -8,17 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hd_ana_cli.h"
 #include "hd_scene.h"
 #include "hd_sim.h"
 #include "rods.h"
-
-int haff_rods_energy_main(int argc, char **argv);
-int haff_rods_density_main(int argc, char **argv);
-int haff_rods_phase_main(int argc, char **argv);
-int haff_rods_gofr_main(int argc, char **argv);
-int haff_rods_veldist_main(int argc, char **argv);
-int haff_rods_clusters_main(int argc, char **argv);
-int haff_rods_collapse_main(int argc, char **argv);
 
 /* Options shared by the DB readers. */
 typedef struct ropts {
@@ -38,6 +31,7 @@ static int parse(int argc, char **argv, const char *usage, ropts *o) {
                                      {"min-size", 1, 0, 'm'}, {"x", 1, 0, 'x'},
                                      {"range", 1, 0, 'R'}, {"help", 0, 0, 'h'},
                                      {0, 0, 0, 0}};
+  memset(o, 0, sizeof *o); /* --bins was read uninitialised: its defaults never applied */
   o->run = -1;
   o->t = NAN;
   o->x = NAN;
@@ -121,9 +115,21 @@ static int open_run(const char *cmd, const ropts *o, rrun *r) {
   return rc;
 }
 
-static void close_run(rrun *r) {
+/* Closes what open_run opened; returns 0, the exit code of a command that got this far. */
+static int close_run(rrun *r) {
   hd_scene_free(&r->sc);
   sqlite3_close(r->db);
+  return 0;
+}
+
+/* The common start of the DB readers: parses the options (bins: the --bins default, 0 for none)
+ * and opens the run.  Returns 0 to go on, -1 after --help (the caller returns 0), else the exit
+ * code (nothing left open). */
+static int start(int argc, char **argv, const char *usage, int bins, ropts *o, rrun *r) {
+  int rc = parse(argc, argv, usage, o);
+  if (rc) return rc;
+  if (o->bins == 0) o->bins = bins;
+  return open_run(argv[0], o, r);
 }
 
 /* Snapshot times of the run (labels initial, velocities, final), ascending; malloc'd. */
@@ -150,13 +156,21 @@ static long snap_times(rrun *r, double **t) {
   return n;
 }
 
-/* The rods at snapshot time t: x, v, T_B by body index (arrays of sc.n_rods, malloc'd). */
-static int snapshot(rrun *r, double t, double **x, double **v, double **tb) {
+/* One snapshot: its time and x, v, T_B by body index (arrays of sc.n_rods, malloc'd). */
+typedef struct rsnap {
+  double t, *x, *v, *tb;
+} rsnap;
+
+static void snap_free(rsnap *s) { free(s->x), free(s->v), free(s->tb); }
+
+/* The rods at snapshot time t into s (snap_free). */
+static int snapshot(rrun *r, double t, rsnap *s) {
   long n = r->sc.n_rods;
-  *x = calloc((size_t)n, sizeof(double));
-  *v = calloc((size_t)n, sizeof(double));
-  *tb = calloc((size_t)n, sizeof(double));
-  if (!*x || !*v || !*tb) return 1;
+  s->t = t;
+  s->x = calloc((size_t)n, sizeof(double));
+  s->v = calloc((size_t)n, sizeof(double));
+  s->tb = calloc((size_t)n, sizeof(double));
+  if (!s->x || !s->v || !s->tb) return 1;
   sqlite3_stmt *st;
   if (sqlite3_prepare_v2(r->db,
                          "SELECT body, x, vx, omega FROM states WHERE run = ?1 AND kind = 'rod' "
@@ -168,9 +182,9 @@ static int snapshot(rrun *r, double t, double **x, double **v, double **tb) {
   while (sqlite3_step(st) == SQLITE_ROW) {
     long b = (long)sqlite3_column_int64(st, 0);
     if (b < 0 || b >= n) continue;
-    (*x)[b] = sqlite3_column_double(st, 1);
-    (*v)[b] = sqlite3_column_double(st, 2);
-    (*tb)[b] = sqlite3_column_double(st, 3);
+    s->x[b] = sqlite3_column_double(st, 1);
+    s->v[b] = sqlite3_column_double(st, 2);
+    s->tb[b] = sqlite3_column_double(st, 3);
   }
   sqlite3_finalize(st);
   return 0;
@@ -198,6 +212,21 @@ static int pick_time(const char *cmd, rrun *r, const ropts *o, double *t) {
   return 0;
 }
 
+/* start(), then the snapshot nearest --t (or the last) into s.  Returns as start(); 1 (run
+ * closed) when the run has no snapshots. */
+static int start_at(int argc, char **argv, const char *usage, int bins, ropts *o, rrun *r,
+                    rsnap *s) {
+  int rc = start(argc, argv, usage, bins, o, r);
+  if (rc) return rc;
+  double t;
+  if (pick_time(argv[0], r, o, &t)) {
+    close_run(r);
+    return 1;
+  }
+  snapshot(r, t, s);
+  return 0;
+}
+
 /* ---- rods-energy ------------------------------------------------------------------------------ */
 
 int haff_rods_energy_main(int argc, char **argv) {
@@ -209,10 +238,9 @@ int haff_rods_energy_main(int argc, char **argv) {
       "e_kin_stat = the equipartition value (docs/rods.md); coll_ideal and coll_eq35: the\n"
       "stationary collision count rate*t from the 1D ideal gas and from the paper's eq. (35).\n";
   ropts o;
-  int rc = parse(argc, argv, usage, &o);
-  if (rc) return rc < 0 ? 0 : rc;
   rrun r;
-  if ((rc = open_run(argv[0], &o, &r))) return rc;
+  int rc = start(argc, argv, usage, 0, &o, &r);
+  if (rc) return rc < 0 ? 0 : rc;
   const hd_scene *sc = &r.sc;
   long N = sc->n_rods, nmod = sc->rod_nmod;
   double e0 = 0.5 * sc->rod_temperature; /* E_kin(0) per rod */
@@ -235,8 +263,7 @@ int haff_rods_energy_main(int argc, char **argv) {
            eb / (double)nmod, es, rate_i * t, rate_35 * t);
   }
   sqlite3_finalize(st);
-  close_run(&r);
-  return 0;
+  return close_run(&r);
 }
 
 /* ---- rods-density ----------------------------------------------------------------------------- */
@@ -249,11 +276,9 @@ int haff_rods_density_main(int argc, char **argv) {
       "(or the one nearest --t).  Columns t bin x rho e_local; a blank line after each\n"
       "snapshot (gnuplot pm3d).\n";
   ropts o;
-  int rc = parse(argc, argv, usage, &o);
-  if (rc) return rc < 0 ? 0 : rc;
-  if (o.bins == 0) o.bins = 100;
   rrun r;
-  if ((rc = open_run(argv[0], &o, &r))) return rc;
+  int rc = start(argc, argv, usage, 100, &o, &r);
+  if (rc) return rc < 0 ? 0 : rc;
   long N = r.sc.n_rods;
   double *ts;
   long nt = snap_times(&r, &ts);
@@ -266,27 +291,26 @@ int haff_rods_density_main(int argc, char **argv) {
   double *ek = calloc((size_t)o.bins, sizeof *ek);
   printf("t\tbin\tx\trho\te_local\n");
   for (long k = 0; k < nt; k++) {
-    double *x, *v, *tb;
-    snapshot(&r, ts[k], &x, &v, &tb);
+    rsnap s;
+    snapshot(&r, ts[k], &s);
     memset(cnt, 0, (size_t)o.bins * sizeof *cnt);
     memset(ek, 0, (size_t)o.bins * sizeof *ek);
     for (long i = 0; i < N; i++) {
-      long b = (long)(x[i] / (double)N * o.bins);
+      long b = (long)(s.x[i] / (double)N * o.bins);
       if (b >= o.bins) b = o.bins - 1;
       if (b < 0) b = 0;
       cnt[b]++;
-      ek[b] += 0.5 * mass(&r.sc, i) * v[i] * v[i];
+      ek[b] += 0.5 * mass(&r.sc, i) * s.v[i] * s.v[i];
     }
     double mean = (double)N / o.bins;
     for (int b = 0; b < o.bins; b++)
       printf("%.10g\t%d\t%.6g\t%.6g\t%.6g\n", ts[k], b, (b + 0.5) * (double)N / o.bins,
              (double)cnt[b] / mean, cnt[b] ? ek[b] / (double)cnt[b] : NAN);
     printf("\n");
-    free(x), free(v), free(tb);
+    snap_free(&s);
   }
   free(cnt), free(ek), free(ts);
-  close_run(&r);
-  return 0;
+  return close_run(&r);
 }
 
 /* ---- rods-phase ------------------------------------------------------------------------------- */
@@ -297,22 +321,15 @@ int haff_rods_phase_main(int argc, char **argv) {
       "Fig. 5 data: phase space of the snapshot nearest --t (default the last): columns\n"
       "body x v tb (bath temperature).\n";
   ropts o;
-  int rc = parse(argc, argv, usage, &o);
-  if (rc) return rc < 0 ? 0 : rc;
   rrun r;
-  if ((rc = open_run(argv[0], &o, &r))) return rc;
-  double t, *x, *v, *tb;
-  if (pick_time(argv[0], &r, &o, &t)) {
-    close_run(&r);
-    return 1;
-  }
-  snapshot(&r, t, &x, &v, &tb);
-  printf("# t = %.10g\nbody\tx\tv\ttb\n", t);
+  rsnap s;
+  int rc = start_at(argc, argv, usage, 0, &o, &r, &s);
+  if (rc) return rc < 0 ? 0 : rc;
+  printf("# t = %.10g\nbody\tx\tv\ttb\n", s.t);
   for (long i = 0; i < r.sc.n_rods; i++)
-    printf("%ld\t%.8g\t%.8g\t%.6g\n", i, x[i], v[i], tb[i]);
-  free(x), free(v), free(tb);
-  close_run(&r);
-  return 0;
+    printf("%ld\t%.8g\t%.8g\t%.6g\n", i, s.x[i], s.v[i], s.tb[i]);
+  snap_free(&s);
+  return close_run(&r);
 }
 
 /* ---- rods-gofr -------------------------------------------------------------------------------- */
@@ -324,17 +341,11 @@ int haff_rods_gofr_main(int argc, char **argv) {
       "so that uniformly placed rods give 1, on N bins [200] of [0, X] [50], at the snapshot\n"
       "nearest --t.  Columns x g.\n";
   ropts o;
-  int rc = parse(argc, argv, usage, &o);
-  if (rc) return rc < 0 ? 0 : rc;
-  if (o.bins == 0) o.bins = 200;
   rrun r;
-  if ((rc = open_run(argv[0], &o, &r))) return rc;
-  double t, *x, *v, *tb;
-  if (pick_time(argv[0], &r, &o, &t)) {
-    close_run(&r);
-    return 1;
-  }
-  snapshot(&r, t, &x, &v, &tb);
+  rsnap s;
+  int rc = start_at(argc, argv, usage, 200, &o, &r, &s);
+  if (rc) return rc < 0 ? 0 : rc;
+  const double *x = s.x;
   long N = r.sc.n_rods;
   double L = (double)N, dx = o.range / o.bins;
   double *h = calloc((size_t)o.bins, sizeof *h);
@@ -345,26 +356,38 @@ int haff_rods_gofr_main(int argc, char **argv) {
       long b = (long)(d / dx);
       if (b < o.bins) h[b] += 2;
     }
-  printf("# t = %.10g\nx\tg\n", t);
+  printf("# t = %.10g\nx\tg\n", s.t);
   for (int b = 0; b < o.bins; b++) /* uniform: N (N-1) 2 dx / L ordered pairs per bin */
     printf("%.6g\t%.6g\n", (b + 0.5) * dx, h[b] / ((double)N * (double)(N - 1) * 2 * dx / L));
-  free(h), free(x), free(v), free(tb);
-  close_run(&r);
-  return 0;
+  free(h), snap_free(&s);
+  return close_run(&r);
 }
 
 /* ---- clusters --------------------------------------------------------------------------------- */
 
 /* Clusters of a snapshot: maximal runs of ring neighbours (in position order) closer than gap.
- * start[c], size[c]; returns the count.  order[] gets the rods sorted by x. */
+ * start[c], size[c]; order[] gets the rods sorted by x.  Arrays of n rods (clusters_alloc). */
+typedef struct rclusters {
+  long *order, *start, *size;
+} rclusters;
+
+static void clusters_alloc(rclusters *cl, long n) {
+  cl->order = malloc((size_t)n * sizeof *cl->order);
+  cl->start = malloc((size_t)n * sizeof *cl->start);
+  cl->size = malloc((size_t)n * sizeof *cl->size);
+}
+
+static void clusters_free(rclusters *cl) { free(cl->order), free(cl->start), free(cl->size); }
+
 static long *g_sort_x;
 static int by_x(const void *a, const void *b) {
   double xa = ((const double *)g_sort_x)[*(const long *)a],
          xb = ((const double *)g_sort_x)[*(const long *)b];
   return (xa > xb) - (xa < xb);
 }
-static long find_clusters(const double *x, long n, double gap, long *order, long *start,
-                          long *size) {
+/* Finds the clusters of x[0..n-1] into cl; returns their count. */
+static long find_clusters(const double *x, long n, double gap, rclusters *cl) {
+  long *order = cl->order, *start = cl->start, *size = cl->size;
   for (long i = 0; i < n; i++)
     order[i] = i;
   g_sort_x = (long *)(void *)x;
@@ -402,21 +425,16 @@ int haff_rods_veldist_main(int argc, char **argv) {
       "[0.1 mean spacings].  Columns w p_all p_cluster gauss_all gauss_cluster (Gaussians with\n"
       "the sample's mean and variance); header comments give the cluster and the moments.\n";
   ropts o;
-  int rc = parse(argc, argv, usage, &o);
-  if (rc) return rc < 0 ? 0 : rc;
-  if (o.bins == 0) o.bins = 40;
   rrun r;
-  if ((rc = open_run(argv[0], &o, &r))) return rc;
-  double t, *x, *v, *tb;
-  if (pick_time(argv[0], &r, &o, &t)) {
-    close_run(&r);
-    return 1;
-  }
-  snapshot(&r, t, &x, &v, &tb);
+  rsnap s;
+  int rc = start_at(argc, argv, usage, 40, &o, &r, &s);
+  if (rc) return rc < 0 ? 0 : rc;
   long N = r.sc.n_rods;
-  long *order = malloc((size_t)N * sizeof *order), *start = malloc((size_t)N * sizeof *start),
-       *size = malloc((size_t)N * sizeof *size);
-  long nc = find_clusters(x, N, o.gap, order, start, size), pick = 0;
+  rclusters cl;
+  clusters_alloc(&cl, N);
+  const double *x = s.x, *v = s.v;
+  const long *order = cl.order, *start = cl.start, *size = cl.size;
+  long nc = find_clusters(x, N, o.gap, &cl), pick = 0;
   for (long c = 0; c < nc; c++) {
     if (isnan(o.x)) {
       if (size[c] > size[pick]) pick = c;
@@ -452,7 +470,7 @@ int haff_rods_veldist_main(int argc, char **argv) {
     long b = (long)((w[order[(start[pick] + m) % N]] - lo) / dw);
     hc[b < o.bins ? b : o.bins - 1] += 1.0 / ((double)ncl * dw);
   }
-  printf("# t = %.10g; %ld clusters (gap < %g); cluster: %ld rods around x = %.6g\n", t, nc, o.gap,
+  printf("# t = %.10g; %ld clusters (gap < %g); cluster: %ld rods around x = %.6g\n", s.t, nc, o.gap,
          ncl, x[order[(start[pick] + ncl / 2) % N]]);
   printf("# all: mean %.6g sd %.6g; cluster: mean %.6g sd %.6g\n", ma, sa, mc, scl);
   printf("w\tp_all\tp_cluster\tgauss_all\tgauss_cluster\n");
@@ -463,9 +481,8 @@ int haff_rods_veldist_main(int argc, char **argv) {
                         : NAN;
     printf("%.6g\t%.6g\t%.6g\t%.6g\t%.6g\n", c, ha[b], hc[b], ga, gc);
   }
-  free(w), free(ha), free(hc), free(order), free(start), free(size), free(x), free(v), free(tb);
-  close_run(&r);
-  return 0;
+  free(w), free(ha), free(hc), clusters_free(&cl), snap_free(&s);
+  return close_run(&r);
 }
 
 int haff_rods_clusters_main(int argc, char **argv) {
@@ -474,28 +491,27 @@ int haff_rods_clusters_main(int argc, char **argv) {
       "Clusters per snapshot (maximal runs of rods closer than G [0.1] to their neighbour, at\n"
       "least M [10] rods): columns t clusters largest in_clusters (fraction of rods in them).\n";
   ropts o;
-  int rc = parse(argc, argv, usage, &o);
-  if (rc) return rc < 0 ? 0 : rc;
   rrun r;
-  if ((rc = open_run(argv[0], &o, &r))) return rc;
+  int rc = start(argc, argv, usage, 0, &o, &r);
+  if (rc) return rc < 0 ? 0 : rc;
   long N = r.sc.n_rods;
   double *ts;
   long nt = snap_times(&r, &ts);
-  long *order = malloc((size_t)N * sizeof *order), *start = malloc((size_t)N * sizeof *start),
-       *size = malloc((size_t)N * sizeof *size);
+  rclusters cl;
+  clusters_alloc(&cl, N);
+  const long *size = cl.size;
   printf("t\tclusters\tlargest\tin_clusters\n");
   for (long k = 0; k < nt; k++) {
-    double *x, *v, *tb;
-    snapshot(&r, ts[k], &x, &v, &tb);
-    long nc = find_clusters(x, N, o.gap, order, start, size), big = 0, cnt = 0, in = 0;
+    rsnap s;
+    snapshot(&r, ts[k], &s);
+    long nc = find_clusters(s.x, N, o.gap, &cl), big = 0, cnt = 0, in = 0;
     for (long c = 0; c < nc; c++)
       if (size[c] >= o.minsize) cnt++, in += size[c], big = size[c] > big ? size[c] : big;
     printf("%.10g\t%ld\t%ld\t%.6g\n", ts[k], cnt, big, (double)in / (double)N);
-    free(x), free(v), free(tb);
+    snap_free(&s);
   }
-  free(order), free(start), free(size), free(ts);
-  close_run(&r);
-  return 0;
+  clusters_free(&cl), free(ts);
+  return close_run(&r);
 }
 
 /* ---- rods-collapse ---------------------------------------------------------------------------- */
