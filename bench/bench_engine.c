@@ -27,7 +27,7 @@ int main(int argc, char **argv) {
   long n = atol(argv[2]);
   double eta = atof(argv[3]);
   int log = atoi(argv[4]);
-  long ncoll = argc > 5 ? atol(argv[5]) : 20 * n;
+  long ncoll = argc > 5 ? atol(argv[5]) : 2 * n;
   if (ncoll < 2000000) ncoll = 2000000;
   hd_scene sc;
   memset(&sc, 0, sizeof sc);

@@ -27,7 +27,8 @@ cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
   echo "Measured $(date -u '+%Y-%m-%d %H:%M UTC') on: $cpu, $(nproc) cores (one used), $(free -g | awk '/Mem/{print $2}') GiB;"
   echo "haff $(git rev-parse --short HEAD 2>/dev/null || echo '?'), gcc $(gcc -dumpversion), -O2."
   echo "Elastic gas, unit diameter and mass, T = 1; each row is $(basename "$bin") KIND N ETA LOG:"
-  echo "timed over >= 2e6 collisions after a warm-up of N/2; logging = every collision to SQLite."
+  echo "timed over max(2e6, 2N) collisions after a warm-up of N/2 collisions (disks at 0.45 start"
+  echo "from a lattice, the others from random placement); logging = every collision to SQLite (\`[log] collisions = all\`)."
   echo
   echo "| kind | N | area fraction | logging | collisions/s | events/s | stale events | logged/unlogged | vs N = 1e3 |"
   echo "|---|---|---|---|---|---|---|---|---|"

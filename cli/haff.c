@@ -1,5 +1,6 @@
 /* bin/haff: dispatches to the subcommands listed in commands[] below. */
 #include "haff.h"
+#include "hd_ana_cli.h" /* the analysis subcommands */
 
 #include <stdio.h>
 #include <string.h>
@@ -8,21 +9,6 @@ int haff_run_main(int argc, char **argv);
 int haff_resume_main(int argc, char **argv);
 int haff_mc_main(int argc, char **argv);
 int haff_export_main(int argc, char **argv);
-/* analysis/ (analysis/hd_ana_cli.h) */
-int haff_fit_main(int argc, char **argv);
-int haff_table1_main(int argc, char **argv);
-int haff_table2_main(int argc, char **argv);
-int haff_energy_main(int argc, char **argv);
-int haff_angles_main(int argc, char **argv);
-int haff_veldist_main(int argc, char **argv);
-/* analysis/rods_cli.c */
-int haff_rods_energy_main(int argc, char **argv);
-int haff_rods_density_main(int argc, char **argv);
-int haff_rods_phase_main(int argc, char **argv);
-int haff_rods_gofr_main(int argc, char **argv);
-int haff_rods_veldist_main(int argc, char **argv);
-int haff_rods_clusters_main(int argc, char **argv);
-int haff_rods_collapse_main(int argc, char **argv);
 
 static const haff_command commands[] = {
     {"run", haff_run_main, "run a scene and append one run to a database"},
