@@ -281,6 +281,19 @@ double hd_eps_sample(hd_eps_sampler *s, double beta, gsl_rng *rng) {
   return hd_eps_sample2(s, beta, beta, rng);
 }
 
+int hd_eps_sample_pair(hd_eps_sampler *s, double beta1, double beta2, double *coarse,
+                       double *fine, gsl_rng *rng) {
+  double sg1, sg2;
+  if (!s->richardson || !sigmas(s, beta1, beta2, &sg1, &sg2)) return HD_EINPUT;
+  int d = work_stride(s, sg1, sg2);
+  sample_path(s, d / 4, sg1, sg2, rng);
+  double u = gsl_rng_uniform(rng);
+  s->st.samples++;
+  *fine = solve(s, d / 4, sg1, sg2, u);
+  *coarse = solve(s, d, sg1, sg2, u);
+  return HD_OK;
+}
+
 int hd_eps_sample_strides(hd_eps_sampler *s, double beta1, double beta2, const int *strides,
                           int n, double *out, gsl_rng *rng) {
   double sg1, sg2;

@@ -77,6 +77,13 @@ typedef struct hd_eps_stats {
 /* Copies the counters. */
 void hd_eps_sampler_stats(const hd_eps_sampler *s, hd_eps_stats *st);
 
+/* One collision on one sampled path solved at the working step (the step hd_eps_sample2 would use
+ * for these betas) into *coarse and at a quarter of it into *fine, same path and phase.  Needs a
+ * sampler with richardson = 1 (HD_EINPUT otherwise or on a bad beta).  The tables build their
+ * quantile-level extrapolation 2 Q_fine - Q_coarse from these pairs (docs/mc-eps.md). */
+int hd_eps_sample_pair(hd_eps_sampler *s, double beta1, double beta2, double *coarse,
+                       double *fine, gsl_rng *rng);
+
 /* Solves one collision on one sampled path at several grid steps: out[m] is eps on the grid of
  * step (opts step)*strides[m]/R, R = adapt (times 4 with richardson), each stride a divisor of
  * R and a multiple of the smallest, all on the same path and the same random phase.  No extrapolation.
@@ -101,7 +108,9 @@ typedef struct hd_eps_table {
 } hd_eps_table;
 
 /* Builds a table by direct sampling (samples per node, sorted, empirical quantiles).  The
- * sampler fixes gamma, step, adapt and richardson.  Returns HD_OK, HD_EINPUT or HD_ENOMEM. */
+ * sampler fixes gamma, step, adapt and richardson; with richardson the node quantiles are the
+ * quantile-level extrapolation 2 Q_fine - Q_coarse of paired paths (hd_eps_sample_pair; ~5x the
+ * build time), made nondecreasing and >= 0, instead of quantiles of per-path Richardson samples.  Returns HD_OK, HD_EINPUT or HD_ENOMEM. */
 int hd_eps_table_build(hd_eps_table **out, hd_eps_sampler *s, double beta_min, double beta_max,
                        int nbeta, int nu, long samples, gsl_rng *rng, hd_error *err);
 

@@ -184,6 +184,34 @@ static void step_bias_is_small(void **state) {
   hd_eps_sampler_free(s);
 }
 
+/* hd_eps_sample_pair is the same path solved at the working step and at a quarter of it: with
+ * richardson (r = 4 adapt = 64) the working stride at beta = 2 is 64, so the pair must equal
+ * hd_eps_sample_strides at strides {64, 16} drawn from the same seed, exactly (same normals, same
+ * phase).  Without richardson the pair is refused. */
+static void pair_is_paired(void **state) {
+  (void)state;
+  hd_eps_opts o;
+  hd_eps_opts_default(&o);
+  o.richardson = 1;
+  hd_eps_sampler *s;
+  assert_int_equal(hd_eps_sampler_alloc(&s, 0.8, &o, NULL), HD_OK);
+  gsl_rng *ra = rng_seeded(9), *rb = rng_seeded(9);
+  const int strides[2] = {64, 16};
+  for (int i = 0; i < 20; i++) {
+    double c, f, out[2];
+    assert_int_equal(hd_eps_sample_pair(s, 2, 2, &c, &f, ra), HD_OK);
+    assert_int_equal(hd_eps_sample_strides(s, 2, 2, strides, 2, out, rb), HD_OK);
+    assert_true(c == out[0] && f == out[1]);
+  }
+  hd_eps_sampler_free(s);
+  double c, f;
+  s = make(0.8, 0);
+  assert_int_equal(hd_eps_sample_pair(s, 1, 1, &c, &f, ra), HD_EINPUT);
+  hd_eps_sampler_free(s);
+  gsl_rng_free(ra);
+  gsl_rng_free(rb);
+}
+
 static void bad_input(void **state) {
   (void)state;
   hd_eps_sampler *s = NULL;
@@ -283,7 +311,7 @@ int main(void) {
       cmocka_unit_test(cold_baths_give_gamma),   cmocka_unit_test(equal_rods_are_elastic),
       cmocka_unit_test(cold_longer_rod_is_deterministic),
       cmocka_unit_test(nonnegative_and_symmetric), cmocka_unit_test(detailed_balance),
-      cmocka_unit_test(step_bias_is_small),      cmocka_unit_test(bad_input),
+      cmocka_unit_test(step_bias_is_small),      cmocka_unit_test(pair_is_paired),      cmocka_unit_test(bad_input),
       cmocka_unit_test(table_build_sample_store), cmocka_unit_test(cli_usage)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
