@@ -184,7 +184,8 @@ static int finish(runner *r, int rc, hd_error *err) {
   else if (rc != HD_OK) status = "failed";
   int wrc = HD_OK;
   if (rc == HD_OK || rc == HD_EINTR || rc == HD_ECOLLAPSE) {
-    if (rc == HD_OK) wrc = log_states(r, "final", &e2);
+    /* the state where the run ended: 'final', or 'checkpoint' for one that can go on */
+    wrc = log_states(r, rc == HD_OK ? "final" : "checkpoint", &e2);
     if (!wrc) wrc = checkpoint(r, &e2);
   }
   if (rc != HD_OK) hd_db_run_message(r->db, r->run, err->msg, &e2);

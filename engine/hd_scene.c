@@ -65,6 +65,7 @@ enum {
   K_RTEMP,
   K_RTABLE,
   K_RBATHS,
+  K_RSTEP,
   N_KEY
 };
 static const struct {
@@ -107,6 +108,7 @@ static const struct {
     {S_RODS, "temperature"},
     {S_RODS, "table"},
     {S_RODS, "baths"},
+    {S_RODS, "eps_step"},
 };
 
 static const char *const wall_name[4] = {"left", "right", "bottom", "top"};
@@ -463,6 +465,8 @@ static int set_value(ctx *c, int k, const char *v) {
     return get_num(c, k, v, 'p', &sc->rod_temperature);
   case K_RTABLE:
     return set_bool(c, k, v, &sc->rod_table);
+  case K_RSTEP:
+    return get_num(c, k, v, 'n', &sc->rod_eps_step);
   case K_RBATHS:
     if (!strcmp(v, "mean"))
       sc->rod_unequal = 0;
@@ -919,6 +923,7 @@ static char *canonical_text(const ctx *c) {
     if (sc->rod_model) put_kv(&b, "eps", sc->rod_eps);
     put_kv(&b, "damping", sc->rod_damping);
     put_kv(&b, "tc", sc->rod_tc);
+    put_kv(&b, "eps_step", sc->rod_eps_step);
     put_kv(&b, "temperature", sc->rod_temperature);
     put(&b, "table = %s\nbaths = %s\n", sc->rod_table ? "yes" : "no", sc->rod_unequal ? "unequal" : "mean");
   }

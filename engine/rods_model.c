@@ -22,6 +22,7 @@ static void params_of(const hd_scene *sc, hd_rods_params *p) {
   p->tc = sc->rod_tc;
   p->temperature = sc->rod_temperature;
   p->table = sc->rod_table;
+  p->eps_step = sc->rod_eps_step;
   p->unequal = sc->rod_unequal;
   p->seed = sc->seed;
 }

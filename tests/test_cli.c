@@ -142,6 +142,8 @@ static void sigint_then_resume(void **state) {
   assert_non_null(strstr(e, "interrupted"));
   assert_int_equal(q1("int.db", "SELECT status='interrupted' FROM runs"), 1);
   assert_int_equal(q1("int.db", "SELECT count(*) FROM checkpoints"), 1);
+  /* the state at the interruption is readable in `states` too */
+  assert_int_equal(q1("int.db", "SELECT count(*) FROM states WHERE label = 'checkpoint'"), 2000);
   long long before = q1("int.db", "SELECT count(*) FROM collisions");
   assert_true(before > 0 && before < 800000);
   assert_int_equal(sh("%s resume int.db --quiet", haff), 0);

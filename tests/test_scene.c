@@ -168,6 +168,8 @@ typedef struct bad_case {
 static const bad_case bad_cases[] = {
     {"[rods]\ncount = 5\n" RUN, NULL, HD_EINPUT, "bad.ini:2:", "[rods] count = 5", "even"},
     {"[rods]\n" RUN, NULL, HD_EINPUT, "bad.ini:1:", "[rods] count", "missing"},
+    {"[rods]\ncount = 4\neps_step = -1\n" RUN, NULL, HD_EINPUT, "bad.ini:3:", "[rods] eps_step",
+     ">= 0"},
     {RUN "stoptime = 2\n", NULL, HD_EINPUT, "bad.ini:3:", "[run] stoptime", "unknown key"},
     {RUN "stop_cpd = 2\n", NULL, HD_EINPUT, "bad.ini:3:", "[run] stop_cpd", "duplicate"},
     {RUN BOX "[dimers]\nalpha = 0.9\n", NULL, HD_EINPUT, "bad.ini:5:", "[dimers] count", "missing"},
@@ -579,12 +581,13 @@ static void rods_scene(void **state) {
   hd_error e;
   const char *txt = "[system]\nseed = 7\n[rods]\ncount = 50\ngamma = 0.5\nnmod = 20\n"
                     "model = constant\neps = 0.3\ndamping = 0.01\ntc = 0.001\ntable = no\n"
-                    "[run]\nstop_time = 10\n";
+                    "eps_step = 0.0025\n[run]\nstop_time = 10\n";
   assert_int_equal(hd_scene_load_string(&sc, txt, "r.ini", NULL, 0, &e), HD_OK);
   assert_int_equal(sc.n_rods, 50);
   assert_true(sc.rod_gamma == 0.5 && sc.rod_nmod == 20 && sc.rod_model == 1);
   assert_true(sc.rod_eps == 0.3 && sc.rod_damping == 0.01 && sc.rod_tc == 0.001);
   assert_true(sc.rod_temperature == 1 && sc.rod_table == 0 && sc.rod_unequal == 0);
+  assert_true(sc.rod_eps_step == 0.0025);
   assert_true(sc.n_dimers == 0 && sc.n_disks == 0);
   assert_int_equal(hd_scene_load_string(&sc2, sc.text, "canon", NULL, 0, &e), HD_OK);
   assert_string_equal(sc.text, sc2.text);
