@@ -37,7 +37,8 @@ int haff_angles_main(int argc, char **argv) {
   sqlite3_close(db);
   if (n == 0) {
     free(ti), free(tj), free(f);
-    fprintf(stderr, "haff %s: run %lld has no logged dimer-dimer collisions\n", argv[0], (long long)a.run);
+    fprintf(stderr, "haff %s: run %lld has no logged dimer-dimer collisions\n", argv[0],
+            (long long)a.run);
     return 2;
   }
   FILE *out = hd_cli_out(&a);

@@ -28,21 +28,31 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
   a->range = 5;
   a->kmode = HD_K_AC;
   const char *cmd = argv[0];
-  static const struct option lo[] = {
-      {"help", no_argument, 0, 'h'},     {"run", required_argument, 0, 'r'},
-      {"all", no_argument, 0, 'A'},      {"no-detect", no_argument, 0, 'N'},
-      {"thr", required_argument, 0, 'T'}, {"min-coll", required_argument, 0, 'C'},
-      {"cpd-max", required_argument, 0, 'X'}, {"cpd-min-k", required_argument, 0, 'K'},
-      {"md", no_argument, 0, 'M'},       {"alpha-group", no_argument, 0, 'G'},
-      {"block", required_argument, 0, 'b'}, {"fmean", no_argument, 0, 'F'},
-      {"bins", required_argument, 0, 'B'}, {"stats", no_argument, 0, 'S'},
-      {"label", required_argument, 0, 'L'}, {"range", required_argument, 0, 'R'},
-      {"k-ci", required_argument, 0, 'k'}, {0, 0, 0, 0}};
-  static const struct { int c; unsigned bit; } need[] = {
-      {'r', HD_OPT_RUN},   {'A', HD_OPT_ALL},   {'N', HD_OPT_FIT},   {'T', HD_OPT_FIT},
-      {'C', HD_OPT_FIT},   {'X', HD_OPT_FIT},   {'K', HD_OPT_FIT},   {'M', HD_OPT_MD},
-      {'G', HD_OPT_GROUP}, {'b', HD_OPT_BLOCK}, {'F', HD_OPT_BLOCK}, {'B', HD_OPT_BINS},
-      {'S', HD_OPT_STATS}, {'L', HD_OPT_STATS}, {'R', HD_OPT_STATS}, {'k', HD_OPT_KCI}};
+  static const struct option lo[] = {{"help", no_argument, 0, 'h'},
+                                     {"run", required_argument, 0, 'r'},
+                                     {"all", no_argument, 0, 'A'},
+                                     {"no-detect", no_argument, 0, 'N'},
+                                     {"thr", required_argument, 0, 'T'},
+                                     {"min-coll", required_argument, 0, 'C'},
+                                     {"cpd-max", required_argument, 0, 'X'},
+                                     {"cpd-min-k", required_argument, 0, 'K'},
+                                     {"md", no_argument, 0, 'M'},
+                                     {"alpha-group", no_argument, 0, 'G'},
+                                     {"block", required_argument, 0, 'b'},
+                                     {"fmean", no_argument, 0, 'F'},
+                                     {"bins", required_argument, 0, 'B'},
+                                     {"stats", no_argument, 0, 'S'},
+                                     {"label", required_argument, 0, 'L'},
+                                     {"range", required_argument, 0, 'R'},
+                                     {"k-ci", required_argument, 0, 'k'},
+                                     {0, 0, 0, 0}};
+  static const struct {
+    int c;
+    unsigned bit;
+  } need[] = {{'r', HD_OPT_RUN},   {'A', HD_OPT_ALL},   {'N', HD_OPT_FIT},   {'T', HD_OPT_FIT},
+              {'C', HD_OPT_FIT},   {'X', HD_OPT_FIT},   {'K', HD_OPT_FIT},   {'M', HD_OPT_MD},
+              {'G', HD_OPT_GROUP}, {'b', HD_OPT_BLOCK}, {'F', HD_OPT_BLOCK}, {'B', HD_OPT_BINS},
+              {'S', HD_OPT_STATS}, {'L', HD_OPT_STATS}, {'R', HD_OPT_STATS}, {'k', HD_OPT_KCI}};
   optind = 0; /* full re-initialisation: the subcommands may run more than once per process */
   opterr = 0;
   int c, li;
@@ -66,13 +76,19 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
         return 2;
       }
     switch (c) {
-    case 'o': a->out = optarg; break;
+    case 'o':
+      a->out = optarg;
+      break;
     case 'r':
       if (parse_num(cmd, "--run", optarg, 0, &v)) return 2;
       a->run = (int64_t)v;
       break;
-    case 'A': a->all = 1; break;
-    case 'N': a->fit.detect = 0; break;
+    case 'A':
+      a->all = 1;
+      break;
+    case 'N':
+      a->fit.detect = 0;
+      break;
     case 'T':
       if (parse_num(cmd, "--thr", optarg, 1e-6, &a->fit.homog.thr)) return 2;
       break;
@@ -85,32 +101,46 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
     case 'K':
       if (parse_num(cmd, "--cpd-min-k", optarg, 0, &a->fit.cpd_min_k)) return 2;
       break;
-    case 'M': a->md = 1; break;
-    case 'G': a->group = 1; break;
+    case 'M':
+      a->md = 1;
+      break;
+    case 'G':
+      a->group = 1;
+      break;
     case 'b':
       if (parse_num(cmd, "--block", optarg, 1, &v)) return 2;
       a->block = (long)v;
       break;
-    case 'F': a->fmean = 1; break;
+    case 'F':
+      a->fmean = 1;
+      break;
     case 'B':
       if (parse_num(cmd, "--bins", optarg, 1, &v) || v > 100000) return 2;
       a->bins = (int)v;
       break;
-    case 'S': a->stats = 1; break;
-    case 'L': a->label = optarg; break;
+    case 'S':
+      a->stats = 1;
+      break;
+    case 'L':
+      a->label = optarg;
+      break;
     case 'R':
       if (parse_num(cmd, "--range", optarg, 1e-9, &a->range)) return 2;
       break;
     case 'k':
-      if (!strcmp(optarg, "ac")) a->kmode = HD_K_AC;
-      else if (!strcmp(optarg, "ols")) a->kmode = HD_K_OLS;
-      else if (!strcmp(optarg, "runs")) a->kmode = HD_K_RUNS;
+      if (!strcmp(optarg, "ac"))
+        a->kmode = HD_K_AC;
+      else if (!strcmp(optarg, "ols"))
+        a->kmode = HD_K_OLS;
+      else if (!strcmp(optarg, "runs"))
+        a->kmode = HD_K_RUNS;
       else {
         fprintf(stderr, "haff %s: --k-ci '%s': expected ac, ols or runs\n", cmd, optarg);
         return 2;
       }
       break;
-    default: return 2;
+    default:
+      return 2;
     }
   }
   if (optind != argc - 1) {
@@ -134,8 +164,10 @@ FILE *hd_cli_out(const hd_cli_args *a) {
 
 int hd_cli_close(FILE *f, const hd_cli_args *a) {
   int bad = ferror(f);
-  if (f != stdout) bad |= fclose(f);
-  else bad |= fflush(f);
+  if (f != stdout)
+    bad |= fclose(f);
+  else
+    bad |= fflush(f);
   if (bad) {
     fprintf(stderr, "haff: %s: write error\n", a->out ? a->out : "stdout");
     return 1;
@@ -148,8 +180,7 @@ int hd_cli_fail(const char *cmd, const hd_error *err) {
   return hd_exit_code(err->code);
 }
 
-int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits,
-                size_t *n) {
+int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits, size_t *n) {
   hd_error err;
   hd_error_clear(&err);
   *fits = NULL, *n = 0;
@@ -201,8 +232,8 @@ int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit 
   return 0;
 }
 
-int hd_cli_groups(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits,
-                  size_t *n, hd_group **g, size_t *ng) {
+int hd_cli_groups(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits, size_t *n,
+                  hd_group **g, size_t *ng) {
   int rc = hd_cli_fits(a, cmd, db, fits, n);
   if (rc) return rc;
   hd_error err;

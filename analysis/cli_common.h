@@ -24,20 +24,20 @@ enum {
 
 /* Parsed arguments. */
 typedef struct hd_cli_args {
-  const char *db;      /* the database (positional) */
-  const char *out;     /* -o FILE, NULL for stdout */
-  int64_t run;         /* --run ID, -1 when absent */
-  int all;             /* --all */
-  int md;              /* --md: Markdown table */
-  int group;           /* --alpha-group */
-  hd_fit_opts fit;     /* fit options */
-  long block;          /* --block N [10000] */
-  int fmean;           /* --fmean */
-  int bins;            /* --bins N [36 angles, 40 velocities] */
-  int stats;           /* --stats */
-  const char *label;   /* --label [velocities] */
-  double range;        /* --range X [5]: histogram of scaled velocities on [-X, X] */
-  hd_kmode kmode;      /* --k-ci [ac] */
+  const char *db;    /* the database (positional) */
+  const char *out;   /* -o FILE, NULL for stdout */
+  int64_t run;       /* --run ID, -1 when absent */
+  int all;           /* --all */
+  int md;            /* --md: Markdown table */
+  int group;         /* --alpha-group */
+  hd_fit_opts fit;   /* fit options */
+  long block;        /* --block N [10000] */
+  int fmean;         /* --fmean */
+  int bins;          /* --bins N [36 angles, 40 velocities] */
+  int stats;         /* --stats */
+  const char *label; /* --label [velocities] */
+  double range;      /* --range X [5]: histogram of scaled velocities on [-X, X] */
+  hd_kmode kmode;    /* --k-ci [ac] */
 } hd_cli_args;
 
 /* Parses argv (argv[0] the subcommand) accepting the `allowed` options; usage is printed for
@@ -53,13 +53,12 @@ int hd_cli_close(FILE *f, const hd_cli_args *a);
 
 /* Opens the database and fits the selected runs (--run ID or every finished run).  Prints the
  * error and returns its exit code (1 or 2) on failure; 0 with *fits malloc'd on success. */
-int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits,
-                size_t *n);
+int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits, size_t *n);
 
 /* hd_cli_fits, then the fits grouped by (species, alpha, a/d) (hd_group_runs).  Returns as
  * hd_cli_fits (nothing left open on failure); on 0 free with hd_cli_groups_free. */
-int hd_cli_groups(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits,
-                  size_t *n, hd_group **g, size_t *ng);
+int hd_cli_groups(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits, size_t *n,
+                  hd_group **g, size_t *ng);
 
 /* Frees what hd_cli_groups returned and closes the database. */
 void hd_cli_groups_free(sqlite3 *db, hd_run_fit *fits, hd_group *g, size_t ng);

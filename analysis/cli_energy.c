@@ -7,8 +7,8 @@
 
 /* Writes one block: the sample-by-sample mean over the runs idx[0..m-1] (truncated to the
  * shortest) with the Haff and eq. (31) curves of the mean fitted D_e and nu0. */
-static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const size_t *idx,
-                       size_t m, int first, hd_error *err) {
+static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const size_t *idx, size_t m,
+                       int first, hd_error *err) {
   hd_series *s = calloc(m, sizeof *s);
   if (!s) return hd_error_set(err, HD_ENOMEM, "out of memory");
   int rc = HD_OK;
@@ -41,7 +41,8 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
     E0 /= (double)m;
     for (size_t i = 0; i < len; i++) {
       double t = 0, cpd = 0, et = 0, er = 0;
-      for (size_t k = 0; k < m; k++) t += s[k].t[i], cpd += s[k].cpd[i], et += s[k].e_tr[i], er += s[k].e_rot[i];
+      for (size_t k = 0; k < m; k++)
+        t += s[k].t[i], cpd += s[k].cpd[i], et += s[k].e_tr[i], er += s[k].e_rot[i];
       t /= (double)m, cpd /= (double)m, et /= (double)m, er /= (double)m;
       double g = c / (2 * De), haff = 1 / ((1 + g * nu * t) * (1 + g * nu * t));
       double xeq = c * hd_haff_tau(t, al, De, nu);

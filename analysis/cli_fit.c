@@ -7,15 +7,17 @@
 #include "cli_common.h"
 #include "hd_ana_cli.h"
 
-#define FIT_OPTS_HELP                                                                           \
-  "  --run ID         one run (any status); default: every done/collapsed/interrupted run\n"   \
-  "  --no-detect      fit the whole run, not only the homogeneous part\n"                      \
-  "  --thr X          homogeneity: relative change of rate/sqrt(E) that ends it [0.1]\n"        \
-  "  --min-coll N     homogeneity: pair collisions per window [2000]\n"                        \
-  "  --cpd-max X      fit only samples with cpd <= X\n"                                        \
+#define FIT_OPTS_HELP                                                                              \
+  "  --run ID         one run (any status); default: every done/collapsed/interrupted run\n"       \
+  "  --no-detect      fit the whole run, not only the homogeneous part\n"                          \
+  "  --thr X          homogeneity: relative change of rate/sqrt(E) that ends it [0.1]\n"           \
+  "  --min-coll N     homogeneity: pair collisions per window [2000]\n"                            \
+  "  --cpd-max X      fit only samples with cpd <= X\n"                                            \
   "  -o FILE          write to FILE instead of stdout\n"
 
-static const char *species_name(int s) { return s == HD_ANA_DIMERS ? "dimers" : "disks"; }
+static const char *species_name(int s) {
+  return s == HD_ANA_DIMERS ? "dimers" : "disks";
+}
 
 int haff_fit_main(int argc, char **argv) {
   static const char usage[] =
@@ -44,12 +46,13 @@ int haff_fit_main(int argc, char **argv) {
       const hd_run_fit *f = &fits[i];
       double nan = NAN;
       const hd_haff_fit *h = &f->haff;
-      fprintf(out, "%lld\t%s\t%g\t%g\t%zu\t%d\t%.6g\t%.6g\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.6g\t%.3g\t%.3g\n",
-              (long long)f->info.id, species_name(f->info.species), f->info.alpha,
-              f->info.a_over_d, f->n_used, f->homog.detected, f->t_end, f->cpd_end,
-              f->haff_ok ? h->D_e : nan, f->haff_ok ? h->D_e_err : nan, f->haff_ok ? h->nu0 : nan,
-              f->haff_ok ? h->nu0_err : nan, f->nu0_enskog, f->ratio, f->ratio_err,
-              f->haff_ok ? h->chi2 / (double)h->dof : nan);
+      fprintf(
+          out,
+          "%lld\t%s\t%g\t%g\t%zu\t%d\t%.6g\t%.6g\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.6g\t%.3g\t%.3g\n",
+          (long long)f->info.id, species_name(f->info.species), f->info.alpha, f->info.a_over_d,
+          f->n_used, f->homog.detected, f->t_end, f->cpd_end, f->haff_ok ? h->D_e : nan,
+          f->haff_ok ? h->D_e_err : nan, f->haff_ok ? h->nu0 : nan, f->haff_ok ? h->nu0_err : nan,
+          f->nu0_enskog, f->ratio, f->ratio_err, f->haff_ok ? h->chi2 / (double)h->dof : nan);
     }
   } else {
     hd_group *g;
@@ -59,7 +62,9 @@ int haff_fit_main(int argc, char **argv) {
       free(fits), sqlite3_close(db), hd_cli_close(out, &a);
       return hd_cli_fail(argv[0], &err);
     }
-    fprintf(out, "alpha\ta_over_d\tspecies\truns\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\tratio\tratio_err\n");
+    fprintf(
+        out,
+        "alpha\ta_over_d\tspecies\truns\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\tratio\tratio_err\n");
     double *v = malloc(4 * n * sizeof *v);
     for (size_t j = 0; v && j < ng; j++) {
       double *dv = v, *de = v + n, *nv = v + 2 * n, *ne = v + 3 * n, r[6];
@@ -67,7 +72,8 @@ int haff_fit_main(int argc, char **argv) {
       for (size_t k = 0; k < g[j].n; k++) {
         const hd_run_fit *f = &fits[g[j].idx[k]];
         if (!f->haff_ok) continue;
-        dv[m] = f->haff.D_e, de[m] = f->haff.D_e_err, nv[m] = f->haff.nu0, ne[m++] = f->haff.nu0_err;
+        dv[m] = f->haff.D_e, de[m] = f->haff.D_e_err, nv[m] = f->haff.nu0,
+        ne[m++] = f->haff.nu0_err;
       }
       hd_ensemble_mean(dv, de, m, &r[0], &r[1]);
       hd_ensemble_mean(nv, ne, m, &r[2], &r[3]);
@@ -90,8 +96,10 @@ int haff_fit_main(int argc, char **argv) {
 int haff_table1_main(int argc, char **argv) {
   static const char usage[] =
       "usage: haff table1 DB [--md] [fit options] [-o FILE]\n"
-      "Table I: D_e and nu0_eff/nu0 (nu0: Enskog eq. 29 for disks of diameter d, the body mass and\n"
-      "density, at the initial translational temperature) per (alpha, a/d), mean +- standard error\n"
+      "Table I: D_e and nu0_eff/nu0 (nu0: Enskog eq. 29 for disks of diameter d, the body mass "
+      "and\n"
+      "density, at the initial translational temperature) per (alpha, a/d), mean +- standard "
+      "error\n"
       "over the runs (the fit's own error when a group has one run).  a_over_d = 0: hard disks.\n"
       "Columns: alpha a_over_d D_e D_e_err nu0_eff nu0_eff_err runs\n"
       "  --md             a Markdown table instead of TSV\n" FIT_OPTS_HELP;
@@ -111,7 +119,8 @@ int haff_table1_main(int argc, char **argv) {
     return 1;
   }
   if (a.md)
-    fprintf(out, "| α | a/d | D_e | ±ΔD_e | ν0_eff/ν0 | ±Δ | runs |\n|---|---|---|---|---|---|---|\n");
+    fprintf(out,
+            "| α | a/d | D_e | ±ΔD_e | ν0_eff/ν0 | ±Δ | runs |\n|---|---|---|---|---|---|---|\n");
   else
     fprintf(out, "alpha\ta_over_d\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\truns\n");
   for (size_t j = 0; j < ng; j++) {
@@ -171,7 +180,8 @@ int haff_table2_main(int argc, char **argv) {
     if (g[j].species != HD_ANA_DIMERS) continue;
     double r[6];
     if (hd_combine_k(fits, g[j].idx, g[j].n, a.kmode, a.fit.level, r, &err)) {
-      fprintf(stderr, "haff %s: alpha %g a/d %g: %s\n", argv[0], g[j].alpha, g[j].a_over_d, err.msg);
+      fprintf(stderr, "haff %s: alpha %g a/d %g: %s\n", argv[0], g[j].alpha, g[j].a_over_d,
+              err.msg);
       bad = 2;
       continue;
     }

@@ -42,7 +42,8 @@ int haff_veldist_main(int argc, char **argv) {
   sqlite3_close(db);
   if (rc) return hd_cli_fail(argv[0], &err);
   if (ns == 0) {
-    fprintf(stderr, "haff %s: run %lld has no '%s' snapshots\n", argv[0], (long long)a.run, a.label);
+    fprintf(stderr, "haff %s: run %lld has no '%s' snapshots\n", argv[0], (long long)a.run,
+            a.label);
     return 2;
   }
   FILE *out = hd_cli_out(&a);
@@ -90,7 +91,8 @@ int haff_veldist_main(int argc, char **argv) {
       double c = 0.5 * (lo + hi);
       fprintf(out, "%zu\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\n", s, sn[s].cpd, c,
               gsl_histogram_get(h[0], k) / (dn * w), gsl_histogram_get(h[1], k) / (dn * w),
-              have_w ? gsl_histogram_get(h[2], k) / (dn * w) : NAN, exp(-0.5 * c * c) / sqrt(2 * M_PI));
+              have_w ? gsl_histogram_get(h[2], k) / (dn * w) : NAN,
+              exp(-0.5 * c * c) / sqrt(2 * M_PI));
     }
   }
   for (int k = 0; k < 3; k++) gsl_histogram_free(h[k]);

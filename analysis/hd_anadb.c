@@ -83,7 +83,8 @@ static int on_key(void *user, const char *sec, const char *key, const char *val)
 int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
   scene_keys k = {0, 0, 0, 0, 1, 1, 1, 1, 0, 1, 1, 1, 0, ""};
   int line = ini_parse_string(text, on_key, &k);
-  if (line != 0) return hd_error_set(err, HD_EINPUT, "runs.scene: INI syntax error at line %d", line);
+  if (line != 0)
+    return hd_error_set(err, HD_EINPUT, "runs.scene: INI syntax error at line %d", line);
   if (k.bad) return hd_error_set(err, HD_EINPUT, "runs.scene: %s is not a number", k.badkey);
   double body_area;
   if (k.dim_count > 0) {
@@ -170,8 +171,10 @@ void hd_series_free(hd_series *s) {
 int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err) {
   memset(s, 0, sizeof *s);
   sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(db, "SELECT t, collisions, cpd, e_tr, e_rot FROM samples WHERE run = ?1 "
-                             "ORDER BY t, collisions", -1, &st, NULL) != SQLITE_OK)
+  if (sqlite3_prepare_v2(db,
+                         "SELECT t, collisions, cpd, e_tr, e_rot FROM samples WHERE run = ?1 "
+                         "ORDER BY t, collisions",
+                         -1, &st, NULL) != SQLITE_OK)
     return hd_error_set(err, HD_EIO, "reading samples: %s", sqlite3_errmsg(db));
   sqlite3_bind_int64(st, 1, run);
   size_t cap = 0;
@@ -182,8 +185,10 @@ int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err) {
       double **cols[5] = {&s->t, &s->coll, &s->cpd, &s->e_tr, &s->e_rot};
       for (int c = 0; c < 5 && rc == HD_OK; c++) {
         double *p = realloc(*cols[c], cap * sizeof *p);
-        if (!p) rc = hd_error_set(err, HD_ENOMEM, "reading samples: out of memory");
-        else *cols[c] = p;
+        if (!p)
+          rc = hd_error_set(err, HD_ENOMEM, "reading samples: out of memory");
+        else
+          *cols[c] = p;
       }
       if (rc) break;
     }
@@ -202,7 +207,8 @@ int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err) {
 }
 
 void hd_snapshots_free(hd_snapshot *snaps, size_t n) {
-  for (size_t i = 0; snaps && i < n; i++) free(snaps[i].vx), free(snaps[i].vy), free(snaps[i].omega);
+  for (size_t i = 0; snaps && i < n; i++)
+    free(snaps[i].vx), free(snaps[i].vy), free(snaps[i].omega);
   free(snaps);
 }
 
@@ -210,8 +216,10 @@ int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *ki
                      hd_snapshot **snaps, size_t *n, hd_error *err) {
   *snaps = NULL, *n = 0;
   sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(db, "SELECT t, cpd, vx, vy, omega FROM states WHERE run = ?1 AND "
-                             "label = ?2 AND kind = ?3 ORDER BY t, body", -1, &st, NULL) != SQLITE_OK)
+  if (sqlite3_prepare_v2(db,
+                         "SELECT t, cpd, vx, vy, omega FROM states WHERE run = ?1 AND "
+                         "label = ?2 AND kind = ?3 ORDER BY t, body",
+                         -1, &st, NULL) != SQLITE_OK)
     return hd_error_set(err, HD_EIO, "reading states: %s", sqlite3_errmsg(db));
   sqlite3_bind_int64(st, 1, run);
   sqlite3_bind_text(st, 2, label, -1, SQLITE_STATIC);
@@ -262,13 +270,15 @@ int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *ki
   return rc;
 }
 
-int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **theta_j,
-                         double **f, size_t *n, hd_error *err) {
+int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **theta_j, double **f,
+                         size_t *n, hd_error *err) {
   *theta_i = *theta_j = *f = NULL, *n = 0;
   sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(db, "SELECT theta_i, theta_j, f FROM collisions WHERE run = ?1 AND "
-                             "kind = 'dimer-dimer' AND theta_i IS NOT NULL AND theta_j IS NOT NULL "
-                             "ORDER BY seq", -1, &st, NULL) != SQLITE_OK)
+  if (sqlite3_prepare_v2(db,
+                         "SELECT theta_i, theta_j, f FROM collisions WHERE run = ?1 AND "
+                         "kind = 'dimer-dimer' AND theta_i IS NOT NULL AND theta_j IS NOT NULL "
+                         "ORDER BY seq",
+                         -1, &st, NULL) != SQLITE_OK)
     return hd_error_set(err, HD_EIO, "reading collisions: %s", sqlite3_errmsg(db));
   sqlite3_bind_int64(st, 1, run);
   size_t cap = 0;

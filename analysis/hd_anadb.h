@@ -16,7 +16,7 @@ enum { HD_ANA_DIMERS = 0, HD_ANA_DISKS = 1, HD_ANA_OTHER = 2 };
 /* One run and the scene parameters the analysis needs (parsed from runs.scene). */
 typedef struct hd_run_info {
   int64_t id;
-  char status[16];      /* runs.status */
+  char status[16]; /* runs.status */
   unsigned long long seed;
   int species;          /* HD_ANA_DIMERS if [dimers] count > 0, else HD_ANA_DISKS if [disks]
                            count > 0, else HD_ANA_OTHER (rods) */
@@ -53,8 +53,8 @@ void hd_series_free(hd_series *s);
 
 /* One snapshot of body velocities (rows of `states` with one label and one t). */
 typedef struct hd_snapshot {
-  double t, cpd;        /* cpd NaN when NULL */
-  size_t n;             /* bodies of the analysed species in it */
+  double t, cpd; /* cpd NaN when NULL */
+  size_t n;      /* bodies of the analysed species in it */
   double *vx, *vy, *omega;
 } hd_snapshot;
 
@@ -66,7 +66,7 @@ void hd_snapshots_free(hd_snapshot *snaps, size_t n);
 
 /* Dimer-dimer collisions of one run by seq: theta_i, theta_j, f (malloc'd arrays; NULL
  * angles are skipped).  HD_OK with *n = 0 when there are none. */
-int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **theta_j,
-                         double **f, size_t *n, hd_error *err);
+int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **theta_j, double **f,
+                         size_t *n, hd_error *err);
 
 #endif

@@ -14,14 +14,14 @@
 
 /* Result of hd_fit_haff_log. */
 typedef struct hd_haff_fit {
-  double D_e;      /* effective dimension D_e (NaN when alpha == 1: not identifiable) */
-  double D_e_err;  /* its standard error: sqrt(covar) * sqrt(chi2/dof) */
-  double nu0;      /* effective initial collision frequency nu0_eff (per particle) */
-  double nu0_err;  /* its standard error, scaled like D_e_err */
-  double chi2;     /* sum of squared residuals at the optimum */
-  size_t dof;      /* n - number of parameters */
-  double tq;       /* Student-t quantile t_{0.995, dof}: 99% interval = value +- tq * err */
-  size_t iter;     /* iterations of the trust-region driver */
+  double D_e;     /* effective dimension D_e (NaN when alpha == 1: not identifiable) */
+  double D_e_err; /* its standard error: sqrt(covar) * sqrt(chi2/dof) */
+  double nu0;     /* effective initial collision frequency nu0_eff (per particle) */
+  double nu0_err; /* its standard error, scaled like D_e_err */
+  double chi2;    /* sum of squared residuals at the optimum */
+  size_t dof;     /* n - number of parameters */
+  double tq;      /* Student-t quantile t_{0.995, dof}: 99% interval = value +- tq * err */
+  size_t iter;    /* iterations of the trust-region driver */
 } hd_haff_fit;
 
 /* Fits tau(t) = (1/gamma) ln(1 + gamma nu0 t), gamma = (1 - alpha^2)/(2 D_e), to n points
@@ -40,17 +40,17 @@ double hd_haff_tau(double t, double alpha, double D_e, double nu0);
 
 /* Result of hd_fit_linear_t. All intervals are at the requested confidence level. */
 typedef struct hd_linfit {
-  size_t n;              /* points used */
-  double a0, a1;         /* intercept and slope (OLS) */
-  double a0_err, a1_err; /* OLS standard errors (residual variance from chi2/(n-2)) */
-  double tq;             /* t quantile with n-2 dof at (1+level)/2 */
+  size_t n;                          /* points used */
+  double a0, a1;                     /* intercept and slope (OLS) */
+  double a0_err, a1_err;             /* OLS standard errors (residual variance from chi2/(n-2)) */
+  double tq;                         /* t quantile with n-2 dof at (1+level)/2 */
   double a0_lo, a0_hi, a1_lo, a1_hi; /* OLS Student-t intervals: a +- tq * err */
-  double tau_int;        /* integrated autocorrelation time of the residuals (0.5 = iid) */
-  double n_eff;          /* n / (2 tau_int), the effective number of independent points */
+  double tau_int;              /* integrated autocorrelation time of the residuals (0.5 = iid) */
+  double n_eff;                /* n / (2 tau_int), the effective number of independent points */
   double a0_err_ac, a1_err_ac; /* standard errors * sqrt(max(1, 2 tau_int)) */
-  double tq_ac;          /* t quantile with max(n_eff - 2, 1) dof */
+  double tq_ac;                /* t quantile with max(n_eff - 2, 1) dof */
   double a0_lo_ac, a0_hi_ac, a1_lo_ac, a1_hi_ac; /* autocorrelation-corrected intervals */
-  double chi2;           /* residual sum of squares */
+  double chi2;                                   /* residual sum of squares */
 } hd_linfit;
 
 /* Fits y = a0 + a1 x to n >= 3 points by OLS (gsl_fit_linear) and fills the Student-t

@@ -42,7 +42,9 @@ int hd_fit_linear_t(const double *x, const double *y, size_t n, double level, hd
   double infl = sqrt(fmax(1.0, 2.0 * tau)); /* never narrower than OLS */
   out->a0_err_ac = out->a0_err * infl, out->a1_err_ac = out->a1_err * infl;
   out->tq_ac = gsl_cdf_tdist_Pinv(p, fmax(out->n_eff - 2.0, 1.0));
-  out->a0_lo_ac = c0 - out->tq_ac * out->a0_err_ac, out->a0_hi_ac = c0 + out->tq_ac * out->a0_err_ac;
-  out->a1_lo_ac = c1 - out->tq_ac * out->a1_err_ac, out->a1_hi_ac = c1 + out->tq_ac * out->a1_err_ac;
+  out->a0_lo_ac = c0 - out->tq_ac * out->a0_err_ac,
+  out->a0_hi_ac = c0 + out->tq_ac * out->a0_err_ac;
+  out->a1_lo_ac = c1 - out->tq_ac * out->a1_err_ac,
+  out->a1_hi_ac = c1 + out->tq_ac * out->a1_err_ac;
   return HD_OK;
 }

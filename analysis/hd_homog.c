@@ -17,7 +17,8 @@ int hd_homog_detect(const double *t, const double *coll, const double *e, size_t
   if (!(o->thr > 0) || !(o->min_coll >= 1) || o->n_ref < 1 || o->persist < 1)
     return hd_error_set(err, HD_EINPUT, "homogeneity: bad options");
   for (size_t i = 0; i < n; i++)
-    if (!(e[i] > 0)) return hd_error_set(err, HD_EINPUT, "homogeneity: energy <= 0 at sample %zu", i);
+    if (!(e[i] > 0))
+      return hd_error_set(err, HD_EINPUT, "homogeneity: energy <= 0 at sample %zu", i);
   out->n_end = n, out->detected = 0;
   out->t_end = t[n - 1], out->cpd_end = NAN;
   out->r0 = NAN, out->n_windows = 0, out->max_dev = 0;

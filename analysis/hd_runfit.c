@@ -70,7 +70,8 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
   }
   size_t m = 0;
   for (size_t i = 0; i < nu; i++)
-    if (s.cpd[i] >= o->cpd_min_k && s.e_rot[i] > 0) x[m] = s.cpd[i], k[m++] = s.e_tr[i] / s.e_rot[i];
+    if (s.cpd[i] >= o->cpd_min_k && s.e_rot[i] > 0)
+      x[m] = s.cpd[i], k[m++] = s.e_tr[i] / s.e_rot[i];
   if (ri->species == HD_ANA_DIMERS) {
     out->K_ok = hd_fit_linear_t(x, k, m, o->level, &out->K, &fe) == HD_OK;
     if (!out->K_ok && !out->why[0]) snprintf(out->why, sizeof out->why, "K fit: %.200s", fe.msg);
@@ -122,8 +123,8 @@ void hd_ensemble_mean(const double *vals, const double *errs, size_t n, double *
   }
 }
 
-int hd_combine_k(const hd_run_fit *fits, const size_t *idx, size_t n, hd_kmode mode,
-                 double level, double out[6], hd_error *err) {
+int hd_combine_k(const hd_run_fit *fits, const size_t *idx, size_t n, hd_kmode mode, double level,
+                 double out[6], hd_error *err) {
   double p = 0.5 * (1 + level);
   size_t m = 0;
   for (size_t i = 0; i < n; i++) m += fits[idx[i]].K_ok != 0;

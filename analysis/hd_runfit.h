@@ -27,19 +27,19 @@ hd_fit_opts hd_fit_opts_defaults(void);
 /* Everything measured on one run. */
 typedef struct hd_run_fit {
   hd_run_info info;
-  size_t n_samples;   /* rows in samples */
-  size_t n_used;      /* samples used by the fits: [0, n_used) */
-  hd_homog homog;     /* detector result (n_end = n_samples when detect = 0) */
+  size_t n_samples;      /* rows in samples */
+  size_t n_used;         /* samples used by the fits: [0, n_used) */
+  hd_homog homog;        /* detector result (n_end = n_samples when detect = 0) */
   double t_end, cpd_end; /* last sample used */
-  double E0;          /* e_tr + e_rot of the first sample */
-  double T0;          /* translational temperature of the first sample (= e_tr in 2D) */
-  int haff_ok;        /* 1 if the eq. (31) fit succeeded */
-  hd_haff_fit haff;   /* its result */
-  double nu0_enskog;  /* eq. (29) for disks of diameter d, body mass, density n, T0, eta_disk */
+  double E0;             /* e_tr + e_rot of the first sample */
+  double T0;             /* translational temperature of the first sample (= e_tr in 2D) */
+  int haff_ok;           /* 1 if the eq. (31) fit succeeded */
+  hd_haff_fit haff;      /* its result */
+  double nu0_enskog;     /* eq. (29) for disks of diameter d, body mass, density n, T0, eta_disk */
   double ratio, ratio_err; /* nu0_eff / nu0_enskog and its standard error */
-  int K_ok;           /* 1 if the K fit succeeded */
-  hd_linfit K;        /* K = e_tr/e_rot = a0 + a1 cpd */
-  char why[256];      /* why a fit failed ("" if both succeeded) */
+  int K_ok;                /* 1 if the K fit succeeded */
+  hd_linfit K;             /* K = e_tr/e_rot = a0 + a1 cpd */
+  char why[256];           /* why a fit failed ("" if both succeeded) */
 } hd_run_fit;
 
 /* Reads the samples of ri and fills *out.  A failed fit is not an error (haff_ok/K_ok = 0 and
@@ -52,8 +52,8 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
 typedef struct hd_group {
   int species;
   double alpha, a_over_d;
-  size_t n;      /* runs in the group */
-  size_t *idx;   /* their indices in the array given to hd_group_runs */
+  size_t n;    /* runs in the group */
+  size_t *idx; /* their indices in the array given to hd_group_runs */
 } hd_group;
 
 /* Groups fits[0..n-1] (in order of first appearance).  *groups malloc'd; hd_groups_free. */
@@ -62,19 +62,18 @@ void hd_groups_free(hd_group *g, size_t ng);
 
 /* Ensemble of one quantity over runs: the mean of vals[0..n-1] and its standard error
  * sd/sqrt(n) (n >= 2); with n == 1, vals[0] and errs[0] (the fit's own error). */
-void hd_ensemble_mean(const double *vals, const double *errs, size_t n, double *mean,
-                      double *se);
+void hd_ensemble_mean(const double *vals, const double *errs, size_t n, double *mean, double *se);
 
 /* How table2 combines the K fits of the runs of a group. */
 typedef enum hd_kmode {
-  HD_K_AC = 0,   /* inverse-variance mean with autocorrelation-corrected errors [default] */
-  HD_K_OLS = 1,  /* the same with plain OLS errors (the paper's t-test, too narrow) */
-  HD_K_RUNS = 2  /* plain mean over runs, sd/sqrt(R), t with R-1 dof (needs R >= 2) */
+  HD_K_AC = 0,  /* inverse-variance mean with autocorrelation-corrected errors [default] */
+  HD_K_OLS = 1, /* the same with plain OLS errors (the paper's t-test, too narrow) */
+  HD_K_RUNS = 2 /* plain mean over runs, sd/sqrt(R), t with R-1 dof (needs R >= 2) */
 } hd_kmode;
 
 /* Combined a0 and a1 with their intervals at fits[idx[0..n-1]].K's level.  Returns HD_OK or
  * HD_EINPUT (no K fit, or HD_K_RUNS with fewer than 2 runs). */
-int hd_combine_k(const hd_run_fit *fits, const size_t *idx, size_t n, hd_kmode mode,
-                 double level, double out[6], hd_error *err);
+int hd_combine_k(const hd_run_fit *fits, const size_t *idx, size_t n, hd_kmode mode, double level,
+                 double out[6], hd_error *err);
 
 #endif

@@ -16,7 +16,8 @@ static void moment_ratio(const double *y, size_t n, double *R, double *Rerr) {
   double dn = (double)n;
   m1 /= dn, m2 /= dn, m3 /= dn, m4 /= dn;
   double var_u = m4 - m2 * m2, cov_uw = m3 - m2 * m1, var_w = m2 - m1 * m1;
-  double v = (var_u / pow(m1, 4) - 4 * m2 * cov_uw / pow(m1, 5) + 4 * m2 * m2 * var_w / pow(m1, 6)) / dn;
+  double v =
+      (var_u / pow(m1, 4) - 4 * m2 * cov_uw / pow(m1, 5) + 4 * m2 * m2 * var_w / pow(m1, 6)) / dn;
   *R = m2 / (m1 * m1);
   *Rerr = sqrt(fmax(v, 0.0));
 }
@@ -52,8 +53,7 @@ int hd_velstats_1d(const double *x, size_t n, int centre, hd_velstats *out, hd_e
   return HD_OK;
 }
 
-int hd_velstats_2d(const double *vx, const double *vy, size_t n, hd_velstats *out,
-                   hd_error *err) {
+int hd_velstats_2d(const double *vx, const double *vy, size_t n, hd_velstats *out, hd_error *err) {
   if (n < 2) return hd_error_set(err, HD_EINPUT, "velocity statistics: need >= 2 vectors");
   double *y = malloc(n * sizeof *y);
   if (!y) return hd_error_set(err, HD_ENOMEM, "velocity statistics: out of memory");

@@ -10,18 +10,18 @@
 
 /* Statistics of one sample (a 1D variable or a 2D vector). */
 typedef struct hd_velstats {
-  size_t n;       /* sample size (vectors for 2D) */
-  int dim;        /* 1 or 2 */
-  double mean;    /* mean removed before the moments (1D: of x; 2D: 0, see mean_x/mean_y) */
+  size_t n;              /* sample size (vectors for 2D) */
+  int dim;               /* 1 or 2 */
+  double mean;           /* mean removed before the moments (1D: of x; 2D: 0, see mean_x/mean_y) */
   double mean_x, mean_y; /* 2D: mean vector removed */
-  double scale;   /* per-component rms after centring: sqrt(<x^2>) (1D), sqrt(<|v|^2>/2) (2D) */
-  double ratio;   /* <c^4>/<c^2>^2, c the centred variable (|v| for 2D); Gaussian: 3 (1D), 2 (2D) */
+  double scale; /* per-component rms after centring: sqrt(<x^2>) (1D), sqrt(<|v|^2>/2) (2D) */
+  double ratio; /* <c^4>/<c^2>^2, c the centred variable (|v| for 2D); Gaussian: 3 (1D), 2 (2D) */
   double ratio_err; /* delta-method standard error of ratio */
-  double kurt;    /* excess: ratio - 3 (1D) or ratio - 2 (2D); 0 for a Gaussian */
-  double a2;      /* Sonine coefficient a2 = D/(D+2) ratio - 1; 0 for a Gaussian */
-  double a2_err;  /* its standard error = D/(D+2) ratio_err */
-  double ks_d;    /* 1D: sup |F_n(c/scale) - Phi|; 2D: NaN */
-  double ks_p;    /* its p-value (hd_ks_pvalue); 2D: NaN */
+  double kurt;      /* excess: ratio - 3 (1D) or ratio - 2 (2D); 0 for a Gaussian */
+  double a2;        /* Sonine coefficient a2 = D/(D+2) ratio - 1; 0 for a Gaussian */
+  double a2_err;    /* its standard error = D/(D+2) ratio_err */
+  double ks_d;      /* 1D: sup |F_n(c/scale) - Phi|; 2D: NaN */
+  double ks_p;      /* its p-value (hd_ks_pvalue); 2D: NaN */
 } hd_velstats;
 
 /* Statistics of the 1D sample x[0..n-1], n >= 2.  centre != 0 removes the sample mean first
@@ -32,8 +32,7 @@ int hd_velstats_1d(const double *x, size_t n, int centre, hd_velstats *out, hd_e
 
 /* Statistics of the 2D vectors (vx[i], vy[i]), centred on their mean vector (eq. 34):
  * ratio = <|v|^4>/<|v|^2>^2, a2 = ratio/2 - 1.  No KS (ks_d = ks_p = NaN). */
-int hd_velstats_2d(const double *vx, const double *vy, size_t n, hd_velstats *out,
-                   hd_error *err);
+int hd_velstats_2d(const double *vx, const double *vy, size_t n, hd_velstats *out, hd_error *err);
 
 /* Kolmogorov-Smirnov distance D_n = sup_x |F_n(x) - Phi(x)| of z[0..n-1] from the standard
  * normal.  z is sorted in place. */

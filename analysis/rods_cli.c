@@ -16,21 +16,20 @@
 /* Options shared by the DB readers. */
 typedef struct ropts {
   const char *db;
-  long run;      /* -1: newest rods run */
-  int bins;      /* histogram bins */
-  double t;      /* snapshot time wanted (nearest), NAN: every snapshot */
-  double gap;    /* cluster finder: gap below which neighbours are in one cluster */
-  long minsize;  /* cluster finder: smallest cluster counted */
-  double x;      /* rods-veldist: the cluster nearest x (NAN: the largest) */
-  double range;  /* rods-gofr: largest distance */
+  long run;     /* -1: newest rods run */
+  int bins;     /* histogram bins */
+  double t;     /* snapshot time wanted (nearest), NAN: every snapshot */
+  double gap;   /* cluster finder: gap below which neighbours are in one cluster */
+  long minsize; /* cluster finder: smallest cluster counted */
+  double x;     /* rods-veldist: the cluster nearest x (NAN: the largest) */
+  double range; /* rods-gofr: largest distance */
 } ropts;
 
 static int parse(int argc, char **argv, const char *usage, ropts *o) {
-  static const struct option lo[] = {{"run", 1, 0, 'r'},  {"bins", 1, 0, 'b'},
-                                     {"t", 1, 0, 't'},    {"gap", 1, 0, 'g'},
-                                     {"min-size", 1, 0, 'm'}, {"x", 1, 0, 'x'},
-                                     {"range", 1, 0, 'R'}, {"help", 0, 0, 'h'},
-                                     {0, 0, 0, 0}};
+  static const struct option lo[] = {
+      {"run", 1, 0, 'r'},   {"bins", 1, 0, 'b'},     {"t", 1, 0, 't'},
+      {"gap", 1, 0, 'g'},   {"min-size", 1, 0, 'm'}, {"x", 1, 0, 'x'},
+      {"range", 1, 0, 'R'}, {"help", 0, 0, 'h'},     {0, 0, 0, 0}};
   memset(o, 0, sizeof *o); /* --bins was read uninitialised: its defaults never applied */
   o->run = -1;
   o->t = NAN;
@@ -43,15 +42,33 @@ static int parse(int argc, char **argv, const char *usage, ropts *o) {
   while ((c = getopt_long(argc, argv, "h", lo, NULL)) != -1) {
     char *e = NULL;
     switch (c) {
-    case 'r': o->run = strtol(optarg, &e, 10); break;
-    case 'b': o->bins = (int)strtol(optarg, &e, 10); break;
-    case 't': o->t = strtod(optarg, &e); break;
-    case 'g': o->gap = strtod(optarg, &e); break;
-    case 'm': o->minsize = strtol(optarg, &e, 10); break;
-    case 'x': o->x = strtod(optarg, &e); break;
-    case 'R': o->range = strtod(optarg, &e); break;
-    case 'h': fputs(usage, stdout); return -1;
-    default: fprintf(stderr, "%s: bad option (see --help)\n", argv[0]); return 2;
+    case 'r':
+      o->run = strtol(optarg, &e, 10);
+      break;
+    case 'b':
+      o->bins = (int)strtol(optarg, &e, 10);
+      break;
+    case 't':
+      o->t = strtod(optarg, &e);
+      break;
+    case 'g':
+      o->gap = strtod(optarg, &e);
+      break;
+    case 'm':
+      o->minsize = strtol(optarg, &e, 10);
+      break;
+    case 'x':
+      o->x = strtod(optarg, &e);
+      break;
+    case 'R':
+      o->range = strtod(optarg, &e);
+      break;
+    case 'h':
+      fputs(usage, stdout);
+      return -1;
+    default:
+      fprintf(stderr, "%s: bad option (see --help)\n", argv[0]);
+      return 2;
     }
     if (e && *e) {
       fprintf(stderr, "%s: --%s: '%s' is not a number\n", argv[0], lo[0].name, optarg);
@@ -161,7 +178,9 @@ typedef struct rsnap {
   double t, *x, *v, *tb;
 } rsnap;
 
-static void snap_free(rsnap *s) { free(s->x), free(s->v), free(s->tb); }
+static void snap_free(rsnap *s) {
+  free(s->x), free(s->v), free(s->tb);
+}
 
 /* The rods at snapshot time t into s (snap_free). */
 static int snapshot(rrun *r, double t, rsnap *s) {
@@ -227,7 +246,8 @@ static int start_at(int argc, char **argv, const char *usage, int bins, ropts *o
   return 0;
 }
 
-/* ---- rods-energy ------------------------------------------------------------------------------ */
+/* ---- rods-energy ------------------------------------------------------------------------------
+ */
 
 int haff_rods_energy_main(int argc, char **argv) {
   static const char usage[] =
@@ -248,11 +268,13 @@ int haff_rods_energy_main(int argc, char **argv) {
   double rate_i = hd_rods_rate_ideal(N, 2 * es * (double)N / (double)(N - 1));
   double rate_35 = hd_rods_rate_eq35(N, nmod) * sqrt(sc->rod_temperature);
   sqlite3_stmt *st;
-  sqlite3_prepare_v2(r.db, "SELECT t, collisions, cpd, e_tr, e_rot FROM samples WHERE run = ?1 "
-                           "ORDER BY t", -1, &st, NULL);
+  sqlite3_prepare_v2(r.db,
+                     "SELECT t, collisions, cpd, e_tr, e_rot FROM samples WHERE run = ?1 "
+                     "ORDER BY t",
+                     -1, &st, NULL);
   sqlite3_bind_int64(st, 1, r.id);
-  printf("# run %ld: N=%ld gamma=%g nmod=%ld model=%s damping=%g\n", r.id, N, sc->rod_gamma,
-         nmod, sc->rod_model ? "constant" : "stochastic", sc->rod_damping);
+  printf("# run %ld: N=%ld gamma=%g nmod=%ld model=%s damping=%g\n", r.id, N, sc->rod_gamma, nmod,
+         sc->rod_model ? "constant" : "stochastic", sc->rod_damping);
   printf("t\tcollisions\tcpd\te_kin\te_bath\te_kin_over_e0\te_mode\te_kin_stat\tcoll_ideal\t"
          "coll_eq35\n");
   while (sqlite3_step(st) == SQLITE_ROW) {
@@ -266,7 +288,8 @@ int haff_rods_energy_main(int argc, char **argv) {
   return close_run(&r);
 }
 
-/* ---- rods-density ----------------------------------------------------------------------------- */
+/* ---- rods-density -----------------------------------------------------------------------------
+ */
 
 int haff_rods_density_main(int argc, char **argv) {
   static const char usage[] =
@@ -284,8 +307,10 @@ int haff_rods_density_main(int argc, char **argv) {
   long nt = snap_times(&r, &ts);
   if (!isnan(o.t)) {
     double t;
-    if (pick_time(argv[0], &r, &o, &t)) nt = 0;
-    else ts[0] = t, nt = 1;
+    if (pick_time(argv[0], &r, &o, &t))
+      nt = 0;
+    else
+      ts[0] = t, nt = 1;
   }
   long *cnt = calloc((size_t)o.bins, sizeof *cnt);
   double *ek = calloc((size_t)o.bins, sizeof *ek);
@@ -313,7 +338,8 @@ int haff_rods_density_main(int argc, char **argv) {
   return close_run(&r);
 }
 
-/* ---- rods-phase ------------------------------------------------------------------------------- */
+/* ---- rods-phase -------------------------------------------------------------------------------
+ */
 
 int haff_rods_phase_main(int argc, char **argv) {
   static const char usage[] =
@@ -332,7 +358,8 @@ int haff_rods_phase_main(int argc, char **argv) {
   return close_run(&r);
 }
 
-/* ---- rods-gofr -------------------------------------------------------------------------------- */
+/* ---- rods-gofr --------------------------------------------------------------------------------
+ */
 
 int haff_rods_gofr_main(int argc, char **argv) {
   static const char usage[] =
@@ -363,7 +390,8 @@ int haff_rods_gofr_main(int argc, char **argv) {
   return close_run(&r);
 }
 
-/* ---- clusters --------------------------------------------------------------------------------- */
+/* ---- clusters ---------------------------------------------------------------------------------
+ */
 
 /* Clusters of a snapshot: maximal runs of ring neighbours (in position order) closer than gap.
  * start[c], size[c]; order[] gets the rods sorted by x.  Arrays of n rods (clusters_alloc). */
@@ -377,7 +405,9 @@ static void clusters_alloc(rclusters *cl, long n) {
   cl->size = malloc((size_t)n * sizeof *cl->size);
 }
 
-static void clusters_free(rclusters *cl) { free(cl->order), free(cl->start), free(cl->size); }
+static void clusters_free(rclusters *cl) {
+  free(cl->order), free(cl->start), free(cl->size);
+}
 
 static long *g_sort_x;
 static int by_x(const void *a, const void *b) {
@@ -388,8 +418,7 @@ static int by_x(const void *a, const void *b) {
 /* Finds the clusters of x[0..n-1] into cl; returns their count. */
 static long find_clusters(const double *x, long n, double gap, rclusters *cl) {
   long *order = cl->order, *start = cl->start, *size = cl->size;
-  for (long i = 0; i < n; i++)
-    order[i] = i;
+  for (long i = 0; i < n; i++) order[i] = i;
   g_sort_x = (long *)(void *)x;
   qsort(order, (size_t)n, sizeof *order, by_x);
   /* start after the largest hole, so that no cluster wraps */
@@ -411,8 +440,7 @@ static long find_clusters(const double *x, long n, double gap, rclusters *cl) {
     }
     size[nc - 1]++;
   }
-  for (long c = 0; c < nc; c++)
-    start[c] = (k0 + start[c]) % n;
+  for (long c = 0; c < nc; c++) start[c] = (k0 + start[c]) % n;
   return nc;
 }
 
@@ -470,15 +498,15 @@ int haff_rods_veldist_main(int argc, char **argv) {
     long b = (long)((w[order[(start[pick] + m) % N]] - lo) / dw);
     hc[b < o.bins ? b : o.bins - 1] += 1.0 / ((double)ncl * dw);
   }
-  printf("# t = %.10g; %ld clusters (gap < %g); cluster: %ld rods around x = %.6g\n", s.t, nc, o.gap,
-         ncl, x[order[(start[pick] + ncl / 2) % N]]);
+  printf("# t = %.10g; %ld clusters (gap < %g); cluster: %ld rods around x = %.6g\n", s.t, nc,
+         o.gap, ncl, x[order[(start[pick] + ncl / 2) % N]]);
   printf("# all: mean %.6g sd %.6g; cluster: mean %.6g sd %.6g\n", ma, sa, mc, scl);
   printf("w\tp_all\tp_cluster\tgauss_all\tgauss_cluster\n");
   for (int b = 0; b < o.bins; b++) {
     double c = lo + (b + 0.5) * dw;
     double ga = exp(-0.5 * (c - ma) * (c - ma) / (sa * sa)) / (sa * sqrt(2 * M_PI));
-    double gc = scl > 0 ? exp(-0.5 * (c - mc) * (c - mc) / (scl * scl)) / (scl * sqrt(2 * M_PI))
-                        : NAN;
+    double gc =
+        scl > 0 ? exp(-0.5 * (c - mc) * (c - mc) / (scl * scl)) / (scl * sqrt(2 * M_PI)) : NAN;
     printf("%.6g\t%.6g\t%.6g\t%.6g\t%.6g\n", c, ha[b], hc[b], ga, gc);
   }
   free(w), free(ha), free(hc), clusters_free(&cl), snap_free(&s);
@@ -514,7 +542,8 @@ int haff_rods_clusters_main(int argc, char **argv) {
   return close_run(&r);
 }
 
-/* ---- rods-collapse ---------------------------------------------------------------------------- */
+/* ---- rods-collapse ----------------------------------------------------------------------------
+ */
 
 int haff_rods_collapse_main(int argc, char **argv) {
   static const char usage[] =
@@ -527,21 +556,34 @@ int haff_rods_collapse_main(int argc, char **argv) {
   const char *nl = "4,8,16,32,64,128", *el = "0.3,0.5,0.7,0.8,0.9,0.95";
   long seeds = 4;
   double cpd = 2000, gamma = 1;
-  static const struct option lo[] = {{"n", 1, 0, 'n'},     {"eps", 1, 0, 'e'},
-                                     {"seeds", 1, 0, 's'}, {"cpd", 1, 0, 'c'},
-                                     {"gamma", 1, 0, 'g'}, {"help", 0, 0, 'h'},
+  static const struct option lo[] = {{"n", 1, 0, 'n'},   {"eps", 1, 0, 'e'},   {"seeds", 1, 0, 's'},
+                                     {"cpd", 1, 0, 'c'}, {"gamma", 1, 0, 'g'}, {"help", 0, 0, 'h'},
                                      {0, 0, 0, 0}};
   optind = 1;
   int c;
   while ((c = getopt_long(argc, argv, "h", lo, NULL)) != -1) {
     switch (c) {
-    case 'n': nl = optarg; break;
-    case 'e': el = optarg; break;
-    case 's': seeds = atol(optarg); break;
-    case 'c': cpd = atof(optarg); break;
-    case 'g': gamma = atof(optarg); break;
-    case 'h': fputs(usage, stdout); return 0;
-    default: fprintf(stderr, "%s: bad option (see --help)\n", argv[0]); return 2;
+    case 'n':
+      nl = optarg;
+      break;
+    case 'e':
+      el = optarg;
+      break;
+    case 's':
+      seeds = atol(optarg);
+      break;
+    case 'c':
+      cpd = atof(optarg);
+      break;
+    case 'g':
+      gamma = atof(optarg);
+      break;
+    case 'h':
+      fputs(usage, stdout);
+      return 0;
+    default:
+      fprintf(stderr, "%s: bad option (see --help)\n", argv[0]);
+      return 2;
     }
   }
   if (optind != argc || seeds < 1 || !(cpd > 0) || !(gamma > 0 && gamma <= 1)) {
@@ -574,8 +616,7 @@ int haff_rods_collapse_main(int argc, char **argv) {
         hd_rods_event ev;
         long nc = (long)(cpd * (double)N / 2);
         int rr = HD_OK;
-        for (long k = 0; k < nc && rr == HD_OK; k++)
-          rr = hd_rods_next(r, INFINITY, &ev, &err);
+        for (long k = 0; k < nc && rr == HD_OK; k++) rr = hd_rods_next(r, INFINITY, &ev, &err);
         if (rr == HD_ECOLLAPSE && col < 64) at[col++] = 2.0 * (double)r->collisions / (double)N;
         hd_rods_free(r);
       }

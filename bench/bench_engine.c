@@ -34,8 +34,12 @@ int main(int argc, char **argv) {
   sc.dimer_d = sc.dimer_a = sc.dimer_m = 1.0;
   sc.disk_sigma = sc.disk_mass = 1.0;
   sc.dimer_alpha = sc.disk_alpha = sc.disk_alpha_dimer = sc.wall_alpha = 1.0;
-  double area = dimer ? 2 * M_PI / 4 - (M_PI / 3 - sqrt(3) / 4) /* a = d: lens removed */ : M_PI / 4;
-  if (dimer) sc.n_dimers = n; else sc.n_disks = n;
+  double area =
+      dimer ? 2 * M_PI / 4 - (M_PI / 3 - sqrt(3) / 4) /* a = d: lens removed */ : M_PI / 4;
+  if (dimer)
+    sc.n_dimers = n;
+  else
+    sc.n_disks = n;
   sc.box_x = sc.box_y = sqrt((double)n * area / eta);
   sc.seed = 1;
   sc.temperature = 1.0;
@@ -68,9 +72,22 @@ int main(int argc, char **argv) {
       return 1;
     }
     if (db) {
-      hd_collision_row row = {k, ev.t, (hd_coll_kind)ev.kind, ev.i, ev.j, ev.ka, ev.kb,
-                              ev.info.theta_i, ev.info.theta_j, ev.info.f, ev.info.de, ev.info.vn,
-                              NAN, NAN, NAN, NAN};
+      hd_collision_row row = {k,
+                              ev.t,
+                              (hd_coll_kind)ev.kind,
+                              ev.i,
+                              ev.j,
+                              ev.ka,
+                              ev.kb,
+                              ev.info.theta_i,
+                              ev.info.theta_j,
+                              ev.info.f,
+                              ev.info.de,
+                              ev.info.vn,
+                              NAN,
+                              NAN,
+                              NAN,
+                              NAN};
       if (hd_db_log_collision(db, run, &row, &err)) {
         fprintf(stderr, "bench: %s\n", err.msg);
         return 1;
@@ -79,8 +96,8 @@ int main(int argc, char **argv) {
   }
   if (db && hd_db_commit(db, &err)) return 1;
   double dt = now() - t0;
-  printf("%s\t%ld\t%.2f\t%d\t%ld\t%.3f\t%.4g\t%.4g\t%.3f\n", dimer ? "dimer" : "disk", n, eta,
-         log, ncoll, dt, (double)ncoll / dt, (double)(s->c.events - e0) / dt,
+  printf("%s\t%ld\t%.2f\t%d\t%ld\t%.3f\t%.4g\t%.4g\t%.3f\n", dimer ? "dimer" : "disk", n, eta, log,
+         ncoll, dt, (double)ncoll / dt, (double)(s->c.events - e0) / dt,
          (double)s->c.stale / (double)(s->c.events - e0));
   if (db) {
     hd_db_close(db, &err);

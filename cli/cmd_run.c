@@ -43,7 +43,9 @@ int haff_run_main(int argc, char **argv) {
   optind = 1;
   while ((c = getopt_long(argc, argv, "o:qh", opts, NULL)) != -1) {
     switch (c) {
-    case 'o': db = optarg; break;
+    case 'o':
+      db = optarg;
+      break;
     case 's':
       if (nset == MAX_SET) {
         fprintf(stderr, "haff run: more than %d --set options\n", MAX_SET);
@@ -61,9 +63,15 @@ int haff_run_main(int argc, char **argv) {
       have_seed = 1;
       break;
     }
-    case 'q': quiet = 1; break;
-    case 'h': fputs(run_usage, stdout); return 0;
-    default: fputs(run_usage, stderr); return 2;
+    case 'q':
+      quiet = 1;
+      break;
+    case 'h':
+      fputs(run_usage, stdout);
+      return 0;
+    default:
+      fputs(run_usage, stderr);
+      return 2;
     }
   }
   if (optind != argc - 1) {
@@ -130,9 +138,15 @@ int haff_resume_main(int argc, char **argv) {
       }
       break;
     }
-    case 'q': quiet = 1; break;
-    case 'h': fputs(resume_usage, stdout); return 0;
-    default: fputs(resume_usage, stderr); return 2;
+    case 'q':
+      quiet = 1;
+      break;
+    case 'h':
+      fputs(resume_usage, stdout);
+      return 0;
+    default:
+      fputs(resume_usage, stderr);
+      return 2;
     }
   }
   if (optind != argc - 1) {

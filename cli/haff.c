@@ -25,7 +25,8 @@ static const haff_command commands[] = {
     {"rods-density", haff_rods_density_main, "rods Figs. 3, 4, 6: coarse-grained density, local E"},
     {"rods-phase", haff_rods_phase_main, "rods Fig. 5: phase space (x, v, T_B) at a time"},
     {"rods-gofr", haff_rods_gofr_main, "rods Fig. 8: pair correlation g(x) at a time"},
-    {"rods-veldist", haff_rods_veldist_main, "rods Fig. 7: velocities of all rods and of a cluster"},
+    {"rods-veldist", haff_rods_veldist_main,
+     "rods Fig. 7: velocities of all rods and of a cluster"},
     {"rods-clusters", haff_rods_clusters_main, "rods: clusters per snapshot (count, largest)"},
     {"rods-collapse", haff_rods_collapse_main, "rods: (N, eps) scan of collapse vs McNamara-Young"},
 };

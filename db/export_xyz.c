@@ -4,12 +4,12 @@
  * One frame per (label, t) of the run, in time order (at equal t: initial, velocities,
  * checkpoint, final).  A frame is
  *   line 1: the number of particles, i.e. of disks (a dimer gives its 2 disks)
- *   line 2: Lattice="Lx 0 0 0 Ly 0 0 0 1" Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:body:I:1
- *           Time=t Label=label [Cpd=cpd]
- *   then one line per disk: species (D: disk of a dimer, S: single disk, R: rod), x y 0,
- *   vx vy 0 (the velocity of that disk, rotation included), radius, body index.
- * A dimer's disk k is at R -+ (a/2)(cos phi, sin phi) (disk 0 at -), with velocity
- * V -+ (a/2) omega (-sin phi, cos phi).  Positions are not wrapped into the box.
+ *   line 2: Lattice="Lx 0 0 0 Ly 0 0 0 1"
+ * Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:body:I:1 Time=t Label=label [Cpd=cpd] then one
+ * line per disk: species (D: disk of a dimer, S: single disk, R: rod), x y 0, vx vy 0 (the velocity
+ * of that disk, rotation included), radius, body index. A dimer's disk k is at R -+ (a/2)(cos phi,
+ * sin phi) (disk 0 at -), with velocity V -+ (a/2) omega (-sin phi, cos phi).  Positions are not
+ * wrapped into the box.
  *
  * Lx, Ly come from runs.box_x/box_y (hd_db_run_box), else from the scene's [system] box; the
  * dimer d and a from [dimers] d, a and the disk diameter from [disks] sigma (all default 1). */
@@ -28,10 +28,10 @@ int haff_export_main(int argc, char **argv);
 
 /* The geometry export needs, read from the run's scene text. */
 typedef struct xyz_geom {
-  double lx, ly;   /* box edges, NAN until known */
-  double dimer_d;  /* [dimers] d */
-  double dimer_a;  /* [dimers] a */
-  double sigma;    /* [disks] sigma */
+  double lx, ly;  /* box edges, NAN until known */
+  double dimer_d; /* [dimers] d */
+  double dimer_a; /* [dimers] a */
+  double sigma;   /* [disks] sigma */
 } xyz_geom;
 
 static int geom_handler(void *user, const char *section, const char *name, const char *value) {
@@ -60,8 +60,7 @@ static void usage(FILE *out) {
 }
 
 /* Writes the frames of run/label to out.  Returns 0 or an exit code with one line on stderr. */
-static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geom *g,
-                        FILE *out) {
+static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geom *g, FILE *out) {
   sqlite3 *h = hd_db_handle(db);
   sqlite3_stmt *frames = NULL, *bodies = NULL;
   int code = 0;
@@ -70,9 +69,8 @@ static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geo
       "WHERE run = ?1 AND (?2 = 'all' OR label = ?2) GROUP BY label, t "
       "ORDER BY t, CASE label WHEN 'initial' THEN 0 WHEN 'velocities' THEN 1 "
       "WHEN 'checkpoint' THEN 2 WHEN 'final' THEN 3 ELSE 4 END, label";
-  static const char bodies_sql[] =
-      "SELECT body, kind, x, y, phi, vx, vy, omega FROM states "
-      "WHERE run = ?1 AND label = ?2 AND t = ?3 ORDER BY body";
+  static const char bodies_sql[] = "SELECT body, kind, x, y, phi, vx, vy, omega FROM states "
+                                   "WHERE run = ?1 AND label = ?2 AND t = ?3 ORDER BY body";
   if (sqlite3_prepare_v2(h, frames_sql, -1, &frames, NULL) != SQLITE_OK ||
       sqlite3_prepare_v2(h, bodies_sql, -1, &bodies, NULL) != SQLITE_OK) {
     fprintf(stderr, "haff export: %s: read states: %s\n", hd_db_path(db), sqlite3_errmsg(h));
@@ -111,13 +109,13 @@ static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geo
         for (int k = 0; k < 2; k++) {
           double sg = k ? 1.0 : -1.0;
           fprintf(out, "D %.10g %.10g 0 %.10g %.10g 0 %.10g %lld\n", x + sg * h2 * c,
-                  y + sg * h2 * sn, vx - sg * h2 * om * sn, vy + sg * h2 * om * c,
-                  0.5 * g->dimer_d, body);
+                  y + sg * h2 * sn, vx - sg * h2 * om * sn, vy + sg * h2 * om * c, 0.5 * g->dimer_d,
+                  body);
         }
       } else {
         int rod = kind && !strcmp(kind, "rod");
-        fprintf(out, "%s %.10g %.10g 0 %.10g %.10g 0 %.10g %lld\n", rod ? "R" : "S", x, y, vx,
-                vy, 0.5 * g->sigma, body);
+        fprintf(out, "%s %.10g %.10g 0 %.10g %.10g 0 %.10g %lld\n", rod ? "R" : "S", x, y, vx, vy,
+                0.5 * g->sigma, body);
       }
     }
     if (b != SQLITE_DONE) break;
@@ -162,14 +160,15 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
       g->ly = sqlite3_column_double(st, 3);
     }
     if (!code && !(g->lx > 0 && g->ly > 0)) {
-      fprintf(stderr, "haff export: %s: run %lld: box unknown (no runs.box_x/box_y and no "
-              "[system] box in its scene)\n", hd_db_path(db), (long long)*run);
+      fprintf(stderr,
+              "haff export: %s: run %lld: box unknown (no runs.box_x/box_y and no "
+              "[system] box in its scene)\n",
+              hd_db_path(db), (long long)*run);
       code = 1;
     }
   } else if (s == SQLITE_DONE) {
     if (*run > 0)
-      fprintf(stderr, "haff export: %s: there is no run %lld\n", hd_db_path(db),
-              (long long)*run);
+      fprintf(stderr, "haff export: %s: there is no run %lld\n", hd_db_path(db), (long long)*run);
     else
       fprintf(stderr, "haff export: %s: the database holds no run\n", hd_db_path(db));
     code = 2;
@@ -217,13 +216,19 @@ int haff_export_main(int argc, char **argv) {
       label = optarg;
       if (strcmp(label, "initial") && strcmp(label, "final") && strcmp(label, "checkpoint") &&
           strcmp(label, "velocities") && strcmp(label, "all")) {
-        fprintf(stderr, "haff export: --label %s: must be initial, final, checkpoint, "
-                "velocities or all\n", label);
+        fprintf(stderr,
+                "haff export: --label %s: must be initial, final, checkpoint, "
+                "velocities or all\n",
+                label);
         return 2;
       }
       break;
-    case 'o': outpath = optarg; break;
-    case 'h': usage(stdout); return 0;
+    case 'o':
+      outpath = optarg;
+      break;
+    case 'h':
+      usage(stdout);
+      return 0;
     default:
       fprintf(stderr, "haff export: bad option '%s' (haff export --help)\n",
               argv[optind] ? argv[optind] : "?");

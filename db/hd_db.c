@@ -23,17 +23,17 @@ extern const char hd_schema_sql[];
 
 struct hd_db {
   sqlite3 *db;
-  char *path;                 /* as given, for messages */
-  int readonly;               /* opened by hd_db_open_readonly */
-  long batch_rows;            /* rows per batch transaction */
-  long pending;               /* rows in the open batch */
-  int in_tx;                  /* a batch transaction is open */
-  sqlite3_stmt *ins_run;      /* INSERT INTO runs */
-  sqlite3_stmt *ins_coll;     /* INSERT INTO collisions */
-  sqlite3_stmt *ins_sample;   /* INSERT INTO samples */
-  sqlite3_stmt *ins_state;    /* INSERT INTO states */
-  sqlite3_stmt *ins_ckpt;     /* INSERT INTO checkpoints */
-  sqlite3_stmt *del_ckpt;     /* DELETE older checkpoints of a run */
+  char *path;               /* as given, for messages */
+  int readonly;             /* opened by hd_db_open_readonly */
+  long batch_rows;          /* rows per batch transaction */
+  long pending;             /* rows in the open batch */
+  int in_tx;                /* a batch transaction is open */
+  sqlite3_stmt *ins_run;    /* INSERT INTO runs */
+  sqlite3_stmt *ins_coll;   /* INSERT INTO collisions */
+  sqlite3_stmt *ins_sample; /* INSERT INTO samples */
+  sqlite3_stmt *ins_state;  /* INSERT INTO states */
+  sqlite3_stmt *ins_ckpt;   /* INSERT INTO checkpoints */
+  sqlite3_stmt *del_ckpt;   /* DELETE older checkpoints of a run */
 };
 
 static const char *const coll_kind_names[] = {"dimer-dimer", "dimer-disk", "disk-disk",
@@ -46,10 +46,14 @@ const char *hd_coll_kind_name(hd_coll_kind k) {
 
 const char *hd_db_kind_name(int kind) {
   switch (kind) {
-  case 0: return "disk";
-  case 1: return "dimer";
-  case HD_DB_KIND_ROD: return "rod";
-  default: return NULL;
+  case 0:
+    return "disk";
+  case 1:
+    return "dimer";
+  case HD_DB_KIND_ROD:
+    return "rod";
+  default:
+    return NULL;
   }
 }
 
@@ -160,27 +164,31 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err) {
   } else if (sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK) {
     rc = sql_error(db, err, "apply schema");
   }
-  if (!rc) rc = prepare(db, &db->ins_run,
-                        "INSERT INTO runs (scene, seed, status, started, version) VALUES "
-                        "(?1, ?2, 'running', strftime('%Y-%m-%dT%H:%M:%SZ','now'), ?3)",
-                        err);
-  if (!rc) rc = prepare(db, &db->ins_coll,
-                        "INSERT INTO collisions (run, seq, t, kind, i, j, disk_i, disk_j, "
-                        "theta_i, theta_j, f, de, vn, eps, e_tr, tb_i, tb_j) VALUES "
-                        "(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, "
-                        "?17)",
-                        err);
-  if (!rc) rc = prepare(db, &db->ins_sample,
-                        "INSERT INTO samples (run, t, collisions, cpd, e_tr, e_rot, e_tr_dimer, "
-                        "e_rot_dimer, e_tr_disk) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)",
-                        err);
-  if (!rc) rc = prepare(db, &db->ins_state,
-                        "INSERT INTO states (run, label, t, cpd, body, kind, x, y, phi, vx, vy, "
-                        "omega) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)",
-                        err);
-  if (!rc) rc = prepare(db, &db->ins_ckpt,
-                        "INSERT INTO checkpoints (run, seq, t, blob) VALUES (?1, ?2, ?3, ?4)",
-                        err);
+  if (!rc)
+    rc = prepare(db, &db->ins_run,
+                 "INSERT INTO runs (scene, seed, status, started, version) VALUES "
+                 "(?1, ?2, 'running', strftime('%Y-%m-%dT%H:%M:%SZ','now'), ?3)",
+                 err);
+  if (!rc)
+    rc = prepare(db, &db->ins_coll,
+                 "INSERT INTO collisions (run, seq, t, kind, i, j, disk_i, disk_j, "
+                 "theta_i, theta_j, f, de, vn, eps, e_tr, tb_i, tb_j) VALUES "
+                 "(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, "
+                 "?17)",
+                 err);
+  if (!rc)
+    rc = prepare(db, &db->ins_sample,
+                 "INSERT INTO samples (run, t, collisions, cpd, e_tr, e_rot, e_tr_dimer, "
+                 "e_rot_dimer, e_tr_disk) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)",
+                 err);
+  if (!rc)
+    rc = prepare(db, &db->ins_state,
+                 "INSERT INTO states (run, label, t, cpd, body, kind, x, y, phi, vx, vy, "
+                 "omega) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)",
+                 err);
+  if (!rc)
+    rc = prepare(db, &db->ins_ckpt,
+                 "INSERT INTO checkpoints (run, seq, t, blob) VALUES (?1, ?2, ?3, ?4)", err);
   if (!rc) rc = prepare(db, &db->del_ckpt, "DELETE FROM checkpoints WHERE run = ?1", err);
   if (rc) {
     db_free(db);
@@ -223,9 +231,13 @@ void hd_db_set_batch_rows(hd_db *db, long rows) {
   if (db) db->batch_rows = rows < 1 ? 1 : rows;
 }
 
-const char *hd_db_path(const hd_db *db) { return db ? db->path : ""; }
+const char *hd_db_path(const hd_db *db) {
+  return db ? db->path : "";
+}
 
-sqlite3 *hd_db_handle(hd_db *db) { return db ? db->db : NULL; }
+sqlite3 *hd_db_handle(hd_db *db) {
+  return db ? db->db : NULL;
+}
 
 int hd_db_exec(hd_db *db, const char *sql, hd_error *err) {
   if (!db) return hd_error_set(err, HD_EIO, "database: not open");
@@ -325,8 +337,9 @@ int hd_db_log_state(hd_db *db, int64_t run, const char *label, const hd_state_re
   int rc = check_db(db, err);
   if (rc) return rc;
   const char *kind = hd_db_kind_name(r->kind);
-  if (!kind) return hd_error_set(err, HD_EINPUT, "%s: insert state: unknown body kind %d",
-                                 db->path, r->kind);
+  if (!kind)
+    return hd_error_set(err, HD_EINPUT, "%s: insert state: unknown body kind %d", db->path,
+                        r->kind);
   if ((rc = batch_begin(db, err))) return rc;
   sqlite3_stmt *st = db->ins_state;
   sqlite3_bind_int64(st, 1, run);
@@ -347,8 +360,8 @@ int hd_db_log_state(hd_db *db, int64_t run, const char *label, const hd_state_re
 /* ---------------------------------------------------------------------------------------- */
 /* runs */
 
-int hd_db_run_begin(hd_db *db, const char *scene_text, unsigned long long seed,
-                    const char *version, int64_t *run, hd_error *err) {
+int hd_db_run_begin(hd_db *db, const char *scene_text, unsigned long long seed, const char *version,
+                    int64_t *run, hd_error *err) {
   int rc = check_db(db, err);
   if (rc || (rc = hd_db_commit(db, err))) return rc;
   sqlite3_stmt *st = db->ins_run;
@@ -404,9 +417,10 @@ int hd_db_run_status(hd_db *db, int64_t run, const char *status, int64_t events,
   int known = 0;
   for (size_t k = 0; status && k < sizeof ok / sizeof ok[0]; k++) known |= !strcmp(status, ok[k]);
   if (!known)
-    return hd_error_set(err, HD_EINPUT, "%s: run status '%s' is not one of running, done, "
-                        "interrupted, collapsed, failed", db ? db->path : "database",
-                        status ? status : "(null)");
+    return hd_error_set(err, HD_EINPUT,
+                        "%s: run status '%s' is not one of running, done, "
+                        "interrupted, collapsed, failed",
+                        db ? db->path : "database", status ? status : "(null)");
   status_args a = {status, events, wall_seconds};
   int64_t n = 0;
   int rc = run_update(db, run,
@@ -421,8 +435,10 @@ int hd_db_run_status(hd_db *db, int64_t run, const char *status, int64_t events,
 }
 
 static void bind_message(sqlite3_stmt *st, const void *ctx) {
-  if (ctx) sqlite3_bind_text(st, 2, ctx, -1, SQLITE_STATIC);
-  else sqlite3_bind_null(st, 2);
+  if (ctx)
+    sqlite3_bind_text(st, 2, ctx, -1, SQLITE_STATIC);
+  else
+    sqlite3_bind_null(st, 2);
 }
 
 int hd_db_run_message(hd_db *db, int64_t run, const char *msg, hd_error *err) {
@@ -444,11 +460,10 @@ static void bind_box(sqlite3_stmt *st, const void *ctx) {
 int hd_db_run_box(hd_db *db, int64_t run, double lx, double ly, hd_error *err) {
   double b[2] = {lx, ly};
   int64_t n = 0;
-  int rc = run_update(db, run, "UPDATE runs SET box_x = ?2, box_y = ?3 WHERE id = ?1", bind_box,
-                      b, "set run box", &n, err);
+  int rc = run_update(db, run, "UPDATE runs SET box_x = ?2, box_y = ?3 WHERE id = ?1", bind_box, b,
+                      "set run box", &n, err);
   if (!rc && n == 0)
-    return hd_error_set(err, HD_EINPUT, "%s: set run box: no run %lld", db->path,
-                        (long long)run);
+    return hd_error_set(err, HD_EINPUT, "%s: set run box: no run %lld", db->path, (long long)run);
   return rc;
 }
 
@@ -469,8 +484,8 @@ int hd_db_build_indexes(hd_db *db, hd_error *err) {
 /* ---------------------------------------------------------------------------------------- */
 /* checkpoints and resume */
 
-int hd_db_checkpoint_save(hd_db *db, int64_t run, int64_t seq, double t, const void *blob,
-                          size_t n, hd_error *err) {
+int hd_db_checkpoint_save(hd_db *db, int64_t run, int64_t seq, double t, const void *blob, size_t n,
+                          hd_error *err) {
   int rc = check_db(db, err);
   if (rc || (rc = batch_begin(db, err))) return rc;
   sqlite3_stmt *st = db->del_ckpt;
@@ -482,16 +497,18 @@ int hd_db_checkpoint_save(hd_db *db, int64_t run, int64_t seq, double t, const v
   sqlite3_bind_int64(st, 2, seq);
   bind_real(st, 3, t);
   /* An empty blob must still be a blob (NOT NULL): zeroblob(0). */
-  if (n == 0 || !blob) sqlite3_bind_zeroblob(st, 4, 0);
-  else sqlite3_bind_blob64(st, 4, blob, (sqlite3_uint64)n, SQLITE_STATIC);
+  if (n == 0 || !blob)
+    sqlite3_bind_zeroblob(st, 4, 0);
+  else
+    sqlite3_bind_blob64(st, 4, blob, (sqlite3_uint64)n, SQLITE_STATIC);
   if (sqlite3_step(st) != SQLITE_DONE) return batch_fail(db, st, err, "insert checkpoint");
   sqlite3_reset(st);
   sqlite3_clear_bindings(st); /* do not keep a pointer to the caller's blob */
   return hd_db_commit(db, err);
 }
 
-int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_t *seq,
-                          double *t, hd_error *err) {
+int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_t *seq, double *t,
+                          hd_error *err) {
   if (!db) return hd_error_set(err, HD_EIO, "database: not open");
   *blob = NULL;
   *n = 0;
@@ -517,8 +534,7 @@ int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_
       if (t) *t = sqlite3_column_double(st, 1);
     }
   } else if (s == SQLITE_DONE) {
-    rc = hd_error_set(err, HD_EINPUT, "%s: run %lld has no checkpoint", db->path,
-                      (long long)run);
+    rc = hd_error_set(err, HD_EINPUT, "%s: run %lld has no checkpoint", db->path, (long long)run);
   } else {
     rc = sql_error(db, err, "load checkpoint");
   }
@@ -548,12 +564,14 @@ int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error
     return sql_error(db, err, "truncate: begin");
   rc = run_update(db, run, "DELETE FROM collisions WHERE run = ?1 AND seq > ?2", bind_seq, &a,
                   "truncate collisions", NULL, err);
-  if (!rc) rc = run_update(db, run, "DELETE FROM samples WHERE run = ?1 AND t > ?2", bind_t, &a,
-                           "truncate samples", NULL, err);
-  if (!rc) rc = run_update(db, run,
-                           "DELETE FROM states WHERE run = ?1 AND t > ?2 "
-                           "AND label <> 'checkpoint'",
-                           bind_t, &a, "truncate states", NULL, err);
+  if (!rc)
+    rc = run_update(db, run, "DELETE FROM samples WHERE run = ?1 AND t > ?2", bind_t, &a,
+                    "truncate samples", NULL, err);
+  if (!rc)
+    rc = run_update(db, run,
+                    "DELETE FROM states WHERE run = ?1 AND t > ?2 "
+                    "AND label <> 'checkpoint'",
+                    bind_t, &a, "truncate states", NULL, err);
   if (!rc && sqlite3_exec(db->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK)
     rc = sql_error(db, err, "truncate: commit");
   if (rc) rollback(db);
@@ -578,7 +596,8 @@ int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene
     const char *status = (const char *)sqlite3_column_text(st, 1);
     if (!status ||
         (strcmp(status, "running") && strcmp(status, "interrupted") && strcmp(status, "failed"))) {
-      rc = hd_error_set(err, HD_EINPUT, "%s: run %lld is %s: only an interrupted, failed (disk "
+      rc = hd_error_set(err, HD_EINPUT,
+                        "%s: run %lld is %s: only an interrupted, failed (disk "
                         "full, I/O) or killed ('running') run can be resumed; a collapsed run "
                         "keeps its state at the collapse in `states` and `checkpoints`",
                         db->path, (long long)want_run, status ? status : "(no status)");
@@ -595,8 +614,7 @@ int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene
     }
   } else if (s == SQLITE_DONE) {
     if (want_run > 0)
-      rc = hd_error_set(err, HD_EINPUT, "%s: there is no run %lld", db->path,
-                        (long long)want_run);
+      rc = hd_error_set(err, HD_EINPUT, "%s: there is no run %lld", db->path, (long long)want_run);
     else
       rc = hd_error_set(err, HD_EINPUT, "%s: no interrupted run to resume", db->path);
   } else {

@@ -30,17 +30,17 @@ const char *hd_coll_kind_name(hd_coll_kind k);
 
 /* One row of `collisions`. NaN doubles are stored as NULL. */
 typedef struct hd_collision_row {
-  int64_t seq;              /* 1, 2, ... collision number within the run */
-  double t;                 /* time */
+  int64_t seq; /* 1, 2, ... collision number within the run */
+  double t;    /* time */
   hd_coll_kind kind;
-  int64_t i, j;             /* bodies (0-based); j < 0 for a wall */
-  int disk_i, disk_j;       /* which disk of each (0/1; 0 for a disk; -1 for a wall) */
-  double theta_i, theta_j;  /* contact angles, NaN when not defined */
-  double f, de, vn;         /* orientation factor, energy change, normal relative velocity */
+  int64_t i, j;            /* bodies (0-based); j < 0 for a wall */
+  int disk_i, disk_j;      /* which disk of each (0/1; 0 for a disk; -1 for a wall) */
+  double theta_i, theta_j; /* contact angles, NaN when not defined */
+  double f, de, vn;        /* orientation factor, energy change, normal relative velocity */
   /* rod-rod only (stored as NULL for the other kinds, whatever their value): */
-  double eps;               /* coefficient of restitution drawn */
-  double e_tr;              /* energy of the relative motion before, mu u^2 / 2 */
-  double tb_i, tb_j;        /* bath temperatures of rods i and j after the collision */
+  double eps;        /* coefficient of restitution drawn */
+  double e_tr;       /* energy of the relative motion before, mu u^2 / 2 */
+  double tb_i, tb_j; /* bath temperatures of rods i and j after the collision */
 } hd_collision_row;
 
 /* One row of `samples` (energies per particle). */
@@ -62,9 +62,9 @@ typedef struct hd_sample_row {
 typedef struct hd_state_rec {
   double t;
   int64_t body;
-  int kind;            /* HD_KIND_DISK 0, HD_KIND_DIMER 1, HD_DB_KIND_ROD 2 */
+  int kind; /* HD_KIND_DISK 0, HD_KIND_DIMER 1, HD_DB_KIND_ROD 2 */
   double x, y, phi, vx, vy, omega;
-  double cpd;          /* collisions per particle at t (states.cpd); NaN is stored as NULL */
+  double cpd; /* collisions per particle at t (states.cpd); NaN is stored as NULL */
 } hd_state_rec;
 
 /* The text of a body kind ("disk", "dimer", "rod"), or NULL for an unknown kind. */
@@ -88,8 +88,8 @@ void hd_db_set_batch_rows(hd_db *db, long rows);
 const char *hd_db_path(const hd_db *db);
 
 /* Inserts a runs row with status 'running' and returns its id in *run. */
-int hd_db_run_begin(hd_db *db, const char *scene_text, unsigned long long seed,
-                    const char *version, int64_t *run, hd_error *err);
+int hd_db_run_begin(hd_db *db, const char *scene_text, unsigned long long seed, const char *version,
+                    int64_t *run, hd_error *err);
 
 /* Sets status ('running','done','interrupted','collapsed','failed'), events, wall_seconds and
  * (for a final status) finished; commits the open batch first. */
@@ -121,13 +121,13 @@ int hd_db_commit(hd_db *db, hd_error *err);
 /* Writes a checkpoint (an opaque engine blob, exact) for run at collision seq / time t in the
  * same transaction as the rows logged so far, then commits.  Older checkpoints of the run are
  * deleted. */
-int hd_db_checkpoint_save(hd_db *db, int64_t run, int64_t seq, double t, const void *blob,
-                          size_t n, hd_error *err);
+int hd_db_checkpoint_save(hd_db *db, int64_t run, int64_t seq, double t, const void *blob, size_t n,
+                          hd_error *err);
 
 /* Loads the newest checkpoint of run: *blob malloc'd (free()), *seq and *t as saved.
  * HD_EINPUT if the run has none. */
-int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_t *seq,
-                          double *t, hd_error *err);
+int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_t *seq, double *t,
+                          hd_error *err);
 
 /* Deletes the rows a resumed run will write again: collisions with seq > seq and samples and
  * non-checkpoint states with t > t. */

@@ -330,7 +330,8 @@ static int ca_solve(const ca_ctx *c, double t, double tend, double tmax, double 
   return 0;
 }
 
-/* The interval [t_in, t_out] in which |d + v t| <= R, intersected with t >= 0. Returns 0 if empty. */
+/* The interval [t_in, t_out] in which |d + v t| <= R, intersected with t >= 0. Returns 0 if empty.
+ */
 static int circle_window(double dx, double dy, double vx, double vy, double R, double *t_in,
                          double *t_out) {
   double c = dx * dx + dy * dy - R * R, b = dx * vx + dy * vy, v2 = vx * vx + vy * vy;

@@ -29,8 +29,8 @@ typedef struct hd_shape {
 typedef struct hd_kin {
   double x, y;   /* centre of mass */
   double vx, vy; /* centre-of-mass velocity */
-  double phi;    /* orientation of the axis disk0 -> disk1 (dimers; 0 for disks), kept in (-pi, pi] */
-  double omega;  /* signed angular velocity (dimers; 0 for disks) */
+  double phi; /* orientation of the axis disk0 -> disk1 (dimers; 0 for disks), kept in (-pi, pi] */
+  double omega; /* signed angular velocity (dimers; 0 for disks) */
 } hd_kin;
 
 /* A hard wall: the line {axis coordinate == pos}; bodies live on the side `normal` points to. */

@@ -28,8 +28,8 @@ static void paper_apply(hd_kin *k, const hd_side *o, double px, double py) {
     k->vy += py / o->mass;
     return;
   }
-  double dvx = px / o->m, dvy = py / o->m;     /* Dv of eq. 10 */
-  double du = dvx * o->ex + dvy * o->ey;       /* Dv . r12 / a */
+  double dvx = px / o->m, dvy = py / o->m;                           /* Dv of eq. 10 */
+  double du = dvx * o->ex + dvy * o->ey;                             /* Dv . r12 / a */
   double c1x = dvx - 0.5 * du * o->ex, c1y = dvy - 0.5 * du * o->ey; /* disk 1 (colliding) */
   double c2x = 0.5 * du * o->ex, c2y = 0.5 * du * o->ey;             /* disk 2 (partner) */
   k->vx += 0.5 * (c1x + c2x);
@@ -49,7 +49,8 @@ int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb
   if (!(g > 0.0)) return 0;
   double px, py; /* impulse on A */
   if (a.rot && b.rot && a.m == b.m) {
-    /* eq. 18: Dv = (1 + alpha)/(2d) (v3 - v1).r13 / (1 - [(r13.r12)^2 + (r13.r34)^2]/(4 a^2 d^2)) */
+    /* eq. 18: Dv = (1 + alpha)/(2d) (v3 - v1).r13 / (1 - [(r13.r12)^2 + (r13.r34)^2]/(4 a^2 d^2))
+     */
     double x12 = (r13x * a.ex + r13y * a.ey) * a.a, x34 = (r13x * b.ex + r13y * b.ey) * b.a;
     double den = 1.0 - (x12 * x12 / (a.a * a.a) + x34 * x34 / (b.a * b.a)) / (4.0 * dd * dd);
     double dv = (1.0 + alpha) / (2.0 * dd) * g / den;
@@ -64,8 +65,8 @@ int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb
     px = a.m * du * r13x;
     py = a.m * du * r13y;
   } else if (!a.rot && b.rot) {
-    /* eq. 22 for B's dimer: R_d - r_3 = r13, V_d - v_3 = v1 - v3: Du = -(1 + alpha) g / den r13/C^2,
-     * impulse on B = m Du, on A = -m Du */
+    /* eq. 22 for B's dimer: R_d - r_3 = r13, V_d - v_3 = v1 - v3: Du = -(1 + alpha) g / den
+     * r13/C^2, impulse on B = m Du, on A = -m Du */
     double x34 = (r13x * b.ex + r13y * b.ey) * b.a;
     double den = 1.0 + b.m / a.mass - x34 * x34 / (2.0 * b.a * b.a * dd * dd);
     double du = -(1.0 + alpha) * g / den / (dd * dd);

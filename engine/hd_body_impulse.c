@@ -68,8 +68,8 @@ static double loss(double alpha, double vn, double inv_mu) {
   return vn < 0.0 ? -0.5 * (1.0 - alpha) * (1.0 + alpha) * vn * vn / inv_mu : 0.0;
 }
 
-void hd_pair_info(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
-                  int ka, int kb, double alpha, hd_collision_info *info) {
+void hd_pair_info(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb, int ka,
+                  int kb, double alpha, hd_collision_info *info) {
   hd_side a, b;
   double nx, ny;
   hd_side_of(A, sa, ka, &a);

@@ -18,14 +18,14 @@
 
 /* One body's side of a contact. */
 typedef struct hd_side {
-  double ex, ey;  /* outward axis at the contacting disk (unit, partner disk -> contacting disk);
-                   * 0 for a disk body */
-  double ox, oy;  /* contacting disk centre minus centre of mass: (a/2) e */
-  double vx, vy;  /* velocity of the contacting disk centre */
-  double m;       /* disk mass (m of a dimer, the mass of a disk body) */
-  double mass;    /* total mass */
-  double a;       /* bond length, 0 for a disk body */
-  int rot;        /* 1 for a dimer with a > 0 (it turns under an impulse) */
+  double ex, ey; /* outward axis at the contacting disk (unit, partner disk -> contacting disk);
+                  * 0 for a disk body */
+  double ox, oy; /* contacting disk centre minus centre of mass: (a/2) e */
+  double vx, vy; /* velocity of the contacting disk centre */
+  double m;      /* disk mass (m of a dimer, the mass of a disk body) */
+  double mass;   /* total mass */
+  double a;      /* bond length, 0 for a disk body */
+  int rot;       /* 1 for a dimer with a > 0 (it turns under an impulse) */
 } hd_side;
 
 /* Fills the side of disk `which` of body k of shape s. */
@@ -43,8 +43,8 @@ void hd_pair_normal(const hd_kin *A, const hd_side *sa, const hd_kin *B, const h
                     double *nx, double *ny);
 
 /* hd_collision_info of a collision of A (disk ka) with B (disk kb) before it happens. */
-void hd_pair_info(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
-                  int ka, int kb, double alpha, hd_collision_info *info);
+void hd_pair_info(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb, int ka,
+                  int kb, double alpha, hd_collision_info *info);
 
 /* hd_collision_info of a collision of disk ka of A with wall w before it happens. */
 void hd_wall_info(const hd_kin *A, const hd_shape *sa, int ka, const hd_wall *w, double alpha,

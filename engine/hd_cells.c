@@ -14,7 +14,10 @@ int hd_cells_alloc(hd_sim *s, hd_error *err) {
   /* cap the grid at ~4 cells per body so that a dilute gas does not pay for empty cells */
   double cap = fmax(1.0, 4.0 * (double)s->n);
   while (fx * fy > cap && (fx > 1 || fy > 1)) {
-    if (fx >= fy) fx = floor(fx / 2); else fy = floor(fy / 2);
+    if (fx >= fy)
+      fx = floor(fx / 2);
+    else
+      fy = floor(fy / 2);
   }
   s->ncx = (int32_t)fmax(1.0, fx);
   s->ncy = (int32_t)fmax(1.0, fy);
@@ -22,7 +25,8 @@ int hd_cells_alloc(hd_sim *s, hd_error *err) {
   s->cwy = s->ly / s->ncy;
   free(s->head);
   s->head = malloc(sizeof(int32_t) * (size_t)s->ncx * (size_t)s->ncy);
-  if (!s->head) return hd_error_set(err, HD_ENOMEM, "out of memory for %d x %d cells", s->ncx, s->ncy);
+  if (!s->head)
+    return hd_error_set(err, HD_ENOMEM, "out of memory for %d x %d cells", s->ncx, s->ncy);
   for (int64_t c = 0; c < (int64_t)s->ncx * s->ncy; c++) s->head[c] = -1;
   return HD_OK;
 }

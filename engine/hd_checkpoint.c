@@ -1,7 +1,7 @@
 /* Exact checkpoints: the raw bytes of every body (state, local time, cell links, pending
- * event), the body ids, the cell heads, the clocks and the RNG state.  Restoring them and rebuilding the heap
- * (whose order is total: time, then index) continues the run bit for bit.  The blob is for the
- * same build on the same machine; a header guards against anything else. */
+ * event), the body ids, the cell heads, the clocks and the RNG state.  Restoring them and
+ * rebuilding the heap (whose order is total: time, then index) continues the run bit for bit.  The
+ * blob is for the same build on the same machine; a header guards against anything else. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -11,14 +11,14 @@
 
 /* Fixed-size header of a checkpoint blob. */
 typedef struct ckpt_header {
-  uint64_t magic;     /* HD_CKPT_MAGIC */
-  uint32_t body_size; /* sizeof(hd_body) */
-  uint32_t clock_size;/* sizeof(hd_sim_clock) */
-  int32_t n;          /* bodies */
+  uint64_t magic;      /* HD_CKPT_MAGIC */
+  uint32_t body_size;  /* sizeof(hd_body) */
+  uint32_t clock_size; /* sizeof(hd_sim_clock) */
+  int32_t n;           /* bodies */
   int32_t n_species[HD_NSPECIES];
-  int32_t ncx, ncy;   /* cells */
-  uint64_t rng_size;  /* bytes of RNG state */
-  double lx, ly;      /* box (must match the scene) */
+  int32_t ncx, ncy;  /* cells */
+  uint64_t rng_size; /* bytes of RNG state */
+  double lx, ly;     /* box (must match the scene) */
 } ckpt_header;
 
 int hd_sim_checkpoint(const hd_sim *s, void **blob, size_t *n, hd_error *err) {
@@ -27,8 +27,16 @@ int hd_sim_checkpoint(const hd_sim *s, void **blob, size_t *n, hd_error *err) {
                  (sizeof(hd_body) + sizeof(int32_t)) * (size_t)s->n + sizeof(int32_t) * ncell + rs;
   unsigned char *p = malloc(total);
   if (!p) return hd_error_set(err, HD_ENOMEM, "out of memory for a checkpoint");
-  ckpt_header h = {HD_CKPT_MAGIC, sizeof(hd_body), sizeof(hd_sim_clock), s->n,
-                   {s->n_species[0], s->n_species[1]}, s->ncx, s->ncy, rs, s->lx, s->ly};
+  ckpt_header h = {HD_CKPT_MAGIC,
+                   sizeof(hd_body),
+                   sizeof(hd_sim_clock),
+                   s->n,
+                   {s->n_species[0], s->n_species[1]},
+                   s->ncx,
+                   s->ncy,
+                   rs,
+                   s->lx,
+                   s->ly};
   unsigned char *q = p;
   memcpy(q, &h, sizeof h), q += sizeof h;
   memcpy(q, &s->c, sizeof s->c), q += sizeof s->c;
@@ -49,12 +57,14 @@ int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err) {
       h.clock_size != sizeof(hd_sim_clock) || h.rng_size != gsl_rng_size(s->rng))
     return hd_error_set(err, HD_EINPUT, "checkpoint was written by another build of haff");
   if (h.lx != s->lx || h.ly != s->ly)
-    return hd_error_set(err, HD_EINPUT, "checkpoint box %g x %g does not match the scene's",
-                        h.lx, h.ly);
+    return hd_error_set(err, HD_EINPUT, "checkpoint box %g x %g does not match the scene's", h.lx,
+                        h.ly);
   size_t ncell = (size_t)h.ncx * (size_t)h.ncy;
-  size_t want = sizeof h + sizeof(hd_sim_clock) + (sizeof(hd_body) + sizeof(int32_t)) * (size_t)h.n +
-                sizeof(int32_t) * ncell + h.rng_size;
-  if (n != want) return hd_error_set(err, HD_EINPUT, "checkpoint has %zu bytes, expected %zu", n, want);
+  size_t want = sizeof h + sizeof(hd_sim_clock) +
+                (sizeof(hd_body) + sizeof(int32_t)) * (size_t)h.n + sizeof(int32_t) * ncell +
+                h.rng_size;
+  if (n != want)
+    return hd_error_set(err, HD_EINPUT, "checkpoint has %zu bytes, expected %zu", n, want);
   s->n = h.n;
   s->n_species[0] = h.n_species[0];
   s->n_species[1] = h.n_species[1];

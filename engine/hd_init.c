@@ -81,7 +81,8 @@ static int place_dense_lattice(hd_sim *s, hd_error *err) {
     ey = s->shape[HD_SP_DIMER].d * eps;
   } else {
     ex = ey = fmax(s->n_species[HD_SP_DIMER] ? 2.0 * hd_shape_radius(&s->shape[HD_SP_DIMER]) : 0.0,
-                   s->shape[HD_SP_DISK].d) * eps;
+                   s->shape[HD_SP_DISK].d) *
+              eps;
   }
   int32_t nx = (int32_t)floor(s->lx / ex), ny = (int32_t)floor(s->ly / ey);
   if ((int64_t)nx * ny < s->n)
@@ -168,9 +169,10 @@ static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
   for (long r = 0; r < n; r++) cnt[rows[r].kind == HD_KIND_DIMER ? HD_SP_DIMER : HD_SP_DISK]++;
   if ((sc->n_dimers && sc->n_dimers != cnt[0]) || (sc->n_disks && sc->n_disks != cnt[1])) {
     free(rows);
-    return hd_error_set(err, HD_EINPUT, "%s: holds %d dimers and %d disks but the scene's "
-                        "[dimers]/[disks] count say %ld and %ld", sc->state_file, cnt[0], cnt[1],
-                        sc->n_dimers, sc->n_disks);
+    return hd_error_set(err, HD_EINPUT,
+                        "%s: holds %d dimers and %d disks but the scene's "
+                        "[dimers]/[disks] count say %ld and %ld",
+                        sc->state_file, cnt[0], cnt[1], sc->n_dimers, sc->n_disks);
   }
   s->n_species[0] = cnt[0];
   s->n_species[1] = cnt[1];
@@ -190,7 +192,10 @@ static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
     hd_body *b = &s->b[i];
     b->species = sp;
     b->next = b->prev = -1;
-    b->k = (hd_kin){rows[r].x, rows[r].y, rows[r].vx, rows[r].vy,
+    b->k = (hd_kin){rows[r].x,
+                    rows[r].y,
+                    rows[r].vx,
+                    rows[r].vy,
                     sp == HD_SP_DIMER ? remainder(rows[r].phi, 2 * M_PI) : 0.0,
                     sp == HD_SP_DIMER ? rows[r].omega : 0.0};
     if (line) line[i] = rows[r].line;
@@ -202,8 +207,8 @@ static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
     hd_cells_insert(s, i, hd_cells_of(s, b->k.x, b->k.y));
     int o = overlaps_any(s, i);
     if (o == -2)
-      rc = hd_error_set(err, HD_EINPUT, "%s:%ld: body crosses a wall", sc->state_file,
-                        rows[r].line);
+      rc =
+          hd_error_set(err, HD_EINPUT, "%s:%ld: body crosses a wall", sc->state_file, rows[r].line);
     else if (o >= 0)
       rc = hd_error_set(err, HD_EINPUT, "%s:%ld: body overlaps the body on line %ld",
                         sc->state_file, rows[r].line, line ? line[o] : -1L);

@@ -24,9 +24,9 @@ typedef struct hd_model_ops {
   int (*next)(void *m, double t_stop, hd_collision_row *row, hd_error *err);
   /* Exact state as a malloc'd blob. */
   int (*checkpoint)(const void *m, void **blob, size_t *n, hd_error *err);
-  double (*time)(const void *m);    /* absolute time */
-  double (*cpd)(const void *m);     /* collisions per particle */
-  int64_t (*events)(const void *m); /* events processed */
+  double (*time)(const void *m);        /* absolute time */
+  double (*cpd)(const void *m);         /* collisions per particle */
+  int64_t (*events)(const void *m);     /* events processed */
   double (*temperature)(const void *m); /* kinetic temperature for the progress line */
   /* A samples row at the current time (t, collisions, cpd, energies per particle). */
   void (*sample)(const void *m, hd_sample_row *row);

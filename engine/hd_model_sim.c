@@ -21,10 +21,22 @@ static int m_next(void *m, double t_stop, hd_collision_row *row, hd_error *err) 
   int rc = hd_sim_next(m, t_stop, &ev, err);
   if (rc) return rc;
   const hd_sim *s = m;
-  *row = (hd_collision_row){0, ev.t, (hd_coll_kind)ev.kind, s->id[ev.i],
-                            ev.j >= 0 ? s->id[ev.j] : ev.j, ev.ka, ev.kb,
-                            ev.info.theta_i, ev.info.theta_j, ev.info.f, ev.info.de, ev.info.vn,
-                            NAN, NAN, NAN, NAN};
+  *row = (hd_collision_row){0,
+                            ev.t,
+                            (hd_coll_kind)ev.kind,
+                            s->id[ev.i],
+                            ev.j >= 0 ? s->id[ev.j] : ev.j,
+                            ev.ka,
+                            ev.kb,
+                            ev.info.theta_i,
+                            ev.info.theta_j,
+                            ev.info.f,
+                            ev.info.de,
+                            ev.info.vn,
+                            NAN,
+                            NAN,
+                            NAN,
+                            NAN};
   return HD_OK;
 }
 
@@ -53,9 +65,9 @@ static void m_sample(const void *m, hd_sample_row *row) {
   int nd = s->n_species[HD_SP_DIMER], nk = s->n_species[HD_SP_DISK], mixed = nd > 0 && nk > 0;
   hd_sim_energy(s, HD_SP_DIMER, &dt, &dr);
   hd_sim_energy(s, HD_SP_DISK, &st, &sr);
-  *row = (hd_sample_row){hd_sim_time(s), s->c.collisions, hd_sim_cpd(s), e_tr / s->n,
-                         e_rot / s->n, mixed ? dt / nd : NAN, mixed ? dr / nd : NAN,
-                         mixed ? st / nk : NAN};
+  *row = (hd_sample_row){hd_sim_time(s),        s->c.collisions,      hd_sim_cpd(s),
+                         e_tr / s->n,           e_rot / s->n,         mixed ? dt / nd : NAN,
+                         mixed ? dr / nd : NAN, mixed ? st / nk : NAN};
 }
 
 static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label, hd_error *err) {
@@ -63,8 +75,9 @@ static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label
   for (int32_t i = 0; i < s->n; i++) {
     hd_kin k;
     hd_sim_body_now(s, i, &k);
-    hd_state_rec rec = {hd_sim_time(s), s->id[i], s->shape[s->b[i].species].kind, k.x, k.y, k.phi,
-                        k.vx, k.vy, k.omega, hd_sim_cpd(s)};
+    hd_state_rec rec = {
+        hd_sim_time(s), s->id[i],     s->shape[s->b[i].species].kind, k.x, k.y, k.phi, k.vx, k.vy,
+        k.omega,        hd_sim_cpd(s)};
     int rc = hd_db_log_state(db, run, label, &rec, err);
     if (rc) return rc;
   }
@@ -77,7 +90,7 @@ static void m_box(const void *m, double *lx, double *ly) {
 }
 
 const hd_model_ops hd_model_bodies2d = {
-    "bodies2d", m_alloc,  m_alloc_restore, m_free,   m_next,        m_checkpoint, m_time,
+    "bodies2d", m_alloc,  m_alloc_restore, m_free,   m_next,       m_checkpoint, m_time,
     m_cpd,      m_events, m_temperature,   m_sample, m_log_states, m_box};
 
 const hd_model_ops *hd_model_for_scene(const hd_scene *sc) {

@@ -134,8 +134,10 @@ static int predict_after_crossing(hd_sim *s, int32_t i) {
   for (int k = -1; k <= 1; k++) {
     /* the new column (dir 0/1) or row (dir 2/3), k along it */
     int32_t xx = cx, yy = cy;
-    if (dir < 2) xx += dir == 0 ? 1 : -1, yy += k;
-    else yy += dir == 2 ? 1 : -1, xx += k;
+    if (dir < 2)
+      xx += dir == 0 ? 1 : -1, yy += k;
+    else
+      yy += dir == 2 ? 1 : -1, xx += k;
     double sx = 0.0, sy = 0.0;
     if (xx < 0) {
       if (s->walls & HD_WALL_LEFT) continue;

@@ -23,19 +23,19 @@ typedef struct hd_qentry {
 
 /* The queue.  Fields are private to hd_queue.c. */
 typedef struct hd_queue {
-  int32_t n, cap;       /* bodies held, capacity */
-  double *t;            /* t[i]: key of body i */
-  int32_t *where;       /* where body i is: >= 0 bucket slot, or one of the HD_Q_* below */
-  int32_t *pos;         /* in the heap: its index there */
-  int32_t *next, *prev; /* links in a bucket, overflow or never list */
-  hd_qentry *heap;      /* the current bucket, ordered */
-  int32_t hn;           /* entries in heap */
-  int32_t nb;           /* buckets in a year (a power of two) */
-  int32_t *head;        /* head[slot]: first body of bucket slot, -1 if empty */
+  int32_t n, cap;          /* bodies held, capacity */
+  double *t;               /* t[i]: key of body i */
+  int32_t *where;          /* where body i is: >= 0 bucket slot, or one of the HD_Q_* below */
+  int32_t *pos;            /* in the heap: its index there */
+  int32_t *next, *prev;    /* links in a bucket, overflow or never list */
+  hd_qentry *heap;         /* the current bucket, ordered */
+  int32_t hn;              /* entries in heap */
+  int32_t nb;              /* buckets in a year (a power of two) */
+  int32_t *head;           /* head[slot]: first body of bucket slot, -1 if empty */
   int32_t overflow, never; /* heads of the overflow and never lists */
-  int64_t in_buckets;   /* bodies in bucket lists */
-  int64_t cur;          /* index of the current bucket (floor(t / w)) */
-  double w;             /* bucket width */
+  int64_t in_buckets;      /* bodies in bucket lists */
+  int64_t cur;             /* index of the current bucket (floor(t / w)) */
+  double w;                /* bucket width */
 } hd_queue;
 
 /* Allocates a queue for cap bodies; NULL on failure. */

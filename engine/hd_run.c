@@ -23,11 +23,11 @@ void hd_run_request_stop(void) {
 
 /* Runner state that a checkpoint carries besides the engine's. */
 typedef struct run_state {
-  int64_t seq;           /* collisions so far (pair + wall): the seq of the last one */
-  int64_t next_sample;   /* index k of the next sample, taken when cpd >= k * samples_every */
-  int32_t next_vel;      /* index of the next velocities_at snapshot */
+  int64_t seq;         /* collisions so far (pair + wall): the seq of the last one */
+  int64_t next_sample; /* index k of the next sample, taken when cpd >= k * samples_every */
+  int32_t next_vel;    /* index of the next velocities_at snapshot */
   int32_t pad;
-  double wall_seconds;   /* wall-clock seconds spent before this process */
+  double wall_seconds; /* wall-clock seconds spent before this process */
 } run_state;
 
 /* Everything one driving of a run needs. */
@@ -43,7 +43,7 @@ typedef struct runner {
   double last_ckpt_wall; /* monotonic time of the last checkpoint */
   double last_tick_wall; /* monotonic time of the last progress line */
   int64_t last_tick_events;
-  int progress;          /* print a progress line */
+  int progress; /* print a progress line */
 } runner;
 
 static double now_wall(void) {
@@ -106,8 +106,8 @@ static void tick(runner *r) {
   double rate = (double)(ev - r->last_tick_events) / (w - r->last_tick_wall);
   double f = fraction_done(r), spent = elapsed(r);
   double eta = f > 0 ? spent * (1 - f) / f : NAN;
-  fprintf(stderr, "\r%12lld events  %9.3g ev/s  cpd %9.4g  T %9.3g  ETA %6.0f s   ",
-          (long long)ev, rate, r->ops->cpd(r->s), r->ops->temperature(r->s), eta);
+  fprintf(stderr, "\r%12lld events  %9.3g ev/s  cpd %9.4g  T %9.3g  ETA %6.0f s   ", (long long)ev,
+          rate, r->ops->cpd(r->s), r->ops->temperature(r->s), eta);
   r->last_tick_wall = w;
   r->last_tick_events = ev;
 }
@@ -179,9 +179,12 @@ static int finish(runner *r, int rc, hd_error *err) {
   hd_error e2;
   hd_error_clear(&e2);
   const char *status = "done";
-  if (rc == HD_EINTR) status = "interrupted";
-  else if (rc == HD_ECOLLAPSE) status = "collapsed";
-  else if (rc != HD_OK) status = "failed";
+  if (rc == HD_EINTR)
+    status = "interrupted";
+  else if (rc == HD_ECOLLAPSE)
+    status = "collapsed";
+  else if (rc != HD_OK)
+    status = "failed";
   int wrc = HD_OK;
   if (rc == HD_OK || rc == HD_EINTR || rc == HD_ECOLLAPSE) {
     /* the state where the run ended: 'final', or 'checkpoint' for one that can go on */
@@ -275,15 +278,16 @@ int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error
   r.ops = hd_model_for_scene(&sc);
   *run = r.run;
   rc = hd_db_checkpoint_load(r.db, r.run, &blob, &n, &seq, &t, err);
-  if (!rc && n < sizeof r.st) rc = hd_error_set(err, HD_EINPUT, "checkpoint of run %lld is truncated", (long long)r.run);
+  if (!rc && n < sizeof r.st)
+    rc = hd_error_set(err, HD_EINPUT, "checkpoint of run %lld is truncated", (long long)r.run);
   if (!rc) {
     memcpy(&r.st, blob, sizeof r.st);
-    rc = r.ops->alloc_restore(&r.s, &sc, (unsigned char *)blob + sizeof r.st, n - sizeof r.st,
-                              err);
+    rc = r.ops->alloc_restore(&r.s, &sc, (unsigned char *)blob + sizeof r.st, n - sizeof r.st, err);
   }
   free(blob);
   if (!rc) rc = hd_db_truncate_after(r.db, r.run, seq, t, err);
-  if (!rc) rc = hd_db_run_status(r.db, r.run, "running", r.ops->events(r.s), r.st.wall_seconds, err);
+  if (!rc)
+    rc = hd_db_run_status(r.db, r.run, "running", r.ops->events(r.s), r.st.wall_seconds, err);
   if (!rc) rc = drive_and_finish(&r, err);
   hd_error e3;
   int crc = hd_db_close(r.db, &e3);

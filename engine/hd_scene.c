@@ -242,8 +242,7 @@ static int get_num(ctx *c, int k, const char *s, char kind, double *x) {
 static int split(const char *s, char tok[][64], int max) {
   int n = 0;
   while (*s) {
-    while (*s == ' ' || *s == '\t')
-      s++;
+    while (*s == ' ' || *s == '\t') s++;
     if (!*s) break;
     size_t len = strcspn(s, " \t");
     if (n == max || len >= 64) return -1;
@@ -286,8 +285,7 @@ static int set_sides(ctx *c, const char *v) {
   unsigned w = 0;
   for (int i = 0; i < n; i++) {
     int j = 0;
-    while (j < 4 && strcmp(tok[i], wall_name[j]))
-      j++;
+    while (j < 4 && strcmp(tok[i], wall_name[j])) j++;
     if (j == 4) return FAIL_KEY(c, K_WSIDES, "unknown side '%s' (left right bottom top)", tok[i]);
     if (w & (1u << j)) return FAIL_KEY(c, K_WSIDES, "side '%s' repeated", tok[i]);
     w |= 1u << j;
@@ -334,8 +332,7 @@ static int set_vel_at(ctx *c, const char *v) {
   int n = 0;
   const char *s = v;
   while (*s) {
-    while (*s == ' ' || *s == '\t')
-      s++;
+    while (*s == ' ' || *s == '\t') s++;
     if (!*s) break;
     size_t len = strcspn(s, " \t");
     char t[64];
@@ -435,7 +432,8 @@ static int set_value(ctx *c, int k, const char *v) {
     return set_vel_at(c, v);
   case K_RCOUNT:
     if ((rc = get_whole(c, k, v, 2, (double)HD_MAX_COUNT, &x))) return rc;
-    if (fmod(x, 2) != 0) return FAIL_KEY(c, k, "must be even: the rod lengths alternate round the ring");
+    if (fmod(x, 2) != 0)
+      return FAIL_KEY(c, k, "must be even: the rod lengths alternate round the ring");
     sc->n_rods = (long)x;
     return HD_OK;
   case K_RGAMMA:
@@ -490,8 +488,8 @@ static int unknown_section(ctx *c, const char *s) {
   char at[600];
   where(c, c->cur, at, sizeof at);
   return cfail(c, HD_EINPUT,
-               "%s: [%.60s]: unknown section (known: system dimers disks walls init run log rods)", at,
-               s);
+               "%s: [%.60s]: unknown section (known: system dimers disks walls init run log rods)",
+               at, s);
 }
 
 static void mark_section(ctx *c, int s) {
@@ -510,8 +508,7 @@ static int handle(ctx *c, const char *section, const char *name, const char *val
   int s = find_sec(section);
   if (s < 0) return unknown_section(c, section);
   int k = 0;
-  while (k < N_KEY && !(key_def[k].sec == s && !strcmp(key_def[k].name, name)))
-    k++;
+  while (k < N_KEY && !(key_def[k].sec == s && !strcmp(key_def[k].name, name))) k++;
   if (k == N_KEY) {
     char known[200] = "";
     for (int j = 0; j < N_KEY; j++)
@@ -551,8 +548,7 @@ static int section_line(ctx *c, const char *line) {
     return cfail(c, HD_EINPUT, "%s: malformed section header: no ']'", at);
   }
   const char *r = close + 1;
-  while (*r == ' ' || *r == '\t')
-    r++;
+  while (*r == ' ' || *r == '\t') r++;
   if (*r && *r != '\n' && *r != '\r' && *r != ';' && *r != '#') {
     return cfail(c, HD_EINPUT, "%s: text after the [section] header: put each key on its own line",
                  at);
@@ -579,8 +575,7 @@ static char *reader(char *str, int num, void *stream) {
   c->cur.line = ++c->lineno;
   c->cur.over = 0;
   if (c->lineno == 1 && stop - s >= 3 && !memcmp(s, "\xEF\xBB\xBF", 3)) s += 3;
-  while (s < stop && (*s == ' ' || *s == '\t'))
-    s++;
+  while (s < stop && (*s == ' ' || *s == '\t')) s++;
   size_t len = (size_t)(stop - s);
   if (len + 1 > (size_t)num || len > HD_SCENE_MAX_LINE) {
     char at[600];
@@ -610,11 +605,9 @@ static int parse_text(ctx *c) {
 }
 
 static char *trim(char *s) {
-  while (*s == ' ' || *s == '\t')
-    s++;
+  while (*s == ' ' || *s == '\t') s++;
   char *e = s + strlen(s);
-  while (e > s && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' || e[-1] == '\n'))
-    *--e = '\0';
+  while (e > s && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' || e[-1] == '\n')) *--e = '\0';
   return s;
 }
 
@@ -682,8 +675,7 @@ static int check_state(ctx *c) {
     c->code = rc;
     return rc;
   }
-  for (long i = 0; i < n; i++)
-    *(rows[i].kind == HD_KIND_DIMER ? &nd : &ns) += 1;
+  for (long i = 0; i < n; i++) *(rows[i].kind == HD_KIND_DIMER ? &nd : &ns) += 1;
   free(rows);
   static const int ck[2] = {K_DCOUNT, K_SCOUNT}, cs[2] = {S_DIMERS, S_DISKS};
   long *cnt[2] = {&sc->n_dimers, &sc->n_disks}, have[2] = {nd, ns};
@@ -752,18 +744,24 @@ static int check_box(ctx *c) {
 static int check_rods(ctx *c) {
   hd_scene *sc = c->sc;
   if (!is_set(c->key_at[K_RCOUNT]))
-    return fail(c, HD_EINPUT, c->sec_at[S_RODS], S_RODS, "count", NULL, "missing: required in [rods]");
+    return fail(c, HD_EINPUT, c->sec_at[S_RODS], S_RODS, "count", NULL,
+                "missing: required in [rods]");
   static const int other[4] = {S_DIMERS, S_DISKS, S_WALLS, S_INIT};
   for (int j = 0; j < 4; j++)
     if (c->present[other[j]])
       return fail(c, HD_EINPUT, c->sec_at[other[j]], other[j], NULL, NULL,
                   "cannot be combined with [rods] (the ring has its own count and temperature)");
-  if (is_set(c->key_at[K_BOX])) return FAIL_KEY(c, K_BOX, "not used with [rods]: the ring length is the rod count");
-  if (is_set(c->key_at[K_AREA])) return FAIL_KEY(c, K_AREA, "not used with [rods]: the ring length is the rod count");
-  if (!is_set(c->key_at[K_REPS])) sc->rod_eps = sc->rod_gamma;
-  else if (sc->rod_model != 1) return FAIL_KEY(c, K_REPS, "only with model = constant");
+  if (is_set(c->key_at[K_BOX]))
+    return FAIL_KEY(c, K_BOX, "not used with [rods]: the ring length is the rod count");
+  if (is_set(c->key_at[K_AREA]))
+    return FAIL_KEY(c, K_AREA, "not used with [rods]: the ring length is the rod count");
+  if (!is_set(c->key_at[K_REPS]))
+    sc->rod_eps = sc->rod_gamma;
+  else if (sc->rod_model != 1)
+    return FAIL_KEY(c, K_REPS, "only with model = constant");
   if (sc->rod_table && sc->rod_unequal)
-    return FAIL_KEY(c, K_RTABLE, "the table is for equal bath temperatures: not with baths = unequal");
+    return FAIL_KEY(c, K_RTABLE,
+                    "the table is for equal bath temperatures: not with baths = unequal");
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
                 "no stop condition: set stop_time, stop_events or stop_cpd");
@@ -925,7 +923,8 @@ static char *canonical_text(const ctx *c) {
     put_kv(&b, "tc", sc->rod_tc);
     put_kv(&b, "eps_step", sc->rod_eps_step);
     put_kv(&b, "temperature", sc->rod_temperature);
-    put(&b, "table = %s\nbaths = %s\n", sc->rod_table ? "yes" : "no", sc->rod_unequal ? "unequal" : "mean");
+    put(&b, "table = %s\nbaths = %s\n", sc->rod_table ? "yes" : "no",
+        sc->rod_unequal ? "unequal" : "mean");
   }
   if (b.oom) {
     free(b.s);
@@ -976,8 +975,7 @@ static int load_text(hd_scene *sc, const char *text, size_t len, const char *nam
   if (memchr(text, '\0', len))
     rc = hd_error_set(err, HD_EINPUT, "%s: contains a NUL byte: not a text file", name);
   if (!rc) rc = parse_text(c);
-  for (int i = 0; !rc && i < n_over; i++)
-    rc = apply_override(c, i);
+  for (int i = 0; !rc && i < n_over; i++) rc = apply_override(c, i);
   if (!rc) rc = check_all(c);
   if (!rc) {
     sc->text = canonical_text(c);

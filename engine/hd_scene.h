@@ -12,11 +12,12 @@
 
 /* Limits checked by hd_scene_load (docs/scene-keys.md explains them). */
 #define HD_MAX_AREA_FRACTION 0.9069 /* `area_fraction` < this: hexagonal packing pi/(2 sqrt 3) */
-#define HD_RANDOM_MAX_FRACTION 0.75 /* placement = random: covered fraction <= this; beyond
-                                     * what random addition reaches (disks jam at 0.547) the
-                                     * engine melts a dense lattice (pi/4 for disks) */
-#define HD_MAX_COUNT 100000000L     /* largest `count` of a species */
-#define HD_SCENE_MAX_LINE 4096      /* longest scene line, in bytes */
+#define HD_RANDOM_MAX_FRACTION                                                                     \
+  0.75                          /* placement = random: covered fraction <= this; beyond            \
+                                 * what random addition reaches (disks jam at 0.547) the           \
+                                 * engine melts a dense lattice (pi/4 for disks) */
+#define HD_MAX_COUNT 100000000L /* largest `count` of a species */
+#define HD_SCENE_MAX_LINE 4096  /* longest scene line, in bytes */
 
 /* Where the initial state comes from ([init] placement / state). */
 typedef enum hd_placement {
@@ -40,15 +41,15 @@ typedef struct hd_scene {
   char path[HD_PATH_MAX]; /* the scene file as given ("" for a string scene) */
   char dir[HD_PATH_MAX];  /* its folder, for relative paths ("." for a string scene) */
   /* [system] */
-  double box_x, box_y;    /* box edges: `box = Lx Ly`, or derived from area_fraction */
-  double area_fraction;   /* `area_fraction = eta` instead of box: square box [0 if box given] */
+  double box_x, box_y;     /* box edges: `box = Lx Ly`, or derived from area_fraction */
+  double area_fraction;    /* `area_fraction = eta` instead of box: square box [0 if box given] */
   unsigned long long seed; /* `seed` [1]; the CLI's --seed overrides it */
   /* [dimers] */
-  long n_dimers;        /* `count` [0] */
-  double dimer_d;       /* `d` [1]: disk diameter */
-  double dimer_a;       /* `a` [1]: bond length */
-  double dimer_m;       /* `m` [1]: mass of each disk */
-  double dimer_alpha;   /* `alpha` [1]: dimer-dimer restitution */
+  long n_dimers;      /* `count` [0] */
+  double dimer_d;     /* `d` [1]: disk diameter */
+  double dimer_a;     /* `a` [1]: bond length */
+  double dimer_m;     /* `m` [1]: mass of each disk */
+  double dimer_alpha; /* `alpha` [1]: dimer-dimer restitution */
   /* [disks] */
   long n_disks;            /* `count` [0] */
   double disk_sigma;       /* `sigma` [1] */
@@ -56,38 +57,38 @@ typedef struct hd_scene {
   double disk_alpha;       /* `alpha` [1]: disk-disk restitution */
   double disk_alpha_dimer; /* `alpha_dimer` [= alpha]: dimer-disk restitution */
   /* [walls] */
-  unsigned walls;     /* `sides`: HD_WALL_* bits [0: fully periodic] */
-  double wall_alpha;  /* `alpha` [1] */
+  unsigned walls;    /* `sides`: HD_WALL_* bits [0: fully periodic] */
+  double wall_alpha; /* `alpha` [1] */
   /* [init] */
-  double temperature;             /* `temperature` [1]: kT per degree of freedom (not with state) */
-  hd_placement placement;         /* `placement` [random], or HD_PLACE_STATE when `state` given */
-  char state_file[HD_PATH_MAX];   /* `state`: resolved against dir, made absolute (realpath) */
+  double temperature;           /* `temperature` [1]: kT per degree of freedom (not with state) */
+  hd_placement placement;       /* `placement` [random], or HD_PLACE_STATE when `state` given */
+  char state_file[HD_PATH_MAX]; /* `state`: resolved against dir, made absolute (realpath) */
   /* [run] */
-  double stop_time;   /* `stop_time` [0 = unset] */
-  double stop_events; /* `stop_events` [0 = unset]: collisions */
-  double stop_cpd;    /* `stop_cpd` [0 = unset]; at least one stop must be set */
-  int verify;         /* `verify` [0]: check no-overlap and time order at every event */
+  double stop_time;        /* `stop_time` [0 = unset] */
+  double stop_events;      /* `stop_events` [0 = unset]: collisions */
+  double stop_cpd;         /* `stop_cpd` [0 = unset]; at least one stop must be set */
+  int verify;              /* `verify` [0]: check no-overlap and time order at every event */
   double checkpoint_every; /* `checkpoint_every` [60]: wall-clock seconds between checkpoints */
   /* [log] */
-  hd_logmode log_collisions;            /* `collisions` = all | none | every N */
-  long log_every;                       /* N of `every N` [1] */
-  double samples_every;                 /* `samples_every` [0 = none], in cpd */
-  double velocities_at[HD_MAX_VEL_AT];  /* `velocities_at`: cpd values, ascending */
+  hd_logmode log_collisions;           /* `collisions` = all | none | every N */
+  long log_every;                      /* N of `every N` [1] */
+  double samples_every;                /* `samples_every` [0 = none], in cpd */
+  double velocities_at[HD_MAX_VEL_AT]; /* `velocities_at`: cpd values, ascending */
   int n_velocities_at;
   /* [rods] (engine/rods.h, docs/rods.md): a rods scene has no bodies, box, walls or [init] */
-  long n_rods;          /* `count` [0]: rods on the ring (even, >= 2), ring length = count */
-  double rod_gamma;     /* `gamma` [0.8]: length (and mass) ratio short/long, in (0, 1] */
-  long rod_nmod;        /* `nmod` [1000]: vibrational modes per rod */
-  int rod_model;        /* `model` = stochastic (0) | constant (1) [stochastic] */
-  double rod_eps;       /* `eps` [= gamma]: the constant model's restitution, in [0, 1] */
-  double rod_damping;   /* `damping` [0]: nu, bath temperatures decay as exp(-nu t) */
-  double rod_tc;        /* `tc` [0 = off]: TC model, eps = 1 if a rod collided within tc */
+  long n_rods;            /* `count` [0]: rods on the ring (even, >= 2), ring length = count */
+  double rod_gamma;       /* `gamma` [0.8]: length (and mass) ratio short/long, in (0, 1] */
+  long rod_nmod;          /* `nmod` [1000]: vibrational modes per rod */
+  int rod_model;          /* `model` = stochastic (0) | constant (1) [stochastic] */
+  double rod_eps;         /* `eps` [= gamma]: the constant model's restitution, in [0, 1] */
+  double rod_damping;     /* `damping` [0]: nu, bath temperatures decay as exp(-nu t) */
+  double rod_tc;          /* `tc` [0 = off]: TC model, eps = 1 if a rod collided within tc */
   double rod_temperature; /* `temperature` [1]: initial <m v^2> (sets the units: 1) */
-  int rod_table;        /* `table` [no]: draw eps from a tabulated p_beta (mc/eps_table.c) */
-  double rod_eps_step;  /* `eps_step` [0 = the sampler's 0.01]: grid step of the direct eps
-                         * sampler; its sqrt(step) bias lowers the stationary E_kin by ~3 % at
-                         * 0.01, ~1 % at 0.0025 (docs/rods.md) */
-  int rod_unequal;      /* `baths` = mean (0) | unequal (1) [mean]: beta of each rod separately */
+  int rod_table;          /* `table` [no]: draw eps from a tabulated p_beta (mc/eps_table.c) */
+  double rod_eps_step;    /* `eps_step` [0 = the sampler's 0.01]: grid step of the direct eps
+                           * sampler; its sqrt(step) bias lowers the stationary E_kin by ~3 % at
+                           * 0.01, ~1 % at 0.0025 (docs/rods.md) */
+  int rod_unequal;        /* `baths` = mean (0) | unequal (1) [mean]: beta of each rod separately */
   char *text; /* malloc'd canonical INI of the effective scene (file + overrides), for runs.scene */
 } hd_scene;
 
@@ -106,8 +107,8 @@ int hd_scene_load(hd_scene *sc, const char *path, const char *const *over, int n
                   hd_error *err);
 
 /* As hd_scene_load but from INI text in memory; `name` stands for the file name in messages. */
-int hd_scene_load_string(hd_scene *sc, const char *text, const char *name,
-                         const char *const *over, int n_over, hd_error *err);
+int hd_scene_load_string(hd_scene *sc, const char *text, const char *name, const char *const *over,
+                         int n_over, hd_error *err);
 
 /* Frees what the scene owns (text).  The struct itself is the caller's. */
 void hd_scene_free(hd_scene *sc);
@@ -121,10 +122,10 @@ double hd_scene_covered_area(const hd_scene *sc);
 
 /* One body of an [init] state CSV. */
 typedef struct hd_state_row {
-  int kind;          /* HD_KIND_DISK or HD_KIND_DIMER (hd_body.h) */
-  double x, y, phi;  /* phi ignored (0) for disks */
+  int kind;         /* HD_KIND_DISK or HD_KIND_DIMER (hd_body.h) */
+  double x, y, phi; /* phi ignored (0) for disks */
   double vx, vy, omega;
-  long line;         /* line number in the CSV, for messages */
+  long line; /* line number in the CSV, for messages */
 } hd_state_row;
 
 /* Reads a state CSV with header `kind,x,y,phi,vx,vy,omega`.  *rows is malloc'd (free()).

@@ -326,8 +326,8 @@ static int check_pileup(hd_sim *s, int32_t i, int32_t j, hd_error *err) {
                           "collisions pile up at t = %.17g after %lld collisions: %d in a row "
                           "within %g of the mean time between collisions, last between bodies "
                           "%d and %d (inelastic collapse, or a body wedged in a double contact)",
-                          hd_sim_time(s), (long long)(s->c.collisions + s->c.wall_hits),
-                          HD_PILEUP, HD_PILEUP_DT, s->id[i], j >= 0 ? s->id[j] : j);
+                          hd_sim_time(s), (long long)(s->c.collisions + s->c.wall_hits), HD_PILEUP,
+                          HD_PILEUP_DT, s->id[i], j >= 0 ? s->id[j] : j);
     return HD_OK;
   }
   s->c.pile_run = 0;
@@ -338,8 +338,7 @@ static int check_pileup(hd_sim *s, int32_t i, int32_t j, hd_error *err) {
 /* Collapse bookkeeping after a collision with normal relative velocity vn. */
 static int check_collapse(hd_sim *s, double vn, hd_error *err) {
   double mass = 0.0;
-  for (int sp = 0; sp < HD_NSPECIES; sp++)
-    mass += s->n_species[sp] * hd_shape_mass(&s->shape[sp]);
+  for (int sp = 0; sp < HD_NSPECIES; sp++) mass += s->n_species[sp] * hd_shape_mass(&s->shape[sp]);
   double vth = sqrt(2.0 * fmax(s->c.e_kin, 0.0) / mass);
   if (fabs(vn) < HD_SLOW_VN * vth || vth == 0.0) {
     if (++s->c.slow_run >= HD_SLOW_RUN)
@@ -356,17 +355,18 @@ static int check_collapse(hd_sim *s, double vn, hd_error *err) {
 }
 
 /* Verification of a pair collision: the touching disks are at contact distance. */
-static int verify_contact(const hd_sim *s, const hd_kin *ki, const hd_kin *kj, int32_t i,
-                          int32_t j, int ka, int kb, hd_error *err) {
+static int verify_contact(const hd_sim *s, const hd_kin *ki, const hd_kin *kj, int32_t i, int32_t j,
+                          int ka, int kb, hd_error *err) {
   const hd_shape *si = &s->shape[s->b[i].species], *sj = &s->shape[s->b[j].species];
   double xa, ya, xb, yb;
   hd_kin_disk_pos(ki, si, ka, &xa, &ya);
   hd_kin_disk_pos(kj, sj, kb, &xb, &yb);
   double D = 0.5 * (si->d + sj->d), gap = (hypot(xb - xa, yb - ya) - D) / D;
   if (fabs(gap) > HD_VERIFY_TOL)
-    return hd_error_set(err, HD_EPHYS, "verification: bodies %d and %d collide at distance "
-                        "%.3g of a diameter from contact, t = %.17g", s->id[i], s->id[j], gap,
-                        hd_sim_time(s));
+    return hd_error_set(err, HD_EPHYS,
+                        "verification: bodies %d and %d collide at distance "
+                        "%.3g of a diameter from contact, t = %.17g",
+                        s->id[i], s->id[j], gap, hd_sim_time(s));
   return HD_OK;
 }
 
@@ -382,9 +382,10 @@ static int verify_collision(hd_sim *s, int32_t i, int32_t j, hd_error *err) {
   }
   if (o > s->max_overlap) s->max_overlap = o;
   if (o > HD_VERIFY_TOL)
-    return hd_error_set(err, HD_EPHYS, "verification: bodies %d and %d overlap by %.3g of a "
-                                       "diameter at t = %.17g", s->id[i], who >= 0 ? s->id[who] : -1,
-                                       o, hd_sim_time(s));
+    return hd_error_set(err, HD_EPHYS,
+                        "verification: bodies %d and %d overlap by %.3g of a "
+                        "diameter at t = %.17g",
+                        s->id[i], who >= 0 ? s->id[who] : -1, o, hd_sim_time(s));
   return HD_OK;
 }
 
@@ -404,8 +405,7 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
       return te == INFINITY && stop_rel == INFINITY ? HD_SIM_IDLE : HD_SIM_STOPTIME;
     }
     assert(te >= s->c.t); /* event times never decrease */
-    if (te < s->c.t)
-      return hd_error_set(err, HD_EPHYS, "event time went backwards at body %d", i);
+    if (te < s->c.t) return hd_error_set(err, HD_EPHYS, "event time went backwards at body %d", i);
     s->c.t = te;
     s->c.events++;
 

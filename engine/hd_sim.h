@@ -52,18 +52,18 @@ typedef struct hd_body {
 
 /* Counters and clocks: everything a checkpoint needs besides the bodies, cells and RNG. */
 typedef struct hd_sim_clock {
-  double t;              /* current time, relative to t_offset */
-  double t_offset;       /* absolute time = t_offset + t */
-  int64_t events;        /* events processed (collisions, crossings, stale events) */
-  int64_t collisions;    /* pair collisions (cpd counts these) */
-  int64_t wall_hits;     /* body-wall collisions */
-  int64_t stale;         /* stale events discarded */
-  int64_t next_rebase;   /* events count at which the time origin is next rebased */
-  double e_kin;          /* total kinetic energy, updated by each collision's de */
-  int64_t slow_run;      /* consecutive collisions with |vn| tiny against the thermal speed */
-  int64_t pile_run;      /* consecutive collisions with a vanishing time step (a pile-up) */
-  double dt_mean;        /* running mean of the time between collisions (pile-ups excluded) */
-  double t_last;         /* time of the last collision (relative, like t) */
+  double t;            /* current time, relative to t_offset */
+  double t_offset;     /* absolute time = t_offset + t */
+  int64_t events;      /* events processed (collisions, crossings, stale events) */
+  int64_t collisions;  /* pair collisions (cpd counts these) */
+  int64_t wall_hits;   /* body-wall collisions */
+  int64_t stale;       /* stale events discarded */
+  int64_t next_rebase; /* events count at which the time origin is next rebased */
+  double e_kin;        /* total kinetic energy, updated by each collision's de */
+  int64_t slow_run;    /* consecutive collisions with |vn| tiny against the thermal speed */
+  int64_t pile_run;    /* consecutive collisions with a vanishing time step (a pile-up) */
+  double dt_mean;      /* running mean of the time between collisions (pile-ups excluded) */
+  double t_last;       /* time of the last collision (relative, like t) */
 } hd_sim_clock;
 
 /* What one collision did, for the log. */
@@ -77,29 +77,29 @@ typedef struct hd_event_out {
 
 /* The simulation. */
 typedef struct hd_sim {
-  int32_t n;                       /* bodies */
-  int32_t n_species[HD_NSPECIES];  /* bodies per species */
-  hd_body *b;                      /* the bodies, kept sorted by cell (see hd_sim_sort) */
-  int32_t *id;                     /* id[i]: the user's number of body i (dimers first, then
-                                      disks, as created); stable while b is re-sorted */
-  hd_shape shape[HD_NSPECIES];     /* shapes by species */
+  int32_t n;                              /* bodies */
+  int32_t n_species[HD_NSPECIES];         /* bodies per species */
+  hd_body *b;                             /* the bodies, kept sorted by cell (see hd_sim_sort) */
+  int32_t *id;                            /* id[i]: the user's number of body i (dimers first, then
+                                             disks, as created); stable while b is re-sorted */
+  hd_shape shape[HD_NSPECIES];            /* shapes by species */
   double alpha[HD_NSPECIES][HD_NSPECIES]; /* pair restitution by species */
-  double wall_alpha;               /* body-wall restitution */
-  double lx, ly;                   /* box */
-  unsigned walls;                  /* HD_WALL_* bits */
-  hd_wall wall[4];                 /* walls by index: left, right, bottom, top */
-  int32_t ncx, ncy;                /* cells per direction (>= 1) */
-  double cwx, cwy;                 /* cell widths (>= largest body diameter) */
-  int32_t *head;                   /* first body of each cell, -1 if empty */
-  hd_queue *q;                     /* the event queue */
-  gsl_rng *rng;                    /* seeded generator (initial state; stochastic rules) */
-  hd_sim_clock c;                  /* clocks and counters */
-  int64_t rebase_every;            /* events between rebases of the time origin */
-  int verify;                      /* check invariants at every event (slow) */
-  int partial_cross;               /* pure disks, >= 3x3 cells: crossings search 3 new cells */
-  int melt;                        /* set-up only: the lattice placed must be melted */
-  double max_overlap;              /* verification: largest relative overlap seen */
-  int32_t last_i, last_j;          /* bodies of the last collision (collapse report) */
+  double wall_alpha;                      /* body-wall restitution */
+  double lx, ly;                          /* box */
+  unsigned walls;                         /* HD_WALL_* bits */
+  hd_wall wall[4];                        /* walls by index: left, right, bottom, top */
+  int32_t ncx, ncy;                       /* cells per direction (>= 1) */
+  double cwx, cwy;                        /* cell widths (>= largest body diameter) */
+  int32_t *head;                          /* first body of each cell, -1 if empty */
+  hd_queue *q;                            /* the event queue */
+  gsl_rng *rng;                           /* seeded generator (initial state; stochastic rules) */
+  hd_sim_clock c;                         /* clocks and counters */
+  int64_t rebase_every;                   /* events between rebases of the time origin */
+  int verify;                             /* check invariants at every event (slow) */
+  int partial_cross;      /* pure disks, >= 3x3 cells: crossings search 3 new cells */
+  int melt;               /* set-up only: the lattice placed must be melted */
+  double max_overlap;     /* verification: largest relative overlap seen */
+  int32_t last_i, last_j; /* bodies of the last collision (collapse report) */
 } hd_sim;
 
 /* Builds a simulation from a scene: bodies placed and given velocities (seeded by sc->seed),

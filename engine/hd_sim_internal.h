@@ -44,38 +44,38 @@ static inline void hd_body_sync(hd_sim *s, int32_t i) {
  * with (sx, sy) the periodic shift that brings j next to cell c.  With fewer than 3 cells in a
  * periodic direction the same cell is visited at its distinct images (shifts -L, 0, +L), which
  * is what a small box needs. */
-#define HD_FOR_NEIGHBOURS(s, c, ...)                                                            \
-  do {                                                                                          \
-    int32_t cx_ = (c) % (s)->ncx, cy_ = (c) / (s)->ncx;                                         \
-    for (int32_t dy_ = -1; dy_ <= 1; dy_++) {                                                    \
-      int32_t yy_ = cy_ + dy_;                                                                  \
-      double sy = 0.0;                                                                          \
-      if (yy_ < 0) {                                                                            \
-        if ((s)->walls & HD_WALL_BOTTOM) continue;                                              \
-        yy_ += (s)->ncy;                                                                        \
-        sy = -(s)->ly;                                                                          \
-      } else if (yy_ >= (s)->ncy) {                                                             \
-        if ((s)->walls & HD_WALL_TOP) continue;                                                 \
-        yy_ -= (s)->ncy;                                                                        \
-        sy = (s)->ly;                                                                           \
-      }                                                                                         \
-      for (int32_t dx_ = -1; dx_ <= 1; dx_++) {                                                  \
-        int32_t xx_ = cx_ + dx_;                                                                \
-        double sx = 0.0;                                                                        \
-        if (xx_ < 0) {                                                                          \
-          if ((s)->walls & HD_WALL_LEFT) continue;                                              \
-          xx_ += (s)->ncx;                                                                      \
-          sx = -(s)->lx;                                                                        \
-        } else if (xx_ >= (s)->ncx) {                                                           \
-          if ((s)->walls & HD_WALL_RIGHT) continue;                                             \
-          xx_ -= (s)->ncx;                                                                      \
-          sx = (s)->lx;                                                                         \
-        }                                                                                       \
-        for (int32_t j = (s)->head[yy_ * (s)->ncx + xx_]; j >= 0; j = (s)->b[j].next) {         \
-          __VA_ARGS__                                                                           \
-        }                                                                                       \
-      }                                                                                         \
-    }                                                                                           \
+#define HD_FOR_NEIGHBOURS(s, c, ...)                                                               \
+  do {                                                                                             \
+    int32_t cx_ = (c) % (s)->ncx, cy_ = (c) / (s)->ncx;                                            \
+    for (int32_t dy_ = -1; dy_ <= 1; dy_++) {                                                      \
+      int32_t yy_ = cy_ + dy_;                                                                     \
+      double sy = 0.0;                                                                             \
+      if (yy_ < 0) {                                                                               \
+        if ((s)->walls & HD_WALL_BOTTOM) continue;                                                 \
+        yy_ += (s)->ncy;                                                                           \
+        sy = -(s)->ly;                                                                             \
+      } else if (yy_ >= (s)->ncy) {                                                                \
+        if ((s)->walls & HD_WALL_TOP) continue;                                                    \
+        yy_ -= (s)->ncy;                                                                           \
+        sy = (s)->ly;                                                                              \
+      }                                                                                            \
+      for (int32_t dx_ = -1; dx_ <= 1; dx_++) {                                                    \
+        int32_t xx_ = cx_ + dx_;                                                                   \
+        double sx = 0.0;                                                                           \
+        if (xx_ < 0) {                                                                             \
+          if ((s)->walls & HD_WALL_LEFT) continue;                                                 \
+          xx_ += (s)->ncx;                                                                         \
+          sx = -(s)->lx;                                                                           \
+        } else if (xx_ >= (s)->ncx) {                                                              \
+          if ((s)->walls & HD_WALL_RIGHT) continue;                                                \
+          xx_ -= (s)->ncx;                                                                         \
+          sx = (s)->lx;                                                                            \
+        }                                                                                          \
+        for (int32_t j = (s)->head[yy_ * (s)->ncx + xx_]; j >= 0; j = (s)->b[j].next) {            \
+          __VA_ARGS__                                                                              \
+        }                                                                                          \
+      }                                                                                            \
+    }                                                                                              \
   } while (0)
 
 /* --- set-up (hd_sim.c, hd_checkpoint.c) --- */

@@ -70,12 +70,14 @@ static void advance_gap(hd_rods *r, long k) {
 }
 
 static int check_params(const hd_rods_params *p, hd_error *err) {
-  if (p->n < 2 || p->n % 2) return hd_error_set(err, HD_EINPUT, "rods: count %ld must be even and >= 2", p->n);
+  if (p->n < 2 || p->n % 2)
+    return hd_error_set(err, HD_EINPUT, "rods: count %ld must be even and >= 2", p->n);
   if (p->n > INT32_MAX / 2) return hd_error_set(err, HD_EINPUT, "rods: count %ld too large", p->n);
   if (!(p->gamma > 0 && p->gamma <= 1))
     return hd_error_set(err, HD_EINPUT, "rods: gamma %g must be in (0, 1]", p->gamma);
   if (p->nmod < 1) return hd_error_set(err, HD_EINPUT, "rods: nmod %ld must be >= 1", p->nmod);
-  if (!(p->eps >= 0 && p->eps <= 1)) return hd_error_set(err, HD_EINPUT, "rods: eps %g must be in [0, 1]", p->eps);
+  if (!(p->eps >= 0 && p->eps <= 1))
+    return hd_error_set(err, HD_EINPUT, "rods: eps %g must be in [0, 1]", p->eps);
   if (!(p->damping >= 0) || !(p->tc >= 0) || !(p->temperature > 0))
     return hd_error_set(err, HD_EINPUT, "rods: damping and tc must be >= 0, temperature > 0");
   if (p->table && p->unequal)
@@ -118,7 +120,8 @@ static int alloc_bare(hd_rods **out, const hd_rods_params *p, hd_error *err) {
     rc = hd_eps_sampler_alloc(&r->sampler, p->gamma, &o, err);
     if (!rc && p->table) {
       gsl_rng *tr = gsl_rng_alloc(gsl_rng_mt19937);
-      if (!tr) rc = hd_error_set(err, HD_ENOMEM, "rods: out of memory");
+      if (!tr)
+        rc = hd_error_set(err, HD_ENOMEM, "rods: out of memory");
       else {
         gsl_rng_set(tr, HD_RODS_TABLE_SEED);
         rc = hd_eps_table_build(&r->table, r->sampler, 1e-3, 1e3, 25, 129, 1000, tr, err);
@@ -141,10 +144,8 @@ int hd_rods_alloc(hd_rods **out, const hd_rods_params *p, hd_error *err) {
   long n = p->n;
   /* uniform positions: exponential spacings normalised to the ring length n */
   double sum = 0;
-  for (long k = 0; k < n; k++)
-    sum += r->g[k] = gsl_ran_exponential(r->rng, 1.0);
-  for (long k = 0; k < n; k++)
-    r->g[k] *= (double)n / sum;
+  for (long k = 0; k < n; k++) sum += r->g[k] = gsl_ran_exponential(r->rng, 1.0);
+  for (long k = 0; k < n; k++) r->g[k] *= (double)n / sum;
   r->x0 = gsl_rng_uniform(r->rng) * (double)n;
   /* Maxwell velocities, zero momentum, E_kin = n T0 / 2 exactly */
   double P = 0, M = 0;
@@ -159,10 +160,8 @@ int hd_rods_alloc(hd_rods **out, const hd_rods_params *p, hd_error *err) {
     ek += 0.5 * r->m[i] * r->v[i] * r->v[i];
   }
   double s = sqrt(0.5 * (double)n * p->temperature / ek);
-  for (long i = 0; i < n; i++)
-    r->v[i] *= s;
-  for (long k = 0; k < n; k++)
-    predict(r, k);
+  for (long i = 0; i < n; i++) r->v[i] *= s;
+  for (long k = 0; k < n; k++) predict(r, k);
   hd_queue_build(r->q, (int32_t)n, r->key, 1);
   *out = r;
   return HD_OK;
@@ -198,8 +197,7 @@ void hd_rods_energy(const hd_rods *r, double *e_kin, double *e_bath, double *e_l
 static void cluster(const hd_rods *r, long *first, long *last) {
   long n = r->p.n, m = HD_RODS_TINY_RUN;
   long gs[HD_RODS_TINY_RUN];
-  for (long k = 0; k < m; k++)
-    gs[k] = r->recent[k];
+  for (long k = 0; k < m; k++) gs[k] = r->recent[k];
   /* sort the gap indices (insertion sort, m is small) */
   for (long a = 1; a < m; a++) {
     long x = gs[a], b = a - 1;

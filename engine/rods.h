@@ -29,20 +29,20 @@ typedef enum hd_rods_model {
 
 /* The parameters of a ring ([rods] section of a scene). */
 typedef struct hd_rods_params {
-  long n;              /* rods, even, >= 2 */
-  double gamma;        /* length and mass ratio short/long, in (0, 1] */
-  long nmod;           /* modes per rod, >= 1 */
-  hd_rods_model model; /* stochastic or constant */
-  double eps;          /* the constant model's eps, in [0, 1] */
-  double damping;      /* nu >= 0: T_B(t) = T_B(t_i) exp(-nu (t - t_i)) between collisions */
-  double tc;           /* >= 0: TC model (Luding and McNamara), eps = 1 when either rod had a
-                          collision less than tc ago; 0 = off */
-  double temperature;  /* T0 > 0: initial E_kin = N T0 / 2 */
-  int table;           /* 1: eps from a tabulated p_beta (built at allocation, fixed seed) */
-  int unequal;         /* 1: beta_i = E_tr / T_B(i) per rod (hd_eps_sample2); 0: mean T_B */
+  long n;                  /* rods, even, >= 2 */
+  double gamma;            /* length and mass ratio short/long, in (0, 1] */
+  long nmod;               /* modes per rod, >= 1 */
+  hd_rods_model model;     /* stochastic or constant */
+  double eps;              /* the constant model's eps, in [0, 1] */
+  double damping;          /* nu >= 0: T_B(t) = T_B(t_i) exp(-nu (t - t_i)) between collisions */
+  double tc;               /* >= 0: TC model (Luding and McNamara), eps = 1 when either rod had a
+                              collision less than tc ago; 0 = off */
+  double temperature;      /* T0 > 0: initial E_kin = N T0 / 2 */
+  int table;               /* 1: eps from a tabulated p_beta (built at allocation, fixed seed) */
+  int unequal;             /* 1: beta_i = E_tr / T_B(i) per rod (hd_eps_sample2); 0: mean T_B */
   unsigned long long seed; /* seeds the initial state and every eps draw (mt19937) */
-  double eps_step;     /* grid step of the direct eps sampler (hd_eps_opts.step); 0 = its
-                          default 0.01 */
+  double eps_step;         /* grid step of the direct eps sampler (hd_eps_opts.step); 0 = its
+                              default 0.01 */
 } hd_rods_params;
 
 /* Collapse detection (a finite-time divergence of the collision rate): a collision is "tiny"
@@ -64,13 +64,13 @@ typedef struct hd_rods_params {
 
 /* One collision as the ring reports it. */
 typedef struct hd_rods_event {
-  double t;        /* time */
-  int64_t i, j;    /* rods i (left) and j = i+1 mod N (right) */
-  double eps;      /* coefficient of restitution applied */
-  double e_tr;     /* u^2/2: energy of the relative motion before (mu = 1) */
-  double u;        /* relative velocity v_j - v_i before (< 0) */
+  double t;          /* time */
+  int64_t i, j;      /* rods i (left) and j = i+1 mod N (right) */
+  double eps;        /* coefficient of restitution applied */
+  double e_tr;       /* u^2/2: energy of the relative motion before (mu = 1) */
+  double u;          /* relative velocity v_j - v_i before (< 0) */
   double tb_i, tb_j; /* bath temperatures after */
-  double de;       /* kinetic energy change, -(1 - eps^2) e_tr */
+  double de;         /* kinetic energy change, -(1 - eps^2) e_tr */
 } hd_rods_event;
 
 /* The ring.  Fields are read-only for callers. */
@@ -91,7 +91,7 @@ typedef struct hd_rods {
   int64_t tiny_run;   /* consecutive tiny collisions (collapse detection) */
   int64_t stall;      /* consecutive collisions at the same time */
   int32_t recent[HD_RODS_TINY_RUN]; /* gaps of the last tiny collisions (ring buffer) */
-  hd_queue *q;        /* one entry per gap keyed by key[] */
+  hd_queue *q;                      /* one entry per gap keyed by key[] */
   gsl_rng *rng;
   hd_eps_sampler *sampler; /* stochastic model */
   hd_eps_table *table;     /* when p.table */

@@ -46,9 +46,8 @@ static int m_next(void *m, double t_stop, hd_collision_row *row, hd_error *err) 
   hd_rods_event ev;
   int rc = hd_rods_next(m, t_stop, &ev, err);
   if (rc) return rc;
-  *row = (hd_collision_row){0,      ev.t,    HD_CK_ROD_ROD, ev.i,     ev.j,    -1,     -1,
-                            NAN,    NAN,     NAN,           ev.de,    ev.u,    ev.eps, ev.e_tr,
-                            ev.tb_i, ev.tb_j};
+  *row = (hd_collision_row){0,   ev.t, HD_CK_ROD_ROD, ev.i, ev.j,   -1,      -1,      NAN,
+                            NAN, NAN,  ev.de,         ev.u, ev.eps, ev.e_tr, ev.tb_i, ev.tb_j};
   return HD_OK;
 }
 
@@ -86,8 +85,8 @@ static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label
   hd_rods_positions(r, x);
   int rc = HD_OK;
   for (long i = 0; i < r->p.n && !rc; i++) {
-    hd_state_rec rec = {r->t, i, HD_DB_KIND_ROD, x[i], NAN, NAN, r->v[i], NAN, hd_rods_tb(r, i),
-                        m_cpd(m)};
+    hd_state_rec rec = {r->t,    i,   HD_DB_KIND_ROD,   x[i],    NAN, NAN,
+                        r->v[i], NAN, hd_rods_tb(r, i), m_cpd(m)};
     rc = hd_db_log_state(db, run, label, &rec, err);
   }
   free(x);
@@ -99,6 +98,6 @@ static void m_box(const void *m, double *lx, double *ly) {
   *ly = 0;
 }
 
-const hd_model_ops hd_model_rods = {"rods",   m_alloc,  m_alloc_restore, m_free,   m_next,
-                                    m_checkpoint, m_time, m_cpd,       m_events, m_temperature,
-                                    m_sample, m_log_states, m_box};
+const hd_model_ops hd_model_rods = {
+    "rods", m_alloc,  m_alloc_restore, m_free,   m_next,       m_checkpoint, m_time,
+    m_cpd,  m_events, m_temperature,   m_sample, m_log_states, m_box};

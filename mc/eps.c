@@ -8,19 +8,19 @@
 #include <string.h>
 
 struct hd_eps_sampler {
-  double gamma_in;  /* as requested */
-  double gamma;     /* canonical simulated ratio N1/N2 <= 1 */
-  int swap;         /* 1 when gamma_in > 1: the caller's rod 1 is our (longer) rod 2 */
-  int r;            /* finest grid = coarse step / r */
-  int adapt;        /* largest step reduction at small beta (power of 2) */
-  int richardson;   /* 1: per-path Richardson with a 4x finer grid */
-  long n1, n2;      /* coarse steps per period Gamma_1, Gamma_2 */
-  double h;         /* coarse step */
-  long period;      /* lcm(n1, n2): q is periodic with this many coarse steps */
+  double gamma_in; /* as requested */
+  double gamma;    /* canonical simulated ratio N1/N2 <= 1 */
+  int swap;        /* 1 when gamma_in > 1: the caller's rod 1 is our (longer) rod 2 */
+  int r;           /* finest grid = coarse step / r */
+  int adapt;       /* largest step reduction at small beta (power of 2) */
+  int richardson;  /* 1: per-path Richardson with a 4x finer grid */
+  long n1, n2;     /* coarse steps per period Gamma_1, Gamma_2 */
+  double h;        /* coarse step */
+  long period;     /* lcm(n1, n2): q is periodic with this many coarse steps */
   double max_tau;
-  hd_eps_opts opts; /* as given */
-  double *b1, *b2;  /* unit-diffusion periodic bridges at the fine step, r*n+1 points */
-  double *s1, *s2;  /* ring buffers of the echo sums, r*n each */
+  hd_eps_opts opts;    /* as given */
+  double *b1, *b2;     /* unit-diffusion periodic bridges at the fine step, r*n+1 points */
+  double *s1, *s2;     /* ring buffers of the echo sums, r*n each */
   double qmax1, qmax2; /* max of b1, b2 over the fine points */
   hd_eps_stats st;
 };
@@ -130,11 +130,21 @@ void hd_eps_sampler_free(hd_eps_sampler *s) {
   free(s);
 }
 
-double hd_eps_sampler_gamma(const hd_eps_sampler *s) { return s->gamma; }
-double hd_eps_sampler_gamma_in(const hd_eps_sampler *s) { return s->gamma_in; }
-double hd_eps_sampler_step(const hd_eps_sampler *s) { return s->h; }
-void hd_eps_sampler_opts(const hd_eps_sampler *s, hd_eps_opts *opts) { *opts = s->opts; }
-void hd_eps_sampler_stats(const hd_eps_sampler *s, hd_eps_stats *st) { *st = s->st; }
+double hd_eps_sampler_gamma(const hd_eps_sampler *s) {
+  return s->gamma;
+}
+double hd_eps_sampler_gamma_in(const hd_eps_sampler *s) {
+  return s->gamma_in;
+}
+double hd_eps_sampler_step(const hd_eps_sampler *s) {
+  return s->h;
+}
+void hd_eps_sampler_opts(const hd_eps_sampler *s, hd_eps_opts *opts) {
+  *opts = s->opts;
+}
+void hd_eps_sampler_stats(const hd_eps_sampler *s, hd_eps_stats *st) {
+  *st = s->st;
+}
 
 /* A periodic Brownian bridge of unit diffusion at n+1 points of step dt (b[0] = b[n] = 0);
  * returns its maximum.  The zero-mean condition of the paper only shifts q by a constant, which
@@ -195,8 +205,7 @@ static double solve(hd_eps_sampler *s, int d, double sig1, double sig2, double u
     if (stop < 0) {
       /* Stopping rule (docs/mc-eps.md): for every later step k >= t + n2 the memory is at least
        * hd*A + W*(k-t)*hd - 2W, so g_k <= W for all of them once this holds. */
-      if ((t & 31) == 0 && w > 1 &&
-          (double)t * hd + gam2 + qmax - q0 - hd * A - w * gam2 + w <= 0)
+      if ((t & 31) == 0 && w > 1 && (double)t * hd + gam2 + qmax - q0 - hd * A - w * gam2 + w <= 0)
         stop = t + n2;
     } else if (t >= stop) {
       break;
@@ -249,8 +258,7 @@ static double sigma_of(double beta) {
 }
 
 /* Canonical (shorter rod first) sigmas; returns 0 on bad input. */
-static int sigmas(const hd_eps_sampler *s, double beta1, double beta2, double *sg1,
-                  double *sg2) {
+static int sigmas(const hd_eps_sampler *s, double beta1, double beta2, double *sg1, double *sg2) {
   double a = sigma_of(beta1), b = sigma_of(beta2);
   if (a < 0 || b < 0) return 0;
   *sg1 = s->swap ? b : a;
@@ -281,8 +289,8 @@ double hd_eps_sample(hd_eps_sampler *s, double beta, gsl_rng *rng) {
   return hd_eps_sample2(s, beta, beta, rng);
 }
 
-int hd_eps_sample_pair(hd_eps_sampler *s, double beta1, double beta2, double *coarse,
-                       double *fine, gsl_rng *rng) {
+int hd_eps_sample_pair(hd_eps_sampler *s, double beta1, double beta2, double *coarse, double *fine,
+                       gsl_rng *rng) {
   double sg1, sg2;
   if (!s->richardson || !sigmas(s, beta1, beta2, &sg1, &sg2)) return HD_EINPUT;
   int d = work_stride(s, sg1, sg2);
@@ -294,8 +302,8 @@ int hd_eps_sample_pair(hd_eps_sampler *s, double beta1, double beta2, double *co
   return HD_OK;
 }
 
-int hd_eps_sample_strides(hd_eps_sampler *s, double beta1, double beta2, const int *strides,
-                          int n, double *out, gsl_rng *rng) {
+int hd_eps_sample_strides(hd_eps_sampler *s, double beta1, double beta2, const int *strides, int n,
+                          double *out, gsl_rng *rng) {
   double sg1, sg2;
   if (!sigmas(s, beta1, beta2, &sg1, &sg2)) return HD_EINPUT;
   int dmin = s->r;

@@ -81,36 +81,39 @@ void hd_eps_sampler_stats(const hd_eps_sampler *s, hd_eps_stats *st);
  * for these betas) into *coarse and at a quarter of it into *fine, same path and phase.  Needs a
  * sampler with richardson = 1 (HD_EINPUT otherwise or on a bad beta).  The tables build their
  * quantile-level extrapolation 2 Q_fine - Q_coarse from these pairs (docs/mc-eps.md). */
-int hd_eps_sample_pair(hd_eps_sampler *s, double beta1, double beta2, double *coarse,
-                       double *fine, gsl_rng *rng);
+int hd_eps_sample_pair(hd_eps_sampler *s, double beta1, double beta2, double *coarse, double *fine,
+                       gsl_rng *rng);
 
 /* Solves one collision on one sampled path at several grid steps: out[m] is eps on the grid of
  * step (opts step)*strides[m]/R, R = adapt (times 4 with richardson), each stride a divisor of
- * R and a multiple of the smallest, all on the same path and the same random phase.  No extrapolation.
- * Used by the convergence study (`haff mc eps --convergence`).  Returns HD_OK or HD_EINPUT. */
-int hd_eps_sample_strides(hd_eps_sampler *s, double beta1, double beta2, const int *strides,
-                          int n, double *out, gsl_rng *rng);
+ * R and a multiple of the smallest, all on the same path and the same random phase.  No
+ * extrapolation. Used by the convergence study (`haff mc eps --convergence`).  Returns HD_OK or
+ * HD_EINPUT. */
+int hd_eps_sample_strides(hd_eps_sampler *s, double beta1, double beta2, const int *strides, int n,
+                          double *out, gsl_rng *rng);
 
 /* ---- tables: p_beta(eps) as inverse CDFs on a logarithmic beta grid (equal temperatures) --- */
 
-/* A table Q_k(u_j), k < nbeta, j < nu, u_j = j/(nu-1), beta_k = beta_min (beta_max/beta_min)^(k/(nbeta-1)). */
+/* A table Q_k(u_j), k < nbeta, j < nu, u_j = j/(nu-1), beta_k = beta_min
+ * (beta_max/beta_min)^(k/(nbeta-1)). */
 typedef struct hd_eps_table {
-  double gamma;      /* length ratio requested */
-  double gamma_eff;  /* canonical ratio simulated (<= 1) */
-  int nbeta, nu;     /* grid sizes, nbeta >= 2, nu >= 2 */
+  double gamma;              /* length ratio requested */
+  double gamma_eff;          /* canonical ratio simulated (<= 1) */
+  int nbeta, nu;             /* grid sizes, nbeta >= 2, nu >= 2 */
   double beta_min, beta_max; /* beta grid ends, 0 < beta_min < beta_max */
-  long samples;      /* direct samples per beta node */
-  double step;       /* grid step of the direct sampler */
-  int adapt;         /* its adapt option */
-  int richardson;    /* its richardson option */
-  double seconds;    /* build time */
-  double *q;         /* nbeta*nu quantiles, q[k*nu + j], nondecreasing in j */
+  long samples;              /* direct samples per beta node */
+  double step;               /* grid step of the direct sampler */
+  int adapt;                 /* its adapt option */
+  int richardson;            /* its richardson option */
+  double seconds;            /* build time */
+  double *q;                 /* nbeta*nu quantiles, q[k*nu + j], nondecreasing in j */
 } hd_eps_table;
 
 /* Builds a table by direct sampling (samples per node, sorted, empirical quantiles).  The
  * sampler fixes gamma, step, adapt and richardson; with richardson the node quantiles are the
  * quantile-level extrapolation 2 Q_fine - Q_coarse of paired paths (hd_eps_sample_pair; ~5x the
- * build time), made nondecreasing and >= 0, instead of quantiles of per-path Richardson samples.  Returns HD_OK, HD_EINPUT or HD_ENOMEM. */
+ * build time), made nondecreasing and >= 0, instead of quantiles of per-path Richardson samples.
+ * Returns HD_OK, HD_EINPUT or HD_ENOMEM. */
 int hd_eps_table_build(hd_eps_table **out, hd_eps_sampler *s, double beta_min, double beta_max,
                        int nbeta, int nu, long samples, gsl_rng *rng, hd_error *err);
 
@@ -120,7 +123,8 @@ void hd_eps_table_free(hd_eps_table *t);
 /* One eps from the table: u ~ U(0,1), Q linear in u within a node and linear in ln beta between
  * nodes (same u).  Below beta_min the beta_min node is used as is (p_beta has no simple scaling
  * there, docs/mc-eps.md); above beta_max, eps = g + (Q(beta_max) - g) sqrt(beta_max/beta) with
- * g = gamma_eff (the O(sigma) approach to the cold limit; beta = +inf gives g).  Returns NaN for a NaN or non-positive beta. */
+ * g = gamma_eff (the O(sigma) approach to the cold limit; beta = +inf gives g).  Returns NaN for a
+ * NaN or non-positive beta. */
 double hd_eps_table_sample(const hd_eps_table *t, double beta, gsl_rng *rng);
 
 /* The inverse CDF of the table at (beta, u), u in [0,1], with the interpolation above. */

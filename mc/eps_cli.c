@@ -11,30 +11,31 @@
 #include "eps.h"
 
 static void usage(FILE *out) {
-  fprintf(out,
-          "usage: haff mc eps --gamma G [--beta B] [--beta2 B2] [--samples N] [--seed K]\n"
-          "                   [--step H] [--adapt A] [--richardson] [--dump FILE]\n"
-          "       haff mc eps --gamma G [--beta B] --convergence [--samples N] [--step H]\n"
-          "       haff mc eps --gamma G --tabulate --db DB [--beta-min B0] [--beta-max B1]\n"
-          "                   [--nbeta K] [--nu M] [--samples N] [--step H]\n\n"
-          "Samples the rods' stochastic coefficient of restitution eps (Aspelmeier et al. 1998,\n"
-          "eqs. 13-14, hard-core limit) for length ratio G = l1/l2 and beta = E_tr/T_B.\n"
-          "Prints TSV: gamma beta eps_mean eps_stderr eps_sd samples seconds.\n\n"
-          "  --gamma G       length ratio l1/l2 > 0 (required)\n"
-          "  --beta B        E_tr/T_B, T_B the mean bath temperature (paper's rule) [1]; inf = cold\n"
-          "  --beta2 B2      unequal baths: B = E_tr/T_B(rod 1), B2 = E_tr/T_B(rod 2)\n"
-          "  --samples N     samples [10000] (per beta node with --tabulate [2000])\n"
-          "  --seed K        RNG seed (mt19937) [1]\n"
-          "  --step H        grid step in tau at beta >= 1 [0.01]\n"
-          "  --adapt A       step reduced down to H/A at beta < 1 (power of 2) [16]\n"
-          "  --richardson    per-path Richardson extrapolation (4x finer grid)\n"
-          "  --dump FILE     write the samples, one per line\n"
-          "  --convergence   bias against the step: TSV of mean eps at steps H..H/64 on coupled\n"
-          "                  paths, and the detailed-balance yardsticks <beta(eps^2-1)> and\n"
-          "                  <ln eps> with beta ~ Exp(1) (both 0 exactly)\n"
-          "  --tabulate      build inverse-CDF tables on a log beta grid and store them in --db;\n"
-          "                  prints the table's KS distance and mean error against direct sampling\n"
-          "  --beta-min B0, --beta-max B1, --nbeta K, --nu M   table grid [1e-3, 1e3, 25, 129]\n");
+  fprintf(
+      out,
+      "usage: haff mc eps --gamma G [--beta B] [--beta2 B2] [--samples N] [--seed K]\n"
+      "                   [--step H] [--adapt A] [--richardson] [--dump FILE]\n"
+      "       haff mc eps --gamma G [--beta B] --convergence [--samples N] [--step H]\n"
+      "       haff mc eps --gamma G --tabulate --db DB [--beta-min B0] [--beta-max B1]\n"
+      "                   [--nbeta K] [--nu M] [--samples N] [--step H]\n\n"
+      "Samples the rods' stochastic coefficient of restitution eps (Aspelmeier et al. 1998,\n"
+      "eqs. 13-14, hard-core limit) for length ratio G = l1/l2 and beta = E_tr/T_B.\n"
+      "Prints TSV: gamma beta eps_mean eps_stderr eps_sd samples seconds.\n\n"
+      "  --gamma G       length ratio l1/l2 > 0 (required)\n"
+      "  --beta B        E_tr/T_B, T_B the mean bath temperature (paper's rule) [1]; inf = cold\n"
+      "  --beta2 B2      unequal baths: B = E_tr/T_B(rod 1), B2 = E_tr/T_B(rod 2)\n"
+      "  --samples N     samples [10000] (per beta node with --tabulate [2000])\n"
+      "  --seed K        RNG seed (mt19937) [1]\n"
+      "  --step H        grid step in tau at beta >= 1 [0.01]\n"
+      "  --adapt A       step reduced down to H/A at beta < 1 (power of 2) [16]\n"
+      "  --richardson    per-path Richardson extrapolation (4x finer grid)\n"
+      "  --dump FILE     write the samples, one per line\n"
+      "  --convergence   bias against the step: TSV of mean eps at steps H..H/64 on coupled\n"
+      "                  paths, and the detailed-balance yardsticks <beta(eps^2-1)> and\n"
+      "                  <ln eps> with beta ~ Exp(1) (both 0 exactly)\n"
+      "  --tabulate      build inverse-CDF tables on a log beta grid and store them in --db;\n"
+      "                  prints the table's KS distance and mean error against direct sampling\n"
+      "  --beta-min B0, --beta-max B1, --nbeta K, --nu M   table grid [1e-3, 1e3, 25, 129]\n");
 }
 
 static double seconds_now(void) {
@@ -72,8 +73,7 @@ static void moments(const double *x, long n, double *mean, double *se, double *s
 }
 
 /* The convergence study (docs/mc-eps.md, "Bias against the step"). */
-static int convergence(double gamma, double beta, double beta2, long n, double step,
-                       gsl_rng *rng) {
+static int convergence(double gamma, double beta, double beta2, long n, double step, gsl_rng *rng) {
   enum { NS = 7 };
   hd_eps_opts o;
   hd_eps_opts_default(&o);
@@ -88,7 +88,8 @@ static int convergence(double gamma, double beta, double beta2, long n, double s
   const int strides[NS] = {64, 32, 16, 8, 4, 2, 1};
   double out[NS];
   double *e = malloc(sizeof(double) * (size_t)n * NS);
-  double *d1 = malloc(sizeof(double) * (size_t)n * NS), *d2 = malloc(sizeof(double) * (size_t)n * NS);
+  double *d1 = malloc(sizeof(double) * (size_t)n * NS),
+         *d2 = malloc(sizeof(double) * (size_t)n * NS);
   double *col = malloc(sizeof(double) * (size_t)n);
   if (!e || !d1 || !d2 || !col) {
     fprintf(stderr, "haff mc eps: out of memory\n");
@@ -123,8 +124,7 @@ static int convergence(double gamma, double beta, double beta2, long n, double s
       for (long i = 0; i < n; i++) col[i] -= e[(NS - 1) * n + i];
       moments(col, n, &bm, &bse, &bsd);
       for (long i = 0; i < n; i++)
-        col[i] = pass == 0 ? d1[m * n + i]
-                           : 2 * d1[(m + 2) * n + i] - d1[m * n + i];
+        col[i] = pass == 0 ? d1[m * n + i] : 2 * d1[(m + 2) * n + i] - d1[m * n + i];
       moments(col, n, &em, &ese, &bsd);
       for (long i = 0; i < n; i++)
         col[i] = pass == 0 ? d2[m * n + i] : 2 * d2[(m + 2) * n + i] - d2[m * n + i];
@@ -252,23 +252,57 @@ int hd_mc_eps_main(int argc, char **argv) {
   while ((c = getopt_long(argc, argv, "", opts, &li)) != -1) {
     int ok = 1;
     switch (c) {
-    case 'g': ok = parse_d(optarg, &gamma); break;
-    case 'b': ok = parse_d(optarg, &beta); break;
-    case 'B': ok = parse_d(optarg, &beta2); break;
-    case 'n': ok = parse_l(optarg, &n) && n >= 1; break;
-    case 's': ok = parse_l(optarg, &seed) && seed >= 0; break;
-    case 'h': ok = parse_d(optarg, &o.step); break;
-    case 'a': ok = parse_l(optarg, &adapt); break;
-    case 'r': o.richardson = 1; break;
-    case 'd': dump = optarg; break;
-    case 'c': conv = 1; break;
-    case 't': tab = 1; break;
-    case 'D': dbpath = optarg; break;
-    case 'm': ok = parse_d(optarg, &bmin); break;
-    case 'M': ok = parse_d(optarg, &bmax); break;
-    case 'K': ok = parse_l(optarg, &nbeta); break;
-    case 'U': ok = parse_l(optarg, &nu); break;
-    case '?' + 256: usage(stdout); return 0;
+    case 'g':
+      ok = parse_d(optarg, &gamma);
+      break;
+    case 'b':
+      ok = parse_d(optarg, &beta);
+      break;
+    case 'B':
+      ok = parse_d(optarg, &beta2);
+      break;
+    case 'n':
+      ok = parse_l(optarg, &n) && n >= 1;
+      break;
+    case 's':
+      ok = parse_l(optarg, &seed) && seed >= 0;
+      break;
+    case 'h':
+      ok = parse_d(optarg, &o.step);
+      break;
+    case 'a':
+      ok = parse_l(optarg, &adapt);
+      break;
+    case 'r':
+      o.richardson = 1;
+      break;
+    case 'd':
+      dump = optarg;
+      break;
+    case 'c':
+      conv = 1;
+      break;
+    case 't':
+      tab = 1;
+      break;
+    case 'D':
+      dbpath = optarg;
+      break;
+    case 'm':
+      ok = parse_d(optarg, &bmin);
+      break;
+    case 'M':
+      ok = parse_d(optarg, &bmax);
+      break;
+    case 'K':
+      ok = parse_l(optarg, &nbeta);
+      break;
+    case 'U':
+      ok = parse_l(optarg, &nu);
+      break;
+    case '?' + 256:
+      usage(stdout);
+      return 0;
     default:
       fprintf(stderr, "haff mc eps: unknown or incomplete option '%s' (see --help)\n",
               argv[optind - 1]);

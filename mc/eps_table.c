@@ -151,11 +151,12 @@ int hd_eps_table_save(const hd_eps_table *t, sqlite3 *db, unsigned long seed, in
   }
   if (sqlite3_exec(db, "BEGIN", NULL, NULL, NULL) != SQLITE_OK) return db_fail(db, err, "begin");
   sqlite3_stmt *st = NULL;
-  int ok = sqlite3_prepare_v2(db,
-                              "INSERT INTO eps_tables (gamma, gamma_eff, nbeta, nu, beta_min, "
-                              "beta_max, samples, step, adapt, richardson, seed, seconds, created)"
-                              " VALUES (?,?,?,?,?,?,?,?,?,?,?,?,strftime('%Y-%m-%dT%H:%M:%SZ','now'))",
-                              -1, &st, NULL) == SQLITE_OK;
+  int ok =
+      sqlite3_prepare_v2(db,
+                         "INSERT INTO eps_tables (gamma, gamma_eff, nbeta, nu, beta_min, "
+                         "beta_max, samples, step, adapt, richardson, seed, seconds, created)"
+                         " VALUES (?,?,?,?,?,?,?,?,?,?,?,?,strftime('%Y-%m-%dT%H:%M:%SZ','now'))",
+                         -1, &st, NULL) == SQLITE_OK;
   if (ok) {
     sqlite3_bind_double(st, 1, t->gamma);
     sqlite3_bind_double(st, 2, t->gamma_eff);
@@ -220,7 +221,8 @@ int hd_eps_table_load(hd_eps_table **out, sqlite3 *db, int64_t id, double gamma,
   if (rc != SQLITE_ROW) {
     sqlite3_finalize(st);
     if (rc != SQLITE_DONE) return db_fail(db, err, "select");
-    if (id > 0) return hd_error_set(err, HD_EINPUT, "eps table: no table with id %lld", (long long)id);
+    if (id > 0)
+      return hd_error_set(err, HD_EINPUT, "eps table: no table with id %lld", (long long)id);
     return hd_error_set(err, HD_EINPUT, "eps table: no table for gamma %g", gamma);
   }
   int64_t tab = sqlite3_column_int64(st, 0);
@@ -258,8 +260,8 @@ int hd_eps_table_load(hd_eps_table **out, sqlite3 *db, int64_t id, double gamma,
   sqlite3_finalize(st);
   if (rc != SQLITE_DONE || n != (long)nbeta * nu) {
     hd_eps_table_free(t);
-    return hd_error_set(err, HD_EIO, "eps table %lld: %ld of %d points present", (long long)tab,
-                        n, nbeta * nu);
+    return hd_error_set(err, HD_EIO, "eps table %lld: %ld of %d points present", (long long)tab, n,
+                        nbeta * nu);
   }
   *out = t;
   return HD_OK;

@@ -18,9 +18,12 @@
 
 const char *hd_fmean_model_name(hd_fmean_model model) {
   switch (model) {
-  case HD_FMEAN_HEURISTIC: return "heuristic";
-  case HD_FMEAN_EXCLUSION: return "exclusion";
-  case HD_FMEAN_COLLISION: return "collision";
+  case HD_FMEAN_HEURISTIC:
+    return "heuristic";
+  case HD_FMEAN_EXCLUSION:
+    return "exclusion";
+  case HD_FMEAN_COLLISION:
+    return "collision";
   }
   return "?";
 }
@@ -103,21 +106,21 @@ static double wrap_angle(double x) {
   return y - M_PI;
 }
 
-int hd_fmean_sample_contact(gsl_rng *rng, double a_over_d, int no_partner_partner,
-                            double *th_a, double *th_b, double cfg[2]) {
+int hd_fmean_sample_contact(gsl_rng *rng, double a_over_d, int no_partner_partner, double *th_a,
+                            double *th_b, double cfg[2]) {
   const double a = a_over_d; /* lengths in units of d */
   /* A: contacting disk A1 at the origin, outward axis +x, partner A2 at (-a, 0). */
-  double psi = 2.0 * M_PI * gsl_rng_uniform(rng) - M_PI;   /* contact normal A1 -> B1 */
-  double phib = 2.0 * M_PI * gsl_rng_uniform(rng) - M_PI;  /* B's outward axis at B1 */
+  double psi = 2.0 * M_PI * gsl_rng_uniform(rng) - M_PI;  /* contact normal A1 -> B1 */
+  double phib = 2.0 * M_PI * gsl_rng_uniform(rng) - M_PI; /* B's outward axis at B1 */
   double nx = cos(psi), ny = sin(psi);
   double ux = cos(phib), uy = sin(phib);
-  double b1x = nx, b1y = ny;                      /* B1 at distance d along the normal */
-  double b2x = b1x - a * ux, b2y = b1y - a * uy;  /* B's partner disk */
+  double b1x = nx, b1y = ny;                     /* B1 at distance d along the normal */
+  double b2x = b1x - a * ux, b2y = b1y - a * uy; /* B's partner disk */
   if (cfg) {
     cfg[0] = psi;
     cfg[1] = phib;
   }
-  *th_a = psi;                       /* from A's outward axis (+x) to the normal */
+  *th_a = psi;                           /* from A's outward axis (+x) to the normal */
   *th_b = wrap_angle(psi + M_PI - phib); /* from B's outward axis to -n (B1 -> A1) */
   /* Overlap means centre distance < d (touching, == d, is allowed). */
   double dx = b1x + a, dy = b1y; /* A2 - B1 */
@@ -255,8 +258,8 @@ int hd_fmean_run(const hd_fmean_opts *o, hd_fmean_result *res, hd_error *err) {
     }
     size_t got = fill_batch(s, want);
     if (got == 0) {
-      status = hd_error_set(err, HD_EPHYS, "no contact configuration accepted at a/d = %g",
-                            o->a_over_d);
+      status =
+          hd_error_set(err, HD_EPHYS, "no contact configuration accepted at a/d = %g", o->a_over_d);
       break;
     }
     const double *cols1[1] = {s->fb};
@@ -275,8 +278,7 @@ int hd_fmean_run(const hd_fmean_opts *o, hd_fmean_result *res, hd_error *err) {
   if (mf.n < 2) return hd_error_set(err, HD_EPHYS, "fewer than 2 samples drawn");
 
   if (o->model == HD_FMEAN_COLLISION) {
-    if (!(mr.mean[0] > 0.0))
-      return hd_error_set(err, HD_EPHYS, "no approaching contact sampled");
+    if (!(mr.mean[0] > 0.0)) return hd_error_set(err, HD_EPHYS, "no approaching contact sampled");
     hd_fmean_moments_ratio(&mr, 1, 0, &res->f_mean, &res->f_stderr);
     hd_fmean_moments_ratio(&mr, 2, 0, &res->fvn2, &res->fvn2_stderr);
     /* E = T_tr + T_rot/2 = 3T/2 per dimer at equipartition; see docs/mc-fmean.md. */

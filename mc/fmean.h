@@ -30,12 +30,12 @@ typedef enum hd_fmean_model {
 
 /* Options of one Monte Carlo estimate.  hd_fmean_opts_default fills the defaults. */
 typedef struct hd_fmean_opts {
-  hd_fmean_model model; /* which distribution of the contact angles */
-  double a_over_d;      /* elongation a/d, > 0 and finite */
-  double dim;           /* D in D_e = D/<f>; 2 (the paper's) by default, > 0 */
-  unsigned long samples; /* accepted samples to draw; 0 means: sample until `seconds` elapse */
-  double seconds;        /* wall-clock budget when samples == 0 (> 0); ignored otherwise */
-  unsigned long seed;    /* seed of the gsl_rng_mt19937 stream */
+  hd_fmean_model model;   /* which distribution of the contact angles */
+  double a_over_d;        /* elongation a/d, > 0 and finite */
+  double dim;             /* D in D_e = D/<f>; 2 (the paper's) by default, > 0 */
+  unsigned long samples;  /* accepted samples to draw; 0 means: sample until `seconds` elapse */
+  double seconds;         /* wall-clock budget when samples == 0 (> 0); ignored otherwise */
+  unsigned long seed;     /* seed of the gsl_rng_mt19937 stream */
   int no_partner_partner; /* exclusion/collision only: if nonzero, do not reject overlaps of
                              A's partner disk with B's partner disk (a test switch: the model
                              then factorises into the heuristic one) */
@@ -100,8 +100,8 @@ int hd_fmean_quadrature(double a_over_d, double *f, double *abserr);
  * (-pi, pi].  Returns 1 if no disk of A overlaps a disk of B other than the touching pair
  * (A's partner vs B's partner ignored when no_partner_partner), 0 if rejected.  If cfg is not
  * NULL it receives {normal angle, B's axis angle}. */
-int hd_fmean_sample_contact(gsl_rng *rng, double a_over_d, int no_partner_partner,
-                            double *th_a, double *th_b, double cfg[2]);
+int hd_fmean_sample_contact(gsl_rng *rng, double a_over_d, int no_partner_partner, double *th_a,
+                            double *th_b, double cfg[2]);
 
 /* Runs one Monte Carlo estimate with opts and fills *res.  Returns HD_OK, or HD_EINPUT
  * (with err set) for invalid options, HD_ENOMEM if the RNG cannot be allocated, HD_EPHYS if

@@ -65,8 +65,8 @@ static void print_header(void) {
 
 static void print_row(const hd_fmean_opts *o, const hd_fmean_result *r) {
   printf("%s\t%.10g\t%.10g\t%.4g\t%.10g\t%.4g\t%lu\t%.3f\t%.12g\t%.3g\t%.6g\t%.8g\t%.8g\t%.4g\n",
-         hd_fmean_model_name(o->model), o->a_over_d, r->f_mean, r->f_stderr, r->d_e,
-         r->d_e_stderr, r->samples, r->seconds, r->f_quad, r->f_quad_abserr,
+         hd_fmean_model_name(o->model), o->a_over_d, r->f_mean, r->f_stderr, r->d_e, r->d_e_stderr,
+         r->samples, r->seconds, r->f_quad, r->f_quad_abserr,
          r->tried ? (double)r->samples / (double)r->tried : NAN, r->fvn2, r->d_e_energy,
          r->d_e_energy_stderr);
 }
@@ -84,8 +84,8 @@ static void print_fig4(double a) {
     tb = 0.0;
     b2x = (1.0 + a) * nx, b2y = (1.0 + a) * ny;
   }
-  printf("# Fig. 4 data, lengths in units of d: a/d = %.6g, theta_max = %.10g rad = %.6g deg\n",
-         a, tm, tm * 180.0 / M_PI);
+  printf("# Fig. 4 data, lengths in units of d: a/d = %.6g, theta_max = %.10g rad = %.6g deg\n", a,
+         tm, tm * 180.0 / M_PI);
   printf("# index 0: dimer A disks (x y r): contacting disk A1, partner A2\n");
   printf("0\t0\t0.5\n%.10g\t0\t0.5\n\n\n", -a);
   printf("# index 1: dimer B disks (B1, B2) at theta_A = %.6g rad, theta_B = %.6g rad\n", th, tb);
@@ -143,8 +143,7 @@ int hd_mc_fmean_main(int argc, char **argv) {
       break;
     case 'k': {
       double x;
-      if (!parse_double(optarg, &x) || x < 0.0 || x > 4294967295.0 || x != floor(x))
-        goto bad_value;
+      if (!parse_double(optarg, &x) || x < 0.0 || x > 4294967295.0 || x != floor(x)) goto bad_value;
       seed = (unsigned long)x;
       break;
     }
@@ -154,9 +153,15 @@ int hd_mc_fmean_main(int argc, char **argv) {
         goto bad_value;
       have_scan = 1;
       break;
-    case 'c': conv = 1; break;
-    case 'f': fig4 = 1; break;
-    case 'h': fmean_usage(stdout); return 0;
+    case 'c':
+      conv = 1;
+      break;
+    case 'f':
+      fig4 = 1;
+      break;
+    case 'h':
+      fmean_usage(stdout);
+      return 0;
     case '?':
     default:
       fprintf(stderr, "haff mc fmean: unknown option or missing value in '%s' (see --help)\n",
@@ -178,8 +183,8 @@ int hd_mc_fmean_main(int argc, char **argv) {
     hd_fmean_conv_row rows[32];
     size_t nr;
     double slope, slope_err;
-    int st = hd_fmean_convergence(ad, seed, seconds > 0.0 ? seconds : 10.0, samples, rows, 32,
-                                  &nr, &slope, &slope_err, &err);
+    int st = hd_fmean_convergence(ad, seed, seconds > 0.0 ? seconds : 10.0, samples, rows, 32, &nr,
+                                  &slope, &slope_err, &err);
     if (st) {
       fprintf(stderr, "haff mc fmean: %s\n", err.msg);
       return hd_exit_code(st);
@@ -190,8 +195,8 @@ int hd_mc_fmean_main(int argc, char **argv) {
            fq_err);
     printf("n\tf_mc\tf_stderr\tabs_err_vs_quadrature\tseconds\treps\trms_err\n");
     for (size_t i = 0; i < nr; i++)
-      printf("%lu\t%.12g\t%.4g\t%.4g\t%.4f\t%lu\t%.4g\n", rows[i].n, rows[i].f_mc,
-             rows[i].f_stderr, rows[i].abs_err, rows[i].seconds, rows[i].reps, rows[i].rms_err);
+      printf("%lu\t%.12g\t%.4g\t%.4g\t%.4f\t%lu\t%.4g\n", rows[i].n, rows[i].f_mc, rows[i].f_stderr,
+             rows[i].abs_err, rows[i].seconds, rows[i].reps, rows[i].rms_err);
     printf("# slope of log(rms_err) vs log(n) (gsl_fit_wlinear): %.4f +- %.4f (1/sqrt(N) law: "
            "-0.5)\n",
            slope, slope_err);

@@ -17,9 +17,9 @@ void hd_fmean_moments_add_batch(hd_fmean_moments *m, const double *const *cols, 
   for (int i = 0; i < m->k; i++)
     for (int j = i; j < m->k; j++) {
       /* gsl_stats_covariance_m normalises by n - 1; undo it to get the co-deviation sum. */
-      double c = n > 1 ? gsl_stats_covariance_m(cols[i], 1, cols[j], 1, n, bm[i], bm[j]) *
-                             (double)(n - 1)
-                       : 0.0;
+      double c =
+          n > 1 ? gsl_stats_covariance_m(cols[i], 1, cols[j], 1, n, bm[i], bm[j]) * (double)(n - 1)
+                : 0.0;
       bcd[i][j] = bcd[j][i] = c;
     }
   double na = m->n, nb = (double)n, nt = na + nb;

@@ -11,9 +11,9 @@
 
 /* Sample count, means and co-deviation sums of k variables. */
 typedef struct hd_fmean_moments {
-  int k;                                              /* number of variables, 1..MAX */
-  double n;                                           /* samples so far */
-  double mean[HD_FMEAN_MOMENTS_MAX];                  /* sample means */
+  int k;                                                 /* number of variables, 1..MAX */
+  double n;                                              /* samples so far */
+  double mean[HD_FMEAN_MOMENTS_MAX];                     /* sample means */
   double cd[HD_FMEAN_MOMENTS_MAX][HD_FMEAN_MOMENTS_MAX]; /* sum (x_i - mean_i)(x_j - mean_j) */
 } hd_fmean_moments;
 

@@ -44,13 +44,16 @@ static double nu0_enskog_test(double T0) {
 static void add_run(sqlite3 *db, gsl_rng *r, int id, const char *scene, const char *status,
                     double alpha, double De, double nu_ratio, int disks, double boost_from) {
   char sql[1024];
-  snprintf(sql, sizeof sql,
-           "INSERT INTO runs(id, scene, seed, status, started, version) VALUES (%d, '%s', %d, '%s', "
-           "'2024-01-01T00:00:00Z', 'test')", id, scene, id, status);
+  snprintf(
+      sql, sizeof sql,
+      "INSERT INTO runs(id, scene, seed, status, started, version) VALUES (%d, '%s', %d, '%s', "
+      "'2024-01-01T00:00:00Z', 'test')",
+      id, scene, id, status);
   exec(db, sql);
   sqlite3_stmt *st;
-  sqlite3_prepare_v2(db, "INSERT INTO samples(run, t, collisions, cpd, e_tr, e_rot) VALUES (?,?,?,?,?,?)",
-                     -1, &st, NULL);
+  sqlite3_prepare_v2(
+      db, "INSERT INTO samples(run, t, collisions, cpd, e_tr, e_rot) VALUES (?,?,?,?,?,?)", -1, &st,
+      NULL);
   double K0 = 2.05, T0 = 1.0, t = 0;
   double nu0 = nu_ratio * nu0_enskog_test(T0);
   if (disks) nu0 = nu_ratio * hd_enskog_nu0(900.0 / 1e4, 1.0, T0, 1.0, M_PI * 0.09 / 4);
@@ -93,7 +96,8 @@ static int setup(void **state) {
   exec(db, "BEGIN");
   gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
   gsl_rng_set(r, 2005);
-  const char *dimer9 = "[system]\nbox = 100 100\n[dimers]\ncount = 900\nalpha = 0.9\na = 1\nd = 1\n";
+  const char *dimer9 =
+      "[system]\nbox = 100 100\n[dimers]\ncount = 900\nalpha = 0.9\na = 1\nd = 1\n";
   const char *dimer8 = "[system]\nbox = 100 100\n[dimers]\ncount = 900\nalpha = 0.8 ; comment\n";
   const char *disk9 = "[system]\nbox = 100 100\n[disks]\ncount = 900\nalpha = 0.9\n";
   for (int id = 1; id <= 3; id++) add_run(db, r, id, dimer9, "done", 0.9, 3.0, 1.25, 0, 0);
@@ -102,8 +106,10 @@ static int setup(void **state) {
   add_run(db, r, 6, dimer8, "failed", 0.8, 1.0, 3.0, 0, 0);
   /* collisions of run 1 */
   sqlite3_stmt *st;
-  sqlite3_prepare_v2(db, "INSERT INTO collisions(run, seq, t, kind, i, j, theta_i, theta_j, f) "
-                         "VALUES (1, ?, ?, 'dimer-dimer', 0, 1, ?, ?, ?)", -1, &st, NULL);
+  sqlite3_prepare_v2(db,
+                     "INSERT INTO collisions(run, seq, t, kind, i, j, theta_i, theta_j, f) "
+                     "VALUES (1, ?, ?, 'dimer-dimer', 0, 1, ?, ?, ?)",
+                     -1, &st, NULL);
   const double tm = 2 * M_PI / 3;
   for (int k = 1; k <= 20000; k++) {
     double ti = gsl_ran_flat(r, -tm, tm), tj = gsl_ran_flat(r, -tm, tm);
@@ -117,9 +123,12 @@ static int setup(void **state) {
   }
   sqlite3_finalize(st);
   /* one disk-disk row that must not count */
-  exec(db, "INSERT INTO collisions(run, seq, t, kind, i, j) VALUES (1, 20001, 300, 'disk-disk', 0, 1)");
-  sqlite3_prepare_v2(db, "INSERT INTO states(run, label, t, cpd, body, kind, x, y, phi, vx, vy, omega) "
-                         "VALUES (1, 'velocities', ?, ?, ?, 'dimer', 0, 0, 0, ?, ?, ?)", -1, &st, NULL);
+  exec(db,
+       "INSERT INTO collisions(run, seq, t, kind, i, j) VALUES (1, 20001, 300, 'disk-disk', 0, 1)");
+  sqlite3_prepare_v2(db,
+                     "INSERT INTO states(run, label, t, cpd, body, kind, x, y, phi, vx, vy, omega) "
+                     "VALUES (1, 'velocities', ?, ?, ?, 'dimer', 0, 0, 0, ?, ?, ?)",
+                     -1, &st, NULL);
   for (int s = 0; s < 3; s++) {
     for (int b = 0; b < 4000; b++) {
       double vx, vy, w;
@@ -410,9 +419,13 @@ static void gnuplot_scripts(void **state) {
   char src[512];
   snprintf(src, sizeof src, "%s", __FILE__);
   char *slash = strrchr(src, '/');
-  if (slash) *slash = '\0';
-  else snprintf(src, sizeof src, ".");
-  const char *figs[][2] = {{"fig2", "energy.tsv"}, {"fig3", "energy.tsv"}, {"fig5", "angles.tsv"},
+  if (slash)
+    *slash = '\0';
+  else
+    snprintf(src, sizeof src, ".");
+  const char *figs[][2] = {{"fig2", "energy.tsv"},
+                           {"fig3", "energy.tsv"},
+                           {"fig5", "angles.tsv"},
                            {"fig6", "veldist.tsv"}};
   /* the angles and veldist files must hold histograms, not the --fmean / --stats tables */
   char out[400], *aa[] = {dbpath, "--run", "1", "--block", "5000"};
@@ -434,8 +447,9 @@ static void gnuplot_scripts(void **state) {
                dir, figs[i][1], outf, i == 2 ? "; in2='" : "", src, figs[i][0], errf);
       if (i == 2) { /* fig5 with a second (elastic) input: the same file stands in */
         char tmp[2048];
-        snprintf(tmp, sizeof tmp, "gnuplot -e \"in='%s/%s'; out='%s'; in2='%s/%s'\" '%s/../plots/%s.gp' 2>'%s'",
-                 dir, figs[i][1], outf, dir, figs[i][1], src, figs[i][0], errf);
+        snprintf(tmp, sizeof tmp,
+                 "gnuplot -e \"in='%s/%s'; out='%s'; in2='%s/%s'\" '%s/../plots/%s.gp' 2>'%s'", dir,
+                 figs[i][1], outf, dir, figs[i][1], src, figs[i][0], errf);
         memcpy(cmd, tmp, sizeof tmp);
       }
       int rc = system(cmd);
@@ -455,8 +469,8 @@ static void gnuplot_scripts(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(haff_fit_runs), cmocka_unit_test(table1),  cmocka_unit_test(table2),
-      cmocka_unit_test(energy),        cmocka_unit_test(angles),  cmocka_unit_test(veldist),
+      cmocka_unit_test(haff_fit_runs),   cmocka_unit_test(table1), cmocka_unit_test(table2),
+      cmocka_unit_test(energy),          cmocka_unit_test(angles), cmocka_unit_test(veldist),
       cmocka_unit_test(gnuplot_scripts),
   };
   return cmocka_run_group_tests(tests, setup, teardown);

@@ -51,7 +51,8 @@ static void haff_fit_coverage(void **state) {
     assert_true(fabs(mse / scatter - 1) < 0.2);
   }
   /* no bias beyond 4 standard errors of the mean of 200 estimates */
-  assert_true(fabs(gsl_stats_mean(est[0], 1, REPL) - De) < 4 * gsl_stats_sd(est[0], 1, REPL) / sqrt(REPL));
+  assert_true(fabs(gsl_stats_mean(est[0], 1, REPL) - De) <
+              4 * gsl_stats_sd(est[0], 1, REPL) / sqrt(REPL));
   gsl_rng_free(r);
 }
 
@@ -109,7 +110,8 @@ static void linear_ols_coverage(void **state) {
   gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
   gsl_rng_set(r, 31);
   for (int k = 0; k < REPL; k++) {
-    for (int i = 0; i < N; i++) x[i] = 0.5 * i, y[i] = 2.01 - 3e-4 * x[i] + gsl_ran_gaussian(r, 0.02);
+    for (int i = 0; i < N; i++)
+      x[i] = 0.5 * i, y[i] = 2.01 - 3e-4 * x[i] + gsl_ran_gaussian(r, 0.02);
     hd_linfit f;
     hd_error e;
     assert_int_equal(hd_fit_linear_t(x, y, N, 0.99, &f, &e), HD_OK);
@@ -121,7 +123,8 @@ static void linear_ols_coverage(void **state) {
   }
   for (int p = 0; p < 2; p++) {
     double scatter = gsl_stats_sd(est[p], 1, REPL), mse = gsl_stats_mean(se[p], 1, REPL);
-    printf("# OLS param %d: coverage %d/200, mean se %.4g, scatter %.4g\n", p, hit[p], mse, scatter);
+    printf("# OLS param %d: coverage %d/200, mean se %.4g, scatter %.4g\n", p, hit[p], mse,
+           scatter);
     assert_true(hit[p] >= 190);
     assert_true(fabs(mse / scatter - 1) < 0.2);
   }
@@ -154,7 +157,8 @@ static void linear_autocorr_coverage(void **state) {
   }
   double scatter = gsl_stats_sd(est, 1, REPL), mse = gsl_stats_mean(se, 1, REPL);
   printf("# AR(1): OLS coverage %d/200, corrected %d/200, mean tau_int %.3g (exact 9.5), "
-         "se %.4g scatter %.4g\n", hit_ols, hit_ac, gsl_stats_mean(tau, 1, REPL), mse, scatter);
+         "se %.4g scatter %.4g\n",
+         hit_ols, hit_ac, gsl_stats_mean(tau, 1, REPL), mse, scatter);
   assert_true(hit_ols < 190);
   assert_true(hit_ac >= 190);
   assert_true(fabs(mse / scatter - 1) < 0.2);
@@ -181,9 +185,8 @@ static void linear_bad_input(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(haff_fit_coverage),        cmocka_unit_test(haff_fit_exact),
-      cmocka_unit_test(haff_fit_diverged),
-      cmocka_unit_test(linear_ols_coverage),      cmocka_unit_test(linear_autocorr_coverage),
-      cmocka_unit_test(linear_bad_input),
+      cmocka_unit_test(haff_fit_diverged),        cmocka_unit_test(linear_ols_coverage),
+      cmocka_unit_test(linear_autocorr_coverage), cmocka_unit_test(linear_bad_input),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -41,7 +41,8 @@ static void gaussian_and_uniform(void **state) {
   double *x = malloc(n * sizeof *x), *y = malloc(n * sizeof *y);
   gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
   gsl_rng_set(r, 7);
-  for (size_t i = 0; i < n; i++) x[i] = 3 + gsl_ran_gaussian(r, 2.0), y[i] = gsl_ran_gaussian(r, 2.0);
+  for (size_t i = 0; i < n; i++)
+    x[i] = 3 + gsl_ran_gaussian(r, 2.0), y[i] = gsl_ran_gaussian(r, 2.0);
   hd_velstats s, v;
   hd_error e;
   assert_int_equal(hd_velstats_1d(x, n, 1, &s, &e), HD_OK);
@@ -50,7 +51,8 @@ static void gaussian_and_uniform(void **state) {
   assert_true(fabs(s.a2) < 3.3 * s.a2_err);
   assert_true(fabs(s.kurt) < 3.3 * 3 * s.a2_err);
   assert_true(fabs(s.a2_err / sqrt(8.0 / (3.0 * (double)n)) - 1) < 0.2);
-  assert_true(fabs(s.scale / 2.0 - 1) < 5 / sqrt(2.0 * (double)n)); /* sd of a sample sd: 1/sqrt(2n) */
+  assert_true(fabs(s.scale / 2.0 - 1) <
+              5 / sqrt(2.0 * (double)n)); /* sd of a sample sd: 1/sqrt(2n) */
   assert_true(fabs(s.mean - 3) < 5 * 2 / sqrt((double)n));
   assert_true(s.ks_d < 1.63 / sqrt((double)n) && s.ks_p > 0.01);
   assert_int_equal(hd_velstats_2d(x, y, n, &v, &e), HD_OK);
@@ -124,7 +126,8 @@ static void homogeneity_detector(void **state) {
     hd_homog h;
     hd_error err;
     assert_int_equal(hd_homog_detect(t, coll, e, N, &o, &h, &err), HD_OK);
-    printf("# homogeneity pass %d: detected %d at cpd %.1f (t %.2f), r0 %.4g, %zu windows, max dev %.3f\n",
+    printf("# homogeneity pass %d: detected %d at cpd %.1f (t %.2f), r0 %.4g, %zu windows, max dev "
+           "%.3f\n",
            pass, h.detected, 0.5 * (double)(h.n_end - 1), h.t_end, h.r0, h.n_windows, h.max_dev);
     /* r = pair collisions per unit time / sqrt(E) = (nbody/2) nu0 / sqrt(E0) = 500; the
      * Poisson jitter (4% per window) allows 5% */
@@ -149,8 +152,10 @@ static void homogeneity_detector(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(kolmogorov_values), cmocka_unit_test(gaussian_and_uniform),
-      cmocka_unit_test(ks_pvalue_calibration), cmocka_unit_test(homogeneity_detector),
+      cmocka_unit_test(kolmogorov_values),
+      cmocka_unit_test(gaussian_and_uniform),
+      cmocka_unit_test(ks_pvalue_calibration),
+      cmocka_unit_test(homogeneity_detector),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

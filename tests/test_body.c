@@ -84,8 +84,8 @@ static double ref_ke(const hd_kin *b, const hd_shape *s) {
 }
 
 /* Gap of disk pair (i, j) at time t. */
-static double ref_gap_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B,
-                           const hd_shape *sb, int i, int j, double t) {
+static double ref_gap_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
+                           int i, int j, double t) {
   double xa, ya, xb, yb;
   ref_pos(A, sa, i, t, &xa, &ya);
   ref_pos(B, sb, j, t, &xb, &yb);
@@ -220,14 +220,16 @@ static void free_flight(void **state) {
   gsl_rng *r = rng_new(11);
   hd_shape s = dimer(1.0, 1.0, 1.0);
   for (int n = 0; n < 2000; n++) {
-    hd_kin k0 = {unif(r, -50, 50), unif(r, -50, 50), gsl_ran_gaussian(r, 1), gsl_ran_gaussian(r, 1),
-                 unif(r, -M_PI, M_PI), gsl_ran_gaussian(r, n % 3 == 0 ? 1e3 : 2.0)};
+    hd_kin k0 = {unif(r, -50, 50),       unif(r, -50, 50),
+                 gsl_ran_gaussian(r, 1), gsl_ran_gaussian(r, 1),
+                 unif(r, -M_PI, M_PI),   gsl_ran_gaussian(r, n % 3 == 0 ? 1e3 : 2.0)};
     double dt = unif(r, -3, 3);
     hd_kin k = k0;
     hd_kin_advance(&k, dt);
     assert_true(k.phi > -M_PI && k.phi <= M_PI);
     hd_kin_advance(&k, -dt);
-    /* round-off of x + v dt - v dt and of phi + w dt - w dt: 1e-14 relative to the sizes involved */
+    /* round-off of x + v dt - v dt and of phi + w dt - w dt: 1e-14 relative to the sizes involved
+     */
     assert_true(fabs(k.x - k0.x) <= 1e-14 * (fabs(k0.x) + fabs(k0.vx * dt)));
     assert_true(fabs(k.y - k0.y) <= 1e-14 * (fabs(k0.y) + fabs(k0.vy * dt)));
     assert_true(angdiff(k.phi, k0.phi) <= 1e-14 * (M_PI + fabs(k0.omega * dt)));
@@ -277,9 +279,13 @@ static void random_contact(gsl_rng *r, const hd_shape *sa, const hd_shape *sb, d
                            hd_kin *A, hd_kin *B, int *ka, int *kb) {
   double D = 0.5 * (sa->d + sb->d);
   for (;;) {
-    hd_kin a = {unif(r, -5, 5), unif(r, -5, 5), gsl_ran_gaussian(r, 1), gsl_ran_gaussian(r, 1),
-                unif(r, -M_PI, M_PI), gsl_ran_gaussian(r, wsc)};
-    hd_kin b = {0, 0, gsl_ran_gaussian(r, 1), gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI),
+    hd_kin a = {unif(r, -5, 5),         unif(r, -5, 5),       gsl_ran_gaussian(r, 1),
+                gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI), gsl_ran_gaussian(r, wsc)};
+    hd_kin b = {0,
+                0,
+                gsl_ran_gaussian(r, 1),
+                gsl_ran_gaussian(r, 1),
+                unif(r, -M_PI, M_PI),
                 gsl_ran_gaussian(r, wsc)};
     if (sa->kind == HD_KIND_DISK) a.phi = a.omega = 0.0;
     if (sb->kind == HD_KIND_DISK) b.phi = b.omega = 0.0;
@@ -344,15 +350,14 @@ static double paper_de(const hd_kin *A, const hd_shape *sa, const hd_kin *B, con
   double r34x = r3x - r4x, r34y = r3y - r4y, d2 = r13x * r13x + r13y * r13y;
   double g = (v3x - v1x) * r13x + (v3y - v1y) * r13y, l = 1.0 - alpha * alpha;
   if (sa->kind == HD_KIND_DIMER && sb->kind == HD_KIND_DIMER) { /* eq. 19 (equal m, a) */
-    if (sa->a != sb->a || sa->m != sb->m) return NAN; /* not in the paper */
+    if (sa->a != sb->a || sa->m != sb->m) return NAN;           /* not in the paper */
     double a2 = sa->a * sa->a, x = r13x * r12x + r13y * r12y, y = r13x * r34x + r13y * r34y;
     return -sa->m * l / (4 * d2) * g * g / (1 - (x * x + y * y) / (4 * a2 * d2));
   }
   if (sa->kind == HD_KIND_DIMER || sb->kind == HD_KIND_DIMER) { /* eq. 23, C^2 = d2 */
     const hd_shape *sd = sa->kind == HD_KIND_DIMER ? sa : sb, *sk = sd == sa ? sb : sa;
     double x = sd == sa ? -(r13x * r12x + r13y * r12y) : (r13x * r34x + r13y * r34y);
-    return -sd->m * l / (2 * d2) * g * g /
-           (1 + sd->m / sk->m - x * x / (2 * sd->a * sd->a * d2));
+    return -sd->m * l / (2 * d2) * g * g / (1 + sd->m / sk->m - x * x / (2 * sd->a * sd->a * d2));
   }
   double mu = sa->m * sb->m / (sa->m + sb->m); /* eq. 20 with masses */
   return -0.5 * mu * l * g * g / d2;
@@ -371,8 +376,8 @@ static double ref_vn(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const
 }
 
 /* Outward axis angle test: cos and sin of theta against e.n, e x n from the disk positions. */
-static void check_theta(const hd_kin *k, const hd_shape *s, int kk, double nx, double ny,
-                        double th, double D) {
+static void check_theta(const hd_kin *k, const hd_shape *s, int kk, double nx, double ny, double th,
+                        double D) {
   if (s->kind != HD_KIND_DIMER) {
     assert_true(isnan(th));
     return;
@@ -439,7 +444,8 @@ static void check_pair_collision(gsl_rng *r, const hd_shape *sa, const hd_shape 
   check_theta(&B, sb, kb, -nx, -ny, in.theta_j, D);
   double f;
   if (sa->kind == HD_KIND_DIMER && sb->kind == HD_KIND_DIMER) {
-    /* eq. 36 for equal disk masses; in general mu/m_A = 1/((1 + s_i^2)/2 + (1 + s_j^2) m_A/(2 m_B)) */
+    /* eq. 36 for equal disk masses; in general mu/m_A = 1/((1 + s_i^2)/2 + (1 + s_j^2) m_A/(2 m_B))
+     */
     double ci = cos(in.theta_i), cj = cos(in.theta_j), si = sin(in.theta_i), sj = sin(in.theta_j);
     f = 1.0 / (2.0 - (ci * ci + cj * cj) / 2.0); /* eq. 36 */
     assert_true(fabs(2.0 / (2.0 + si * si + sj * sj) - f) <= 1e-14);
@@ -517,7 +523,11 @@ static void collide_walls(void **state) {
         double a = as[ia], al = alphas[il];
         hd_shape s = k % 4 == 3 ? disk(1.3, 2.0) : dimer(1.0, a, 1.0);
         hd_wall w = {(int)gsl_rng_uniform_int(r, 2), unif(r, -10, 10), k % 2 ? 1.0 : -1.0};
-        hd_kin A = {0, 0, gsl_ran_gaussian(r, 1), gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI),
+        hd_kin A = {0,
+                    0,
+                    gsl_ran_gaussian(r, 1),
+                    gsl_ran_gaussian(r, 1),
+                    unif(r, -M_PI, M_PI),
                     gsl_ran_gaussian(r, a < 0.01 ? 1e3 : 2.0)};
         if (s.kind == HD_KIND_DISK) A.phi = A.omega = 0;
         int ka = (int)gsl_rng_uniform_int(r, (unsigned long)ndisks(&s));
@@ -525,8 +535,10 @@ static void collide_walls(void **state) {
         double x, y, o = unif(r, -10, 10);
         ref_pos(&A, &s, ka, 0, &x, &y);
         double want = w.pos + w.normal * 0.5 * s.d;
-        if (w.axis) A.y += want - y, A.x += o;
-        else A.x += want - x, A.y += o;
+        if (w.axis)
+          A.y += want - y, A.x += o;
+        else
+          A.x += want - x, A.y += o;
         if (s.kind == HD_KIND_DIMER) {
           ref_pos(&A, &s, 1 - ka, 0, &x, &y);
           if (w.normal * ((w.axis ? y : x) - want) < 0) continue;
@@ -547,7 +559,10 @@ static void collide_walls(void **state) {
         /* angular momentum about any point changes by (contact point - P) x impulse */
         double cx, cy, px = unif(r, -20, 20), py = unif(r, -20, 20);
         ref_pos(&A, &s, ka, 0, &cx, &cy);
-        if (w.axis) cy = w.pos; else cx = w.pos;
+        if (w.axis)
+          cy = w.pos;
+        else
+          cx = w.pos;
         double dL = ang_mom(&A1, &s, px, py) - ang_mom(&A, &s, px, py);
         assert_true(fabs(dL - ((cx - px) * dpy - (cy - py) * dpx)) <= 1e-13 * M * vs * 40);
         /* restitution, energy eq. 26 (and -M (1-a^2) vn^2/2 for a disk), paper == generic */
@@ -565,7 +580,7 @@ static void collide_walls(void **state) {
           A0.x = A0.y = 0.0;
           ref_pos(&A0, &s, ka, 0, &c1x, &c1y);
           ref_pos(&A0, &s, 1 - ka, 0, &c2x, &c2y);
-          c = w.axis ? c1y - c2y : c1x - c2x; /* n . r12 */
+          c = w.axis ? c1y - c2y : c1x - c2x;                                        /* n . r12 */
           de = -s.m * (1 - al * al) / 2 * v1n * v1n / (1 - c * c / (2 * s.a * s.a)); /* eq. 26 */
           double ct = cos(in.theta_i);
           assert_true(fabs(in.f - 1.0 / (1.0 - ct * ct / 2)) <= 1e-12 * in.f);
@@ -616,8 +631,8 @@ static int compare_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, co
     found = bf_first(&f, 0.0, tmax, nsamp, &tb, &gmin);
   }
   if (got != found) {
-    fprintf(stderr, "predict %d (t=%.17g) brute %d (t=%.17g, gmin=%g)\n", got, got ? c.t : 0,
-            found, tb, gmin);
+    fprintf(stderr, "predict %d (t=%.17g) brute %d (t=%.17g, gmin=%g)\n", got, got ? c.t : 0, found,
+            tb, gmin);
   }
   assert_int_equal(got, found);
   if (!got) return 0;
@@ -647,10 +662,17 @@ static void random_approach(gsl_rng *r, const hd_shape *sa, const hd_shape *sb, 
                             double wb, double gmin, double gmax, hd_kin *A, hd_kin *B) {
   double R = hd_shape_radius(sa) + hd_shape_radius(sb) + unif(r, gmin, gmax);
   double ang = unif(r, -M_PI, M_PI);
-  *A = (hd_kin){0, 0, 0.3 * gsl_ran_gaussian(r, 1), 0.3 * gsl_ran_gaussian(r, 1),
-                unif(r, -M_PI, M_PI), wa * gsl_ran_gaussian(r, 1)};
-  *B = (hd_kin){R * cos(ang), R * sin(ang), -cos(ang) + 0.5 * gsl_ran_gaussian(r, 1),
-                -sin(ang) + 0.5 * gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI),
+  *A = (hd_kin){0,
+                0,
+                0.3 * gsl_ran_gaussian(r, 1),
+                0.3 * gsl_ran_gaussian(r, 1),
+                unif(r, -M_PI, M_PI),
+                wa * gsl_ran_gaussian(r, 1)};
+  *B = (hd_kin){R * cos(ang),
+                R * sin(ang),
+                -cos(ang) + 0.5 * gsl_ran_gaussian(r, 1),
+                -sin(ang) + 0.5 * gsl_ran_gaussian(r, 1),
+                unif(r, -M_PI, M_PI),
                 wb * gsl_ran_gaussian(r, 1)};
   if (sa->kind == HD_KIND_DISK) A->phi = A->omega = 0;
   if (sb->kind == HD_KIND_DISK) B->phi = B->omega = 0;
@@ -659,8 +681,8 @@ static void random_approach(gsl_rng *r, const hd_shape *sa, const hd_shape *sb, 
 typedef struct pclass {
   const char *name;
   hd_shape sa, sb;
-  double wa, wb;   /* angular velocity scales */
-  double gmax;     /* largest initial gap between the enclosing circles */
+  double wa, wb; /* angular velocity scales */
+  double gmax;   /* largest initial gap between the enclosing circles */
   double tmax;
   int nsamp;
 } pclass;
@@ -698,7 +720,7 @@ static void predict_pairs(void **state) {
         hd_collide_pair(&a, &cl[k].sa, &b, &cl[k].sb, c.ka, c.kb, ia ? 0.0 : 0.9, NULL);
         if (ia == 0) {
           compare_pair(&a, &cl[k].sa, &b, &cl[k].sb, cl[k].tmax, ns,
-                                 c.ka * ndisks(&cl[k].sb) + c.kb);
+                       c.ka * ndisks(&cl[k].sb) + c.kb);
         } else {
           hd_contact c2; /* alpha = 0: vn = 0 after; no re-collision at t = 0 */
           if (hd_predict_pair(&a, &cl[k].sa, &b, &cl[k].sb, cl[k].tmax, &c2))
@@ -709,7 +731,6 @@ static void predict_pairs(void **state) {
     /* each class must exercise contacts (and the fast spinners a second contact) */
     if (!sanitize()) {
       assert_true(hits >= ncase / 5);
-
     }
   }
   gsl_rng_free(r);
@@ -727,8 +748,8 @@ static void predict_second_contact(void **state) {
     double ang = unif(r, -M_PI, M_PI), R = hd_shape_radius(&sa) + hd_shape_radius(&sb) + 0.05;
     double v = unif(r, 1, 10), w = unif(r, 30, 1e3) * (n % 3 ? 1 : -1);
     hd_kin A = {0, 0, 0, 0, unif(r, -M_PI, M_PI), w};
-    hd_kin B = {R * cos(ang), R * sin(ang), -v * cos(ang), -v * sin(ang), unif(r, -M_PI, M_PI),
-                0.0};
+    hd_kin B = {R * cos(ang),  R * sin(ang),         -v * cos(ang),
+                -v * sin(ang), unif(r, -M_PI, M_PI), 0.0};
     hd_contact c, c2;
     if (!hd_predict_pair(&A, &sa, &B, &sb, 1.0, &c)) continue;
     hd_kin_advance(&A, c.t);
@@ -786,7 +807,8 @@ static void predict_near_parallel(void **state) {
     for (int iw = 0; iw < 3; iw++)
       for (int n = 0; n < (sanitize() ? 1 : 4); n++) {
         double dx = n == 0 ? 0.0 : unif(r, -0.5, 0.5);
-        hd_kin A = {0, 0, 0, 0, 0, ws[iw]}, B = {dx, 1.0 + unif(r, 0.01, 0.5), 0, -1, eps[ie], -ws[iw]};
+        hd_kin A = {0, 0, 0, 0, 0, ws[iw]},
+               B = {dx, 1.0 + unif(r, 0.01, 0.5), 0, -1, eps[ie], -ws[iw]};
         assert_true(compare_pair(&A, &s, &B, &s, 2.0, ns, -1));
       }
   gsl_rng_free(r);
@@ -828,7 +850,10 @@ static void predict_grazing(void **state) {
       for (int it = 0; it < 45; it++) {
         double s = 0.5 * (s_hit + s_miss);
         Bs.x = B.x + s * ex, Bs.y = B.y + s * ey;
-        if (min_gap(&f, tmax, ns) < 0) s_hit = s; else s_miss = s;
+        if (min_gap(&f, tmax, ns) < 0)
+          s_hit = s;
+        else
+          s_miss = s;
       }
       double s0 = 0.5 * (s_hit + s_miss);
       Bs.x = B.x + (s0 - 1e-7) * ex, Bs.y = B.y + (s0 - 1e-7) * ey;
@@ -854,11 +879,18 @@ static void predict_walls(void **state) {
       hd_wall w = {n % 2, unif(r, -2, 2), (n / 2) % 2 ? 1.0 : -1.0};
       double tmax = iw == 2 ? 0.3 : 3.0;
       int ns = (iw == 2 ? 100000 : 30000) / (sanitize() ? 10 : 1);
-      hd_kin A = {0, 0, gsl_ran_gaussian(r, 1), gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI),
+      hd_kin A = {0,
+                  0,
+                  gsl_ran_gaussian(r, 1),
+                  gsl_ran_gaussian(r, 1),
+                  unif(r, -M_PI, M_PI),
                   ws[iw] * gsl_ran_gaussian(r, 1)};
       if (s.kind == HD_KIND_DISK) A.phi = A.omega = 0;
       double gap = unif(r, 0.01, iw == 2 ? 0.3 : 1.5) + hd_shape_radius(&s);
-      if (w.axis) A.y = w.pos + w.normal * gap; else A.x = w.pos + w.normal * gap;
+      if (w.axis)
+        A.y = w.pos + w.normal * gap;
+      else
+        A.x = w.pos + w.normal * gap;
       double *vnorm = w.axis ? &A.vy : &A.vx;
       *vnorm = -w.normal * fabs(*vnorm);
       for (int graze = 0; graze < 3; graze++) {

@@ -59,7 +59,8 @@ static long long q1(const char *db, const char *sql) {
   snprintf(att, sizeof att, "ATTACH '%s/ref.db' AS ref", dir);
   sqlite3_exec(h, att, 0, 0, 0);
   sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(h, sql, -1, &st, 0) != SQLITE_OK) fail_msg("%s: %s", sql, sqlite3_errmsg(h));
+  if (sqlite3_prepare_v2(h, sql, -1, &st, 0) != SQLITE_OK)
+    fail_msg("%s: %s", sql, sqlite3_errmsg(h));
   long long v = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int64(st, 0) : -1;
   sqlite3_finalize(st);
   sqlite3_close(h);
@@ -119,13 +120,18 @@ static void same_as_reference(const char *db) {
   assert_int_equal(q1(db, "SELECT count(*) FROM collisions"),
                    q1(db, "SELECT count(*) FROM ref.collisions"));
   assert_int_equal(q1(db, "SELECT count(*) FROM (SELECT seq,t,kind,i,j,f,de,vn FROM collisions "
-                          "EXCEPT SELECT seq,t,kind,i,j,f,de,vn FROM ref.collisions)"), 0);
+                          "EXCEPT SELECT seq,t,kind,i,j,f,de,vn FROM ref.collisions)"),
+                   0);
   assert_int_equal(q1(db, "SELECT count(*) FROM (SELECT t,cpd,e_tr FROM samples "
-                          "EXCEPT SELECT t,cpd,e_tr FROM ref.samples)"), 0);
-  assert_int_equal(q1(db, "SELECT count(*) FROM samples"), q1(db, "SELECT count(*) FROM ref.samples"));
-  assert_int_equal(q1(db, "SELECT count(*) FROM (SELECT label,t,body,x,y,vx,vy FROM states "
-                          "WHERE label IN ('final','velocities') EXCEPT SELECT label,t,body,x,y,vx,vy "
-                          "FROM ref.states WHERE label IN ('final','velocities'))"), 0);
+                          "EXCEPT SELECT t,cpd,e_tr FROM ref.samples)"),
+                   0);
+  assert_int_equal(q1(db, "SELECT count(*) FROM samples"),
+                   q1(db, "SELECT count(*) FROM ref.samples"));
+  assert_int_equal(q1(db,
+                      "SELECT count(*) FROM (SELECT label,t,body,x,y,vx,vy FROM states "
+                      "WHERE label IN ('final','velocities') EXCEPT SELECT label,t,body,x,y,vx,vy "
+                      "FROM ref.states WHERE label IN ('final','velocities'))"),
+                   0);
   assert_int_equal(q1(db, "SELECT count(*) FROM states WHERE label='final'"), 2000);
   assert_int_equal(q1(db, "SELECT count(*) FROM states WHERE label='velocities'"), 4000);
   assert_int_equal(q1(db, "SELECT status='done' FROM runs"), 1);
@@ -183,7 +189,8 @@ static void kill9_then_resume(void **state) {
     sqlite3_close(h);
     assert_int_equal(q1(db, "SELECT count(*) = coalesce(max(seq), 0) FROM collisions"), 1);
     assert_int_equal(q1(db, "SELECT count(*) FROM (SELECT seq,t,i,j,de FROM collisions "
-                            "EXCEPT SELECT seq,t,i,j,de FROM ref.collisions)"), 0);
+                            "EXCEPT SELECT seq,t,i,j,de FROM ref.collisions)"),
+                     0);
     assert_int_equal(q1(db, "SELECT status='running' FROM runs"), 1);
     assert_int_equal(sh("%s resume %s --quiet", haff, db), 0);
     same_as_reference(db);
@@ -195,7 +202,8 @@ static void bad_input(void **state) {
   (void)state;
   if (!haff) skip();
   char e[2048];
-  write_file("bad1.ini", "[system]\nbox = 10 10\n[disks]\ncount = 5\nalpha = 1.5\n[run]\nstop_time = 1\n");
+  write_file("bad1.ini",
+             "[system]\nbox = 10 10\n[disks]\ncount = 5\nalpha = 1.5\n[run]\nstop_time = 1\n");
   assert_int_equal(sh("%s run bad1.ini -o bad.db", haff), 2);
   read_err(e, sizeof e);
   assert_non_null(strstr(e, "bad1.ini:5"));
@@ -218,7 +226,9 @@ static void bad_input(void **state) {
   assert_int_equal(sh("%s --help >/dev/null", haff), 0);
   /* a state file with overlapping bodies names the file and line */
   write_file("st.csv", "kind,x,y,phi,vx,vy,omega\ndisk,1,1,0,0,0,0\ndisk,1.5,1,0,0,0,0\n");
-  write_file("st.ini", "[system]\nbox = 10 10\n[disks]\ncount = 2\n[init]\nstate = st.csv\n[run]\nstop_time = 1\n");
+  write_file(
+      "st.ini",
+      "[system]\nbox = 10 10\n[disks]\ncount = 2\n[init]\nstate = st.csv\n[run]\nstop_time = 1\n");
   assert_int_equal(sh("%s run st.ini -o bad.db", haff), 2);
   read_err(e, sizeof e);
   assert_non_null(strstr(e, "st.csv:3"));
@@ -267,23 +277,29 @@ static void logged_restitution(void **state) {
   /* wall_seconds is this run's own time (it once included the machine's uptime) */
   assert_int_equal(q1("mix.db", "SELECT wall_seconds > 0 AND wall_seconds < 60 FROM runs"), 1);
   /* the restitution of each kind, from the scene */
-  assert_int_equal(q1("mix.db", "SELECT count(*) FROM collisions WHERE abs(de + 0.5 * (1 - "
-                                "(CASE kind WHEN 'dimer-dimer' THEN 0.8 WHEN 'disk-disk' THEN 0.7 "
-                                "WHEN 'dimer-disk' THEN 0.9 ELSE 0.6 END) * (CASE kind WHEN "
-                                "'dimer-dimer' THEN 0.8 WHEN 'disk-disk' THEN 0.7 WHEN 'dimer-disk' "
-                                "THEN 0.9 ELSE 0.6 END)) * f * vn * vn) > 1e-9 * abs(de) + 1e-300"),
+  assert_int_equal(q1("mix.db",
+                      "SELECT count(*) FROM collisions WHERE abs(de + 0.5 * (1 - "
+                      "(CASE kind WHEN 'dimer-dimer' THEN 0.8 WHEN 'disk-disk' THEN 0.7 "
+                      "WHEN 'dimer-disk' THEN 0.9 ELSE 0.6 END) * (CASE kind WHEN "
+                      "'dimer-dimer' THEN 0.8 WHEN 'disk-disk' THEN 0.7 WHEN 'dimer-disk' "
+                      "THEN 0.9 ELSE 0.6 END)) * f * vn * vn) > 1e-9 * abs(de) + 1e-300"),
                    0);
   assert_int_equal(q1("mix.db", "SELECT count(*) FROM collisions WHERE de > 0 OR vn >= 0"), 0);
-  assert_int_equal(q1("mix.db", "SELECT count(*) FROM collisions WHERE kind = 'dimer-dimer' AND "
-                                "(abs(theta_i) > 2 * pi() / 3 + 1e-9 OR abs(theta_j) > 2 * pi() / 3 "
-                                "+ 1e-9)"), 0);
+  assert_int_equal(q1("mix.db",
+                      "SELECT count(*) FROM collisions WHERE kind = 'dimer-dimer' AND "
+                      "(abs(theta_i) > 2 * pi() / 3 + 1e-9 OR abs(theta_j) > 2 * pi() / 3 "
+                      "+ 1e-9)"),
+                   0);
   assert_int_equal(q1("mix.db", "SELECT count(*) FROM collisions WHERE kind = 'dimer-dimer' AND "
                                 "abs(f - 1.0 / (2 - (cos(theta_i) * cos(theta_i) + cos(theta_j) * "
-                                "cos(theta_j)) / 2)) > 1e-12"), 0);
+                                "cos(theta_j)) / 2)) > 1e-12"),
+                   0);
   assert_int_equal(q1("mix.db", "SELECT count(*) FROM samples WHERE e_tr_dimer IS NULL OR "
-                                "e_tr_disk IS NULL"), 0);
+                                "e_tr_disk IS NULL"),
+                   0);
   assert_int_equal(q1("mix.db", "SELECT count(*) FROM samples WHERE abs(e_tr - (e_tr_dimer + "
-                                "e_tr_disk) / 2) > 1e-12 * e_tr"), 0);
+                                "e_tr_disk) / 2) > 1e-12 * e_tr"),
+                   0);
 }
 
 /* A read-only database directory: exit 1 with a clear message, no crash. */
@@ -298,9 +314,8 @@ static void unwritable_db(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(bad_input), cmocka_unit_test(unwritable_db),
-      cmocka_unit_test(logged_restitution),
-      cmocka_unit_test(disk_full_then_resume),
+      cmocka_unit_test(bad_input),          cmocka_unit_test(unwritable_db),
+      cmocka_unit_test(logged_restitution), cmocka_unit_test(disk_full_then_resume),
       cmocka_unit_test(sigint_then_resume), cmocka_unit_test(sigterm_then_resume),
       cmocka_unit_test(kill9_then_resume),
   };

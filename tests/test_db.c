@@ -30,11 +30,11 @@ int haff_export_main(int argc, char **argv);
 /* helpers */
 
 /* |a - b| <= tol * max(1, |b|): relative for large values, absolute below 1. */
-#define assert_close(a, b, tol)                                                                  \
-  do {                                                                                           \
-    double a_ = (a), b_ = (b);                                                                   \
-    if (!(fabs(a_ - b_) <= (tol) * fmax(1.0, fabs(b_))))                                         \
-      fail_msg("%s = %.17g, want %.17g (tol %g)", #a, a_, b_, (double)(tol));                   \
+#define assert_close(a, b, tol)                                                                    \
+  do {                                                                                             \
+    double a_ = (a), b_ = (b);                                                                     \
+    if (!(fabs(a_ - b_) <= (tol)*fmax(1.0, fabs(b_))))                                             \
+      fail_msg("%s = %.17g, want %.17g (tol %g)", #a, a_, b_, (double)(tol));                      \
   } while (0)
 
 typedef struct fixture {
@@ -112,8 +112,22 @@ static void assert_integrity_ok(const char *path) {
 }
 
 static hd_collision_row coll(int64_t seq) {
-  hd_collision_row r = {seq, 0.01 * (double)seq, HD_CK_DIMER_DIMER, seq % 7, seq % 5 + 7, 0, 1,
-                        0.25, -0.5, 0.7, -0.01, -0.3, NAN, NAN, NAN, NAN};
+  hd_collision_row r = {seq,
+                        0.01 * (double)seq,
+                        HD_CK_DIMER_DIMER,
+                        seq % 7,
+                        seq % 5 + 7,
+                        0,
+                        1,
+                        0.25,
+                        -0.5,
+                        0.7,
+                        -0.01,
+                        -0.3,
+                        NAN,
+                        NAN,
+                        NAN,
+                        NAN};
   return r;
 }
 
@@ -138,9 +152,22 @@ static void round_trip(void **state) {
 
   /* every collision kind once, with NaN in theta_j, f and vn for some */
   for (int k = 0; k <= HD_CK_ROD_ROD; k++) {
-    hd_collision_row r = {k + 1, 0.5 + k, (hd_coll_kind)k, k, k == 3 ? -2 : k + 1, k % 2, -1,
-                          0.125 * k, k % 2 ? NAN : -0.25, k == 2 ? NAN : 0.6, -0.5 * k,
-                          k == 4 ? NAN : -1.0, 0.5, 1.0, 2.0, 3.0};
+    hd_collision_row r = {k + 1,
+                          0.5 + k,
+                          (hd_coll_kind)k,
+                          k,
+                          k == 3 ? -2 : k + 1,
+                          k % 2,
+                          -1,
+                          0.125 * k,
+                          k % 2 ? NAN : -0.25,
+                          k == 2 ? NAN : 0.6,
+                          -0.5 * k,
+                          k == 4 ? NAN : -1.0,
+                          0.5,
+                          1.0,
+                          2.0,
+                          3.0};
     assert_int_equal(hd_db_log_collision(db, run, &r, &err), HD_OK);
   }
   hd_sample_row s = {1.25, 42, 0.84, 0.75, 0.5, NAN, NAN, NAN};
@@ -207,17 +234,25 @@ static void round_trip(void **state) {
     assert_int_equal(sqlite3_column_int(q, 5), k % 2);
     assert_int_equal(sqlite3_column_int(q, 6), -1);
     assert_true(sqlite3_column_double(q, 7) == 0.125 * k);
-    if (k % 2) assert_int_equal(sqlite3_column_type(q, 8), SQLITE_NULL);
-    else assert_true(sqlite3_column_double(q, 8) == -0.25);
-    if (k == 2) assert_int_equal(sqlite3_column_type(q, 9), SQLITE_NULL);
-    else assert_true(sqlite3_column_double(q, 9) == 0.6);
+    if (k % 2)
+      assert_int_equal(sqlite3_column_type(q, 8), SQLITE_NULL);
+    else
+      assert_true(sqlite3_column_double(q, 8) == -0.25);
+    if (k == 2)
+      assert_int_equal(sqlite3_column_type(q, 9), SQLITE_NULL);
+    else
+      assert_true(sqlite3_column_double(q, 9) == 0.6);
     assert_true(sqlite3_column_double(q, 10) == -0.5 * k);
-    if (k == 4) assert_int_equal(sqlite3_column_type(q, 11), SQLITE_NULL);
-    else assert_true(sqlite3_column_double(q, 11) == -1.0);
+    if (k == 4)
+      assert_int_equal(sqlite3_column_type(q, 11), SQLITE_NULL);
+    else
+      assert_true(sqlite3_column_double(q, 11) == -1.0);
     /* rod columns: stored for rod-rod only, NULL for the other kinds */
     for (int c = 12; c < 16; c++)
-      if (k == HD_CK_ROD_ROD) assert_true(sqlite3_column_double(q, c) == (c == 12 ? 0.5 : c - 12.0));
-      else assert_int_equal(sqlite3_column_type(q, c), SQLITE_NULL);
+      if (k == HD_CK_ROD_ROD)
+        assert_true(sqlite3_column_double(q, c) == (c == 12 ? 0.5 : c - 12.0));
+      else
+        assert_int_equal(sqlite3_column_type(q, c), SQLITE_NULL);
   }
   assert_int_equal(sqlite3_step(q), SQLITE_DONE);
   sqlite3_finalize(q);
@@ -396,8 +431,8 @@ static void checkpoint_save_load_truncate(void **state) {
   struct {
     const char *label;
     double t;
-  } sts[] = {{"initial", 0},      {"velocities", 5}, {"checkpoint", 20},
-             {"velocities", 25},  {"checkpoint", 25}, {"final", 29}};
+  } sts[] = {{"initial", 0},     {"velocities", 5},  {"checkpoint", 20},
+             {"velocities", 25}, {"checkpoint", 25}, {"final", 29}};
   for (size_t k = 0; k < sizeof sts / sizeof sts[0]; k++) {
     hd_state_rec s = {sts[k].t, 0, 1, 0, 0, 0, 0, 0, 0, NAN};
     assert_int_equal(hd_db_log_state(db, r1, sts[k].label, &s, &err), HD_OK);
@@ -639,8 +674,8 @@ static void disk_full(void **state) {
 typedef struct qres {
   int ncol, nrow, cap;
   char *names[32];
-  double *v;   /* nrow x ncol, NAN for NULL */
-  char **txt;  /* nrow x ncol, strdup'd text of TEXT cells, else NULL */
+  double *v;  /* nrow x ncol, NAN for NULL */
+  char **txt; /* nrow x ncol, strdup'd text of TEXT cells, else NULL */
 } qres;
 
 static void qres_free(qres *r) {
@@ -742,7 +777,7 @@ typedef struct qdata {
   double kind_de[Q_RUNS][6];
   long hist[Q_RUNS][3][36]; /* [run][block of Q_BLOCK][bin] */
   long hist_all[Q_RUNS][36];
-  double *f[Q_RUNS];        /* f of the dimer-dimer collisions */
+  double *f[Q_RUNS]; /* f of the dimer-dimer collisions */
   long nf[Q_RUNS];
   double e_tr[Q_RUNS][20], e_rot[Q_RUNS][20];
 } qdata;
@@ -774,12 +809,11 @@ static void fill_query_db(const char *path, qdata *q) {
       c.kind = (hd_coll_kind)gsl_rng_uniform_int(rng, 6);
       /* theta uniform in (-2pi/3, 2pi/3] for dimers, NaN for others; some exactly +-pi/bin
        * edges are avoided by the random draw */
-      int has_i = c.kind == HD_CK_DIMER_DIMER || c.kind == HD_CK_DIMER_DISK ||
-                  c.kind == HD_CK_DIMER_WALL;
+      int has_i =
+          c.kind == HD_CK_DIMER_DIMER || c.kind == HD_CK_DIMER_DISK || c.kind == HD_CK_DIMER_WALL;
       c.theta_i = has_i ? (2 * gsl_rng_uniform(rng) - 1) * 2 * M_PI / 3 : NAN;
       if (has_i && s % 97 == 0) c.theta_i = M_PI; /* the closed end of the last bin */
-      c.theta_j = c.kind == HD_CK_DIMER_DIMER ? (2 * gsl_rng_uniform(rng) - 1) * 2 * M_PI / 3
-                                              : NAN;
+      c.theta_j = c.kind == HD_CK_DIMER_DIMER ? (2 * gsl_rng_uniform(rng) - 1) * 2 * M_PI / 3 : NAN;
       if (c.kind == HD_CK_DIMER_DIMER) {
         double ci = cos(c.theta_i), cj = cos(c.theta_j);
         c.f = 1.0 / (2.0 - (ci * ci + cj * cj) / 2.0);
@@ -803,8 +837,8 @@ static void fill_query_db(const char *path, qdata *q) {
       hd_sample_row sm = {0.5 * k, 100 * k, 0.2 * k, q->e_tr[r][k], q->e_rot[r][k], NAN, NAN, NAN};
       assert_int_equal(hd_db_log_sample(db, run, &sm, &err), HD_OK);
     }
-    assert_int_equal(hd_db_run_status(db, run, r ? "interrupted" : "done", 1000 * (r + 1),
-                                      4.0, &err), HD_OK);
+    assert_int_equal(
+        hd_db_run_status(db, run, r ? "interrupted" : "done", 1000 * (r + 1), 4.0, &err), HD_OK);
   }
   gsl_rng_free(rng);
   close_ok(db);
@@ -832,8 +866,7 @@ static void queries(void **state) {
     long nb = 0;
     for (int j = 0; j < 36; j++) nb += q.hist[0][b][j];
     assert_int_equal((long)val(&r, row, "n_block"), nb);
-    assert_close(val(&r, row, "density"), (double)q.hist[0][b][k] / ((double)nb * w),
-                        1e-12);
+    assert_close(val(&r, row, "density"), (double)q.hist[0][b][k] / ((double)nb * w), 1e-12);
     assert_close(val(&r, row, "theta_lo"), -M_PI + k * w, 1e-12);
     total += (long)val(&r, row, "n");
   }
@@ -895,10 +928,8 @@ static void queries(void **state) {
     while (k < 6 && strcmp(hd_coll_kind_name((hd_coll_kind)k), kind)) k++;
     assert_true(k < 6);
     assert_int_equal((long)val(&r, row, "n"), q.kind_n[run][k]);
-    assert_close(val(&r, row, "fraction"),
-                        (double)q.kind_n[run][k] / (double)q.n_coll[run], 1e-15);
-    assert_close(val(&r, row, "mean_de"), q.kind_de[run][k] / (double)q.kind_n[run][k],
-                        1e-12);
+    assert_close(val(&r, row, "fraction"), (double)q.kind_n[run][k] / (double)q.n_coll[run], 1e-15);
+    assert_close(val(&r, row, "mean_de"), q.kind_de[run][k] / (double)q.kind_n[run][k], 1e-12);
   }
   qres_free(&r);
 
@@ -906,8 +937,7 @@ static void queries(void **state) {
   run_query(h, "runs_overview.sql", 0, 0, &r);
   assert_int_equal(r.nrow, 2);
   for (int k = 0; k < 2; k++) {
-    assert_string_equal(r.txt[(long)k * r.ncol + col(&r, "status")],
-                        k ? "interrupted" : "done");
+    assert_string_equal(r.txt[(long)k * r.ncol + col(&r, "status")], k ? "interrupted" : "done");
     assert_int_equal((long)val(&r, k, "collisions_logged"), q.n_coll[k]);
     assert_close(val(&r, k, "events_per_s"), 1000.0 * (k + 1) / 4.0, 1e-12);
     assert_close(val(&r, k, "last_cpd"), 0.2 * 19, 1e-15);

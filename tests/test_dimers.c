@@ -101,8 +101,8 @@ static void elastic_dimers(void **state) {
   double et, er;
   hd_sim_energy(s, -1, &et, &er);
   double K = ksum / nk;
-  printf("# elastic dimers: %ld collisions, drift %.3g, |p| %.3g, max overlap %.3g, <K> %.4f\n",
-         n, drift, hypot(p, p2), s->max_overlap, K);
+  printf("# elastic dimers: %ld collisions, drift %.3g, |p| %.3g, max overlap %.3g, <K> %.4f\n", n,
+         drift, hypot(p, p2), s->max_overlap, K);
   assert_true(drift < 1e-9);
   assert_true(hypot(p, p2) < 1e-12 * sqrt((double)N));
   assert_true(s->max_overlap < 1e-9);
@@ -129,7 +129,9 @@ static void elastic_dimers(void **state) {
  * melted lattice: random addition cannot get there).  Energy drift < 1e-9, no NaN, no overlap. */
 static void limits(void **state) {
   (void)state;
-  struct { double a, eta; } cases[] = {{1e-3, 0.2}, {2.0, 0.2}, {3.0, 0.15}, {1.0, 0.55}};
+  struct {
+    double a, eta;
+  } cases[] = {{1e-3, 0.2}, {2.0, 0.2}, {3.0, 0.15}, {1.0, 0.55}};
   for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
     hd_scene sc;
     dimer_scene(&sc, 300, 0, cases[c].a, cases[c].eta, 1.0, 23 + c);
@@ -140,8 +142,8 @@ static void limits(void **state) {
     if (rc) fail_msg("a = %g: %s", cases[c].a, err.msg);
     double drift, p;
     run_checked(s, test_size(200000, 10), &drift, &p);
-    printf("# a = %g, eta = %g: drift %.3g, |p| %.3g, max overlap %.3g\n", cases[c].a,
-           cases[c].eta, drift, p, s->max_overlap);
+    printf("# a = %g, eta = %g: drift %.3g, |p| %.3g, max overlap %.3g\n", cases[c].a, cases[c].eta,
+           drift, p, s->max_overlap);
     assert_true(drift < 1e-9);
     assert_true(s->max_overlap < 1e-9);
     hd_sim_free(s);
@@ -310,14 +312,16 @@ static void inelastic_cooling(void **state) {
     if (hd_sim_cpd(s) >= next) {
       double et, er;
       hd_sim_energy(s, -1, &et, &er);
-      if (next < 30) k1 += et / er, n1++;
-      else k2 += et / er, n2++;
+      if (next < 30)
+        k1 += et / er, n1++;
+      else
+        k2 += et / er, n2++;
       next += 0.25;
     }
   }
   double K1 = k1 / n1, K2 = k2 / n2;
-  printf("# inelastic: E(40 cpd)/E(0) = %.4g, K over cpd 20-30 %.4f, 30-40 %.4f\n",
-         s->c.e_kin / e0, K1, K2);
+  printf("# inelastic: E(40 cpd)/E(0) = %.4g, K over cpd 20-30 %.4f, 30-40 %.4f\n", s->c.e_kin / e0,
+         K1, K2);
   assert_true(s->c.e_kin < e0 / 5);
   if (!test_sanitized()) {
     assert_true(fabs((K1 + K2) / 4 - 1) < 0.10);
@@ -329,8 +333,9 @@ static void inelastic_cooling(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(elastic_dimers),    cmocka_unit_test(limits),
-      cmocka_unit_test(alpha_zero), cmocka_unit_test(double_contact),        cmocka_unit_test(walls_keep_inside),
-      cmocka_unit_test(mixture_equipartition), cmocka_unit_test(inelastic_cooling),
+      cmocka_unit_test(alpha_zero),        cmocka_unit_test(double_contact),
+      cmocka_unit_test(walls_keep_inside), cmocka_unit_test(mixture_equipartition),
+      cmocka_unit_test(inelastic_cooling),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -232,7 +232,8 @@ static void maxwellian(void **state) {
   hd_sim_energy(s, -1, &et, &er);
   double T = et / (double)N;
   double *v = malloc(sizeof(double) * 2 * (size_t)N);
-  for (long i = 0; i < N; i++) v[2 * i] = s->b[i].k.vx / sqrt(T), v[2 * i + 1] = s->b[i].k.vy / sqrt(T);
+  for (long i = 0; i < N; i++)
+    v[2 * i] = s->b[i].k.vx / sqrt(T), v[2 * i + 1] = s->b[i].k.vy / sqrt(T);
   size_t m = 2 * (size_t)N;
   gsl_sort(v, 1, m);
   double d = 0;
@@ -286,11 +287,14 @@ static void haff_law(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(head_on),       cmocka_unit_test(oblique_grazing_periodic),
+      cmocka_unit_test(head_on),
+      cmocka_unit_test(oblique_grazing_periodic),
       cmocka_unit_test(collision_across_wrap),
       cmocka_unit_test(near_jamming),
-      cmocka_unit_test(elastic_conservation), cmocka_unit_test(enskog_rate),
-      cmocka_unit_test(maxwellian),    cmocka_unit_test(haff_law),
+      cmocka_unit_test(elastic_conservation),
+      cmocka_unit_test(enskog_rate),
+      cmocka_unit_test(maxwellian),
+      cmocka_unit_test(haff_law),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

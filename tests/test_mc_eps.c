@@ -85,7 +85,8 @@ static void cold_longer_rod_is_deterministic(void **state) {
   assert_true(sd > 0.05); /* at beta = 0.5 the spread is O(0.3) */
   hd_eps_sampler_free(s);
   s = make(1.25, 0); /* now rod 1 is the longer one */
-  for (int i = 0; i < n / 4; i++) assert_true(fabs(hd_eps_sample2(s, INFINITY, 0.5, r) - 0.8) < 1e-9);
+  for (int i = 0; i < n / 4; i++)
+    assert_true(fabs(hd_eps_sample2(s, INFINITY, 0.5, r) - 0.8) < 1e-9);
   hd_eps_sampler_free(s);
   gsl_rng_free(r);
 }
@@ -132,8 +133,7 @@ static void detailed_balance(void **state) {
       double E = gsl_ran_exponential(r, 1.0);
       double e = hd_eps_sample(s, wrong ? E / 2 : E, r);
       double E2 = e * e * E;
-      double v[3] = {E2 - E, log(e),
-                     (double)(E < 0.5 && E2 > 1.5) - (double)(E2 < 0.5 && E > 1.5)};
+      double v[3] = {E2 - E, log(e), (double)(E < 0.5 && E2 > 1.5) - (double)(E2 < 0.5 && E > 1.5)};
       for (int k = 0; k < 3; k++) {
         m[k] += v[k];
         m2[k] += v[k] * v[k];
@@ -307,11 +307,15 @@ static void cli_usage(void **state) {
 }
 
 int main(void) {
-  const struct CMUnitTest tests[] = {
-      cmocka_unit_test(cold_baths_give_gamma),   cmocka_unit_test(equal_rods_are_elastic),
-      cmocka_unit_test(cold_longer_rod_is_deterministic),
-      cmocka_unit_test(nonnegative_and_symmetric), cmocka_unit_test(detailed_balance),
-      cmocka_unit_test(step_bias_is_small),      cmocka_unit_test(pair_is_paired),      cmocka_unit_test(bad_input),
-      cmocka_unit_test(table_build_sample_store), cmocka_unit_test(cli_usage)};
+  const struct CMUnitTest tests[] = {cmocka_unit_test(cold_baths_give_gamma),
+                                     cmocka_unit_test(equal_rods_are_elastic),
+                                     cmocka_unit_test(cold_longer_rod_is_deterministic),
+                                     cmocka_unit_test(nonnegative_and_symmetric),
+                                     cmocka_unit_test(detailed_balance),
+                                     cmocka_unit_test(step_bias_is_small),
+                                     cmocka_unit_test(pair_is_paired),
+                                     cmocka_unit_test(bad_input),
+                                     cmocka_unit_test(table_build_sample_store),
+                                     cmocka_unit_test(cli_usage)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

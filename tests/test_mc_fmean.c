@@ -396,8 +396,7 @@ static void convergence_slope(void **state) {
   double slope, se;
   hd_error err;
   unsigned long nmax = scaled(100000);
-  assert_int_equal(hd_fmean_convergence(1.0, 5, 1e9, nmax, rows, 8, &nr, &slope, &se, &err),
-                   HD_OK);
+  assert_int_equal(hd_fmean_convergence(1.0, 5, 1e9, nmax, rows, 8, &nr, &slope, &se, &err), HD_OK);
   assert_int_equal(nr, nmax >= 100000 ? 3 : 2);
   assert_int_equal(rows[0].n, 1000);
   assert_int_equal(rows[0].reps, 1000);

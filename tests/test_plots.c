@@ -1,5 +1,5 @@
-/* test_plots: the `make plots` pipeline (plots/plots.mk, plots/scripts, the plots .gp scripts) on tiny
- * real data: runs of 50 dimers through bin/haff (env HAFF_BIN), merged databases, the analysis
+/* test_plots: the `make plots` pipeline (plots/plots.mk, plots/scripts, the plots .gp scripts) on
+ * tiny real data: runs of 50 dimers through bin/haff (env HAFF_BIN), merged databases, the analysis
  * subcommands, then every gnuplot script of the pipeline rendered to PNG and SVG with nothing on
  * stderr.  Also: the merge keeps every row and gives unique run ids, the TSV tables have their
  * documented columns, and make rebuilds only what changed.  Skipped without gnuplot or
@@ -20,9 +20,9 @@ static char root[512], tmp[256], haff[512];
 
 /* make -f plots/plots.mk with the tiny parameters, from the repository root; MAKEFLAGS of an
  * enclosing `make test` (jobserver descriptors) must not leak in */
-#define TINY                                                                                   \
-  "NDIM=50 NRUNS=2 ALPHAS='1 0.9 0.8' AOVERD=1 GAP_A=1.5 DISK_ALPHAS=0.9 "              \
-  "FIG2_ALPHAS='0.9 0.8' ELASTIC_CPD=40 ERR_RUNS=2 ERR_CPD='20 40' FIG5_CPD=25 FMEAN_A=1 "    \
+#define TINY                                                                                       \
+  "NDIM=50 NRUNS=2 ALPHAS='1 0.9 0.8' AOVERD=1 GAP_A=1.5 DISK_ALPHAS=0.9 "                         \
+  "FIG2_ALPHAS='0.9 0.8' ELASTIC_CPD=40 ERR_RUNS=2 ERR_CPD='20 40' FIG5_CPD=25 FMEAN_A=1 "         \
   "MC_SAMPLES=20000 XMAX=8"
 
 static int make(const char *flags, const char *targets, const char *log) {
@@ -114,14 +114,16 @@ static void pipeline_and_rebuild(void **state) {
   assert_int_equal(system(cmd), 0);
   snprintf(cmd, sizeof cmd, "grep -v 'is up to date' '%s/make3.log' | grep -q 'run\\.sh'", tmp);
   assert_int_not_equal(system(cmd), 0); /* and no run */
-  snprintf(cmd, sizeof cmd, "grep -v 'is up to date' '%s/make3.log' | grep -q 'fig6\\|veldist'", tmp);
+  snprintf(cmd, sizeof cmd, "grep -v 'is up to date' '%s/make3.log' | grep -q 'fig6\\|veldist'",
+           tmp);
   assert_int_not_equal(system(cmd), 0); /* nor what does not depend on it */
   assert_int_equal(make("", t, "make4.log"), 0);
 }
 
 static long long count(sqlite3 *db, const char *sql) {
   sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(db, sql, -1, &st, NULL) != SQLITE_OK) fail_msg("%s: %s", sql, sqlite3_errmsg(db));
+  if (sqlite3_prepare_v2(db, sql, -1, &st, NULL) != SQLITE_OK)
+    fail_msg("%s: %s", sql, sqlite3_errmsg(db));
   long long n = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int64(st, 0) : -1;
   sqlite3_finalize(st);
   return n;
@@ -153,9 +155,12 @@ static void merge_keeps_rows(void **state) {
   assert_int_equal(count(db, "SELECT count(DISTINCT id) FROM runs WHERE id IN (1, 2)"), 2);
   for (int j = 0; j < 3; j++) assert_int_equal(count(db, q[j]), sum[j]);
   assert_int_equal(count(db, "SELECT count(*) FROM collisions WHERE run = 2"), per[1][0]);
-  assert_int_equal(count(db, "SELECT count(*) FROM runs WHERE id = 2 AND scene LIKE '%alpha = 1\n%'"), 1);
-  assert_int_equal(count(db, "SELECT count(*) FROM plots_runs WHERE run = 2 AND file = 'fig5-al1.db' "
-                             "AND cpu_seconds > 0"), 1);
+  assert_int_equal(
+      count(db, "SELECT count(*) FROM runs WHERE id = 2 AND scene LIKE '%alpha = 1\n%'"), 1);
+  assert_int_equal(count(db,
+                         "SELECT count(*) FROM plots_runs WHERE run = 2 AND file = 'fig5-al1.db' "
+                         "AND cpu_seconds > 0"),
+                   1);
   sqlite3_close(db);
 }
 
@@ -178,18 +183,22 @@ static void tsv_columns(void **state) {
       {"table1.tsv", "alpha\ta_over_d\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\truns"},
       {"table2.tsv", "alpha\ta_over_d\ta0\ta0_lo\ta0_hi\ta1\ta1_lo\ta1_hi"},
       {"fmean_vs_engine.tsv", "source\ta_over_d\talpha\tf_mean\tf_err\tD_over_f\tn"},
-      {"data/errcost.tsv", "runs to 20 cpd\truns\tcpu_seconds\tD_e\tD_e_err\tcpd_fit_end\tD_e_err_all"}};
+      {"data/errcost.tsv",
+       "runs to 20 cpd\truns\tcpu_seconds\tD_e\tD_e_err\tcpd_fit_end\tD_e_err_all"}};
   char buf[512];
   for (size_t i = 0; i < sizeof want / sizeof want[0]; i++) {
     header(want[i][0], buf, sizeof buf);
-    if (strcmp(buf, want[i][1])) fail_msg("%s: header '%s', want '%s'", want[i][0], buf, want[i][1]);
+    if (strcmp(buf, want[i][1]))
+      fail_msg("%s: header '%s', want '%s'", want[i][0], buf, want[i][1]);
     char cmd[700];
     snprintf(cmd, sizeof cmd, "test $(grep -c . '%s/out/%s') -ge 2", tmp, want[i][0]);
     assert_int_equal(system(cmd), 0);
   }
   /* Table I holds the inelastic a = d rows with a finite D_e */
-  snprintf(buf, sizeof buf, "awk -F'\\t' '$1 == 0.9 && $2 == 1 && $3 > 2 && $3 < 5 { ok = 1 } "
-                            "END { exit !ok }' '%s/out/table1.tsv'", tmp);
+  snprintf(buf, sizeof buf,
+           "awk -F'\\t' '$1 == 0.9 && $2 == 1 && $3 > 2 && $3 < 5 { ok = 1 } "
+           "END { exit !ok }' '%s/out/table1.tsv'",
+           tmp);
   assert_int_equal(system(buf), 0);
 }
 
@@ -199,13 +208,15 @@ static void gnuplot_render(void **state) {
   (void)state;
   need();
   const char *D = "out/data", *O = "out";
-  struct { const char *gp, *args; } s[] = {
-      {"fig1", "in='%1$s/%2$s/fig1.tsv'; title='test'"},
-      {"fig2", "in='%1$s/%2$s/energy.tsv'; ref='%1$s/%2$s/energy_disks.tsv'"},
-      {"fig3", "in='%1$s/%2$s/energy.tsv'"},
-      {"fig5", "in='%1$s/%2$s/angles.tsv'; in2='%1$s/%2$s/angles_elastic.tsv'; fm='%1$s/%3$s/fmean_vs_engine.tsv'; ad=1"},
-      {"fig6", "in='%1$s/%2$s/veldist.tsv'"},
-      {"errcost", "in='%1$s/%2$s/errcost.tsv'"}};
+  struct {
+    const char *gp, *args;
+  } s[] = {{"fig1", "in='%1$s/%2$s/fig1.tsv'; title='test'"},
+           {"fig2", "in='%1$s/%2$s/energy.tsv'; ref='%1$s/%2$s/energy_disks.tsv'"},
+           {"fig3", "in='%1$s/%2$s/energy.tsv'"},
+           {"fig5", "in='%1$s/%2$s/angles.tsv'; in2='%1$s/%2$s/angles_elastic.tsv'; "
+                    "fm='%1$s/%3$s/fmean_vs_engine.tsv'; ad=1"},
+           {"fig6", "in='%1$s/%2$s/veldist.tsv'"},
+           {"errcost", "in='%1$s/%2$s/errcost.tsv'"}};
   for (size_t i = 0; i < sizeof s / sizeof s[0]; i++)
     for (int e = 0; e < 2; e++) {
       const char *ext = e ? "svg" : "png";

@@ -40,7 +40,8 @@ static void against_brute_force(void **state) {
       int32_t top = hd_queue_top(q), want = brute_min(t, n);
       if (t[want] == INFINITY) { /* only never-entries left: any of them may come up */
         assert_true(t[top] == INFINITY);
-        for (int32_t i = 0; i < n; i++) t[i] = now + gsl_rng_uniform(r), hd_queue_update(q, i, t[i]);
+        for (int32_t i = 0; i < n; i++)
+          t[i] = now + gsl_rng_uniform(r), hd_queue_update(q, i, t[i]);
         continue;
       }
       assert_int_equal(top, want);
@@ -48,7 +49,8 @@ static void against_brute_force(void **state) {
       /* the popped body gets a later time: mostly near, sometimes far (overflow), sometimes
        * never; a few other bodies are moved too (their partners' collisions) */
       double u = gsl_rng_uniform(r);
-      t[top] = u < 0.02 ? INFINITY : u < 0.05 ? now + 1e3 * gsl_rng_uniform(r)
+      t[top] = u < 0.02   ? INFINITY
+               : u < 0.05 ? now + 1e3 * gsl_rng_uniform(r)
                : u < 0.06 ? now /* a tie with the current time */
                           : now + gsl_ran_exponential(r, 1.0);
       hd_queue_update(q, top, t[top]);

@@ -34,8 +34,7 @@ static hd_rods *make(long n, long nmod, hd_rods_model model, double eps, unsigne
 
 static double momentum(const hd_rods *r) {
   double P = 0;
-  for (long i = 0; i < r->p.n; i++)
-    P += r->m[i] * r->v[i];
+  for (long i = 0; i < r->p.n; i++) P += r->m[i] * r->v[i];
   return P;
 }
 
@@ -229,8 +228,7 @@ static void collapse(void **state) {
   hd_error e;
   int rc = HD_OK;
   long c;
-  for (c = 0; c < 1000000 && rc == HD_OK; c++)
-    rc = hd_rods_next(r, INFINITY, &ev, &e);
+  for (c = 0; c < 1000000 && rc == HD_OK; c++) rc = hd_rods_next(r, INFINITY, &ev, &e);
   assert_int_equal(rc, HD_ECOLLAPSE);
   assert_true(c < 1000000);
   assert_non_null(strstr(e.msg, "inelastic collapse at t = "));
@@ -238,8 +236,7 @@ static void collapse(void **state) {
   assert_non_null(strstr(e.msg, "cluster of rods"));
   hd_rods_free(r);
   r = make(20, 10, HD_RODS_CONSTANT, 0.99, 3);
-  for (c = 0; c < 100000; c++)
-    assert_int_equal(hd_rods_next(r, INFINITY, &ev, &e), HD_OK);
+  for (c = 0; c < 100000; c++) assert_int_equal(hd_rods_next(r, INFINITY, &ev, &e), HD_OK);
   hd_rods_free(r);
   /* the TC model (tc = 1e-3) keeps the eps = 0.5 ring from collapsing (for 2e4 collisions, by
    * then t ~ 1e4 times the collapse time above; docs/rods.md: the detector's limits) */
@@ -336,10 +333,14 @@ static void theory(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(initial_state),   cmocka_unit_test(collision_rule),
-      cmocka_unit_test(conservation),    cmocka_unit_test(damping_balance),
-      cmocka_unit_test(gamma_one_elastic), cmocka_unit_test(checkpoint_exact),
-      cmocka_unit_test(collapse),        cmocka_unit_test(equilibrium),
+      cmocka_unit_test(initial_state),
+      cmocka_unit_test(collision_rule),
+      cmocka_unit_test(conservation),
+      cmocka_unit_test(damping_balance),
+      cmocka_unit_test(gamma_one_elastic),
+      cmocka_unit_test(checkpoint_exact),
+      cmocka_unit_test(collapse),
+      cmocka_unit_test(equilibrium),
       cmocka_unit_test(theory),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -292,8 +292,7 @@ static void long_line(void **state) {
   char *text = malloc(n + 64);
   assert_non_null(text);
   strcpy(text, RUN "[log]\nvelocities_at =");
-  while (strlen(text) < n)
-    strcat(text, " 1");
+  while (strlen(text) < n) strcat(text, " 1");
   strcat(text, "\n");
   hd_scene sc;
   hd_error e;
@@ -566,11 +565,9 @@ static int setup(void **state) {
 static int teardown(void **state) {
   (void)state;
   const char *names[] = {"good.csv", "bad.csv", "s.ini"};
-  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
-    unlink(tmp_path(names[i]));
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) unlink(tmp_path(names[i]));
   return rmdir(tmpdir);
 }
-
 
 /* ---- [rods] ------------------------------------------------------------------------------- */
 
@@ -594,14 +591,16 @@ static void rods_scene(void **state) {
   hd_scene_free(&sc);
   hd_scene_free(&sc2);
   /* defaults: gamma 0.8, nmod 1000, stochastic, eps = gamma */
-  assert_int_equal(hd_scene_load_string(&sc, "[rods]\ncount = 4\n[run]\nstop_events = 5\n",
-                                        "d.ini", NULL, 0, &e), HD_OK);
+  assert_int_equal(hd_scene_load_string(&sc, "[rods]\ncount = 4\n[run]\nstop_events = 5\n", "d.ini",
+                                        NULL, 0, &e),
+                   HD_OK);
   assert_true(sc.rod_gamma == 0.8 && sc.rod_nmod == 1000 && sc.rod_model == 0);
   assert_true(sc.rod_eps == 0.8);
   hd_scene_free(&sc);
   const char *over[] = {"rods.baths=unequal", "rods.count=8"};
-  assert_int_equal(hd_scene_load_string(&sc, "[rods]\ncount = 4\n[run]\nstop_events = 5\n",
-                                        "d.ini", over, 2, &e), HD_OK);
+  assert_int_equal(hd_scene_load_string(&sc, "[rods]\ncount = 4\n[run]\nstop_events = 5\n", "d.ini",
+                                        over, 2, &e),
+                   HD_OK);
   assert_true(sc.rod_unequal == 1 && sc.n_rods == 8);
   hd_scene_free(&sc);
 }
@@ -614,19 +613,29 @@ static void rods_bad(void **state) {
   } cases[] = {
       {"[rods]\ncount = 5\n[run]\nstop_time = 1\n", "r.ini:2", "[rods] count = 5", "even"},
       {"[rods]\ncount = 0\n[run]\nstop_time = 1\n", "r.ini:2", "[rods] count = 0", "["},
-      {"[rods]\ncount = 4\ngamma = 1.5\n[run]\nstop_time = 1\n", "r.ini:3", "gamma = 1.5", "[0, 1]"},
+      {"[rods]\ncount = 4\ngamma = 1.5\n[run]\nstop_time = 1\n", "r.ini:3", "gamma = 1.5",
+       "[0, 1]"},
       {"[rods]\ncount = 4\ngamma = 0\n[run]\nstop_time = 1\n", "r.ini:3", "gamma = 0", "(0, 1]"},
-      {"[rods]\ncount = 4\nmodel = fixed\n[run]\nstop_time = 1\n", "r.ini:3", "model = fixed", "stochastic or constant"},
-      {"[rods]\ncount = 4\neps = 0.5\n[run]\nstop_time = 1\n", "r.ini:3", "eps = 0.5", "model = constant"},
+      {"[rods]\ncount = 4\nmodel = fixed\n[run]\nstop_time = 1\n", "r.ini:3", "model = fixed",
+       "stochastic or constant"},
+      {"[rods]\ncount = 4\neps = 0.5\n[run]\nstop_time = 1\n", "r.ini:3", "eps = 0.5",
+       "model = constant"},
       {"[rods]\ncount = 4\nnmod = 0\n[run]\nstop_time = 1\n", "r.ini:3", "nmod = 0", "["},
-      {"[rods]\ncount = 4\ndamping = -1\n[run]\nstop_time = 1\n", "r.ini:3", "damping = -1", ">= 0"},
-      {"[rods]\ncount = 4\ntable = maybe\n[run]\nstop_time = 1\n", "r.ini:3", "table = maybe", "yes/no"},
-      {"[rods]\ncount = 4\nbaths = hot\n[run]\nstop_time = 1\n", "r.ini:3", "baths = hot", "mean or unequal"},
-      {"[rods]\ncount = 4\ntable = yes\nbaths = unequal\n[run]\nstop_time = 1\n", "r.ini:3", "table = yes", "equal"},
-      {"[rods]\ncount = 4\nlength = 2\n[run]\nstop_time = 1\n", "r.ini:3", "[rods] length", "unknown key"},
+      {"[rods]\ncount = 4\ndamping = -1\n[run]\nstop_time = 1\n", "r.ini:3", "damping = -1",
+       ">= 0"},
+      {"[rods]\ncount = 4\ntable = maybe\n[run]\nstop_time = 1\n", "r.ini:3", "table = maybe",
+       "yes/no"},
+      {"[rods]\ncount = 4\nbaths = hot\n[run]\nstop_time = 1\n", "r.ini:3", "baths = hot",
+       "mean or unequal"},
+      {"[rods]\ncount = 4\ntable = yes\nbaths = unequal\n[run]\nstop_time = 1\n", "r.ini:3",
+       "table = yes", "equal"},
+      {"[rods]\ncount = 4\nlength = 2\n[run]\nstop_time = 1\n", "r.ini:3", "[rods] length",
+       "unknown key"},
       {"[rods]\ngamma = 0.5\n[run]\nstop_time = 1\n", "r.ini:1", "[rods] count", "missing"},
-      {"[rods]\ncount = 4\n[disks]\ncount = 3\n[run]\nstop_time = 1\n", "r.ini:3", "[disks]", "cannot be combined"},
-      {"[system]\nbox = 5 5\n[rods]\ncount = 4\n[run]\nstop_time = 1\n", "r.ini:2", "box = 5 5", "ring length"},
+      {"[rods]\ncount = 4\n[disks]\ncount = 3\n[run]\nstop_time = 1\n", "r.ini:3", "[disks]",
+       "cannot be combined"},
+      {"[system]\nbox = 5 5\n[rods]\ncount = 4\n[run]\nstop_time = 1\n", "r.ini:2", "box = 5 5",
+       "ring length"},
       {"[rods]\ncount = 4\n", "r.ini", "no stop condition", NULL},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
