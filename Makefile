@@ -15,9 +15,9 @@ ifneq ($(filter true 1,$(CI) $(WERROR)),)
 WARN    += -Werror
 endif
 OPT     ?= -O2 -g
-CFLAGS  := -std=c11 -D_GNU_SOURCE $(OPT) $(WARN) -MMD -MP -Iengine -Idb -Imc -Ianalysis -Icli \
+CFLAGS  := -std=c11 -D_GNU_SOURCE -pthread $(OPT) $(WARN) -MMD -MP -Iengine -Idb -Imc -Ianalysis -Icli \
            $(shell pkg-config --cflags $(PKGS) 2>/dev/null) $(EXTRA_CFLAGS)
-LDLIBS  := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lgsl -lgslcblas -lsqlite3 -linih) -lm
+LDLIBS  := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lgsl -lgslcblas -lsqlite3 -linih) -lm -pthread
 TESTLIBS:= -lcmocka
 
 LIB_SRC := $(wildcard engine/*.c db/*.c mc/*.c analysis/*.c)

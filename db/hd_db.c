@@ -17,6 +17,8 @@
 #include <math.h>
 #include <sqlite3.h>
 #include <stdlib.h>
+#include <pthread.h>
+#include <signal.h>
 #include <string.h>
 
 extern const char hd_schema_sql[];
@@ -34,7 +36,39 @@ struct hd_db {
   sqlite3_stmt *ins_state;  /* INSERT INTO states */
   sqlite3_stmt *ins_ckpt;   /* INSERT INTO checkpoints */
   sqlite3_stmt *del_ckpt;   /* DELETE older checkpoints of a run */
+  sqlite3_stmt *ins_coll_k; /* INSERT INTO collisions, HD_DB_GROUP rows at once */
+  /* The writer thread (see "asynchronous rows" below). */
+  int writer_on;            /* the thread has been started */
+  pthread_t writer;
+  pthread_mutex_t mu;
+  pthread_cond_t cv;
+  struct rec *buf[2];       /* double buffer of rows waiting for the writer */
+  int fill;                 /* the buffer the producer fills */
+  int nfill;                /* rows in it */
+  struct rec *work;         /* the buffer the writer is writing, or NULL */
+  int nwork;
+  int quit;                 /* the writer must end */
+  int werr;                 /* first error of the writer (hd_status), HD_OK if none */
+  hd_error werror;          /* its message */
 };
+
+/* A row waiting for the writer thread. */
+typedef struct rec {
+  int type;           /* REC_COLLISION, REC_SAMPLE, REC_STATE */
+  int64_t run;
+  const char *label;  /* states: a string literal ('initial', ...) */
+  union {
+    hd_collision_row c;
+    hd_sample_row s;
+    hd_state_rec st;
+  } u;
+} rec;
+enum { REC_COLLISION, REC_SAMPLE, REC_STATE };
+
+static int drain(hd_db *db, hd_error *err);
+static void writer_stop(hd_db *db);
+#define HD_DB_QCAP 4096 /* rows per buffer handed to the writer */
+#define HD_DB_GROUP 32  /* collisions per multi-row INSERT */
 
 static const char *const coll_kind_names[] = {"dimer-dimer", "dimer-disk", "disk-disk",
                                               "dimer-wall",  "disk-wall",  "rod-rod"};
@@ -103,8 +137,8 @@ static int prepare(hd_db *db, sqlite3_stmt **st, const char *sql, hd_error *err)
 }
 
 static void finalize_all(hd_db *db) {
-  sqlite3_stmt **sts[] = {&db->ins_run,   &db->ins_coll, &db->ins_sample,
-                          &db->ins_state, &db->ins_ckpt, &db->del_ckpt};
+  sqlite3_stmt **sts[] = {&db->ins_run,  &db->ins_coll, &db->ins_sample, &db->ins_state,
+                          &db->ins_ckpt, &db->del_ckpt, &db->ins_coll_k};
   for (size_t k = 0; k < sizeof sts / sizeof sts[0]; k++) {
     sqlite3_finalize(*sts[k]);
     *sts[k] = NULL;
@@ -176,6 +210,22 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err) {
                  "(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, "
                  "?17)",
                  err);
+  if (!rc) { /* the same, HD_DB_GROUP rows per statement (parameters numbered in order) */
+    static const char head[] = "INSERT INTO collisions (run, seq, t, kind, i, j, disk_i, "
+                               "disk_j, theta_i, theta_j, f, de, vn, eps, e_tr, tb_i, tb_j) "
+                               "VALUES ";
+    static const char one[] = "(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)";
+    char sql[sizeof head + HD_DB_GROUP * sizeof one + 1];
+    size_t len = sizeof head - 1;
+    memcpy(sql, head, len);
+    for (int k = 0; k < HD_DB_GROUP; k++) {
+      if (k) sql[len++] = ',';
+      memcpy(sql + len, one, sizeof one - 1);
+      len += sizeof one - 1;
+    }
+    sql[len] = '\0';
+    rc = prepare(db, &db->ins_coll_k, sql, err);
+  }
   if (!rc)
     rc = prepare(db, &db->ins_sample,
                  "INSERT INTO samples (run, t, collisions, cpd, e_tr, e_rot, e_tr_dimer, "
@@ -217,6 +267,7 @@ int hd_db_open_readonly(hd_db **out, const char *path, hd_error *err) {
 int hd_db_close(hd_db *db, hd_error *err) {
   if (!db) return HD_OK;
   int rc = db->readonly ? HD_OK : hd_db_commit(db, err);
+  writer_stop(db);
   finalize_all(db);
   if (sqlite3_close(db->db) != SQLITE_OK && !rc) {
     rc = sql_error(db, err, "close");
@@ -228,6 +279,7 @@ int hd_db_close(hd_db *db, hd_error *err) {
 }
 
 void hd_db_set_batch_rows(hd_db *db, long rows) {
+  if (db) drain(db, NULL); /* rows logged before keep the old batch size */
   if (db) db->batch_rows = rows < 1 ? 1 : rows;
 }
 
@@ -236,11 +288,14 @@ const char *hd_db_path(const hd_db *db) {
 }
 
 sqlite3 *hd_db_handle(hd_db *db) {
+  if (db) drain(db, NULL); /* the caller sees every row logged so far */
   return db ? db->db : NULL;
 }
 
 int hd_db_exec(hd_db *db, const char *sql, hd_error *err) {
   if (!db) return hd_error_set(err, HD_EIO, "database: not open");
+  int drc = drain(db, err);
+  if (drc) return drc;
   char *msg = NULL;
   if (sqlite3_exec(db->db, sql, NULL, NULL, &msg) != SQLITE_OK) {
     hd_error_set(err, HD_EIO, "%s: exec: %s", db->path, msg ? msg : sqlite3_errmsg(db->db));
@@ -262,6 +317,8 @@ int hd_db_exec(hd_db *db, const char *sql, hd_error *err) {
 /* ---------------------------------------------------------------------------------------- */
 /* batches */
 
+static int hd_db_commit_now(hd_db *db, hd_error *err);
+
 static int batch_begin(hd_db *db, hd_error *err) {
   if (db->in_tx) return HD_OK;
   /* IMMEDIATE takes the write lock now (waiting up to the busy timeout), not at the first
@@ -273,8 +330,8 @@ static int batch_begin(hd_db *db, hd_error *err) {
   return HD_OK;
 }
 
-int hd_db_commit(hd_db *db, hd_error *err) {
-  if (!db) return hd_error_set(err, HD_EIO, "database: not open");
+/* Commits the open batch (the caller's thread when the writer is idle, or the writer). */
+static int hd_db_commit_now(hd_db *db, hd_error *err) {
   if (!db->in_tx) return HD_OK;
   if (sqlite3_exec(db->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK)
     return batch_fail(db, NULL, err, "commit batch");
@@ -283,42 +340,65 @@ int hd_db_commit(hd_db *db, hd_error *err) {
   return HD_OK;
 }
 
+int hd_db_commit(hd_db *db, hd_error *err) {
+  if (!db) return hd_error_set(err, HD_EIO, "database: not open");
+  int rc = drain(db, err);
+  return rc ? rc : hd_db_commit_now(db, err);
+}
+
 /* Steps a bound insert of the open batch; counts the row and commits a full batch. */
 static int batch_step(hd_db *db, sqlite3_stmt *st, hd_error *err, const char *what) {
   if (sqlite3_step(st) != SQLITE_DONE) return batch_fail(db, st, err, what);
   sqlite3_reset(st);
-  if (++db->pending >= db->batch_rows) return hd_db_commit(db, err);
+  if (++db->pending >= db->batch_rows) return hd_db_commit_now(db, err);
   return HD_OK;
 }
 
-int hd_db_log_collision(hd_db *db, int64_t run, const hd_collision_row *r, hd_error *err) {
-  int rc = check_db(db, err);
-  if (rc || (rc = batch_begin(db, err))) return rc;
-  sqlite3_stmt *st = db->ins_coll;
-  sqlite3_bind_int64(st, 1, run);
-  sqlite3_bind_int64(st, 2, r->seq);
-  bind_real(st, 3, r->t);
-  sqlite3_bind_text(st, 4, hd_coll_kind_name(r->kind), -1, SQLITE_STATIC);
-  sqlite3_bind_int64(st, 5, r->i);
-  sqlite3_bind_int64(st, 6, r->j);
-  sqlite3_bind_int(st, 7, r->disk_i);
-  sqlite3_bind_int(st, 8, r->disk_j);
-  bind_real(st, 9, r->theta_i);
-  bind_real(st, 10, r->theta_j);
-  bind_real(st, 11, r->f);
-  bind_real(st, 12, r->de);
-  bind_real(st, 13, r->vn);
+/* Binds collision row r at parameters base+1 .. base+17 of st. */
+static void bind_collision(sqlite3_stmt *st, int base, int64_t run, const hd_collision_row *r) {
+  sqlite3_bind_int64(st, base + 1, run);
+  sqlite3_bind_int64(st, base + 2, r->seq);
+  bind_real(st, base + 3, r->t);
+  sqlite3_bind_text(st, base + 4, hd_coll_kind_name(r->kind), -1, SQLITE_STATIC);
+  sqlite3_bind_int64(st, base + 5, r->i);
+  sqlite3_bind_int64(st, base + 6, r->j);
+  sqlite3_bind_int(st, base + 7, r->disk_i);
+  sqlite3_bind_int(st, base + 8, r->disk_j);
+  bind_real(st, base + 9, r->theta_i);
+  bind_real(st, base + 10, r->theta_j);
+  bind_real(st, base + 11, r->f);
+  bind_real(st, base + 12, r->de);
+  bind_real(st, base + 13, r->vn);
   int rod = r->kind == HD_CK_ROD_ROD;
-  bind_real(st, 14, rod ? r->eps : NAN);
-  bind_real(st, 15, rod ? r->e_tr : NAN);
-  bind_real(st, 16, rod ? r->tb_i : NAN);
-  bind_real(st, 17, rod ? r->tb_j : NAN);
-  return batch_step(db, st, err, "insert collision");
+  bind_real(st, base + 14, rod ? r->eps : NAN);
+  bind_real(st, base + 15, rod ? r->e_tr : NAN);
+  bind_real(st, base + 16, rod ? r->tb_i : NAN);
+  bind_real(st, base + 17, rod ? r->tb_j : NAN);
 }
 
-int hd_db_log_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *err) {
-  int rc = check_db(db, err);
-  if (rc || (rc = batch_begin(db, err))) return rc;
+static int put_collision(hd_db *db, int64_t run, const hd_collision_row *r, hd_error *err) {
+  int rc = batch_begin(db, err);
+  if (rc) return rc;
+  bind_collision(db->ins_coll, 0, run, r);
+  return batch_step(db, db->ins_coll, err, "insert collision");
+}
+
+/* HD_DB_GROUP collisions in one statement; the caller checked that they fit the open batch. */
+static int put_collision_group(hd_db *db, const rec *g, hd_error *err) {
+  int rc = batch_begin(db, err);
+  if (rc) return rc;
+  sqlite3_stmt *st = db->ins_coll_k;
+  for (int k = 0; k < HD_DB_GROUP; k++) bind_collision(st, 17 * k, g[k].run, &g[k].u.c);
+  if (sqlite3_step(st) != SQLITE_DONE) return batch_fail(db, st, err, "insert collisions");
+  sqlite3_reset(st);
+  db->pending += HD_DB_GROUP;
+  if (db->pending >= db->batch_rows) return hd_db_commit_now(db, err);
+  return HD_OK;
+}
+
+static int put_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *err) {
+  int rc = batch_begin(db, err);
+  if (rc) return rc;
   sqlite3_stmt *st = db->ins_sample;
   sqlite3_bind_int64(st, 1, run);
   bind_real(st, 2, r->t);
@@ -332,22 +412,17 @@ int hd_db_log_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *e
   return batch_step(db, st, err, "insert sample");
 }
 
-int hd_db_log_state(hd_db *db, int64_t run, const char *label, const hd_state_rec *r,
-                    hd_error *err) {
-  int rc = check_db(db, err);
+static int put_state(hd_db *db, int64_t run, const char *label, const hd_state_rec *r,
+                     hd_error *err) {
+  int rc = batch_begin(db, err);
   if (rc) return rc;
-  const char *kind = hd_db_kind_name(r->kind);
-  if (!kind)
-    return hd_error_set(err, HD_EINPUT, "%s: insert state: unknown body kind %d", db->path,
-                        r->kind);
-  if ((rc = batch_begin(db, err))) return rc;
   sqlite3_stmt *st = db->ins_state;
   sqlite3_bind_int64(st, 1, run);
-  sqlite3_bind_text(st, 2, label, -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(st, 2, label, -1, SQLITE_STATIC);
   bind_real(st, 3, r->t);
   bind_real(st, 4, r->cpd);
   sqlite3_bind_int64(st, 5, r->body);
-  sqlite3_bind_text(st, 6, kind, -1, SQLITE_STATIC);
+  sqlite3_bind_text(st, 6, hd_db_kind_name(r->kind), -1, SQLITE_STATIC);
   bind_real(st, 7, r->x);
   bind_real(st, 8, r->y);
   bind_real(st, 9, r->phi);
@@ -355,6 +430,183 @@ int hd_db_log_state(hd_db *db, int64_t run, const char *label, const hd_state_re
   bind_real(st, 11, r->vy);
   bind_real(st, 12, r->omega);
   return batch_step(db, st, err, "insert state");
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* asynchronous rows
+ * The log_* calls only copy their row into a buffer; a writer thread inserts the buffers into
+ * the open batch transaction (collisions HD_DB_GROUP at a time), committing every batch_rows
+ * rows exactly as a synchronous writer would: a batch is still one transaction, so a killed
+ * process leaves whole batches only.  Every other call first drains the buffers (waits for the
+ * writer to be idle), so checkpoints, commits and status changes see every row logged before
+ * them.  An error of the writer is returned by the next log_* or draining call. */
+
+/* Writes n rows (writer thread, or the caller's thread once the writer is idle). */
+static int write_rows(hd_db *db, const rec *r, int n, hd_error *err) {
+  int rc = HD_OK;
+  for (int k = 0; k < n && !rc;) {
+    if (r[k].type == REC_COLLISION && k + HD_DB_GROUP <= n &&
+        r[k + HD_DB_GROUP - 1].type == REC_COLLISION &&
+        db->pending + HD_DB_GROUP <= db->batch_rows) {
+      int all = 1;
+      for (int q = k + 1; q < k + HD_DB_GROUP - 1 && all; q++) all = r[q].type == REC_COLLISION;
+      if (all) {
+        rc = put_collision_group(db, r + k, err);
+        k += HD_DB_GROUP;
+        continue;
+      }
+    }
+    if (r[k].type == REC_COLLISION)
+      rc = put_collision(db, r[k].run, &r[k].u.c, err);
+    else if (r[k].type == REC_SAMPLE)
+      rc = put_sample(db, r[k].run, &r[k].u.s, err);
+    else
+      rc = put_state(db, r[k].run, r[k].label, &r[k].u.st, err);
+    k++;
+  }
+  return rc;
+}
+
+static void *writer_main(void *arg) {
+  hd_db *db = arg;
+  sigset_t all;
+  sigfillset(&all);
+  pthread_sigmask(SIG_BLOCK, &all, NULL); /* signals are for the simulation's thread */
+  pthread_mutex_lock(&db->mu);
+  for (;;) {
+    while (!db->work && !db->quit) pthread_cond_wait(&db->cv, &db->mu);
+    if (!db->work) break;
+    rec *w = db->work;
+    int n = db->nwork, failed = db->werr;
+    pthread_mutex_unlock(&db->mu);
+    hd_error e;
+    hd_error_clear(&e);
+    int rc = failed ? HD_OK : write_rows(db, w, n, &e);
+    pthread_mutex_lock(&db->mu);
+    if (rc && !db->werr) {
+      db->werror = e;
+      __atomic_store_n(&db->werr, rc, __ATOMIC_RELEASE);
+    }
+    db->work = NULL;
+    pthread_cond_broadcast(&db->cv);
+  }
+  pthread_mutex_unlock(&db->mu);
+  return NULL;
+}
+
+/* Hands the fill buffer to the writer (waiting for it to finish the previous one). */
+static int handoff(hd_db *db, hd_error *err) {
+  if (!db->writer_on) {
+    for (int b = 0; b < 2; b++)
+      if (!db->buf[b] && !(db->buf[b] = malloc(sizeof(rec) * HD_DB_QCAP)))
+        return hd_error_set(err, HD_ENOMEM, "%s: out of memory for the row buffer", db->path);
+    if (pthread_mutex_init(&db->mu, NULL) || pthread_cond_init(&db->cv, NULL) ||
+        pthread_create(&db->writer, NULL, writer_main, db))
+      return hd_error_set(err, HD_ENOMEM, "%s: cannot start the writer thread", db->path);
+    db->writer_on = 1;
+  }
+  if (db->nfill == 0) return HD_OK;
+  pthread_mutex_lock(&db->mu);
+  while (db->work) pthread_cond_wait(&db->cv, &db->mu);
+  db->work = db->buf[db->fill];
+  db->nwork = db->nfill;
+  pthread_cond_broadcast(&db->cv);
+  pthread_mutex_unlock(&db->mu);
+  db->fill ^= 1;
+  db->nfill = 0;
+  return HD_OK;
+}
+
+/* Waits until every logged row is written; returns the writer's first error, if any, once:
+ * the rows after it were dropped, the database stays usable (to record the run's status). */
+static int drain(hd_db *db, hd_error *err) {
+  if (!db) return HD_OK;
+  int rc = handoff(db, err);
+  if (rc || !db->writer_on) return rc;
+  pthread_mutex_lock(&db->mu);
+  while (db->work) pthread_cond_wait(&db->cv, &db->mu);
+  rc = db->werr;
+  if (rc && err) *err = db->werror;
+  db->werr = HD_OK;
+  pthread_mutex_unlock(&db->mu);
+  return rc;
+}
+
+/* Stops the writer (after drain). */
+static void writer_stop(hd_db *db) {
+  if (db->writer_on) {
+    pthread_mutex_lock(&db->mu);
+    db->quit = 1;
+    pthread_cond_broadcast(&db->cv);
+    pthread_mutex_unlock(&db->mu);
+    pthread_join(db->writer, NULL);
+    pthread_mutex_destroy(&db->mu);
+    pthread_cond_destroy(&db->cv);
+    db->writer_on = 0;
+  }
+  free(db->buf[0]);
+  free(db->buf[1]);
+  db->buf[0] = db->buf[1] = NULL;
+}
+
+/* A slot for one more row, handing a full buffer over first. */
+static rec *slot(hd_db *db, hd_error *err, int *rc) {
+  if (__atomic_load_n(&db->werr, __ATOMIC_ACQUIRE)) { /* reported once the writer is idle */
+    *rc = drain(db, err);
+    return NULL;
+  }
+  if ((!db->writer_on || db->nfill == HD_DB_QCAP) && (*rc = handoff(db, err))) return NULL;
+  return &db->buf[db->fill][db->nfill++];
+}
+
+int hd_db_log_collision(hd_db *db, int64_t run, const hd_collision_row *r, hd_error *err) {
+  int rc = check_db(db, err);
+  if (rc) return rc;
+  rec *q = slot(db, err, &rc);
+  if (!q) return rc;
+  q->type = REC_COLLISION;
+  q->run = run;
+  q->u.c = *r;
+  return HD_OK;
+}
+
+int hd_db_log_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *err) {
+  int rc = check_db(db, err);
+  if (rc) return rc;
+  rec *q = slot(db, err, &rc);
+  if (!q) return rc;
+  q->type = REC_SAMPLE;
+  q->run = run;
+  q->u.s = *r;
+  return HD_OK;
+}
+
+/* Labels of states rows: the rows keep a pointer, so they must be these literals. */
+static const char *state_label(const char *label) {
+  static const char *const known[] = {"initial", "final", "checkpoint", "velocities"};
+  for (size_t k = 0; k < sizeof known / sizeof known[0]; k++)
+    if (!strcmp(label, known[k])) return known[k];
+  return NULL;
+}
+
+int hd_db_log_state(hd_db *db, int64_t run, const char *label, const hd_state_rec *r,
+                    hd_error *err) {
+  int rc = check_db(db, err);
+  if (rc) return rc;
+  if (!hd_db_kind_name(r->kind))
+    return hd_error_set(err, HD_EINPUT, "%s: insert state: unknown body kind %d", db->path,
+                        r->kind);
+  const char *lab = label ? state_label(label) : NULL;
+  if (!lab)
+    return hd_error_set(err, HD_EINPUT, "%s: insert state: unknown label '%s'", db->path,
+                        label ? label : "(null)");
+  rec *q = slot(db, err, &rc);
+  if (!q) return rc;
+  q->type = REC_STATE;
+  q->run = run;
+  q->label = lab;
+  q->u.st = *r;
+  return HD_OK;
 }
 
 /* ---------------------------------------------------------------------------------------- */
@@ -487,7 +739,7 @@ int hd_db_build_indexes(hd_db *db, hd_error *err) {
 int hd_db_checkpoint_save(hd_db *db, int64_t run, int64_t seq, double t, const void *blob, size_t n,
                           hd_error *err) {
   int rc = check_db(db, err);
-  if (rc || (rc = batch_begin(db, err))) return rc;
+  if (rc || (rc = drain(db, err)) || (rc = batch_begin(db, err))) return rc;
   sqlite3_stmt *st = db->del_ckpt;
   sqlite3_bind_int64(st, 1, run);
   if (sqlite3_step(st) != SQLITE_DONE) return batch_fail(db, st, err, "delete old checkpoint");
@@ -511,6 +763,8 @@ int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_
                           hd_error *err) {
   if (!db) return hd_error_set(err, HD_EIO, "database: not open");
   *blob = NULL;
+  int drc = drain(db, err);
+  if (drc) return drc;
   *n = 0;
   sqlite3_stmt *st = NULL;
   if (sqlite3_prepare_v2(db->db,
@@ -582,6 +836,8 @@ int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene
                          unsigned long long *seed, hd_error *err) {
   if (!db) return hd_error_set(err, HD_EIO, "database: not open");
   if (scene_text) *scene_text = NULL;
+  int drc = drain(db, err);
+  if (drc) return drc;
   sqlite3_stmt *st = NULL;
   const char *sql = want_run > 0
                         ? "SELECT id, status, scene, seed FROM runs WHERE id = ?1"
