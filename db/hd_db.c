@@ -38,25 +38,25 @@ struct hd_db {
   sqlite3_stmt *del_ckpt;   /* DELETE older checkpoints of a run */
   sqlite3_stmt *ins_coll_k; /* INSERT INTO collisions, HD_DB_GROUP rows at once */
   /* The writer thread (see "asynchronous rows" below). */
-  int writer_on;            /* the thread has been started */
+  int writer_on; /* the thread has been started */
   pthread_t writer;
   pthread_mutex_t mu;
   pthread_cond_t cv;
-  struct rec *buf[2];       /* double buffer of rows waiting for the writer */
-  int fill;                 /* the buffer the producer fills */
-  int nfill;                /* rows in it */
-  struct rec *work;         /* the buffer the writer is writing, or NULL */
+  struct rec *buf[2]; /* double buffer of rows waiting for the writer */
+  int fill;           /* the buffer the producer fills */
+  int nfill;          /* rows in it */
+  struct rec *work;   /* the buffer the writer is writing, or NULL */
   int nwork;
-  int quit;                 /* the writer must end */
-  int werr;                 /* first error of the writer (hd_status), HD_OK if none */
-  hd_error werror;          /* its message */
+  int quit;        /* the writer must end */
+  int werr;        /* first error of the writer (hd_status), HD_OK if none */
+  hd_error werror; /* its message */
 };
 
 /* A row waiting for the writer thread. */
 typedef struct rec {
-  int type;           /* REC_COLLISION, REC_SAMPLE, REC_STATE */
+  int type; /* REC_COLLISION, REC_SAMPLE, REC_STATE */
   int64_t run;
-  const char *label;  /* states: a string literal ('initial', ...) */
+  const char *label; /* states: a string literal ('initial', ...) */
   union {
     hd_collision_row c;
     hd_sample_row s;

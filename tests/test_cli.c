@@ -67,6 +67,20 @@ static long long q1(const char *db, const char *sql) {
   return v;
 }
 
+/* The database file db in dir passes PRAGMA integrity_check. */
+static void assert_sound(const char *db) {
+  char p[300];
+  snprintf(p, sizeof p, "%s/%s", dir, db);
+  sqlite3 *h;
+  assert_int_equal(sqlite3_open(p, &h), SQLITE_OK);
+  sqlite3_stmt *st;
+  sqlite3_prepare_v2(h, "PRAGMA integrity_check", -1, &st, 0);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  assert_string_equal((const char *)sqlite3_column_text(st, 0), "ok");
+  sqlite3_finalize(st);
+  sqlite3_close(h);
+}
+
 /* A scene of ~1.5 s: long enough to be interrupted, checkpointing every 0.1 s. */
 static const char scene[] = "[system]\narea_fraction = 0.2\nseed = 3\n[disks]\ncount = 2000\n"
                             "alpha = 0.97\n[run]\nstop_events = 800000\ncheckpoint_every = 0.1\n"
@@ -177,16 +191,7 @@ static void kill9_then_resume(void **state) {
     char db[32];
     snprintf(db, sizeof db, "k%d.db", k);
     assert_int_equal(run_and_signal(db, SIGKILL, ms[k]), 128 + SIGKILL);
-    char p[300];
-    snprintf(p, sizeof p, "%s/%s", dir, db);
-    sqlite3 *h;
-    assert_int_equal(sqlite3_open(p, &h), SQLITE_OK);
-    sqlite3_stmt *st;
-    sqlite3_prepare_v2(h, "PRAGMA integrity_check", -1, &st, 0);
-    assert_int_equal(sqlite3_step(st), SQLITE_ROW);
-    assert_string_equal((const char *)sqlite3_column_text(st, 0), "ok");
-    sqlite3_finalize(st);
-    sqlite3_close(h);
+    assert_sound(db);
     assert_int_equal(q1(db, "SELECT count(*) = coalesce(max(seq), 0) FROM collisions"), 1);
     assert_int_equal(q1(db, "SELECT count(*) FROM (SELECT seq,t,i,j,de FROM collisions "
                             "EXCEPT SELECT seq,t,i,j,de FROM ref.collisions)"),
@@ -246,16 +251,7 @@ static void disk_full_then_resume(void **state) {
   read_err(e, sizeof e);
   assert_int_equal(rc, 1);
   assert_true(strstr(e, "full") || strstr(e, "I/O") || strstr(e, "disk"));
-  char p[300];
-  snprintf(p, sizeof p, "%s/full.db", dir);
-  sqlite3 *h;
-  assert_int_equal(sqlite3_open(p, &h), SQLITE_OK);
-  sqlite3_stmt *st;
-  sqlite3_prepare_v2(h, "PRAGMA integrity_check", -1, &st, 0);
-  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
-  assert_string_equal((const char *)sqlite3_column_text(st, 0), "ok");
-  sqlite3_finalize(st);
-  sqlite3_close(h);
+  assert_sound("full.db");
   assert_int_equal(q1("full.db", "SELECT count(*) = coalesce(max(seq), 0) FROM collisions"), 1);
   assert_int_equal(sh("%s resume full.db --quiet", haff), 0);
   same_as_reference("full.db");
