@@ -299,7 +299,7 @@ static void rebase(hd_sim *s) {
   s->c.t_offset += now;
   s->c.t_last -= now;
   s->c.t = 0.0;
-  hd_sim_sort(s); /* also rebuilds the heap, whose order rounding may have changed */
+  hd_sim_sort(s); /* also rebuilds the queue, whose order rounding may have changed */
 }
 
 static int collision_kind(const hd_sim *s, int32_t i, int32_t j) {

@@ -1,6 +1,7 @@
 /* hd_sim: the event-driven engine.  Bodies (disks and dimers) in a 2D box, periodic in every
- * direction that no wall closes.  One event per body in an indexed heap (hd_queue.h): the
- * earliest of its predicted contacts, its wall contacts and its next cell crossing.  Bodies are
+ * direction that no wall closes.  One event per body in the event queue (hd_queue.h, a
+ * calendar queue): the earliest of its predicted contacts, its wall contacts and its next cell
+ * crossing.  Bodies are
  * advanced lazily (each keeps the time of its own state) and the time origin is rebased every
  * `rebase_every` events, so precision does not decay over long runs.
  *
