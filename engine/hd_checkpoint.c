@@ -68,7 +68,7 @@ int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err) {
   s->n = h.n;
   s->n_species[0] = h.n_species[0];
   s->n_species[1] = h.n_species[1];
-  s->b = malloc(sizeof(hd_body) * (size_t)(h.n > 0 ? h.n : 1));
+  s->b = hd_bodies_alloc(h.n);
   s->id = malloc(sizeof(int32_t) * (size_t)(h.n > 0 ? h.n : 1));
   if (!s->b || !s->id) return hd_error_set(err, HD_ENOMEM, "out of memory");
   int rc = hd_cells_alloc(s, err);

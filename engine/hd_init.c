@@ -178,7 +178,7 @@ static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
   s->n_species[1] = cnt[1];
   s->n = cnt[0] + cnt[1];
   free(s->b);
-  s->b = calloc((size_t)(s->n > 0 ? s->n : 1), sizeof(hd_body));
+  s->b = hd_bodies_alloc(s->n);
   if (!s->b) {
     free(rows);
     return hd_error_set(err, HD_ENOMEM, "out of memory");
@@ -221,7 +221,7 @@ static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
 int hd_init_state(hd_sim *s, const hd_scene *sc, hd_error *err) {
   if (sc->placement == HD_PLACE_STATE) return place_from_file(s, sc, err);
   s->n = s->n_species[0] + s->n_species[1];
-  s->b = calloc((size_t)(s->n > 0 ? s->n : 1), sizeof(hd_body));
+  s->b = hd_bodies_alloc(s->n);
   if (!s->b) return hd_error_set(err, HD_ENOMEM, "out of memory for %d bodies", s->n);
   int rc = hd_cells_alloc(s, err);
   if (rc) return rc;

@@ -2,6 +2,7 @@
  * until the next collision.  Collision rules and contact times live in hd_body.c, prediction in
  * hd_predict.c, cells in hd_cells.c, the initial state in hd_init.c. */
 #include <assert.h>
+#include <stddef.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -142,6 +143,17 @@ int hd_sim_alloc_restore(hd_sim **out, const hd_scene *sc, const void *blob, siz
   return HD_OK;
 }
 
+_Static_assert(sizeof(hd_body) == 128, "hd_body: two cache lines");
+_Static_assert(offsetof(hd_body, ev_t) == 64, "hd_body: the hot fields fill the first line");
+
+hd_body *hd_bodies_alloc(int32_t n) {
+  size_t bytes = sizeof(hd_body) * (size_t)(n > 0 ? n : 1);
+  bytes = (bytes + 63) / 64 * 64;
+  hd_body *b = aligned_alloc(64, bytes);
+  if (b) memset(b, 0, bytes);
+  return b;
+}
+
 void hd_sim_free(hd_sim *s) {
   if (!s) return;
   hd_queue_free(s->q);
@@ -259,7 +271,7 @@ void hd_sim_sort(hd_sim *s) {
   int32_t *order = malloc(sizeof(int32_t) * (size_t)(n > 0 ? n : 1));
   int32_t *newidx = malloc(sizeof(int32_t) * (size_t)(n > 0 ? n : 1));
   int32_t *newid = malloc(sizeof(int32_t) * (size_t)(n > 0 ? n : 1));
-  hd_body *nb = malloc(sizeof(hd_body) * (size_t)(n > 0 ? n : 1));
+  hd_body *nb = hd_bodies_alloc(n);
   if (!order || !newidx || !newid || !nb) { /* sorting is an optimisation: skip it */
     free(order), free(newidx), free(newid), free(nb);
     hd_queue_build(s->q, n, &s->b[0].ev_t, HD_BODY_STRIDE);

@@ -27,29 +27,36 @@ enum { HD_SP_DIMER = 0, HD_SP_DISK = 1, HD_NSPECIES = 2 };
 /* Event types. */
 enum { HD_EV_NONE = 0, HD_EV_PAIR = 1, HD_EV_CELL = 2, HD_EV_WALL = 3 };
 
-/* One body.  It carries two pending events: a contact (pair or wall, `p_*`) and its next cell
- * crossing (`c_*`); ev_t is the earlier of the two and its key in the queue. */
+/* One body (128 bytes, two cache lines).  It carries two pending events: a contact (pair or wall,
+ * `p_*`) and its next cell crossing (`c_*`); ev_t is the earlier of the two and its key in the
+ * queue. */
 typedef struct hd_body {
-  double t;           /* time of the state k */
-  hd_kin k;           /* centre of mass, velocity, orientation, angular velocity at t */
-  double ev_t;        /* min(p_t, c_t): time of the next event (INFINITY if none) */
-  double p_t;         /* time of the predicted contact (INFINITY if none) */
-  double c_t;         /* time of the next cell crossing (INFINITY if none) */
-  int32_t species;    /* HD_SP_DIMER or HD_SP_DISK */
-  int32_t cell;       /* cell index (cy * ncx + cx) */
-  int32_t next, prev; /* neighbours in the cell's list, -1 at the ends */
-  uint32_t ncoll;     /* velocity changes so far; invalidates partners' pair events */
-  int32_t p_type;     /* HD_EV_PAIR, HD_EV_WALL or HD_EV_NONE */
-  int32_t p_partner;  /* PAIR: partner body; WALL: wall index */
-  uint32_t p_pcount;  /* PAIR: partner's ncoll when predicted */
-  int16_t p_ka;       /* touching disk of this body */
-  int16_t p_kb;       /* touching disk of the partner */
-  int16_t p_imx;      /* PAIR: image offset of the partner, invariant under wrapping: */
-  int16_t p_imy;      /*   shift = (p_im + wrap(partner) - wrap(this)) * L */
-  int32_t wx, wy;     /* times this body was wrapped through the box (+1 for x -= lx) */
-  int32_t c_dir;      /* crossing face: 0 +x, 1 -x, 2 +y, 3 -y */
-  int32_t pad;
+  /* first cache line: what a neighbour's prediction reads */
+  double t;        /* time of the state k */
+  hd_kin k;        /* centre of mass, velocity, orientation, angular velocity at t */
+  int32_t species; /* HD_SP_DIMER or HD_SP_DISK */
+  int32_t next;    /* next body in the cell's list, -1 at the end */
+  /* second cache line */
+  double ev_t;       /* min(p_t, c_t): time of the next event (INFINITY if none) */
+  double p_t;        /* time of the predicted contact (INFINITY if none) */
+  double c_t;        /* time of the next cell crossing (INFINITY if none) */
+  int32_t cell;      /* cell index (cy * ncx + cx) */
+  int32_t prev;      /* previous body in the cell's list, -1 at the start */
+  uint32_t ncoll;    /* velocity changes so far; invalidates partners' pair events */
+  int32_t p_partner; /* PAIR: partner body; WALL: wall index */
+  uint32_t p_pcount; /* PAIR: partner's ncoll when predicted */
+  int16_t p_type;    /* HD_EV_PAIR, HD_EV_WALL or HD_EV_NONE */
+  int16_t c_dir;     /* crossing face: 0 +x, 1 -x, 2 +y, 3 -y */
+  int16_t p_ka;      /* touching disk of this body */
+  int16_t p_kb;      /* touching disk of the partner */
+  int16_t p_imx;     /* PAIR: image offset of the partner, invariant under wrapping: */
+  int16_t p_imy;     /*   shift = (p_im + wrap(partner) - wrap(this)) * L */
+  int32_t wx, wy;    /* times this body was wrapped through the box (+1 for x -= lx) */
 } hd_body;
+
+/* Allocates n bodies, zeroed, aligned on cache lines (hd_body is two of them); NULL on
+ * failure; free() releases them. */
+hd_body *hd_bodies_alloc(int32_t n);
 
 /* Counters and clocks: everything a checkpoint needs besides the bodies, cells and RNG. */
 typedef struct hd_sim_clock {
