@@ -80,11 +80,15 @@ static int melt(hd_sim *s, const hd_scene *sc, hd_error *err) {
     for (int b = 0; b < HD_NSPECIES; b++) s->alpha[a][b] = 1.0;
   s->wall_alpha = 1.0;
   int rc = HD_OK;
-  while (rc == HD_OK && hd_sim_cpd(s) < 40.0) {
+  /* 40 cpd, or until nothing moves (no event left), or a bound on events for a gas whose
+   * bodies barely collide */
+  while (rc == HD_OK && hd_sim_cpd(s) < 40.0 && s->c.events <= 1000 * (int64_t)s->n + 1000) {
     hd_event_out ev;
     rc = hd_sim_next(s, INFINITY, &ev, err);
-    if (rc == HD_SIM_IDLE) rc = HD_OK; /* nothing moves: nothing to melt */
-    if (rc == HD_SIM_IDLE || (rc == HD_OK && s->c.events > 1000 * (int64_t)s->n + 1000)) break;
+    if (rc == HD_SIM_IDLE) {
+      rc = HD_OK;
+      break;
+    }
   }
   memcpy(s->alpha, alpha, sizeof alpha);
   s->wall_alpha = wall_alpha;
