@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "hd_mem.h"
 #include "hd_sim_internal.h"
 
 int hd_cells_alloc(hd_sim *s, hd_error *err) {
@@ -24,7 +25,7 @@ int hd_cells_alloc(hd_sim *s, hd_error *err) {
   s->cwx = s->lx / s->ncx;
   s->cwy = s->ly / s->ncy;
   free(s->head);
-  s->head = malloc(sizeof(int32_t) * (size_t)s->ncx * (size_t)s->ncy);
+  s->head = hd_mem_alloc(sizeof(int32_t) * (size_t)s->ncx * (size_t)s->ncy);
   if (!s->head)
     return hd_error_set(err, HD_ENOMEM, "out of memory for %d x %d cells", s->ncx, s->ncy);
   for (int64_t c = 0; c < (int64_t)s->ncx * s->ncy; c++) s->head[c] = -1;

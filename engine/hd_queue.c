@@ -3,6 +3,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "hd_mem.h"
+
 enum { HD_Q_HEAP = -1, HD_Q_OVERFLOW = -2, HD_Q_NEVER = -3 };
 
 /* a before b: earlier time, ties by lower index. */
@@ -16,14 +18,10 @@ hd_queue *hd_queue_alloc(int32_t cap) {
   size_t c = (size_t)(cap > 0 ? cap : 1);
   int32_t nb = 16;
   while (nb < cap && nb < (1 << 30)) nb *= 2;
-  q->t = malloc(sizeof(double) * c);
-  q->where = malloc(sizeof(int32_t) * c);
-  q->pos = malloc(sizeof(int32_t) * c);
-  q->next = malloc(sizeof(int32_t) * c);
-  q->prev = malloc(sizeof(int32_t) * c);
-  q->heap = malloc(sizeof(hd_qentry) * c);
-  q->head = malloc(sizeof(int32_t) * (size_t)nb);
-  if (!q->t || !q->where || !q->pos || !q->next || !q->prev || !q->heap || !q->head) {
+  q->node = hd_mem_alloc(sizeof(hd_qnode) * c);
+  q->heap = hd_mem_alloc(sizeof(hd_qentry) * c);
+  q->head = hd_mem_alloc(sizeof(int32_t) * (size_t)nb);
+  if (!q->node || !q->heap || !q->head) {
     hd_queue_free(q);
     return NULL;
   }
@@ -34,11 +32,7 @@ hd_queue *hd_queue_alloc(int32_t cap) {
 
 void hd_queue_free(hd_queue *q) {
   if (!q) return;
-  free(q->t);
-  free(q->where);
-  free(q->pos);
-  free(q->next);
-  free(q->prev);
+  free(q->node);
   free(q->heap);
   free(q->head);
   free(q);
@@ -52,11 +46,11 @@ static void heap_up(hd_queue *q, int32_t k) {
     int32_t p = (k - 1) / 2;
     if (!before(&x, &q->heap[p])) break;
     q->heap[k] = q->heap[p];
-    q->pos[q->heap[k].id] = k;
+    q->node[q->heap[k].id].pos = k;
     k = p;
   }
   q->heap[k] = x;
-  q->pos[x.id] = k;
+  q->node[x.id].pos = k;
 }
 
 static void heap_down(hd_queue *q, int32_t k) {
@@ -67,25 +61,25 @@ static void heap_down(hd_queue *q, int32_t k) {
     if (c + 1 < q->hn && before(&q->heap[c + 1], &q->heap[c])) c++;
     if (!before(&q->heap[c], &x)) break;
     q->heap[k] = q->heap[c];
-    q->pos[q->heap[k].id] = k;
+    q->node[q->heap[k].id].pos = k;
     k = c;
   }
   q->heap[k] = x;
-  q->pos[x.id] = k;
+  q->node[x.id].pos = k;
 }
 
 static void heap_push(hd_queue *q, int32_t i) {
-  q->where[i] = HD_Q_HEAP;
-  q->heap[q->hn] = (hd_qentry){q->t[i], i, 0};
+  q->node[i].where = HD_Q_HEAP;
+  q->heap[q->hn] = (hd_qentry){q->node[i].t, i, 0};
   heap_up(q, q->hn++);
 }
 
 static void heap_remove(hd_queue *q, int32_t i) {
-  int32_t k = q->pos[i];
+  int32_t k = q->node[i].pos;
   q->hn--;
   if (k == q->hn) return;
   q->heap[k] = q->heap[q->hn];
-  q->pos[q->heap[k].id] = k;
+  q->node[q->heap[k].id].pos = k;
   if (k > 0 && before(&q->heap[k], &q->heap[(k - 1) / 2]))
     heap_up(q, k);
   else
@@ -94,31 +88,37 @@ static void heap_remove(hd_queue *q, int32_t i) {
 
 /* --- lists --- */
 
-static void list_push(hd_queue *q, int32_t *head, int32_t i) {
-  q->prev[i] = -1;
-  q->next[i] = *head;
-  if (*head >= 0) q->prev[*head] = i;
+static inline void list_push(hd_queue *q, int32_t *head, int32_t i) {
+  hd_qnode *x = &q->node[i];
+  x->prev = -1;
+  x->next = *head;
+  if (*head >= 0) q->node[*head].prev = i;
   *head = i;
 }
 
-static void list_remove(hd_queue *q, int32_t *head, int32_t i) {
-  if (q->prev[i] >= 0)
-    q->next[q->prev[i]] = q->next[i];
+static inline void list_remove(hd_queue *q, int32_t *head, int32_t i) {
+  const hd_qnode *x = &q->node[i];
+  if (x->prev >= 0)
+    q->node[x->prev].next = x->next;
   else
-    *head = q->next[i];
-  if (q->next[i] >= 0) q->prev[q->next[i]] = q->prev[i];
+    *head = x->next;
+  if (x->next >= 0) q->node[x->next].prev = x->prev;
 }
 
+/* floor(t / w) as t * (1 / w): monotone in t, which is all the buckets need (an earlier time
+ * never lands in a later bucket); clamped so that it cannot overflow. */
 static inline int64_t bucket_of(const hd_queue *q, double t) {
-  double b = floor(t / q->w);
-  return b < 4e18 ? (b > -4e18 ? (int64_t)b : -(int64_t)4e18) : (int64_t)4e18; /* no overflow */
+  double b = t * q->inv_w;
+  if (b >= 0.0 && b < 4e18) return (int64_t)b; /* truncation is floor here */
+  b = floor(b);
+  return b < 4e18 ? (b > -4e18 ? (int64_t)b : -(int64_t)4e18) : (int64_t)4e18;
 }
 
 /* Files body i (key already in t[i]) where its time says. */
-static void insert(hd_queue *q, int32_t i) {
-  double t = q->t[i];
+static inline void insert(hd_queue *q, int32_t i) {
+  double t = q->node[i].t;
   if (t == INFINITY) {
-    q->where[i] = HD_Q_NEVER;
+    q->node[i].where = HD_Q_NEVER;
     list_push(q, &q->never, i);
     return;
   }
@@ -127,17 +127,17 @@ static void insert(hd_queue *q, int32_t i) {
     heap_push(q, i);
   } else if (b < q->cur + q->nb) {
     int32_t slot = (int32_t)(b & (q->nb - 1));
-    q->where[i] = slot;
+    q->node[i].where = slot;
     list_push(q, &q->head[slot], i);
     q->in_buckets++;
   } else {
-    q->where[i] = HD_Q_OVERFLOW;
+    q->node[i].where = HD_Q_OVERFLOW;
     list_push(q, &q->overflow, i);
   }
 }
 
-static void detach(hd_queue *q, int32_t i) {
-  int32_t w = q->where[i];
+static inline void detach(hd_queue *q, int32_t i) {
+  int32_t w = q->node[i].where;
   if (w == HD_Q_HEAP)
     heap_remove(q, i);
   else if (w == HD_Q_OVERFLOW)
@@ -155,7 +155,7 @@ static void redistribute(hd_queue *q) {
   int32_t i = q->overflow;
   q->overflow = -1;
   while (i >= 0) {
-    int32_t nx = q->next[i];
+    int32_t nx = q->node[i].next;
     insert(q, i);
     i = nx;
   }
@@ -166,8 +166,8 @@ static int advance(hd_queue *q) {
   if (q->in_buckets == 0) {
     if (q->overflow < 0) return 0;
     double tmin = INFINITY; /* jump straight to the earliest overflow entry */
-    for (int32_t i = q->overflow; i >= 0; i = q->next[i])
-      if (q->t[i] < tmin) tmin = q->t[i];
+    for (int32_t i = q->overflow; i >= 0; i = q->node[i].next)
+      if (q->node[i].t < tmin) tmin = q->node[i].t;
     q->cur = bucket_of(q, tmin);
     redistribute(q);
     return 1;
@@ -178,7 +178,7 @@ static int advance(hd_queue *q) {
   int32_t i = q->head[slot];
   q->head[slot] = -1;
   while (i >= 0) {
-    int32_t nx = q->next[i];
+    int32_t nx = q->node[i].next;
     q->in_buckets--;
     heap_push(q, i);
     i = nx;
@@ -194,7 +194,7 @@ int32_t hd_queue_top(hd_queue *q) {
 
 void hd_queue_update(hd_queue *q, int32_t i, double t) {
   detach(q, i);
-  q->t[i] = t;
+  q->node[i].t = t;
   insert(q, i);
 }
 
@@ -209,7 +209,7 @@ void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride) {
   int64_t finite = 0;
   for (int32_t i = 0; i < n; i++) {
     double ti = t[(int64_t)i * stride];
-    q->t[i] = ti;
+    q->node[i].t = ti;
     if (ti < INFINITY) {
       if (ti < tmin) tmin = ti;
       finite++;
@@ -222,13 +222,14 @@ void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride) {
   int ns = 0;
   int32_t stride_s = n > 1023 ? n / 1023 : 1;
   for (int32_t i = 0; i < n && ns < 1023; i += stride_s)
-    if (q->t[i] < INFINITY) sample[ns++] = q->t[i] - tmin;
+    if (q->node[i].t < INFINITY) sample[ns++] = q->node[i].t - tmin;
   q->w = 1.0;
   if (ns > 2 && finite > 1) {
     qsort(sample, (size_t)ns, sizeof(double), cmp_double);
     q->w = 2.0 * sample[ns / 2] / (double)finite;
   }
-  if (!(q->w > 0.0) || !isfinite(q->w)) q->w = 1.0;
+  if (!(q->w > 0.0) || !isfinite(q->w) || !isfinite(1.0 / q->w)) q->w = 1.0;
+  q->inv_w = 1.0 / q->w;
   q->cur = finite ? bucket_of(q, tmin) : 0;
   q->hn = 0;
   q->in_buckets = 0;

@@ -21,13 +21,19 @@ typedef struct hd_qentry {
   int32_t pad;
 } hd_qentry;
 
+/* Everything the queue keeps for one body, together (one cache line holds two). */
+typedef struct hd_qnode {
+  double t;           /* the body's key */
+  int32_t where;      /* >= 0 bucket slot, or one of HD_Q_* (hd_queue.c) */
+  int32_t pos;        /* in the heap: its index there */
+  int32_t next, prev; /* links in a bucket, overflow or never list */
+  int32_t pad[2];
+} hd_qnode;
+
 /* The queue.  Fields are private to hd_queue.c. */
 typedef struct hd_queue {
   int32_t n, cap;          /* bodies held, capacity */
-  double *t;               /* t[i]: key of body i */
-  int32_t *where;          /* where body i is: >= 0 bucket slot, or one of the HD_Q_* below */
-  int32_t *pos;            /* in the heap: its index there */
-  int32_t *next, *prev;    /* links in a bucket, overflow or never list */
+  hd_qnode *node;          /* node[i]: body i */
   hd_qentry *heap;         /* the current bucket, ordered */
   int32_t hn;              /* entries in heap */
   int32_t nb;              /* buckets in a year (a power of two) */
@@ -36,6 +42,7 @@ typedef struct hd_queue {
   int64_t in_buckets;      /* bodies in bucket lists */
   int64_t cur;             /* index of the current bucket (floor(t / w)) */
   double w;                /* bucket width */
+  double inv_w;            /* 1 / w: the bucket of t is floor(t * inv_w) */
 } hd_queue;
 
 /* Allocates a queue for cap bodies; NULL on failure. */

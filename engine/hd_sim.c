@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hd_mem.h"
 #include "hd_sim_internal.h"
 
 /* Collisions whose |vn| is below this fraction of the thermal speed count as "slow"; this many
@@ -152,8 +153,7 @@ _Static_assert(offsetof(hd_body, ev_t) == 64, "hd_body: the hot fields fill the 
 
 hd_body *hd_bodies_alloc(int32_t n) {
   size_t bytes = sizeof(hd_body) * (size_t)(n > 0 ? n : 1);
-  bytes = (bytes + 63) / 64 * 64;
-  hd_body *b = aligned_alloc(64, bytes);
+  hd_body *b = hd_mem_alloc(bytes);
   if (b) memset(b, 0, bytes);
   return b;
 }
