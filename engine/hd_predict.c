@@ -104,16 +104,56 @@ static inline void commit(hd_sim *s, int32_t i) {
   hd_queue_update(s->q, i, b->ev_t);
 }
 
+/* disk-disk contact of bi with j seen through shift (sx, sy) = (ix, iy) box lengths: closed
+ * form, no copies, no horizon. */
+static inline void predict_disk_pair(const hd_sim *s, hd_body *bi, int32_t j, double sx, double sy,
+                                     int ix, int iy, double D, double *best) {
+  const hd_body *bj = &s->b[j];
+  const double dtj = s->c.t - bj->t;
+  double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x;
+  double ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
+  double t = hd_disk_contact_time(rx, ry, bj->k.vx - bi->k.vx, bj->k.vy - bi->k.vy, D);
+  if (t < *best) {
+    *best = t;
+    take_pair(bi, bj, j, 0, 0, ix, iy);
+  }
+}
+
+/* The full prediction in a scene of disks only: the 9 cells around i; an interior cell (no
+ * periodic image, no wall) walks its neighbours by index offsets. */
+static void predict_disks(hd_sim *s, int32_t i, double cross, double *best) {
+  hd_body *bi = &s->b[i];
+  const double D = s->shape[HD_SP_DISK].d;
+  int32_t c = bi->cell, ncx = s->ncx, cx = c % ncx, cy = c / ncx;
+  if (cx >= 1 && cx < ncx - 1 && cy >= 1 && cy < s->ncy - 1) {
+    const int32_t *head = s->head;
+    for (int32_t row = c - ncx; row <= c + ncx; row += ncx)
+      for (int32_t cc = row - 1; cc <= row + 1; cc++)
+        for (int32_t j = head[cc]; j >= 0; j = s->b[j].next)
+          if (j != i) predict_disk_pair(s, bi, j, 0.0, 0.0, 0, 0, D, best);
+    return;
+  }
+  if (s->walls) predict_walls(s, i, cross, best);
+  HD_FOR_NEIGHBOURS(s, c, {
+    if (j != i)
+      predict_disk_pair(s, bi, j, sx, sy, (sx > 0) - (sx < 0), (sy > 0) - (sy < 0), D, best);
+  });
+}
+
 void hd_predict(hd_sim *s, int32_t i) {
   hd_body *bi = &s->b[i];
   const double now = s->c.t;
   double cross = crossing_time(s, bi);
   double best = INFINITY; /* earliest contact, relative to now */
   bi->p_type = HD_EV_NONE;
-  if (s->walls) predict_walls(s, i, cross, &best);
-  HD_FOR_NEIGHBOURS(s, bi->cell, {
-    if (j != i) predict_one(s, bi, j, sx, sy, cross, &best);
-  });
+  if (s->disks_only) {
+    predict_disks(s, i, cross, &best);
+  } else {
+    if (s->walls) predict_walls(s, i, cross, &best);
+    HD_FOR_NEIGHBOURS(s, bi->cell, {
+      if (j != i) predict_one(s, bi, j, sx, sy, cross, &best);
+    });
+  }
   bi->c_t = now + cross;
   bi->p_t = now + best;
   commit(s, i);
@@ -125,7 +165,7 @@ void hd_predict(hd_sim *s, int32_t i) {
 static int predict_after_crossing(hd_sim *s, int32_t i) {
   hd_body *bi = &s->b[i];
   if (bi->p_type == HD_EV_PAIR && s->b[bi->p_partner].ncoll != bi->p_pcount) return 0;
-  const double now = s->c.t;
+  const double now = s->c.t, D = s->shape[HD_SP_DISK].d;
   int dir = bi->c_dir;
   double cross = crossing_time(s, bi);
   double best = bi->p_type == HD_EV_NONE ? INFINITY : bi->p_t - now;
@@ -153,8 +193,9 @@ static int predict_after_crossing(hd_sim *s, int32_t i) {
       if (s->walls & HD_WALL_TOP) continue;
       yy -= s->ncy, sy = s->ly;
     }
+    int ix = (sx > 0) - (sx < 0), iy = (sy > 0) - (sy < 0);
     for (int32_t j = s->head[yy * s->ncx + xx]; j >= 0; j = s->b[j].next)
-      predict_one(s, bi, j, sx, sy, cross, &best);
+      predict_disk_pair(s, bi, j, sx, sy, ix, iy, D, &best);
   }
   bi->c_t = now + cross;
   bi->p_t = now + best;

@@ -57,7 +57,8 @@ int hd_sim_queue_init(hd_sim *s, hd_error *err) {
   s->q = hd_queue_alloc(s->n);
   if (!s->q) return hd_error_set(err, HD_ENOMEM, "out of memory for the event queue");
   s->rebase_every = s->n > 1000 ? 100 * (int64_t)s->n : 100000;
-  s->partial_cross = s->n_species[HD_SP_DIMER] == 0 && s->ncx >= 3 && s->ncy >= 3;
+  s->disks_only = s->n_species[HD_SP_DIMER] == 0;
+  s->partial_cross = s->disks_only && s->ncx >= 3 && s->ncy >= 3;
   return HD_OK;
 }
 

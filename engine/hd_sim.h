@@ -104,6 +104,7 @@ typedef struct hd_sim {
   hd_sim_clock c;                         /* clocks and counters */
   int64_t rebase_every;                   /* events between rebases of the time origin */
   int verify;                             /* check invariants at every event (slow) */
+  int disks_only;         /* no dimers: disk-disk prediction without shape dispatch */
   int partial_cross;      /* pure disks, >= 3x3 cells: crossings search 3 new cells */
   int melt;               /* set-up only: the lattice placed must be melted */
   double max_overlap;     /* verification: largest relative overlap seen */
