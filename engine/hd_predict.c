@@ -207,3 +207,21 @@ void hd_predict_crossed(hd_sim *s, int32_t i, int wrapped) {
   if (s->partial_cross && !wrapped && predict_after_crossing(s, i)) return;
   hd_predict(s, i);
 }
+
+void hd_predict_prefetch(void *ctx, int32_t i, int stage) {
+  const hd_sim *s = ctx;
+  const hd_body *b = &s->b[i];
+  if (stage == 1) { /* the body itself */
+    __builtin_prefetch(b);
+    __builtin_prefetch((const char *)b + 64);
+    return;
+  }
+  int32_t c = b->cell, ncx = s->ncx, cx = c % ncx, cy = c / ncx;
+  if (cx < 1 || cx >= ncx - 1 || cy < 1 || cy >= s->ncy - 1) return; /* interior cells only */
+  for (int32_t row = c - ncx; row <= c + ncx; row += ncx) __builtin_prefetch(&s->head[row - 1]);
+  if (b->p_type == HD_EV_PAIR) { /* the partner: a collision, or the stale check */
+    const hd_body *p = &s->b[b->p_partner];
+    __builtin_prefetch(p);
+    __builtin_prefetch((const char *)p + 64);
+  }
+}

@@ -161,6 +161,20 @@ static void redistribute(hd_queue *q) {
   }
 }
 
+/* Passes the first entries of the two buckets after the current one to the prefetch hint. */
+static void hint(hd_queue *q) {
+  for (int stage = 1; stage >= 0; stage--) {
+    int32_t slot = (int32_t)((q->cur + stage + 1) & (q->nb - 1)), k = 0;
+    for (int32_t i = q->head[slot]; i >= 0 && k < 4; i = q->node[i].next, k++)
+      q->pf(q->pf_ctx, i, stage);
+  }
+}
+
+void hd_queue_set_prefetch(hd_queue *q, hd_queue_prefetch_fn fn, void *ctx) {
+  q->pf = fn;
+  q->pf_ctx = ctx;
+}
+
 /* Makes the next non-empty bucket current; 0 when only never-entries are left. */
 static int advance(hd_queue *q) {
   if (q->in_buckets == 0) {
@@ -183,6 +197,7 @@ static int advance(hd_queue *q) {
     heap_push(q, i);
     i = nx;
   }
+  if (q->pf) hint(q);
   return 1;
 }
 

@@ -30,6 +30,11 @@ typedef struct hd_qnode {
   int32_t pad[2];
 } hd_qnode;
 
+/* A hint from the queue to its user: body i's event is `stage` + 1 buckets ahead of the current
+ * one (stage 1, then 0 as it comes nearer), so that what processing it will read can be
+ * prefetched in steps (for example its body, then its cells).  It must not change the queue. */
+typedef void (*hd_queue_prefetch_fn)(void *ctx, int32_t i, int stage);
+
 /* The queue.  Fields are private to hd_queue.c. */
 typedef struct hd_queue {
   int32_t n, cap;          /* bodies held, capacity */
@@ -43,6 +48,8 @@ typedef struct hd_queue {
   int64_t cur;             /* index of the current bucket (floor(t / w)) */
   double w;                /* bucket width */
   double inv_w;            /* 1 / w: the bucket of t is floor(t * inv_w) */
+  hd_queue_prefetch_fn pf; /* prefetch hint, or NULL */
+  void *pf_ctx;            /* its context */
 } hd_queue;
 
 /* Allocates a queue for cap bodies; NULL on failure. */
@@ -52,6 +59,8 @@ void hd_queue_free(hd_queue *q);
 /* Fills the queue with bodies 0..n-1 with times t[i * stride] (in doubles), choosing the bucket
  * width from their spread: O(n). */
 void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride);
+/* Sets the prefetch hint (fn NULL: none). */
+void hd_queue_set_prefetch(hd_queue *q, hd_queue_prefetch_fn fn, void *ctx);
 /* Sets body i's time to t (any value >= the last minimum, or INFINITY). O(1). */
 void hd_queue_update(hd_queue *q, int32_t i, double t);
 /* The body with the earliest event (ties: lowest index); a body with t = INFINITY when nothing

@@ -22,6 +22,9 @@ void hd_cells_rebuild(hd_sim *s);
 /* Predicts body i's next event at the current time (i must be advanced to it) and updates
  * the queue. */
 void hd_predict(hd_sim *s, int32_t i);
+/* Prefetch hint for the event queue (hd_queue_prefetch_fn, ctx = the hd_sim): brings body i,
+ * then its cells' list heads and its partner into the cache, as its event comes nearer. */
+void hd_predict_prefetch(void *ctx, int32_t i, int stage);
 /* Predicts body i's events after it crossed a cell face (wrapped: through the box edge). */
 void hd_predict_crossed(hd_sim *s, int32_t i, int wrapped);
 
