@@ -1,4 +1,4 @@
-/* Cell lists: a grid of cells at least as wide as the largest body, each holding a doubly
+/* Cell lists: a grid of cells at least as wide as the largest body, each holding a singly
  * linked list of the bodies whose centre of mass is in it. */
 #include <math.h>
 #include <stdlib.h>
@@ -44,20 +44,18 @@ int32_t hd_cells_of(const hd_sim *s, double x, double y) {
 void hd_cells_insert(hd_sim *s, int32_t i, int32_t c) {
   hd_body *b = &s->b[i];
   b->cell = c;
-  b->prev = -1;
   b->next = s->head[c];
-  if (b->next >= 0) s->b[b->next].prev = i;
   s->head[c] = i;
 }
 
 void hd_cells_remove(hd_sim *s, int32_t i) {
+  /* singly linked: the lists are short (about one body per cell), and unlinking touches no
+   * body but the predecessor, which a doubly linked list would touch too, with the successor */
   hd_body *b = &s->b[i];
-  if (b->prev >= 0)
-    s->b[b->prev].next = b->next;
-  else
-    s->head[b->cell] = b->next;
-  if (b->next >= 0) s->b[b->next].prev = b->prev;
-  b->next = b->prev = -1;
+  int32_t *link = &s->head[b->cell];
+  while (*link != i) link = &s->b[*link].next;
+  *link = b->next;
+  b->next = -1;
 }
 
 void hd_cells_rebuild(hd_sim *s) {

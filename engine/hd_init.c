@@ -191,7 +191,7 @@ static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
     int32_t i = next[sp]++;
     hd_body *b = &s->b[i];
     b->species = sp;
-    b->next = b->prev = -1;
+    b->next = -1;
     b->k = (hd_kin){rows[r].x,
                     rows[r].y,
                     rows[r].vx,
@@ -227,7 +227,7 @@ int hd_init_state(hd_sim *s, const hd_scene *sc, hd_error *err) {
   if (rc) return rc;
   for (int32_t i = 0; i < s->n; i++) {
     s->b[i].species = i < s->n_species[0] ? HD_SP_DIMER : HD_SP_DISK;
-    s->b[i].next = s->b[i].prev = -1;
+    s->b[i].next = -1;
   }
   if (sc->placement == HD_PLACE_LATTICE)
     rc = place_lattice(s, err);

@@ -41,7 +41,7 @@ typedef struct hd_body {
   double p_t;        /* time of the predicted contact (INFINITY if none) */
   double c_t;        /* time of the next cell crossing (INFINITY if none) */
   int32_t cell;      /* cell index (cy * ncx + cx) */
-  int32_t prev;      /* previous body in the cell's list, -1 at the start */
+  int32_t spare;     /* unused (0): keeps the layout of checkpoints */
   uint32_t ncoll;    /* velocity changes so far; invalidates partners' pair events */
   int32_t p_partner; /* PAIR: partner body; WALL: wall index */
   uint32_t p_pcount; /* PAIR: partner's ncoll when predicted */
