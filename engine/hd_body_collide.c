@@ -37,8 +37,38 @@ static void paper_apply(hd_kin *k, const hd_side *o, double px, double py) {
   k->omega += (o->ex * (c1y - c2y) - o->ey * (c1x - c2x)) / o->a;
 }
 
+/* Two disk bodies, the hot path of a disk gas: the rule and the info of the general code below
+ * for that case (P = (1 + alpha) mu (v3 - v1).r13 r13 / |r13|^2 on A, hd_pair_info's fields),
+ * the same expressions, without building the two sides. */
+static int collide_disks(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, double alpha,
+                         hd_collision_info *info) {
+  double r13x = A->x - B->x, r13y = A->y - B->y;
+  double dd = sqrt(r13x * r13x + r13y * r13y);
+  double dvx = B->vx - A->vx, dvy = B->vy - A->vy;
+  if (info) {
+    double nx = -r13x / dd, ny = -r13y / dd, inv_mu = 1.0 / sa->m + 1.0 / sb->m;
+    info->vn = dvx * nx + dvy * ny;
+    info->theta_i = info->theta_j = NAN;
+    info->f = 1.0 / (inv_mu * sa->m);
+    info->de = info->vn < 0.0 ? -0.5 * (1.0 - alpha) * (1.0 + alpha) * info->vn * info->vn / inv_mu
+                              : 0.0;
+  }
+  double g = dvx * r13x + dvy * r13y;
+  if (!(g > 0.0)) return 0;
+  double mu = sa->m * sb->m / (sa->m + sb->m);
+  double px = (1.0 + alpha) * mu * g / (dd * dd) * r13x;
+  double py = (1.0 + alpha) * mu * g / (dd * dd) * r13y;
+  A->vx += px / sa->m;
+  A->vy += py / sa->m;
+  B->vx += -px / sb->m;
+  B->vy += -py / sb->m;
+  return 0;
+}
+
 int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
                     double alpha, hd_collision_info *info) {
+  if (sa->kind == HD_KIND_DISK && sb->kind == HD_KIND_DISK)
+    return collide_disks(A, sa, B, sb, alpha, info);
   if (info) hd_pair_info(A, sa, B, sb, ka, kb, alpha, info);
   hd_side a, b;
   hd_side_of(A, sa, ka, &a);
