@@ -170,7 +170,19 @@ static int predict_after_crossing(hd_sim *s, int32_t i) {
   double cross = crossing_time(s, bi);
   double best = bi->p_type == HD_EV_NONE ? INFINITY : bi->p_t - now;
   if (s->walls) predict_walls(s, i, cross, &best);
-  int32_t cx = bi->cell % s->ncx, cy = bi->cell / s->ncx;
+  int32_t c = bi->cell, ncx = s->ncx, cx = c % ncx, cy = c / ncx;
+  if (cx >= 1 && cx < ncx - 1 && cy >= 1 && cy < s->ncy - 1) { /* interior: index offsets */
+    static const int8_t step[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    int32_t mid = c + step[dir][0] + step[dir][1] * ncx; /* the new cell straight ahead */
+    int32_t along = dir < 2 ? ncx : 1;                   /* along the new column or row */
+    for (int32_t cc = mid - along; cc <= mid + along; cc += along)
+      for (int32_t j = s->head[cc]; j >= 0; j = s->b[j].next)
+        predict_disk_pair(s, bi, j, 0.0, 0.0, 0, 0, D, &best);
+    bi->c_t = now + cross;
+    bi->p_t = now + best;
+    commit(s, i);
+    return 1;
+  }
   for (int k = -1; k <= 1; k++) {
     /* the new column (dir 0/1) or row (dir 2/3), k along it */
     int32_t xx = cx, yy = cy;
