@@ -12,9 +12,8 @@
 #include "hd_disk.h"
 #include "hd_sim_internal.h"
 
-/* Time until body b leaves its cell (>= 0), or INFINITY; sets b->c_dir. */
-static double crossing_time(const hd_sim *s, hd_body *b) {
-  int32_t cx = b->cell % s->ncx, cy = b->cell / s->ncx;
+/* Time until body b, in cell (cx, cy), leaves it (>= 0), or INFINITY; sets b->c_dir. */
+static inline double crossing_time(const hd_sim *s, hd_body *b, int32_t cx, int32_t cy) {
   double best = INFINITY, t;
   if (b->k.vx > 0.0 && !(cx == s->ncx - 1 && (s->walls & HD_WALL_RIGHT))) {
     t = ((cx + 1) * s->cwx - b->k.x) / b->k.vx;
@@ -121,10 +120,11 @@ static inline void predict_disk_pair(const hd_sim *s, hd_body *bi, int32_t j, do
 
 /* The full prediction in a scene of disks only: the 9 cells around i; an interior cell (no
  * periodic image, no wall) walks its neighbours by index offsets. */
-static void predict_disks(hd_sim *s, int32_t i, double cross, double *best) {
+static void predict_disks(hd_sim *s, int32_t i, int32_t cx, int32_t cy, double cross,
+                          double *best) {
   hd_body *bi = &s->b[i];
   const double D = s->shape[HD_SP_DISK].d;
-  int32_t c = bi->cell, ncx = s->ncx, cx = c % ncx, cy = c / ncx;
+  int32_t c = bi->cell, ncx = s->ncx;
   if (cx >= 1 && cx < ncx - 1 && cy >= 1 && cy < s->ncy - 1) {
     const int32_t *head = s->head;
     for (int32_t row = c - ncx; row <= c + ncx; row += ncx)
@@ -143,11 +143,12 @@ static void predict_disks(hd_sim *s, int32_t i, double cross, double *best) {
 void hd_predict(hd_sim *s, int32_t i) {
   hd_body *bi = &s->b[i];
   const double now = s->c.t;
-  double cross = crossing_time(s, bi);
+  int32_t cx = bi->cell % s->ncx, cy = bi->cell / s->ncx;
+  double cross = crossing_time(s, bi, cx, cy);
   double best = INFINITY; /* earliest contact, relative to now */
   bi->p_type = HD_EV_NONE;
   if (s->disks_only) {
-    predict_disks(s, i, cross, &best);
+    predict_disks(s, i, cx, cy, cross, &best);
   } else {
     if (s->walls) predict_walls(s, i, cross, &best);
     HD_FOR_NEIGHBOURS(s, bi->cell, {
@@ -167,10 +168,10 @@ static int predict_after_crossing(hd_sim *s, int32_t i) {
   if (bi->p_type == HD_EV_PAIR && s->b[bi->p_partner].ncoll != bi->p_pcount) return 0;
   const double now = s->c.t, D = s->shape[HD_SP_DISK].d;
   int dir = bi->c_dir;
-  double cross = crossing_time(s, bi);
+  int32_t c = bi->cell, ncx = s->ncx, cx = c % ncx, cy = c / ncx;
+  double cross = crossing_time(s, bi, cx, cy);
   double best = bi->p_type == HD_EV_NONE ? INFINITY : bi->p_t - now;
   if (s->walls) predict_walls(s, i, cross, &best);
-  int32_t c = bi->cell, ncx = s->ncx, cx = c % ncx, cy = c / ncx;
   if (cx >= 1 && cx < ncx - 1 && cy >= 1 && cy < s->ncy - 1) { /* interior: index offsets */
     static const int8_t step[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
     int32_t mid = c + step[dir][0] + step[dir][1] * ncx; /* the new cell straight ahead */
