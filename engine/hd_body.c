@@ -22,8 +22,12 @@
  * The step is the larger of the first positive roots of the two bounds, minimised over pairs:
  * every pair keeps h > 0 over the step, so no root is ever skipped.  Far from contact (ii) takes
  * long steps (a near-miss is passed in a few steps: (ii) is exact in h and h'); near a transversal
- * root (ii) converges quadratically, near a tangential one linearly.  sincos is called once per
- * body per step.  Fast spinners take steps of order sqrt(h/K) ~ 1/omega: exact but slower.
+ * root (ii) converges quadratically, near a tangential one linearly.  sin and cos are computed
+ * once per body per step (ca_sincos: an inline Cody-Waite reduction and the fdlibm polynomials,
+ * absolute error < 1.2e-16, as accurate as the argument phi + omega t itself; libm beyond
+ * |phi + omega t| >= 1e5).  Fast spinners take steps of order sqrt(h/K) ~ 1/omega: exact but
+ * slower.  A CA that starts at t = 0 reuses the state of the t = 0 contact check as its first
+ * step.
  *
  * Tolerances (all relative to D; velocities relative to L) and their effect:
  *   TOL_C = 1e-12  a pair is "in contact" when CA brings its gap to h <= TOL_C D.  One or two
@@ -48,7 +52,12 @@
  *                  next real contact (a fast spinner swinging its other disk round, or the same
  *                  disk pair coming back) is found.  While a pair is ignored the step is bounded
  *                  by the time its gap could reach TOL_SEP D (h'' <= 2 L^2/D + K), so CA cannot
- *                  jump over its separation and return.
+ *                  jump over its separation and return; or, when it recedes (h' > 0), by the
+ *                  larger root tau_hi of bound (ii), h + h' tau - K tau^2/2, if that is longer:
+ *                  the gap is > 0 on (tau_lo, tau_hi) with tau_lo < 0, or ~ -h/h' ~ 1e-16 for
+ *                  a round-off overlap that is receding (the collision just done), so no contact
+ *                  of that pair, nor a separation and return, fits before tau_hi (ign_step).
+ *                  This saves the evaluation at the separation of every just-collided pair.
  * Linear (closed-form) pairs use the same TOL_0 and VTOL rules and report a contact whose normal
  * velocity at contact is below -VTOL |v|.
  *
@@ -83,8 +92,13 @@ void hd_kin_advance(hd_kin *k, double dt) {
   k->x += k->vx * dt;
   k->y += k->vy * dt;
   if (k->omega != 0.0) {
-    double p = remainder(k->phi + k->omega * dt, 2.0 * M_PI); /* in [-pi, pi] */
-    k->phi = p <= -M_PI ? M_PI : p;
+    double p = k->phi + k->omega * dt;
+    /* remainder() leaves p in (-pi, pi] unchanged: call it only when p is out of range */
+    if (!(p <= M_PI && p > -M_PI)) {
+      p = remainder(p, 2.0 * M_PI); /* in [-pi, pi] */
+      if (p <= -M_PI) p = M_PI;
+    }
+    k->phi = p;
   }
 }
 
@@ -171,10 +185,40 @@ typedef struct ca_ctx {
   double L, K, K2u;      /* bounds on |h'|, the lower bound on h'' (-K), an upper bound on h'' */
 } ca_ctx;
 
+/* sin and cos of x for the CA loop: Cody-Waite reduction by pi/2 (33 + 53 bits of pi/2, exact
+ * for |x| < 1e5) and the fdlibm kernels on [-pi/4, pi/4] (polynomials in Estrin form for a short
+ * latency: the CA loop is a chain of dependent steps).  Absolute error < 1.2e-16 (measured
+ * against long double over |x| < 100 and near multiples of pi/2: libm's sincos has 5.6e-17);
+ * larger |x| and NaN go to libm.  Deterministic: only +, -, * in a fixed order. */
+static inline void ca_sincos(double x, double *sp, double *cp) {
+  if (!(fabs(x) < 1e5)) {
+    sincos(x, sp, cp);
+    return;
+  }
+  const double invpio2 = 6.36619772367581382433e-01, pio2_1 = 1.57079632673412561417e+00,
+               pio2_1t = 6.07710050650619224932e-11, shift = 0x1.8p52;
+  double fn = (x * invpio2 + shift) - shift; /* nearest integer, round-to-nearest mode */
+  long q = (long)fn;
+  double r = (x - fn * pio2_1) - fn * pio2_1t, z = r * r, z2 = z * z, z4 = z2 * z2;
+  double ps = (-1.66666666666666324348e-01 + z * 8.33333333332248946124e-03) +
+              z2 * (-1.98412698298579493134e-04 + z * 2.75573137070700676789e-06) +
+              z4 * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10);
+  double pc = (4.16666666666666019037e-02 + z * -1.38888888888741095749e-03) +
+              z2 * (2.48015872894767294178e-05 + z * -2.75573143513906633035e-07) +
+              z4 * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11);
+  double s = r + (z * r) * ps, hz = 0.5 * z, w = 1.0 - hz;
+  double c = w + (((1.0 - w) - hz) + z * (z * pc));
+  /* quadrant q mod 4 without branches (exact: one product of each sum is 0) */
+  double odd = (double)(q & 1), even = 1.0 - odd;
+  double sg = 1.0 - (double)(q & 2), cg = 1.0 - (double)((q + 1) & 2);
+  *sp = sg * (s * even + c * odd);
+  *cp = cg * (c * even + s * odd);
+}
+
 /* Gaps h[p] and gap rates hd[p] of every pair at time t. */
 static void ca_eval(const ca_ctx *c, double t, double *h, double *hd) {
   double sa, ca;
-  sincos(c->pa + c->wa * t, &sa, &ca);
+  ca_sincos(c->pa + c->wa * t, &sa, &ca);
   if (c->wall) {
     double g = c->dx + c->dvx * t;
     for (int i = 0; i < c->na; i++) {
@@ -186,7 +230,7 @@ static void ca_eval(const ca_ctx *c, double t, double *h, double *hd) {
     return;
   }
   double sb, cb;
-  sincos(c->pb + c->wb * t, &sb, &cb);
+  ca_sincos(c->pb + c->wb * t, &sb, &cb);
   double rx0 = c->dx + c->dvx * t, ry0 = c->dy + c->dvy * t;
   for (int i = 0; i < c->na; i++) {
     double ka = c->na == 1 ? 0.0 : disk_sign(i) * c->ha;
@@ -232,6 +276,23 @@ static double slide_step(double h, double hd, double hc, double vtol, double K2u
   return (hd + 2.0 * vtol) / K2u;
 }
 
+/* The step for an ignored pair (h <= hsep, not approaching): the sep_step and slide_step
+ * guards, or, if it recedes (h' > 0), the second root tau_hi of bound (ii), if larger: the gap
+ * h + h' tau - K tau^2 / 2 > 0 on (tau_lo, tau_hi), tau_lo < 0 or, for an overlap of round-off
+ * size, tau_lo ~ -h/h' tiny (the receding just-collided overlap, ignored by design).  This skips
+ * the separation to hsep in one step instead of two evaluations. */
+static double ign_step(double h, double hd, double hsep, double hc, double vtol, double K,
+                       double K2u) {
+  double s = sep_step(h, hd, hsep, hc, K2u), sl = slide_step(h, hd, hc, vtol, K2u);
+  if (sl < s) s = sl;
+  if (hd > 0.0) {
+    double disc = hd * hd + 2.0 * K * h, th = HUGE_VAL;
+    if (K > 0.0) th = disc > 0.0 ? (hd + sqrt(disc)) / K : 0.0;
+    if (th > s) s = th;
+  }
+  return s;
+}
+
 /* CA from t0 to tend; the pair state at t0 = 0 is checked for contacts and just-collided pairs.
  * Returns 1 and (t, pair index) on a contact. */
 static int ca_solve(const ca_ctx *c, double t, double tend, double tmax, double *tout, int *pout) {
@@ -239,6 +300,7 @@ static int ca_solve(const ca_ctx *c, double t, double tend, double tmax, double 
   const double D = c->D, hc = TOL_C * D, h0 = TOL_0 * D, hsep = TOL_SEP * D, vtol = VTOL * c->L;
   double h[4], hd[4];
   unsigned ign = 0;
+  int have = 0; /* h, hd already hold the state at t */
   if (t == 0.0) {
     ca_eval(c, 0.0, h, hd);
     int best = -1;
@@ -255,9 +317,11 @@ static int ca_solve(const ca_ctx *c, double t, double tend, double tmax, double 
       *pout = best;
       return 1;
     }
+    have = 1;
   }
   for (long it = 0; it < HD_CA_MAXIT; it++) {
-    ca_eval(c, t, h, hd);
+    if (!have) ca_eval(c, t, h, hd);
+    have = 0;
     double step = HUGE_VAL;
     unsigned cand = 0;
     for (int p = 0; p < np; p++) {
@@ -274,9 +338,7 @@ static int ca_solve(const ca_ctx *c, double t, double tend, double tmax, double 
         if (h[p] > hsep || (hd[p] < -vtol && h[p] > hc)) {
           ign &= ~bit;
         } else if (hd[p] >= -vtol) {
-          double s = sep_step(h[p], hd[p], hsep, hc, c->K2u);
-          if (s < step) step = s;
-          s = slide_step(h[p], hd[p], hc, vtol, c->K2u);
+          double s = ign_step(h[p], hd[p], hsep, hc, vtol, c->K, c->K2u);
           if (s < step) step = s;
           continue;
         }
@@ -286,9 +348,7 @@ static int ca_solve(const ca_ctx *c, double t, double tend, double tmax, double 
           cand |= bit;
         } else {
           ign |= bit;
-          double s = sep_step(h[p], hd[p], hsep, hc, c->K2u);
-          if (s < step) step = s;
-          s = slide_step(h[p], hd[p], hc, vtol, c->K2u);
+          double s = ign_step(h[p], hd[p], hsep, hc, vtol, c->K, c->K2u);
           if (s < step) step = s;
         }
       } else {

@@ -796,6 +796,58 @@ static void predict_touching_now(void **state) {
   gsl_rng_free(r);
 }
 
+/* A just-collided pair that comes back: CA skips a receding ignored pair's separation in one
+ * step, up to the larger root tau_hi of bound (ii) (ign_step in hd_body.c).  Built case: a
+ * spinning dimer A (phi = 0, omega = w < 0) whose disk 1 touches a heavy disk B placed at angle
+ * beta in (pi/2, 2 pi/3) from it (clear of disk 0), A's centre moving towards B so that the
+ * contact recedes at speed eps only: rotation then curves the gap back, h'' = w^2 cos(beta)
+ * (2 + cos(beta)) / 4 < 0 (without the centre's motion), and the same pair touches again at
+ * about 2 eps / |h''|, 3 to 8 times tau_hi = 2 eps / K (K = w^2 / 2).  Gaps of 0, +1e-11 and -1e-12 at t = 0 (the
+ * round-off a collision leaves).  Then random soft collisions (alpha 0.01 - 0.3) of spinners.
+ * Every next contact must agree with the brute force, which ignores the collided pair until it
+ * has separated by 1e-9 (eps >= 1e-3 |w|/2 makes the gap open to > 1e-8 first). */
+static void predict_recontact(void **state) {
+  (void)state;
+  hd_shape dm = dimer(1, 1, 1), dh = disk(1, 100);
+  int ns = sanitize() ? 20000 : 100000;
+  const double betas[] = {1.7, 1.85, 2.0}, ws[] = {-1.0, -10.0}, epss[] = {1e-3, 1e-2, 0.1};
+  const double gaps[] = {0.0, 1e-11, -1e-12};
+  for (int ib = 0; ib < 3; ib++)
+    for (int iw = 0; iw < 2; iw++)
+      for (int ie = 0; ie < 3; ie++) {
+        double beta = betas[ib], w = ws[iw], nx = cos(beta), ny = sin(beta);
+        double v1 = 0.5 * w * ny;                 /* n . (velocity of disk 1 from rotation) */
+        double eps = epss[ie] * 0.5 * fabs(w), u = -v1 - eps; /* A's centre along n */
+        hd_kin A = {0, 0, u * nx, u * ny, 0, w};
+        double g = gaps[(ib + ie) % 3];
+        hd_kin B = {0.5 + (1 + g) * nx, (1 + g) * ny, 0, 0, 0, 0};
+        double tmax = 2.0 / fabs(w);
+        hd_contact c;
+        int got = hd_predict_pair(&A, &dm, &B, &dh, tmax, &c);
+        assert_int_equal(compare_pair(&A, &dm, &B, &dh, tmax, ns, 1), got);
+        assert_true(got); /* the pair comes back well inside one radian of turn */
+        /* eps <= 0.01 |w|/2: the same pair, at t ~ 2 eps / |h''|; at 0.1 disk 0 comes first */
+        if (ie < 2) assert_true(c.ka == 1 && c.kb == 0);
+      }
+  gsl_rng *r = rng_new(53);
+  hd_shape dk = disk(1, 1);
+  const hd_shape *pairs[][2] = {{&dm, &dm}, {&dm, &dk}, {&dk, &dm}, {&dm, &dh}};
+  int ncase = sanitize() ? 3 : 25, again = 0;
+  for (int k = 0; k < 4; k++)
+    for (int n = 0; n < ncase; n++) {
+      const hd_shape *sa = pairs[k][0], *sb = pairs[k][1];
+      hd_kin A, B;
+      int ka, kb;
+      random_contact(r, sa, sb, n % 2 ? 2.0 : 10.0, &A, &B, &ka, &kb);
+      double alpha = n % 3 == 0 ? 0.01 : n % 3 == 1 ? 0.1 : 0.3;
+      hd_collide_pair(&A, sa, &B, sb, ka, kb, alpha, NULL);
+      double tmax = 3.0 / (fmax(fabs(A.omega), fabs(B.omega)) + 1.0);
+      again += compare_pair(&A, sa, &B, sb, tmax, ns, ka * ndisks(sb) + kb);
+    }
+  if (!sanitize()) assert_true(again >= 10); /* some next contacts were compared */
+  gsl_rng_free(r);
+}
+
 /* Near-parallel dimers approaching side by side: two disk pairs touch almost together. */
 static void predict_near_parallel(void **state) {
   (void)state;
@@ -960,6 +1012,7 @@ int main(void) {
       cmocka_unit_test(predict_pairs),
       cmocka_unit_test(predict_touching_now),
       cmocka_unit_test(predict_second_contact),
+      cmocka_unit_test(predict_recontact),
       cmocka_unit_test(predict_near_parallel),
       cmocka_unit_test(predict_grazing),
       cmocka_unit_test(predict_walls),

@@ -295,40 +295,47 @@ static void mixture_equipartition(void **state) {
 
 /* Inelastic dimers (alpha = 0.9, a = d, dilute): the energy decays (by > 5x over 40 cpd), and
  * K = E_tr/E_rot settles to a constant near 2: its mean over cpd 20-40 is within 10 % of 2 and
- * its drift between cpd 20-30 and 30-40 below 5 %. */
+ * its drift between cpd 20-30 and 30-40 below 5 %.  K is averaged over 6 runs (seeds 43-48) of
+ * 1000 dimers: over 100 seeds one run's drift has a standard deviation of 4 % (so a 5 % bound
+ * on a single run failed for about one seed in five, and flipped with any change of round-off
+ * that moves the trajectory), the 6-run mean 1.7 %, which puts the 5 % bound at 3 sigma. */
 static void inelastic_cooling(void **state) {
   (void)state;
-  hd_scene sc;
   long N = test_size(1000, 4);
-  dimer_scene(&sc, N, 0, 1.0, 0.05, 0.9, 43);
-  hd_sim *s;
-  hd_error err;
-  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
-  double e0 = s->c.e_kin, k1 = 0, k2 = 0;
+  int nrun = test_sanitized() ? 1 : 6;
+  double k1 = 0, k2 = 0;
   int n1 = 0, n2 = 0;
-  double next = 20;
-  while (hd_sim_cpd(s) < 40) {
-    hd_event_out ev;
-    if (hd_sim_next(s, INFINITY, &ev, &err)) fail_msg("%s", err.msg);
-    if (hd_sim_cpd(s) >= next) {
-      double et, er;
-      hd_sim_energy(s, -1, &et, &er);
-      if (next < 30)
-        k1 += et / er, n1++;
-      else
-        k2 += et / er, n2++;
-      next += 0.25;
+  for (int run = 0; run < nrun; run++) {
+    hd_scene sc;
+    dimer_scene(&sc, N, 0, 1.0, 0.05, 0.9, 43 + (unsigned long long)run);
+    hd_sim *s;
+    hd_error err;
+    assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+    double e0 = s->c.e_kin;
+    double next = 20;
+    while (hd_sim_cpd(s) < 40) {
+      hd_event_out ev;
+      if (hd_sim_next(s, INFINITY, &ev, &err)) fail_msg("%s", err.msg);
+      if (hd_sim_cpd(s) >= next) {
+        double et, er;
+        hd_sim_energy(s, -1, &et, &er);
+        if (next < 30)
+          k1 += et / er, n1++;
+        else
+          k2 += et / er, n2++;
+        next += 0.25;
+      }
     }
+    printf("# inelastic (seed %d): E(40 cpd)/E(0) = %.4g\n", 43 + run, s->c.e_kin / e0);
+    assert_true(s->c.e_kin < e0 / 5);
+    hd_sim_free(s);
   }
   double K1 = k1 / n1, K2 = k2 / n2;
-  printf("# inelastic: E(40 cpd)/E(0) = %.4g, K over cpd 20-30 %.4f, 30-40 %.4f\n", s->c.e_kin / e0,
-         K1, K2);
-  assert_true(s->c.e_kin < e0 / 5);
+  printf("# inelastic: K over cpd 20-30 %.4f, 30-40 %.4f (%d runs)\n", K1, K2, nrun);
   if (!test_sanitized()) {
     assert_true(fabs((K1 + K2) / 4 - 1) < 0.10);
     assert_true(fabs(K2 / K1 - 1) < 0.05);
   }
-  hd_sim_free(s);
 }
 
 int main(void) {
