@@ -140,7 +140,8 @@ static void predict_disks(hd_sim *s, int32_t i, int32_t cx, int32_t cy, double c
   });
 }
 
-void hd_predict(hd_sim *s, int32_t i) {
+/* The full prediction of body i, leaving out body skip (-1: none). */
+static void predict_full(hd_sim *s, int32_t i, int32_t skip) {
   hd_body *bi = &s->b[i];
   const double now = s->c.t;
   int32_t cx = bi->cell % s->ncx, cy = bi->cell / s->ncx;
@@ -152,12 +153,23 @@ void hd_predict(hd_sim *s, int32_t i) {
   } else {
     if (s->walls) predict_walls(s, i, cross, &best);
     HD_FOR_NEIGHBOURS(s, bi->cell, {
-      if (j != i) predict_one(s, bi, j, sx, sy, cross, &best);
+      if (j != i && j != skip) predict_one(s, bi, j, sx, sy, cross, &best);
     });
   }
   bi->c_t = now + cross;
   bi->p_t = now + best;
   commit(s, i);
+}
+
+void hd_predict(hd_sim *s, int32_t i) {
+  predict_full(s, i, -1);
+}
+
+void hd_predict_after_pair(hd_sim *s, int32_t i, int32_t j) {
+  /* disk pairs that have just collided recede (the closed form gives no contact), so only
+   * pairs with a dimer, whose search is long near contact, are worth leaving out */
+  predict_full(s, i, j);
+  predict_full(s, j, -1);
 }
 
 /* After body i crossed face `dir` (without wrapping) in a pure disk scene: searches the 3 cells

@@ -496,8 +496,7 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
       int rc = verify_collision(s, i, j, err);
       if (rc) return rc;
     }
-    hd_predict(s, i);
-    hd_predict(s, j);
+    hd_predict_after_pair(s, i, j);
     int prc = check_pileup(s, i, j, err);
     if (prc) return prc;
     if (s->alpha[bi->species][bj->species] < 1.0) {

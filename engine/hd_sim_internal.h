@@ -22,6 +22,10 @@ void hd_cells_rebuild(hd_sim *s);
 /* Predicts body i's next event at the current time (i must be advanced to it) and updates
  * the queue. */
 void hd_predict(hd_sim *s, int32_t i);
+/* Predicts both bodies of the pair (i, j) that has just collided.  Their own pair is searched
+ * once, by j's prediction: if its contact is not j's earliest event, j has an earlier event,
+ * which predicts j again (a collision, a crossing or a stale event), so nothing is lost. */
+void hd_predict_after_pair(hd_sim *s, int32_t i, int32_t j);
 /* Prefetch hint for the event queue (hd_queue_prefetch_fn, ctx = the hd_sim): brings body i,
  * then its cells' list heads and its partner into the cache, as its event comes nearer. */
 void hd_predict_prefetch(void *ctx, int32_t i, int stage);
