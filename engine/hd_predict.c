@@ -6,7 +6,10 @@
  * is the earliest with every body of the cells that stay adjacent.  Contacts involving a dimer
  * are searched only up to the earlier next crossing of the two bodies (which bounds the root
  * search): a contact after it is found by the full prediction that follows that crossing, since
- * bodies in contact are in adjacent cells. */
+ * bodies in contact are in adjacent cells.  After a collision of i and j their own pair is
+ * searched once, by j (hd_predict_after_pair).  In a pure disk scene a prediction walks interior
+ * cells by index offsets, without the periodic and wall logic of HD_FOR_NEIGHBOURS.
+ * hd_predict_prefetch is the event queue's prefetch hint (hd_queue.h) for large systems. */
 #include <math.h>
 
 #include "hd_disk.h"
@@ -63,6 +66,21 @@ static inline void take_pair(hd_body *bi, const hd_body *bj, int32_t j, int ka, 
   bi->p_imy = (int16_t)(iy - bj->wy + bi->wy);
 }
 
+/* disk-disk contact of bi with j seen through shift (sx, sy) = (ix, iy) box lengths: closed
+ * form, no copies, no horizon. */
+static inline void predict_disk_pair(const hd_sim *s, hd_body *bi, int32_t j, double sx, double sy,
+                                     int ix, int iy, double D, double *best) {
+  const hd_body *bj = &s->b[j];
+  const double dtj = s->c.t - bj->t;
+  double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x;
+  double ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
+  double t = hd_disk_contact_time(rx, ry, bj->k.vx - bi->k.vx, bj->k.vy - bi->k.vy, D);
+  if (t < *best) {
+    *best = t;
+    take_pair(bi, bj, j, 0, 0, ix, iy);
+  }
+}
+
 /* Contacts of body i with body j (shifted by sx, sy); *best relative to now. */
 static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, double sy,
                                double horizon, double *best) {
@@ -71,14 +89,7 @@ static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, dou
   const hd_shape *si = &s->shape[bi->species];
   int ix = (sx > 0) - (sx < 0), iy = (sy > 0) - (sy < 0);
   if (bi->species == HD_SP_DISK && bj->species == HD_SP_DISK) {
-    /* disk-disk: closed form, no copies, no horizon */
-    double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x;
-    double ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
-    double t = hd_disk_contact_time(rx, ry, bj->k.vx - bi->k.vx, bj->k.vy - bi->k.vy, si->d);
-    if (t < *best) {
-      *best = t;
-      take_pair(bi, bj, j, 0, 0, ix, iy);
-    }
+    predict_disk_pair(s, bi, j, sx, sy, ix, iy, si->d, best);
     return;
   }
   /* the search ends at the first crossing of either body: whichever crosses first predicts
@@ -103,21 +114,6 @@ static inline void commit(hd_sim *s, int32_t i) {
   hd_queue_update(s->q, i, b->ev_t);
 }
 
-/* disk-disk contact of bi with j seen through shift (sx, sy) = (ix, iy) box lengths: closed
- * form, no copies, no horizon. */
-static inline void predict_disk_pair(const hd_sim *s, hd_body *bi, int32_t j, double sx, double sy,
-                                     int ix, int iy, double D, double *best) {
-  const hd_body *bj = &s->b[j];
-  const double dtj = s->c.t - bj->t;
-  double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x;
-  double ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
-  double t = hd_disk_contact_time(rx, ry, bj->k.vx - bi->k.vx, bj->k.vy - bi->k.vy, D);
-  if (t < *best) {
-    *best = t;
-    take_pair(bi, bj, j, 0, 0, ix, iy);
-  }
-}
-
 /* The full prediction in a scene of disks only: the 9 cells around i; an interior cell (no
  * periodic image, no wall) walks its neighbours by index offsets. */
 static void predict_disks(hd_sim *s, int32_t i, int32_t cx, int32_t cy, double cross,
@@ -140,6 +136,51 @@ static void predict_disks(hd_sim *s, int32_t i, int32_t cx, int32_t cy, double c
   });
 }
 
+/* A neighbour, with a lower bound on its contact time. */
+typedef struct hd_cand {
+  double t;      /* lower bound on the contact time, relative to now */
+  double sx, sy; /* periodic shift of the neighbour */
+  int32_t j;     /* the neighbour */
+} hd_cand;
+#define HD_MAX_CAND 64
+
+/* The contacts of body i with its neighbours (but skip) in a scene with dimers, searched in
+ * the order of a lower bound on their time: when the enclosing circles (radius (a + d)/2 about
+ * the centres of mass, in linear motion, widened by 1e-9 against round-off) first meet.  The
+ * search stops at the first bound that is not below the earliest contact found: every later
+ * pair touches later, if at all.  Searching the nearest first also shortens the root search of
+ * the others (it ends at the earliest contact found so far). */
+static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, double *best) {
+  hd_body *bi = &s->b[i];
+  const double now = s->c.t;
+  double rad[HD_NSPECIES];
+  for (int sp = 0; sp < HD_NSPECIES; sp++) rad[sp] = hd_shape_radius(&s->shape[sp]) * (1.0 + 1e-9);
+  hd_cand cs[HD_MAX_CAND];
+  int nc = 0;
+  HD_FOR_NEIGHBOURS(s, bi->cell, {
+    if (j == i || j == skip) continue;
+    const hd_body *bj = &s->b[j];
+    double dtj = now - bj->t, R = rad[bi->species] + rad[bj->species];
+    double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x,
+           ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
+    double t = rx * rx + ry * ry <= R * R
+                   ? 0.0
+                   : hd_disk_contact_time(rx, ry, bj->k.vx - bi->k.vx, bj->k.vy - bi->k.vy, R);
+    if (t >= *best || ((bj->species == HD_SP_DIMER || bi->species == HD_SP_DIMER) &&
+                       t > fmin(cross, bj->c_t - now)))
+      continue; /* cannot touch before the earliest contact so far, or within the horizon */
+    if (nc == HD_MAX_CAND) { /* a crowd: the rest unsorted (still exact, only slower) */
+      predict_one(s, bi, j, sx, sy, cross, best);
+      continue;
+    }
+    int k = nc++; /* insertion sort */
+    for (; k > 0 && cs[k - 1].t > t; k--) cs[k] = cs[k - 1];
+    cs[k] = (hd_cand){t, sx, sy, j};
+  });
+  for (int k = 0; k < nc && cs[k].t < *best; k++)
+    predict_one(s, bi, cs[k].j, cs[k].sx, cs[k].sy, cross, best);
+}
+
 /* The full prediction of body i, leaving out body skip (-1: none). */
 static void predict_full(hd_sim *s, int32_t i, int32_t skip) {
   hd_body *bi = &s->b[i];
@@ -152,9 +193,7 @@ static void predict_full(hd_sim *s, int32_t i, int32_t skip) {
     predict_disks(s, i, cx, cy, cross, &best);
   } else {
     if (s->walls) predict_walls(s, i, cross, &best);
-    HD_FOR_NEIGHBOURS(s, bi->cell, {
-      if (j != i && j != skip) predict_one(s, bi, j, sx, sy, cross, &best);
-    });
+    predict_sorted(s, i, skip, cross, &best);
   }
   bi->c_t = now + cross;
   bi->p_t = now + best;

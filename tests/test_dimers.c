@@ -293,6 +293,31 @@ static void mixture_equipartition(void **state) {
   hd_sim_free(s);
 }
 
+/* Crowded neighbourhoods: 40 long dimers (a = 3d) among 2000 small disks (sigma = 0.2 d), so
+ * the cells (>= 4d wide) hold ~80 disks each and a prediction sees far more neighbours than it
+ * sorts (HD_MAX_CAND in engine/hd_predict.c): the unsorted remainder must stay exact.  Elastic,
+ * verification on, 1e4 collisions: energy drift < 1e-9 relative, |momentum| < 1e-12 sqrt(N),
+ * the same bounds as the elastic dimer test. */
+static void crowded_neighbours(void **state) {
+  (void)state;
+  hd_scene sc;
+  dimer_scene(&sc, 40, 2000, 3.0, 0.25, 1.0, 17);
+  sc.disk_sigma = 0.2;
+  double area = 40 * M_PI / 2 + 2000 * M_PI / 4 * 0.04;
+  sc.box_x = sc.box_y = sqrt(area / 0.25);
+  sc.verify = 1;
+  hd_sim *s;
+  hd_error err;
+  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+  assert_true(s->cwx >= 4.0 && s->ncx >= 3);
+  double drift, p;
+  run_checked(s, test_size(10000, 1000), &drift, &p);
+  printf("# crowded: drift %.3g, |p| %.3g, %d x %d cells\n", drift, p, s->ncx, s->ncy);
+  assert_true(drift < 1e-9);
+  assert_true(p < 1e-12 * sqrt(2040.0));
+  hd_sim_free(s);
+}
+
 /* Inelastic dimers (alpha = 0.9, a = d, dilute): the energy decays (by > 5x over 40 cpd), and
  * K = E_tr/E_rot settles to a constant near 2: its mean over cpd 20-40 is within 10 % of 2 and
  * its drift between cpd 20-30 and 30-40 below 5 %.  K is averaged over 6 runs (seeds 43-48) of
@@ -343,7 +368,7 @@ int main(void) {
       cmocka_unit_test(elastic_dimers),    cmocka_unit_test(limits),
       cmocka_unit_test(alpha_zero),        cmocka_unit_test(double_contact),
       cmocka_unit_test(walls_keep_inside), cmocka_unit_test(mixture_equipartition),
-      cmocka_unit_test(inelastic_cooling),
+      cmocka_unit_test(inelastic_cooling), cmocka_unit_test(crowded_neighbours),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
