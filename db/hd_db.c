@@ -165,7 +165,10 @@ static int db_alloc_open(hd_db **out, const char *path, int flags, hd_error *err
     return hd_error_set(err, HD_ENOMEM, "%s: out of memory", path);
   }
   db->batch_rows = 10000;
-  if (sqlite3_open_v2(path, &db->db, flags, NULL) != SQLITE_OK) {
+  /* NOMUTEX: SQLite's per-call locking (17 % of a logged run) is not needed: the connection is
+   * used by one thread at a time, the writer between hand-offs and the caller only after
+   * drain(), and the hand-off (mu, cv) orders their accesses. */
+  if (sqlite3_open_v2(path, &db->db, flags | SQLITE_OPEN_NOMUTEX, NULL) != SQLITE_OK) {
     int rc = db->db ? sql_error(db, err, "open")
                     : hd_error_set(err, HD_ENOMEM, "%s: open: out of memory", path);
     db_free(db);
