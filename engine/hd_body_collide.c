@@ -50,8 +50,8 @@ static int collide_disks(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shap
     info->vn = dvx * nx + dvy * ny;
     info->theta_i = info->theta_j = NAN;
     info->f = 1.0 / (inv_mu * sa->m);
-    info->de = info->vn < 0.0 ? -0.5 * (1.0 - alpha) * (1.0 + alpha) * info->vn * info->vn / inv_mu
-                              : 0.0;
+    info->de =
+        info->vn < 0.0 ? -0.5 * (1.0 - alpha) * (1.0 + alpha) * info->vn * info->vn / inv_mu : 0.0;
   }
   double g = dvx * r13x + dvy * r13y;
   if (!(g > 0.0)) return 0;

@@ -802,10 +802,10 @@ static void predict_touching_now(void **state) {
  * beta in (pi/2, 2 pi/3) from it (clear of disk 0), A's centre moving towards B so that the
  * contact recedes at speed eps only: rotation then curves the gap back, h'' = w^2 cos(beta)
  * (2 + cos(beta)) / 4 < 0 (without the centre's motion), and the same pair touches again at
- * about 2 eps / |h''|, 3 to 8 times tau_hi = 2 eps / K (K = w^2 / 2).  Gaps of 0, +1e-11 and -1e-12 at t = 0 (the
- * round-off a collision leaves).  Then random soft collisions (alpha 0.01 - 0.3) of spinners.
- * Every next contact must agree with the brute force, which ignores the collided pair until it
- * has separated by 1e-9 (eps >= 1e-3 |w|/2 makes the gap open to > 1e-8 first). */
+ * about 2 eps / |h''|, 3 to 8 times tau_hi = 2 eps / K (K = w^2 / 2).  Gaps of 0, +1e-11 and -1e-12
+ * at t = 0 (the round-off a collision leaves).  Then random soft collisions (alpha 0.01 - 0.3) of
+ * spinners. Every next contact must agree with the brute force, which ignores the collided pair
+ * until it has separated by 1e-9 (eps >= 1e-3 |w|/2 makes the gap open to > 1e-8 first). */
 static void predict_recontact(void **state) {
   (void)state;
   hd_shape dm = dimer(1, 1, 1), dh = disk(1, 100);
@@ -816,7 +816,7 @@ static void predict_recontact(void **state) {
     for (int iw = 0; iw < 2; iw++)
       for (int ie = 0; ie < 3; ie++) {
         double beta = betas[ib], w = ws[iw], nx = cos(beta), ny = sin(beta);
-        double v1 = 0.5 * w * ny;                 /* n . (velocity of disk 1 from rotation) */
+        double v1 = 0.5 * w * ny; /* n . (velocity of disk 1 from rotation) */
         double eps = epss[ie] * 0.5 * fabs(w), u = -v1 - eps; /* A's centre along n */
         hd_kin A = {0, 0, u * nx, u * ny, 0, w};
         double g = gaps[(ib + ie) % 3];
