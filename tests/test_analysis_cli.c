@@ -24,6 +24,7 @@
 
 #include "hd_ana_cli.h"
 #include "hd_enskog.h"
+#include "test_gnuplot.h"
 
 extern const char hd_schema_sql[];
 
@@ -452,18 +453,9 @@ static void gnuplot_scripts(void **state) {
                  figs[i][1], outf, dir, figs[i][1], src, figs[i][0], errf);
         memcpy(cmd, tmp, sizeof tmp);
       }
-      int rc = system(cmd);
-      FILE *f = fopen(errf, "r");
-      assert_non_null(f);
-      char buf[512] = "";
-      size_t got = fread(buf, 1, sizeof buf - 1, f);
-      fclose(f);
-      if (rc != 0 || got != 0) fail_msg("%s.%s: rc %d, stderr: %s", figs[i][0], ext, rc, buf);
-      f = fopen(outf, "r");
-      assert_non_null(f);
-      fseek(f, 0, SEEK_END);
-      assert_true(ftell(f) > 1000);
-      fclose(f);
+      char what[64];
+      snprintf(what, sizeof what, "%s.%s", figs[i][0], ext);
+      test_gnuplot_ok(cmd, errf, outf, 1000, what);
     }
 }
 

@@ -16,6 +16,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "test_gnuplot.h"
+
 static char root[512], tmp[256], haff[512];
 
 /* make -f plots/plots.mk with the tiny parameters, from the repository root; MAKEFLAGS of an
@@ -226,18 +228,9 @@ static void gnuplot_render(void **state) {
       snprintf(errf, sizeof errf, "%s/%s.%s.err", tmp, s[i].gp, ext);
       snprintf(cmd, sizeof cmd, "gnuplot -e \"%s; out='%s'\" '%s/plots/%s.gp' 2>'%s'", args, outf,
                root, s[i].gp, errf);
-      int rc = system(cmd);
-      FILE *f = fopen(errf, "r");
-      assert_non_null(f);
-      char buf[512] = "";
-      size_t got = fread(buf, 1, sizeof buf - 1, f);
-      fclose(f);
-      if (rc != 0 || got != 0) fail_msg("%s.%s: rc %d, stderr: %s", s[i].gp, ext, rc, buf);
-      f = fopen(outf, "r");
-      assert_non_null(f);
-      fseek(f, 0, SEEK_END);
-      assert_true(ftell(f) > 2000);
-      fclose(f);
+      char what[64];
+      snprintf(what, sizeof what, "%s.%s", s[i].gp, ext);
+      test_gnuplot_ok(cmd, errf, outf, 2000, what);
     }
 }
 
