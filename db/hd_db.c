@@ -13,40 +13,47 @@
  * holds whole batches only and stays sound; the rows of that batch are lost and the caller (the
  * run) stops with the error. */
 #include "hd_db.h"
+#include "hd_walck.h"
 
 #include <math.h>
 #include <sqlite3.h>
 #include <stdlib.h>
 #include <pthread.h>
 #include <signal.h>
+#include <stdio.h>
 #include <string.h>
 
 extern const char hd_schema_sql[];
 
+#define HD_DB_NBUF 8 /* buffers in the ring between the producer and the writer thread */
+
 struct hd_db {
   sqlite3 *db;
-  char *path;               /* as given, for messages */
-  int readonly;             /* opened by hd_db_open_readonly */
-  long batch_rows;          /* rows per batch transaction */
-  long pending;             /* rows in the open batch */
-  int in_tx;                /* a batch transaction is open */
-  sqlite3_stmt *ins_run;    /* INSERT INTO runs */
-  sqlite3_stmt *ins_coll;   /* INSERT INTO collisions */
-  sqlite3_stmt *ins_sample; /* INSERT INTO samples */
-  sqlite3_stmt *ins_state;  /* INSERT INTO states */
-  sqlite3_stmt *ins_ckpt;   /* INSERT INTO checkpoints */
-  sqlite3_stmt *del_ckpt;   /* DELETE older checkpoints of a run */
-  sqlite3_stmt *ins_coll_k; /* INSERT INTO collisions, HD_DB_GROUP rows at once */
+  char *path;                /* as given, for messages */
+  int readonly;              /* opened by hd_db_open_readonly */
+  long batch_rows;           /* rows per batch transaction */
+  long pending;              /* rows in the open batch */
+  int in_tx;                 /* a batch transaction is open */
+  sqlite3_stmt *ins_run;     /* INSERT INTO runs */
+  sqlite3_stmt *ins_coll;    /* INSERT INTO collisions */
+  sqlite3_stmt *ins_sample;  /* INSERT INTO samples */
+  sqlite3_stmt *ins_state;   /* INSERT INTO states */
+  sqlite3_stmt *ins_ckpt;    /* INSERT INTO checkpoints */
+  sqlite3_stmt *del_ckpt;    /* DELETE older checkpoints of a run */
+  sqlite3_stmt *ins_coll_k;  /* INSERT INTO collisions, HD_DB_GROUP rows at once */
+  sqlite3_stmt *ins_coll2_k; /* the same without the rod columns (left NULL): 2D collisions */
   /* The writer thread (see "asynchronous rows" below). */
   int writer_on; /* the thread has been started */
   pthread_t writer;
   pthread_mutex_t mu;
   pthread_cond_t cv;
-  struct rec *buf[2]; /* double buffer of rows waiting for the writer */
-  int fill;           /* the buffer the producer fills */
-  int nfill;          /* rows in it */
-  struct rec *work;   /* the buffer the writer is writing, or NULL */
-  int nwork;
+  struct rec *buf[HD_DB_NBUF]; /* ring of row buffers: the queued ones, then the fill one */
+  int nrows[HD_DB_NBUF];       /* rows in each queued buffer */
+  int qhead;                   /* the oldest queued buffer (the one the writer writes) */
+  int nq;                      /* buffers queued for the writer, the one it writes included */
+  int fill;                    /* the buffer the producer fills: (qhead + nq) % HD_DB_NBUF */
+  int nfill;                   /* rows in it */
+  hd_walck *walck; /* the log checkpointer, started with the writer (NULL if it could not be) */
   int quit;        /* the writer must end */
   int werr;        /* first error of the writer (hd_status), HD_OK if none */
   hd_error werror; /* its message */
@@ -136,9 +143,27 @@ static int prepare(hd_db *db, sqlite3_stmt **st, const char *sql, hd_error *err)
   return HD_OK;
 }
 
+/* The columns of a 2D collision row (the first 13 of an INSERT INTO collisions). */
+#define HD_COLL_COLS "run, seq, t, kind, i, j, disk_i, disk_j, theta_i, theta_j, f, de, vn"
+
+/* Prepares "INSERT INTO collisions (cols) VALUES (?,...),..." with HD_DB_GROUP rows of ncol
+ * parameters each, numbered in order. */
+static int prepare_group(hd_db *db, sqlite3_stmt **st, const char *cols, int ncol, hd_error *err) {
+  char sql[64 + 256 + HD_DB_GROUP * (2 * 17 + 3)];
+  int len = snprintf(sql, 320, "INSERT INTO collisions (%s) VALUES ", cols);
+  for (int k = 0; k < HD_DB_GROUP; k++)
+    for (int c = 0; c < ncol; c++)
+      len += snprintf(sql + len, sizeof sql - (size_t)len, "%s?%s",
+                      c   ? ","
+                      : k ? ",("
+                          : "(",
+                      c == ncol - 1 ? ")" : "");
+  return prepare(db, st, sql, err);
+}
+
 static void finalize_all(hd_db *db) {
   sqlite3_stmt **sts[] = {&db->ins_run,  &db->ins_coll, &db->ins_sample, &db->ins_state,
-                          &db->ins_ckpt, &db->del_ckpt, &db->ins_coll_k};
+                          &db->ins_ckpt, &db->del_ckpt, &db->ins_coll_k, &db->ins_coll2_k};
   for (size_t k = 0; k < sizeof sts / sizeof sts[0]; k++) {
     sqlite3_finalize(*sts[k]);
     *sts[k] = NULL;
@@ -213,22 +238,10 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err) {
                  "(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, "
                  "?17)",
                  err);
-  if (!rc) { /* the same, HD_DB_GROUP rows per statement (parameters numbered in order) */
-    static const char head[] = "INSERT INTO collisions (run, seq, t, kind, i, j, disk_i, "
-                               "disk_j, theta_i, theta_j, f, de, vn, eps, e_tr, tb_i, tb_j) "
-                               "VALUES ";
-    static const char one[] = "(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)";
-    char sql[sizeof head + HD_DB_GROUP * sizeof one + 1];
-    size_t len = sizeof head - 1;
-    memcpy(sql, head, len);
-    for (int k = 0; k < HD_DB_GROUP; k++) {
-      if (k) sql[len++] = ',';
-      memcpy(sql + len, one, sizeof one - 1);
-      len += sizeof one - 1;
-    }
-    sql[len] = '\0';
-    rc = prepare(db, &db->ins_coll_k, sql, err);
-  }
+  if (!rc) /* the same, HD_DB_GROUP rows per statement (parameters numbered in order) */
+    rc = prepare_group(db, &db->ins_coll_k, HD_COLL_COLS ", eps, e_tr, tb_i, tb_j", 17, err);
+  if (!rc) /* 2D collisions: the rod columns are left to their default, NULL */
+    rc = prepare_group(db, &db->ins_coll2_k, HD_COLL_COLS, 13, err);
   if (!rc)
     rc = prepare(db, &db->ins_sample,
                  "INSERT INTO samples (run, t, collisions, cpd, e_tr, e_rot, e_tr_dimer, "
@@ -357,8 +370,8 @@ static int batch_step(hd_db *db, sqlite3_stmt *st, hd_error *err, const char *wh
   return HD_OK;
 }
 
-/* Binds collision row r at parameters base+1 .. base+17 of st. */
-static void bind_collision(sqlite3_stmt *st, int base, int64_t run, const hd_collision_row *r) {
+/* Binds the 2D columns of collision row r at parameters base+1 .. base+13 of st. */
+static void bind_collision_2d(sqlite3_stmt *st, int base, int64_t run, const hd_collision_row *r) {
   sqlite3_bind_int64(st, base + 1, run);
   sqlite3_bind_int64(st, base + 2, r->seq);
   bind_real(st, base + 3, r->t);
@@ -372,6 +385,11 @@ static void bind_collision(sqlite3_stmt *st, int base, int64_t run, const hd_col
   bind_real(st, base + 11, r->f);
   bind_real(st, base + 12, r->de);
   bind_real(st, base + 13, r->vn);
+}
+
+/* Binds a whole collision row, the rod columns too, at parameters base+1 .. base+17. */
+static void bind_collision(sqlite3_stmt *st, int base, int64_t run, const hd_collision_row *r) {
+  bind_collision_2d(st, base, run, r);
   int rod = r->kind == HD_CK_ROD_ROD;
   bind_real(st, base + 14, rod ? r->eps : NAN);
   bind_real(st, base + 15, rod ? r->e_tr : NAN);
@@ -390,8 +408,13 @@ static int put_collision(hd_db *db, int64_t run, const hd_collision_row *r, hd_e
 static int put_collision_group(hd_db *db, const rec *g, hd_error *err) {
   int rc = batch_begin(db, err);
   if (rc) return rc;
-  sqlite3_stmt *st = db->ins_coll_k;
-  for (int k = 0; k < HD_DB_GROUP; k++) bind_collision(st, 17 * k, g[k].run, &g[k].u.c);
+  int rods = 0;
+  for (int k = 0; k < HD_DB_GROUP; k++) rods |= g[k].u.c.kind == HD_CK_ROD_ROD;
+  sqlite3_stmt *st = rods ? db->ins_coll_k : db->ins_coll2_k;
+  if (rods)
+    for (int k = 0; k < HD_DB_GROUP; k++) bind_collision(st, 17 * k, g[k].run, &g[k].u.c);
+  else
+    for (int k = 0; k < HD_DB_GROUP; k++) bind_collision_2d(st, 13 * k, g[k].run, &g[k].u.c);
   if (sqlite3_step(st) != SQLITE_DONE) return batch_fail(db, st, err, "insert collisions");
   sqlite3_reset(st);
   db->pending += HD_DB_GROUP;
@@ -477,10 +500,10 @@ static void *writer_main(void *arg) {
   pthread_sigmask(SIG_BLOCK, &all, NULL); /* signals are for the simulation's thread */
   pthread_mutex_lock(&db->mu);
   for (;;) {
-    while (!db->work && !db->quit) pthread_cond_wait(&db->cv, &db->mu);
-    if (!db->work) break;
-    rec *w = db->work;
-    int n = db->nwork, failed = db->werr;
+    while (!db->nq && !db->quit) pthread_cond_wait(&db->cv, &db->mu);
+    if (!db->nq) break;
+    rec *w = db->buf[db->qhead];
+    int n = db->nrows[db->qhead], failed = db->werr;
     pthread_mutex_unlock(&db->mu);
     hd_error e;
     hd_error_clear(&e);
@@ -490,7 +513,8 @@ static void *writer_main(void *arg) {
       db->werror = e;
       __atomic_store_n(&db->werr, rc, __ATOMIC_RELEASE);
     }
-    db->work = NULL;
+    db->qhead = (db->qhead + 1) % HD_DB_NBUF;
+    db->nq--;
     pthread_cond_broadcast(&db->cv);
   }
   pthread_mutex_unlock(&db->mu);
@@ -500,22 +524,25 @@ static void *writer_main(void *arg) {
 /* Hands the fill buffer to the writer (waiting for it to finish the previous one). */
 static int handoff(hd_db *db, hd_error *err) {
   if (!db->writer_on) {
-    for (int b = 0; b < 2; b++)
+    for (int b = 0; b < HD_DB_NBUF; b++)
       if (!db->buf[b] && !(db->buf[b] = malloc(sizeof(rec) * HD_DB_QCAP)))
         return hd_error_set(err, HD_ENOMEM, "%s: out of memory for the row buffer", db->path);
     if (pthread_mutex_init(&db->mu, NULL) || pthread_cond_init(&db->cv, NULL) ||
         pthread_create(&db->writer, NULL, writer_main, db))
       return hd_error_set(err, HD_ENOMEM, "%s: cannot start the writer thread", db->path);
     db->writer_on = 1;
+    /* checkpoints off the writer's path: an optimisation, so without it SQLite's automatic
+     * checkpoints stay on and nothing is lost */
+    hd_error ignored;
+    hd_walck_start(&db->walck, db->db, db->path, &ignored);
   }
   if (db->nfill == 0) return HD_OK;
   pthread_mutex_lock(&db->mu);
-  while (db->work) pthread_cond_wait(&db->cv, &db->mu);
-  db->work = db->buf[db->fill];
-  db->nwork = db->nfill;
-  pthread_cond_broadcast(&db->cv);
+  while (db->nq == HD_DB_NBUF - 1) pthread_cond_wait(&db->cv, &db->mu);
+  db->nrows[db->fill] = db->nfill;
+  if (db->nq++ == 0) pthread_cond_broadcast(&db->cv); /* the writer was idle */
   pthread_mutex_unlock(&db->mu);
-  db->fill ^= 1;
+  db->fill = (db->fill + 1) % HD_DB_NBUF;
   db->nfill = 0;
   return HD_OK;
 }
@@ -527,7 +554,7 @@ static int drain(hd_db *db, hd_error *err) {
   int rc = handoff(db, err);
   if (rc || !db->writer_on) return rc;
   pthread_mutex_lock(&db->mu);
-  while (db->work) pthread_cond_wait(&db->cv, &db->mu);
+  while (db->nq) pthread_cond_wait(&db->cv, &db->mu);
   rc = db->werr;
   if (rc && err) *err = db->werror;
   db->werr = HD_OK;
@@ -543,13 +570,16 @@ static void writer_stop(hd_db *db) {
     pthread_cond_broadcast(&db->cv);
     pthread_mutex_unlock(&db->mu);
     pthread_join(db->writer, NULL);
+    hd_walck_stop(db->walck);
+    db->walck = NULL;
     pthread_mutex_destroy(&db->mu);
     pthread_cond_destroy(&db->cv);
     db->writer_on = 0;
   }
-  free(db->buf[0]);
-  free(db->buf[1]);
-  db->buf[0] = db->buf[1] = NULL;
+  for (int b = 0; b < HD_DB_NBUF; b++) {
+    free(db->buf[b]);
+    db->buf[b] = NULL;
+  }
 }
 
 /* A slot for one more row, handing a full buffer over first. */
