@@ -1,3 +1,4 @@
+/* hd_queue: the calendar event queue with lazy deletion (see hd_queue.h). */
 #include "hd_queue.h"
 
 #include <math.h>
@@ -5,9 +6,6 @@
 
 #include "hd_mem.h"
 
-enum { HD_Q_HEAP = -1, HD_Q_OVERFLOW = -2, HD_Q_NEVER = -3 };
-
-/* a before b: earlier time, ties by lower index. */
 static inline int before(const hd_qentry *a, const hd_qentry *b) {
   return a->t < b->t || (a->t == b->t && a->id < b->id);
 }
@@ -18,95 +16,67 @@ hd_queue *hd_queue_alloc(int32_t cap) {
   size_t c = (size_t)(cap > 0 ? cap : 1);
   int32_t nb = 16;
   while (nb < cap && nb < (1 << 30)) nb *= 2;
-  q->node = hd_mem_alloc(sizeof(hd_qnode) * c);
-  q->heap = hd_mem_alloc(sizeof(hd_qentry) * c);
+  /* entries: one per body, plus the stale ones; about one stale entry per body is typical
+   * (a collision leaves the partner's old entry behind), so 3 per body rarely fill up */
+  int64_t icap = 3 * (int64_t)c + 64;
+  if (icap > INT32_MAX) icap = INT32_MAX;
+  q->key = hd_mem_alloc(sizeof(double) * c);
+  q->item = hd_mem_alloc(sizeof(hd_qitem) * (size_t)icap);
+  q->heap = hd_mem_alloc(sizeof(hd_qentry) * (size_t)icap);
   q->head = hd_mem_alloc(sizeof(int32_t) * (size_t)nb);
-  if (!q->node || !q->heap || !q->head) {
+  if (!q->key || !q->item || !q->heap || !q->head) {
     hd_queue_free(q);
     return NULL;
   }
   q->cap = cap;
   q->nb = nb;
+  q->icap = (int32_t)icap;
   return q;
 }
 
 void hd_queue_free(hd_queue *q) {
   if (!q) return;
-  free(q->node);
+  free(q->key);
+  free(q->item);
   free(q->heap);
   free(q->head);
   free(q);
 }
 
-/* --- the current bucket's heap --- */
+/* ---------------------------------------------------------------------------------------- */
+/* the heap of the current bucket */
 
-static void heap_up(hd_queue *q, int32_t k) {
-  hd_qentry x = q->heap[k];
+static void heap_push(hd_queue *q, double t, int32_t id) {
+  hd_qentry x = {t, id, 0};
+  int32_t k = q->hn++;
   while (k > 0) {
     int32_t p = (k - 1) / 2;
     if (!before(&x, &q->heap[p])) break;
     q->heap[k] = q->heap[p];
-    q->node[q->heap[k].id].pos = k;
     k = p;
   }
   q->heap[k] = x;
-  q->node[x.id].pos = k;
 }
 
-static void heap_down(hd_queue *q, int32_t k) {
-  hd_qentry x = q->heap[k];
+/* Removes the top entry. */
+static void heap_pop(hd_queue *q) {
+  hd_qentry x = q->heap[--q->hn];
+  int32_t n = q->hn, k = 0;
+  if (n == 0) return;
   for (;;) {
     int32_t c = 2 * k + 1;
-    if (c >= q->hn) break;
-    if (c + 1 < q->hn && before(&q->heap[c + 1], &q->heap[c])) c++;
+    if (c >= n) break;
+    if (c + 1 < n && before(&q->heap[c + 1], &q->heap[c])) c++;
     if (!before(&q->heap[c], &x)) break;
     q->heap[k] = q->heap[c];
-    q->node[q->heap[k].id].pos = k;
     k = c;
   }
   q->heap[k] = x;
-  q->node[x.id].pos = k;
 }
 
-static void heap_push(hd_queue *q, int32_t i) {
-  q->node[i].where = HD_Q_HEAP;
-  q->heap[q->hn] = (hd_qentry){q->node[i].t, i, 0};
-  heap_up(q, q->hn++);
-}
+/* ---------------------------------------------------------------------------------------- */
+/* lists */
 
-static void heap_remove(hd_queue *q, int32_t i) {
-  int32_t k = q->node[i].pos;
-  q->hn--;
-  if (k == q->hn) return;
-  q->heap[k] = q->heap[q->hn];
-  q->node[q->heap[k].id].pos = k;
-  if (k > 0 && before(&q->heap[k], &q->heap[(k - 1) / 2]))
-    heap_up(q, k);
-  else
-    heap_down(q, k);
-}
-
-/* --- lists --- */
-
-static inline void list_push(hd_queue *q, int32_t *head, int32_t i) {
-  hd_qnode *x = &q->node[i];
-  x->prev = -1;
-  x->next = *head;
-  if (*head >= 0) q->node[*head].prev = i;
-  *head = i;
-}
-
-static inline void list_remove(hd_queue *q, int32_t *head, int32_t i) {
-  const hd_qnode *x = &q->node[i];
-  if (x->prev >= 0)
-    q->node[x->prev].next = x->next;
-  else
-    *head = x->next;
-  if (x->next >= 0) q->node[x->next].prev = x->prev;
-}
-
-/* floor(t / w) as t * (1 / w): monotone in t, which is all the buckets need (an earlier time
- * never lands in a later bucket); clamped so that it cannot overflow. */
 static inline int64_t bucket_of(const hd_queue *q, double t) {
   double b = t * q->inv_w;
   if (b >= 0.0 && b < 4e18) return (int64_t)b; /* truncation is floor here */
@@ -114,59 +84,76 @@ static inline int64_t bucket_of(const hd_queue *q, double t) {
   return b < 4e18 ? (b > -4e18 ? (int64_t)b : -(int64_t)4e18) : (int64_t)4e18;
 }
 
-/* Files body i (key already in t[i]) where its time says. */
-static inline void insert(hd_queue *q, int32_t i) {
-  double t = q->node[i].t;
-  if (t == INFINITY) {
-    q->node[i].where = HD_Q_NEVER;
-    list_push(q, &q->never, i);
-    return;
+/* A free item (there is one: the caller checked live < icap). */
+static inline int32_t item_take(hd_queue *q) {
+  int32_t it = q->ifree;
+  if (it >= 0) {
+    q->ifree = q->item[it].next;
+    return it;
   }
-  int64_t b = bucket_of(q, t);
+  return q->itop++;
+}
+
+static inline void item_give(hd_queue *q, int32_t it) {
+  q->item[it].next = q->ifree;
+  q->ifree = it;
+}
+
+/* Links item it (time and body set) into its bucket or the overflow list, or moves it into the
+ * heap if its bucket is the current one. */
+static inline void link_item(hd_queue *q, int32_t it) {
+  hd_qitem *x = &q->item[it];
+  int64_t b = bucket_of(q, x->t);
   if (b <= q->cur) {
-    heap_push(q, i);
+    heap_push(q, x->t, x->id);
+    item_give(q, it);
   } else if (b < q->cur + q->nb) {
     int32_t slot = (int32_t)(b & (q->nb - 1));
-    q->node[i].where = slot;
-    list_push(q, &q->head[slot], i);
+    x->next = q->head[slot];
+    q->head[slot] = it;
     q->in_buckets++;
   } else {
-    q->node[i].where = HD_Q_OVERFLOW;
-    list_push(q, &q->overflow, i);
+    x->next = q->overflow;
+    q->overflow = it;
   }
 }
 
-static inline void detach(hd_queue *q, int32_t i) {
-  int32_t w = q->node[i].where;
-  if (w == HD_Q_HEAP)
-    heap_remove(q, i);
-  else if (w == HD_Q_OVERFLOW)
-    list_remove(q, &q->overflow, i);
-  else if (w == HD_Q_NEVER)
-    list_remove(q, &q->never, i);
-  else {
-    list_remove(q, &q->head[w], i);
-    q->in_buckets--;
+/* Puts a new entry (t, id), t finite, where it belongs (live already counts it). */
+static inline void place(hd_queue *q, double t, int32_t id) {
+  if (bucket_of(q, t) <= q->cur) { /* the current bucket: straight into the heap */
+    heap_push(q, t, id);
+    return;
   }
+  int32_t it = item_take(q);
+  q->item[it].t = t;
+  q->item[it].id = id;
+  link_item(q, it);
 }
 
-/* Moves the overflow entries that now fall within the year into their buckets. */
+/* Redistributes the overflow list into the new year, dropping stale entries. */
 static void redistribute(hd_queue *q) {
-  int32_t i = q->overflow;
+  int32_t it = q->overflow;
   q->overflow = -1;
-  while (i >= 0) {
-    int32_t nx = q->node[i].next;
-    insert(q, i);
-    i = nx;
+  while (it >= 0) {
+    int32_t nx = q->item[it].next;
+    if (q->key[q->item[it].id] == q->item[it].t) {
+      link_item(q, it);
+    } else {
+      item_give(q, it);
+      q->live--;
+    }
+    it = nx;
   }
 }
 
-/* Passes the first entries of the two buckets after the current one to the prefetch hint. */
+/* The prefetch hint for the next two buckets (a few entries of each). */
 static void hint(hd_queue *q) {
   for (int stage = 1; stage >= 0; stage--) {
     int32_t slot = (int32_t)((q->cur + stage + 1) & (q->nb - 1)), k = 0;
-    for (int32_t i = q->head[slot]; i >= 0 && k < 4; i = q->node[i].next, k++)
-      q->pf(q->pf_ctx, i, stage);
+    for (int32_t it = q->head[slot]; it >= 0 && k < 4; it = q->item[it].next, k++) {
+      __builtin_prefetch(&q->key[q->item[it].id]);
+      q->pf(q->pf_ctx, q->item[it].id, stage);
+    }
   }
 }
 
@@ -175,13 +162,13 @@ void hd_queue_set_prefetch(hd_queue *q, hd_queue_prefetch_fn fn, void *ctx) {
   q->pf_ctx = ctx;
 }
 
-/* Makes the next non-empty bucket current; 0 when only never-entries are left. */
+/* Moves to the next non-empty bucket and fills the heap from it; 0 if no entry is left. */
 static int advance(hd_queue *q) {
   if (q->in_buckets == 0) {
     if (q->overflow < 0) return 0;
     double tmin = INFINITY; /* jump straight to the earliest overflow entry */
-    for (int32_t i = q->overflow; i >= 0; i = q->node[i].next)
-      if (q->node[i].t < tmin) tmin = q->node[i].t;
+    for (int32_t it = q->overflow; it >= 0; it = q->item[it].next)
+      if (q->item[it].t < tmin) tmin = q->item[it].t;
     q->cur = bucket_of(q, tmin);
     redistribute(q);
     return 1;
@@ -189,28 +176,34 @@ static int advance(hd_queue *q) {
   q->cur++;
   if ((q->cur & (q->nb - 1)) == 0) redistribute(q); /* a new year */
   int32_t slot = (int32_t)(q->cur & (q->nb - 1));
-  int32_t i = q->head[slot];
+  int32_t it = q->head[slot];
   q->head[slot] = -1;
-  while (i >= 0) {
-    int32_t nx = q->node[i].next;
+  while (it >= 0) {
+    const hd_qitem *x = &q->item[it];
+    int32_t nx = x->next;
     q->in_buckets--;
-    heap_push(q, i);
-    i = nx;
+    if (q->key[x->id] == x->t)
+      heap_push(q, x->t, x->id);
+    else
+      q->live--; /* stale: its body's time has changed since */
+    item_give(q, it);
+    it = nx;
   }
   if (q->pf) hint(q);
   return 1;
 }
 
 int32_t hd_queue_top(hd_queue *q) {
-  while (q->hn == 0)
-    if (!advance(q)) return q->never;
-  return q->heap[0].id;
-}
-
-void hd_queue_update(hd_queue *q, int32_t i, double t) {
-  detach(q, i);
-  q->node[i].t = t;
-  insert(q, i);
+  for (;;) {
+    while (q->hn == 0)
+      if (!advance(q)) return 0; /* no entry: every body is at INFINITY */
+    const hd_qentry *e = &q->heap[0];
+    /* current while its time is the body's key (two entries with the same time and body are
+     * the same event: whichever comes up first stands for both) */
+    if (q->key[e->id] == e->t) return e->id;
+    heap_pop(q);
+    q->live--;
+  }
 }
 
 static int cmp_double(const void *a, const void *b) {
@@ -224,7 +217,7 @@ void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride) {
   int64_t finite = 0;
   for (int32_t i = 0; i < n; i++) {
     double ti = t[(int64_t)i * stride];
-    q->node[i].t = ti;
+    q->key[i] = ti;
     if (ti < INFINITY) {
       if (ti < tmin) tmin = ti;
       finite++;
@@ -237,7 +230,7 @@ void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride) {
   int ns = 0;
   int32_t stride_s = n > 1023 ? n / 1023 : 1;
   for (int32_t i = 0; i < n && ns < 1023; i += stride_s)
-    if (q->node[i].t < INFINITY) sample[ns++] = q->node[i].t - tmin;
+    if (q->key[i] < INFINITY) sample[ns++] = q->key[i] - tmin;
   q->w = 1.0;
   if (ns > 2 && finite > 1) {
     qsort(sample, (size_t)ns, sizeof(double), cmp_double);
@@ -248,7 +241,24 @@ void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride) {
   q->cur = finite ? bucket_of(q, tmin) : 0;
   q->hn = 0;
   q->in_buckets = 0;
-  q->overflow = q->never = -1;
+  q->overflow = q->ifree = -1;
+  q->itop = 0;
+  q->live = 0;
   for (int32_t s = 0; s < q->nb; s++) q->head[s] = -1;
-  for (int32_t i = 0; i < n; i++) insert(q, i);
+  for (int32_t i = 0; i < n; i++)
+    if (q->key[i] < INFINITY) {
+      q->live++;
+      place(q, q->key[i], i);
+    }
+}
+
+void hd_queue_update(hd_queue *q, int32_t i, double t) {
+  q->key[i] = t;
+  if (t == INFINITY) return; /* no entry; the old one, if any, is stale now */
+  if (q->live >= q->icap) {  /* the pool is full of stale entries: start afresh from the keys */
+    hd_queue_build(q, q->n, q->key, 1);
+    return;
+  }
+  q->live++;
+  place(q, t, i);
 }

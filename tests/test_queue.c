@@ -83,8 +83,43 @@ static void ties_by_index(void **state) {
   hd_queue_free(q);
 }
 
+/* Many updates between two events (each leaves a stale entry behind, here far ahead, where no
+ * event reaches it): the pool of entries fills up (3 n + 64 of them) and the queue rebuilds
+ * itself from the keys, several times; the top stays the brute-force minimum throughout.
+ * Also updates back to the very same time (a duplicate entry, which stands for the same
+ * event). */
+static void many_updates_between_events(void **state) {
+  (void)state;
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(r, 7);
+  enum { n = 10 };
+  double t[n];
+  hd_queue *q = hd_queue_alloc(n);
+  assert_non_null(q);
+  for (int32_t i = 0; i < n; i++) t[i] = gsl_rng_uniform(r);
+  hd_queue_build(q, n, t, 1);
+  double now = 0.0;
+  for (int k = 0; k < 2000; k++) {
+    int32_t top = hd_queue_top(q);
+    assert_int_equal(top, brute_min(t, n));
+    now = t[top];
+    for (int u = 0; u < 50; u++) { /* 50 updates of others per event: 1000 stale entries */
+      int32_t o = (int32_t)gsl_rng_uniform_int(r, n);
+      if (o == top) continue;
+      double v = gsl_rng_uniform(r);
+      t[o] = v < 0.1 ? t[o] : now + (v < 0.5 ? 1e6 : 1.0) * gsl_rng_uniform(r);
+      hd_queue_update(q, o, t[o]);
+    }
+    t[top] = now + gsl_rng_uniform(r);
+    hd_queue_update(q, top, t[top]);
+  }
+  hd_queue_free(q);
+  gsl_rng_free(r);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {cmocka_unit_test(against_brute_force),
-                                     cmocka_unit_test(ties_by_index)};
+                                     cmocka_unit_test(ties_by_index),
+                                     cmocka_unit_test(many_updates_between_events)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
