@@ -99,11 +99,10 @@ static inline void item_give(hd_queue *q, int32_t it) {
   q->ifree = it;
 }
 
-/* Links item it (time and body set) into its bucket or the overflow list, or moves it into the
- * heap if its bucket is the current one. */
-static inline void link_item(hd_queue *q, int32_t it) {
+/* Links item it (time and body set, in bucket b) into its bucket or the overflow list, or
+ * moves it into the heap if b is the current bucket. */
+static inline void link_item(hd_queue *q, int32_t it, int64_t b) {
   hd_qitem *x = &q->item[it];
-  int64_t b = bucket_of(q, x->t);
   if (b <= q->cur) {
     heap_push(q, x->t, x->id);
     item_give(q, it);
@@ -120,14 +119,15 @@ static inline void link_item(hd_queue *q, int32_t it) {
 
 /* Puts a new entry (t, id), t finite, where it belongs (live already counts it). */
 static inline void place(hd_queue *q, double t, int32_t id) {
-  if (bucket_of(q, t) <= q->cur) { /* the current bucket: straight into the heap */
+  int64_t b = bucket_of(q, t);
+  if (b <= q->cur) { /* the current bucket: straight into the heap */
     heap_push(q, t, id);
     return;
   }
   int32_t it = item_take(q);
   q->item[it].t = t;
   q->item[it].id = id;
-  link_item(q, it);
+  link_item(q, it, b);
 }
 
 /* Redistributes the overflow list into the new year, dropping stale entries. */
@@ -137,7 +137,7 @@ static void redistribute(hd_queue *q) {
   while (it >= 0) {
     int32_t nx = q->item[it].next;
     if (q->key[q->item[it].id] == q->item[it].t) {
-      link_item(q, it);
+      link_item(q, it, bucket_of(q, q->item[it].t));
     } else {
       item_give(q, it);
       q->live--;
