@@ -23,8 +23,9 @@ hd_queue *hd_queue_alloc(int32_t cap) {
   q->key = hd_mem_alloc(sizeof(double) * c);
   q->item = hd_mem_alloc(sizeof(hd_qitem) * (size_t)icap);
   q->heap = hd_mem_alloc(sizeof(hd_qentry) * (size_t)icap);
+  q->ovf = hd_mem_alloc(sizeof(hd_qentry) * (size_t)icap);
   q->head = hd_mem_alloc(sizeof(int32_t) * (size_t)nb);
-  if (!q->key || !q->item || !q->heap || !q->head) {
+  if (!q->key || !q->item || !q->heap || !q->ovf || !q->head) {
     hd_queue_free(q);
     return NULL;
   }
@@ -39,6 +40,7 @@ void hd_queue_free(hd_queue *q) {
   free(q->key);
   free(q->item);
   free(q->heap);
+  free(q->ovf);
   free(q->head);
   free(q);
 }
@@ -99,51 +101,45 @@ static inline void item_give(hd_queue *q, int32_t it) {
   q->ifree = it;
 }
 
-/* Links item it (time and body set, in bucket b) into its bucket or the overflow list, or
- * moves it into the heap if b is the current bucket. */
-static inline void link_item(hd_queue *q, int32_t it, int64_t b) {
-  hd_qitem *x = &q->item[it];
+/* Puts an entry (t, id), t finite, in bucket b, where it belongs: the heap if b is the current
+ * bucket, a bucket of the year, or the overflow (live already counts it). */
+static inline void place_in(hd_queue *q, double t, int32_t id, int64_t b) {
   if (b <= q->cur) {
-    heap_push(q, x->t, x->id);
-    item_give(q, it);
+    heap_push(q, t, id);
   } else if (b < q->cur + q->nb) {
-    int32_t slot = (int32_t)(b & (q->nb - 1));
+    int32_t it = item_take(q), slot = (int32_t)(b & (q->nb - 1));
+    hd_qitem *x = &q->item[it];
+    x->t = t;
+    x->id = id;
     x->next = q->head[slot];
     q->head[slot] = it;
     q->in_buckets++;
   } else {
-    x->next = q->overflow;
-    q->overflow = it;
+    q->ovf[q->novf++] = (hd_qentry){t, id, 0};
   }
 }
 
-/* Puts a new entry (t, id), t finite, where it belongs (live already counts it). */
 static inline void place(hd_queue *q, double t, int32_t id) {
-  int64_t b = bucket_of(q, t);
-  if (b <= q->cur) { /* the current bucket: straight into the heap */
-    heap_push(q, t, id);
-    return;
-  }
-  int32_t it = item_take(q);
-  q->item[it].t = t;
-  q->item[it].id = id;
-  link_item(q, it, b);
+  place_in(q, t, id, bucket_of(q, t));
 }
 
-/* Redistributes the overflow list into the new year, dropping stale entries. */
+/* Redistributes the overflow into the new year, dropping stale entries; what is still beyond
+ * it is compacted in place (the order in the overflow does not matter). */
 static void redistribute(hd_queue *q) {
-  int32_t it = q->overflow;
-  q->overflow = -1;
-  while (it >= 0) {
-    int32_t nx = q->item[it].next;
-    if (q->key[q->item[it].id] == q->item[it].t) {
-      link_item(q, it, bucket_of(q, q->item[it].t));
-    } else {
-      item_give(q, it);
+  int32_t n = q->novf, kept = 0;
+  for (int32_t r = 0; r < n; r++) {
+    hd_qentry e = q->ovf[r];
+    if (q->key[e.id] != e.t) { /* stale */
       q->live--;
+      continue;
     }
-    it = nx;
+    int64_t b = bucket_of(q, e.t);
+    if (b >= q->cur + q->nb)
+      q->ovf[kept++] = e;
+    else
+      place_in(q, e.t, e.id, b);
   }
+  q->novf = kept;
 }
 
 /* The prefetch hint for the next two buckets (a few entries of each). */
@@ -165,10 +161,10 @@ void hd_queue_set_prefetch(hd_queue *q, hd_queue_prefetch_fn fn, void *ctx) {
 /* Moves to the next non-empty bucket and fills the heap from it; 0 if no entry is left. */
 static int advance(hd_queue *q) {
   if (q->in_buckets == 0) {
-    if (q->overflow < 0) return 0;
+    if (q->novf == 0) return 0;
     double tmin = INFINITY; /* jump straight to the earliest overflow entry */
-    for (int32_t it = q->overflow; it >= 0; it = q->item[it].next)
-      if (q->item[it].t < tmin) tmin = q->item[it].t;
+    for (int32_t r = 0; r < q->novf; r++)
+      if (q->ovf[r].t < tmin) tmin = q->ovf[r].t;
     q->cur = bucket_of(q, tmin);
     redistribute(q);
     return 1;
@@ -241,7 +237,8 @@ void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride) {
   q->cur = finite ? bucket_of(q, tmin) : 0;
   q->hn = 0;
   q->in_buckets = 0;
-  q->overflow = q->ifree = -1;
+  q->ifree = -1;
+  q->novf = 0;
   q->itop = 0;
   q->live = 0;
   for (int32_t s = 0; s < q->nb; s++) q->head[s] = -1;

@@ -2,7 +2,8 @@
  * in the manner of G. Paul, J. Comput. Phys. 221, 615 (2007), with lazy deletion:
  *   - time is cut into buckets of width w; bucket b holds the entries with floor(t/w) == b;
  *     the nb buckets ahead of the current one are an array of singly linked lists (a "year");
- *     entries further ahead wait in an overflow list, redistributed at each new year;
+ *     entries further ahead wait in an overflow array, redistributed at each new year (an
+ *     array, scanned in order, not a list: at N = 10^6 walking a list there was 10 % of the time);
  *   - only the current bucket is ordered: a small binary heap, filled when the queue reaches it;
  *   - a body whose time changes gets a new entry; the old one is left where it is and dropped
  *     when it comes up (an entry is current while its time equals the body's key).  Nothing is
@@ -26,7 +27,7 @@ typedef struct hd_qentry {
   int32_t pad;
 } hd_qentry;
 
-/* An entry of a bucket or of the overflow list. */
+/* An entry of a bucket. */
 typedef struct hd_qitem {
   double t;     /* event time */
   int32_t id;   /* body */
@@ -52,7 +53,8 @@ typedef struct hd_queue {
   int32_t hn;              /* entries in heap */
   int32_t nb;              /* buckets in a year (a power of two) */
   int32_t *head;           /* head[slot]: first item of bucket slot, -1 if empty */
-  int32_t overflow;        /* head of the overflow list */
+  hd_qentry *ovf;          /* the overflow: entries beyond the year, icap of room */
+  int32_t novf;            /* entries in it */
   int64_t in_buckets;      /* items in bucket lists */
   int64_t cur;             /* index of the current bucket (floor(t / w)) */
   double w;                /* bucket width */
