@@ -10,6 +10,7 @@
  * searched once, by j (hd_predict_after_pair).  In a pure disk scene a prediction walks interior
  * cells by index offsets, without the periodic and wall logic of HD_FOR_NEIGHBOURS.
  * hd_predict_prefetch is the event queue's prefetch hint (hd_queue.h) for large systems. */
+#include <float.h>
 #include <math.h>
 
 #include "hd_disk.h"
@@ -175,27 +176,30 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
     double dtj = now - bj->t, R = rad[bi->species] + rad[bj->species];
     double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x,
            ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
-    double t = rx * rx + ry * ry <= R * R
-                   ? 0.0
-                   : hd_disk_contact_time(rx, ry, bj->k.vx - bi->k.vx, bj->k.vy - bi->k.vy, R);
+    /* the circles' first meeting, without branches on the data (they would be mispredicted):
+     * 0 if they overlap (c <= 0), else c / (sqrt(b^2 - v^2 c) - b) when they meet (b < 0 and
+     * disc > 0); a denominator floored at DBL_MIN only lowers the bound */
+    double vx = bj->k.vx - bi->k.vx, vy = bj->k.vy - bi->k.vy;
+    double c = rx * rx + ry * ry - R * R, b = rx * vx + ry * vy,
+           disc = b * b - (vx * vx + vy * vy) * c;
+    double t = fmax(c, 0.0) / fmax(sqrt(fmax(disc, 0.0)) - b, DBL_MIN);
     double lim = fmin(cross, bj->c_t - now);
-    if (t >= *best || t > lim)
-      continue;              /* cannot touch before the earliest contact so far, or
-                              * within the horizon */
+    /* kept unless it cannot touch before the earliest contact so far, or within the horizon */
+    int keep = ((c <= 0.0) | ((b < 0.0) & (disc > 0.0))) & (t < *best) & (t <= lim);
     if (nc == HD_MAX_CAND) { /* a crowd: the rest one by one (still exact, only slower) */
-      predict_one(s, bi, j, sx, sy, cross, best);
+      if (keep) predict_one(s, bi, j, sx, sy, cross, best);
       continue;
     }
-    hd_cand *c = &cs[nc];
-    c->t = t;
-    c->lim = lim < 0.0 ? 0.0 : lim;
-    c->sx = sx;
-    c->sy = sy;
-    c->j = j;
-    c->begun = 0;
-    ord[nc] = nc;
-    nc++;
+    hd_cand *cd = &cs[nc];
+    cd->t = t;
+    cd->lim = fmax(lim, 0.0);
+    cd->sx = sx;
+    cd->sy = sy;
+    cd->j = j;
+    cd->begun = 0;
+    nc += keep;
   });
+  for (int k = 0; k < nc; k++) ord[k] = k;
   while (nc > 0) {
     int k = 0; /* the pending search furthest behind */
     for (int q = 1; q < nc; q++)
