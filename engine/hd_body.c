@@ -265,8 +265,11 @@ static inline double ca_rate(double g, double r) {
 static inline double safe_step(double h, double g, double r, double L, double K) {
   double tl = h / L, tq;
   if (K > 0.0) {
-    double s = sqrt(g * g + 2.0 * K * h * r * r);
-    tq = g < 0.0 ? 2.0 * h * r / (s - g) : (g + s) / (r * K);
+    /* the two forms are equal ((s - g)(s + g) = 2 K h r^2), each free of cancellation on its
+     * side; numerator and denominator (finite) are selected by arithmetic with m = 0 or 1, which
+     * is exact, so that no branch waits on the sign of g (it varies from pair to pair) */
+    double s = sqrt(g * g + 2.0 * K * h * r * r), m = (double)(g < 0.0);
+    tq = (m * (2.0 * h * r) + (1.0 - m) * (g + s)) / (m * (s - g) + (1.0 - m) * (r * K));
   } else {
     tq = g < 0.0 ? h * r / (-g) : HUGE_VAL;
   }

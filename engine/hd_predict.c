@@ -82,6 +82,14 @@ static inline void predict_disk_pair(const hd_sim *s, hd_body *bi, int32_t j, do
   }
 }
 
+/* max and min of doubles that are not NaN, inline (fmax and fmin are library calls) */
+static inline double dmax(double a, double b) {
+  return a > b ? a : b;
+}
+static inline double dmin(double a, double b) {
+  return a < b ? a : b;
+}
+
 /* Contacts of body i with body j (shifted by sx, sy); *best relative to now. */
 static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, double sy,
                                double horizon, double *best) {
@@ -95,7 +103,7 @@ static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, dou
   }
   /* the search ends at the first crossing of either body: whichever crosses first predicts
    * again against its new neighbourhood, which holds the other if they can still meet */
-  double lim = fmin(*best, fmin(horizon, bj->c_t - s->c.t));
+  double lim = dmin(*best, dmin(horizon, bj->c_t - s->c.t));
   if (lim < 0.0) lim = 0.0;
   hd_kin kj = bj->k;
   hd_kin_advance(&kj, dtj);
@@ -182,8 +190,8 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
     double vx = bj->k.vx - bi->k.vx, vy = bj->k.vy - bi->k.vy;
     double c = rx * rx + ry * ry - R * R, b = rx * vx + ry * vy,
            disc = b * b - (vx * vx + vy * vy) * c;
-    double t = fmax(c, 0.0) / fmax(sqrt(fmax(disc, 0.0)) - b, DBL_MIN);
-    double lim = fmin(cross, bj->c_t - now);
+    double t = dmax(c, 0.0) / dmax(sqrt(dmax(disc, 0.0)) - b, DBL_MIN);
+    double lim = dmin(cross, bj->c_t - now);
     /* kept unless it cannot touch before the earliest contact so far, or within the horizon */
     int keep = ((c <= 0.0) | ((b < 0.0) & (disc > 0.0))) & (t < *best) & (t <= lim);
     if (nc == HD_MAX_CAND) { /* a crowd: the rest one by one (still exact, only slower) */
@@ -192,7 +200,7 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
     }
     hd_cand *cd = &cs[nc];
     cd->t = t;
-    cd->lim = fmax(lim, 0.0);
+    cd->lim = dmax(lim, 0.0);
     cd->sx = sx;
     cd->sy = sy;
     cd->j = j;
@@ -207,7 +215,7 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
     hd_cand *c = &cs[ord[k]];
     if (!(c->t < *best)) break;
     const hd_body *bj = &s->b[c->j];
-    double lim = fmin(*best, c->lim);
+    double lim = dmin(*best, c->lim);
     hd_contact ct;
     int r;
     if (c->begun) {
