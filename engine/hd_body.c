@@ -20,14 +20,22 @@
  *   (ii) h(t + tau) >= h + h' tau - K tau^2/2,  K = w_A^2 a_A/2 + w_B^2 a_B/2 >= |r''|
  *        (Taylor with |r''| <= K, then |x + y| >= |x| + x.y/|x| by convexity of the norm).
  * The step is the larger of the first positive roots of the two bounds, minimised over pairs:
- * every pair keeps h > 0 over the step, so no root is ever skipped.  Far from contact (ii) takes
+ * every pair keeps h > 0 over the step, so no root is ever skipped.  (Bound (ii) is
+ * computed from g = r.r' and |r| without forming h' = g / |r|.)  Far from contact (ii) takes
  * long steps (a near-miss is passed in a few steps: (ii) is exact in h and h'); near a transversal
  * root (ii) converges quadratically, near a tangential one linearly.  sin and cos are computed
  * once per body per step (ca_sincos: an inline Cody-Waite reduction and the fdlibm polynomials,
  * absolute error < 1.2e-16, as accurate as the argument phi + omega t itself; libm beyond
  * |phi + omega t| >= 1e5).  Fast spinners take steps of order sqrt(h/K) ~ 1/omega: exact but
  * slower.  A CA that starts at t = 0 reuses the state of the t = 0 contact check as its first
- * step.
+ * step.  The CA is resumable (hd_ca_begin, hd_ca_step: one evaluation per step): its current
+ * time t is at every step a lower bound on the contact time, which lets the engine interleave
+ * the searches of one body's neighbours, always advancing the one furthest behind and stopping
+ * all once it passes the earliest contact found (hd_predict.c).  Stepping a search with a
+ * smaller tmax only ends it sooner: the steps do not depend on tmax (only the Newton polish
+ * below stays <= tmax), so the contact found is the one hd_predict_pair finds alone.  A dimer's
+ * sin and cos at t = 0 may be given (hd_ca_sincos, the same function): shared by the searches of
+ * all its neighbours.
  *
  * Tolerances (all relative to D; velocities relative to L) and their effect:
  *   TOL_C = 1e-12  a pair is "in contact" when CA brings its gap to h <= TOL_C D.  One or two
@@ -69,6 +77,7 @@
 #include "hd_body.h"
 
 #include <math.h>
+#include <stddef.h>
 
 #define TOL_C 1e-12
 #define TOL_0 1e-10
@@ -171,20 +180,6 @@ int hd_predict_disks(double dx, double dy, double dvx, double dvy, double D, dou
 
 /* ---- conservative advancement ------------------------------------------------------------- */
 
-/* The moving geometry of up to four "pairs": disk pairs of two bodies, or disks against a wall. */
-typedef struct ca_ctx {
-  int wall;              /* 0: body pair, 1: body against a wall */
-  int na, nb;            /* disks of A and B (nb = 1 for a wall) */
-  double dx, dy;         /* pair: R_B - R_A at t = 0; wall: (gap of A's centre, unused) */
-  double dvx, dvy;       /* pair: V_B - V_A; wall: (rate of the centre's gap, unused) */
-  double ha, hb;         /* half bond lengths */
-  double pa, wa, pb, wb; /* orientations and angular velocities */
-  double wsin;           /* wall: the axis coordinate of the offset is sin (1) or cos (0) */
-  double wn;             /* wall: inward normal sign */
-  double D;              /* contact distance (pair) or disk diameter (wall) */
-  double L, K, K2u;      /* bounds on |h'|, the lower bound on h'' (-K), an upper bound on h'' */
-} ca_ctx;
-
 /* sin and cos of x for the CA loop: Cody-Waite reduction by pi/2 (33 + 53 bits of pi/2, exact
  * for |x| < 1e5) and the fdlibm kernels on [-pi/4, pi/4] (polynomials in Estrin form for a short
  * latency: the CA loop is a chain of dependent steps).  Absolute error < 1.2e-16 (measured
@@ -215,17 +210,20 @@ static inline void ca_sincos(double x, double *sp, double *cp) {
   *cp = cg * (c * even + s * odd);
 }
 
-/* Gaps h[p] and gap rates hd[p] of every pair at time t. */
-static void ca_eval(const ca_ctx *c, double t, double *h, double *hd) {
-  double sa, ca;
-  ca_sincos(c->pa + c->wa * t, &sa, &ca);
+/* Gaps h[p] of every pair at time t (sa, ca: sin and cos of A's orientation then), and their rates
+ * h'[p] = g[p] / r[p] (ca_rate): for a body pair r is the distance of the disk centres and g =
+ * r.r', for a wall r = 1 and g = h'.  The division is left to the few pairs that need h' itself
+ * (safe_step does without). */
+static inline void ca_eval_sc(const hd_ca_geom *c, double t, double sa, double ca, double *h,
+                              double *g, double *r) {
   if (c->wall) {
-    double g = c->dx + c->dvx * t;
+    double gc = c->dx + c->dvx * t;
     for (int i = 0; i < c->na; i++) {
       double s = disk_sign(i) * c->ha * c->wn;
       if (c->na == 1) s = 0.0;
-      h[i] = g + s * (c->wsin ? sa : ca);
-      hd[i] = c->dvx + s * c->wa * (c->wsin ? ca : -sa);
+      h[i] = gc + s * (c->wsin ? sa : ca);
+      g[i] = c->dvx + s * c->wa * (c->wsin ? ca : -sa);
+      r[i] = 1.0;
     }
     return;
   }
@@ -239,22 +237,41 @@ static void ca_eval(const ca_ctx *c, double t, double *h, double *hd) {
       double kb = c->nb == 1 ? 0.0 : disk_sign(j) * c->hb;
       double rx = rx0 + kb * cb - oax, ry = ry0 + kb * sb - oay;
       double vx = c->dvx - kb * c->wb * sb - wax, vy = c->dvy + kb * c->wb * cb - way;
-      double r = sqrt(rx * rx + ry * ry);
+      double rr = sqrt(rx * rx + ry * ry);
       int p = i * c->nb + j;
-      h[p] = r - c->D;
-      hd[p] = r > 0.0 ? (rx * vx + ry * vy) / r : -HUGE_VAL;
+      h[p] = rr - c->D;
+      g[p] = rx * vx + ry * vy;
+      r[p] = rr;
     }
   }
 }
 
-/* A step over which the gap stays positive: the larger first root of bounds (i) and (ii). */
-static double safe_step(double h, double hd, double L, double K) {
+/* ca_eval_sc with sin and cos of A's orientation at t computed here. */
+static void ca_eval(const hd_ca_geom *c, double t, double *h, double *g, double *r) {
+  double sa, ca;
+  ca_sincos(c->pa + c->wa * t, &sa, &ca);
+  ca_eval_sc(c, t, sa, ca, h, g, r);
+}
+
+/* The gap rate h' = g / r of a pair evaluated by ca_eval (-inf for coincident centres). */
+static inline double ca_rate(double g, double r) {
+  return r > 0.0 ? g / r : -HUGE_VAL;
+}
+
+/* A step over which the gap stays positive: the larger first root of bounds (i) and (ii), for a
+ * pair with gap h > 0 and rate h' = g / r (r > 0), written without computing h' (one division
+ * fewer): with s = sqrt(g^2 + 2 K h r^2) = r sqrt(h'^2 + 2 K h), the first positive root of
+ * h + h' tau - K tau^2 / 2 is 2 h r / (s - g) if g < 0, (g + s) / (r K) otherwise. */
+static inline double safe_step(double h, double g, double r, double L, double K) {
   double tl = h / L, tq;
   if (K > 0.0) {
-    double s = sqrt(hd * hd + 2.0 * K * h);
-    tq = hd < 0.0 ? 2.0 * h / (s - hd) : (hd + s) / K;
+    /* the two forms are equal ((s - g)(s + g) = 2 K h r^2), each free of cancellation on its
+     * side; numerator and denominator (finite) are selected by arithmetic with m = 0 or 1, which
+     * is exact, so that no branch waits on the sign of g (it varies from pair to pair) */
+    double s = sqrt(g * g + 2.0 * K * h * r * r), m = (double)(g < 0.0);
+    tq = (m * (2.0 * h * r) + (1.0 - m) * (g + s)) / (m * (s - g) + (1.0 - m) * (r * K));
   } else {
-    tq = hd < 0.0 ? h / (-hd) : HUGE_VAL;
+    tq = g < 0.0 ? h * r / (-g) : HUGE_VAL;
   }
   return tl > tq ? tl : tq;
 }
@@ -293,101 +310,133 @@ static double ign_step(double h, double hd, double hsep, double hc, double vtol,
   return s;
 }
 
-/* CA from t0 to tend; the pair state at t0 = 0 is checked for contacts and just-collided pairs.
- * Returns 1 and (t, pair index) on a contact. */
-static int ca_solve(const ca_ctx *c, double t, double tend, double tmax, double *tout, int *pout) {
+/* Starts a CA at t0 (0, or when the enclosing circles first meet) that ends after tend. */
+static void ca_init(hd_ca *s, double t0, double tend) {
+  s->t = t0;
+  s->tend = tend;
+  s->ign = 0;
+  s->have = 0;
+  s->fresh = 1;
+  s->it = 0;
+  s->sc0 = 0;
+}
+
+/* One CA step: evaluates the pairs at s->t (the pair state at t = 0 is first checked for
+ * contacts and just-collided pairs) and advances s->t by the safe step.  Returns 1 and (t, pair
+ * index) on a contact, 0 if there is none up to min(tend, tmax), 2 if under way. */
+static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
+  const hd_ca_geom *c = &s->g;
   const int np = c->na * c->nb;
   const double D = c->D, hc = TOL_C * D, h0 = TOL_0 * D, hsep = TOL_SEP * D, vtol = VTOL * c->L;
-  double h[4], hd[4];
-  unsigned ign = 0;
-  int have = 0; /* h, hd already hold the state at t */
-  if (t == 0.0) {
-    ca_eval(c, 0.0, h, hd);
-    int best = -1;
-    for (int p = 0; p < np; p++) {
-      if (!(h[p] <= h0)) continue;
-      if (hd[p] < -vtol) {
-        if (best < 0 || h[p] < h[best]) best = p;
-      } else {
-        ign |= 1u << p;
-      }
-    }
-    if (best >= 0) {
-      *tout = 0.0;
-      *pout = best;
-      return 1;
-    }
-    have = 1;
-  }
-  for (long it = 0; it < HD_CA_MAXIT; it++) {
-    if (!have) ca_eval(c, t, h, hd);
-    have = 0;
-    double step = HUGE_VAL;
-    unsigned cand = 0;
-    for (int p = 0; p < np; p++) {
-      unsigned bit = 1u << p;
-      if (h[p] != h[p] || hd[p] != hd[p]) return 0; /* NaN state */
-      if (ign & bit) {
-        if (hd[p] < -vtol && h[p] <= hc) {
-          /* a touching pair that was sliding (|h'| tiny after an alpha = 0 collision) and that
-           * rotation now drives into each other: it collides now, before any overlap grows */
-          cand |= bit;
-          ign &= ~bit;
-          continue;
-        }
-        if (h[p] > hsep || (hd[p] < -vtol && h[p] > hc)) {
-          ign &= ~bit;
-        } else if (hd[p] >= -vtol) {
-          double s = ign_step(h[p], hd[p], hsep, hc, vtol, c->K, c->K2u);
-          if (s < step) step = s;
-          continue;
-        }
-      }
-      if (h[p] <= hc) {
-        if (hd[p] < -vtol) {
-          cand |= bit;
-        } else {
-          ign |= bit;
-          double s = ign_step(h[p], hd[p], hsep, hc, vtol, c->K, c->K2u);
-          if (s < step) step = s;
-        }
-      } else {
-        double s = safe_step(h[p], hd[p], c->L, c->K);
-        if (s < step) step = s;
-      }
-    }
-    if (cand) {
-      /* polish each candidate by Newton steps inside [t, t + step) and keep the earliest */
-      double tbest = HUGE_VAL;
-      int pbest = -1;
+  double *h = s->h, *g = s->g_, *r = s->r, t = s->t;
+  unsigned ign = s->ign;
+  if (s->fresh) {
+    s->fresh = 0;
+    if (t == 0.0) {
+      if (s->sc0)
+        ca_eval_sc(c, 0.0, s->sa0, s->ca0, h, g, r);
+      else
+        ca_eval(c, 0.0, h, g, r);
+      int best = -1;
       for (int p = 0; p < np; p++) {
-        if (!(cand & (1u << p))) continue;
-        double tp = t, hp = h[p], hdp = hd[p];
-        for (int k = 0; k < 3 && hp > 0.0; k++) {
-          double t1 = tp + hp / (-hdp);
-          if (!(t1 < t + step) || !(t1 <= tmax)) break;
-          double h1[4], hd1[4];
-          ca_eval(c, t1, h1, hd1);
-          if (!(fabs(h1[p]) < hp) || !(hd1[p] < 0.0)) break;
-          tp = t1;
-          hp = h1[p];
-          hdp = hd1[p];
-        }
-        if (tp < tbest) {
-          tbest = tp;
-          pbest = p;
+        if (!(h[p] <= h0)) continue;
+        if (ca_rate(g[p], r[p]) < -vtol) {
+          if (best < 0 || h[p] < h[best]) best = p;
+        } else {
+          ign |= 1u << p;
         }
       }
-      *tout = tbest;
-      *pout = pbest;
-      return 1;
+      if (best >= 0) {
+        *tout = 0.0;
+        *pout = best;
+        return 1;
+      }
+      s->have = 1;
     }
-    double tn = t + step;
-    if (!(tn > t)) tn = nextafter(t, HUGE_VAL);
-    t = tn;
-    if (!(t <= tend)) return 0;
   }
-  return 0;
+  if (++s->it > HD_CA_MAXIT) return 0;
+  if (!s->have) ca_eval(c, t, h, g, r);
+  s->have = 0;
+  double step = HUGE_VAL;
+  unsigned cand = 0, far = 0; /* far: pairs with h > hc, not ignored: the safe step */
+  for (int p = 0; p < np; p++) {
+    unsigned bit = 1u << p;
+    if (h[p] != h[p] || g[p] != g[p]) return 0; /* NaN state */
+    if (!(ign & bit) && h[p] > hc) {
+      far |= bit;
+      continue;
+    }
+    double hd = ca_rate(g[p], r[p]);
+    if (ign & bit) {
+      if (hd < -vtol && h[p] <= hc) {
+        /* a touching pair that was sliding (|h'| tiny after an alpha = 0 collision) and that
+         * rotation now drives into each other: it collides now, before any overlap grows */
+        cand |= bit;
+        ign &= ~bit;
+        continue;
+      }
+      if (h[p] > hsep || (hd < -vtol && h[p] > hc)) {
+        ign &= ~bit;
+        far |= bit;
+        continue;
+      } else if (hd >= -vtol) {
+        double st = ign_step(h[p], hd, hsep, hc, vtol, c->K, c->K2u);
+        if (st < step) step = st;
+        continue;
+      }
+    }
+    /* h <= hc here */
+    if (hd < -vtol) {
+      cand |= bit;
+    } else {
+      ign |= bit;
+      double st = ign_step(h[p], hd, hsep, hc, vtol, c->K, c->K2u);
+      if (st < step) step = st;
+    }
+  }
+  s->ign = ign;
+  for (int p = 0; p < np; p++) { /* no branch on the data: the 4 steps overlap in the CPU */
+    double st = safe_step(h[p], g[p], r[p], c->L, c->K);
+    if ((far >> p) & 1u) step = st < step ? st : step;
+  }
+  if (cand) {
+    /* polish each candidate by Newton steps inside [t, t + step) and keep the earliest */
+    double tbest = HUGE_VAL;
+    int pbest = -1;
+    for (int p = 0; p < np; p++) {
+      if (!(cand & (1u << p))) continue;
+      double tp = t, hp = h[p], hdp = ca_rate(g[p], r[p]);
+      for (int k = 0; k < 3 && hp > 0.0; k++) {
+        double t1 = tp + hp / (-hdp);
+        if (!(t1 < t + step) || !(t1 <= tmax)) break;
+        double h1[4], g1[4], r1[4];
+        ca_eval(c, t1, h1, g1, r1);
+        double hd1 = ca_rate(g1[p], r1[p]);
+        if (!(fabs(h1[p]) < hp) || !(hd1 < 0.0)) break;
+        tp = t1;
+        hp = h1[p];
+        hdp = hd1;
+      }
+      if (tp < tbest) {
+        tbest = tp;
+        pbest = p;
+      }
+    }
+    *tout = tbest;
+    *pout = pbest;
+    return 1;
+  }
+  double tn = t + step;
+  if (!(tn > t)) tn = nextafter(t, HUGE_VAL);
+  s->t = tn;
+  return tn <= s->tend && tn <= tmax ? 2 : 0;
+}
+
+/* CA from s->t to the end: returns 1 and (t, pair index) on a contact, 0 if none. */
+static int ca_solve(hd_ca *s, double tmax, double *tout, int *pout) {
+  int r;
+  while ((r = ca_advance(s, tmax, tout, pout)) == 2) continue;
+  return r;
 }
 
 /* The interval [t_in, t_out] in which |d + v t| <= R, intersected with t >= 0. Returns 0 if empty.
@@ -415,40 +464,44 @@ static int circle_window(double dx, double dy, double vx, double vy, double R, d
   return 1;
 }
 
-int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
-                    double tmax, hd_contact *c) {
-  ca_ctx x;
-  x.wall = 0;
-  x.na = sa->kind == HD_KIND_DIMER ? 2 : 1;
-  x.nb = sb->kind == HD_KIND_DIMER ? 2 : 1;
-  x.dx = B->x - A->x;
-  x.dy = B->y - A->y;
-  x.dvx = B->vx - A->vx;
-  x.dvy = B->vy - A->vy;
-  x.ha = half_a(sa);
-  x.hb = half_a(sb);
-  x.pa = x.na == 2 ? A->phi : 0.0;
-  x.wa = x.na == 2 ? A->omega : 0.0;
-  x.pb = x.nb == 2 ? B->phi : 0.0;
-  x.wb = x.nb == 2 ? B->omega : 0.0;
-  x.wsin = 0.0;
-  x.wn = 0.0;
-  x.D = 0.5 * (sa->d + sb->d);
+void hd_ca_sincos(double x, double *s, double *c) {
+  ca_sincos(x, s, c);
+}
+
+int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
+                double tmax, const double *sca, hd_contact *c) {
+  hd_ca_geom *x = &ca->g;
+  x->wall = 0;
+  x->na = sa->kind == HD_KIND_DIMER ? 2 : 1;
+  x->nb = sb->kind == HD_KIND_DIMER ? 2 : 1;
+  x->dx = B->x - A->x;
+  x->dy = B->y - A->y;
+  x->dvx = B->vx - A->vx;
+  x->dvy = B->vy - A->vy;
+  x->ha = half_a(sa);
+  x->hb = half_a(sb);
+  x->pa = x->na == 2 ? A->phi : 0.0;
+  x->wa = x->na == 2 ? A->omega : 0.0;
+  x->pb = x->nb == 2 ? B->phi : 0.0;
+  x->wb = x->nb == 2 ? B->omega : 0.0;
+  x->wsin = 0.0;
+  x->wn = 0.0;
+  x->D = 0.5 * (sa->d + sb->d);
   if (!(tmax >= 0.0)) return 0;
 
-  if (x.wa * x.ha == 0.0 && x.wb * x.hb == 0.0) {
+  if (x->wa * x->ha == 0.0 && x->wb * x->hb == 0.0) {
     /* no rotation: closed form for every disk pair, earliest wins */
     double sa_, ca_, sb_, cb_;
-    sincos(x.pa, &sa_, &ca_);
-    sincos(x.pb, &sb_, &cb_);
+    sincos(x->pa, &sa_, &ca_);
+    sincos(x->pb, &sb_, &cb_);
     double best = HUGE_VAL;
     int found = 0;
-    for (int i = 0; i < x.na; i++) {
-      double ka = x.na == 1 ? 0.0 : disk_sign(i) * x.ha;
-      for (int j = 0; j < x.nb; j++) {
-        double kb = x.nb == 1 ? 0.0 : disk_sign(j) * x.hb, tc;
-        double rx = x.dx + kb * cb_ - ka * ca_, ry = x.dy + kb * sb_ - ka * sa_;
-        if (hd_predict_disks(rx, ry, x.dvx, x.dvy, x.D, tmax, &tc) && tc < best) {
+    for (int i = 0; i < x->na; i++) {
+      double ka = x->na == 1 ? 0.0 : disk_sign(i) * x->ha;
+      for (int j = 0; j < x->nb; j++) {
+        double kb = x->nb == 1 ? 0.0 : disk_sign(j) * x->hb, tc;
+        double rx = x->dx + kb * cb_ - ka * ca_, ry = x->dy + kb * sb_ - ka * sa_;
+        if (hd_predict_disks(rx, ry, x->dvx, x->dvy, x->D, tmax, &tc) && tc < best) {
           best = tc;
           c->ka = i;
           c->kb = j;
@@ -462,24 +515,44 @@ int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const 
 
   /* pre-filter: the enclosing circles must meet */
   double t_in, t_out;
-  double R = x.ha + x.hb + x.D * (1.0 + 2.0 * TOL_SEP);
-  if (!circle_window(x.dx, x.dy, x.dvx, x.dvy, R, &t_in, &t_out)) return 0;
+  double R = x->ha + x->hb + x->D * (1.0 + 2.0 * TOL_SEP);
+  if (!circle_window(x->dx, x->dy, x->dvx, x->dvy, R, &t_in, &t_out)) return 0;
   if (t_in > tmax) return 0;
-  x.L = sqrt(x.dvx * x.dvx + x.dvy * x.dvy) + fabs(x.wa) * x.ha + fabs(x.wb) * x.hb;
-  x.K = x.wa * x.wa * x.ha + x.wb * x.wb * x.hb;
-  x.K2u = 2.0 * x.L * x.L / x.D + x.K;
+  x->L = sqrt(x->dvx * x->dvx + x->dvy * x->dvy) + fabs(x->wa) * x->ha + fabs(x->wb) * x->hb;
+  x->K = x->wa * x->wa * x->ha + x->wb * x->wb * x->hb;
+  x->K2u = 2.0 * x->L * x->L / x->D + x->K;
+  ca_init(ca, t_in, t_out);
+  if (sca && x->na == 2) {
+    ca->sc0 = 1;
+    ca->sa0 = sca[0];
+    ca->ca0 = sca[1];
+  }
+  return 2;
+}
+
+int hd_ca_step(hd_ca *ca, double tmax, hd_contact *c) {
   double tc;
-  int p;
-  if (!ca_solve(&x, t_in, t_out < tmax ? t_out : tmax, tmax, &tc, &p)) return 0;
-  c->t = tc;
-  c->ka = p / x.nb;
-  c->kb = p % x.nb;
-  return 1;
+  int p, r = ca_advance(ca, tmax, &tc, &p);
+  if (r == 1) {
+    c->t = tc;
+    c->ka = p / ca->g.nb;
+    c->kb = p % ca->g.nb;
+  }
+  return r;
+}
+
+int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
+                    double tmax, hd_contact *c) {
+  hd_ca ca;
+  int r = hd_ca_begin(&ca, A, sa, B, sb, tmax, NULL, c);
+  while (r == 2) r = hd_ca_step(&ca, tmax, c);
+  return r;
 }
 
 int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, double tmax,
                     hd_contact *c) {
-  ca_ctx x;
+  hd_ca ca;
+  hd_ca_geom x;
   x.wall = 1;
   x.na = sa->kind == HD_KIND_DIMER ? 2 : 1;
   x.nb = 1;
@@ -502,9 +575,9 @@ int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, doubl
   const double vtol = VTOL * x.L;
 
   if (x.wa * x.ha == 0.0) {
-    double h[2], hd[2], best = HUGE_VAL;
+    double h[2], hd[2], r[2], best = HUGE_VAL;
     int found = 0;
-    ca_eval(&x, 0.0, h, hd);
+    ca_eval(&x, 0.0, h, hd, r);
     for (int i = 0; i < x.na; i++) {
       double tc;
       if (h[i] <= TOL_0 * x.D) {
@@ -539,7 +612,9 @@ int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, doubl
   if (t_in > tmax) return 0;
   double tc;
   int p;
-  if (!ca_solve(&x, t_in, t_out < tmax ? t_out : tmax, tmax, &tc, &p)) return 0;
+  ca.g = x;
+  ca_init(&ca, t_in, t_out);
+  if (!ca_solve(&ca, tmax, &tc, &p)) return 0;
   c->t = tc;
   c->ka = p;
   c->kb = 0;

@@ -87,6 +87,56 @@ double hd_kin_energy(const hd_kin *k, const hd_shape *s);
 int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
                     double tmax, hd_contact *c);
 
+/* The moving geometry of a conservative-advancement search (hd_body.c): up to four "pairs", the
+ * disk pairs of two bodies or the disks of one body against a wall, from a common time origin.
+ * Filled and read by hd_body.c only; public so that a caller can hold an hd_ca. */
+typedef struct hd_ca_geom {
+  int wall;              /* 0: body pair, 1: body against a wall */
+  int na, nb;            /* disks of A and B (nb = 1 for a wall) */
+  double dx, dy;         /* pair: R_B - R_A at t = 0; wall: (gap of A's centre, unused) */
+  double dvx, dvy;       /* pair: V_B - V_A; wall: (rate of the centre's gap, unused) */
+  double ha, hb;         /* half bond lengths */
+  double pa, wa, pb, wb; /* orientations and angular velocities */
+  double wsin;           /* wall: the axis coordinate of the offset is sin (1) or cos (0) */
+  double wn;             /* wall: inward normal sign */
+  double D;              /* contact distance (pair) or disk diameter (wall) */
+  double L, K, K2u;      /* bounds on |h'|, the lower bound on h'' (-K), an upper bound on h'' */
+} hd_ca_geom;
+
+/* A contact search between two bodies that the caller advances one step at a time (hd_ca_begin,
+ * hd_ca_step), so that the searches of several pairs can be interleaved, always advancing the one
+ * that could touch first and stopping them all once that bound passes the earliest contact found.
+ * Only t is for the caller; the other fields are private to hd_body.c. */
+typedef struct hd_ca {
+  double t;                 /* no contact of the pair before t (from the common time origin) */
+  hd_ca_geom g;             /* the geometry */
+  double tend;              /* the search ends after tend (the enclosing circles part for good) */
+  double h[4], g_[4], r[4]; /* at t, if have: gaps, r.r' and |r| (h' = g_ / r) per pair */
+  unsigned ign;             /* disk pairs ignored as just collided (bit p for pair p) */
+  int have;                 /* h, hd hold the state at t */
+  int fresh;                /* the t = 0 contact checks are still to be made */
+  long it;                  /* steps taken (guard against misuse, see hd_body.c) */
+  int sc0;                  /* sa0, ca0 hold sin and cos of A's orientation at t = 0 */
+  double sa0, ca0;          /* (given to hd_ca_begin: shared by the searches of one body) */
+} hd_ca;
+
+/* sin and cos of x exactly as the contact search computes them (for hd_ca_begin's sca). */
+void hd_ca_sincos(double x, double *s, double *c);
+
+/* Starts the search for the earliest contact of A and B in [0, tmax], with the contract of
+ * hd_predict_pair.  sca is NULL or {sin, cos} of A->phi from hd_ca_sincos (a caller searching
+ * many partners of one dimer computes it once).  Returns 0 if there is none, 1 with *c filled if it
+ * is already known (no rotation: closed form), 2 if the search is under way: then ca->t is a lower
+ * bound on the contact time and hd_ca_step continues it. */
+int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
+                double tmax, const double *sca, hd_contact *c);
+
+/* One step of a search under way (hd_ca_begin returned 2), with tmax no larger than at the start
+ * (it may shrink between steps, e.g. to the earliest contact found with other bodies).  Returns 0
+ * if there is no contact in [0, tmax], 1 with *c filled at the earliest contact, 2 if the search
+ * is still under way (ca->t has grown: no contact before it). */
+int hd_ca_step(hd_ca *ca, double tmax, hd_contact *c);
+
 /* Closed-form contact of two disks in linear relative motion (the engine's disk fast path, and
  * hd_predict_pair without rotation): separation d = (dx, dy) (B - A), relative velocity
  * (dvx, dvy) (B - A), contact distance D.  Returns 1 with the earliest contact time *t in

@@ -10,6 +10,7 @@
  * searched once, by j (hd_predict_after_pair).  In a pure disk scene a prediction walks interior
  * cells by index offsets, without the periodic and wall logic of HD_FOR_NEIGHBOURS.
  * hd_predict_prefetch is the event queue's prefetch hint (hd_queue.h) for large systems. */
+#include <float.h>
 #include <math.h>
 
 #include "hd_disk.h"
@@ -81,6 +82,14 @@ static inline void predict_disk_pair(const hd_sim *s, hd_body *bi, int32_t j, do
   }
 }
 
+/* max and min of doubles that are not NaN, inline (fmax and fmin are library calls) */
+static inline double dmax(double a, double b) {
+  return a > b ? a : b;
+}
+static inline double dmin(double a, double b) {
+  return a < b ? a : b;
+}
+
 /* Contacts of body i with body j (shifted by sx, sy); *best relative to now. */
 static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, double sy,
                                double horizon, double *best) {
@@ -94,7 +103,7 @@ static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, dou
   }
   /* the search ends at the first crossing of either body: whichever crosses first predicts
    * again against its new neighbourhood, which holds the other if they can still meet */
-  double lim = fmin(*best, fmin(horizon, bj->c_t - s->c.t));
+  double lim = dmin(*best, dmin(horizon, bj->c_t - s->c.t));
   if (lim < 0.0) lim = 0.0;
   hd_kin kj = bj->k;
   hd_kin_advance(&kj, dtj);
@@ -136,49 +145,99 @@ static void predict_disks(hd_sim *s, int32_t i, int32_t cx, int32_t cy, double c
   });
 }
 
-/* A neighbour, with a lower bound on its contact time. */
+/* A neighbour whose contact search is pending, with a lower bound on its contact time. */
 typedef struct hd_cand {
-  double t;      /* lower bound on the contact time, relative to now */
+  double t;      /* no contact before t (relative to now) */
+  double lim;    /* the search ends at the earlier next crossing of the two bodies */
   double sx, sy; /* periodic shift of the neighbour */
   int32_t j;     /* the neighbour */
+  int begun;     /* ca is under way (else t is the enclosing circles' bound) */
+  hd_ca ca;      /* its root search, once begun */
 } hd_cand;
 #define HD_MAX_CAND 64
 
-/* The contacts of body i with its neighbours (but skip) in a scene with dimers, searched in
- * the order of a lower bound on their time: when the enclosing circles (radius (a + d)/2 about
- * the centres of mass, in linear motion, widened by 1e-9 against round-off) first meet.  The
- * search stops at the first bound that is not below the earliest contact found: every later
- * pair touches later, if at all.  Searching the nearest first also shortens the root search of
- * the others (it ends at the earliest contact found so far). */
+/* The contacts of body i with its neighbours (but skip) in a scene with dimers, best first.
+ * Each neighbour's root search (conservative advancement, hd_ca_step) only moves forward in
+ * time and its current time is a lower bound on its contact time; the first bound is when the
+ * enclosing circles (radius (a + d)/2 about the centres of mass, in linear motion, widened by
+ * 1e-9 against round-off) first meet.  The search that is furthest behind takes the next step,
+ * and all stop once the smallest bound is not below the earliest contact found: no step is
+ * taken past the final answer, and every other pair touches later, if at all.  Disk-disk
+ * pairs take the closed form at once. */
 static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, double *best) {
   hd_body *bi = &s->b[i];
   const double now = s->c.t;
+  const hd_shape *si = &s->shape[bi->species];
   double rad[HD_NSPECIES];
   for (int sp = 0; sp < HD_NSPECIES; sp++) rad[sp] = hd_shape_radius(&s->shape[sp]) * (1.0 + 1e-9);
   hd_cand cs[HD_MAX_CAND];
-  int nc = 0;
+  int nc = 0, ord[HD_MAX_CAND];
+  double sca[2]; /* sin and cos of i's orientation, shared by its searches */
+  hd_ca_sincos(bi->k.phi, &sca[0], &sca[1]);
   HD_FOR_NEIGHBOURS(s, bi->cell, {
     if (j == i || j == skip) continue;
     const hd_body *bj = &s->b[j];
+    if (bi->species == HD_SP_DISK && bj->species == HD_SP_DISK) {
+      predict_disk_pair(s, bi, j, sx, sy, (sx > 0) - (sx < 0), (sy > 0) - (sy < 0), si->d, best);
+      continue;
+    }
     double dtj = now - bj->t, R = rad[bi->species] + rad[bj->species];
     double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x,
            ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
-    double t = rx * rx + ry * ry <= R * R
-                   ? 0.0
-                   : hd_disk_contact_time(rx, ry, bj->k.vx - bi->k.vx, bj->k.vy - bi->k.vy, R);
-    if (t >= *best || ((bj->species == HD_SP_DIMER || bi->species == HD_SP_DIMER) &&
-                       t > fmin(cross, bj->c_t - now)))
-      continue; /* cannot touch before the earliest contact so far, or within the horizon */
-    if (nc == HD_MAX_CAND) { /* a crowd: the rest unsorted (still exact, only slower) */
-      predict_one(s, bi, j, sx, sy, cross, best);
+    /* the circles' first meeting, without branches on the data (they would be mispredicted):
+     * 0 if they overlap (c <= 0), else c / (sqrt(b^2 - v^2 c) - b) when they meet (b < 0 and
+     * disc > 0); a denominator floored at DBL_MIN only lowers the bound */
+    double vx = bj->k.vx - bi->k.vx, vy = bj->k.vy - bi->k.vy;
+    double c = rx * rx + ry * ry - R * R, b = rx * vx + ry * vy,
+           disc = b * b - (vx * vx + vy * vy) * c;
+    double t = dmax(c, 0.0) / dmax(sqrt(dmax(disc, 0.0)) - b, DBL_MIN);
+    double lim = dmin(cross, bj->c_t - now);
+    /* kept unless it cannot touch before the earliest contact so far, or within the horizon */
+    int keep = ((c <= 0.0) | ((b < 0.0) & (disc > 0.0))) & (t < *best) & (t <= lim);
+    if (nc == HD_MAX_CAND) { /* a crowd: the rest one by one (still exact, only slower) */
+      if (keep) predict_one(s, bi, j, sx, sy, cross, best);
       continue;
     }
-    int k = nc++; /* insertion sort */
-    for (; k > 0 && cs[k - 1].t > t; k--) cs[k] = cs[k - 1];
-    cs[k] = (hd_cand){t, sx, sy, j};
+    hd_cand *cd = &cs[nc];
+    cd->t = t;
+    cd->lim = dmax(lim, 0.0);
+    cd->sx = sx;
+    cd->sy = sy;
+    cd->j = j;
+    cd->begun = 0;
+    nc += keep;
   });
-  for (int k = 0; k < nc && cs[k].t < *best; k++)
-    predict_one(s, bi, cs[k].j, cs[k].sx, cs[k].sy, cross, best);
+  for (int k = 0; k < nc; k++) ord[k] = k;
+  while (nc > 0) {
+    int k = 0; /* the pending search furthest behind */
+    for (int q = 1; q < nc; q++)
+      if (cs[ord[q]].t < cs[ord[k]].t) k = q;
+    hd_cand *c = &cs[ord[k]];
+    if (!(c->t < *best)) break;
+    const hd_body *bj = &s->b[c->j];
+    double lim = dmin(*best, c->lim);
+    hd_contact ct;
+    int r;
+    if (c->begun) {
+      r = hd_ca_step(&c->ca, lim, &ct);
+    } else {
+      hd_kin kj = bj->k;
+      hd_kin_advance(&kj, now - bj->t);
+      kj.x += c->sx;
+      kj.y += c->sy;
+      r = hd_ca_begin(&c->ca, &bi->k, si, &kj, &s->shape[bj->species], lim, sca, &ct);
+      c->begun = 1;
+    }
+    if (r == 2) {
+      c->t = c->ca.t;
+      continue;
+    }
+    if (r == 1 && ct.t < *best) {
+      *best = ct.t;
+      take_pair(bi, bj, c->j, ct.ka, ct.kb, (c->sx > 0) - (c->sx < 0), (c->sy > 0) - (c->sy < 0));
+    }
+    ord[k] = ord[--nc];
+  }
 }
 
 /* The full prediction of body i, leaving out body skip (-1: none). */

@@ -736,6 +736,80 @@ static void predict_pairs(void **state) {
   gsl_rng_free(r);
 }
 
+/* The resumable search (hd_ca_begin, hd_ca_step) as the engine uses it (hd_predict.c): one
+ * spinning dimer A and several dimers B_k around it, most within reach, the search furthest behind
+ * stepped first, tmax shrinking to the earliest contact found, A's sin and cos shared.  Checks
+ * against the brute force of every pair that (1) each search's time is a lower bound: no pair
+ * touches before it (to 1e-9, the brute force's time resolution), and (2) the earliest contact and
+ * its partner are those of the brute force, to 1e-9 in time.  Fixed seed; tolerances as in
+ * compare_pair. */
+static void predict_interleaved(void **state) {
+  (void)state;
+  const hd_shape s = dimer(1, 1, 1);
+  enum { NB = 5 };
+  gsl_rng *r = rng_new(47);
+  int ncase = sanitize() ? 3 : 25, ns = sanitize() ? 10000 : 60000, hits = 0;
+  for (int n = 0; n < ncase; n++) {
+    hd_kin A, B[NB], tmp;
+    double tb[NB], tmax = 2.0;
+    int fb[NB];
+    random_approach(r, &s, &s, 2.0, 2.0, 0.01, 1.0, &A, &tmp); /* A's own state */
+    for (int k = 0; k < NB; k++) {
+      /* most B_k inside A's reach (enclosing circles overlapping: the search starts at t = 0
+       * with A's shared sin and cos), not touching A yet */
+      double g0 = -1.0;
+      while (g0 < 0.01) {
+        random_approach(r, &s, &s, 2.0, 2.0, -1.0, 0.5, &tmp, &B[k]);
+        bf f0 = {&A, &B[k], &s, &s, NULL, -1};
+        g0 = bf_gap(0.0, &f0);
+      }
+    }
+    int kbest = -1;
+    for (int k = 0; k < NB; k++) {
+      bf f = {&A, &B[k], &s, &s, NULL, -1};
+      double gmin;
+      fb[k] = bf_first(&f, 0.0, tmax, ns, &tb[k], &gmin);
+      if (fb[k] && (kbest < 0 || tb[k] < tb[kbest])) kbest = k;
+    }
+    double sca[2], best = tmax;
+    hd_ca_sincos(A.phi, &sca[0], &sca[1]);
+    hd_ca ca[NB];
+    int live[NB], got = -1;
+    hd_contact cbest = {0, 0, 0}, c;
+    for (int k = 0; k < NB; k++) {
+      live[k] = hd_ca_begin(&ca[k], &A, &s, &B[k], &s, tmax, sca, &c);
+      assert_int_not_equal(live[k], 1); /* rotating: never closed form */
+    }
+    for (;;) {
+      int k = -1;
+      for (int q = 0; q < NB; q++)
+        if (live[q] == 2 && (k < 0 || ca[q].t < ca[k].t)) k = q;
+      if (k < 0 || !(ca[k].t < best)) break;
+      int rc = hd_ca_step(&ca[k], best, &c);
+      if (rc == 2) {
+        if (fb[k]) assert_true(ca[k].t <= tb[k] + 1e-9); /* (1) a lower bound */
+        continue;
+      }
+      live[k] = 0;
+      if (rc == 1 && c.t < best) {
+        best = c.t;
+        cbest = c;
+        got = k;
+      }
+    }
+    assert_int_equal(got, kbest); /* (2) */
+    if (got < 0) continue;
+    hits++;
+    if (fabs(cbest.t - tb[got]) > 1e-9) fprintf(stderr, "t %.17g vs %.17g\n", cbest.t, tb[got]);
+    assert_true(fabs(cbest.t - tb[got]) <= 1e-9);
+    hd_contact c1; /* the same contact as the search of that pair alone */
+    assert_true(hd_predict_pair(&A, &s, &B[got], &s, tmax, &c1));
+    assert_true(fabs(c1.t - cbest.t) <= 1e-12 && c1.ka == cbest.ka && c1.kb == cbest.kb);
+  }
+  if (!sanitize()) assert_true(hits >= ncase / 2); /* most cases have a contact */
+  gsl_rng_free(r);
+}
+
 /* A spinner whose other disk (or the same one) swings round and hits again after a collision:
  * random spinners hitting a disk or a dimer; every case with a second contact, and some without,
  * is checked against the brute force started after the first collision. */
@@ -1012,6 +1086,7 @@ int main(void) {
       cmocka_unit_test(predict_pairs),
       cmocka_unit_test(predict_touching_now),
       cmocka_unit_test(predict_second_contact),
+      cmocka_unit_test(predict_interleaved),
       cmocka_unit_test(predict_recontact),
       cmocka_unit_test(predict_near_parallel),
       cmocka_unit_test(predict_grazing),
