@@ -14,7 +14,10 @@ WARN    := -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-pro
 ifneq ($(filter true 1,$(CI) $(WERROR)),)
 WARN    += -Werror
 endif
-OPT     ?= -O2 -g
+# -fno-math-errno: sqrt() is one instruction, without the call that would set errno for a
+# negative argument (nothing here reads errno after a math function); +1.5 % for dimers, and
+# the same results bit for bit
+OPT     ?= -O2 -g -fno-math-errno
 CFLAGS  := -std=c11 -D_GNU_SOURCE -pthread $(OPT) $(WARN) -MMD -MP -Iengine -Idb -Imc -Ianalysis -Icli \
            $(shell pkg-config --cflags $(PKGS) 2>/dev/null) $(EXTRA_CFLAGS)
 LDLIBS  := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lgsl -lgslcblas -lsqlite3 -linih) -lm -pthread
