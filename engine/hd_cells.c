@@ -42,8 +42,14 @@ int32_t hd_cells_of(const hd_sim *s, double x, double y) {
 }
 
 void hd_cells_insert(hd_sim *s, int32_t i, int32_t c) {
+  hd_cells_insert_xy(s, i, c % s->ncx, c / s->ncx);
+}
+
+void hd_cells_insert_xy(hd_sim *s, int32_t i, int32_t cx, int32_t cy) {
   hd_body *b = &s->b[i];
+  int32_t c = cy * s->ncx + cx;
   b->cell = c;
+  b->cy = cy;
   b->next = s->head[c];
   s->head[c] = i;
 }

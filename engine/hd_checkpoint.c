@@ -81,6 +81,8 @@ int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err) {
   memcpy(s->id, q, sizeof(int32_t) * (size_t)h.n), q += sizeof(int32_t) * (size_t)h.n;
   memcpy(s->head, q, sizeof(int32_t) * ncell), q += sizeof(int32_t) * ncell;
   memcpy(gsl_rng_state(s->rng), q, h.rng_size);
+  for (int32_t i = 0; i < s->n; i++) /* the rows (0 in checkpoints of older builds) */
+    s->b[i].cy = s->b[i].cell / s->ncx;
   rc = hd_sim_queue_init(s, err);
   if (rc) return rc;
   hd_queue_build(s->q, s->n, &s->b[0].ev_t, HD_BODY_STRIDE);

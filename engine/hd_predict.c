@@ -39,7 +39,8 @@ static inline double crossing_time(const hd_sim *s, hd_body *b, int32_t cx, int3
 /* Wall contacts of body i, if it is in an edge cell; *best is relative to now. */
 static void predict_walls(hd_sim *s, int32_t i, double horizon, double *best) {
   hd_body *b = &s->b[i];
-  int32_t cx = b->cell % s->ncx, cy = b->cell / s->ncx;
+  int32_t cx, cy;
+  hd_body_cxy(s, b, &cx, &cy);
   int near[4] = {cx == 0, cx == s->ncx - 1, cy == 0, cy == s->ncy - 1};
   static const unsigned bit[4] = {HD_WALL_LEFT, HD_WALL_RIGHT, HD_WALL_BOTTOM, HD_WALL_TOP};
   for (int w = 0; w < 4; w++) {
@@ -244,7 +245,8 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
 static void predict_full(hd_sim *s, int32_t i, int32_t skip) {
   hd_body *bi = &s->b[i];
   const double now = s->c.t;
-  int32_t cx = bi->cell % s->ncx, cy = bi->cell / s->ncx;
+  int32_t cx, cy;
+  hd_body_cxy(s, bi, &cx, &cy);
   double cross = crossing_time(s, bi, cx, cy);
   double best = INFINITY; /* earliest contact, relative to now */
   bi->p_type = HD_EV_NONE;
@@ -278,7 +280,8 @@ static int predict_after_crossing(hd_sim *s, int32_t i) {
   if (bi->p_type == HD_EV_PAIR && s->b[bi->p_partner].ncoll != bi->p_pcount) return 0;
   const double now = s->c.t, D = s->shape[HD_SP_DISK].d;
   int dir = bi->c_dir;
-  int32_t c = bi->cell, ncx = s->ncx, cx = c % ncx, cy = c / ncx;
+  int32_t c = bi->cell, ncx = s->ncx, cx, cy;
+  hd_body_cxy(s, bi, &cx, &cy);
   double cross = crossing_time(s, bi, cx, cy);
   double best = bi->p_type == HD_EV_NONE ? INFINITY : bi->p_t - now;
   if (s->walls) predict_walls(s, i, cross, &best);
@@ -339,7 +342,8 @@ void hd_predict_prefetch(void *ctx, int32_t i, int stage) {
     __builtin_prefetch((const char *)b + 64);
     return;
   }
-  int32_t c = b->cell, ncx = s->ncx, cx = c % ncx, cy = c / ncx;
+  int32_t c = b->cell, ncx = s->ncx, cx, cy;
+  hd_body_cxy(s, b, &cx, &cy);
   if (cx < 1 || cx >= ncx - 1 || cy < 1 || cy >= s->ncy - 1) return; /* interior cells only */
   for (int32_t row = c - ncx; row <= c + ncx; row += ncx) __builtin_prefetch(&s->head[row - 1]);
   if (b->p_type == HD_EV_PAIR) { /* the partner: a collision, or the stale check */

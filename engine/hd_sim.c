@@ -257,7 +257,8 @@ double hd_sim_max_overlap(const hd_sim *s, int32_t *i, int32_t *j) {
  * returns 1 if it wrapped. */
 static int cross_cell(hd_sim *s, int32_t i) {
   hd_body *b = &s->b[i];
-  int32_t cx = b->cell % s->ncx, cy = b->cell / s->ncx;
+  int32_t cx, cy;
+  hd_body_cxy(s, b, &cx, &cy);
   int wrapped = 0;
   switch (b->c_dir) {
   case 0:
@@ -274,7 +275,7 @@ static int cross_cell(hd_sim *s, int32_t i) {
     break;
   }
   hd_cells_remove(s, i);
-  hd_cells_insert(s, i, cy * s->ncx + cx);
+  hd_cells_insert_xy(s, i, cx, cy);
   return wrapped;
 }
 

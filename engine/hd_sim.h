@@ -41,7 +41,7 @@ typedef struct hd_body {
   double p_t;        /* time of the predicted contact (INFINITY if none) */
   double c_t;        /* time of the next cell crossing (INFINITY if none) */
   int32_t cell;      /* cell index (cy * ncx + cx) */
-  int32_t spare;     /* unused (0): keeps the layout of checkpoints */
+  int32_t cy;        /* the cell's row, cell / ncx (kept with cell: no division per event) */
   uint32_t ncoll;    /* velocity changes so far; invalidates partners' pair events */
   int32_t p_partner; /* PAIR: partner body; WALL: wall index */
   uint32_t p_pcount; /* PAIR: partner's ncoll when predicted */

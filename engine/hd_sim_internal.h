@@ -2,6 +2,8 @@
 #ifndef HD_SIM_INTERNAL_H
 #define HD_SIM_INTERNAL_H
 
+#include <assert.h>
+
 #include "hd_sim.h"
 
 /* Distance in doubles between consecutive bodies' ev_t (for hd_queue_build). */
@@ -12,10 +14,11 @@
 int hd_cells_alloc(hd_sim *s, hd_error *err);
 /* Cell index of a position (wrapped into the box). */
 int32_t hd_cells_of(const hd_sim *s, double x, double y);
-/* Links body i into cell c / unlinks it from its cell. */
+/* Links body i into cell c (or column cx, row cy) / unlinks it from its cell. */
 void hd_cells_insert(hd_sim *s, int32_t i, int32_t c);
+void hd_cells_insert_xy(hd_sim *s, int32_t i, int32_t cx, int32_t cy);
 void hd_cells_remove(hd_sim *s, int32_t i);
-/* Rebuilds every list from the bodies' cell fields, in body order. */
+/* Rebuilds every list (and the bodies' rows) from the bodies' cell fields, in body order. */
 void hd_cells_rebuild(hd_sim *s);
 
 /* --- prediction (hd_predict.c) --- */
@@ -31,6 +34,13 @@ void hd_predict_after_pair(hd_sim *s, int32_t i, int32_t j);
 void hd_predict_prefetch(void *ctx, int32_t i, int stage);
 /* Predicts body i's events after it crossed a cell face (wrapped: through the box edge). */
 void hd_predict_crossed(hd_sim *s, int32_t i, int wrapped);
+
+/* Column and row of body b's cell. */
+static inline void hd_body_cxy(const hd_sim *s, const hd_body *b, int32_t *cx, int32_t *cy) {
+  *cy = b->cy;
+  *cx = b->cell - b->cy * s->ncx;
+  assert(*cx >= 0 && *cx < s->ncx); /* cy is the row of cell */
+}
 
 /* Brings body i's state to the current time. */
 static inline void hd_body_sync(hd_sim *s, int32_t i) {
