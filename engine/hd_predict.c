@@ -346,6 +346,13 @@ void hd_predict_prefetch(void *ctx, int32_t i, int stage) {
   hd_body_cxy(s, b, &cx, &cy);
   if (cx < 1 || cx >= ncx - 1 || cy < 1 || cy >= s->ncy - 1) return; /* interior cells only */
   for (int32_t row = c - ncx; row <= c + ncx; row += ncx) __builtin_prefetch(&s->head[row - 1]);
+  if (!s->disks_only) /* dimer scenes: the first body of each cell too (a dimer's prediction is
+                       * long enough for these loads to pay; for disks they cost more) */
+    for (int32_t row = c - ncx; row <= c + ncx; row += ncx)
+      for (int32_t cc = row - 1; cc <= row + 1; cc++) {
+        int32_t j = s->head[cc];
+        if (j >= 0) __builtin_prefetch(&s->b[j]);
+      }
   if (b->p_type == HD_EV_PAIR) { /* the partner: a collision, or the stale check */
     const hd_body *p = &s->b[b->p_partner];
     __builtin_prefetch(p);
