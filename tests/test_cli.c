@@ -81,7 +81,8 @@ static void assert_sound(const char *db) {
   sqlite3_close(h);
 }
 
-/* A scene of ~1.5 s: long enough to be interrupted, checkpointing every 0.1 s. */
+/* A scene of about a second, checkpointing every 0.1 s, of SCENE_EVENTS collisions. */
+#define SCENE_EVENTS 800000LL
 static const char scene[] = "[system]\narea_fraction = 0.2\nseed = 3\n[disks]\ncount = 2000\n"
                             "alpha = 0.97\n[run]\nstop_events = 800000\ncheckpoint_every = 0.1\n"
                             "[log]\ncollisions = all\nsamples_every = 1\nvelocities_at = 2 50\n";
@@ -111,8 +112,28 @@ static int teardown(void **state) {
   return system(cmd) == 0 ? 0 : 1;
 }
 
-/* Starts haff run in the background and sends sig after ms milliseconds; returns exit status. */
-static int run_and_signal(const char *db, int sig, int ms) {
+/* Collisions committed so far in database db of dir, -1 while it cannot be read yet. */
+static long long committed(const char *db) {
+  char p[300];
+  snprintf(p, sizeof p, "%s/%s", dir, db);
+  sqlite3 *h;
+  long long v = -1;
+  if (sqlite3_open_v2(p, &h, SQLITE_OPEN_READONLY, NULL) == SQLITE_OK) {
+    sqlite3_stmt *st;
+    if (sqlite3_prepare_v2(h, "SELECT count(*) FROM collisions", -1, &st, 0) == SQLITE_OK) {
+      if (sqlite3_step(st) == SQLITE_ROW) v = sqlite3_column_int64(st, 0);
+      sqlite3_finalize(st);
+    }
+  }
+  sqlite3_close(h);
+  return v;
+}
+
+/* Starts haff run in the background and sends sig once the database holds `permille` per mille
+ * of the scene's collisions (polled every millisecond: the moment is set by the run's progress,
+ * not by the clock, so that a faster machine or build still interrupts it mid-run, at whatever
+ * point of a batch the signal falls); returns the exit status. */
+static int run_and_signal(const char *db, int sig, int permille) {
   pid_t pid = fork();
   assert_true(pid >= 0);
   if (pid == 0) {
@@ -121,10 +142,13 @@ static int run_and_signal(const char *db, int sig, int ms) {
     execl(haff, haff, "run", "s.ini", "-o", db, "--quiet", (char *)NULL);
     _exit(98);
   }
-  struct timespec ts = {ms / 1000, (long)(ms % 1000) * 1000000L};
-  nanosleep(&ts, NULL);
-  kill(pid, sig);
   int st;
+  const struct timespec ms = {0, 1000000L};
+  while (committed(db) < SCENE_EVENTS / 1000 * permille) {
+    if (waitpid(pid, &st, WNOHANG) == pid) fail_msg("haff run ended before it was signalled");
+    nanosleep(&ms, NULL);
+  }
+  kill(pid, sig);
   waitpid(pid, &st, 0);
   return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
 }
@@ -155,7 +179,7 @@ static void same_as_reference(const char *db) {
 static void sigint_then_resume(void **state) {
   (void)state;
   if (!haff) skip();
-  int rc = run_and_signal("int.db", SIGINT, 300);
+  int rc = run_and_signal("int.db", SIGINT, 400);
   char e[2048];
   read_err(e, sizeof e);
   assert_int_equal(rc, 1);
@@ -174,7 +198,7 @@ static void sigint_then_resume(void **state) {
 static void sigterm_then_resume(void **state) {
   (void)state;
   if (!haff) skip();
-  assert_int_equal(run_and_signal("term.db", SIGTERM, 250), 1);
+  assert_int_equal(run_and_signal("term.db", SIGTERM, 300), 1);
   assert_int_equal(q1("term.db", "SELECT status='interrupted' FROM runs"), 1);
   assert_int_equal(sh("%s resume term.db --quiet", haff), 0);
   same_as_reference("term.db");
@@ -186,11 +210,11 @@ static void sigterm_then_resume(void **state) {
 static void kill9_then_resume(void **state) {
   (void)state;
   if (!haff) skip();
-  int ms[3] = {150, 300, 550};
+  int at[3] = {50, 300, 600}; /* per mille of the collisions */
   for (int k = 0; k < 3; k++) {
     char db[32];
     snprintf(db, sizeof db, "k%d.db", k);
-    assert_int_equal(run_and_signal(db, SIGKILL, ms[k]), 128 + SIGKILL);
+    assert_int_equal(run_and_signal(db, SIGKILL, at[k]), 128 + SIGKILL);
     assert_sound(db);
     assert_int_equal(q1(db, "SELECT count(*) = coalesce(max(seq), 0) FROM collisions"), 1);
     assert_int_equal(q1(db, "SELECT count(*) FROM (SELECT seq,t,i,j,de FROM collisions "
