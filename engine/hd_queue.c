@@ -3,8 +3,11 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "hd_mem.h"
+
+_Static_assert(sizeof(hd_qblock) == 64, "hd_qblock: one cache line");
 
 static inline int before(const hd_qentry *a, const hd_qentry *b) {
   return a->t < b->t || (a->t == b->t && a->id < b->id);
@@ -15,33 +18,37 @@ hd_queue *hd_queue_alloc(int32_t cap) {
   if (!q) return NULL;
   size_t c = (size_t)(cap > 0 ? cap : 1);
   int32_t nb = 16;
-  while (nb < cap && nb < (1 << 30)) nb *= 2;
-  /* entries: one per body, plus the stale ones; about one stale entry per body is typical
-   * (a collision leaves the partner's old entry behind), so 3 per body rarely fill up */
-  int64_t icap = 3 * (int64_t)c + 64;
-  if (icap > INT32_MAX) icap = INT32_MAX;
+  while (nb < cap && nb < (1 << 28)) nb *= 2;
+  /* the heap and the overflow: every body once, plus the stale entries that wait with them
+   * (a full one rebuilds the queue from the keys, which leaves at most n entries in all) */
+  int64_t ecap = 2 * (int64_t)c + 64;
+  if (ecap > INT32_MAX) ecap = INT32_MAX;
+  /* extension blocks: with them the buckets hold 4 nb + 4 xcap >= 6 n entries, so the n live
+   * entries of a rebuilt queue always fit, however they are spread */
+  int32_t xcap = nb / 2 + 16;
   q->key = hd_mem_alloc(sizeof(double) * c);
-  q->item = hd_mem_alloc(sizeof(hd_qitem) * (size_t)icap);
-  q->heap = hd_mem_alloc(sizeof(hd_qentry) * (size_t)icap);
-  q->ovf = hd_mem_alloc(sizeof(hd_qentry) * (size_t)icap);
-  q->head = hd_mem_alloc(sizeof(int32_t) * (size_t)nb);
-  if (!q->key || !q->item || !q->heap || !q->ovf || !q->head) {
+  q->blk = hd_mem_alloc(sizeof(hd_qblock) * (size_t)nb);
+  q->ext = hd_mem_alloc(sizeof(hd_qblock) * (size_t)xcap);
+  q->heap = hd_mem_alloc(sizeof(hd_qentry) * (size_t)ecap);
+  q->ovf = hd_mem_alloc(sizeof(hd_qentry) * (size_t)ecap);
+  if (!q->key || !q->blk || !q->ext || !q->heap || !q->ovf) {
     hd_queue_free(q);
     return NULL;
   }
   q->cap = cap;
   q->nb = nb;
-  q->icap = (int32_t)icap;
+  q->xcap = xcap;
+  q->ecap = (int32_t)ecap;
   return q;
 }
 
 void hd_queue_free(hd_queue *q) {
   if (!q) return;
   free(q->key);
-  free(q->item);
+  free(q->blk);
+  free(q->ext);
   free(q->heap);
   free(q->ovf);
-  free(q->head);
   free(q);
 }
 
@@ -77,7 +84,7 @@ static void heap_pop(hd_queue *q) {
 }
 
 /* ---------------------------------------------------------------------------------------- */
-/* lists */
+/* buckets */
 
 static inline int64_t bucket_of(const hd_queue *q, double t) {
   double b = t * q->inv_w;
@@ -86,69 +93,67 @@ static inline int64_t bucket_of(const hd_queue *q, double t) {
   return b < 4e18 ? (b > -4e18 ? (int64_t)b : -(int64_t)4e18) : (int64_t)4e18;
 }
 
-/* A free item (there is one: the caller checked live < icap). */
-static inline int32_t item_take(hd_queue *q) {
-  int32_t it = q->ifree;
-  if (it >= 0) {
-    q->ifree = q->item[it].next;
-    return it;
-  }
-  return q->itop++;
-}
-
-static inline void item_give(hd_queue *q, int32_t it) {
-  q->item[it].next = q->ifree;
-  q->ifree = it;
-}
-
 /* Puts an entry (t, id), t finite, in bucket b, where it belongs: the heap if b is the current
- * bucket, a bucket of the year, or the overflow (live already counts it). */
-static inline void place_in(hd_queue *q, double t, int32_t id, int64_t b) {
+ * bucket, a bucket of the year, or the overflow.  Returns 0, or -1 when the place it needs is
+ * full (the caller rebuilds the queue). */
+static inline int place_in(hd_queue *q, double t, int32_t id, int64_t b) {
   if (b <= q->cur) {
+    if (q->hn == q->ecap) return -1;
     heap_push(q, t, id);
   } else if (b < q->cur + q->nb) {
-    int32_t it = item_take(q), slot = (int32_t)(b & (q->nb - 1));
-    hd_qitem *x = &q->item[it];
-    x->t = t;
-    x->id = id;
-    x->next = q->head[slot];
-    q->head[slot] = it;
+    hd_qblock *x = &q->blk[b & (q->nb - 1)];
+    while (x->n == HD_QBLOCK) { /* full: on to its extension, or a new one in front of it */
+      if (x->more < 0 || q->ext[x->more].n == HD_QBLOCK) {
+        int32_t e = q->xfree;
+        if (e < 0) return -1;
+        q->xfree = q->ext[e].more;
+        q->ext[e].n = 0;
+        q->ext[e].more = x->more;
+        x->more = e;
+      }
+      x = &q->ext[x->more];
+    }
+    x->t[x->n] = t;
+    x->id[x->n] = id;
+    x->n++;
     q->in_buckets++;
   } else {
+    if (q->novf == q->ecap) return -1;
     q->ovf[q->novf++] = (hd_qentry){t, id, 0};
   }
-}
-
-static inline void place(hd_queue *q, double t, int32_t id) {
-  place_in(q, t, id, bucket_of(q, t));
+  return 0;
 }
 
 /* Redistributes the overflow into the new year, dropping stale entries; what is still beyond
- * it is compacted in place (the order in the overflow does not matter). */
-static void redistribute(hd_queue *q) {
+ * it is compacted in place (the order in the overflow does not matter).  -1 if a bucket or the
+ * heap is full (the overflow is then left as it was: entries already placed are duplicates of
+ * ones still in the overflow, which a rebuild from the keys discards anyway). */
+static int redistribute(hd_queue *q) {
   int32_t n = q->novf, kept = 0;
   for (int32_t r = 0; r < n; r++) {
     hd_qentry e = q->ovf[r];
-    if (q->key[e.id] != e.t) { /* stale */
-      q->live--;
-      continue;
-    }
+    if (q->key[e.id] != e.t) continue; /* stale */
     int64_t b = bucket_of(q, e.t);
     if (b >= q->cur + q->nb)
       q->ovf[kept++] = e;
-    else
-      place_in(q, e.t, e.id, b);
+    else if (place_in(q, e.t, e.id, b))
+      return -1;
   }
   q->novf = kept;
+  return 0;
 }
 
-/* The prefetch hint for the next two buckets (a few entries of each). */
+/* The prefetch hint for the next HD_QUEUE_STAGES buckets (a few entries of each); the bucket
+ * after them is prefetched itself.  Buckets are consecutive blocks, so this reads a few lines
+ * in order. */
 static void hint(hd_queue *q) {
-  for (int stage = 1; stage >= 0; stage--) {
-    int32_t slot = (int32_t)((q->cur + stage + 1) & (q->nb - 1)), k = 0;
-    for (int32_t it = q->head[slot]; it >= 0 && k < 4; it = q->item[it].next, k++) {
-      __builtin_prefetch(&q->key[q->item[it].id]);
-      q->pf(q->pf_ctx, q->item[it].id, stage);
+  int32_t mask = q->nb - 1;
+  __builtin_prefetch(&q->blk[(q->cur + HD_QUEUE_STAGES + 1) & mask]);
+  for (int stage = HD_QUEUE_STAGES - 1; stage >= 0; stage--) {
+    const hd_qblock *x = &q->blk[(q->cur + stage + 1) & mask];
+    for (int32_t k = 0; k < x->n; k++) {
+      if (stage == HD_QUEUE_STAGES - 1) __builtin_prefetch(&q->key[x->id[k]]);
+      q->pf(q->pf_ctx, x->id[k], stage);
     }
   }
 }
@@ -158,33 +163,64 @@ void hd_queue_set_prefetch(hd_queue *q, hd_queue_prefetch_fn fn, void *ctx) {
   q->pf_ctx = ctx;
 }
 
+/* Moves the current entries of block x and of its extensions to the heap, empties them and
+ * gives the extensions back. */
+static void drain_block(hd_queue *q, hd_qblock *x) {
+  int32_t e = x->more;
+  x->more = -1;
+  for (;;) {
+    for (int32_t k = 0; k < x->n; k++)
+      if (q->key[x->id[k]] == x->t[k]) heap_push(q, x->t[k], x->id[k]);
+    /* else stale: its body's time has changed since */
+    q->in_buckets -= x->n;
+    x->n = 0;
+    if (e < 0) return;
+    x = &q->ext[e];
+    int32_t nx = x->more;
+    x->more = q->xfree;
+    q->xfree = e;
+    e = nx;
+  }
+}
+
+static void rebuild(hd_queue *q);
+
+/* Places the waiting entries whose bucket the queue has reached (into the heap); -1 if full. */
+static int flush_due(hd_queue *q) {
+  for (int k = 0; k < HD_QPEND; k++) {
+    hd_qpend *p = &q->pend[k];
+    if (p->id >= 0 && p->b <= q->cur) {
+      q->npend--;
+      int32_t id = p->id;
+      p->id = -1;
+      if (place_in(q, p->t, id, p->b)) return -1;
+    }
+  }
+  return 0;
+}
+
 /* Moves to the next non-empty bucket and fills the heap from it; 0 if no entry is left. */
 static int advance(hd_queue *q) {
-  if (q->in_buckets == 0) {
+  if (q->in_buckets == 0 && q->npend == 0) {
     if (q->novf == 0) return 0;
     double tmin = INFINITY; /* jump straight to the earliest overflow entry */
     for (int32_t r = 0; r < q->novf; r++)
       if (q->ovf[r].t < tmin) tmin = q->ovf[r].t;
     q->cur = bucket_of(q, tmin);
-    redistribute(q);
+    if (redistribute(q)) rebuild(q);
     return 1;
   }
   q->cur++;
-  if ((q->cur & (q->nb - 1)) == 0) redistribute(q); /* a new year */
-  int32_t slot = (int32_t)(q->cur & (q->nb - 1));
-  int32_t it = q->head[slot];
-  q->head[slot] = -1;
-  while (it >= 0) {
-    const hd_qitem *x = &q->item[it];
-    int32_t nx = x->next;
-    q->in_buckets--;
-    if (q->key[x->id] == x->t)
-      heap_push(q, x->t, x->id);
-    else
-      q->live--; /* stale: its body's time has changed since */
-    item_give(q, it);
-    it = nx;
+  if ((q->cur & (q->nb - 1)) == 0 && redistribute(q)) { /* a new year */
+    rebuild(q);
+    return 1;
   }
+  if (q->npend && flush_due(q)) {
+    rebuild(q);
+    return 1;
+  }
+  hd_qblock *x = &q->blk[q->cur & (q->nb - 1)];
+  if (x->n > 0) drain_block(q, x);
   if (q->pf) hint(q);
   return 1;
 }
@@ -198,7 +234,6 @@ int32_t hd_queue_top(hd_queue *q) {
      * the same event: whichever comes up first stands for both) */
     if (q->key[e->id] == e->t) return e->id;
     heap_pop(q);
-    q->live--;
   }
 }
 
@@ -237,25 +272,43 @@ void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride) {
   q->cur = finite ? bucket_of(q, tmin) : 0;
   q->hn = 0;
   q->in_buckets = 0;
-  q->ifree = -1;
   q->novf = 0;
-  q->itop = 0;
-  q->live = 0;
-  for (int32_t s = 0; s < q->nb; s++) q->head[s] = -1;
+  for (int k = 0; k < HD_QPEND; k++) q->pend[k].id = -1;
+  q->npend = 0;
+  q->ppos = 0;
+  for (int32_t s = 0; s < q->nb; s++) q->blk[s].n = 0, q->blk[s].more = -1;
+  q->xfree = -1;
+  for (int32_t e = q->xcap - 1; e >= 0; e--) q->ext[e].n = 0, q->ext[e].more = q->xfree, q->xfree = e;
   for (int32_t i = 0; i < n; i++)
-    if (q->key[i] < INFINITY) {
-      q->live++;
-      place(q, q->key[i], i);
-    }
+    if (q->key[i] < INFINITY) (void)place_in(q, q->key[i], i, bucket_of(q, q->key[i]));
+  /* (place_in cannot fail here: the heap, the overflow and the buckets each hold >= n) */
+}
+
+static void rebuild(hd_queue *q) {
+  hd_queue_build(q, q->n, q->key, 1);
 }
 
 void hd_queue_update(hd_queue *q, int32_t i, double t) {
   q->key[i] = t;
   if (t == INFINITY) return; /* no entry; the old one, if any, is stale now */
-  if (q->live >= q->icap) {  /* the pool is full of stale entries: start afresh from the keys */
-    hd_queue_build(q, q->n, q->key, 1);
+  int64_t b = bucket_of(q, t);
+  if (b > q->cur && b < q->cur + q->nb) {
+    /* a bucket of the year: its block (at random in memory) is prefetched now and written
+     * HD_QPEND updates later, when it has arrived; the entry that was waiting in this slot
+     * goes in first */
+    hd_qpend *p = &q->pend[q->ppos];
+    q->ppos = (q->ppos + 1) & (HD_QPEND - 1);
+    if (p->id >= 0) {
+      q->npend--;
+      if (place_in(q, p->t, p->id, p->b)) {
+        rebuild(q);
+        return;
+      }
+    }
+    __builtin_prefetch(&q->blk[b & (q->nb - 1)], 1);
+    *p = (hd_qpend){t, b, i};
+    q->npend++;
     return;
   }
-  q->live++;
-  place(q, t, i);
+  if (place_in(q, t, i, b)) rebuild(q); /* full of stale entries: afresh */
 }

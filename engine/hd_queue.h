@@ -1,18 +1,22 @@
 /* hd_queue: the event queue — the earliest predicted event of each body, an O(1) calendar queue
  * in the manner of G. Paul, J. Comput. Phys. 221, 615 (2007), with lazy deletion:
  *   - time is cut into buckets of width w; bucket b holds the entries with floor(t/w) == b;
- *     the nb buckets ahead of the current one are an array of singly linked lists (a "year");
+ *     the nb buckets ahead of the current one (a "year") are consecutive blocks of one cache
+ *     line, 4 entries each, with a chain of extension blocks for a bucket that holds more;
  *     entries further ahead wait in an overflow array, redistributed at each new year (an
  *     array, scanned in order, not a list: at N = 10^6 walking a list there was 10 % of the time);
  *   - only the current bucket is ordered: a small binary heap, filled when the queue reaches it;
  *   - a body whose time changes gets a new entry; the old one is left where it is and dropped
  *     when it comes up (an entry is current while its time equals the body's key).  Nothing is
- *     ever unlinked, so an update touches one bucket head and one recycled entry: no neighbour
- *     in a list, no heap position to maintain (at N = 10^6 each of those was a cache miss);
+ *     ever unlinked, so an update touches one bucket's block: no neighbour in a list, no heap
+ *     position to maintain (at N = 10^6 each of those was a cache miss), and the queue walks
+ *     its buckets in memory order (linked items scattered over the pool were a cache miss each
+ *     at N = 10^6);
  *   - bodies with t = INFINITY have no entry.
  * Insertion is O(1), the minimum O(1) on average when w is about the mean spacing of events
  * (hd_queue_build tunes it from the keys; the engine rebuilds the queue every 100 N events; a
- * queue whose entries, current and stale, fill its pool rebuilds itself from the keys).  The
+ * queue whose heap, overflow or extension pool fills with stale entries rebuilds itself from
+ * the keys).  The
  * order is the total order (time, then body index), so the sequence of events is the same
  * whatever the bucket layout: runs are deterministic and checkpoints exact. */
 #ifndef HD_QUEUE_H
@@ -20,42 +24,67 @@
 
 #include <stdint.h>
 
-/* An entry of the current bucket's heap. */
+/* An entry of the current bucket's heap or of the overflow. */
 typedef struct hd_qentry {
   double t;   /* event time */
   int32_t id; /* body */
   int32_t pad;
 } hd_qentry;
 
-/* An entry of a bucket. */
-typedef struct hd_qitem {
-  double t;     /* event time */
-  int32_t id;   /* body */
-  int32_t next; /* next item of the list, -1 at its end (free items: the next free one) */
-} hd_qitem;
+/* Entries a bucket's block holds (one cache line: 4 times and 4 bodies). */
+#define HD_QBLOCK 4
+
+/* A bucket of the year: a block of up to HD_QBLOCK entries, and a chain of extension blocks
+ * (from a pool) when more fall in it.  The buckets of a year are consecutive blocks, so the
+ * queue reads its near future in memory order. */
+typedef struct hd_qblock {
+  double t[HD_QBLOCK];  /* event times */
+  int32_t id[HD_QBLOCK]; /* bodies */
+  int32_t n;            /* entries held, 0..HD_QBLOCK */
+  int32_t more;         /* first extension block (ext index; only it may have room), -1: none;
+                         * in the pool's free list: the next free block */
+  int32_t pad[2];
+} hd_qblock;
+
+/* Updates that wait before they are written into their bucket's block (a power of two): the
+ * block is prefetched when the update comes and written this many updates later. */
+#define HD_QPEND 8
+
+/* An update waiting to be written into a bucket of the year. */
+typedef struct hd_qpend {
+  double t;   /* event time */
+  int64_t b;  /* its bucket (ahead of the current one, within the year) */
+  int32_t id; /* body, -1: the slot is free */
+} hd_qpend;
+
+/* How many buckets ahead the prefetch hint looks (stages HD_QUEUE_STAGES - 1 ... 0). */
+#define HD_QUEUE_STAGES 2
 
 /* A hint from the queue to its user: body i's event is `stage` + 1 buckets ahead of the current
- * one (stage 1, then 0 as it comes nearer), so that what processing it will read can be
- * prefetched in steps (for example its body, then its cells).  It must not change the queue.
- * The entry may be stale (the body's time changed since): the hint is then useless, not wrong. */
+ * one (stage HD_QUEUE_STAGES - 1 first, then down to 0 as it comes nearer), so that what
+ * processing it will read can be prefetched in steps (for example its body, then its cells).
+ * It must not change the queue.  The entry may be stale (the body's time changed since): the
+ * hint is then useless, not wrong. */
 typedef void (*hd_queue_prefetch_fn)(void *ctx, int32_t i, int stage);
 
 /* The queue.  Fields are private to hd_queue.c. */
 typedef struct hd_queue {
   int32_t n, cap;          /* bodies held, capacity */
   double *key;             /* key[i]: body i's time (INFINITY: no event) */
-  hd_qitem *item;          /* pool of list items, icap of them */
-  int32_t icap;            /* items in the pool; also the heap's capacity */
-  int32_t ifree;           /* first free item (a list through next), -1 if none */
-  int32_t itop;            /* items [itop, icap) have never been used */
-  int32_t live;            /* items in lists plus entries in the heap */
+  hd_qblock *blk;          /* blk[slot]: the bucket slot of the year, nb of them */
+  hd_qblock *ext;          /* pool of extension blocks, xcap of them */
+  int32_t xcap;            /* blocks in the pool */
+  int32_t xfree;           /* first free extension block (a list through more), -1 if none */
+  int32_t ecap;            /* room in the heap and in the overflow (each) */
   hd_qentry *heap;         /* the current bucket, ordered */
   int32_t hn;              /* entries in heap */
   int32_t nb;              /* buckets in a year (a power of two) */
-  int32_t *head;           /* head[slot]: first item of bucket slot, -1 if empty */
-  hd_qentry *ovf;          /* the overflow: entries beyond the year, icap of room */
+  hd_qentry *ovf;          /* the overflow: entries beyond the year */
   int32_t novf;            /* entries in it */
-  int64_t in_buckets;      /* items in bucket lists */
+  int64_t in_buckets;      /* entries in the buckets' blocks */
+  hd_qpend pend[HD_QPEND]; /* updates waiting to be written into their blocks, a ring */
+  int32_t ppos;            /* the ring's next slot */
+  int32_t npend;           /* updates waiting */
   int64_t cur;             /* index of the current bucket (floor(t / w)) */
   double w;                /* bucket width */
   double inv_w;            /* 1 / w: the bucket of t is floor(t * inv_w) */
