@@ -9,7 +9,8 @@
  * bodies in contact are in adjacent cells.  After a collision of i and j their own pair is
  * searched once, by j (hd_predict_after_pair).  In a pure disk scene a prediction walks interior
  * cells by index offsets, without the periodic and wall logic of HD_FOR_NEIGHBOURS.
- * hd_predict_prefetch is the event queue's prefetch hint (hd_queue.h) for large systems. */
+ * hd_predict_prefetch_near and _far are the event queue's prefetch hints (hd_queue.h) for large
+ * systems. */
 #include <float.h>
 #include <math.h>
 
@@ -334,28 +335,81 @@ void hd_predict_crossed(hd_sim *s, int32_t i, int wrapped) {
   hd_predict(s, i);
 }
 
-void hd_predict_prefetch(void *ctx, int32_t i, int stage) {
+/* The cells whose lists body b's next event will walk, as up to 9 cell indices (cells at least
+ * two from the edge only: otherwise it returns 0 and the event is left to the caches): for a
+ * crossing the current cell (its list loses b) and the 3 cells that become adjacent, else the
+ * 3x3 block. */
+static int event_cells(const hd_sim *s, const hd_body *b, int32_t cells[9]) {
+  int32_t c = b->cell, ncx = s->ncx, cx, cy;
+  hd_body_cxy(s, b, &cx, &cy);
+  if (cx < 2 || cx >= ncx - 2 || cy < 2 || cy >= s->ncy - 2) return 0;
+  int n = 0;
+  if (b->c_t <= b->p_t && s->partial_cross) {
+    static const int8_t step[4][2] = {{2, 0}, {-2, 0}, {0, 2}, {0, -2}};
+    int dir = b->c_dir & 3;
+    int32_t mid = c + step[dir][0] + step[dir][1] * ncx, along = dir < 2 ? ncx : 1;
+    cells[n++] = c;
+    for (int32_t cc = mid - along; cc <= mid + along; cc += along) cells[n++] = cc;
+    return n;
+  }
+  for (int32_t row = c - ncx; row <= c + ncx; row += ncx)
+    for (int32_t cc = row - 1; cc <= row + 1; cc++) cells[n++] = cc;
+  return n;
+}
+
+/* Prefetches body b's partner, if any: both lines for a collision (or the stale check), the
+ * second (ncoll) for the check that a crossing makes on the stored contact.  A macro, not a
+ * function: gcc 12 finds a static function that only prefetches "pure" and deletes its calls. */
+#define HD_PREFETCH_PARTNER(s, b)                                                                  \
+  do {                                                                                             \
+    if ((b)->p_type == HD_EV_PAIR) {                                                               \
+      const hd_body *p_ = &(s)->b[(b)->p_partner];                                                 \
+      if ((b)->p_t < (b)->c_t) __builtin_prefetch(p_);                                             \
+      __builtin_prefetch((const char *)p_ + 64);                                                   \
+    }                                                                                              \
+  } while (0)
+
+void hd_predict_prefetch_far(void *ctx, int32_t i, int stage) {
   const hd_sim *s = ctx;
   const hd_body *b = &s->b[i];
-  if (stage == 1) { /* the body itself */
+  if (stage == 2) { /* 4 buckets ahead: the body itself */
     __builtin_prefetch(b);
     __builtin_prefetch((const char *)b + 64);
     return;
   }
+  if (stage == 1) HD_PREFETCH_PARTNER(s, b); /* 2 ahead: its partner and its cells' list heads */
+  int32_t cells[9];
+  int n = event_cells(s, b, cells);
+  if (stage == 1) {
+    for (int k = 0; k < n; k++) __builtin_prefetch(&s->head[cells[k]]);
+    return;
+  }
+  for (int k = 0; k < n; k++) { /* 1 ahead: the line of a neighbour that a prediction reads */
+    int32_t j = s->head[cells[k]];
+    if (j >= 0) __builtin_prefetch(&s->b[j]);
+  }
+}
+
+void hd_predict_prefetch_near(void *ctx, int32_t i, int stage) {
+  const hd_sim *s = ctx;
+  const hd_body *b = &s->b[i];
+  if (stage == 1) { /* 2 buckets ahead: the body itself */
+    __builtin_prefetch(b);
+    __builtin_prefetch((const char *)b + 64);
+    return;
+  }
+  /* 1 ahead: the three rows of list heads around it (interior cells only) and its partner; in
+   * dimer scenes also the first body of each cell, which a dimer's long prediction has time to
+   * use (prefetched here, not in a helper: see HD_PREFETCH_PARTNER) */
+  HD_PREFETCH_PARTNER(s, b);
   int32_t c = b->cell, ncx = s->ncx, cx, cy;
   hd_body_cxy(s, b, &cx, &cy);
-  if (cx < 1 || cx >= ncx - 1 || cy < 1 || cy >= s->ncy - 1) return; /* interior cells only */
+  if (cx < 1 || cx >= ncx - 1 || cy < 1 || cy >= s->ncy - 1) return;
   for (int32_t row = c - ncx; row <= c + ncx; row += ncx) __builtin_prefetch(&s->head[row - 1]);
-  if (!s->disks_only) /* dimer scenes: the first body of each cell too (a dimer's prediction is
-                       * long enough for these loads to pay; for disks they cost more) */
+  if (!s->disks_only)
     for (int32_t row = c - ncx; row <= c + ncx; row += ncx)
       for (int32_t cc = row - 1; cc <= row + 1; cc++) {
         int32_t j = s->head[cc];
         if (j >= 0) __builtin_prefetch(&s->b[j]);
       }
-  if (b->p_type == HD_EV_PAIR) { /* the partner: a collision, or the stale check */
-    const hd_body *p = &s->b[b->p_partner];
-    __builtin_prefetch(p);
-    __builtin_prefetch((const char *)p + 64);
-  }
 }

@@ -9,6 +9,11 @@
 
 _Static_assert(sizeof(hd_qblock) == 64, "hd_qblock: one cache line");
 
+/* Body i's key, in the caller's array. */
+static inline double key_of(const hd_queue *q, int32_t i) {
+  return q->key[(int64_t)i * q->kstride];
+}
+
 static inline int before(const hd_qentry *a, const hd_qentry *b) {
   return a->t < b->t || (a->t == b->t && a->id < b->id);
 }
@@ -26,12 +31,11 @@ hd_queue *hd_queue_alloc(int32_t cap) {
   /* extension blocks: with them the buckets hold 4 nb + 4 xcap >= 6 n entries, so the n live
    * entries of a rebuilt queue always fit, however they are spread */
   int32_t xcap = nb / 2 + 16;
-  q->key = hd_mem_alloc(sizeof(double) * c);
   q->blk = hd_mem_alloc(sizeof(hd_qblock) * (size_t)nb);
   q->ext = hd_mem_alloc(sizeof(hd_qblock) * (size_t)xcap);
   q->heap = hd_mem_alloc(sizeof(hd_qentry) * (size_t)ecap);
   q->ovf = hd_mem_alloc(sizeof(hd_qentry) * (size_t)ecap);
-  if (!q->key || !q->blk || !q->ext || !q->heap || !q->ovf) {
+  if (!q->blk || !q->ext || !q->heap || !q->ovf) {
     hd_queue_free(q);
     return NULL;
   }
@@ -44,7 +48,6 @@ hd_queue *hd_queue_alloc(int32_t cap) {
 
 void hd_queue_free(hd_queue *q) {
   if (!q) return;
-  free(q->key);
   free(q->blk);
   free(q->ext);
   free(q->heap);
@@ -132,7 +135,7 @@ static int redistribute(hd_queue *q) {
   int32_t n = q->novf, kept = 0;
   for (int32_t r = 0; r < n; r++) {
     hd_qentry e = q->ovf[r];
-    if (q->key[e.id] != e.t) continue; /* stale */
+    if (key_of(q, e.id) != e.t) continue; /* stale */
     int64_t b = bucket_of(q, e.t);
     if (b >= q->cur + q->nb)
       q->ovf[kept++] = e;
@@ -143,24 +146,27 @@ static int redistribute(hd_queue *q) {
   return 0;
 }
 
-/* The prefetch hint for the next HD_QUEUE_STAGES buckets (a few entries of each); the bucket
- * after them is prefetched itself.  Buckets are consecutive blocks, so this reads a few lines
- * in order. */
+/* The prefetch hint: the entries of the buckets 1, 2 (and 4) ahead of the current one, stage 0,
+ * 1 (and 2); the bucket after the farthest is prefetched itself.  Buckets are consecutive
+ * blocks, so this reads a few lines in order. */
 static void hint(hd_queue *q) {
+  static const int ahead[3] = {1, 2, 4};
   int32_t mask = q->nb - 1;
-  __builtin_prefetch(&q->blk[(q->cur + HD_QUEUE_STAGES + 1) & mask]);
-  for (int stage = HD_QUEUE_STAGES - 1; stage >= 0; stage--) {
-    const hd_qblock *x = &q->blk[(q->cur + stage + 1) & mask];
-    for (int32_t k = 0; k < x->n; k++) {
-      if (stage == HD_QUEUE_STAGES - 1) __builtin_prefetch(&q->key[x->id[k]]);
-      q->pf(q->pf_ctx, x->id[k], stage);
-    }
+  __builtin_prefetch(&q->blk[(q->cur + ahead[q->pf_stages - 1] + 1) & mask]);
+  for (int stage = q->pf_stages - 1; stage >= 0; stage--) {
+    const hd_qblock *x = &q->blk[(q->cur + ahead[stage]) & mask];
+    for (int32_t k = 0; k < x->n; k++)
+      /* the first stage brings the key in (the engine's is on the body it prefetches); the
+       * later ones skip an entry gone stale since */
+      if (stage == q->pf_stages - 1 || key_of(q, x->id[k]) == x->t[k])
+        q->pf(q->pf_ctx, x->id[k], stage);
   }
 }
 
-void hd_queue_set_prefetch(hd_queue *q, hd_queue_prefetch_fn fn, void *ctx) {
+void hd_queue_set_prefetch(hd_queue *q, hd_queue_prefetch_fn fn, void *ctx, int stages) {
   q->pf = fn;
   q->pf_ctx = ctx;
+  q->pf_stages = stages < 2 ? 2 : stages > 3 ? 3 : stages;
 }
 
 /* Moves the current entries of block x and of its extensions to the heap, empties them and
@@ -170,7 +176,7 @@ static void drain_block(hd_queue *q, hd_qblock *x) {
   x->more = -1;
   for (;;) {
     for (int32_t k = 0; k < x->n; k++)
-      if (q->key[x->id[k]] == x->t[k]) heap_push(q, x->t[k], x->id[k]);
+      if (key_of(q, x->id[k]) == x->t[k]) heap_push(q, x->t[k], x->id[k]);
     /* else stale: its body's time has changed since */
     q->in_buckets -= x->n;
     x->n = 0;
@@ -232,7 +238,7 @@ int32_t hd_queue_top(hd_queue *q) {
     const hd_qentry *e = &q->heap[0];
     /* current while its time is the body's key (two entries with the same time and body are
      * the same event: whichever comes up first stands for both) */
-    if (q->key[e->id] == e->t) return e->id;
+    if (key_of(q, e->id) == e->t) return e->id;
     heap_pop(q);
   }
 }
@@ -242,13 +248,13 @@ static int cmp_double(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride) {
-  q->n = n;
+/* Refills the queue from the keys. */
+static void rebuild(hd_queue *q) {
+  int32_t n = q->n;
   double tmin = INFINITY;
   int64_t finite = 0;
   for (int32_t i = 0; i < n; i++) {
-    double ti = t[(int64_t)i * stride];
-    q->key[i] = ti;
+    double ti = key_of(q, i);
     if (ti < INFINITY) {
       if (ti < tmin) tmin = ti;
       finite++;
@@ -261,7 +267,7 @@ void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride) {
   int ns = 0;
   int32_t stride_s = n > 1023 ? n / 1023 : 1;
   for (int32_t i = 0; i < n && ns < 1023; i += stride_s)
-    if (q->key[i] < INFINITY) sample[ns++] = q->key[i] - tmin;
+    if (key_of(q, i) < INFINITY) sample[ns++] = key_of(q, i) - tmin;
   q->w = 1.0;
   if (ns > 2 && finite > 1) {
     qsort(sample, (size_t)ns, sizeof(double), cmp_double);
@@ -278,18 +284,24 @@ void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride) {
   q->ppos = 0;
   for (int32_t s = 0; s < q->nb; s++) q->blk[s].n = 0, q->blk[s].more = -1;
   q->xfree = -1;
-  for (int32_t e = q->xcap - 1; e >= 0; e--) q->ext[e].n = 0, q->ext[e].more = q->xfree, q->xfree = e;
-  for (int32_t i = 0; i < n; i++)
-    if (q->key[i] < INFINITY) (void)place_in(q, q->key[i], i, bucket_of(q, q->key[i]));
+  for (int32_t e = q->xcap - 1; e >= 0; e--)
+    q->ext[e].n = 0, q->ext[e].more = q->xfree, q->xfree = e;
+  for (int32_t i = 0; i < n; i++) {
+    double ti = key_of(q, i);
+    if (ti < INFINITY) (void)place_in(q, ti, i, bucket_of(q, ti));
+  }
   /* (place_in cannot fail here: the heap, the overflow and the buckets each hold >= n) */
 }
 
-static void rebuild(hd_queue *q) {
-  hd_queue_build(q, q->n, q->key, 1);
+void hd_queue_build(hd_queue *q, int32_t n, double *t, int32_t stride) {
+  q->n = n;
+  q->key = t;
+  q->kstride = stride;
+  rebuild(q);
 }
 
 void hd_queue_update(hd_queue *q, int32_t i, double t) {
-  q->key[i] = t;
+  q->key[(int64_t)i * q->kstride] = t;
   if (t == INFINITY) return; /* no entry; the old one, if any, is stale now */
   int64_t b = bucket_of(q, t);
   if (b > q->cur && b < q->cur + q->nb) {

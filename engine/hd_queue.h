@@ -38,11 +38,11 @@ typedef struct hd_qentry {
  * (from a pool) when more fall in it.  The buckets of a year are consecutive blocks, so the
  * queue reads its near future in memory order. */
 typedef struct hd_qblock {
-  double t[HD_QBLOCK];  /* event times */
+  double t[HD_QBLOCK];   /* event times */
   int32_t id[HD_QBLOCK]; /* bodies */
-  int32_t n;            /* entries held, 0..HD_QBLOCK */
-  int32_t more;         /* first extension block (ext index; only it may have room), -1: none;
-                         * in the pool's free list: the next free block */
+  int32_t n;             /* entries held, 0..HD_QBLOCK */
+  int32_t more;          /* first extension block (ext index; only it may have room), -1: none;
+                          * in the pool's free list: the next free block */
   int32_t pad[2];
 } hd_qblock;
 
@@ -57,20 +57,19 @@ typedef struct hd_qpend {
   int32_t id; /* body, -1: the slot is free */
 } hd_qpend;
 
-/* How many buckets ahead the prefetch hint looks (stages HD_QUEUE_STAGES - 1 ... 0). */
-#define HD_QUEUE_STAGES 2
-
-/* A hint from the queue to its user: body i's event is `stage` + 1 buckets ahead of the current
- * one (stage HD_QUEUE_STAGES - 1 first, then down to 0 as it comes nearer), so that what
- * processing it will read can be prefetched in steps (for example its body, then its cells).
- * It must not change the queue.  The entry may be stale (the body's time changed since): the
- * hint is then useless, not wrong. */
+/* A hint from the queue to its user: body i's event is 1 (stage 0), 2 (stage 1) or, with three
+ * stages, 4 (stage 2) buckets ahead of the current one; each entry is hinted at every stage,
+ * the highest first, so that what processing it will read can be prefetched in steps (for
+ * example its body, then its cells, then their bodies).  It must not change the queue.  The
+ * entry may be stale (the body's time changed since): the hint is then useless, not wrong. */
 typedef void (*hd_queue_prefetch_fn)(void *ctx, int32_t i, int stage);
 
 /* The queue.  Fields are private to hd_queue.c. */
 typedef struct hd_queue {
   int32_t n, cap;          /* bodies held, capacity */
-  double *key;             /* key[i]: body i's time (INFINITY: no event) */
+  double *key;             /* key[i * kstride]: body i's time (INFINITY: no event), in the
+                            * caller's array (hd_queue_build) */
+  int64_t kstride;         /* distance between consecutive keys, in doubles */
   hd_qblock *blk;          /* blk[slot]: the bucket slot of the year, nb of them */
   hd_qblock *ext;          /* pool of extension blocks, xcap of them */
   int32_t xcap;            /* blocks in the pool */
@@ -90,18 +89,23 @@ typedef struct hd_queue {
   double inv_w;            /* 1 / w: the bucket of t is floor(t * inv_w) */
   hd_queue_prefetch_fn pf; /* prefetch hint, or NULL */
   void *pf_ctx;            /* its context */
+  int pf_stages;           /* its stages, 2 or 3 */
 } hd_queue;
 
 /* Allocates a queue for cap bodies; NULL on failure. */
 hd_queue *hd_queue_alloc(int32_t cap);
 /* Frees the queue (NULL allowed). */
 void hd_queue_free(hd_queue *q);
-/* Fills the queue with bodies 0..n-1 with times t[i * stride] (in doubles), choosing the bucket
- * width from their spread: O(n). */
-void hd_queue_build(hd_queue *q, int32_t n, const double *t, int32_t stride);
-/* Sets the prefetch hint (fn NULL: none). */
-void hd_queue_set_prefetch(hd_queue *q, hd_queue_prefetch_fn fn, void *ctx);
-/* Sets body i's time to t (any value >= the last minimum, or INFINITY). O(1) amortised. */
+/* Fills the queue with bodies 0..n-1 whose times are t[i * stride] (in doubles), choosing the
+ * bucket width from their spread: O(n).  The queue keeps reading its keys there (for the engine
+ * that is each body's own ev_t, on the line that the event and the prefetch hint bring in
+ * anyway: no separate array to miss in): the caller changes key i only through
+ * hd_queue_update (which writes it), and builds the queue again after it moves the array. */
+void hd_queue_build(hd_queue *q, int32_t n, double *t, int32_t stride);
+/* Sets the prefetch hint (fn NULL: none) and its stages (2 or 3, see hd_queue_prefetch_fn). */
+void hd_queue_set_prefetch(hd_queue *q, hd_queue_prefetch_fn fn, void *ctx, int stages);
+/* Sets body i's time to t (any value >= the last minimum, or INFINITY), writing t[i * stride]
+ * of hd_queue_build's array. O(1) amortised. */
 void hd_queue_update(hd_queue *q, int32_t i, double t);
 /* The body with the earliest event (ties: lowest index); a body with t = INFINITY when nothing
  * else is left.  The queue must hold at least one body. */

@@ -29,9 +29,13 @@ void hd_predict(hd_sim *s, int32_t i);
  * once, by j's prediction: if its contact is not j's earliest event, j has an earlier event,
  * which predicts j again (a collision, a crossing or a stale event), so nothing is lost. */
 void hd_predict_after_pair(hd_sim *s, int32_t i, int32_t j);
-/* Prefetch hint for the event queue (hd_queue_prefetch_fn, ctx = the hd_sim): brings body i,
- * then its cells' list heads and its partner into the cache, as its event comes nearer. */
-void hd_predict_prefetch(void *ctx, int32_t i, int stage);
+/* Prefetch hints for the event queue (hd_queue_prefetch_fn, ctx = the hd_sim), for bodies that
+ * outgrow a core's L2 cache.  Near (2 stages, within the last-level cache): body i 2 buckets
+ * ahead, then its 3 rows of cell list heads and its partner.  Far (3 stages, past it): body i 4
+ * buckets ahead, then the list heads of the cells its event walks (all 9, or for a crossing the
+ * 3 new ones and its own) and its partner, then the first body of each of those cells. */
+void hd_predict_prefetch_near(void *ctx, int32_t i, int stage);
+void hd_predict_prefetch_far(void *ctx, int32_t i, int stage);
 /* Predicts body i's events after it crossed a cell face (wrapped: through the box edge). */
 void hd_predict_crossed(hd_sim *s, int32_t i, int wrapped);
 

@@ -7,6 +7,8 @@
 #include <cmocka.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_fit.h>
@@ -152,6 +154,43 @@ static void elastic_conservation(void **state) {
   hd_sim_free(s);
 }
 
+/* The event queue's prefetch hints (on by themselves only for bodies past a core's L2 cache)
+ * change nothing: a disk gas and a dimer-disk mixture run with none, the near (2-stage) and the
+ * far (3-stage) hint forced on end in the same state bit for bit.  Under the sanitizer build
+ * this also checks that the hints read only inside the cell and body arrays. */
+static void prefetch_hints_change_nothing(void **state) {
+  (void)state;
+  for (int mix = 0; mix < 2; mix++) {
+    hd_body *end[3] = {NULL, NULL, NULL};
+    int32_t n = 0;
+    for (int h = 0; h < 3; h++) {
+      hd_scene sc;
+      test_disk_scene(&sc, 3000, 0.3, 0.9, 7);
+      if (mix) sc.n_disks = 600, sc.n_dimers = 600, sc.dimer_alpha = 0.95;
+      hd_sim *s;
+      hd_error err;
+      assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+      if (h == 1) hd_queue_set_prefetch(s->q, hd_predict_prefetch_near, s, 2);
+      if (h == 2) hd_queue_set_prefetch(s->q, hd_predict_prefetch_far, s, 3);
+      long steps = test_size(200000, 10);
+      for (long k = 0; k < steps; k++) {
+        hd_event_out ev;
+        if (hd_sim_next(s, INFINITY, &ev, &err)) fail_msg("event %ld: %s", k, err.msg);
+      }
+      n = s->n;
+      end[h] = malloc(sizeof(hd_body) * (size_t)n);
+      memcpy(end[h], s->b, sizeof(hd_body) * (size_t)n);
+      hd_sim_free(s);
+    }
+    for (int h = 1; h < 3; h++)
+      for (int32_t i = 0; i < n; i++) {
+        assert_memory_equal(&end[0][i].k, &end[h][i].k, sizeof(hd_kin));
+        assert_true(end[0][i].t == end[h][i].t && end[0][i].ev_t == end[h][i].ev_t);
+      }
+    for (int h = 0; h < 3; h++) free(end[h]);
+  }
+}
+
 /* Near jamming: 1000 elastic disks at area fraction 0.72 (a melted lattice; hard disks freeze
  * near 0.70), 2e5 collisions in verification mode: energy drift < 1e-10, no overlap, and the
  * melt left no overlap and a Maxwellian start (exact T). */
@@ -291,6 +330,7 @@ int main(void) {
       cmocka_unit_test(oblique_grazing_periodic),
       cmocka_unit_test(collision_across_wrap),
       cmocka_unit_test(near_jamming),
+      cmocka_unit_test(prefetch_hints_change_nothing),
       cmocka_unit_test(elastic_conservation),
       cmocka_unit_test(enskog_rate),
       cmocka_unit_test(maxwellian),
