@@ -107,8 +107,13 @@ $(BENCH_BIN): bench/bench_engine.c $(LIB) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS)
 
-bench: bin/haff $(BENCH_BIN)
-	@BENCH_BIN=$(BENCH_BIN) bench/run.sh
+MEMLAT_BIN := $(BUILD)/bench/memlat
+$(MEMLAT_BIN): bench/memlat.c | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -o $@ $< $(LDLIBS)
+
+bench: bin/haff $(BENCH_BIN) $(MEMLAT_BIN)
+	@BENCH_BIN=$(BENCH_BIN) MEMLAT_BIN=$(MEMLAT_BIN) bench/run.sh
 
 plots: bin/haff
 	@$(MAKE) --no-print-directory -f plots/plots.mk

@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # make bench: collisions per second on one core against N, area fraction and logging, for disks
-# and dimers (a = d), written to bench/results.md with the machine and date.  Every figure comes
+# and dimers (a = d), written to bench/results.md with the machine and date, and the machine's
+# memory latency (bench/memlat), which sets the speed at large N.  Every figure comes
 # from this one invocation, so ratios between rows are measured under the same conditions.
 # BENCH_QUICK=1 runs only N <= 1e4 (a minute instead of ~15).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${BENCH_BIN:-build/bench/bench_engine}
+memlat=${MEMLAT_BIN:-build/bench/memlat}
 out=bench/results.md
 raw=$(mktemp)
 ns="1000 10000 100000 1000000"
@@ -34,6 +36,13 @@ for kind in disk dimer; do
     run $kind $n $eta $log
   done; done; done
 done
+# the memory the engine waits on at large N: latency of one random load against the buffer's
+# size, and the cost per line with 16 loads in flight (what prefetching can at best reach)
+lat=$(mktemp)
+for mc in "1 1" "16 1" "64 1" "256 1" "256 4" "256 16"; do
+  echo "bench: memlat $mc" >&2
+  taskset -c 0 "$memlat" $mc >>"$lat" 2>/dev/null || "$memlat" $mc >>"$lat"
+done
 cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
 {
   echo "# haff benchmark"
@@ -57,6 +66,18 @@ cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
         f[4]==1 ? sprintf("%.0f%%", 100*f[7]/un) : "", b/f[7] } }' "$raw"
   echo
   echo "\"vs N = 1e3\": slowdown factor against N = 1000 at the same kind, fraction and logging."
+  echo
+  echo "Memory of this machine in the same run (\`bench/memlat MB CHAINS\`: a random cycle of"
+  echo "64-byte lines through MB megabytes on huge pages, CHAINS walkers at once):"
+  echo
+  echo "| buffer | loads in flight | ns per load |"
+  echo "|---|---|---|"
+  awk -F'\t' '{ printf "| %d MB | %d | %.1f |\n", $1, $2, $3 }' "$lat"
+  echo
+  echo "At N = 1e6 the bodies (128 B each), cell heads and queue blocks (~250 MB) are far past the"
+  echo "last-level cache, and events come in time order, at random places: each touches lines no"
+  echo "recent event has, so its speed is set by the DRAM latency above and by how many of those"
+  echo "loads the prefetch hints (engine/hd_predict.c) can keep in flight at once."
 } >"$out"
-rm -f "$raw"
+rm -f "$raw" "$lat"
 cat "$out"
