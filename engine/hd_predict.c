@@ -273,6 +273,13 @@ void hd_predict_after_pair(hd_sim *s, int32_t i, int32_t j) {
   predict_full(s, j, -1);
 }
 
+/* The cell dist cells from cell c across face dir (0 +x, 1 -x, 2 +y, 3 -y) of a grid ncx
+ * cells wide, without wrapping (for cells far enough from the edges). */
+static inline int32_t cell_beyond(int32_t c, int dir, int32_t dist, int32_t ncx) {
+  static const int8_t step[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  return c + dist * (step[dir][0] + step[dir][1] * ncx);
+}
+
 /* After body i crossed face `dir` (without wrapping) in a pure disk scene: searches the 3 cells
  * that became adjacent, keeping the stored contact if it is still valid.  Returns 0 when a full
  * prediction is needed instead (the stored contact is stale). */
@@ -287,9 +294,8 @@ static int predict_after_crossing(hd_sim *s, int32_t i) {
   double best = bi->p_type == HD_EV_NONE ? INFINITY : bi->p_t - now;
   if (s->walls) predict_walls(s, i, cross, &best);
   if (cx >= 1 && cx < ncx - 1 && cy >= 1 && cy < s->ncy - 1) { /* interior: index offsets */
-    static const int8_t step[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-    int32_t mid = c + step[dir][0] + step[dir][1] * ncx; /* the new cell straight ahead */
-    int32_t along = dir < 2 ? ncx : 1;                   /* along the new column or row */
+    int32_t mid = cell_beyond(c, dir, 1, ncx);                 /* the new cell straight ahead */
+    int32_t along = dir < 2 ? ncx : 1;                         /* along the new column or row */
     for (int32_t cc = mid - along; cc <= mid + along; cc += along)
       for (int32_t j = s->head[cc]; j >= 0; j = s->b[j].next)
         predict_disk_pair(s, bi, j, 0.0, 0.0, 0, 0, D, &best);
@@ -345,9 +351,8 @@ static int event_cells(const hd_sim *s, const hd_body *b, int32_t cells[9]) {
   if (cx < 2 || cx >= ncx - 2 || cy < 2 || cy >= s->ncy - 2) return 0;
   int n = 0;
   if (b->c_t <= b->p_t && s->partial_cross) {
-    static const int8_t step[4][2] = {{2, 0}, {-2, 0}, {0, 2}, {0, -2}};
-    int dir = b->c_dir & 3;
-    int32_t mid = c + step[dir][0] + step[dir][1] * ncx, along = dir < 2 ? ncx : 1;
+    int dir = b->c_dir;
+    int32_t mid = cell_beyond(c, dir, 2, ncx), along = dir < 2 ? ncx : 1;
     cells[n++] = c;
     for (int32_t cc = mid - along; cc <= mid + along; cc += along) cells[n++] = cc;
     return n;
@@ -377,10 +382,10 @@ void hd_predict_prefetch_far(void *ctx, int32_t i, int stage) {
     __builtin_prefetch((const char *)b + 64);
     return;
   }
-  if (stage == 1) HD_PREFETCH_PARTNER(s, b); /* 2 ahead: its partner and its cells' list heads */
   int32_t cells[9];
   int n = event_cells(s, b, cells);
-  if (stage == 1) {
+  if (stage == 1) { /* 2 ahead: its partner and its cells' list heads */
+    HD_PREFETCH_PARTNER(s, b);
     for (int k = 0; k < n; k++) __builtin_prefetch(&s->head[cells[k]]);
     return;
   }

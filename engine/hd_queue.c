@@ -3,7 +3,6 @@
 
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "hd_mem.h"
 
@@ -191,16 +190,21 @@ static void drain_block(hd_queue *q, hd_qblock *x) {
 
 static void rebuild(hd_queue *q);
 
-/* Places the waiting entries whose bucket the queue has reached (into the heap); -1 if full. */
+/* Places the waiting entries whose bucket the queue has reached (into the heap) and sets pmin
+ * to the earliest bucket of those that still wait; -1 if full. */
 static int flush_due(hd_queue *q) {
+  q->pmin = INT64_MAX;
   for (int k = 0; k < HD_QPEND; k++) {
     hd_qpend *p = &q->pend[k];
-    if (p->id >= 0 && p->b <= q->cur) {
-      q->npend--;
-      int32_t id = p->id;
-      p->id = -1;
-      if (place_in(q, p->t, id, p->b)) return -1;
+    if (p->id < 0) continue;
+    if (p->b > q->cur) {
+      if (p->b < q->pmin) q->pmin = p->b;
+      continue;
     }
+    q->npend--;
+    int32_t id = p->id;
+    p->id = -1;
+    if (place_in(q, p->t, id, p->b)) return -1;
   }
   return 0;
 }
@@ -221,7 +225,7 @@ static int advance(hd_queue *q) {
     rebuild(q);
     return 1;
   }
-  if (q->npend && flush_due(q)) {
+  if (q->pmin <= q->cur && flush_due(q)) {
     rebuild(q);
     return 1;
   }
@@ -282,6 +286,7 @@ static void rebuild(hd_queue *q) {
   for (int k = 0; k < HD_QPEND; k++) q->pend[k].id = -1;
   q->npend = 0;
   q->ppos = 0;
+  q->pmin = INT64_MAX;
   for (int32_t s = 0; s < q->nb; s++) q->blk[s].n = 0, q->blk[s].more = -1;
   q->xfree = -1;
   for (int32_t e = q->xcap - 1; e >= 0; e--)
@@ -320,6 +325,7 @@ void hd_queue_update(hd_queue *q, int32_t i, double t) {
     __builtin_prefetch(&q->blk[b & (q->nb - 1)], 1);
     *p = (hd_qpend){t, b, i};
     q->npend++;
+    if (b < q->pmin) q->pmin = b;
     return;
   }
   if (place_in(q, t, i, b)) rebuild(q); /* full of stale entries: afresh */

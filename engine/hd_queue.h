@@ -84,6 +84,8 @@ typedef struct hd_queue {
   hd_qpend pend[HD_QPEND]; /* updates waiting to be written into their blocks, a ring */
   int32_t ppos;            /* the ring's next slot */
   int32_t npend;           /* updates waiting */
+  int64_t pmin;            /* no update waits for a bucket before this one (INT64_MAX: none;
+                            * may be lower than the earliest, never higher) */
   int64_t cur;             /* index of the current bucket (floor(t / w)) */
   double w;                /* bucket width */
   double inv_w;            /* 1 / w: the bucket of t is floor(t * inv_w) */

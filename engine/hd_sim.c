@@ -55,7 +55,7 @@ static int sim_setup(hd_sim **out, const hd_scene *sc, hd_error *err) {
 
 /* Size of the bodies above which the event queue prefetches them (about a core's L2 cache), and
  * above which it prefetches in three stages (past the last-level cache: on the machine of
- * bench/results.md a random load took 55 ns in 16 MB, 156 ns in 64 MB). */
+ * bench/results.md a random load took 53 ns in 16 MB, 162 ns in 64 MB). */
 #define HD_PREFETCH_BYTES ((size_t)2 << 20)
 #define HD_PREFETCH_FAR_BYTES ((size_t)32 << 20)
 
@@ -66,11 +66,10 @@ int hd_sim_queue_init(hd_sim *s, hd_error *err) {
    * N = 1e5 and 1e6); below that its own cost wins.  Past the last level, the neighbours'
    * bodies too (+16 % at N = 1e6); within it that costs more than it saves (-8 % at 1e5). */
   size_t bytes = (size_t)s->n * sizeof(hd_body);
-  s->pf_stages = bytes > HD_PREFETCH_FAR_BYTES ? 3 : bytes > HD_PREFETCH_BYTES ? 2 : 0;
-  if (s->pf_stages)
-    hd_queue_set_prefetch(s->q,
-                          s->pf_stages == 3 ? hd_predict_prefetch_far : hd_predict_prefetch_near, s,
-                          s->pf_stages);
+  if (bytes > HD_PREFETCH_FAR_BYTES)
+    hd_queue_set_prefetch(s->q, hd_predict_prefetch_far, s, 3);
+  else if (bytes > HD_PREFETCH_BYTES)
+    hd_queue_set_prefetch(s->q, hd_predict_prefetch_near, s, 2);
   s->rebase_every = s->n > 1000 ? 100 * (int64_t)s->n : 100000;
   s->disks_only = s->n_species[HD_SP_DIMER] == 0;
   s->partial_cross = s->disks_only && s->ncx >= 3 && s->ncy >= 3;

@@ -106,7 +106,6 @@ typedef struct hd_sim {
   int verify;                             /* check invariants at every event (slow) */
   int disks_only;         /* no dimers: disk-disk prediction without shape dispatch */
   int partial_cross;      /* pure disks, >= 3x3 cells: crossings search 3 new cells */
-  int pf_stages;          /* the event queue's prefetch hint: 0 off, 2 or 3 stages */
   int melt;               /* set-up only: the lattice placed must be melted */
   double max_overlap;     /* verification: largest relative overlap seen */
   int32_t last_i, last_j; /* bodies of the last collision (collapse report) */
