@@ -9,7 +9,8 @@
  *
  * No rotation (disk bodies, or dimers with omega == 0 exactly): r is linear in t and the first
  * root of |r|^2 = D^2 is the closed form t = c / (-b + sqrt(b^2 - v^2 c)), c = r^2 - D^2,
- * b = r.v (hd_predict_disks; the engine's disk fast path uses the same function).
+ * b = r.v (hd_predict_disks; the engine's disk fast path, hd_disk_contact_time in hd_disk.h,
+ * shares its VTOL rule for a pair in contact).
  *
  * With rotation: conservative advancement (CA) over all disk pairs at once, from the time the
  * enclosing circles (radius (a + d)/2 each) first meet to the time they part for good (or tmax).
@@ -79,10 +80,12 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "hd_disk.h"
+
 #define TOL_C 1e-12
 #define TOL_0 1e-10
 #define TOL_SEP 2e-10
-#define VTOL 1e-12
+#define VTOL HD_DISK_VTOL
 #define HD_CA_MAXIT 100000000L
 
 double hd_shape_mass(const hd_shape *s) {
