@@ -65,8 +65,8 @@ static inline void take_pair(hd_body *bi, const hd_body *bj, int32_t j, int ka, 
   bi->p_pcount = bj->ncoll;
   bi->p_ka = (int16_t)ka;
   bi->p_kb = (int16_t)kb;
-  bi->p_imx = (int16_t)(ix - bj->wx + bi->wx);
-  bi->p_imy = (int16_t)(iy - bj->wy + bi->wy);
+  bi->p_imx = (int16_t)hd_image_code(ix, bi->wx, bj->wx); /* ix - wx(j) + wx(i) */
+  bi->p_imy = (int16_t)hd_image_code(iy, bi->wy, bj->wy);
 }
 
 /* disk-disk contact of bi with j seen through shift (sx, sy) = (ix, iy) box lengths: closed

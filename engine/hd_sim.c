@@ -474,7 +474,8 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
     }
     hd_body_sync(s, i);
     hd_body_sync(s, j);
-    double sx = (bi->p_imx + bj->wx - bi->wx) * s->lx, sy = (bi->p_imy + bj->wy - bi->wy) * s->ly;
+    double sx = hd_image_code(bi->p_imx, bj->wx, bi->wx) * s->lx;
+    double sy = hd_image_code(bi->p_imy, bj->wy, bi->wy) * s->ly;
     hd_kin kj = bj->k;
     kj.x += sx;
     kj.y += sy;

@@ -50,9 +50,19 @@ typedef struct hd_body {
   int16_t p_ka;      /* touching disk of this body */
   int16_t p_kb;      /* touching disk of the partner */
   int16_t p_imx;     /* PAIR: image offset of the partner, invariant under wrapping: */
-  int16_t p_imy;     /*   shift = (p_im + wrap(partner) - wrap(this)) * L */
-  int32_t wx, wy;    /* times this body was wrapped through the box (+1 for x -= lx) */
+  int16_t p_imy;     /*   shift = (p_im + wrap(partner) - wrap(this)) * L, hd_image_code */
+  uint32_t wx, wy;   /* times this body was wrapped through the box (+1 for x -= lx), modulo
+                      * 2^32: only differences modulo 2^16 are used (hd_image_code) */
 } hd_body;
+
+/* The shift code (-1, 0 or 1 box lengths) im + wp - wb, computed modulo 2^16: exact, since the
+ * true code is -1, 0 or 1, however far the two wrap counts wp and wb have drifted apart in a
+ * long run (a 16-bit difference overflowed after 32768 laps of one body more than its partner).
+ * With im = ix - wp + wb it gives back the offset ix of a pair event (hd_predict.c). */
+static inline int hd_image_code(int im, uint32_t wp, uint32_t wb) {
+  uint32_t u = ((uint32_t)im + wp - wb) & 0xffffu;
+  return u & 0x8000u ? (int)u - 0x10000 : (int)u;
+}
 
 /* Allocates n bodies, zeroed, aligned on cache lines (hd_body is two of them); NULL on
  * failure; free() releases them. */

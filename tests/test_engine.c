@@ -115,6 +115,34 @@ static void collision_across_wrap(void **state) {
   hd_sim_free(s);
 }
 
+/* Wrap counts are labels: the collision of collision_across_wrap comes out the same when the
+ * two disks have lapped the box 40000 and -30000 times before (a 16-bit image offset
+ * overflowed once they differed by more than 32767: one disk lapping a 10x10
+ * box 40000 times met its partner through an image 65536 boxes away).  hd_image_code itself is
+ * exact modulo 2^16 for any counts, wrapping through 2^32 included. */
+static void image_code_long_runs(void **state) {
+  (void)state;
+  hd_event_out ev;
+  hd_error err;
+  hd_sim *s = two_disks(10.0, 1.5, 5.0, 0.0, 0.0, 9.7, 5.5, 1.0, 0.0, 1.0);
+  s->b[0].wx = 40000u, s->b[0].wy = 7u;
+  s->b[1].wx = (uint32_t)-30000, s->b[1].wy = 0xfffffff0u;
+  for (int i = 0; i < 2; i++) hd_predict(s, i);
+  assert_int_equal(hd_sim_next(s, INFINITY, &ev, &err), HD_OK);
+  double dx = sqrt(1.0 - 0.25), tc = (1.5 - dx) - (9.7 - 10.0);
+  assert_true(fabs(ev.t - tc) < 1e-13);
+  assert_true(fabs(s->b[0].k.vx - dx * dx) < 1e-12 && fabs(s->b[0].k.vy + dx * 0.5) < 1e-12);
+  hd_sim_free(s);
+  uint32_t w[5] = {0u, 1u, 40000u, 0x7fffffffu, 0xffffffffu};
+  for (int a = 0; a < 5; a++)
+    for (int b = 0; b < 5; b++)
+      for (int ix = -1; ix <= 1; ix++) {
+        int im = hd_image_code(ix, w[b], w[a]); /* stored: ix - w[a] + w[b] */
+        assert_true(im >= INT16_MIN && im <= INT16_MAX);
+        assert_int_equal(hd_image_code(im, w[a], w[b]), ix);
+      }
+}
+
 /* The disk fast path's contact rule (hd_disk.h): a round-off overlap collides now only while
  * approaching faster than HD_DISK_VTOL |v|.  Before the rule
  * an alpha = 0 pair (normal velocity 0 up to round-off after its collision) collided again at
@@ -383,6 +411,7 @@ int main(void) {
       cmocka_unit_test(head_on),
       cmocka_unit_test(oblique_grazing_periodic),
       cmocka_unit_test(collision_across_wrap),
+      cmocka_unit_test(image_code_long_runs),
       cmocka_unit_test(disk_contact_rule),
       cmocka_unit_test(alpha_zero_gas),
       cmocka_unit_test(near_jamming),
