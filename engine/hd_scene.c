@@ -290,6 +290,14 @@ static int set_sides(ctx *c, const char *v) {
     if (w & (1u << j)) return FAIL_KEY(c, K_WSIDES, "side '%s' repeated", tok[i]);
     w |= 1u << j;
   }
+  /* a wall closes its axis: past it there is no periodic image, so the opposite edge must be
+   * closed too (a lone wall let bodies wrap through the open edge to land behind it) */
+  if (!(w & HD_WALL_LEFT) != !(w & HD_WALL_RIGHT))
+    return FAIL_KEY(c, K_WSIDES, "'%s' needs '%s' too: walls close an axis at both edges",
+                    w & HD_WALL_LEFT ? "left" : "right", w & HD_WALL_LEFT ? "right" : "left");
+  if (!(w & HD_WALL_BOTTOM) != !(w & HD_WALL_TOP))
+    return FAIL_KEY(c, K_WSIDES, "'%s' needs '%s' too: walls close an axis at both edges",
+                    w & HD_WALL_BOTTOM ? "bottom" : "top", w & HD_WALL_BOTTOM ? "top" : "bottom");
   c->sc->walls = w;
   return HD_OK;
 }
@@ -790,6 +798,11 @@ static int check_all(ctx *c) {
         !(req_sec[j] != S_WALLS && sc->placement == HD_PLACE_STATE))
       return fail(c, HD_EINPUT, c->sec_at[req_sec[j]], req_sec[j], key_def[req_key[j]].name, NULL,
                   "missing: required in [%s]", sec_name[req_sec[j]]);
+  if (sc->n_dimers > 0 && sc->dimer_a > 0 && sc->dimer_a < HD_MIN_BOND * sc->dimer_d)
+    return FAIL_KEY(c, K_DA,
+                    "must be 0 or at least %g d = %g: a shorter bond is lost in the round-off of "
+                    "the positions (a = 0 is a dimer without lever arm, a disk of mass 2m)",
+                    HD_MIN_BOND, HD_MIN_BOND * sc->dimer_d);
   if ((rc = check_box(c))) return rc;
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,

@@ -69,7 +69,7 @@ static void good_scene_values(void **state) {
   assert_int_equal(sc.n_disks, 7);
   assert_true(sc.disk_sigma == 0.5 && sc.disk_mass == 3 && sc.disk_alpha == 0.8);
   assert_true(sc.disk_alpha_dimer == 0.85);
-  assert_int_equal(sc.walls, HD_WALL_TOP | HD_WALL_LEFT);
+  assert_int_equal(sc.walls, HD_WALL_TOP | HD_WALL_LEFT | HD_WALL_BOTTOM | HD_WALL_RIGHT);
   assert_true(sc.wall_alpha == 0.7);
   assert_true(sc.temperature == 2.5);
   assert_int_equal(sc.placement, HD_PLACE_LATTICE);
@@ -220,6 +220,10 @@ static const bad_case bad_cases[] = {
      "repeated"},
     {RUN "[walls]\nsides = left front\n", NULL, HD_EINPUT, "bad.ini:4:", "[walls] sides",
      "unknown side"},
+    {RUN "[walls]\nsides = right\n", NULL, HD_EINPUT, "bad.ini:4:", "[walls] sides",
+     "'right' needs 'left'"},
+    {RUN "[walls]\nsides = left right top\n", NULL, HD_EINPUT, "bad.ini:4:", "[walls] sides",
+     "'top' needs 'bottom'"},
     {RUN "[run]\nverify = maybe\n", NULL, HD_EINPUT, "bad.ini:4:", "[run] verify", "expected"},
     {RUN "[run]\ncheckpoint_every = 0\n", NULL, HD_EINPUT, "bad.ini:4:", "[run] checkpoint_every",
      "> 0"},
@@ -227,6 +231,9 @@ static const bad_case bad_cases[] = {
     {"[system]\nseed = 3\n\n[run]\nverify = 1\n", NULL, HD_EINPUT, "bad.ini:4:", "[run]",
      "no stop condition"},
     {RUN "[run]\nstop_time = 0\n", NULL, HD_EINPUT, "bad.ini:4:", "[run] stop_time", "> 0"},
+    /* a bond below 1e-9 d (here d = 2: below 2e-9) is lost in round-off */
+    {RUN BOX "[dimers]\ncount = 2\nd = 2\na = 1.9e-9\n", NULL, HD_EINPUT, "bad.ini:8:",
+     "[dimers] a", "must be 0 or at least 1e-09 d = 2e-09"},
     /* a dimer of a + d = 2 cannot fit an edge of 1.5 */
     {RUN "[system]\nbox = 1.5 10\n[dimers]\ncount = 1\n", NULL, HD_EINPUT,
      "bad.ini:4:", "[system] box", "too small"},
@@ -321,10 +328,10 @@ static void overrides_apply(void **state) {
   hd_error e;
   /* an override replaces a file value (no duplicate error), and may create a section */
   const char *over[] = {"dimers.alpha=0.5", " log . samples_every = 2 ", "system.seed=7",
-                        "walls.sides=bottom"};
+                        "walls.sides=bottom top"};
   assert_int_equal(hd_scene_load(&sc, "tests/data/scenes/good.ini", over, 4, &e), HD_OK);
   assert_true(sc.dimer_alpha == 0.5 && sc.samples_every == 2 && sc.seed == 7);
-  assert_int_equal(sc.walls, HD_WALL_BOTTOM);
+  assert_int_equal(sc.walls, HD_WALL_BOTTOM | HD_WALL_TOP);
   assert_true(sc.disk_alpha == 0.8); /* untouched */
   hd_scene_free(&sc);
 
