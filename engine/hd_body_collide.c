@@ -14,6 +14,8 @@
  * usual rule P = (1 + alpha) mu g, mu = M_A M_B / (M_A + M_B).  Dimers of unequal disk mass use
  * the same per-disk updates with P = (1 + alpha) g / sum((1 - c^2/2)/m), which is eq. 18 when the
  * masses are equal.  A dimer of a = 0 has no lever arm and moves as a disk of mass 2m.
+ * The products with r12 = a e_A enter as e_A alone (r13.r12 / a): the formulas divide (r13.r12)^2 by
+ * a^2, which for a < 1e-154 underflowed to 0/0.
  * A pair that is not approaching (normal velocity >= 0) is left unchanged.
  * tests/test_body.c checks every rule against the generic impulse rule of hd_body_impulse.c. */
 #include "hd_body.h"
@@ -81,24 +83,24 @@ int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb
   if (a.rot && b.rot && a.m == b.m) {
     /* eq. 18: Dv = (1 + alpha)/(2d) (v3 - v1).r13 / (1 - [(r13.r12)^2 + (r13.r34)^2]/(4 a^2 d^2))
      */
-    double x12 = (r13x * a.ex + r13y * a.ey) * a.a, x34 = (r13x * b.ex + r13y * b.ey) * b.a;
-    double den = 1.0 - (x12 * x12 / (a.a * a.a) + x34 * x34 / (b.a * b.a)) / (4.0 * dd * dd);
+    double c12 = r13x * a.ex + r13y * a.ey, c34 = r13x * b.ex + r13y * b.ey; /* r13.r12 / a */
+    double den = 1.0 - (c12 * c12 + c34 * c34) / (4.0 * dd * dd);
     double dv = (1.0 + alpha) / (2.0 * dd) * g / den;
     px = a.m * dv * r13x / dd; /* m Dv r13 / d, eq. 12 */
     py = a.m * dv * r13y / dd;
   } else if (a.rot && !b.rot) {
     /* eq. 22 with R_d - r_1 = -r13, V_d - v_1 = v3 - v1, C = d:
      * Du = (1 + alpha) g / (1 + m/M - (r13.r12)^2/(2 a^2 C^2)) r13 / C^2, impulse on A = m Du */
-    double x12 = (r13x * a.ex + r13y * a.ey) * a.a;
-    double den = 1.0 + a.m / b.mass - x12 * x12 / (2.0 * a.a * a.a * dd * dd);
+    double c12 = r13x * a.ex + r13y * a.ey; /* r13.r12 / a */
+    double den = 1.0 + a.m / b.mass - c12 * c12 / (2.0 * dd * dd);
     double du = (1.0 + alpha) * g / den / (dd * dd);
     px = a.m * du * r13x;
     py = a.m * du * r13y;
   } else if (!a.rot && b.rot) {
     /* eq. 22 for B's dimer: R_d - r_3 = r13, V_d - v_3 = v1 - v3: Du = -(1 + alpha) g / den
      * r13/C^2, impulse on B = m Du, on A = -m Du */
-    double x34 = (r13x * b.ex + r13y * b.ey) * b.a;
-    double den = 1.0 + b.m / a.mass - x34 * x34 / (2.0 * b.a * b.a * dd * dd);
+    double c34 = r13x * b.ex + r13y * b.ey; /* r13.r34 / a */
+    double den = 1.0 + b.m / a.mass - c34 * c34 / (2.0 * dd * dd);
     double du = -(1.0 + alpha) * g / den / (dd * dd);
     px = -b.m * du * r13x;
     py = -b.m * du * r13y;
@@ -130,8 +132,8 @@ int hd_collide_wall(hd_kin *A, const hd_shape *sa, int ka, const hd_wall *w, dou
   double px, py;
   if (a.rot) {
     /* eq. 25: Dw = -(1 + alpha) (v1.n) / (1 - (n.r12)^2 / (2 a^2)) n, impulse m Dw */
-    double x12 = (nx * a.ex + ny * a.ey) * a.a;
-    double dw = -(1.0 + alpha) * v1n / (1.0 - x12 * x12 / (2.0 * a.a * a.a));
+    double c12 = nx * a.ex + ny * a.ey; /* n.r12 / a */
+    double dw = -(1.0 + alpha) * v1n / (1.0 - 0.5 * c12 * c12);
     px = a.m * dw * nx;
     py = a.m * dw * ny;
   } else {

@@ -436,8 +436,9 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
       if (stop_rel > s->c.t && stop_rel < INFINITY) s->c.t = stop_rel;
       return te == INFINITY && stop_rel == INFINITY ? HD_SIM_IDLE : HD_SIM_STOPTIME;
     }
-    assert(te >= s->c.t); /* event times never decrease */
-    if (te < s->c.t) return hd_error_set(err, HD_EPHYS, "event time went backwards at body %d", i);
+    if (!(te >= s->c.t)) /* event times never decrease (checked in every build; NaN included) */
+      return hd_error_set(err, HD_EPHYS, "event time %.17g of body %d is before the clock %.17g",
+                          te + s->c.t_offset, s->id[i], hd_sim_time(s));
     s->c.t = te;
     s->c.events++;
 

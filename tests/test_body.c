@@ -492,6 +492,50 @@ static void collide_pairs(void **state) {
   gsl_rng_free(r);
 }
 
+/* Bond lengths far below 1e-154 (a^2 underflows): the rules give finite velocities that
+ * conserve momentum and agree with the generic impulse rule (1e-12 of the speed scale).  The
+ * paper's formulas divide (r13.r12)^2 by a^2; written that way they gave 0/0 = NaN at
+ * a = 1e-170.  (Scenes refuse 0 < a < 1e-9 d, see hd_scene.h; the rules must still hold.) */
+static void collide_tiny_bond(void **state) {
+  (void)state;
+  gsl_rng *r = rng_new(23);
+  hd_shape dm = dimer(1.0, 1e-170, 1.0), dk = disk(1.4, 2.5);
+  for (int k = 0; k < 200; k++) {
+    const hd_shape *sa = &dm, *sb = k % 2 ? &dk : &dm;
+    /* a contact of disk ka of A with disk kb of B along a random direction (random_contact
+     * would refuse it: the other disk of a tiny dimer touches too) */
+    int ka = k % 4 < 2, kb = sb->kind == HD_KIND_DIMER && k % 3 == 0;
+    hd_kin A = {0, 0, gsl_ran_gaussian(r, 1), gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI),
+                gsl_ran_gaussian(r, 1)};
+    hd_kin B = {0, 0, gsl_ran_gaussian(r, 1), gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI),
+                gsl_ran_gaussian(r, 1)};
+    if (sb->kind == HD_KIND_DISK) B.phi = B.omega = 0.0;
+    double ang = unif(r, -M_PI, M_PI), D = 0.5 * (sa->d + sb->d), pax, pay, obx, oby;
+    ref_pos(&A, sa, ka, 0.0, &pax, &pay);
+    ref_pos(&B, sb, kb, 0.0, &obx, &oby);
+    B.x = pax + D * cos(ang) - obx, B.y = pay + D * sin(ang) - oby;
+    if ((B.vx - A.vx) * cos(ang) + (B.vy - A.vy) * sin(ang) > 0) /* make it approach */
+      A.vx = -A.vx, A.vy = -A.vy, B.vx = -B.vx, B.vy = -B.vy;
+    hd_kin A1 = A, B1 = B, A2 = A, B2 = B;
+    hd_collide_pair(&A1, sa, &B1, sb, ka, kb, 0.7, NULL);
+    hd_impulse_pair(&A2, sa, &B2, sb, ka, kb, 0.7, NULL);
+    double vs = fmax(fabs(A.vx) + fabs(A.vy), fabs(B.vx) + fabs(B.vy)) + 1.0;
+    assert_true(isfinite(A1.vx) && isfinite(A1.vy) && isfinite(B1.vx) && isfinite(B1.vy));
+    double Ma = hd_shape_mass(sa), Mb = hd_shape_mass(sb);
+    assert_true(fabs(Ma * (A1.vx - A.vx) + Mb * (B1.vx - B.vx)) <= 1e-13 * (Ma + Mb) * vs);
+    assert_true(fabs(A1.vx - A2.vx) <= 1e-12 * vs && fabs(A1.vy - A2.vy) <= 1e-12 * vs);
+    assert_true(fabs(B1.vx - B2.vx) <= 1e-12 * vs && fabs(B1.vy - B2.vy) <= 1e-12 * vs);
+    /* a wall: the normal velocity of the touching disk is reversed times alpha */
+    hd_wall w = {0, A.x + 1.0, -1.0}; /* x = A.x + 1, bodies on its left */
+    hd_kin W = {A.x + 0.5, 0, 1.0 + gsl_rng_uniform(r), 0.3, unif(r, -M_PI, M_PI), 0.5};
+    hd_kin W1 = W, W2 = W;
+    hd_collide_wall(&W1, &dm, 0, &w, 0.7, NULL);
+    hd_impulse_wall(&W2, &dm, 0, &w, 0.7, NULL);
+    assert_true(isfinite(W1.vx) && fabs(W1.vx - W2.vx) <= 1e-12 * (1 + fabs(W.vx)));
+  }
+  gsl_rng_free(r);
+}
+
 /* Hand-derived cases of the theta convention and of a head-on collision. */
 static void collide_by_hand(void **state) {
   (void)state;
@@ -1081,6 +1125,7 @@ int main(void) {
       cmocka_unit_test(free_flight),
       cmocka_unit_test(collide_by_hand),
       cmocka_unit_test(collide_pairs),
+      cmocka_unit_test(collide_tiny_bond),
       cmocka_unit_test(collide_walls),
       cmocka_unit_test(predict_disks_closed_form),
       cmocka_unit_test(predict_pairs),
