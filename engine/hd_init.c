@@ -107,11 +107,15 @@ static int place_lattice(hd_sim *s, hd_error *err) {
   double range = 0.0;
   for (int sp = 0; sp < HD_NSPECIES; sp++)
     if (s->n_species[sp] > 0) range = fmax(range, 2.0 * hd_shape_radius(&s->shape[sp]));
-  int32_t nx = (int32_t)ceil(sqrt((double)s->n * s->lx / s->ly));
-  if (nx < 1) nx = 1;
-  int32_t ny = (s->n + nx - 1) / nx;
+  /* the grid hd_scene.c checks: at most floor(L / range) sites along each edge (spacing
+   * >= range; equal means touching), as square as the box allows */
+  double fx = fmax(1.0, floor(s->lx / range)), fy = fmax(1.0, floor(s->ly / range));
+  double gx = fmin(fx, fmax(1.0, ceil(sqrt((double)s->n * s->lx / s->ly))));
+  double gy = ceil((double)s->n / gx);
+  if (gy > fy) gy = fy, gx = fmin(fx, ceil((double)s->n / gy));
+  int32_t nx = (int32_t)gx, ny = (int32_t)gy;
   double ax = s->lx / nx, ay = s->ly / ny;
-  if (ax < range * (1 + 1e-12) || ay < range * (1 + 1e-12))
+  if ((double)nx * ny < (double)s->n || ax < range * (1 - 1e-12) || ay < range * (1 - 1e-12))
     return hd_error_set(err, HD_EINPUT,
                         "[init] placement = lattice: %d bodies need a %d x %d lattice of spacing "
                         ">= %g, but the box %g x %g gives %g x %g; enlarge [system] box",

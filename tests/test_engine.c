@@ -196,6 +196,41 @@ static void alpha_zero_gas(void **state) {
   hd_sim_free(s);
 }
 
+/* placement = lattice fills every box the scene check lets through (a grid of floor(L / range)
+ * sites per edge), with no two bodies closer than the range: before, the engine chose its own
+ * grid and refused 35 disks in 6.5 x 6 (7 x 5 sites of 0.93) and 100 disks in 10 x 10. */
+static void lattice_fits_scene_check(void **state) {
+  (void)state;
+  const char *scenes[] = {
+      "[system]\nbox = 6.5 6\n[disks]\ncount = 35\n",         /* 6 x 6 sites for 35 */
+      "[system]\nbox = 10 10\n[disks]\ncount = 100\n",        /* 10 x 10, touching */
+      "[system]\nbox = 40 2.5\n[disks]\ncount = 80\n",        /* a strip: 40 x 2 */
+      "[system]\nbox = 12 6.1\n[dimers]\ncount = 18\na = 1\n", /* 6 x 3 sites of 2 */
+  };
+  for (int k = 0; k < 4; k++) {
+    char text[256];
+    snprintf(text, sizeof text, "%s[init]\nplacement = lattice\n[run]\nstop_events = 1\n",
+             scenes[k]);
+    hd_scene sc;
+    hd_error err;
+    assert_int_equal(hd_scene_load_string(&sc, text, "lattice.ini", NULL, 0, &err), HD_OK);
+    hd_sim *s;
+    int rc = hd_sim_alloc(&s, &sc, &err);
+    if (rc) fprintf(stderr, "lattice_fits_scene_check %d: %s\n", k, err.msg);
+    assert_int_equal(rc, HD_OK);
+    double range = sc.n_dimers ? sc.dimer_a + sc.dimer_d : sc.disk_sigma, dmin = INFINITY;
+    for (int32_t i = 0; i < s->n; i++)
+      for (int32_t j = i + 1; j < s->n; j++) {
+        double dx = s->b[j].k.x - s->b[i].k.x, dy = s->b[j].k.y - s->b[i].k.y;
+        dx -= s->lx * round(dx / s->lx), dy -= s->ly * round(dy / s->ly);
+        dmin = fmin(dmin, hypot(dx, dy));
+      }
+    assert_true(dmin >= range * (1 - 1e-12));
+    hd_sim_free(s);
+    hd_scene_free(&sc);
+  }
+}
+
 /* Elastic N = 1000 at eta = 0.2 for 10^6 collisions (10^5 sanitized), verification on:
  * relative energy drift < 1e-10, momentum < 1e-12 (absolute, per unit total |p| scale
  * sqrt(N m T)), no overlap beyond 1e-9 of a diameter at any event (checked by the engine
@@ -414,6 +449,7 @@ int main(void) {
       cmocka_unit_test(image_code_long_runs),
       cmocka_unit_test(disk_contact_rule),
       cmocka_unit_test(alpha_zero_gas),
+      cmocka_unit_test(lattice_fits_scene_check),
       cmocka_unit_test(near_jamming),
       cmocka_unit_test(prefetch_hints_change_nothing),
       cmocka_unit_test(elastic_conservation),
