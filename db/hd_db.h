@@ -129,15 +129,15 @@ int hd_db_checkpoint_save(hd_db *db, int64_t run, int64_t seq, double t, const v
 int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_t *seq, double *t,
                           hd_error *err);
 
-/* Deletes the rows a resumed run will write again: collisions with seq > seq and samples and
- * non-checkpoint states with t > t. */
+/* Deletes the rows a resumed run will write again: collisions with seq > seq, samples and
+ * states with t > t; and the run's 'checkpoint' states (where it stopped: it goes on). */
 int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error *err);
 
 /* The id of the newest run whose status is 'interrupted', 'failed' (disk full: resumable once
  * there is room) or 'running' (a killed process);
  * HD_EINPUT if none.  *scene_text malloc'd, *seed its seed.  want_run <= 0 picks the newest
  * such run; want_run > 0 asks for that run, and a run that does not exist or has ended
- * ('done', 'collapsed', 'failed') is HD_EINPUT with a message that says so. */
+ * ('done', 'collapsed') is HD_EINPUT with a message that says so. */
 int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene_text,
                          unsigned long long *seed, hd_error *err);
 

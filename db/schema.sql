@@ -60,6 +60,7 @@ CREATE TABLE IF NOT EXISTS samples (
 );
 
 -- Body states: label 'initial', 'final', 'checkpoint', 'velocities' (at [log] velocities_at).
+-- 'checkpoint' is where an interrupted or collapsed run stopped; `haff resume` removes it.
 CREATE TABLE IF NOT EXISTS states (
   run   INTEGER NOT NULL REFERENCES runs(id),
   label TEXT NOT NULL,

@@ -176,6 +176,8 @@ static void same_as_reference(const char *db) {
                       "FROM ref.states WHERE label IN ('final','velocities'))"),
                    0);
   assert_int_equal(q1(db, "SELECT count(*) FROM states WHERE label='final'"), 2000);
+  /* and no other states: the snapshot written at the interruption went with the resume */
+  assert_int_equal(q1(db, "SELECT count(*) FROM states"), q1(db, "SELECT count(*) FROM ref.states"));
   assert_int_equal(q1(db, "SELECT count(*) FROM states WHERE label='velocities'"), 4000);
   assert_int_equal(q1(db, "SELECT status='done' FROM runs"), 1);
 }
