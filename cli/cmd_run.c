@@ -1,5 +1,7 @@
 /* `haff run` and `haff resume`. */
+#include <errno.h>
 #include <getopt.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -7,6 +9,17 @@
 #include "haff.h"
 #include "hd_run.h"
 #include "hd_scene.h"
+
+/* Whether a --set override (SECTION.KEY=VALUE, blanks allowed around the names) sets
+ * [system] seed. */
+static int sets_seed(const char *o) {
+  char name[64];
+  size_t n = 0;
+  for (; *o && *o != '=' && n + 1 < sizeof name; o++)
+    if (*o != ' ' && *o != '\t') name[n++] = *o;
+  name[n] = 0;
+  return *o == '=' && !strcmp(name, "system.seed");
+}
 
 int haff_run_main(int argc, char **argv);
 int haff_resume_main(int argc, char **argv);
@@ -55,9 +68,14 @@ int haff_run_main(int argc, char **argv) {
       break;
     case 'S': {
       char *end;
+      errno = 0;
       seed = strtoull(optarg, &end, 10);
-      if (!*optarg || *end || optarg[0] == '-') {
+      if (!*optarg || *end || optarg[0] == '-' || optarg[0] == '+') {
         fprintf(stderr, "haff run: --seed %s: not a non-negative integer\n", optarg);
+        return 2;
+      }
+      if (errno == ERANGE) {
+        fprintf(stderr, "haff run: --seed %s: too large (max %llu)\n", optarg, ULLONG_MAX);
         return 2;
       }
       have_seed = 1;
@@ -80,6 +98,12 @@ int haff_run_main(int argc, char **argv) {
   }
   const char *scene = argv[optind];
   char seedset[64];
+  for (int k = 0; have_seed && k < nset; k++)
+    if (sets_seed(sets[k])) {
+      fprintf(stderr, "haff run: --seed and --set %s both set [system] seed: give one\n",
+              sets[k]);
+      return 2;
+    }
   if (have_seed) { /* as an override, so that runs.scene records the seed */
     if (nset == MAX_SET) {
       fprintf(stderr, "haff run: more than %d --set options\n", MAX_SET);
@@ -116,8 +140,9 @@ int haff_run_main(int argc, char **argv) {
 
 static const char resume_usage[] =
     "usage: haff resume DB [--run ID] [--quiet]\n"
-    "  Continues an interrupted (or killed) run from its last checkpoint; the result is the\n"
-    "  same as that of an uninterrupted run.  Without --run: the newest resumable run.\n";
+    "  Continues an interrupted, killed or failed (disk full) run from its last checkpoint;\n"
+    "  the result is the same as that of an uninterrupted run.  Without --run: the newest\n"
+    "  resumable run.\n";
 
 int haff_resume_main(int argc, char **argv) {
   static const struct option opts[] = {{"run", required_argument, 0, 'r'},

@@ -255,6 +255,15 @@ static void bad_input(void **state) {
   assert_int_equal(sh("%s run s.ini --set disks.alpha=2 -o bad.db", haff), 2);
   read_err(e, sizeof e);
   assert_non_null(strstr(e, "--set disks.alpha=2"));
+  /* --seed: out of range is refused (not clamped), and two seeds are a conflict that names
+   * what the user typed */
+  assert_int_equal(sh("%s run s.ini -o bad.db --seed 18446744073709551616", haff), 2);
+  read_err(e, sizeof e);
+  assert_non_null(strstr(e, "--seed 18446744073709551616: too large"));
+  assert_int_equal(sh("%s run s.ini -o bad.db --seed 5 --set system.seed=3", haff), 2);
+  read_err(e, sizeof e);
+  assert_non_null(strstr(e, "--seed and --set system.seed=3 both set [system] seed"));
+  assert_int_equal(access("bad.db", F_OK) == 0 ? 1 : 0, 0);
   assert_int_equal(sh("%s run s.ini --bogus", haff), 2);
   assert_int_equal(sh("%s nosuchcommand", haff), 2);
   assert_int_equal(sh("%s resume nothere.db", haff) != 0, 1);
