@@ -101,7 +101,7 @@ int haff_table1_main(int argc, char **argv) {
       "density, at the initial translational temperature) per (alpha, a/d), mean +- standard "
       "error\n"
       "over the runs (the fit's own error when a group has one run).  a_over_d = 0: hard disks.\n"
-      "Columns: alpha a_over_d D_e D_e_err nu0_eff nu0_eff_err runs\n"
+      "Columns: alpha a_over_d D_e D_e_err ratio ratio_err runs (ratio = nu0_eff/nu0, as in haff-fit)\n"
       "  --md             a Markdown table instead of TSV\n" FIT_OPTS_HELP;
   hd_cli_args a;
   int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD, usage, &a);
@@ -122,7 +122,7 @@ int haff_table1_main(int argc, char **argv) {
     fprintf(out,
             "| α | a/d | D_e | ±ΔD_e | ν0_eff/ν0 | ±Δ | runs |\n|---|---|---|---|---|---|---|\n");
   else
-    fprintf(out, "alpha\ta_over_d\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\truns\n");
+    fprintf(out, "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\n");
   for (size_t j = 0; j < ng; j++) {
     double *dv = v, *de = v + n, *rv = v + 2 * n, *re = v + 3 * n, D, Derr, R, Rerr;
     size_t m = 0;

@@ -35,8 +35,9 @@ int main(int argc, char **argv) {
   sc.dimer_d = sc.dimer_a = sc.dimer_m = 1.0;
   sc.disk_sigma = sc.disk_mass = 1.0;
   sc.dimer_alpha = sc.disk_alpha = sc.disk_alpha_dimer = sc.wall_alpha = 1.0;
-  double area =
-      dimer ? 2 * M_PI / 4 - (M_PI / 3 - sqrt(3) / 4) /* a = d: lens removed */ : M_PI / 4;
+  /* area of one body (a = d: two touching disks, pi / 2; a lens was once wrongly removed
+   * here, which made the dimer rows 1.64 times denser than their label) */
+  double area = dimer ? hd_dimer_area(1.0, 1.0) : M_PI / 4;
   if (dimer)
     sc.n_dimers = n;
   else

@@ -74,7 +74,7 @@ CREATE TABLE IF NOT EXISTS states (
 -- Exact engine state for `haff resume` (opaque, bit-exact); only the newest per run is kept.
 CREATE TABLE IF NOT EXISTS checkpoints (
   run   INTEGER NOT NULL REFERENCES runs(id),
-  seq   INTEGER NOT NULL,     -- collisions logged up to here
+  seq   INTEGER NOT NULL,     -- collisions (pair and wall, logged or not) up to here
   t     REAL NOT NULL,
   blob  BLOB NOT NULL
 );

@@ -261,7 +261,7 @@ static void table1(void **state) {
   char head[256];
   assert_non_null(fgets(head, sizeof head, f));
   fclose(f);
-  assert_string_equal(head, "alpha\ta_over_d\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\truns\n");
+  assert_string_equal(head, "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\n");
   int n = read_rows(out, rows, 10, 1);
   assert_int_equal(n, 3);
   int seen = 0;
