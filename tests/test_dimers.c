@@ -178,11 +178,15 @@ static void double_contact(void **state) {
 }
 
 /* alpha = 0: every collision ends with zero normal relative velocity, energy only decreases;
- * the run goes on (or stops with a reported collapse) without overlaps or NaN. */
+ * the run goes on (or stops with a reported collapse) without overlaps or NaN.  A sliding
+ * contact (rotation drives the touching disks together again) becomes a train of ever smaller
+ * collisions that the engine reports as a collapse: 200 dimers at 0.1 get 12, 9, 2432, 47,
+ * 30839 and 3138 collisions before one with seeds 31 to 36.  Seed 35 is used because it gives
+ * the most collisions to check, not as a claim about how soon alpha = 0 collapses. */
 static void alpha_zero(void **state) {
   (void)state;
   hd_scene sc;
-  dimer_scene(&sc, 200, 0, 1.0, 0.1, 0.0, 31);
+  dimer_scene(&sc, 200, 0, 1.0, 0.1, 0.0, 35);
   sc.verify = 1;
   hd_sim *s;
   hd_error err;
@@ -196,11 +200,23 @@ static void alpha_zero(void **state) {
     if (rc) break;
     assert_true(ev.info.de <= 1e-15 * eprev);
     eprev = s->c.e_kin;
+    /* the touching disks leave with no normal relative velocity: 1e-13 (round-off of
+     * velocities of order 1, rotation included) plus 1e-12 of the approach speed */
+    const hd_body *bi = &s->b[ev.i], *bj = &s->b[ev.j]; /* both at the current time */
+    double xa, ya, xb, yb, ua, wa, ub, wb;
+    hd_kin_disk_pos(&bi->k, &s->shape[bi->species], ev.ka, &xa, &ya);
+    hd_kin_disk_pos(&bj->k, &s->shape[bj->species], ev.kb, &xb, &yb);
+    hd_kin_disk_vel(&bi->k, &s->shape[bi->species], ev.ka, &ua, &wa);
+    hd_kin_disk_vel(&bj->k, &s->shape[bj->species], ev.kb, &ub, &wb);
+    double dx = xb - xa, dy = yb - ya;
+    dx -= s->lx * round(dx / s->lx), dy -= s->ly * round(dy / s->ly);
+    double vn = ((ub - ua) * dx + (wb - wa) * dy) / hypot(dx, dy);
+    if (!(fabs(vn) <= 1e-13 + 1e-12 * fabs(ev.info.vn)))
+      fail_msg("collision %ld: normal velocity %g after, %g before", k, vn, ev.info.vn);
   }
-  if (rc) { /* a collapse is allowed, and must be reported as such */
+  printf("# alpha = 0: %ld collisions%s%s\n", k, rc ? ", then " : "", rc ? err.msg : "");
+  if (rc) /* a collapse is allowed (a lasting sliding contact), and must be reported as such */
     if (rc != HD_ECOLLAPSE) fail_msg("after %ld collisions: %s", k, err.msg);
-    printf("# alpha = 0: %s\n", err.msg);
-  }
   assert_true(s->max_overlap < 1e-9);
   hd_sim_free(s);
 }
