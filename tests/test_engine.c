@@ -254,7 +254,14 @@ static void elastic_conservation(void **state) {
     if (rc) fail_msg("event %ld: %s", k, err.msg);
     assert_true(ev.t >= tlast);
     tlast = ev.t;
-    assert_true(ev.info.de <= 1e-13 && ev.info.de >= -1e-13);
+    /* the pair leaves with its normal velocity reversed, seen on the bodies themselves (the
+     * logged de is -(1 - alpha^2) mu vn^2 / 2, exactly 0 here, and could not show it) */
+    const hd_kin *a = &s->b[ev.i].k, *b = &s->b[ev.j].k;
+    double dx = b->x - a->x, dy = b->y - a->y;
+    dx -= s->lx * round(dx / s->lx), dy -= s->ly * round(dy / s->ly);
+    double vn = ((b->vx - a->vx) * dx + (b->vy - a->vy) * dy) / hypot(dx, dy);
+    if (!(fabs(vn + ev.info.vn) <= 1e-13 + 1e-12 * fabs(ev.info.vn)))
+      fail_msg("collision %ld: vn %g before, %g after", k, ev.info.vn, vn);
   }
   double e1t, e1r;
   hd_sim_energy(s, -1, &e1t, &e1r);
