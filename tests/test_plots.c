@@ -182,7 +182,7 @@ static void tsv_columns(void **state) {
   (void)state;
   need();
   const char *want[][2] = {
-      {"table1.tsv", "alpha\ta_over_d\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\truns"},
+      {"table1.tsv", "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns"},
       {"table2.tsv", "alpha\ta_over_d\ta0\ta0_lo\ta0_hi\ta1\ta1_lo\ta1_hi"},
       {"fmean_vs_engine.tsv", "source\ta_over_d\talpha\tf_mean\tf_err\tD_over_f\tn"},
       {"data/errcost.tsv",
