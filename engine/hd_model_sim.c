@@ -54,7 +54,9 @@ static int64_t m_events(const void *m) {
 }
 static double m_temperature(const void *m) {
   const hd_sim *s = m;
-  double dof = 2.0 * s->n + s->n_species[HD_SP_DIMER];
+  /* 2 translational degrees of freedom per body, 1 rotational per dimer with a lever arm (a
+   * dimer of a = 0 has no moment of inertia and no rotational energy) */
+  double dof = 2.0 * s->n + (s->shape[HD_SP_DIMER].a > 0 ? s->n_species[HD_SP_DIMER] : 0);
   return 2.0 * s->c.e_kin / dof;
 }
 

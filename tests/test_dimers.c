@@ -13,6 +13,7 @@
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_sort.h>
 
+#include "hd_model.h"
 #include "hd_sim_internal.h"
 #include "test_util.h"
 
@@ -221,6 +222,27 @@ static void alpha_zero(void **state) {
   hd_sim_free(s);
 }
 
+/* The temperature of the progress line (the model's `temperature`) is 2 E / degrees of freedom:
+ * 2 per body, 1 more per dimer with a lever arm.  The initial velocities give exactly T = 1.5
+ * per degree of freedom (hd_init_velocities rescales them), so the value is 1.5 to round-off;
+ * dimers of a = 0 have no rotation, and counting it gave 1.5 * 300/400 = 1.125 here. */
+static void model_temperature(void **state) {
+  (void)state;
+  const double as[2] = {0.0, 1.0};
+  for (int k = 0; k < 2; k++) {
+    hd_scene sc;
+    dimer_scene(&sc, 100, 50, as[k], 0.1, 1.0, 3);
+    sc.temperature = 1.5;
+    hd_sim *s;
+    hd_error err;
+    assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+    double T = hd_model_bodies2d.temperature(s);
+    printf("# a = %g: T %.15g\n", as[k], T);
+    assert_true(fabs(T - 1.5) < 1e-12);
+    hd_sim_free(s);
+  }
+}
+
 /* Walls on all four sides: no disk centre ever closer than d/2 to a wall (checked at every
  * collision through verification and over all bodies at the end), energy conserved at
  * alpha = 1, and wall collisions happen. */
@@ -383,6 +405,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(elastic_dimers),    cmocka_unit_test(limits),
       cmocka_unit_test(alpha_zero),        cmocka_unit_test(double_contact),
+      cmocka_unit_test(model_temperature),
       cmocka_unit_test(walls_keep_inside), cmocka_unit_test(mixture_equipartition),
       cmocka_unit_test(inelastic_cooling), cmocka_unit_test(crowded_neighbours),
   };
