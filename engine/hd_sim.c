@@ -55,7 +55,7 @@ static int sim_setup(hd_sim **out, const hd_scene *sc, hd_error *err) {
 
 /* Size of the bodies above which the event queue prefetches them (about a core's L2 cache), and
  * above which it prefetches in three stages (past the last-level cache: on the machine of
- * bench/results.md a random load took 53 ns in 16 MB, 162 ns in 64 MB). */
+ * bench/results.md a random load took 53-103 ns in 16 MB, 160 ns in 64 MB, over two runs). */
 #define HD_PREFETCH_BYTES ((size_t)2 << 20)
 #define HD_PREFETCH_FAR_BYTES ((size_t)32 << 20)
 
