@@ -67,8 +67,10 @@
  *                  a round-off overlap that is receding (the collision just done), so no contact
  *                  of that pair, nor a separation and return, fits before tau_hi (ign_step).
  *                  This saves the evaluation at the separation of every just-collided pair.
- * Linear (closed-form) pairs use the same TOL_0 and VTOL rules and report a contact whose normal
- * velocity at contact is below -VTOL |v|.
+ * Linear (closed-form) pairs use the same TOL_0 and VTOL rules, VTOL |v| widened by the
+ * round-off of the velocities themselves (HD_DISK_VROUND = 8 eps of |vA| + |vB|: two disks
+ * moving together at 1000 keep ~1e-12 of relative normal speed after an alpha = 0 collision),
+ * and report a contact whose normal velocity at contact is below that.
  *
  * Termination: each step is >= min(h)/L > TOL_C D / L or, for ignored pairs, bounded below by the
  * time to reach TOL_SEP; the loop stops at min(tmax, parting time).  As a guard against a
@@ -158,10 +160,10 @@ double hd_kin_energy(const hd_kin *k, const hd_shape *s) {
 
 /* ---- linear motion: closed form ----------------------------------------------------------- */
 
-int hd_predict_disks(double dx, double dy, double dvx, double dvy, double D, double tmax,
-                     double *t) {
+int hd_predict_disks(double dx, double dy, double dvx, double dvy, double D, double vs,
+                     double tmax, double *t) {
   double r2 = dx * dx + dy * dy, b = dx * dvx + dy * dvy, v2 = dvx * dvx + dvy * dvy;
-  double r = sqrt(r2), vtol = VTOL * sqrt(v2);
+  double r = sqrt(r2), vtol = VTOL * sqrt(v2) + HD_DISK_VROUND * vs;
   if (r - D <= TOL_0 * D) {
     /* in contact now: collide if approaching; otherwise |r(t)| (convex) only grows from here */
     if (b < -vtol * r) {
@@ -497,14 +499,14 @@ int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B,
     double sa_, ca_, sb_, cb_;
     sincos(x->pa, &sa_, &ca_);
     sincos(x->pb, &sb_, &cb_);
-    double best = HUGE_VAL;
+    double best = HUGE_VAL, vs = fabs(A->vx) + fabs(A->vy) + fabs(B->vx) + fabs(B->vy);
     int found = 0;
     for (int i = 0; i < x->na; i++) {
       double ka = x->na == 1 ? 0.0 : disk_sign(i) * x->ha;
       for (int j = 0; j < x->nb; j++) {
         double kb = x->nb == 1 ? 0.0 : disk_sign(j) * x->hb, tc;
         double rx = x->dx + kb * cb_ - ka * ca_, ry = x->dy + kb * sb_ - ka * sa_;
-        if (hd_predict_disks(rx, ry, x->dvx, x->dvy, x->D, tmax, &tc) && tc < best) {
+        if (hd_predict_disks(rx, ry, x->dvx, x->dvy, x->D, vs, tmax, &tc) && tc < best) {
           best = tc;
           c->ka = i;
           c->kb = j;

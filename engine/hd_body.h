@@ -137,11 +137,13 @@ int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B,
  * is still under way (ca->t has grown: no contact before it). */
 int hd_ca_step(hd_ca *ca, double tmax, hd_contact *c);
 
-/* Closed-form contact of two disks in linear relative motion (the engine's disk fast path, and
- * hd_predict_pair without rotation): separation d = (dx, dy) (B - A), relative velocity
- * (dvx, dvy) (B - A), contact distance D.  Returns 1 with the earliest contact time *t in
- * [0, tmax] while approaching, 0 if none.  Same t = 0 and grazing rules as hd_predict_pair. */
-int hd_predict_disks(double dx, double dy, double dvx, double dvy, double D, double tmax,
+/* Closed-form contact of two disks in linear relative motion (hd_predict_pair without
+ * rotation; the engine's disk fast path is hd_disk.h): separation d = (dx, dy) (B - A),
+ * relative velocity (dvx, dvy) (B - A), contact distance D, vs >= |vA| + |vB| (the size of the
+ * velocities themselves, whose round-off the "approaching" test allows for).  Returns 1 with
+ * the earliest contact time *t in [0, tmax] while approaching, 0 if none.  Same t = 0 and
+ * grazing rules as hd_predict_pair. */
+int hd_predict_disks(double dx, double dy, double dvx, double dvy, double D, double vs, double tmax,
                      double *t);
 
 /* Earliest time t in [0, tmax] at which body A touches wall w while approaching it; as above. */

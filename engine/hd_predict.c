@@ -77,7 +77,8 @@ static inline void predict_disk_pair(const hd_sim *s, hd_body *bi, int32_t j, do
   const double dtj = s->c.t - bj->t;
   double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x;
   double ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
-  double t = hd_disk_contact_time(rx, ry, bj->k.vx - bi->k.vx, bj->k.vy - bi->k.vy, D);
+  double vs = fabs(bi->k.vx) + fabs(bi->k.vy) + fabs(bj->k.vx) + fabs(bj->k.vy);
+  double t = hd_disk_contact_time(rx, ry, bj->k.vx - bi->k.vx, bj->k.vy - bi->k.vy, D, vs);
   if (t < *best) {
     *best = t;
     take_pair(bi, bj, j, 0, 0, ix, iy);

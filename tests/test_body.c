@@ -1107,14 +1107,18 @@ static void predict_disks_closed_form(void **state) {
   (void)state;
   double t;
   /* gap 1 closing at speed 2: t = 0.5 */
-  assert_true(hd_predict_disks(2.0, 0.0, -2.0, 0.0, 1.0, 10.0, &t) && fabs(t - 0.5) <= 1e-15);
-  assert_false(hd_predict_disks(2.0, 0.0, -2.0, 0.0, 1.0, 0.4, &t)); /* beyond tmax */
+  assert_true(hd_predict_disks(2.0, 0.0, -2.0, 0.0, 1.0, 0.0, 10.0, &t) && fabs(t - 0.5) <= 1e-15);
+  assert_false(hd_predict_disks(2.0, 0.0, -2.0, 0.0, 1.0, 0.0, 0.4, &t)); /* beyond tmax */
   /* impact parameter b < D: t = (sqrt(x^2) - sqrt(D^2 - b^2)) / v with x = 3, b = 0.6, D = 1 */
-  assert_true(hd_predict_disks(3.0, 0.6, -1.0, 0.0, 1.0, 10.0, &t) && fabs(t - 2.2) <= 1e-14);
-  assert_false(hd_predict_disks(3.0, 1.0 + 1e-9, -1.0, 0.0, 1.0, 10.0, &t)); /* miss */
+  assert_true(hd_predict_disks(3.0, 0.6, -1.0, 0.0, 1.0, 0.0, 10.0, &t) && fabs(t - 2.2) <= 1e-14);
+  assert_false(hd_predict_disks(3.0, 1.0 + 1e-9, -1.0, 0.0, 1.0, 0.0, 10.0, &t)); /* miss */
   /* touching now: approaching -> 0, receding -> none */
-  assert_true(hd_predict_disks(1.0 + 1e-12, 0.0, -1.0, 0.0, 1.0, 10.0, &t) && t == 0.0);
-  assert_false(hd_predict_disks(1.0 - 1e-12, 0.0, 1.0, 0.0, 1.0, 10.0, &t));
+  assert_true(hd_predict_disks(1.0 + 1e-12, 0.0, -1.0, 0.0, 1.0, 0.0, 10.0, &t) && t == 0.0);
+  assert_false(hd_predict_disks(1.0 - 1e-12, 0.0, 1.0, 0.0, 1.0, 0.0, 10.0, &t));
+  /* in contact, approaching at 3e-12 with |v| = 1: a collision for slow bodies, round-off for
+   * bodies moving at ~1000 (vs = 4000: 8 eps vs = 7e-12) */
+  assert_true(hd_predict_disks(1.0, 0.0, -3e-12, 1.0, 1.0, 0.0, 10.0, &t) && t == 0.0);
+  assert_false(hd_predict_disks(1.0, 0.0, -3e-12, 1.0, 1.0, 4000.0, 10.0, &t));
 }
 
 int main(void) {
