@@ -101,7 +101,8 @@ int haff_table1_main(int argc, char **argv) {
       "density, at the initial translational temperature) per (alpha, a/d), mean +- standard "
       "error\n"
       "over the runs (the fit's own error when a group has one run).  a_over_d = 0: hard disks.\n"
-      "Columns: alpha a_over_d D_e D_e_err ratio ratio_err runs (ratio = nu0_eff/nu0, as in haff-fit)\n"
+      "Columns: alpha a_over_d D_e D_e_err ratio ratio_err runs (ratio = nu0_eff/nu0, as in "
+      "haff-fit)\n"
       "  --md             a Markdown table instead of TSV\n" FIT_OPTS_HELP;
   hd_cli_args a;
   int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD, usage, &a);

@@ -1,4 +1,5 @@
 /* `haff run` and `haff resume`. */
+#include <ctype.h>
 #include <errno.h>
 #include <getopt.h>
 #include <limits.h>
@@ -70,7 +71,7 @@ int haff_run_main(int argc, char **argv) {
       char *end;
       errno = 0;
       seed = strtoull(optarg, &end, 10);
-      if (!*optarg || *end || optarg[0] == '-' || optarg[0] == '+') {
+      if (!isdigit((unsigned char)optarg[0]) || *end) { /* strtoull takes " -1" */
         fprintf(stderr, "haff run: --seed %s: not a non-negative integer\n", optarg);
         return 2;
       }
@@ -100,8 +101,7 @@ int haff_run_main(int argc, char **argv) {
   char seedset[64];
   for (int k = 0; have_seed && k < nset; k++)
     if (sets_seed(sets[k])) {
-      fprintf(stderr, "haff run: --seed and --set %s both set [system] seed: give one\n",
-              sets[k]);
+      fprintf(stderr, "haff run: --seed and --set %s both set [system] seed: give one\n", sets[k]);
       return 2;
     }
   if (have_seed) { /* as an override, so that runs.scene records the seed */

@@ -160,8 +160,8 @@ double hd_kin_energy(const hd_kin *k, const hd_shape *s) {
 
 /* ---- linear motion: closed form ----------------------------------------------------------- */
 
-int hd_predict_disks(double dx, double dy, double dvx, double dvy, double D, double vs,
-                     double tmax, double *t) {
+int hd_predict_disks(double dx, double dy, double dvx, double dvy, double D, double vs, double tmax,
+                     double *t) {
   double r2 = dx * dx + dy * dy, b = dx * dvx + dy * dvy, v2 = dvx * dvx + dvy * dvy;
   double r = sqrt(r2), vtol = VTOL * sqrt(v2) + HD_DISK_VROUND * vs;
   if (r - D <= TOL_0 * D) {

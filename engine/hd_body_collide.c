@@ -14,10 +14,10 @@
  * usual rule P = (1 + alpha) mu g, mu = M_A M_B / (M_A + M_B).  Dimers of unequal disk mass use
  * the same per-disk updates with P = (1 + alpha) g / sum((1 - c^2/2)/m), which is eq. 18 when the
  * masses are equal.  A dimer of a = 0 has no lever arm and moves as a disk of mass 2m.
- * The products with r12 = a e_A enter as e_A alone (r13.r12 / a): the formulas divide (r13.r12)^2 by
- * a^2, which for a < 1e-154 underflowed to 0/0.
- * A pair that is not approaching (normal velocity >= 0) is left unchanged.
- * tests/test_body.c checks every rule against the generic impulse rule of hd_body_impulse.c. */
+ * The products with r12 = a e_A enter as e_A alone (r13.r12 / a): the formulas divide (r13.r12)^2
+ * by a^2, which for a < 1e-154 underflowed to 0/0. A pair that is not approaching (normal velocity
+ * >= 0) is left unchanged. tests/test_body.c checks every rule against the generic impulse rule of
+ * hd_body_impulse.c. */
 #include "hd_body.h"
 #include "hd_body_impulse.h"
 

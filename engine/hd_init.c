@@ -110,7 +110,7 @@ static int place_lattice(hd_sim *s, hd_error *err) {
   /* the grid hd_scene.c checks: at most floor(L / range) sites along each edge (spacing
    * >= range; equal means touching), as square as the box allows */
   double fx = fmax(1.0, floor(s->lx / range)), fy = fmax(1.0, floor(s->ly / range));
-  double gx = fmin(fx, fmax(1.0, ceil(sqrt((double)s->n * s->lx / s->ly))));
+  double gx = fmin(fmin(fx, (double)s->n), fmax(1.0, ceil(sqrt((double)s->n * s->lx / s->ly))));
   double gy = ceil((double)s->n / gx);
   if (gy > fy) gy = fy, gx = fmin(fx, ceil((double)s->n / gy));
   int32_t nx = (int32_t)gx, ny = (int32_t)gy;

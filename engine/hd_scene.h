@@ -17,10 +17,11 @@
                                  * what random addition reaches (disks jam at 0.547) the           \
                                  * engine melts a dense lattice (pi/4 for disks) */
 #define HD_MAX_COUNT 100000000L /* largest `count` of a species */
-#define HD_MIN_BOND 1e-9        /* [dimers] a: 0 or >= this times d.  Below ~1e-15 d the two disks \
-                                 * sit within an ulp of the centre (collisions pile up); 1e-9 keeps \
-                                 * the bond 1e6 ulps long in a box of 1e3 d */
-#define HD_SCENE_MAX_LINE 4096  /* longest scene line, in bytes */
+#define HD_MIN_BOND                                                                                \
+  1e-9                         /* [dimers] a: 0 or >= this times d.  Below ~1e-15 d the two disks  \
+                                * sit within an ulp of the centre (collisions pile up); 1e-9 keeps \
+                                * the bond ~1e4 ulps long in a box of 1e3 d */
+#define HD_SCENE_MAX_LINE 4096 /* longest scene line, in bytes */
 
 /* Where the initial state comes from ([init] placement / state). */
 typedef enum hd_placement {

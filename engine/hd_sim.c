@@ -1,7 +1,6 @@
 /* The event loop: hd_sim_alloc builds a simulation from a scene, hd_sim_next processes events
  * until the next collision.  Collision rules and contact times live in hd_body.c, prediction in
  * hd_predict.c, cells in hd_cells.c, the initial state in hd_init.c. */
-#include <assert.h>
 #include <stddef.h>
 #include <math.h>
 #include <stdlib.h>
@@ -55,7 +54,8 @@ static int sim_setup(hd_sim **out, const hd_scene *sc, hd_error *err) {
 
 /* Size of the bodies above which the event queue prefetches them (about a core's L2 cache), and
  * above which it prefetches in three stages (past the last-level cache: on the machine of
- * bench/results.md a random load took 53-103 ns in 16 MB, 160 ns in 64 MB, over two runs). */
+ * bench/results.md a random load took 103 ns in 16 MB (53 ns in an earlier run), 160 ns in
+ * 64 MB). */
 #define HD_PREFETCH_BYTES ((size_t)2 << 20)
 #define HD_PREFETCH_FAR_BYTES ((size_t)32 << 20)
 

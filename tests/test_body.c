@@ -505,9 +505,17 @@ static void collide_tiny_bond(void **state) {
     /* a contact of disk ka of A with disk kb of B along a random direction (random_contact
      * would refuse it: the other disk of a tiny dimer touches too) */
     int ka = k % 4 < 2, kb = sb->kind == HD_KIND_DIMER && k % 3 == 0;
-    hd_kin A = {0, 0, gsl_ran_gaussian(r, 1), gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI),
+    hd_kin A = {0,
+                0,
+                gsl_ran_gaussian(r, 1),
+                gsl_ran_gaussian(r, 1),
+                unif(r, -M_PI, M_PI),
                 gsl_ran_gaussian(r, 1)};
-    hd_kin B = {0, 0, gsl_ran_gaussian(r, 1), gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI),
+    hd_kin B = {0,
+                0,
+                gsl_ran_gaussian(r, 1),
+                gsl_ran_gaussian(r, 1),
+                unif(r, -M_PI, M_PI),
                 gsl_ran_gaussian(r, 1)};
     if (sb->kind == HD_KIND_DISK) B.phi = B.omega = 0.0;
     double ang = unif(r, -M_PI, M_PI), D = 0.5 * (sa->d + sb->d), pax, pay, obx, oby;

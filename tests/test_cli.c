@@ -177,7 +177,8 @@ static void same_as_reference(const char *db) {
                    0);
   assert_int_equal(q1(db, "SELECT count(*) FROM states WHERE label='final'"), 2000);
   /* and no other states: the snapshot written at the interruption went with the resume */
-  assert_int_equal(q1(db, "SELECT count(*) FROM states"), q1(db, "SELECT count(*) FROM ref.states"));
+  assert_int_equal(q1(db, "SELECT count(*) FROM states"),
+                   q1(db, "SELECT count(*) FROM ref.states"));
   assert_int_equal(q1(db, "SELECT count(*) FROM states WHERE label='velocities'"), 4000);
   assert_int_equal(q1(db, "SELECT status='done' FROM runs"), 1);
 }
@@ -233,7 +234,6 @@ static void kill9_then_resume(void **state) {
   }
 }
 
-/* Bad input: exit 2, one line naming the file, line and key; nothing written. */
 /* `haff ARGS` (run in the test folder) exits 2 and says `needle` on stderr. */
 static void bad_usage(const char *args, const char *needle) {
   char e[2048];
@@ -243,6 +243,7 @@ static void bad_usage(const char *args, const char *needle) {
     fail_msg("haff %s: exit %d, stderr \"%s\" (wanted 2 and \"%s\")", args, rc, e, needle);
 }
 
+/* Bad input: exit 2, one line naming the file, line and key; nothing written. */
 static void bad_input(void **state) {
   (void)state;
   if (!haff) skip();
@@ -259,6 +260,7 @@ static void bad_input(void **state) {
    * what the user typed */
   bad_usage("run s.ini -o bad.db --seed 18446744073709551616",
             "--seed 18446744073709551616: too large");
+  bad_usage("run s.ini -o bad.db --seed ' -1'", "--seed  -1: not a non-negative integer");
   bad_usage("run s.ini -o bad.db --seed 5 --set system.seed=3",
             "--seed and --set system.seed=3 both set [system] seed");
   assert_int_equal(access("bad.db", F_OK) == 0 ? 1 : 0, 0);
@@ -297,8 +299,9 @@ static void disk_full_then_resume(void **state) {
 
 /* On every logged collision of an inelastic mixture with walls the restitution law holds:
  * dE = -(1 - alpha^2)/2 * mu_eff * vn^2 with mu_eff = f m (f = mu_eff / m by definition), to
- * 1e-9 relative; dE <= 0; the logged losses add up to what the bodies lost; the contact angles of dimers lie in the allowed range
- * |theta| <= pi - arccos(a/2d) = 2 pi/3 (a = d); samples carry per-species energies. */
+ * 1e-9 relative; dE <= 0; the logged losses add up to what the bodies lost; the contact angles of
+ * dimers lie in the allowed range |theta| <= pi - arccos(a/2d) = 2 pi/3 (a = d); samples carry
+ * per-species energies. */
 static void logged_restitution(void **state) {
   (void)state;
   if (!haff) skip();
@@ -324,11 +327,13 @@ static void logged_restitution(void **state) {
    * that of the initial one (from `states`: a dimer has mass 2, I = m a^2 / 2 = 1/2; a disk
    * mass 1) equals the sum of de, to 1e-10 of the initial energy (30000 sums of round-off;
    * measured 1e-14) */
-#define KE "sum(CASE kind WHEN 'dimer' THEN vx*vx + vy*vy + 0.25*omega*omega ELSE 0.5*(vx*vx + vy*vy) END)"
-  assert_int_equal(q1("mix.db", "SELECT abs((SELECT " KE " FROM states WHERE label = 'final') - (SELECT "
-                                KE " FROM states WHERE label = 'initial') - (SELECT sum(de) FROM "
-                                "collisions)) < 1e-10 * (SELECT " KE " FROM states WHERE label = "
-                                "'initial')"),
+#define KE                                                                                         \
+  "sum(CASE kind WHEN 'dimer' THEN vx*vx + vy*vy + 0.25*omega*omega ELSE 0.5*(vx*vx + vy*vy) END)"
+  assert_int_equal(q1("mix.db",
+                      "SELECT abs((SELECT " KE " FROM states WHERE label = 'final') - (SELECT " KE
+                      " FROM states WHERE label = 'initial') - (SELECT sum(de) FROM "
+                      "collisions)) < 1e-10 * (SELECT " KE " FROM states WHERE label = "
+                      "'initial')"),
                    1);
 #undef KE
   assert_int_equal(q1("mix.db",

@@ -403,11 +403,15 @@ static void inelastic_cooling(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(elastic_dimers),    cmocka_unit_test(limits),
-      cmocka_unit_test(alpha_zero),        cmocka_unit_test(double_contact),
+      cmocka_unit_test(elastic_dimers),
+      cmocka_unit_test(limits),
+      cmocka_unit_test(alpha_zero),
+      cmocka_unit_test(double_contact),
       cmocka_unit_test(model_temperature),
-      cmocka_unit_test(walls_keep_inside), cmocka_unit_test(mixture_equipartition),
-      cmocka_unit_test(inelastic_cooling), cmocka_unit_test(crowded_neighbours),
+      cmocka_unit_test(walls_keep_inside),
+      cmocka_unit_test(mixture_equipartition),
+      cmocka_unit_test(inelastic_cooling),
+      cmocka_unit_test(crowded_neighbours),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

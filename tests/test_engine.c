@@ -235,9 +235,9 @@ static void alpha_zero_gas(void **state) {
 static void lattice_fits_scene_check(void **state) {
   (void)state;
   const char *scenes[] = {
-      "[system]\nbox = 6.5 6\n[disks]\ncount = 35\n",         /* 6 x 6 sites for 35 */
-      "[system]\nbox = 10 10\n[disks]\ncount = 100\n",        /* 10 x 10, touching */
-      "[system]\nbox = 40 2.5\n[disks]\ncount = 80\n",        /* a strip: 40 x 2 */
+      "[system]\nbox = 6.5 6\n[disks]\ncount = 35\n",          /* 6 x 6 sites for 35 */
+      "[system]\nbox = 10 10\n[disks]\ncount = 100\n",         /* 10 x 10, touching */
+      "[system]\nbox = 40 2.5\n[disks]\ncount = 80\n",         /* a strip: 40 x 2 */
       "[system]\nbox = 12 6.1\n[dimers]\ncount = 18\na = 1\n", /* 6 x 3 sites of 2 */
   };
   for (int k = 0; k < 4; k++) {

@@ -232,8 +232,8 @@ static const bad_case bad_cases[] = {
      "no stop condition"},
     {RUN "[run]\nstop_time = 0\n", NULL, HD_EINPUT, "bad.ini:4:", "[run] stop_time", "> 0"},
     /* a bond below 1e-9 d (here d = 2: below 2e-9) is lost in round-off */
-    {RUN BOX "[dimers]\ncount = 2\nd = 2\na = 1.9e-9\n", NULL, HD_EINPUT, "bad.ini:8:",
-     "[dimers] a", "must be 0 or at least 1e-09 d = 2e-09"},
+    {RUN BOX "[dimers]\ncount = 2\nd = 2\na = 1.9e-9\n", NULL, HD_EINPUT,
+     "bad.ini:8:", "[dimers] a", "must be 0 or at least 1e-09 d = 2e-09"},
     /* a dimer of a + d = 2 cannot fit an edge of 1.5 */
     {RUN "[system]\nbox = 1.5 10\n[dimers]\ncount = 1\n", NULL, HD_EINPUT,
      "bad.ini:4:", "[system] box", "too small"},
