@@ -47,30 +47,27 @@
  *                  touching contact (its |vn| is then tiny, and so is the impulse); one whose
  *                  minimum gap exceeds TOL_C D is a miss.
  *   VTOL  = 1e-12  "approaching" means the normal relative velocity of the two contact points
- *                  (rotation included), h' = r.r'/|r|, is < -VTOL L.  A touching pair with
- *                  |h'| <= VTOL L is sliding, not colliding: it is skipped (this also keeps an
- *                  alpha = 0 collision, after which h' = 0 up to round-off, from re-colliding)
- *                  until rotation drives it into contact again (h' < -VTOL L while h <= TOL_C
- *                  D): then it collides at once.  At alpha = 0 a sustained sliding contact is
- *                  thus a train of ever smaller collisions, which the engine reports as
- *                  inelastic collapse (the rigid-body limit of a lasting contact).
- *   TOL_0 = 1e-10  at t = 0 a pair with h <= TOL_0 D (a gap or an overlap left by round-off) is in
- *                  contact now: approaching -> t = 0 is returned; otherwise (the pair has just
- *                  collided) it is ignored until it has separated to h > TOL_SEP = 2 TOL_0 or
- *                  approaches again from h > TOL_C; after that it is an ordinary pair, so its
- *                  next real contact (a fast spinner swinging its other disk round, or the same
- *                  disk pair coming back) is found.  While a pair is ignored the step is bounded
- *                  by the time its gap could reach TOL_SEP D (h'' <= 2 L^2/D + K), so CA cannot
- *                  jump over its separation and return; or, when it recedes (h' > 0), by the
- *                  larger root tau_hi of bound (ii), h + h' tau - K tau^2/2, if that is longer:
- *                  the gap is > 0 on (tau_lo, tau_hi) with tau_lo < 0, or ~ -h/h' ~ 1e-16 for
- *                  a round-off overlap that is receding (the collision just done), so no contact
- *                  of that pair, nor a separation and return, fits before tau_hi (ign_step).
- *                  This saves the evaluation at the separation of every just-collided pair.
- * Linear (closed-form) pairs use the same TOL_0 and VTOL rules, VTOL |v| widened by the
- * round-off of the velocities themselves (HD_DISK_VROUND = 8 eps of |vA| + |vB|: two disks
- * moving together at 1000 keep ~1e-12 of relative normal speed after an alpha = 0 collision),
- * and report a contact whose normal velocity at contact is below that.
+ *                  (rotation included), h' = r.r'/|r|, is < -vtol, vtol = VTOL L + 8 eps vs
+ *                  (HD_DISK_VROUND: the round-off of the disks' own velocities, of size vs;
+ *                  two bodies moving together at 1000 keep ~1e-13 of h' after an alpha = 0
+ *                  collision, above VTOL L).  A touching pair with |h'| <= vtol is sliding, not
+ *                  colliding: it is skipped (this also keeps an alpha = 0 collision, after which
+ *                  h' = 0 up to round-off, from re-colliding) until rotation drives it into
+ *                  contact again (h' < -vtol while h <= TOL_C D): then it collides at once.  At
+ * alpha = 0 a sustained sliding contact is thus a train of ever smaller collisions, which the
+ * engine reports as inelastic collapse (the rigid-body limit of a lasting contact). TOL_0 = 1e-10
+ * at t = 0 a pair with h <= TOL_0 D (a gap or an overlap left by round-off) is in contact now:
+ * approaching -> t = 0 is returned; otherwise (the pair has just collided) it is ignored until it
+ * has separated to h > TOL_SEP = 2 TOL_0 or approaches again from h > TOL_C; after that it is an
+ * ordinary pair, so its next real contact (a fast spinner swinging its other disk round, or the
+ * same disk pair coming back) is found.  While a pair is ignored the step is bounded by the time
+ * its gap could reach TOL_SEP D (h'' <= 2 L^2/D + K), so CA cannot jump over its separation and
+ * return; or, when it recedes (h' > 0), by the larger root tau_hi of bound (ii), h + h' tau - K
+ * tau^2/2, if that is longer: the gap is > 0 on (tau_lo, tau_hi) with tau_lo < 0, or ~ -h/h' ~
+ * 1e-16 for a round-off overlap that is receding (the collision just done), so no contact of that
+ * pair, nor a separation and return, fits before tau_hi (ign_step). This saves the evaluation at
+ * the separation of every just-collided pair. Linear (closed-form) pairs use the same TOL_0 and
+ * vtol rules and report a contact whose normal velocity at contact is below -vtol.
  *
  * Termination: each step is >= min(h)/L > TOL_C D / L or, for ignored pairs, bounded below by the
  * time to reach TOL_SEP; the loop stops at min(tmax, parting time).  As a guard against a
@@ -332,7 +329,8 @@ static void ca_init(hd_ca *s, double t0, double tend) {
 static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
   const hd_ca_geom *c = &s->g;
   const int np = c->na * c->nb;
-  const double D = c->D, hc = TOL_C * D, h0 = TOL_0 * D, hsep = TOL_SEP * D, vtol = VTOL * c->L;
+  const double D = c->D, hc = TOL_C * D, h0 = TOL_0 * D, hsep = TOL_SEP * D;
+  const double vtol = VTOL * c->L + HD_DISK_VROUND * c->vs;
   double *h = s->h, *g = s->g_, *r = s->r, t = s->t;
   unsigned ign = s->ign;
   if (s->fresh) {
@@ -492,6 +490,8 @@ int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B,
   x->wsin = 0.0;
   x->wn = 0.0;
   x->D = 0.5 * (sa->d + sb->d);
+  x->vs = fabs(A->vx) + fabs(A->vy) + fabs(B->vx) + fabs(B->vy) + fabs(x->wa) * x->ha +
+          fabs(x->wb) * x->hb;
   if (!(tmax >= 0.0)) return 0;
 
   if (x->wa * x->ha == 0.0 && x->wb * x->hb == 0.0) {
@@ -499,14 +499,14 @@ int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B,
     double sa_, ca_, sb_, cb_;
     sincos(x->pa, &sa_, &ca_);
     sincos(x->pb, &sb_, &cb_);
-    double best = HUGE_VAL, vs = fabs(A->vx) + fabs(A->vy) + fabs(B->vx) + fabs(B->vy);
+    double best = HUGE_VAL;
     int found = 0;
     for (int i = 0; i < x->na; i++) {
       double ka = x->na == 1 ? 0.0 : disk_sign(i) * x->ha;
       for (int j = 0; j < x->nb; j++) {
         double kb = x->nb == 1 ? 0.0 : disk_sign(j) * x->hb, tc;
         double rx = x->dx + kb * cb_ - ka * ca_, ry = x->dy + kb * sb_ - ka * sa_;
-        if (hd_predict_disks(rx, ry, x->dvx, x->dvy, x->D, vs, tmax, &tc) && tc < best) {
+        if (hd_predict_disks(rx, ry, x->dvx, x->dvy, x->D, x->vs, tmax, &tc) && tc < best) {
           best = tc;
           c->ka = i;
           c->kb = j;
@@ -577,7 +577,8 @@ int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, doubl
   x.L = fabs(x.dvx) + fabs(x.wa) * x.ha;
   x.K = x.wa * x.wa * x.ha;
   x.K2u = x.K;
-  const double vtol = VTOL * x.L;
+  x.vs = fabs(A->vx) + fabs(A->vy) + fabs(x.wa) * x.ha;
+  const double vtol = VTOL * x.L + HD_DISK_VROUND * x.vs;
 
   if (x.wa * x.ha == 0.0) {
     double h[2], hd[2], r[2], best = HUGE_VAL;

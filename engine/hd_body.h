@@ -101,6 +101,8 @@ typedef struct hd_ca_geom {
   double wn;             /* wall: inward normal sign */
   double D;              /* contact distance (pair) or disk diameter (wall) */
   double L, K, K2u;      /* bounds on |h'|, the lower bound on h'' (-K), an upper bound on h'' */
+  double vs;             /* size of the disks' own velocities, |V| + |w| a/2 of each body: their
+                          * round-off widens the margin of "approaching" (HD_DISK_VROUND) */
 } hd_ca_geom;
 
 /* A contact search between two bodies that the caller advances one step at a time (hd_ca_begin,
