@@ -178,48 +178,53 @@ static void double_contact(void **state) {
   hd_sim_free(s);
 }
 
-/* alpha = 0: every collision ends with zero normal relative velocity, energy only decreases;
- * the run goes on (or stops with a reported collapse) without overlaps or NaN.  A sliding
- * contact (rotation drives the touching disks together again) becomes a train of ever smaller
- * collisions that the engine reports as a collapse: 200 dimers at 0.1 get 12, 9, 2432, 47,
- * 30839 and 3138 collisions before one with seeds 31 to 36.  Seed 35 is used because it gives
- * the most collisions to check, not as a claim about how soon alpha = 0 collapses. */
+/* alpha = 0: every collision ends with zero normal relative velocity, energy only decreases,
+ * no overlaps or NaN.  A sliding contact (rotation drives the touching disks together again)
+ * becomes a train of ever smaller collisions that the engine reports as a collapse, after a
+ * number of collisions that any change of round-off reshuffles: for 200 dimers at 0.1 and seeds
+ * 31 to 36 it came after 2013, 1010, 4433, 2048, 32840 and 5139 collisions, and after 2487,
+ * 1010, 1005, 2048, 1025 and 3821 once the conservative advancement's margin grew by 0.4 %.  So
+ * the test takes all six seeds (at most n/6 collisions each), demands that each stops only
+ * with a reported collapse, and that together they give at least 0.3 n collisions to check. */
 static void alpha_zero(void **state) {
   (void)state;
-  hd_scene sc;
-  dimer_scene(&sc, 200, 0, 1.0, 0.1, 0.0, 35);
-  sc.verify = 1;
-  hd_sim *s;
-  hd_error err;
-  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
-  double eprev = s->c.e_kin;
-  long k, n = test_size(20000, 4);
-  int rc = HD_OK;
-  for (k = 0; k < n; k++) {
-    hd_event_out ev;
-    rc = hd_sim_next(s, INFINITY, &ev, &err);
-    if (rc) break;
-    assert_true(ev.info.de <= 1e-15 * eprev);
-    eprev = s->c.e_kin;
-    /* the touching disks leave with no normal relative velocity: 1e-13 (round-off of
-     * velocities of order 1, rotation included) plus 1e-12 of the approach speed */
-    const hd_body *bi = &s->b[ev.i], *bj = &s->b[ev.j]; /* both at the current time */
-    double xa, ya, xb, yb, ua, wa, ub, wb;
-    hd_kin_disk_pos(&bi->k, &s->shape[bi->species], ev.ka, &xa, &ya);
-    hd_kin_disk_pos(&bj->k, &s->shape[bj->species], ev.kb, &xb, &yb);
-    hd_kin_disk_vel(&bi->k, &s->shape[bi->species], ev.ka, &ua, &wa);
-    hd_kin_disk_vel(&bj->k, &s->shape[bj->species], ev.kb, &ub, &wb);
-    double dx = xb - xa, dy = yb - ya;
-    dx -= s->lx * round(dx / s->lx), dy -= s->ly * round(dy / s->ly);
-    double vn = ((ub - ua) * dx + (wb - wa) * dy) / hypot(dx, dy);
-    if (!(fabs(vn) <= 1e-13 + 1e-12 * fabs(ev.info.vn)))
-      fail_msg("collision %ld: normal velocity %g after, %g before", k, vn, ev.info.vn);
+  long n = test_size(20000, 4), checked = 0;
+  for (unsigned long long seed = 31; seed <= 36; seed++) {
+    hd_scene sc;
+    dimer_scene(&sc, 200, 0, 1.0, 0.1, 0.0, seed);
+    sc.verify = 1;
+    hd_sim *s;
+    hd_error err;
+    assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+    double eprev = s->c.e_kin;
+    int rc = HD_OK;
+    for (long k = 0; k < n / 6; k++) {
+      hd_event_out ev;
+      rc = hd_sim_next(s, INFINITY, &ev, &err);
+      if (rc) break;
+      checked++;
+      assert_true(ev.info.de <= 1e-15 * eprev);
+      eprev = s->c.e_kin;
+      /* the touching disks leave with no normal relative velocity: 1e-13 (round-off of
+       * velocities of order 1, rotation included) plus 1e-12 of the approach speed */
+      const hd_body *bi = &s->b[ev.i], *bj = &s->b[ev.j]; /* both at the current time */
+      double xa, ya, xb, yb, ua, wa, ub, wb;
+      hd_kin_disk_pos(&bi->k, &s->shape[bi->species], ev.ka, &xa, &ya);
+      hd_kin_disk_pos(&bj->k, &s->shape[bj->species], ev.kb, &xb, &yb);
+      hd_kin_disk_vel(&bi->k, &s->shape[bi->species], ev.ka, &ua, &wa);
+      hd_kin_disk_vel(&bj->k, &s->shape[bj->species], ev.kb, &ub, &wb);
+      double dx = xb - xa, dy = yb - ya;
+      dx -= s->lx * round(dx / s->lx), dy -= s->ly * round(dy / s->ly);
+      double vn = ((ub - ua) * dx + (wb - wa) * dy) / hypot(dx, dy);
+      if (!(fabs(vn) <= 1e-13 + 1e-12 * fabs(ev.info.vn)))
+        fail_msg("seed %llu: normal velocity %g after, %g before", seed, vn, ev.info.vn);
+    }
+    if (rc && rc != HD_ECOLLAPSE) fail_msg("seed %llu: %s", seed, err.msg);
+    assert_true(s->max_overlap < 1e-9);
+    hd_sim_free(s);
   }
-  printf("# alpha = 0: %ld collisions%s%s\n", k, rc ? ", then " : "", rc ? err.msg : "");
-  if (rc) /* a collapse is allowed (a lasting sliding contact), and must be reported as such */
-    if (rc != HD_ECOLLAPSE) fail_msg("after %ld collisions: %s", k, err.msg);
-  assert_true(s->max_overlap < 1e-9);
-  hd_sim_free(s);
+  printf("# alpha = 0: %ld collisions checked over 6 seeds\n", checked);
+  assert_true(checked >= 3 * n / 10);
 }
 
 /* The temperature of the progress line (the model's `temperature`) is 2 E / degrees of freedom:
