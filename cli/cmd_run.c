@@ -11,17 +11,6 @@
 #include "hd_run.h"
 #include "hd_scene.h"
 
-/* Whether a --set override (SECTION.KEY=VALUE, blanks allowed around the names) sets
- * [system] seed. */
-static int sets_seed(const char *o) {
-  char name[64];
-  size_t n = 0;
-  for (; *o && *o != '=' && n + 1 < sizeof name; o++)
-    if (*o != ' ' && *o != '\t') name[n++] = *o;
-  name[n] = 0;
-  return *o == '=' && !strcmp(name, "system.seed");
-}
-
 int haff_run_main(int argc, char **argv);
 int haff_resume_main(int argc, char **argv);
 
@@ -100,7 +89,7 @@ int haff_run_main(int argc, char **argv) {
   const char *scene = argv[optind];
   char seedset[64];
   for (int k = 0; have_seed && k < nset; k++)
-    if (sets_seed(sets[k])) {
+    if (hd_scene_override_sets(sets[k], "system", "seed")) {
       fprintf(stderr, "haff run: --seed and --set %s both set [system] seed: give one\n", sets[k]);
       return 2;
     }

@@ -619,6 +619,24 @@ static char *trim(char *s) {
   return s;
 }
 
+/* Splits the override in buf ("SECTION.KEY=VALUE", changed in place) into its trimmed parts;
+ * 0 if it has no '=' or no '.' before it. */
+static int split_override(char *buf, char **sec, char **key, char **val) {
+  char *eq = strchr(buf, '=');
+  char *dot = eq ? memchr(buf, '.', (size_t)(eq - buf)) : NULL;
+  if (!eq || !dot) return 0;
+  *dot = *eq = '\0';
+  *sec = trim(buf), *key = trim(dot + 1), *val = trim(eq + 1);
+  return 1;
+}
+
+int hd_scene_override_sets(const char *over, const char *section, const char *key) {
+  char buf[HD_SCENE_MAX_LINE + 1], *sec, *k, *val;
+  if (strlen(over) > HD_SCENE_MAX_LINE) return 0;
+  strcpy(buf, over);
+  return split_override(buf, &sec, &k, &val) && !strcmp(sec, section) && !strcmp(k, key);
+}
+
 /* Applies override i ("SECTION.KEY=VALUE"). */
 static int apply_override(ctx *c, int i) {
   char buf[HD_SCENE_MAX_LINE + 1], at[600];
@@ -629,13 +647,9 @@ static int apply_override(ctx *c, int i) {
     return cfail(c, HD_EINPUT, "--set: value too long (max %d bytes)", HD_SCENE_MAX_LINE);
   }
   strcpy(buf, c->over[i]);
-  char *eq = strchr(buf, '=');
-  char *dot = eq ? memchr(buf, '.', (size_t)(eq - buf)) : NULL;
-  if (!eq || !dot) {
+  char *sec, *key, *val;
+  if (!split_override(buf, &sec, &key, &val))
     return cfail(c, HD_EINPUT, "%s: expected SECTION.KEY=VALUE", at);
-  }
-  *dot = *eq = '\0';
-  char *sec = trim(buf), *key = trim(dot + 1), *val = trim(eq + 1);
   int s = find_sec(sec);
   if (s < 0) return unknown_section(c, sec);
   mark_section(c, s);

@@ -114,6 +114,9 @@ int hd_scene_load(hd_scene *sc, const char *path, const char *const *over, int n
 int hd_scene_load_string(hd_scene *sc, const char *text, const char *name, const char *const *over,
                          int n_over, hd_error *err);
 
+/* Whether override `over` ("SECTION.KEY=VALUE", as hd_scene_load reads it) sets [section] key. */
+int hd_scene_override_sets(const char *over, const char *section, const char *key);
+
 /* Frees what the scene owns (text).  The struct itself is the caller's. */
 void hd_scene_free(hd_scene *sc);
 
