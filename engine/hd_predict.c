@@ -363,9 +363,16 @@ static int event_cells(const hd_sim *s, const hd_body *b, int32_t cells[9]) {
   return n;
 }
 
+/* Prefetches both lines of body b.  Macros, not functions: gcc 12 finds a static function that
+ * only prefetches "pure" and deletes its calls. */
+#define HD_PREFETCH_BODY(b)                                                                        \
+  do {                                                                                             \
+    __builtin_prefetch(b);                                                                         \
+    __builtin_prefetch((const char *)(b) + 64);                                                    \
+  } while (0)
+
 /* Prefetches body b's partner, if any: both lines for a collision (or the stale check), the
- * second (ncoll) for the check that a crossing makes on the stored contact.  A macro, not a
- * function: gcc 12 finds a static function that only prefetches "pure" and deletes its calls. */
+ * second (ncoll) for the check that a crossing makes on the stored contact. */
 #define HD_PREFETCH_PARTNER(s, b)                                                                  \
   do {                                                                                             \
     if ((b)->p_type == HD_EV_PAIR) {                                                               \
@@ -379,8 +386,7 @@ void hd_predict_prefetch_far(void *ctx, int32_t i, int stage) {
   const hd_sim *s = ctx;
   const hd_body *b = &s->b[i];
   if (stage == 2) { /* 4 buckets ahead: the body itself */
-    __builtin_prefetch(b);
-    __builtin_prefetch((const char *)b + 64);
+    HD_PREFETCH_BODY(b);
     return;
   }
   int32_t cells[9];
@@ -400,8 +406,7 @@ void hd_predict_prefetch_near(void *ctx, int32_t i, int stage) {
   const hd_sim *s = ctx;
   const hd_body *b = &s->b[i];
   if (stage == 1) { /* 2 buckets ahead: the body itself */
-    __builtin_prefetch(b);
-    __builtin_prefetch((const char *)b + 64);
+    HD_PREFETCH_BODY(b);
     return;
   }
   /* 1 ahead: the three rows of list heads around it (interior cells only) and its partner; in

@@ -38,7 +38,6 @@ hd_queue *hd_queue_alloc(int32_t cap) {
     hd_queue_free(q);
     return NULL;
   }
-  q->cap = cap;
   q->nb = nb;
   q->xcap = xcap;
   q->ecap = (int32_t)ecap;

@@ -16,8 +16,7 @@
  * Insertion is O(1), the minimum O(1) on average when w is about the mean spacing of events
  * (hd_queue_build tunes it from the keys; the engine rebuilds the queue every 100 N events; a
  * queue whose heap, overflow or extension pool fills with stale entries rebuilds itself from
- * the keys).  The
- * order is the total order (time, then body index), so the sequence of events is the same
+ * the keys).  The order is the total order (time, then body index), so the sequence of events is the same
  * whatever the bucket layout: runs are deterministic and checkpoints exact. */
 #ifndef HD_QUEUE_H
 #define HD_QUEUE_H
@@ -66,7 +65,7 @@ typedef void (*hd_queue_prefetch_fn)(void *ctx, int32_t i, int stage);
 
 /* The queue.  Fields are private to hd_queue.c. */
 typedef struct hd_queue {
-  int32_t n, cap;          /* bodies held, capacity */
+  int32_t n;               /* bodies held (at most the capacity given to hd_queue_alloc) */
   double *key;             /* key[i * kstride]: body i's time (INFINITY: no event), in the
                             * caller's array (hd_queue_build) */
   int64_t kstride;         /* distance between consecutive keys, in doubles */
