@@ -9,26 +9,30 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bench_util.h"
 #include "hd_db.h"
 #include "hd_model.h"
 #include "hd_sim.h"
-
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 int main(int argc, char **argv) {
   if (argc < 5) {
     fprintf(stderr, "usage: bench_engine disk|dimer N ETA LOG [COLLISIONS]\n");
     return 2;
   }
+  if (strcmp(argv[1], "dimer") && strcmp(argv[1], "disk")) {
+    fprintf(stderr, "bench_engine: KIND = '%s': want disk or dimer\n", argv[1]);
+    return 2;
+  }
   int dimer = !strcmp(argv[1], "dimer");
-  long n = atol(argv[2]);
-  double eta = atof(argv[3]);
-  int log = atoi(argv[4]);
-  long ncoll = argc > 5 ? atol(argv[5]) : 2 * n;
+  long n, logl, ncoll;
+  double eta;
+  if (bench_arg_long("bench_engine", "N", argv[2], 2, 100000000, &n) ||
+      bench_arg_double("bench_engine", "ETA", argv[3], 0.0, 0.9, &eta) ||
+      bench_arg_long("bench_engine", "LOG", argv[4], 0, 1, &logl) ||
+      (argc > 5 && bench_arg_long("bench_engine", "COLLISIONS", argv[5], 1, 1L << 62, &ncoll)))
+    return 2;
+  int log = (int)logl;
+  if (argc <= 5) ncoll = 2 * n;
   if (ncoll < 2000000) ncoll = 2000000;
   hd_scene sc;
   memset(&sc, 0, sizeof sc);
@@ -69,7 +73,7 @@ int main(int argc, char **argv) {
   /* warm up: 1 cpd melts the lattice and fills the caches */
   for (long k = 0; k < n / 2; k++) ops->next(s, INFINITY, &row, &err);
   int64_t e0 = s->c.events;
-  double t0 = now();
+  double t0 = bench_now();
   for (long k = 1; k <= ncoll; k++) {
     if (ops->next(s, INFINITY, &row, &err)) {
       fprintf(stderr, "bench: %s\n", err.msg);
@@ -82,7 +86,7 @@ int main(int argc, char **argv) {
     }
   }
   if (db && hd_db_commit(db, &err)) return 1;
-  double dt = now() - t0;
+  double dt = bench_now() - t0;
   printf("%s\t%ld\t%.2f\t%d\t%ld\t%.3f\t%.4g\t%.4g\t%.3f\n", dimer ? "dimer" : "disk", n, eta, log,
          ncoll, dt, (double)ncoll / dt, (double)(s->c.events - e0) / dt,
          (double)s->c.stale / (double)(s->c.events - e0));

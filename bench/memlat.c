@@ -13,25 +13,21 @@
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
 
-enum { LINE = 8, MAX_CHAINS = 64 }; /* a line is 8 uint64_t */
+#include "bench_util.h"
 
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+enum { LINE = 8, MAX_CHAINS = 64 }; /* a line is 8 uint64_t */
 
 int main(int argc, char **argv) {
   if (argc < 3) {
     fprintf(stderr, "usage: memlat MB CHAINS\n");
     return 2;
   }
-  size_t mb = (size_t)atol(argv[1]);
-  int chains = atoi(argv[2]);
-  if (mb < 1 || chains < 1 || chains > MAX_CHAINS) {
-    fprintf(stderr, "memlat: MB >= 1, 1 <= CHAINS <= %d\n", MAX_CHAINS);
+  long mbl, chl;
+  if (bench_arg_long("memlat", "MB", argv[1], 1, 1L << 20, &mbl) ||
+      bench_arg_long("memlat", "CHAINS", argv[2], 1, MAX_CHAINS, &chl))
     return 2;
-  }
+  size_t mb = (size_t)mbl;
+  int chains = (int)chl;
   size_t n = (mb << 20) / (LINE * sizeof(uint64_t)), bytes = n * LINE * sizeof(uint64_t);
   size_t huge = (size_t)2 << 20, alloc = (bytes + huge - 1) / huge * huge;
   uint64_t *a = aligned_alloc(huge, alloc);
@@ -51,10 +47,10 @@ int main(int argc, char **argv) {
   long steps = 4000000 / chains;
   for (long s = 0; s < steps / 4; s++) /* warm up: pages faulted in, TLB filled */
     for (int k = 0; k < chains; k++) p[k] = a[p[k]];
-  double t0 = now();
+  double t0 = bench_now();
   for (long s = 0; s < steps; s++)
     for (int k = 0; k < chains; k++) p[k] = a[p[k]];
-  double dt = now() - t0;
+  double dt = bench_now() - t0;
   size_t sink = 0;
   for (int k = 0; k < chains; k++) sink ^= p[k];
   if (sink == SIZE_MAX) puts("?"); /* uses the walk, which the compiler must then do */
