@@ -41,6 +41,12 @@ int haff_angles_main(int argc, char **argv) {
             (long long)a.run);
     return 2;
   }
+  if (!a.fmean && n < (size_t)a.block) { /* before -o: no empty table for a plot to choke on */
+    fprintf(stderr, "haff %s: run %lld has %zu dimer-dimer collisions, fewer than one block of %ld "
+                    "(--block)\n", argv[0], (long long)a.run, n, a.block);
+    free(ti), free(tj), free(f);
+    return 2;
+  }
   FILE *out = hd_cli_out(&a);
   if (!out) {
     free(ti), free(tj), free(f);
@@ -66,7 +72,6 @@ int haff_angles_main(int argc, char **argv) {
     gsl_histogram *h = gsl_histogram_alloc((size_t)bins);
     gsl_histogram_set_ranges_uniform(h, -M_PI, M_PI + 1e-12);
     size_t bs = (size_t)a.block, nb = n / bs;
-    if (nb == 0) fprintf(stderr, "haff %s: fewer than %zu collisions: no block\n", argv[0], bs);
     for (size_t b = 0; b < nb; b++) {
       gsl_histogram_reset(h);
       for (size_t i = b * bs; i < (b + 1) * bs; i++) {

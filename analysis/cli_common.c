@@ -3,6 +3,8 @@
 
 #include <errno.h>
 #include <getopt.h>
+#include <limits.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -12,6 +14,22 @@ static int parse_num(const char *cmd, const char *opt, const char *s, double lo,
   double v = strtod(s, &end);
   if (end == s || *end || errno || !(v >= lo)) {
     fprintf(stderr, "haff %s: %s '%s': expected a number >= %g\n", cmd, opt, s, lo);
+    return 2;
+  }
+  *out = v;
+  return 0;
+}
+
+/* An integer option in [lo, hi]: whole digits only (no fraction, exponent or inf, which a cast
+ * would truncate or make undefined); 2 after one line on stderr. */
+static int parse_int(const char *cmd, const char *opt, const char *s, long long lo, long long hi,
+                     long long *out) {
+  char *end;
+  errno = 0;
+  long long v = strtoll(s, &end, 10);
+  if (end == s || *end || errno || v < lo || v > hi) {
+    fprintf(stderr, "haff %s: %s '%s': expected a whole number in [%lld, %lld]\n", cmd, opt, s,
+            lo, hi);
     return 2;
   }
   *out = v;
@@ -50,13 +68,13 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
     int c;
     unsigned bit;
   } need[] = {{'r', HD_OPT_RUN},   {'A', HD_OPT_ALL},   {'N', HD_OPT_FIT},   {'T', HD_OPT_FIT},
-              {'C', HD_OPT_FIT},   {'X', HD_OPT_FIT},   {'K', HD_OPT_FIT},   {'M', HD_OPT_MD},
+              {'C', HD_OPT_FIT},   {'X', HD_OPT_FIT},   {'K', HD_OPT_KCI},   {'M', HD_OPT_MD},
               {'G', HD_OPT_GROUP}, {'b', HD_OPT_BLOCK}, {'F', HD_OPT_BLOCK}, {'B', HD_OPT_BINS},
               {'S', HD_OPT_STATS}, {'L', HD_OPT_STATS}, {'R', HD_OPT_STATS}, {'k', HD_OPT_KCI}};
   optind = 0; /* full re-initialisation: the subcommands may run more than once per process */
   opterr = 0;
   int c, li;
-  double v;
+  long long v;
   while ((c = getopt_long(argc, argv, "ho:", lo, &li)) != -1) {
     if (c == 'h') {
       printf("%s", usage);
@@ -80,7 +98,7 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
       a->out = optarg;
       break;
     case 'r':
-      if (parse_num(cmd, "--run", optarg, 0, &v)) return 2;
+      if (parse_int(cmd, "--run", optarg, 0, INT64_MAX, &v)) return 2;
       a->run = (int64_t)v;
       break;
     case 'A':
@@ -108,14 +126,14 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
       a->group = 1;
       break;
     case 'b':
-      if (parse_num(cmd, "--block", optarg, 1, &v)) return 2;
+      if (parse_int(cmd, "--block", optarg, 1, LONG_MAX, &v)) return 2;
       a->block = (long)v;
       break;
     case 'F':
       a->fmean = 1;
       break;
     case 'B':
-      if (parse_num(cmd, "--bins", optarg, 1, &v) || v > 100000) return 2;
+      if (parse_int(cmd, "--bins", optarg, 1, 100000, &v)) return 2;
       a->bins = (int)v;
       break;
     case 'S':
@@ -242,7 +260,21 @@ int hd_cli_groups(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fi
     sqlite3_close(*db), *db = NULL;
     return hd_cli_fail(cmd, &err);
   }
+  hd_cli_groups_warn(cmd, *g, *ng);
   return 0;
+}
+
+void hd_cli_groups_warn(const char *cmd, const hd_group *g, size_t ng) {
+  for (size_t j = 0; j < ng; j++)
+    for (size_t k = 0; k < j; k++)
+      if (hd_group_same_label(&g[j], &g[k])) {
+        fprintf(stderr,
+                "haff %s: warning: runs with alpha %g a/d %g differ in N, density, d or m (N %ld "
+                "n %.6g and N %ld n %.6g): kept apart, as rows with the same alpha and a/d\n",
+                cmd, g[j].alpha, g[j].a_over_d, g[k].nbodies, g[k].density, g[j].nbodies,
+                g[j].density);
+        break;
+      }
 }
 
 void hd_cli_groups_free(sqlite3 *db, hd_run_fit *fits, hd_group *g, size_t ng) {

@@ -13,13 +13,13 @@
 enum {
   HD_OPT_RUN = 1,     /* --run ID */
   HD_OPT_ALL = 2,     /* --all */
-  HD_OPT_FIT = 4,     /* --no-detect --thr X --min-coll N --cpd-max X --cpd-min-k X */
+  HD_OPT_FIT = 4,     /* --no-detect --thr X --min-coll N --cpd-max X */
   HD_OPT_MD = 8,      /* --md */
   HD_OPT_GROUP = 16,  /* --alpha-group */
   HD_OPT_BLOCK = 32,  /* --block N --fmean */
   HD_OPT_BINS = 64,   /* --bins N */
   HD_OPT_STATS = 128, /* --stats --label L --range X */
-  HD_OPT_KCI = 256    /* --k-ci ac|ols|runs */
+  HD_OPT_KCI = 256    /* --k-ci ac|ols|runs --cpd-min-k X (the K fit's options) */
 };
 
 /* Parsed arguments. */
@@ -55,10 +55,14 @@ int hd_cli_close(FILE *f, const hd_cli_args *a);
  * error and returns its exit code (1 or 2) on failure; 0 with *fits malloc'd on success. */
 int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits, size_t *n);
 
-/* hd_cli_fits, then the fits grouped by (species, alpha, a/d) (hd_group_runs).  Returns as
+/* hd_cli_fits, then the fits grouped into ensembles (hd_group_runs; warns on stderr when two
+ * share an (alpha, a/d) label).  Returns as
  * hd_cli_fits (nothing left open on failure); on 0 free with hd_cli_groups_free. */
 int hd_cli_groups(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits, size_t *n,
                   hd_group **g, size_t *ng);
+
+/* Prints a warning on stderr for each group whose (alpha, a/d) label an earlier group has. */
+void hd_cli_groups_warn(const char *cmd, const hd_group *g, size_t ng);
 
 /* Frees what hd_cli_groups returned and closes the database. */
 void hd_cli_groups_free(sqlite3 *db, hd_run_fit *fits, hd_group *g, size_t ng);

@@ -19,12 +19,24 @@ static const char *species_name(int s) {
   return s == HD_ANA_DIMERS ? "dimers" : "disks";
 }
 
+/* Says on stderr why a group fitted from one run has no error (hd_ensemble_mean). */
+static void one_run_note(const char *cmd, const hd_group *g, size_t m) {
+  if (m == 1)
+    fprintf(stderr,
+            "haff %s: note: alpha %g a/d %g: one fitted run, so its errors are nan (an ensemble "
+            "error needs >= 2 runs; the fit's formal error, haff-fit's *_fit_err, is several times "
+            "smaller than the scatter between runs)\n",
+            cmd, g->alpha, g->a_over_d);
+}
+
 int haff_fit_main(int argc, char **argv) {
   static const char usage[] =
       "usage: haff haff-fit DB [--run ID | --all] [--alpha-group] [fit options] [-o FILE]\n"
       "Fits eq. (31) tau(t) = ln(1 + gamma nu0 t)/gamma, gamma = (1-alpha^2)/(2 D_e), to the\n"
       "homogeneous part of each run (tau = cpd).  One line per run, or per group of runs with\n"
-      "equal (alpha, a/d) with --alpha-group (mean +- standard error over the runs).\n"
+      "equal (alpha, a/d) with --alpha-group (mean +- standard error over the runs; nan with\n"
+      "one run).  Per run, *_fit_err are the formal least-squares errors, which take the\n"
+      "residuals of the cumulative cpd(t) as independent: several times too small.\n"
       "  --all            every finished run (the default)\n"
       "  --alpha-group    one line per (alpha, a/d) group\n" FIT_OPTS_HELP;
   hd_cli_args a;
@@ -40,8 +52,11 @@ int haff_fit_main(int argc, char **argv) {
     return 1;
   }
   if (!a.group) {
-    fprintf(out, "run\tspecies\talpha\ta_over_d\tn_used\tdetected\tt_end\tcpd_end\tD_e\tD_e_err\t"
-                 "nu0_eff\tnu0_eff_err\tnu0_enskog\tratio\tratio_err\tchi2_dof\n");
+    /* *_fit_err: the least-squares errors, formal (docs/analysis.md): the residuals of the
+     * cumulative count cpd(t) are not independent, and runs scatter 10-25 times more */
+    fprintf(out, "run\tspecies\talpha\ta_over_d\tn_used\tdetected\tt_end\tcpd_end\tD_e\t"
+                 "D_e_fit_err\tnu0_eff\tnu0_eff_fit_err\tnu0_enskog\tratio\tratio_fit_err\t"
+                 "chi2_dof\n");
     for (size_t i = 0; i < n; i++) {
       const hd_run_fit *f = &fits[i];
       double nan = NAN;
@@ -62,26 +77,22 @@ int haff_fit_main(int argc, char **argv) {
       free(fits), sqlite3_close(db), hd_cli_close(out, &a);
       return hd_cli_fail(argv[0], &err);
     }
+    hd_cli_groups_warn(argv[0], g, ng);
     fprintf(
         out,
         "alpha\ta_over_d\tspecies\truns\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\tratio\tratio_err\n");
-    double *v = malloc(4 * n * sizeof *v);
+    double *v = malloc(3 * n * sizeof *v);
     for (size_t j = 0; v && j < ng; j++) {
-      double *dv = v, *de = v + n, *nv = v + 2 * n, *ne = v + 3 * n, r[6];
+      double *dv = v, *nv = v + n, *rv = v + 2 * n, r[6];
       size_t m = 0;
       for (size_t k = 0; k < g[j].n; k++) {
         const hd_run_fit *f = &fits[g[j].idx[k]];
-        if (!f->haff_ok) continue;
-        dv[m] = f->haff.D_e, de[m] = f->haff.D_e_err, nv[m] = f->haff.nu0,
-        ne[m++] = f->haff.nu0_err;
+        if (f->haff_ok) dv[m] = f->haff.D_e, nv[m] = f->haff.nu0, rv[m++] = f->ratio;
       }
-      hd_ensemble_mean(dv, de, m, &r[0], &r[1]);
-      hd_ensemble_mean(nv, ne, m, &r[2], &r[3]);
-      for (size_t k = 0, q = 0; k < g[j].n; k++) {
-        const hd_run_fit *f = &fits[g[j].idx[k]];
-        if (f->haff_ok) nv[q] = f->ratio, ne[q++] = f->ratio_err;
-      }
-      hd_ensemble_mean(nv, ne, m, &r[4], &r[5]);
+      hd_ensemble_mean(dv, m, &r[0], &r[1]);
+      hd_ensemble_mean(nv, m, &r[2], &r[3]);
+      hd_ensemble_mean(rv, m, &r[4], &r[5]);
+      one_run_note(argv[0], &g[j], m);
       fprintf(out, "%g\t%g\t%s\t%zu\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.3g\n", g[j].alpha,
               g[j].a_over_d, species_name(g[j].species), m, r[0], r[1], r[2], r[3], r[4], r[5]);
     }
@@ -100,7 +111,7 @@ int haff_table1_main(int argc, char **argv) {
       "and\n"
       "density, at the initial translational temperature) per (alpha, a/d), mean +- standard "
       "error\n"
-      "over the runs (the fit's own error when a group has one run).  a_over_d = 0: hard disks.\n"
+      "over the runs (nan when a group has one run).  a_over_d = 0: hard disks.\n"
       "Columns: alpha a_over_d D_e D_e_err ratio ratio_err runs (ratio = nu0_eff/nu0, as in "
       "haff-fit)\n"
       "  --md             a Markdown table instead of TSV\n" FIT_OPTS_HELP;
@@ -113,7 +124,7 @@ int haff_table1_main(int argc, char **argv) {
   size_t n, ng;
   if ((rc = hd_cli_groups(&a, argv[0], &db, &fits, &n, &g, &ng))) return rc;
   FILE *out = hd_cli_out(&a);
-  double *v = malloc(4 * n * sizeof *v);
+  double *v = malloc(2 * n * sizeof *v);
   if (!out || !v) {
     free(v), hd_cli_groups_free(db, fits, g, ng);
     if (out) hd_cli_close(out, &a);
@@ -125,15 +136,15 @@ int haff_table1_main(int argc, char **argv) {
   else
     fprintf(out, "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\n");
   for (size_t j = 0; j < ng; j++) {
-    double *dv = v, *de = v + n, *rv = v + 2 * n, *re = v + 3 * n, D, Derr, R, Rerr;
+    double *dv = v, *rv = v + n, D, Derr, R, Rerr;
     size_t m = 0;
     for (size_t k = 0; k < g[j].n; k++) {
       const hd_run_fit *f = &fits[g[j].idx[k]];
-      if (!f->haff_ok) continue;
-      dv[m] = f->haff.D_e, de[m] = f->haff.D_e_err, rv[m] = f->ratio, re[m++] = f->ratio_err;
+      if (f->haff_ok) dv[m] = f->haff.D_e, rv[m++] = f->ratio;
     }
-    hd_ensemble_mean(dv, de, m, &D, &Derr);
-    hd_ensemble_mean(rv, re, m, &R, &Rerr);
+    hd_ensemble_mean(dv, m, &D, &Derr);
+    hd_ensemble_mean(rv, m, &R, &Rerr);
+    one_run_note(argv[0], &g[j], m);
     if (a.md)
       fprintf(out, "| %g | %g | %.4f | %.2g | %.4f | %.2g | %zu |\n", g[j].alpha, g[j].a_over_d, D,
               Derr, R, Rerr, m);

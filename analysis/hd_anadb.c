@@ -111,7 +111,12 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
   }
   ri->box_x = k.box_x, ri->box_y = k.box_y, ri->area_fraction = k.eta;
   double area = k.box_x * k.box_y;
-  if (!(area > 0) && k.eta > 0 && ri->n > 0) area = (double)ri->n * body_area / k.eta;
+  /* area_fraction covers every body (hd_scene_covered_area): the disks of a mixture too */
+  double covered = ri->species == HD_ANA_DIMERS
+                       ? (double)ri->n * body_area +
+                             fmax(k.disk_count, 0) * M_PI * k.disk_sigma * k.disk_sigma / 4
+                       : (double)ri->n * body_area;
+  if (!(area > 0) && k.eta > 0 && ri->n > 0) area = covered / k.eta;
   ri->density = area > 0 ? (double)ri->n / area : NAN;
   ri->eta_disk = M_PI * ri->density * ri->d * ri->d / 4;
   return HD_OK;
@@ -119,9 +124,9 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
 
 int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_error *err) {
   *runs = NULL, *n = 0;
-  const char *q = want >= 0 ? "SELECT id, scene, seed, status FROM runs WHERE id = ?1"
-                            : "SELECT id, scene, seed, status FROM runs WHERE status IN "
-                              "('done','collapsed','interrupted') ORDER BY id";
+  const char *q = want >= 0 ? "SELECT id, scene, seed, status, box_x, box_y FROM runs WHERE id = ?1"
+                            : "SELECT id, scene, seed, status, box_x, box_y FROM runs WHERE "
+                              "status IN ('done','collapsed','interrupted') ORDER BY id";
   sqlite3_stmt *st;
   if (sqlite3_prepare_v2(db, q, -1, &st, NULL) != SQLITE_OK)
     return hd_error_set(err, HD_EIO, "reading runs: %s", sqlite3_errmsg(db));
@@ -146,6 +151,13 @@ int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_err
     const char *status = (const char *)sqlite3_column_text(st, 3);
     snprintf(ri->status, sizeof ri->status, "%s", status ? status : "");
     rc = hd_ana_parse_scene(scene ? scene : "", ri, err);
+    /* the box the engine used (hd_db_run_box), which also counts every species of a mixture */
+    double bx = sqlite3_column_double(st, 4), by = sqlite3_column_double(st, 5);
+    if (rc == HD_OK && bx > 0 && by > 0 && isfinite(bx * by)) {
+      ri->box_x = bx, ri->box_y = by;
+      ri->density = (double)ri->n / (bx * by);
+      ri->eta_disk = M_PI * ri->density * ri->d * ri->d / 4;
+    }
     if (rc) {
       char why[1024];
       snprintf(why, sizeof why, "%s", err ? err->msg : "");

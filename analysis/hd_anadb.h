@@ -26,9 +26,11 @@ typedef struct hd_run_info {
   double m;             /* disk mass ([dimers] m or [disks] mass, default 1) */
   double mass;          /* body mass: 2 m for a dimer, m for a disk */
   double a_over_d;      /* a / d (0 for disks) */
-  double box_x, box_y;  /* [system] box; 0 when the scene gives area_fraction instead */
+  double box_x, box_y;  /* the box: runs.box_x/box_y (the engine's), else [system] box; 0 when
+                           only area_fraction is known */
   double area_fraction; /* [system] area_fraction (0 if absent) */
-  double density;       /* n / area (area = box, else the bodies' area / area_fraction) */
+  double density;       /* n / area of this species (area = the box, else, for runs without
+                           runs.box_x, this species' area / area_fraction) */
   double eta_disk;      /* pi n d^2 / 4: area fraction of the reference disks (eq. 30) */
 } hd_run_info;
 

@@ -38,8 +38,12 @@ int hd_fit_linear_t(const double *x, const double *y, size_t n, double level, hd
   out->a0_lo = c0 - out->tq * out->a0_err, out->a0_hi = c0 + out->tq * out->a0_err;
   out->a1_lo = c1 - out->tq * out->a1_err, out->a1_hi = c1 + out->tq * out->a1_err;
   out->tau_int = tau;
-  out->n_eff = (double)n / (2.0 * tau);
-  double infl = sqrt(fmax(1.0, 2.0 * tau)); /* never narrower than OLS */
+  /* anticorrelated residuals can give tau < 0.5, even < 0 (alternating signs): they are taken
+   * as independent, so that n_eff never exceeds n nor turns negative, and the intervals are
+   * never narrower than OLS */
+  double te = fmax(0.5, tau);
+  out->n_eff = (double)n / (2.0 * te);
+  double infl = sqrt(2.0 * te);
   out->a0_err_ac = out->a0_err * infl, out->a1_err_ac = out->a1_err * infl;
   out->tq_ac = gsl_cdf_tdist_Pinv(p, fmax(out->n_eff - 2.0, 1.0));
   out->a0_lo_ac = c0 - out->tq_ac * out->a0_err_ac,

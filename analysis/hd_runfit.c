@@ -82,6 +82,17 @@ done:
   return rc;
 }
 
+/* x and y equal to 1e-9 relative (NaN equals NaN: runs whose density is unknown). */
+static int rel_eq(double x, double y) {
+  if (isnan(x) || isnan(y)) return isnan(x) && isnan(y);
+  return fabs(x - y) <= 1e-9 * fmax(fabs(x), fabs(y));
+}
+
+int hd_group_same_label(const hd_group *a, const hd_group *b) {
+  return a->species == b->species && fabs(a->alpha - b->alpha) < 1e-9 &&
+         fabs(a->a_over_d - b->a_over_d) < 1e-9;
+}
+
 int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *ng, hd_error *err) {
   *groups = calloc(n ? n : 1, sizeof **groups);
   *ng = 0;
@@ -89,13 +100,17 @@ int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *n
   for (size_t i = 0; i < n; i++) {
     const hd_run_info *r = &fits[i].info;
     hd_group *g = NULL;
-    for (size_t j = 0; j < *ng && !g; j++)
-      if ((*groups)[j].species == r->species && fabs((*groups)[j].alpha - r->alpha) < 1e-9 &&
-          fabs((*groups)[j].a_over_d - r->a_over_d) < 1e-9)
+    for (size_t j = 0; j < *ng && !g; j++) {
+      const hd_group *q = &(*groups)[j];
+      if (q->species == r->species && fabs(q->alpha - r->alpha) < 1e-9 &&
+          fabs(q->a_over_d - r->a_over_d) < 1e-9 && q->nbodies == r->n && rel_eq(q->d, r->d) &&
+          rel_eq(q->m, r->m) && rel_eq(q->density, r->density))
         g = &(*groups)[j];
+    }
     if (!g) {
       g = &(*groups)[(*ng)++];
       g->species = r->species, g->alpha = r->alpha, g->a_over_d = r->a_over_d;
+      g->nbodies = r->n, g->density = r->density, g->d = r->d, g->m = r->m;
       g->idx = malloc(n * sizeof *g->idx);
       if (!g->idx) {
         hd_groups_free(*groups, *ng), *groups = NULL, *ng = 0;
@@ -112,11 +127,11 @@ void hd_groups_free(hd_group *g, size_t ng) {
   free(g);
 }
 
-void hd_ensemble_mean(const double *vals, const double *errs, size_t n, double *mean, double *se) {
+void hd_ensemble_mean(const double *vals, size_t n, double *mean, double *se) {
   if (n == 0) {
     *mean = *se = NAN;
   } else if (n == 1) {
-    *mean = vals[0], *se = errs[0];
+    *mean = vals[0], *se = NAN;
   } else {
     *mean = gsl_stats_mean(vals, 1, n);
     *se = gsl_stats_sd_m(vals, 1, n, *mean) / sqrt((double)n);

@@ -48,21 +48,32 @@ typedef struct hd_run_fit {
 int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_run_fit *out,
                   hd_error *err);
 
-/* A group of runs with the same species, alpha and a/d (equal to 1e-9). */
+/* A group of runs of one ensemble: the same species, alpha and a/d (equal to 1e-9), number of
+ * bodies, disk diameter and mass, and number density (equal to 1e-9 relative).  Runs that
+ * differ only in N or density used to be pooled into one Table I row (an average of two
+ * different ensembles); they now form groups of their own with the same (alpha, a/d) label. */
 typedef struct hd_group {
   int species;
   double alpha, a_over_d;
+  long nbodies;   /* N of the species */
+  double density; /* its number density (hd_run_info.density) */
+  double d, m;    /* disk diameter and mass */
   size_t n;    /* runs in the group */
   size_t *idx; /* their indices in the array given to hd_group_runs */
 } hd_group;
 
 /* Groups fits[0..n-1] (in order of first appearance).  *groups malloc'd; hd_groups_free. */
+/* Whether groups a and b carry the same (species, alpha, a/d) label, so that a table cannot tell
+ * them apart (they differ in N, density, d or m). */
+int hd_group_same_label(const hd_group *a, const hd_group *b);
 int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *ng, hd_error *err);
 void hd_groups_free(hd_group *g, size_t ng);
 
 /* Ensemble of one quantity over runs: the mean of vals[0..n-1] and its standard error
- * sd/sqrt(n) (n >= 2); with n == 1, vals[0] and errs[0] (the fit's own error). */
-void hd_ensemble_mean(const double *vals, const double *errs, size_t n, double *mean, double *se);
+ * sd/sqrt(n) (n >= 2); with n == 1, vals[0] and NaN: one run has no ensemble error, and the
+ * eq. (31) fit's own error is formal, 10-25 times below the scatter between runs (it used to
+ * be returned here; docs/analysis.md); n == 0: NaN, NaN. */
+void hd_ensemble_mean(const double *vals, size_t n, double *mean, double *se);
 
 /* How table2 combines the K fits of the runs of a group. */
 typedef enum hd_kmode {

@@ -56,6 +56,44 @@ static void haff_fit_coverage(void **state) {
   gsl_rng_free(r);
 }
 
+/* Why haff-fit calls its per-run errors formal (D_e_fit_err) and Table I never uses them.  In a
+ * run, cpd(t) is a cumulative count: here each of 200 steps of 0.5 cpd takes a time with 1/15
+ * relative noise, as in test_analysis_cli's synthetic runs, so the noise of tau at a given t is
+ * a random walk.  The least-squares error, which takes the residuals as independent, is then far
+ * below the scatter of D_e over 200 replicas: we check it is less than half of it (it is about
+ * a tenth here; 200 replicas measure the scatter to 5 %), and that the 99 % interval covers D_e
+ * in fewer than 150 of 200 replicas (it would in 198 if the error were right). */
+static void haff_fit_cumulative_noise(void **state) {
+  (void)state;
+  const double De = 3.0, nu = 1.25, alpha = 0.9, g = (1 - alpha * alpha) / (2 * De);
+  enum { N = 200 };
+  double t[N], tau[N], est[REPL], se[REPL];
+  int hit = 0;
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(r, 1998);
+  for (int k = 0; k < REPL; k++) {
+    double tt = 0;
+    for (int i = 0; i < N; i++) {
+      /* the exact time of cpd = 0.5 (i + 1) by eq. (31) inverted, step by step, with noise */
+      double c0 = 0.5 * i, c1 = 0.5 * (i + 1);
+      double dt = (exp(g * c1) - exp(g * c0)) / (g * nu);
+      tt += dt * (1 + gsl_ran_gaussian(r, 1 / 15.0));
+      t[i] = tt, tau[i] = c1;
+    }
+    hd_haff_fit f;
+    hd_error e;
+    assert_int_equal(hd_fit_haff_log(t, tau, N, alpha, &f, &e), HD_OK);
+    est[k] = f.D_e, se[k] = f.D_e_err;
+    hit += fabs(f.D_e - De) <= f.tq * f.D_e_err;
+  }
+  double scatter = gsl_stats_sd(est, 1, REPL), mse = gsl_stats_mean(se, 1, REPL);
+  printf("# cumulative noise: formal se %.4g, scatter %.4g (ratio %.3g), coverage %d/200\n", mse,
+         scatter, mse / scatter, hit);
+  assert_true(mse < 0.5 * scatter);
+  assert_true(hit < 150);
+  gsl_rng_free(r);
+}
+
 /* Noise-free data: the fit recovers the parameters to 1e-6 relative (convergence, Jacobian),
  * from a start (D_e = 3) far from D_e = 2 (hard disks). */
 static void haff_fit_exact(void **state) {
@@ -182,11 +220,32 @@ static void linear_bad_input(void **state) {
   assert_true(fabs(f.a0 - 1) < 1e-12 && fabs(f.a1 - 1) < 1e-12);
 }
 
+/* Alternating residuals (+e, -e, ...) have a lag-1 autocorrelation near -1, so the window
+ * estimator gives tau_int < 0.5, here about -0.5.  n_eff used to be n / (2 tau) = -400 and the
+ * corrected interval took t with 1 dof (63.7 instead of 2.6: 24 times the OLS one).  Anti-
+ * correlation is taken as independence: n_eff = n, the corrected interval is the OLS one. */
+static void linear_anticorrelated(void **state) {
+  (void)state;
+  enum { N = 400 };
+  double x[N], y[N];
+  for (int i = 0; i < N; i++) x[i] = i, y[i] = 1.0 + 0.01 * i + (i % 2 ? 0.1 : -0.1);
+  hd_linfit f;
+  hd_error e;
+  assert_int_equal(hd_fit_linear_t(x, y, N, 0.99, &f, &e), HD_OK);
+  printf("# alternating residuals: tau_int %.3g, n_eff %.4g, tq %.4g, tq_ac %.4g\n", f.tau_int,
+         f.n_eff, f.tq, f.tq_ac);
+  assert_true(f.tau_int < 0.0);
+  assert_true(f.n_eff == (double)N);
+  assert_true(f.tq_ac == f.tq && f.a1_err_ac == f.a1_err);
+  assert_true(f.a1_lo_ac == f.a1_lo && f.a1_hi_ac == f.a1_hi);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(haff_fit_coverage),        cmocka_unit_test(haff_fit_exact),
       cmocka_unit_test(haff_fit_diverged),        cmocka_unit_test(linear_ols_coverage),
       cmocka_unit_test(linear_autocorr_coverage), cmocka_unit_test(linear_bad_input),
+      cmocka_unit_test(linear_anticorrelated),    cmocka_unit_test(haff_fit_cumulative_noise),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
