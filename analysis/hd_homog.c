@@ -20,7 +20,7 @@ int hd_homog_detect(const double *t, const double *coll, const double *e, size_t
     if (!(e[i] > 0))
       return hd_error_set(err, HD_EINPUT, "homogeneity: energy <= 0 at sample %zu", i);
   out->n_end = n, out->detected = 0;
-  out->t_end = t[n - 1], out->cpd_end = NAN;
+  out->t_end = t[n - 1];
   out->r0 = NAN, out->n_windows = 0, out->max_dev = 0;
 
   /* windows [start[w], end[w]] of sample indices, each >= min_coll collisions */

@@ -27,7 +27,6 @@ typedef struct hd_homog {
   size_t n_end;     /* samples [0, n_end) are homogeneous (n if no end was found) */
   int detected;     /* 1 if the end was found before the last sample */
   double t_end;     /* t of the last homogeneous sample */
-  double cpd_end;   /* cpd of the last homogeneous sample */
   double r0;        /* reference rate per sqrt(energy) */
   size_t n_windows; /* windows formed */
   double max_dev;   /* max |r/r0 - 1| over the homogeneous windows */

@@ -14,8 +14,9 @@ static void fmean_usage(FILE *out) {
   fprintf(out,
           "usage: haff mc fmean --a A [--d D] [--model heuristic|exclusion|collision|all]\n"
           "                     [--samples N | --seconds S] [--seed K] [--dim DIM]\n"
-          "       haff mc fmean --scan A0:A1:STEP [same options]\n"
-          "       haff mc fmean --convergence [--a A] [--seconds S] [--seed K]\n"
+          "       haff mc fmean --scan A0:A1:STEP [same options but --a]\n"
+          "       haff mc fmean --convergence [--a A [--d D]] [--seconds S] [--samples NMAX]\n"
+          "                     [--seed K]\n"
           "       haff mc fmean --fig4-data --a A [--d D]\n"
           "\n"
           "Mean orientation factor <f> of dimer-dimer collisions (Costantini et al. 2005, eq. 36)\n"
@@ -25,7 +26,8 @@ static void fmean_usage(FILE *out) {
           "  --model M      heuristic (paper: independent uniform angles), exclusion (uniform\n"
           "                 non-overlapping contacts), collision (contacts weighted by their\n"
           "                 entry rate in an elastic gas at equipartition), all (default)\n"
-          "  --samples N    accepted samples per row (default 1e6)\n"
+          "  --samples N    accepted samples per row (default 1e6); with --convergence: the\n"
+          "                 largest n of the sequence (default: what --seconds allows)\n"
           "  --seconds S    sample in batches for S seconds per row instead of N samples;\n"
           "                 with --convergence: the total time budget (default 10)\n"
           "  --seed K       gsl_rng_mt19937 seed (default 1)\n"
@@ -115,7 +117,10 @@ int hd_mc_fmean_main(int argc, char **argv) {
   optind = 0;
   opterr = 0;
   int c, li = -1;
+  unsigned given = 0; /* bit k: option longopts[k] was given */
   while ((c = getopt_long(argc, argv, "h", longopts, &li)) != -1) {
+    for (unsigned k = 0; longopts[k].name; k++)
+      if (longopts[k].val == c) given |= 1u << k;
     switch (c) {
     case 'a':
       if (!parse_double(optarg, &a) || !(a > 0.0)) goto bad_value;
@@ -175,6 +180,27 @@ int hd_mc_fmean_main(int argc, char **argv) {
   }
   if (samples && seconds > 0.0 && !conv) {
     fprintf(stderr, "haff mc fmean: give --samples or --seconds, not both\n");
+    return 2;
+  }
+  /* each mode takes only the options it reads: one that would be ignored is an error */
+  static const struct {
+    int mode;            /* the mode's option ('c', 'f', 'S') */
+    const char *refused; /* options it does not read */
+  } modes[] = {{'c', "m S f D"}, {'f', "m n s k S c D"}, {'S', "a f c"}};
+  for (size_t q = 0; q < sizeof modes / sizeof modes[0]; q++) {
+    unsigned mk = 0;
+    for (unsigned k = 0; longopts[k].name; k++)
+      if (longopts[k].val == modes[q].mode) mk = k;
+    if (!(given & (1u << mk))) continue;
+    for (unsigned k = 0; longopts[k].name; k++)
+      if ((given & (1u << k)) && k != mk && strchr(modes[q].refused, longopts[k].val)) {
+        fprintf(stderr, "haff mc fmean: --%s does not apply with --%s (see --help)\n",
+                longopts[k].name, longopts[mk].name);
+        return 2;
+      }
+  }
+  if (conv && isnan(a) && (given & 2u)) { /* --d alone: a/d would silently be 1 */
+    fprintf(stderr, "haff mc fmean: --convergence with --d needs --a\n");
     return 2;
   }
   hd_error err;

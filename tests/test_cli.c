@@ -269,6 +269,16 @@ static void bad_input(void **state) {
   assert_int_equal(sh("%s resume nothere.db", haff) != 0, 1);
   assert_int_equal(sh("%s run --help >/dev/null", haff), 0);
   assert_int_equal(sh("%s --help >/dev/null", haff), 0);
+  /* mc fmean: an option its mode does not read is refused (--fig4-data --scan printed NaN
+   * geometry with exit 0; --convergence ignored --model, --scan and a lone --d; --scan ignored
+   * --a) */
+  bad_usage("mc fmean --fig4-data --scan 1:2:1", "--scan does not apply with --fig4-data");
+  bad_usage("mc fmean --convergence --model collision", "--model does not apply with --convergence");
+  bad_usage("mc fmean --convergence --scan 1:2:1", "--scan does not apply with --convergence");
+  bad_usage("mc fmean --convergence --d 2", "--convergence with --d needs --a");
+  bad_usage("mc fmean --scan 1:2:1 --a 1", "--a does not apply with --scan");
+  bad_usage("mc fmean --fig4-data --a 1 --samples 10", "--samples does not apply with --fig4-data");
+  assert_int_equal(sh("%s mc fmean --fig4-data --a 1 --d 2 >/dev/null", haff), 0);
   /* a state file with overlapping bodies names the file and line */
   write_file("st.csv", "kind,x,y,phi,vx,vy,omega\ndisk,1,1,0,0,0,0\ndisk,1.5,1,0,0,0,0\n");
   write_file(
