@@ -2,6 +2,8 @@
  * `rods-gofr`, `rods-veldist`, `rods-clusters` read a rods run from a database and write TSV;
  * `rods-collapse` scans (N, eps) of the constant model for inelastic collapse.  CLI code. */
 #include <getopt.h>
+#include <gsl/gsl_sort.h>
+#include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <sqlite3.h>
 #include <stdio.h>
@@ -25,6 +27,24 @@ typedef struct ropts {
   double range; /* rods-gofr: largest distance */
 } ropts;
 
+/* s is a finite number filling the whole string: *x. */
+static int finite_number(const char *s, double *x) {
+  char *e;
+  *x = strtod(s, &e);
+  return e != s && !*e && isfinite(*x);
+}
+
+/* s is a finite whole number (digits, or forms like 1e4 that are whole): *x. */
+static int whole_number(const char *s, double *x) {
+  return finite_number(s, x) && *x == floor(*x);
+}
+
+/* Prints why an option's value is refused and returns 2. */
+static int bad_arg(const char *cmd, const char *opt, const char *val) {
+  fprintf(stderr, "%s: %s '%s': out of range or not a number (see --help)\n", cmd, opt, val);
+  return 2;
+}
+
 static int parse(int argc, char **argv, const char *usage, ropts *o) {
   static const struct option lo[] = {
       {"run", 1, 0, 'r'},   {"bins", 1, 0, 'b'},     {"t", 1, 0, 't'},
@@ -38,30 +58,34 @@ static int parse(int argc, char **argv, const char *usage, ropts *o) {
   o->minsize = 10;
   o->range = 50;
   optind = 1;
-  int c;
-  while ((c = getopt_long(argc, argv, "h", lo, NULL)) != -1) {
-    char *e = NULL;
+  int c, li = 0;
+  while ((c = getopt_long(argc, argv, "h", lo, &li)) != -1) {
+    double v;
+    int ok = 1;
     switch (c) {
     case 'r':
-      o->run = strtol(optarg, &e, 10);
+      ok = whole_number(optarg, &v) && v >= 0 && v < 9e18;
+      if (ok) o->run = (long)v;
       break;
     case 'b':
-      o->bins = (int)strtol(optarg, &e, 10);
+      ok = whole_number(optarg, &v) && v >= 1 && v <= 1e6;
+      if (ok) o->bins = (int)v;
       break;
     case 't':
-      o->t = strtod(optarg, &e);
+      ok = finite_number(optarg, &o->t);
       break;
     case 'g':
-      o->gap = strtod(optarg, &e);
+      ok = finite_number(optarg, &o->gap);
       break;
     case 'm':
-      o->minsize = strtol(optarg, &e, 10);
+      ok = whole_number(optarg, &v) && v >= 1 && v < 9e18;
+      if (ok) o->minsize = (long)v;
       break;
     case 'x':
-      o->x = strtod(optarg, &e);
+      ok = finite_number(optarg, &o->x);
       break;
     case 'R':
-      o->range = strtod(optarg, &e);
+      ok = finite_number(optarg, &o->range);
       break;
     case 'h':
       fputs(usage, stdout);
@@ -70,9 +94,10 @@ static int parse(int argc, char **argv, const char *usage, ropts *o) {
       fprintf(stderr, "%s: bad option (see --help)\n", argv[0]);
       return 2;
     }
-    if (e && *e) {
-      fprintf(stderr, "%s: --%s: '%s' is not a number\n", argv[0], lo[0].name, optarg);
-      return 2;
+    if (!ok) {
+      char opt[40];
+      snprintf(opt, sizeof opt, "--%s", lo[li].name);
+      return bad_arg(argv[0], opt, optarg);
     }
   }
   if (optind != argc - 1) {
@@ -561,6 +586,7 @@ int haff_rods_collapse_main(int argc, char **argv) {
                                      {0, 0, 0, 0}};
   optind = 1;
   int c;
+  double x;
   while ((c = getopt_long(argc, argv, "h", lo, NULL)) != -1) {
     switch (c) {
     case 'n':
@@ -570,13 +596,16 @@ int haff_rods_collapse_main(int argc, char **argv) {
       el = optarg;
       break;
     case 's':
-      seeds = atol(optarg);
+      if (!whole_number(optarg, &x) || x < 1 || x > 1e7) return bad_arg(argv[0], "--seeds", optarg);
+      seeds = (long)x;
       break;
     case 'c':
-      cpd = atof(optarg);
+      if (!finite_number(optarg, &x) || !(x > 0)) return bad_arg(argv[0], "--cpd", optarg);
+      cpd = x;
       break;
     case 'g':
-      gamma = atof(optarg);
+      if (!finite_number(optarg, &x) || !(x > 0 && x <= 1)) return bad_arg(argv[0], "--gamma", optarg);
+      gamma = x;
       break;
     case 'h':
       fputs(usage, stdout);
@@ -586,9 +615,22 @@ int haff_rods_collapse_main(int argc, char **argv) {
       return 2;
     }
   }
-  if (optind != argc || seeds < 1 || !(cpd > 0) || !(gamma > 0 && gamma <= 1)) {
-    fprintf(stderr, "%s: bad arguments (see --help)\n", argv[0]);
+  if (optind != argc) {
+    fprintf(stderr, "%s: unexpected argument '%s' (see --help)\n", argv[0], argv[optind]);
     return 2;
+  }
+  /* both lists checked before any ring runs */
+  char buf[512];
+  snprintf(buf, sizeof buf, "%s", nl);
+  for (char *sn = strtok(buf, ","); sn; sn = strtok(NULL, ","))
+    if (!whole_number(sn, &x) || x < 2 || x > 1e8) return bad_arg(argv[0], "--n", sn);
+  snprintf(buf, sizeof buf, "%s", el);
+  for (char *se = strtok(buf, ","); se; se = strtok(NULL, ","))
+    if (!finite_number(se, &x) || !(x >= 0 && x < 1)) return bad_arg(argv[0], "--eps", se);
+  double *at = malloc((size_t)seeds * sizeof *at); /* cpd at collapse of every collapsed ring */
+  if (!at) {
+    fprintf(stderr, "%s: out of memory\n", argv[0]);
+    return 1;
   }
   printf("N\teps\tcollapsed\truns\tfrac\tn_my\tmy_predicts\tmedian_cpd_at_collapse\n");
   char nbuf[512];
@@ -601,7 +643,6 @@ int haff_rods_collapse_main(int argc, char **argv) {
     for (char *se = strtok_r(ebuf, ",", &save); se; se = strtok_r(NULL, ",", &save)) {
       double eps = atof(se);
       long col = 0;
-      double at[64];
       for (long s = 1; s <= seeds; s++) {
         hd_rods_params p;
         hd_rods_params_default(&p);
@@ -611,25 +652,31 @@ int haff_rods_collapse_main(int argc, char **argv) {
         hd_error err;
         if (hd_rods_alloc(&r, &p, &err)) {
           fprintf(stderr, "%s: %s\n", argv[0], err.msg);
+          free(at);
           return 2;
         }
         hd_rods_event ev;
         long nc = (long)(cpd * (double)N / 2);
         int rr = HD_OK;
         for (long k = 0; k < nc && rr == HD_OK; k++) rr = hd_rods_next(r, INFINITY, &ev, &err);
-        if (rr == HD_ECOLLAPSE && col < 64) at[col++] = 2.0 * (double)r->collisions / (double)N;
+        if (rr == HD_ECOLLAPSE) {
+          at[col++] = 2.0 * (double)r->collisions / (double)N;
+        } else if (rr != HD_OK) { /* a ring that stopped for another reason is not counted */
+          fprintf(stderr, "%s: N %ld eps %g seed %ld: %s\n", argv[0], N, eps, s, err.msg);
+          hd_rods_free(r);
+          free(at);
+          return 1;
+        }
         hd_rods_free(r);
       }
-      for (long a = 1; a < col; a++) /* median */
-        for (long b = a; b > 0 && at[b - 1] > at[b]; b--) {
-          double tmp = at[b];
-          at[b] = at[b - 1], at[b - 1] = tmp;
-        }
+      gsl_sort(at, 1, (size_t)col);
       double nmy = hd_rods_my_ncrit(eps);
       printf("%ld\t%g\t%ld\t%ld\t%.3g\t%.4g\t%d\t%.6g\n", N, eps, col, seeds,
-             (double)col / (double)seeds, nmy, (double)N > nmy, col ? at[col / 2] : NAN);
+             (double)col / (double)seeds, nmy, (double)N > nmy,
+             col ? gsl_stats_median_from_sorted_data(at, 1, (size_t)col) : NAN);
       fflush(stdout);
     }
   }
+  free(at);
   return 0;
 }

@@ -262,24 +262,32 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
    * since the previous collision falls below HD_RODS_TINY t */
   long kl = prv(r, a), kr = b;
   r->stall = tk == r->t ? r->stall + 1 : 0;
-  if (tk - r->t <= HD_RODS_TINY * tk) {
+  double gap = tk - r->t;
+  if (gap <= HD_RODS_TINY * tk) {
+    if (r->tiny_run == 0) r->tiny_gap0 = gap;
     r->recent[r->tiny_run % HD_RODS_TINY_RUN] = (int32_t)k;
     r->tiny_run++;
   } else {
     r->tiny_run = 0;
   }
-  if (r->tiny_run >= HD_RODS_TINY_RUN || r->stall >= HD_RODS_STALL) {
+  int tiny = r->tiny_run >= HD_RODS_TINY_RUN && gap <= HD_RODS_TINY_FALL * r->tiny_gap0;
+  if (tiny || r->stall >= HD_RODS_STALL) {
     long c0 = a, c1 = b;
-    if (r->tiny_run >= HD_RODS_TINY_RUN) cluster(r, &c0, &c1);
+    char why[160];
+    if (tiny) {
+      cluster(r, &c0, &c1);
+      snprintf(why, sizeof why,
+               "%lld successive collisions less than 1e-12 t apart, their spacing down from "
+               "%.3g to %.3g",
+               (long long)r->tiny_run, r->tiny_gap0, gap);
+    } else {
+      snprintf(why, sizeof why, "100000 successive collisions at the same time");
+    }
     long size = (c1 - c0 + n) % n + 1;
     return hd_error_set(err, HD_ECOLLAPSE,
                         "inelastic collapse at t = %.10g after %lld collisions: %s in the cluster "
                         "of rods %ld..%ld (%ld rods)",
-                        tk, (long long)r->collisions,
-                        r->tiny_run >= HD_RODS_TINY_RUN
-                            ? "64 successive collisions less than 1e-12 t apart"
-                            : "100000 successive collisions at the same time",
-                        c0, c1, size);
+                        tk, (long long)r->collisions, why, c0, c1, size);
   }
   r->t = tk;
   /* gaps next to the pair move with the old velocities up to now */
@@ -326,11 +334,11 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
 typedef struct ck_head {
   uint64_t magic;
   int64_t n, collisions, resampled, tiny_run, stall;
-  double t, x0, x0t, e_lost;
+  double t, x0, x0t, e_lost, tiny_gap0;
   int32_t recent[HD_RODS_TINY_RUN];
   uint64_t rng_size;
 } ck_head;
-#define CK_MAGIC 0x68646f7230303031ULL /* "hdor0001" */
+#define CK_MAGIC 0x68646f7230303032ULL /* "hdor0002" (0001: before tiny_gap0) */
 
 int hd_rods_checkpoint(const hd_rods *r, void **blob, size_t *n, hd_error *err) {
   size_t nr = (size_t)r->p.n, rs = gsl_rng_size(r->rng);
@@ -344,6 +352,7 @@ int hd_rods_checkpoint(const hd_rods *r, void **blob, size_t *n, hd_error *err) 
   h.collisions = r->collisions;
   h.resampled = r->resampled;
   h.tiny_run = r->tiny_run;
+  h.tiny_gap0 = r->tiny_gap0;
   h.stall = r->stall;
   h.t = r->t;
   h.x0 = r->x0;
@@ -384,6 +393,7 @@ int hd_rods_alloc_restore(hd_rods **out, const hd_rods_params *p, const void *bl
   r->collisions = h.collisions;
   r->resampled = h.resampled;
   r->tiny_run = h.tiny_run;
+  r->tiny_gap0 = h.tiny_gap0;
   r->stall = h.stall;
   r->t = h.t;
   r->x0 = h.x0;

@@ -45,16 +45,23 @@ typedef struct hd_rods_params {
                               default 0.01 */
 } hd_rods_params;
 
-/* Collapse detection (a finite-time divergence of the collision rate): a collision is "tiny"
- * when it comes less than HD_RODS_TINY t after the previous one (t the time now).
- * HD_RODS_TINY_RUN consecutive tiny collisions, or HD_RODS_STALL consecutive collisions at one
- * and the same time, end the run with HD_ECOLLAPSE; the cluster reported is the shortest arc of
- * rods holding the pairs of the last HD_RODS_TINY_RUN collisions.  Criteria on speeds or gaps
- * alone are wrong: a ring below McNamara-Young's N_c cools homogeneously with speeds falling
+/* Collapse detection (a finite-time divergence of the collision rate, whose times converge
+ * geometrically): a collision is "tiny" when it comes less than HD_RODS_TINY t after the
+ * previous one (t the time now).  A run of at least HD_RODS_TINY_RUN consecutive tiny
+ * collisions over which the time between collisions has fallen by HD_RODS_TINY_FALL (the last
+ * against the first of the run), or HD_RODS_STALL consecutive collisions at one and the same
+ * time, end the run with HD_ECOLLAPSE; the cluster reported is the shortest arc of rods holding
+ * the pairs of the last HD_RODS_TINY_RUN collisions.  Criteria on speeds or gaps alone are
+ * wrong: a ring below McNamara-Young's N_c cools homogeneously with speeds falling
  * exponentially in the number of collisions, and the damped model's final cluster has gaps
- * falling like 1/t, neither a collapse; but in both the time between collisions grows. */
+ * falling like 1/t, neither a collapse; but in both the time between collisions grows.  The
+ * fall is needed because 1e-12 t alone is not scale-free: a damped ring of 50 rods at
+ * t = 4e5 had 64 collisions within 4e-7 of each other, at spacings going up and down between
+ * 1e-8 and 5e-7 (two slow clusters meeting, eps > 1 drawn among them), and was stopped as
+ * collapsed. */
 #define HD_RODS_TINY 1e-12
 #define HD_RODS_TINY_RUN 64
+#define HD_RODS_TINY_FALL 1e-6
 #define HD_RODS_STALL 100000
 
 /* Size of the eps table built when params.table is set: beta in [1e-3, 1e3], 25 nodes x 129
@@ -89,6 +96,7 @@ typedef struct hd_rods {
   double e_lost;      /* energy removed by the damping up to the tl[] of every rod */
   int64_t resampled;  /* eps draws redrawn because the baths could not pay for eps > 1 */
   int64_t tiny_run;   /* consecutive tiny collisions (collapse detection) */
+  double tiny_gap0;   /* time between collisions at the first of those tiny collisions */
   int64_t stall;      /* consecutive collisions at the same time */
   int32_t recent[HD_RODS_TINY_RUN]; /* gaps of the last tiny collisions (ring buffer) */
   hd_queue *q;                      /* one entry per gap keyed by key[] */

@@ -290,6 +290,33 @@ static void bad_input(void **state) {
   assert_non_null(strstr(e, "overlap"));
 }
 
+/* rods-collapse counts every collapsed ring: it kept at most 64 (the size of its median buffer),
+ * so 70 rings of 8 rods at eps = 0.3, all of which collapse (McNamara-Young: N_c = 0.51), gave
+ * frac = 64/70.  Its numbers are checked before any ring runs. */
+static void rods_collapse_counts(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("%s rods-collapse --n 8 --eps 0.3 --seeds 70 --cpd 200 > rc.tsv", haff), 0);
+  char p[300], line[400];
+  snprintf(p, sizeof p, "%s/rc.tsv", dir);
+  FILE *f = fopen(p, "r");
+  assert_non_null(f);
+  assert_non_null(fgets(line, sizeof line, f)); /* header */
+  assert_non_null(fgets(line, sizeof line, f));
+  fclose(f);
+  long n, col, runs;
+  double eps, frac;
+  assert_int_equal(sscanf(line, "%ld %lf %ld %ld %lf", &n, &eps, &col, &runs, &frac), 5);
+  assert_int_equal(col, 70);
+  assert_int_equal(runs, 70);
+  assert_true(frac == 1.0);
+  bad_usage("rods-collapse --n 8x", "--n '8x'");
+  bad_usage("rods-collapse --eps 1.5", "--eps '1.5'");
+  bad_usage("rods-collapse --seeds 2.5", "--seeds '2.5'");
+  bad_usage("rods-energy x.db --bins 2.5", "--bins '2.5'");
+  bad_usage("rods-energy x.db --gap abc", "--gap 'abc'");
+}
+
 /* A full disk (the file size limit of RLIMIT_FSIZE, with SIGXFSZ ignored so that writes fail
  * with EFBIG as on a full disk): exit 1 and a clear message, a sound database, and once there is
  * room again resume completes the very same run. */
@@ -378,7 +405,7 @@ int main(void) {
       cmocka_unit_test(bad_input),          cmocka_unit_test(unwritable_db),
       cmocka_unit_test(logged_restitution), cmocka_unit_test(disk_full_then_resume),
       cmocka_unit_test(sigint_then_resume), cmocka_unit_test(sigterm_then_resume),
-      cmocka_unit_test(kill9_then_resume),
+      cmocka_unit_test(kill9_then_resume),  cmocka_unit_test(rods_collapse_counts),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
