@@ -28,7 +28,7 @@ $(D)/rods-stochastic.db $(D)/rods-constant.db $(D)/rods-damped.db: $(D)/rods-%.d
 	$(HAFF) run $< -o $@ --quiet $(BIG) || test $* = constant
 $(D)/rods-50.db $(D)/rods-damped50.db: $(D)/rods-%.db: scenes/rods-%.ini
 	@mkdir -p $(D); rm -f $@
-	$(HAFF) run $< -o $@ --quiet || true
+	$(HAFF) run $< -o $@ --quiet
 
 $(D)/%.energy.tsv: $(D)/%.db
 	$(HAFF) rods-energy $< > $@
