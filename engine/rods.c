@@ -218,10 +218,17 @@ static void cluster(const hd_rods *r, long *first, long *last) {
   *last = (g_last + 1) % n;
 }
 
-/* Draws eps for a collision of rods a (left) and b with relative energy e_tr. */
+/* Whether the collision of rods a and b now is elastic by the TC model (either collided less
+ * than tc ago): eps = 1 and the baths are left alone. */
+static int tc_elastic(const hd_rods *r, long a, long b) {
+  const hd_rods_params *p = &r->p;
+  return p->tc > 0 && (r->t - r->tl[a] < p->tc || r->t - r->tl[b] < p->tc);
+}
+
+/* Draws eps for a collision of rods a (left) and b with relative energy e_tr (not TC-elastic).
+ * Returns NaN if no draw fits what the baths hold (the caller reports it). */
 static double draw_eps(hd_rods *r, long a, long b, double e_tr, double tba, double tbb) {
   const hd_rods_params *p = &r->p;
-  if (p->tc > 0 && (r->t - r->tl[a] < p->tc || r->t - r->tl[b] < p->tc)) return 1.0;
   if (p->model == HD_RODS_CONSTANT) return p->eps;
   if (!r->sampler) return 1.0; /* gamma = 1: eps = 1 for every realisation */
   /* the two baths hold 2 N_mod T_B: eps^2 <= 1 + 2 N_mod T_B / E_tr */
@@ -236,10 +243,10 @@ static double draw_eps(hd_rods *r, long a, long b, double e_tr, double tba, doub
     } else {
       eps = hd_eps_sample(r->sampler, e_tr / tbm, r->rng);
     }
-    if (eps * eps <= cap) return eps;
+    if (eps * eps <= cap) return eps; /* false for NaN: redrawn */
     r->resampled++;
   }
-  return sqrt(cap);
+  return NAN;
 }
 
 int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
@@ -300,14 +307,25 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
   /* baths up to now (damping) */
   double da = decay(r, r->tl[a], r->t), db = decay(r, r->tl[b], r->t);
   double tba = r->tb[a] * da, tbb = r->tb[b] * db;
-  r->e_lost += (double)r->p.nmod * (r->tb[a] - tba + r->tb[b] - tbb);
   double e_tr = 0.5 * u * u;
-  double eps = draw_eps(r, a, b, e_tr, tba, tbb);
-  /* eq. (28-29): both baths take the mean plus their share of the loss */
-  double tbn = 0.5 * (tba + tbb) + (1 - eps * eps) * e_tr / (2 * (double)r->p.nmod);
-  if (eps == 1.0) tbn = 0.5 * (tba + tbb);
-  if (tbn < 0) tbn = 0; /* round-off only: draw_eps keeps eps^2 within what the baths hold */
-  r->tb[a] = r->tb[b] = tbn;
+  int tc = tc_elastic(r, a, b);
+  double eps = tc ? 1.0 : draw_eps(r, a, b, e_tr, tba, tbb);
+  if (!isfinite(eps))
+    return hd_error_set(err, HD_EPHYS,
+                        "rods %ld and %ld at t = %.10g: no coefficient of restitution drawn in "
+                        "1000 tries fits what their baths hold (E_tr = %.3g, T_B = %.3g, %.3g)",
+                        a, b, r->t, e_tr, tba, tbb);
+  r->e_lost += (double)r->p.nmod * (r->tb[a] - tba + r->tb[b] - tbb);
+  /* eq. (28-29): both baths take the mean plus their share of the loss; a TC-elastic collision
+   * leaves them alone (docs/rods.md) */
+  double tbn_a = tba, tbn_b = tbb;
+  if (!tc) {
+    double tbn = 0.5 * (tba + tbb) + (1 - eps * eps) * e_tr / (2 * (double)r->p.nmod);
+    if (eps == 1.0) tbn = 0.5 * (tba + tbb);
+    if (tbn < 0) tbn = 0; /* round-off only: draw_eps keeps eps^2 within what the baths hold */
+    tbn_a = tbn_b = tbn;
+  }
+  r->tb[a] = tbn_a, r->tb[b] = tbn_b;
   r->tl[a] = r->tl[b] = r->t;
   /* momentum conservation with the true masses: u -> -eps u (eq. 30-32 are gamma = 1) */
   double mu = r->m[a] * r->m[b] / (r->m[a] + r->m[b]);
@@ -324,7 +342,7 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
     hd_queue_update(r->q, (int32_t)kr, r->key[kr]);
   }
   r->collisions++;
-  *ev = (hd_rods_event){r->t, a, b, eps, e_tr, u, tbn, tbn, -(1 - eps * eps) * e_tr};
+  *ev = (hd_rods_event){r->t, a, b, eps, e_tr, u, tbn_a, tbn_b, -(1 - eps * eps) * e_tr};
   return HD_OK;
 }
 
