@@ -98,6 +98,8 @@ typedef struct hd_rods {
   int64_t tiny_run;   /* consecutive tiny collisions (collapse detection) */
   double tiny_gap0;   /* time between collisions at the first of those tiny collisions */
   int64_t stall;      /* consecutive collisions at the same time */
+  int64_t frame_next; /* collisions before which the drift is not checked again (keep_frame) */
+  int64_t frames;     /* times the ring was taken to its centre-of-mass frame */
   int32_t recent[HD_RODS_TINY_RUN]; /* gaps of the last tiny collisions (ring buffer) */
   hd_queue *q;                      /* one entry per gap keyed by key[] */
   gsl_rng *rng;

@@ -247,6 +247,53 @@ static void damped_no_false_collapse(void **state) {
   hd_rods_free(r);
 }
 
+/* Kinetic energy in the centre-of-mass frame. */
+static double ekin_com(const hd_rods *r) {
+  double P = 0, M = 0, e = 0;
+  for (long i = 0; i < r->p.n; i++) P += r->m[i] * r->v[i], M += r->m[i];
+  for (long i = 0; i < r->p.n; i++) e += 0.5 * r->m[i] * (r->v[i] - P / M) * (r->v[i] - P / M);
+  return e;
+}
+
+/* A ring of 4 equal rods at constant eps = 0.3 cools for ever without collapsing.  The round-off
+ * left of its zero momentum (a drift ~1e-19) used to stop it: once the speeds fell to that
+ * drift's last digits (relative speeds ~6e-36 at 5e-20) collisions no longer changed them, while
+ * the log still booked de.  Now every collision changes the centre-of-mass energy by its de, to
+ * 1e-6 relative, however far it cools (here by more than 1e-100), and the ring was taken to its
+ * centre-of-mass frame at least once. */
+static void constant_cooling_below_drift(void **state) {
+  (void)state;
+  hd_rods_params p;
+  hd_rods_params_default(&p);
+  p.n = 4;
+  p.nmod = 1;
+  p.gamma = 1;
+  p.model = HD_RODS_CONSTANT;
+  p.eps = 0.3;
+  p.seed = 2;
+  hd_rods *r;
+  hd_error e;
+  assert_int_equal(hd_rods_alloc(&r, &p, &e), HD_OK);
+  hd_rods_event ev;
+  double e0 = ekin_com(r), ek = e0;
+  long bad = 0, c;
+  for (c = 0; c < 200000 && ek > 1e-100 * e0; c++) {
+    int rc = hd_rods_next(r, INFINITY, &ev, &e);
+    if (rc) print_error("%s\n", e.msg);
+    assert_int_equal(rc, HD_OK);
+    double en = ekin_com(r);
+    if (!(fabs(en - ek - ev.de) <= 1e-6 * fabs(ev.de) + 1e-12 * ek)) bad++;
+    ek = en;
+  }
+  printf("# 4 rods at eps 0.3: E_com/E0 = %.3g after %ld collisions, t = %.3g, %lld frame "
+         "changes, %ld collisions whose energy change was not de\n",
+         ek / e0, c, r->t, (long long)r->frames, bad);
+  assert_true(ek <= 1e-100 * e0);
+  assert_int_equal(bad, 0);
+  assert_true(r->frames >= 1);
+  hd_rods_free(r);
+}
+
 /* Constant eps: a ring of 20 rods at eps = 0.5 (McNamara-Young: collapse needs only
  * N > -ln(0.5)/0.5 = 1.4) collapses, reported with time, collisions and a cluster; the same
  * ring at eps = 0.99 (N_c ~ 460 > 20) runs 10^5 collisions without collapse. */
@@ -380,6 +427,7 @@ int main(void) {
       cmocka_unit_test(checkpoint_exact),
       cmocka_unit_test(collapse),
       cmocka_unit_test(damped_no_false_collapse),
+      cmocka_unit_test(constant_cooling_below_drift),
       cmocka_unit_test(equilibrium),
       cmocka_unit_test(theory),
   };
