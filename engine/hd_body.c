@@ -57,7 +57,9 @@
  * alpha = 0 a sustained sliding contact is thus a train of ever smaller collisions, which the
  * engine reports as inelastic collapse (the rigid-body limit of a lasting contact). TOL_0 = 1e-10
  * at t = 0 a pair with h <= TOL_0 D (a gap or an overlap left by round-off) is in contact now:
- * approaching -> t = 0 is returned; otherwise (the pair has just collided) it is ignored until it
+ * approaching from h <= TOL_C D -> t = 0 is returned (from a larger gap the search goes on, as
+ * for any pair: a review found pairs at gaps of 5e-11 D collided at t = 0 that never touch, a
+ * graze or a fast spinner's twin disk); otherwise (the pair has just collided) it is ignored until it
  * has separated to h > TOL_SEP = 2 TOL_0 or approaches again from h > TOL_C; after that it is an
  * ordinary pair, so its next real contact (a fast spinner swinging its other disk round, or the
  * same disk pair coming back) is found.  While a pair is ignored the step is bounded by the time
@@ -161,14 +163,15 @@ int hd_predict_disks(double dx, double dy, double dvx, double dvy, double D, dou
                      double *t) {
   double r2 = dx * dx + dy * dy, b = dx * dvx + dy * dvy, v2 = dvx * dvx + dvy * dvy;
   double r = sqrt(r2), vtol = VTOL * sqrt(v2) + HD_DISK_VROUND * vs;
-  if (r - D <= TOL_0 * D) {
-    /* in contact now: collide if approaching; otherwise |r(t)| (convex) only grows from here */
-    if (b < -vtol * r) {
-      *t = 0.0;
-      return 1;
-    }
-    return 0;
+  if (r - D <= TOL_0 * D && !(b < -vtol * r)) {
+    return 0; /* in contact and not approaching (just collided): |r(t)| (convex) only grows */
   }
+  if (r - D <= TOL_C * D) { /* in contact now and approaching */
+    *t = 0.0;
+    return 1;
+  }
+  /* an approaching pair at a gap above TOL_C D, even below TOL_0 D, takes the closed form: it
+   * may miss (a graze), and used to be collided at t = 0 all the same */
   if (b >= 0.0) return 0;
   double c = r2 - D * D, disc = b * b - v2 * c;
   if (!(disc >= 0.0)) return 0;
@@ -343,11 +346,12 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
       int best = -1;
       for (int p = 0; p < np; p++) {
         if (!(h[p] <= h0)) continue;
-        if (ca_rate(g[p], r[p]) < -vtol) {
-          if (best < 0 || h[p] < h[best]) best = p;
-        } else {
-          ign |= 1u << p;
-        }
+        if (!(ca_rate(g[p], r[p]) < -vtol)) {
+          ign |= 1u << p; /* in contact, not approaching: just collided */
+        } else if (h[p] <= hc) {
+          if (best < 0 || h[p] < h[best]) best = p; /* in contact and approaching: now */
+        } /* approaching from a gap above TOL_C D: an ordinary pair for the search, which finds
+           * its contact or its miss (rotation may curve it away: it was collided at t = 0) */
       }
       if (best >= 0) {
         *tout = 0.0;
@@ -586,7 +590,7 @@ int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, doubl
     ca_eval(&x, 0.0, h, hd, r);
     for (int i = 0; i < x.na; i++) {
       double tc;
-      if (h[i] <= TOL_0 * x.D) {
+      if (h[i] <= TOL_C * x.D) {
         if (!(hd[i] < -vtol)) continue;
         tc = 0.0;
       } else {

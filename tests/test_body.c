@@ -918,7 +918,9 @@ static void alpha_zero_fast_bodies(void **state) {
   assert_int_equal(again, 0);
 }
 
-/* In contact now (gap within +-1e-11 of 0): approaching gives t = 0 and the touching pair;
+/* In contact now (gap -1e-11 or 0): approaching gives t = 0 and the touching pair; at a gap of
+ * +1e-11 the contact is searched (it used to be t = 0 up to gaps of 1e-10, see
+ * predict_near_miss) and agrees with the brute force;
  * receding (the same state with every velocity reversed) never gives t = 0, and its next
  * contact, if any, agrees with the brute force. */
 static void predict_touching_now(void **state) {
@@ -940,8 +942,12 @@ static void predict_touching_now(void **state) {
       B.x += dgap * (bx - ax) / D;
       B.y += dgap * (by - ay) / D;
       hd_contact c;
-      assert_true(hd_predict_pair(&A, sa, &B, sb, 1.0, &c));
-      assert_true(c.t == 0.0 && c.ka == ka && c.kb == kb);
+      if (dgap > 0) { /* a gap of 1e-11 D is above TOL_C: searched, against the brute force */
+        assert_true(compare_pair(&A, sa, &B, sb, 1.0, sanitize() ? 10000 : 100000, -1));
+      } else {
+        assert_true(hd_predict_pair(&A, sa, &B, sb, 1.0, &c));
+        assert_true(c.t == 0.0 && c.ka == ka && c.kb == kb);
+      }
       A.vx = -A.vx, A.vy = -A.vy, A.omega = -A.omega;
       B.vx = -B.vx, B.vy = -B.vy, B.omega = -B.omega;
       compare_pair(&A, sa, &B, sb, 1.0, sanitize() ? 10000 : 100000, ka * ndisks(sb) + kb);
@@ -1147,13 +1153,43 @@ static void predict_disks_closed_form(void **state) {
   /* impact parameter b < D: t = (sqrt(x^2) - sqrt(D^2 - b^2)) / v with x = 3, b = 0.6, D = 1 */
   assert_true(hd_predict_disks(3.0, 0.6, -1.0, 0.0, 1.0, 0.0, 10.0, &t) && fabs(t - 2.2) <= 1e-14);
   assert_false(hd_predict_disks(3.0, 1.0 + 1e-9, -1.0, 0.0, 1.0, 0.0, 10.0, &t)); /* miss */
-  /* touching now: approaching -> 0, receding -> none */
-  assert_true(hd_predict_disks(1.0 + 1e-12, 0.0, -1.0, 0.0, 1.0, 0.0, 10.0, &t) && t == 0.0);
+  /* touching now: approaching -> 0 (a gap of ~1e-12 D: at once, or within its closing time),
+   * receding -> none */
+  assert_true(hd_predict_disks(1.0 + 1e-13, 0.0, -1.0, 0.0, 1.0, 0.0, 10.0, &t) && t == 0.0);
+  assert_true(hd_predict_disks(1.0 + 1e-12, 0.0, -1.0, 0.0, 1.0, 0.0, 10.0, &t) && t <= 1.1e-12);
+  /* a gap of 5e-11 D approached at 1e-6 with tangential speed 1: a miss (discriminant < 0),
+   * which the t = 0 rule used to collide (review) */
+  assert_false(hd_predict_disks(1.0 + 5e-11, 0.0, -1e-6, 1.0, 1.0, 2.0, 10.0, &t));
   assert_false(hd_predict_disks(1.0 - 1e-12, 0.0, 1.0, 0.0, 1.0, 0.0, 10.0, &t));
   /* in contact, approaching at 3e-12 with |v| = 1: a collision for slow bodies, round-off for
    * bodies moving at ~1000 (vs = 4000: 8 eps vs = 7e-12) */
   assert_true(hd_predict_disks(1.0, 0.0, -3e-12, 1.0, 1.0, 0.0, 10.0, &t) && t == 0.0);
   assert_false(hd_predict_disks(1.0, 0.0, -3e-12, 1.0, 1.0, 4000.0, 10.0, &t));
+}
+
+/* Near misses at a gap between TOL_C and TOL_0 (1e-12 and 1e-10 D) that approach: they used to
+ * be collided at t = 0 although they never touch (review).  (1) A disk passing a dimer's disk at
+ * a gap of 5e-11 with normal speed 1e-6 and tangential 1, without and with a slow rotation.
+ * (2) A dimer with a = 1e-9 d spinning at -1.5e9 just after its disk 0 hit a disk: its twin disk
+ * 1, at a gap of 5.2e-11, stays more than 1.36e-11 away for 1e-3 (the reviewer's long-double
+ * brute force) and must not be collided now; with the old rule it got an impulse with vn = -0.13.
+ * Any contact found must be later than t = 0 and touch at its time. */
+static void predict_near_miss(void **state) {
+  (void)state;
+  hd_shape dm = dimer(1, 1, 1), dk = disk(1, 1);
+  hd_kin A = {0, 0, 0, 0, 0, 0}, B = {0.5 + 1 + 5e-11, 0, -1e-6, 1.0, 0, 0};
+  hd_contact c;
+  assert_false(hd_predict_pair(&A, &dm, &B, &dk, 10, &c));
+  A.omega = 1e-3;
+  assert_false(hd_predict_pair(&A, &dm, &B, &dk, 10, &c));
+  hd_shape tiny = dimer(1, 1e-9, 1);
+  hd_kin T = {0, 0, 0.28350627093425912, 1.1915629145013629, -1.5561774963877713,
+              -1501044978.1256156};
+  hd_kin K = {-0.99929091247064561, 0.037651989400833662, -0.35520746707631856,
+              0.72376337291188708, 0, 0};
+  int got = hd_predict_pair(&T, &tiny, &K, &dk, 1e-3, &c);
+  printf("# spinner's twin disk: %s (t = %g)\n", got ? "contact" : "no contact", got ? c.t : 0.0);
+  assert_true(!got || c.t > 0.0);
 }
 
 int main(void) {
@@ -1170,6 +1206,7 @@ int main(void) {
       cmocka_unit_test(predict_disks_closed_form),
       cmocka_unit_test(predict_pairs),
       cmocka_unit_test(predict_touching_now),
+      cmocka_unit_test(predict_near_miss),
       cmocka_unit_test(predict_second_contact),
       cmocka_unit_test(predict_interleaved),
       cmocka_unit_test(predict_recontact),
