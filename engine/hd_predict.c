@@ -17,7 +17,11 @@
 #include "hd_disk.h"
 #include "hd_sim_internal.h"
 
-/* Time until body b, in cell (cx, cy), leaves it (>= 0), or INFINITY; sets b->c_dir. */
+/* Time until body b, in cell (cx, cy), leaves it (>= 0), or INFINITY; sets b->c_dir.  A body
+ * that never leaves its cell but spins gets a wake-up HD_WAKE_TURNS turns ahead instead (c_dir
+ * HD_WAKE): the contact searches of dimers end at the earlier crossing of the two bodies, and
+ * without it two dimers at rest that spin at nearly one rate were searched without end (10^8
+ * steps, ~7 s, then "no contact": a contact at t ~ 7e7 was missed; review). */
 static inline double crossing_time(const hd_sim *s, hd_body *b, int32_t cx, int32_t cy) {
   double best = INFINITY, t;
   if (b->k.vx > 0.0 && !(cx == s->ncx - 1 && (s->walls & HD_WALL_RIGHT))) {
@@ -33,6 +37,10 @@ static inline double crossing_time(const hd_sim *s, hd_body *b, int32_t cx, int3
   } else if (b->k.vy < 0.0 && !(cy == 0 && (s->walls & HD_WALL_BOTTOM))) {
     t = (cy * s->cwy - b->k.y) / b->k.vy;
     if (t < best) best = t, b->c_dir = 3;
+  }
+  if (best == INFINITY && b->k.omega != 0.0) {
+    best = HD_WAKE_TURNS * 2.0 * M_PI / fabs(b->k.omega);
+    b->c_dir = HD_WAKE;
   }
   return best < 0.0 ? 0.0 : best;
 }
@@ -351,7 +359,7 @@ static int event_cells(const hd_sim *s, const hd_body *b, int32_t cells[9]) {
   hd_body_cxy(s, b, &cx, &cy);
   if (cx < 2 || cx >= ncx - 2 || cy < 2 || cy >= s->ncy - 2) return 0;
   int n = 0;
-  if (b->c_t <= b->p_t && s->partial_cross) {
+  if (b->c_t <= b->p_t && s->partial_cross && b->c_dir != HD_WAKE) {
     int dir = b->c_dir;
     int32_t mid = cell_beyond(c, dir, 2, ncx), along = dir < 2 ? ncx : 1;
     cells[n++] = c;

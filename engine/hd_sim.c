@@ -444,6 +444,10 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
 
     if (bi->c_t <= bi->p_t) { /* cell crossing */
       hd_body_sync(s, i);
+      if (bi->c_dir == HD_WAKE) { /* a spinner at rest: only predicted again */
+        hd_predict(s, i);
+        continue;
+      }
       int wrapped = cross_cell(s, i);
       hd_predict_crossed(s, i, wrapped);
       continue;

@@ -26,6 +26,11 @@ enum { HD_SP_DIMER = 0, HD_SP_DISK = 1, HD_NSPECIES = 2 };
 
 /* Event types. */
 enum { HD_EV_NONE = 0, HD_EV_PAIR = 1, HD_EV_CELL = 2, HD_EV_WALL = 3 };
+/* c_dir of a body that never leaves its cell but spins (a dimer with V = 0 exactly, e.g. from a
+ * state file): its "crossing" is a wake-up HD_WAKE_TURNS turns ahead, which predicts it again,
+ * so that contact searches with it have a finite horizon. */
+enum { HD_WAKE = 4 };
+#define HD_WAKE_TURNS 100
 
 /* One body (128 bytes, two cache lines).  It carries two pending events: a contact (pair or wall,
  * `p_*`) and its next cell crossing (`c_*`); ev_t is the earlier of the two and its key in the
@@ -46,7 +51,8 @@ typedef struct hd_body {
   int32_t p_partner; /* PAIR: partner body; WALL: wall index */
   uint32_t p_pcount; /* PAIR: partner's ncoll when predicted */
   int16_t p_type;    /* HD_EV_PAIR, HD_EV_WALL or HD_EV_NONE */
-  int16_t c_dir;     /* crossing face: 0 +x, 1 -x, 2 +y, 3 -y */
+  int16_t c_dir;     /* crossing face: 0 +x, 1 -x, 2 +y, 3 -y; HD_WAKE: no face, c_t is a
+                      * wake-up that only predicts again (hd_predict.c, crossing_time) */
   int16_t p_ka;      /* touching disk of this body */
   int16_t p_kb;      /* touching disk of the partner */
   int16_t p_imx;     /* PAIR: image offset of the partner, invariant under wrapping: */

@@ -30,6 +30,60 @@ static void dimer_scene(hd_scene *sc, long n, long nd, double a, double eta, dou
   sc->placement = HD_PLACE_RANDOM;
 }
 
+/* Two dimers (d = 1, a = 1, alpha = 1) in a box of edge 20, placed and set by hand: centres,
+ * orientations, velocities and spins; predicted again. */
+static hd_sim *two_dimers(const double st[2][6]) {
+  hd_scene sc;
+  dimer_scene(&sc, 2, 0, 1.0, 0.01, 1.0, 1);
+  sc.box_x = sc.box_y = 20;
+  hd_sim *s = NULL;
+  hd_error err;
+  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+  for (int i = 0; i < 2; i++) {
+    hd_body *b = &s->b[i];
+    b->k = (hd_kin){st[i][0], st[i][1], st[i][2], st[i][3], st[i][4], st[i][5]};
+    b->t = 0;
+    hd_cells_remove(s, i);
+    hd_cells_insert(s, i, hd_cells_of(s, b->k.x, b->k.y));
+  }
+  for (int i = 0; i < 2; i++) hd_predict(s, i);
+  return s;
+}
+
+/* Dimers exactly at rest that spin never leave their cells, and their contact searches had no
+ * horizon: at nearly one rate a search ran 10^8 steps (~7 s) and then reported no contact
+ * (review).  Now such a body wakes up every HD_WAKE_TURNS turns and is predicted again.
+ * (1) Spinning at one rate 1.9 apart (phase-locked, never touching): to t = 1e4 only wake-ups
+ * happen, about 1e4 / (100 turns of 2 pi / 3) = 48 per body, and no collision.  (2) Rates 3 and
+ * 3 + 1e-4 (their relative phase drifts into contact near t ~ 7e3): the engine, searching 100
+ * turns at a time, finds the very contact that one unbounded search finds (to 1e-9). */
+static void resting_spinners(void **state) {
+  (void)state;
+  const double lock[2][6] = {{5, 5, 0, 0, 0, 3.0}, {6.9, 5, 0, 0, M_PI / 2, 3.0}};
+  hd_sim *s = two_dimers(lock);
+  hd_event_out ev;
+  hd_error e;
+  assert_int_equal(hd_sim_next(s, 1e4, &ev, &e), HD_SIM_STOPTIME);
+  printf("# phase-locked spinners at rest: %lld events, %lld collisions to t = 1e4\n",
+         (long long)s->c.events, (long long)s->c.collisions);
+  assert_int_equal(s->c.collisions, 0);
+  assert_true(s->c.events >= 2 * 45 && s->c.events <= 2 * 50);
+  hd_sim_free(s);
+  const double drift[2][6] = {{5, 5, 0, 0, 0, 3.0}, {6.9, 5, 0, 0, M_PI / 2, 3.0 + 1e-4}};
+  hd_shape sh = {HD_KIND_DIMER, 1, 1, 1};
+  hd_kin A = {5, 5, 0, 0, 0, 3.0}, B = {6.9, 5, 0, 0, M_PI / 2, 3.0 + 1e-4};
+  hd_contact c;
+  assert_int_equal(hd_predict_pair(&A, &sh, &B, &sh, INFINITY, &c), 1);
+  s = two_dimers(drift);
+  int rc = hd_sim_next(s, 1e6, &ev, &e);
+  printf("# drifting spinners: contact at %.12g (one search: %.12g) after %lld events\n", ev.t,
+         c.t, (long long)s->c.events);
+  assert_int_equal(rc, HD_OK);
+  assert_true(fabs(ev.t - c.t) <= 1e-9 * c.t);
+  assert_true(s->c.events > 2); /* found through wake-ups, not by the first search */
+  hd_sim_free(s);
+}
+
 /* Runs ncoll collisions (verification on when verify), returning the relative energy drift and
  * |total momentum|; fails on any engine error (an overlap, time going backwards). */
 static void run_checked(hd_sim *s, long ncoll, double *drift, double *pabs) {
@@ -409,6 +463,7 @@ static void inelastic_cooling(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(elastic_dimers),
+      cmocka_unit_test(resting_spinners),
       cmocka_unit_test(limits),
       cmocka_unit_test(alpha_zero),
       cmocka_unit_test(double_contact),
