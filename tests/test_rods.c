@@ -307,6 +307,47 @@ static void constant_cooling_below_drift(void **state) {
   hd_rods_free(r);
 }
 
+/* Draws at beta = E_tr / T_B below the eps table's grid (1e-3: slow pairs among hot baths, ~1e-3
+ * of the collisions) come from the direct sampler: the table only repeated its end node there
+ * (mean eps 3.39 against 5.71 at beta = 1e-5, review).  A ring of 50 rods with the table, 1e6
+ * collisions; each draw's beta is read back from the event (the baths before are the mean the
+ * event's bath after minus the loss share).  The ~100 draws at beta < 1e-4 must agree in mean
+ * with one direct draw at each of the same betas within 4 standard errors of the difference
+ * (fixed seeds; with the table's end node instead the test fails). */
+static void table_below_grid(void **state) {
+  (void)state;
+  hd_rods_params p;
+  hd_rods_params_default(&p);
+  p.n = 50;
+  p.nmod = 1000;
+  p.table = 1;
+  p.seed = 9;
+  hd_rods *r;
+  hd_error e;
+  assert_int_equal(hd_rods_alloc(&r, &p, &e), HD_OK);
+  gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(g, 99);
+  hd_rods_event ev;
+  double s1 = 0, s2 = 0, d1 = 0, d2 = 0;
+  long m = 0, nc = test_size(1000000, 10);
+  for (long c = 0; c < nc; c++) {
+    assert_int_equal(hd_rods_next(r, INFINITY, &ev, &e), HD_OK);
+    double tbm = ev.tb_i - (1 - ev.eps * ev.eps) * ev.e_tr / (2.0 * (double)p.nmod);
+    double beta = ev.e_tr / tbm;
+    if (!(tbm > 0) || !(beta < 1e-4)) continue;
+    double x = hd_eps_sample(r->sampler, beta, g);
+    s1 += ev.eps, s2 += ev.eps * ev.eps, d1 += x, d2 += x * x, m++;
+  }
+  double mr = s1 / (double)m, md = d1 / (double)m;
+  double se = sqrt((s2 / (double)m - mr * mr + d2 / (double)m - md * md) / (double)m);
+  printf("# %ld draws below beta = 1e-4: mean eps %.4f, direct %.4f (se of the difference %.3g)\n",
+         m, mr, md, se);
+  assert_true(m >= 30);
+  assert_true(fabs(mr - md) < 4 * se);
+  gsl_rng_free(g);
+  hd_rods_free(r);
+}
+
 /* Constant eps: a ring of 20 rods at eps = 0.5 (McNamara-Young: collapse needs only
  * N > -ln(0.5)/0.5 = 1.4) collapses, reported with time, collisions and a cluster; the same
  * ring at eps = 0.99 (N_c ~ 460 > 20) runs 10^5 collisions without collapse. */
@@ -441,6 +482,7 @@ int main(void) {
       cmocka_unit_test(collapse),
       cmocka_unit_test(damped_no_false_collapse),
       cmocka_unit_test(constant_cooling_below_drift),
+      cmocka_unit_test(table_below_grid),
       cmocka_unit_test(equilibrium),
       cmocka_unit_test(theory),
   };
