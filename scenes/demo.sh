@@ -25,5 +25,7 @@ sqlite3 -header -column "$db" "SELECT round(cpd, 1) AS cpd, printf('%.4g', s.t) 
 echo
 echo "== eq. (31) fitted to this run: D_e and nu0_eff (paper, Table I: D_e ~ 3)"
 bin/haff haff-fit "$db" || true
+echo "(*_fit_err: the fit's formal error; runs of other seeds scatter ~10x more, and"
+echo " 'haff table1' over several runs gives the standard error: docs/analysis.md)"
 echo
 echo "Query it yourself:  sqlite3 $db   (tables: runs collisions samples states checkpoints)"
