@@ -318,6 +318,18 @@ void hd_sim_sort(hd_sim *s) {
   hd_queue_build(s->q, n, &s->b[0].ev_t, HD_BODY_STRIDE);
 }
 
+/* Sets the booked kinetic energy (the running sum of every collision's de) to the bodies' own.
+ * The sum's round-off is absolute, ~1e-16 of the energy it started from per collision: a gas
+ * that cools by 16 decades has more error than energy, and a booked energy <= 0 made every
+ * collision "slow" (check_collapse): 64 disks at alpha = 0.95 were reported as collapsed at
+ * E/E0 ~ 1e-16 while colliding at the thermal speed.  Called at every rebase and before a
+ * collapse is reported. */
+static void rebook_energy(hd_sim *s) {
+  double e_tr, e_rot;
+  hd_sim_energy(s, -1, &e_tr, &e_rot);
+  s->c.e_kin = e_tr + e_rot;
+}
+
 /* Shifts the time origin to the current time (keeps times small: precision does not decay). */
 static void rebase(hd_sim *s) {
   double now = s->c.t;
@@ -331,6 +343,7 @@ static void rebase(hd_sim *s) {
   s->c.t_offset += now;
   s->c.t_last -= now;
   s->c.t = 0.0;
+  rebook_energy(s);
   hd_sim_sort(s); /* also rebuilds the queue, whose order rounding may have changed */
 }
 
@@ -373,8 +386,14 @@ static int check_collapse(hd_sim *s, double vn, hd_error *err) {
   for (int sp = 0; sp < HD_NSPECIES; sp++) mass += s->n_species[sp] * hd_shape_mass(&s->shape[sp]);
   double vth = sqrt(2.0 * fmax(s->c.e_kin, 0.0) / mass);
   if (fabs(vn) < HD_SLOW_VN * vth || vth == 0.0) {
-    if (++s->c.slow_run >= HD_SLOW_RUN)
-      return hd_error_set(err, HD_ECOLLAPSE,
+    if (++s->c.slow_run < HD_SLOW_RUN) return HD_OK;
+    rebook_energy(s); /* judged against the bodies' energy, not the booked sum */
+    vth = sqrt(2.0 * fmax(s->c.e_kin, 0.0) / mass);
+    if (!(fabs(vn) < HD_SLOW_VN * vth || vth == 0.0)) {
+      s->c.slow_run = 0;
+      return HD_OK;
+    }
+    return hd_error_set(err, HD_ECOLLAPSE,
                           "inelastic collapse at t = %.17g after %lld collisions: %d collisions "
                           "in a row with |vn| < %g of the thermal speed, last between bodies %d "
                           "and %d",

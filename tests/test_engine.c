@@ -481,6 +481,46 @@ static void haff_law(void **state) {
   hd_sim_free(s);
 }
 
+/* Energies falling over many decades: 64 dilute disks at alpha = 0.95 cool until their energy
+ * is 1e-30 of the start, every event verified (no overlap, time order).  They used to be
+ * stopped as "collapsed" near E/E0 = 1e-16 while colliding at the thermal speed: the booked
+ * energy (the running sum of de, whose round-off is ~1e-16 of the starting energy) had gone
+ * to <= 0, so every collision looked slow (hd_sim.c, rebook_energy).  The time keeps growing
+ * like Haff's t ~ E^(-1/2): the last decade of E takes longer than the first. */
+static void cooling_many_decades(void **state) {
+  (void)state;
+  hd_scene sc;
+  test_disk_scene(&sc, 64, 0.05, 0.95, 11);
+  sc.verify = 1;
+  hd_sim *s;
+  hd_error err;
+  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+  hd_event_out ev;
+  double et, er, e0;
+  hd_sim_energy(s, -1, &e0, &er);
+  double t_decade1 = NAN, t_last = 0, t_prev = 0, target = 0.1;
+  long coll = 0;
+  for (;;) {
+    int rc = hd_sim_next(s, INFINITY, &ev, &err);
+    if (rc) print_error("%s\n", err.msg);
+    assert_int_equal(rc, HD_OK);
+    if (++coll % 100) continue;
+    hd_sim_energy(s, -1, &et, &er);
+    if (et <= target * e0) {
+      double t = hd_sim_time(s);
+      if (isnan(t_decade1)) t_decade1 = t;
+      t_last = t - t_prev, t_prev = t;
+      target *= 0.1;
+    }
+    if (et <= 1e-30 * e0) break;
+  }
+  printf("# 64 disks, alpha 0.95: E/E0 = %.3g after %ld collisions (%.4g cpd), t = %.4g; first "
+         "decade t = %.3g, last %.3g\n",
+         et / e0, coll, hd_sim_cpd(s), hd_sim_time(s), t_decade1, t_last);
+  assert_true(t_last > t_decade1);
+  hd_sim_free(s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(head_on),
@@ -497,6 +537,7 @@ int main(void) {
       cmocka_unit_test(enskog_rate),
       cmocka_unit_test(maxwellian),
       cmocka_unit_test(haff_law),
+      cmocka_unit_test(cooling_many_decades),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
