@@ -102,6 +102,8 @@ typedef struct hd_event_out {
 /* The simulation. */
 typedef struct hd_sim {
   int32_t n;                              /* bodies */
+  int64_t drift_removed; /* times the system was taken to its centre-of-mass frame (rebase) */
+  int zero_momentum;     /* velocities drawn with zero total momentum (not from a state file) */
   int32_t n_species[HD_NSPECIES];         /* bodies per species */
   hd_body *b;                             /* the bodies, kept sorted by cell (see hd_sim_sort) */
   int32_t *id;                            /* id[i]: the user's number of body i (dimers first, then
