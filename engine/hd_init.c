@@ -239,6 +239,5 @@ int hd_init_state(hd_sim *s, const hd_scene *sc, hd_error *err) {
     rc = place_dense_lattice(s, err); /* too dense for random addition: melt a lattice */
   if (rc) return rc;
   hd_init_velocities(s, sc->temperature);
-  s->zero_momentum = 1;
   return HD_OK;
 }

@@ -36,6 +36,7 @@ static int sim_setup(hd_sim **out, const hd_scene *sc, hd_error *err) {
   s->lx = sc->box_x;
   s->ly = sc->box_y;
   s->walls = sc->walls;
+  s->zero_momentum = sc->placement != HD_PLACE_STATE; /* drawn velocities (resume: the same) */
   memcpy(s->wall, default_walls, sizeof s->wall);
   s->wall[1].pos = s->lx;
   s->wall[3].pos = s->ly;
