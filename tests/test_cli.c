@@ -331,6 +331,17 @@ static void rods_collapse_counts(void **state) {
   assert_int_equal(col, 70);
   assert_int_equal(runs, 70);
   assert_true(frac == 1.0);
+  /* 4 rods at eps 0.3 cool for ever (no collapse) until time runs out near DBL_MAX: counted as
+   * not collapsed (it stopped the scan with an error once the ring kept cooling, 2d753ec) */
+  assert_int_equal(sh("%s rods-collapse --n 4 --eps 0.3 --seeds 1 --cpd 1000 > rc4.tsv", haff), 0);
+  snprintf(p, sizeof p, "%s/rc4.tsv", dir);
+  f = fopen(p, "r");
+  assert_non_null(f);
+  assert_non_null(fgets(line, sizeof line, f));
+  assert_non_null(fgets(line, sizeof line, f));
+  fclose(f);
+  assert_int_equal(sscanf(line, "%ld %lf %ld %ld %lf", &n, &eps, &col, &runs, &frac), 5);
+  assert_int_equal(col, 0);
   bad_usage("rods-collapse --n 8x", "--n '8x'");
   bad_usage("rods-collapse --eps 1.5", "--eps '1.5'");
   bad_usage("rods-collapse --seeds 2.5", "--seeds '2.5'");
