@@ -114,7 +114,8 @@ int haff_run_main(int argc, char **argv) {
     fprintf(stderr, "haff run: %s\n", err.msg);
     return 2;
   }
-  hd_run_opts o = {db, quiet, HAFF_VERSION};
+  char note[256] = "";
+  hd_run_opts o = {db, quiet, HAFF_VERSION, note, sizeof note};
   int64_t run = 0;
   rc = hd_run_new(&sc, &o, &run, &err);
   hd_scene_free(&sc);
@@ -123,6 +124,7 @@ int haff_run_main(int argc, char **argv) {
             rc == HD_EINTR ? " (continue with: haff resume DB)" : "");
     return hd_exit_code(rc);
   }
+  if (note[0]) fprintf(stderr, "haff run: note: run %lld %s\n", (long long)run, note);
   if (!quiet) fprintf(stderr, "haff run: run %lld done, in %s\n", (long long)run, db);
   return 0;
 }
@@ -169,13 +171,15 @@ int haff_resume_main(int argc, char **argv) {
   }
   hd_error err;
   hd_error_clear(&err);
-  hd_run_opts o = {argv[optind], quiet, HAFF_VERSION};
+  char note[256] = "";
+  hd_run_opts o = {argv[optind], quiet, HAFF_VERSION, note, sizeof note};
   int64_t run = 0;
   int rc = hd_run_resume(want, &o, &run, &err);
   if (rc) {
     fprintf(stderr, "haff resume: %s\n", err.msg);
     return hd_exit_code(rc);
   }
+  if (note[0]) fprintf(stderr, "haff resume: note: run %lld %s\n", (long long)run, note);
   if (!quiet) fprintf(stderr, "haff resume: run %lld done, in %s\n", (long long)run, argv[optind]);
   return 0;
 }

@@ -44,6 +44,7 @@ typedef struct runner {
   double last_tick_wall; /* monotonic time of the last progress line */
   int64_t last_tick_events;
   int progress; /* print a progress line */
+  char idle[200]; /* "" or why the run ran out of events before its stop condition */
 } runner;
 
 static double now_wall(void) {
@@ -143,6 +144,13 @@ static int drive(runner *r, hd_error *err) {
   while (rc == HD_OK && !stop_reached(r)) {
     hd_collision_row row;
     rc = r->ops->next(r->s, t_stop, &row, err);
+    if (rc == HD_SIM_IDLE && (sc->stop_events > 0 || sc->stop_cpd > 0))
+      /* nothing will ever happen again: every body at rest, or cooled below the range of
+       * doubles (a rod ring below its collapse size reaches t ~ 1e308) */
+      snprintf(r->idle, sizeof r->idle,
+               "no event left at t = %.6g after %lld collisions (cpd %.6g): nothing moves or "
+               "collides any more, before the stop condition",
+               r->ops->time(r->s), (long long)r->st.seq, r->ops->cpd(r->s));
     if (rc == HD_SIM_STOPTIME || rc == HD_SIM_IDLE) {
       rc = HD_OK;
       break;
@@ -192,6 +200,8 @@ static int finish(runner *r, int rc, hd_error *err) {
     if (!wrc) wrc = checkpoint(r, &e2);
   }
   if (rc != HD_OK) hd_db_run_message(r->db, r->run, err->msg, &e2);
+  if (rc == HD_OK && r->idle[0]) hd_db_run_message(r->db, r->run, r->idle, &e2);
+  if (r->o->note && r->o->note_size) snprintf(r->o->note, r->o->note_size, "%s", rc ? "" : r->idle);
   int src = hd_db_run_status(r->db, r->run, status, r->ops->events(r->s), elapsed(r), &e2);
   if (!wrc) wrc = src;
   if (!wrc && rc == HD_OK) wrc = hd_db_build_indexes(r->db, &e2);

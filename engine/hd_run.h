@@ -4,6 +4,7 @@
 #ifndef HD_RUN_H
 #define HD_RUN_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "hd_error.h"
@@ -14,6 +15,9 @@ typedef struct hd_run_opts {
   const char *db_path; /* database to append the run to (created if missing) */
   int quiet;           /* no progress line */
   const char *version; /* written to runs.version */
+  char *note;          /* NULL, or note_size bytes that get "" or why a run that ended well
+                          ended before its stop condition (also in runs.message) */
+  size_t note_size;
 } hd_run_opts;
 
 /* Runs scene sc as a new run in the database; *run gets its id (0 if none was created).

@@ -342,6 +342,17 @@ static void rods_collapse_counts(void **state) {
   fclose(f);
   assert_int_equal(sscanf(line, "%ld %lf %ld %ld %lf", &n, &eps, &col, &runs, &frac), 5);
   assert_int_equal(col, 0);
+  /* the same ring run as a scene ends 'done' at t ~ 1e308 (cpd 671 of 1000), and says so in
+   * runs.message and on stderr instead of looking like a full run */
+  write_file("r4.ini", "[rods]\ncount = 4\ngamma = 1\nmodel = constant\neps = 0.3\n[run]\n"
+                       "stop_cpd = 1000\n[log]\ncollisions = none\nsamples_every = 10\n");
+  assert_int_equal(sh("%s run r4.ini -o r4.db --quiet", haff), 0);
+  char e[2048];
+  read_err(e, sizeof e);
+  assert_non_null(strstr(e, "no event left"));
+  assert_int_equal(q1("r4.db", "SELECT count(*) FROM runs WHERE status = 'done' AND message LIKE "
+                               "'no event left at t = %'"),
+                   1);
   bad_usage("rods-collapse --n 8x", "--n '8x'");
   bad_usage("rods-collapse --eps 1.5", "--eps '1.5'");
   bad_usage("rods-collapse --seeds 2.5", "--seeds '2.5'");
