@@ -485,7 +485,7 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
     hd_body *bi = &s->b[i];
     double te = bi->ev_t;
     double stop_rel = t_stop - s->c.t_offset;
-    if (te > stop_rel) {
+    if (te > stop_rel || te == INFINITY) { /* (no event left: a lone disk, which is at rest) */
       if (stop_rel > s->c.t && stop_rel < INFINITY) s->c.t = stop_rel;
       return te == INFINITY && stop_rel == INFINITY ? HD_SIM_IDLE : HD_SIM_STOPTIME;
     }

@@ -40,6 +40,13 @@ static void read_err(char *buf, size_t n) {
   if (f) fclose(f);
 }
 
+/* Whether file name exists in dir (where sh runs its commands). */
+static int exists(const char *name) {
+  char p[300];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  return access(p, F_OK) == 0;
+}
+
 static void write_file(const char *name, const char *text) {
   char p[300];
   snprintf(p, sizeof p, "%s/%s", dir, name);
@@ -251,7 +258,7 @@ static void bad_input(void **state) {
   write_file("bad1.ini",
              "[system]\nbox = 10 10\n[disks]\ncount = 5\nalpha = 1.5\n[run]\nstop_time = 1\n");
   bad_usage("run bad1.ini -o bad.db", "bad1.ini:5: [disks] alpha");
-  assert_int_equal(access("bad.db", F_OK) == 0 ? 1 : 0, 0);
+  assert_false(exists("bad.db"));
   write_file("bad2.ini", "[system]\nbox = 10 10\n[diskz]\ncount = 5\n[run]\nstop_time = 1\n");
   bad_usage("run bad2.ini -o bad.db", "bad2.ini:3");
   bad_usage("run missing.ini -o bad.db", "missing.ini");
@@ -263,10 +270,19 @@ static void bad_input(void **state) {
   bad_usage("run s.ini -o bad.db --seed ' -1'", "--seed  -1: not a non-negative integer");
   bad_usage("run s.ini -o bad.db --seed 5 --set system.seed=3",
             "--seed and --set system.seed=3 both set [system] seed");
-  assert_int_equal(access("bad.db", F_OK) == 0 ? 1 : 0, 0);
+  assert_false(exists("bad.db"));
   assert_int_equal(sh("%s run s.ini --bogus", haff), 2);
   assert_int_equal(sh("%s nosuchcommand", haff), 2);
-  assert_int_equal(sh("%s resume nothere.db", haff) != 0, 1);
+  /* a mistyped database name: exit 2 and no file created (resume used to create it) */
+  assert_int_equal(sh("%s resume nothere.db", haff), 2);
+  assert_false(exists("nothere.db"));
+  assert_int_equal(sh("%s haff-fit nothere.db", haff), 2);
+  /* a lone disk (at rest: zero total momentum) with stop_cpd: no event is left, said so; it
+   * used to run to t = inf and fail on an event time of NaN */
+  write_file("one.ini", "[system]\nbox = 10 10\n[disks]\ncount = 1\n[run]\nstop_cpd = 10\n");
+  assert_int_equal(sh("%s run one.ini -o one.db --quiet", haff), 0);
+  read_err(e, sizeof e);
+  assert_non_null(strstr(e, "no event left"));
   assert_int_equal(sh("%s run --help >/dev/null", haff), 0);
   assert_int_equal(sh("%s --help >/dev/null", haff), 0);
   /* mc fmean: an option its mode does not read is refused (--fig4-data --scan printed NaN
