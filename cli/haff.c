@@ -2,6 +2,7 @@
 #include "haff.h"
 #include "hd_ana_cli.h" /* the analysis subcommands */
 
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -47,6 +48,9 @@ static void usage(FILE *out) {
 }
 
 int main(int argc, char **argv) {
+  /* a file size limit (ulimit -f) then fails the write with EFBIG, which the run reports and
+   * survives like a full disk, instead of killing the process with the run left 'running' */
+  signal(SIGXFSZ, SIG_IGN);
   if (argc < 2) {
     usage(stderr);
     return 2;

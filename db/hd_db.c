@@ -856,7 +856,8 @@ int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error
                     "truncate samples", NULL, err);
   if (!rc)
     rc = run_update(db, run,
-                    "DELETE FROM states WHERE run = ?1 AND (t > ?2 OR label = 'checkpoint')",
+                    "DELETE FROM states WHERE run = ?1 AND (t > ?2 OR label IN ('checkpoint', "
+                    "'final'))",
                     bind_t, &a, "truncate states", NULL, err);
   if (!rc && sqlite3_exec(db->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK)
     rc = sql_error(db, err, "truncate: commit");

@@ -199,6 +199,13 @@ static int finish(runner *r, int rc, hd_error *err) {
     wrc = log_states(r, rc == HD_OK ? "final" : "checkpoint", &e2);
     if (!wrc) wrc = checkpoint(r, &e2);
   }
+  if (rc == HD_OK && wrc) { /* the final state or checkpoint could not be written: not done */
+    status = "failed";
+    hd_error_set(err, wrc, "%s", e2.msg);
+    rc = wrc;
+    hd_error_clear(&e2);
+    wrc = HD_OK;
+  }
   if (rc != HD_OK) hd_db_run_message(r->db, r->run, err->msg, &e2);
   if (rc == HD_OK && r->idle[0]) hd_db_run_message(r->db, r->run, r->idle, &e2);
   if (r->o->note && r->o->note_size) snprintf(r->o->note, r->o->note_size, "%s", rc ? "" : r->idle);
@@ -298,6 +305,8 @@ int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error
   }
   free(blob);
   if (!rc) rc = hd_db_truncate_after(r.db, r.run, seq, t, err);
+  if (!rc) /* why it stopped belongs to the stop, not to the run that now goes on */
+    rc = hd_db_run_message(r.db, r.run, NULL, err);
   if (!rc)
     rc = hd_db_run_status(r.db, r.run, "running", r.ops->events(r.s), r.st.wall_seconds, err);
   if (!rc) rc = drive_and_finish(&r, err);
