@@ -1,5 +1,7 @@
 #include "hd_run.h"
 
+#include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -45,7 +47,54 @@ typedef struct runner {
   int64_t last_tick_events;
   int progress; /* print a progress line */
   char idle[200]; /* "" or why the run ran out of events before its stop condition */
+  int lock_fd;    /* the run's lock (run_lock), -1 when not held */
 } runner;
+
+/* Takes the lock that says "this process drives run r->run": a write lock on byte r->run of
+ * the file DB.lock, which the kernel drops when the process ends, however it ends (kill -9
+ * too).  A resume of a run whose lock another process holds is refused: it used to take over a
+ * run still going and write every row twice. */
+static int run_lock(runner *r, hd_error *err) {
+  char path[4200];
+  snprintf(path, sizeof path, "%s.lock", r->o->db_path);
+  int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0)
+    return hd_error_set(err, HD_EIO, "%s: cannot open the run lock: %s", path, strerror(errno));
+  struct flock fl;
+  memset(&fl, 0, sizeof fl);
+  fl.l_type = F_WRLCK;
+  fl.l_whence = SEEK_SET;
+  fl.l_start = (off_t)r->run;
+  fl.l_len = 1;
+  if (fcntl(fd, F_SETLK, &fl) != 0) {
+    int e = errno;
+    close(fd);
+    if (e == EACCES || e == EAGAIN)
+      return hd_error_set(err, HD_EINPUT,
+                          "run %lld of %s is being run by another process (wait for it to end, "
+                          "or stop it, then resume)",
+                          (long long)r->run, r->o->db_path);
+    return hd_error_set(err, HD_EIO, "%s: cannot lock run %lld: %s", path, (long long)r->run,
+                        strerror(e));
+  }
+  r->lock_fd = fd;
+  return HD_OK;
+}
+
+static void run_unlock(runner *r) {
+  if (r->lock_fd >= 0) close(r->lock_fd);
+  r->lock_fd = -1;
+}
+
+static struct sigaction old_int, old_term;
+
+/* SIGINT and SIGTERM set stop_flag from the start of a run, set-up included (a signal during
+ * the placement of many bodies used to kill the process with the run left 'running'). */
+static void signals_on(void);
+static void signals_off(void) {
+  sigaction(SIGINT, &old_int, NULL);
+  sigaction(SIGTERM, &old_term, NULL);
+}
 
 static double now_wall(void) {
   struct timespec ts;
@@ -219,42 +268,48 @@ static int finish(runner *r, int rc, hd_error *err) {
   return rc;
 }
 
-static int drive_and_finish(runner *r, hd_error *err) {
-  struct sigaction sa, old_int, old_term;
+static void signals_on(void) {
+  struct sigaction sa;
   memset(&sa, 0, sizeof sa);
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
   stop_flag = 0;
   sigaction(SIGINT, &sa, &old_int);
   sigaction(SIGTERM, &sa, &old_term);
+}
+
+static int drive_and_finish(runner *r, hd_error *err) {
   r->last_ckpt_wall = r->last_tick_wall = now_wall();
   r->last_tick_events = r->ops->events(r->s);
   r->progress = !r->o->quiet && isatty(2);
   int rc = drive(r, err);
-  rc = finish(r, rc, err);
-  sigaction(SIGINT, &old_int, NULL);
-  sigaction(SIGTERM, &old_term, NULL);
-  return rc;
+  return finish(r, rc, err);
 }
 
 int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error *err) {
-  runner r = {.sc = sc, .o = o, .ops = hd_model_for_scene(sc)};
+  runner r = {.sc = sc, .o = o, .ops = hd_model_for_scene(sc), .lock_fd = -1};
   r.t0_wall = r.last_ckpt_wall = now_wall();
   *run = 0;
+  signals_on();
   int rc = r.ops->alloc(&r.s, sc, err); /* bad input fails here, before anything is written */
-  if (rc) return rc;
+  if (rc) {
+    signals_off();
+    return rc;
+  }
   double lx, ly;
   r.ops->box(r.s, &lx, &ly);
   rc = hd_db_open(&r.db, o->db_path, err);
   if (!rc) rc = hd_db_run_begin(r.db, sc->text ? sc->text : "", sc->seed, o->version, &r.run, err);
-  if (!rc) rc = hd_db_run_box(r.db, r.run, lx, ly, err);
   if (!rc) {
     *run = r.run;
-    rc = log_states(&r, "initial", err);
+    rc = run_lock(&r, err);
+    if (!rc) rc = hd_db_run_box(r.db, r.run, lx, ly, err);
+    if (!rc) rc = log_states(&r, "initial", err);
     if (!rc) rc = observe(&r, err);    /* the t = 0 sample */
     if (!rc) rc = checkpoint(&r, err); /* so that even a run killed at once can be resumed */
-    if (rc) {
+    if (rc) { /* any failure of the set-up marks the run, which cannot be resumed */
       hd_error e2;
+      hd_db_run_message(r.db, r.run, err->msg, &e2);
       hd_db_run_status(r.db, r.run, "failed", 0, 0.0, &e2);
     } else {
       rc = drive_and_finish(&r, err);
@@ -263,12 +318,14 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
   hd_error e3;
   int crc = hd_db_close(r.db, &e3);
   if (!rc && crc) *err = e3, rc = crc;
+  run_unlock(&r);
+  signals_off();
   r.ops->free(r.s);
   return rc;
 }
 
 int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error *err) {
-  runner r = {.o = o};
+  runner r = {.o = o, .lock_fd = -1};
   r.t0_wall = r.last_ckpt_wall = now_wall();
   hd_scene sc;
   char *text = NULL;
@@ -296,7 +353,9 @@ int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error
   r.sc = &sc;
   r.ops = hd_model_for_scene(&sc);
   *run = r.run;
-  rc = hd_db_checkpoint_load(r.db, r.run, &blob, &n, &seq, &t, err);
+  signals_on();
+  rc = run_lock(&r, err); /* before anything of the run is touched */
+  if (!rc) rc = hd_db_checkpoint_load(r.db, r.run, &blob, &n, &seq, &t, err);
   if (!rc && n < sizeof r.st)
     rc = hd_error_set(err, HD_EINPUT, "checkpoint of run %lld is truncated", (long long)r.run);
   if (!rc) {
@@ -313,6 +372,8 @@ int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error
   hd_error e3;
   int crc = hd_db_close(r.db, &e3);
   if (!rc && crc) *err = e3, rc = crc;
+  run_unlock(&r);
+  signals_off();
   if (r.s) r.ops->free(r.s);
   hd_scene_free(&sc);
   return rc;
