@@ -875,8 +875,9 @@ int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene
   const char *sql = want_run > 0
                         ? "SELECT id, status, scene, seed FROM runs WHERE id = ?1"
                         : "SELECT id, status, scene, seed FROM runs "
-                          "WHERE status IN ('running','interrupted','failed') ORDER BY id DESC "
-                          "LIMIT 1";
+                          "WHERE status IN ('running','interrupted','failed') AND EXISTS "
+                          "(SELECT 1 FROM checkpoints c WHERE c.run = runs.id) ORDER BY id DESC "
+                          "LIMIT 1"; /* a run that failed in its set-up has no checkpoint */
   if (sqlite3_prepare_v2(db->db, sql, -1, &st, NULL) != SQLITE_OK)
     return sql_error(db, err, "find resumable run");
   if (want_run > 0) sqlite3_bind_int64(st, 1, want_run);

@@ -468,6 +468,13 @@ static void resume_after_the_last_step(void **state) {
     same_as_reference("last.db");
     assert_int_equal(sh("rm -f last.db last.db-wal last.db-shm"), 0);
   }
+  /* a later run that failed in its set-up (no checkpoint) does not hide the resumable one */
+  assert_int_equal(sh("cp ref.db last.db && sqlite3 last.db \"UPDATE runs SET status = "
+                      "'interrupted'; INSERT INTO runs(id, scene, seed, status, started, version) "
+                      "VALUES (2, '', 1, 'failed', 'x', 'x')\""),
+                   0);
+  assert_int_equal(sh("%s resume last.db --quiet", haff), 0);
+  assert_int_equal(q1("last.db", "SELECT status = 'done' FROM runs WHERE id = 1"), 1);
 }
 
 /* A resume of a run that another process is still driving is refused (exit 2, nothing written
