@@ -33,6 +33,12 @@ int haff_veldist_main(int argc, char **argv) {
   hd_run_info ri;
   int rc = hd_cli_one_run(argc, argv, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS, usage, &a, &db, &ri);
   if (rc) return rc < 0 ? 0 : rc;
+  if (ri.species == HD_ANA_OTHER) {
+    sqlite3_close(db);
+    fprintf(stderr, "haff %s: run %lld is a rods run: see haff rods-veldist\n", argv[0],
+            (long long)a.run);
+    return 2;
+  }
   int bins = a.bins ? a.bins : 40;
   hd_error err;
   size_t ns;

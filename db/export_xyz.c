@@ -158,6 +158,7 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
     if (sqlite3_column_type(st, 2) != SQLITE_NULL && sqlite3_column_type(st, 3) != SQLITE_NULL) {
       g->lx = sqlite3_column_double(st, 2);
       g->ly = sqlite3_column_double(st, 3);
+      if (g->lx > 0 && g->ly == 0) g->ly = 1; /* a ring of rods (1D): a strip one unit wide */
     }
     if (!code && !(g->lx > 0 && g->ly > 0)) {
       fprintf(stderr,

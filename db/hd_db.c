@@ -772,7 +772,14 @@ int hd_db_build_indexes(hd_db *db, hd_error *err) {
 int hd_db_checkpoint_save(hd_db *db, int64_t run, int64_t seq, double t, const void *blob, size_t n,
                           hd_error *err) {
   int rc = check_db(db, err);
-  if (rc || (rc = drain(db, err)) || (rc = batch_begin(db, err))) return rc;
+  if (rc) return rc;
+  int lim = sqlite3_limit(db->db, SQLITE_LIMIT_LENGTH, -1);
+  if (n > (size_t)lim) /* ~149 bytes per disk: above ~6.7e6 bodies */
+    return hd_error_set(err, HD_EINPUT,
+                        "%s: a checkpoint of this run takes %zu bytes, more than SQLite's limit "
+                        "of %d per value: fewer bodies (at most ~%d million) can be checkpointed",
+                        db->path, n, lim, (int)(lim / 150 / 1000000));
+  if ((rc = drain(db, err)) || (rc = batch_begin(db, err))) return rc;
   sqlite3_stmt *st = db->del_ckpt;
   sqlite3_bind_int64(st, 1, run);
   if (sqlite3_step(st) != SQLITE_DONE) return batch_fail(db, st, err, "delete old checkpoint");

@@ -177,10 +177,13 @@ static int observe(runner *r, hd_error *err) {
     if (rc) return rc;
     r->st.next_sample++;
   }
-  while (r->st.next_vel < sc->n_velocities_at && cpd >= sc->velocities_at[r->st.next_vel]) {
+  if (r->st.next_vel < sc->n_velocities_at && cpd >= sc->velocities_at[r->st.next_vel]) {
+    /* one snapshot, however many of the times this event passed: two at one event used to give
+     * two sets of rows at the same t, which read (and export) as one frame of twice the bodies */
+    while (r->st.next_vel < sc->n_velocities_at && cpd >= sc->velocities_at[r->st.next_vel])
+      r->st.next_vel++;
     int rc = log_states(r, "velocities", err);
     if (rc) return rc;
-    r->st.next_vel++;
   }
   return HD_OK;
 }

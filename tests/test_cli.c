@@ -499,6 +499,25 @@ static void resume_refuses_a_live_run(void **state) {
   assert_int_equal(q1("lk.db", "SELECT count(*) FROM collisions"), 0);
 }
 
+/* Two velocities_at times passed by one event give one snapshot (they gave two sets of rows at
+ * one t, which export merged into one frame of twice the bodies); a rods run exports (its
+ * runs.box_y is 0: it was "box unknown"); veldist on a rods run names the rods command. */
+static void snapshots_and_exports(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("vs.ini", "[system]\nbox = 20 20\nseed = 4\n[disks]\ncount = 100\n[run]\n"
+                       "stop_cpd = 4\n[log]\ncollisions = none\nvelocities_at = 1.001 1.002 3\n");
+  assert_int_equal(sh("%s run vs.ini -o vs.db --quiet", haff), 0);
+  assert_int_equal(q1("vs.db", "SELECT count(*) FROM states WHERE label = 'velocities'"), 200);
+  assert_int_equal(q1("vs.db", "SELECT count(DISTINCT t) FROM states WHERE label = 'velocities'"),
+                   2);
+  write_file("rx.ini", "[rods]\ncount = 50\n[run]\nstop_time = 5\n[log]\ncollisions = none\n");
+  assert_int_equal(sh("%s run rx.ini -o rx.db --quiet", haff), 0);
+  assert_int_equal(sh("%s export xyz rx.db > rx.xyz", haff), 0);
+  assert_int_equal(sh("head -2 rx.xyz | grep -q 'Lattice=\"50 0 0 0 1 0 0 0 1\"'"), 0);
+  bad_usage("veldist rx.db --run 1", "is a rods run: see haff rods-veldist");
+}
+
 /* A read-only database directory: exit 1 with a clear message, no crash. */
 static void unwritable_db(void **state) {
   (void)state;
@@ -516,7 +535,7 @@ int main(void) {
       cmocka_unit_test(sigint_then_resume), cmocka_unit_test(sigterm_then_resume),
       cmocka_unit_test(kill9_then_resume),  cmocka_unit_test(rods_collapse_counts),
       cmocka_unit_test(tiny_bond_twin_contacts), cmocka_unit_test(resume_after_the_last_step),
-      cmocka_unit_test(resume_refuses_a_live_run),
+      cmocka_unit_test(resume_refuses_a_live_run), cmocka_unit_test(snapshots_and_exports),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
