@@ -48,6 +48,7 @@ typedef struct runner {
   int progress; /* print a progress line */
   char idle[200]; /* "" or why the run ran out of events before its stop condition */
   int lock_fd;    /* the run's lock (run_lock), -1 when not held */
+  double last_commit_wall; /* monotonic time of the last commit forced by the clock */
 } runner;
 
 /* Takes the lock that says "this process drives run r->run": a write lock on byte r->run of
@@ -224,6 +225,13 @@ static int drive(runner *r, hd_error *err) {
     if ((r->st.seq & 1023) == 0) {
       double w = now_wall();
       if (r->progress) tick(r);
+      if (w - r->last_commit_wall >= 1.0) {
+        /* a batch ends after 1e4 rows or 1 s: a sparsely logged run held the write lock for
+         * its minutes-long batches, and a second run appending to the file timed out */
+        r->last_commit_wall = w;
+        rc = hd_db_commit(r->db, err);
+        if (rc) break;
+      }
       if (sc->checkpoint_every > 0 && w - r->last_ckpt_wall >= sc->checkpoint_every) {
         rc = checkpoint(r, err);
         if (rc) break;
@@ -282,7 +290,7 @@ static void signals_on(void) {
 }
 
 static int drive_and_finish(runner *r, hd_error *err) {
-  r->last_ckpt_wall = r->last_tick_wall = now_wall();
+  r->last_ckpt_wall = r->last_tick_wall = r->last_commit_wall = now_wall();
   r->last_tick_events = r->ops->events(r->s);
   r->progress = !r->o->quiet && isatty(2);
   int rc = drive(r, err);
