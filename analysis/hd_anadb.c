@@ -1,6 +1,8 @@
 /* hd_anadb: read-only queries of the analysis programs. */
 #include "hd_anadb.h"
 
+#include "hd_db.h"
+
 #include <ini.h>
 #include <math.h>
 #include <stdlib.h>
@@ -25,9 +27,26 @@ int hd_ana_open(sqlite3 **db, const char *path, hd_error *err) {
   int ok = sqlite3_prepare_v2(*db, q, -1, &st, NULL) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW;
   int have = ok ? sqlite3_column_int(st, 0) : -1;
   sqlite3_finalize(st);
+  int code = sqlite3_errcode(*db) & 0xff;
+  char uri[8300];
+  if (have < 0 && (code == SQLITE_CANTOPEN || code == SQLITE_READONLY) &&
+      !hd_db_uri_immutable(path, uri, sizeof uri)) {
+    /* a read-only folder or file system (no -shm can be made): read the file as it is */
+    sqlite3_close(*db);
+    *db = NULL;
+    if (sqlite3_open_v2(uri, db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, NULL) == SQLITE_OK) {
+      sqlite3_busy_timeout(*db, 5000);
+      ok = sqlite3_prepare_v2(*db, q, -1, &st, NULL) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW;
+      have = ok ? sqlite3_column_int(st, 0) : -1;
+      sqlite3_finalize(st);
+    }
+    code = *db ? sqlite3_errcode(*db) & 0xff : SQLITE_NOMEM;
+  }
+  if (have < 0 && code == SQLITE_NOTADB) have = -2; /* not an SQLite file: bad input */
   if (have != 2) {
-    hd_error_set(err, have < 0 ? HD_EIO : HD_EINPUT, "%s: not a haff database (%s)", path,
-                 have < 0 ? sqlite3_errmsg(*db) : "no runs/samples tables");
+    hd_error_set(err, have == -1 ? HD_EIO : HD_EINPUT, "%s: not a haff database (%s)", path,
+                 have < 0 ? (*db ? sqlite3_errmsg(*db) : "out of memory")
+                          : "no runs/samples tables");
     sqlite3_close(*db);
     *db = NULL;
     return err ? err->code : HD_EINPUT;

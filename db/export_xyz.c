@@ -248,9 +248,10 @@ int haff_export_main(int argc, char **argv) {
   hd_db *db = NULL;
   hd_error err;
   hd_error_clear(&err);
-  if (hd_db_open_readonly(&db, path, &err)) {
+  int orc = hd_db_open_readonly(&db, path, &err);
+  if (orc) {
     fprintf(stderr, "haff export: %s\n", err.msg);
-    return 1;
+    return orc == HD_EINPUT ? 2 : 1; /* not an SQLite file is bad input */
   }
   int64_t r = (int64_t)run;
   xyz_geom g;

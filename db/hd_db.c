@@ -264,6 +264,21 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err) {
   return HD_OK;
 }
 
+int hd_db_uri_immutable(const char *path, char *buf, size_t size) {
+  static const char hex[] = "0123456789ABCDEF";
+  size_t k = (size_t)snprintf(buf, size, "file:");
+  for (const unsigned char *p = (const unsigned char *)path; *p && k + 4 < size; p++) {
+    if (*p == '%' || *p == '?' || *p == '#' || *p <= ' ' || *p >= 0x7f) {
+      buf[k++] = '%', buf[k++] = hex[*p >> 4], buf[k++] = hex[*p & 15];
+    } else {
+      buf[k++] = (char)*p;
+    }
+  }
+  if (k + 12 >= size) return -1;
+  snprintf(buf + k, size - k, "?immutable=1");
+  return 0;
+}
+
 int hd_db_open_readonly(hd_db **out, const char *path, hd_error *err) {
   if (!out) return hd_error_set(err, HD_EINPUT, "hd_db_open_readonly: out is NULL");
   hd_db *db;
@@ -272,7 +287,24 @@ int hd_db_open_readonly(hd_db **out, const char *path, hd_error *err) {
   db->readonly = 1;
   /* Reading the schema now turns "not a database" into an error here, not later. */
   if (sqlite3_exec(db->db, "SELECT count(*) FROM sqlite_schema", NULL, NULL, NULL) != SQLITE_OK) {
+    int code = sqlite3_errcode(db->db) & 0xff; /* the primary code of an extended one */
+    char uri[8300];
+    if ((code == SQLITE_CANTOPEN || code == SQLITE_READONLY) &&
+        !hd_db_uri_immutable(path, uri, sizeof uri)) {
+      /* a read-only folder or file system: the write-ahead log's index (-shm) cannot be made;
+       * read the file as it is (a finished run's log has been copied back into it) */
+      sqlite3_close(db->db);
+      db->db = NULL;
+      if (sqlite3_open_v2(uri, &db->db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, NULL) ==
+              SQLITE_OK &&
+          sqlite3_exec(db->db, "SELECT count(*) FROM sqlite_schema", NULL, NULL, NULL) ==
+              SQLITE_OK) {
+        *out = db;
+        return HD_OK;
+      }
+    }
     rc = sql_error(db, err, "open");
+    if ((sqlite3_errcode(db->db) & 0xff) == SQLITE_NOTADB) rc = err->code = HD_EINPUT;
     db_free(db);
     return rc;
   }

@@ -74,8 +74,15 @@ const char *hd_db_kind_name(int kind);
  * Returns HD_OK or HD_EIO with err set. */
 int hd_db_open(hd_db **out, const char *path, hd_error *err);
 
+/* Writes into buf the SQLite URI "file:PATH?immutable=1" (PATH percent-encoded where a URI
+ * needs it), which reads a database in a read-only folder or file system; 0, or -1 when it does
+ * not fit in size bytes. */
+int hd_db_uri_immutable(const char *path, char *buf, size_t size);
+
 /* Opens an existing database read-only (for analysis and export): no schema is applied and
- * every write fails with HD_EIO.  Returns HD_OK or HD_EIO with err set. */
+ * every write fails with HD_EIO.  In a read-only folder or file system (no -shm can be made)
+ * it reads the file as immutable.  Returns HD_OK, HD_EINPUT (not an SQLite file) or HD_EIO
+ * with err set. */
 int hd_db_open_readonly(hd_db **out, const char *path, hd_error *err);
 
 /* Commits any open batch and closes. NULL is allowed. Returns HD_OK or HD_EIO. */

@@ -279,6 +279,10 @@ static void bad_input(void **state) {
   assert_int_equal(sh("%s resume nothere.db", haff), 2);
   assert_false(exists("nothere.db"));
   assert_int_equal(sh("%s haff-fit nothere.db", haff), 2);
+  /* a file that is not SQLite is bad input too (it was exit 1, a failed run) */
+  write_file("notadb.db", "not a database\n");
+  bad_usage("haff-fit notadb.db", "not a haff database");
+  bad_usage("export xyz notadb.db", "file is not a database");
   /* a lone disk (at rest: zero total momentum) with stop_cpd: no event is left, said so; it
    * used to run to t = inf and fail on an event time of NaN */
   write_file("one.ini", "[system]\nbox = 10 10\n[disks]\ncount = 1\n[run]\nstop_cpd = 10\n");
