@@ -173,10 +173,14 @@ static int stop_reached(const runner *r) {
 static int observe(runner *r, hd_error *err) {
   const hd_scene *sc = r->sc;
   double cpd = r->ops->cpd(r->s);
-  while (sc->samples_every > 0 && cpd >= (double)r->st.next_sample * sc->samples_every) {
+  if (sc->samples_every > 0 && cpd >= (double)r->st.next_sample * sc->samples_every) {
+    /* one sample per event, however many multiples of samples_every it passed: a tiny
+     * samples_every (1e-12) wrote millions of identical rows per collision, filled the disk and
+     * never came back to check for SIGINT */
     int rc = log_sample(r, err);
     if (rc) return rc;
-    r->st.next_sample++;
+    double k = floor(cpd / sc->samples_every) + 1.0;
+    r->st.next_sample = k > (double)r->st.next_sample ? (int64_t)fmin(k, 9e18) : r->st.next_sample + 1;
   }
   if (r->st.next_vel < sc->n_velocities_at && cpd >= sc->velocities_at[r->st.next_vel]) {
     /* one snapshot, however many of the times this event passed: two at one event used to give
@@ -207,6 +211,14 @@ static int drive(runner *r, hd_error *err) {
     if (rc == HD_SIM_STOPTIME || rc == HD_SIM_IDLE) {
       rc = HD_OK;
       break;
+    }
+    if (rc == HD_SIM_BUSY) { /* many events, no collision: a chance to see a signal */
+      rc = HD_OK;
+      if (stop_flag)
+        rc = hd_error_set(err, HD_EINTR, "interrupted at t = %.10g after %lld collisions",
+                          r->ops->time(r->s), (long long)r->st.seq);
+      if (rc) break;
+      continue;
     }
     if (rc) break;
     row.seq = ++r->st.seq;

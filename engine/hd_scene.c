@@ -471,8 +471,14 @@ static int set_value(ctx *c, int k, const char *v) {
     return get_num(c, k, v, 'p', &sc->rod_temperature);
   case K_RTABLE:
     return set_bool(c, k, v, &sc->rod_table);
-  case K_RSTEP:
-    return get_num(c, k, v, 'n', &sc->rod_eps_step);
+  case K_RSTEP: {
+    int got = get_num(c, k, v, 'n', &sc->rod_eps_step);
+    /* 0 is the sampler's default; its grid needs ~(1 + 1/gamma)/step points, at most 5e7 / 64
+     * (mc/eps.c), and 1e-300 overflowed the size check and crashed the run (SIGFPE) */
+    if (!got && sc->rod_eps_step != 0 && !(sc->rod_eps_step >= 1e-5 && sc->rod_eps_step <= 0.5))
+      return FAIL_KEY(c, k, "must be 0 (the default step) or in [1e-5, 0.5]");
+    return got;
+  }
   case K_RBATHS:
     if (!strcmp(v, "mean"))
       sc->rod_unequal = 0;
@@ -583,9 +589,15 @@ static char *reader(char *str, int num, void *stream) {
   c->cur.line = ++c->lineno;
   c->cur.over = 0;
   if (c->lineno == 1 && stop - s >= 3 && !memcmp(s, "\xEF\xBB\xBF", 3)) s += 3;
-  while (s < stop && (*s == ' ' || *s == '\t')) s++;
+  /* every blank libinih skips at a line's start (\r \v \f too): "\v[disks]" was parsed as a
+   * section by libinih but not seen as one here, so its keys took effect while the section was
+   * left out of the canonical text (and a resume ran without them) */
+  while (s < stop && (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\v' || *s == '\f')) s++;
   size_t len = (size_t)(stop - s);
-  if (len + 1 > (size_t)num || len > HD_SCENE_MAX_LINE) {
+  size_t body = len; /* the line without its end (\n or \r\n): what HD_SCENE_MAX_LINE bounds */
+  if (body > 0 && s[body - 1] == '\n') body--;
+  if (body > 0 && s[body - 1] == '\r') body--;
+  if (len + 1 > (size_t)num || body > HD_SCENE_MAX_LINE) {
     char at[600];
     where(c, c->cur, at, sizeof at);
     cfail(c, HD_EINPUT, "%s: line too long (max %d bytes)", at, HD_SCENE_MAX_LINE);
@@ -821,6 +833,10 @@ static int check_all(ctx *c) {
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
                 "no stop condition: set stop_time, stop_events or stop_cpd");
+  if (sc->n_dimers + sc->n_disks == 1 && !(sc->stop_time > 0) && !sc->walls)
+    /* its collisions would never come: the run would go on for ever */
+    return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
+                "one body alone in a periodic box never collides: stop it with stop_time");
   return HD_OK;
 }
 
@@ -1136,6 +1152,8 @@ int hd_state_csv_read(const char *path, hd_state_row **rows, long *n, hd_error *
     }
     rstrip(line);
     if (lineno == 1) {
+      /* a UTF-8 byte order mark (spreadsheets write one) is skipped, as in scene files */
+      if (!strncmp(line, "\xEF\xBB\xBF", 3)) memmove(line, line + 3, strlen(line + 3) + 1);
       if (strcmp(line, "kind,x,y,phi,vx,vy,omega"))
         rc = hd_error_set(err, HD_EINPUT,
                           "%s:1: missing header: expected kind,x,y,phi,vx,vy,omega, found '%.60s'",

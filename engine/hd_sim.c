@@ -475,7 +475,8 @@ static int verify_collision(hd_sim *s, int32_t i, int32_t j, hd_error *err) {
 }
 
 int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
-  for (;;) {
+  for (long quiet = 0;; quiet++) {
+    if (quiet >= HD_SIM_BUSY_EVENTS) return HD_SIM_BUSY;
     if (s->c.events >= s->c.next_rebase) {
       rebase(s);
       s->c.next_rebase += s->rebase_every;

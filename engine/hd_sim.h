@@ -138,12 +138,17 @@ int hd_sim_alloc(hd_sim **out, const hd_scene *sc, hd_error *err);
 void hd_sim_free(hd_sim *s);
 
 /* Status of hd_sim_next besides HD_OK (a collision happened). */
-enum { HD_SIM_STOPTIME = 100, HD_SIM_IDLE = 101 };
+enum { HD_SIM_STOPTIME = 100, HD_SIM_IDLE = 101, HD_SIM_BUSY = 102 };
+/* Events hd_sim_next processes without a collision before it returns HD_SIM_BUSY. */
+#define HD_SIM_BUSY_EVENTS (1L << 22)
 
 /* Processes events until the next collision, which it describes in *ev, and returns HD_OK; or
  * returns HD_SIM_STOPTIME when the next event is after t_stop (absolute; the clock is then at
- * t_stop), HD_SIM_IDLE when no event is left, HD_ECOLLAPSE on inelastic collapse, HD_EPHYS when
- * verification finds an overlap or time going backwards (err says which bodies). */
+ * t_stop), HD_SIM_IDLE when no event is left, HD_SIM_BUSY after HD_SIM_BUSY_EVENTS events
+ * without a collision (call again to go on: a caller gets to check its signals even when
+ * collisions are rare, e.g. one body alone, or ten disks in a box of 1e9), HD_ECOLLAPSE on
+ * inelastic collapse, HD_EPHYS when verification finds an overlap or time going backwards (err
+ * says which bodies). */
 int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err);
 
 /* Absolute current time. */

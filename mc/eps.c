@@ -91,8 +91,10 @@ int hd_eps_sampler_alloc(hd_eps_sampler **out, double gamma, const hd_eps_opts *
     return hd_error_set(err, HD_EINPUT, "eps: max_tau must exceed 10 (got %g)", o.max_tau);
   double g = gamma > 1 ? 1.0 / gamma : gamma;
   double gam2 = 1.0 + 1.0 / g;
-  long nmin = (long)ceil(gam2 / o.step - 1e-9);
   int r = o.adapt * (o.richardson ? 4 : 1);
+  if ((gam2 / o.step) * r > 5e7) /* checked in doubles before the cast (1e-300 overflowed it) */
+    return hd_error_set(err, HD_EINPUT, "eps: step %g too small for gamma %g", o.step, gamma);
+  long nmin = (long)ceil(gam2 / o.step - 1e-9);
   if ((double)nmin * r > 5e7)
     return hd_error_set(err, HD_EINPUT, "eps: step %g too small for gamma %g", o.step, gamma);
   hd_eps_sampler *s = calloc(1, sizeof *s);

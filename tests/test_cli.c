@@ -283,12 +283,21 @@ static void bad_input(void **state) {
   write_file("notadb.db", "not a database\n");
   bad_usage("haff-fit notadb.db", "not a haff database");
   bad_usage("export xyz notadb.db", "file is not a database");
-  /* a lone disk (at rest: zero total momentum) with stop_cpd: no event is left, said so; it
-   * used to run to t = inf and fail on an event time of NaN */
+  /* a lone body with only stop_cpd or stop_events would never end (a lone disk, at rest, ran to
+   * t = inf and failed on an event time of NaN; a lone dimer spun for ever): refused */
   write_file("one.ini", "[system]\nbox = 10 10\n[disks]\ncount = 1\n[run]\nstop_cpd = 10\n");
-  assert_int_equal(sh("%s run one.ini -o one.db --quiet", haff), 0);
-  read_err(e, sizeof e);
-  assert_non_null(strstr(e, "no event left"));
+  bad_usage("run one.ini -o one.db", "one body alone in a periodic box never collides");
+  assert_false(exists("one.db"));
+  /* a run whose collisions are rare still sees SIGINT (hd_sim_next returns every 2^22 events
+   * without a collision): ten disks in a box of 1e9 */
+  write_file("rare.ini", "[system]\nbox = 1e9 1e9\n[disks]\ncount = 10\n[run]\nstop_events = "
+                         "10\n");
+  assert_int_equal(sh("(%s run rare.ini -o rare.db --quiet & p=$!; "
+                      "while [ ! -e rare.db.lock ]; do sleep 0.05; done; sleep 1; kill -INT $p; "
+                      "wait $p)",
+                      haff),
+                   1);
+  assert_int_equal(q1("rare.db", "SELECT count(*) FROM runs WHERE status = 'interrupted'"), 1);
   assert_int_equal(sh("%s run --help >/dev/null", haff), 0);
   assert_int_equal(sh("%s --help >/dev/null", haff), 0);
   /* mc fmean: an option its mode does not read is refused (--fig4-data --scan printed NaN

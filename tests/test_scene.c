@@ -108,7 +108,7 @@ static void defaults_and_absent_sections(void **state) {
   hd_scene_free(&sc);
   /* alpha_dimer defaults to the disks' alpha; CRLF line ends are fine */
   text =
-      "[disks]\r\ncount = 1\r\nalpha = 0.6\r\n[system]\r\nbox = 5 5\r\n[run]\r\nstop_cpd = 1\r\n";
+      "[disks]\r\ncount = 2\r\nalpha = 0.6\r\n[system]\r\nbox = 5 5\r\n[run]\r\nstop_cpd = 1\r\n";
   assert_int_equal(hd_scene_load_string(&sc, text, "crlf.ini", NULL, 0, &e), HD_OK);
   assert_true(sc.disk_alpha == 0.6 && sc.disk_alpha_dimer == 0.6);
   hd_scene_free(&sc);
@@ -306,6 +306,61 @@ static void long_line(void **state) {
   assert_int_equal(hd_scene_load_string(&sc, text, "long.ini", NULL, 0, &e), HD_EINPUT);
   assert_has(e.msg, "long.ini:4:", "too long", NULL, NULL);
   free(text);
+}
+
+/* A line of exactly HD_SCENE_MAX_LINE bytes followed by its newline is accepted (the newline was
+ * counted, so it was refused unless it ended the file), one byte more is not. */
+static void line_at_the_limit(void **state) {
+  (void)state;
+  for (int extra = 0; extra < 2; extra++) {
+    char *text = malloc(HD_SCENE_MAX_LINE + 256);
+    assert_non_null(text);
+    strcpy(text, "[system]\nbox = 60 60\n[disks]\ncount = 10\n");
+    size_t at = strlen(text);
+    strcat(text, "alpha = 0.9");
+    while (strlen(text) - at < (size_t)HD_SCENE_MAX_LINE + (size_t)extra) strcat(text, " ");
+    strcat(text, "\n" RUN);
+    hd_scene sc;
+    hd_error e;
+    int rc = hd_scene_load_string(&sc, text, "edge.ini", NULL, 0, &e);
+    if (extra) {
+      assert_int_equal(rc, HD_EINPUT);
+      assert_has(e.msg, "edge.ini:5:", "too long", NULL, NULL);
+    } else {
+      assert_int_equal(rc, HD_OK);
+      assert_true(sc.disk_alpha == 0.9);
+      hd_scene_free(&sc);
+    }
+    free(text);
+  }
+}
+
+/* A section line that starts with \v, \f or \r (libinih skips them, and so does the reader now)
+ * is a section like any other: "\v[disks]" took effect but was missing from the canonical text,
+ * so a resumed run went on without it; "\v[bogus]" was accepted.  And eps_step is 0 or in
+ * [1e-5, 0.5] (1e-300 crashed the run after the database was made). */
+static void blank_prefixed_sections(void **state) {
+  (void)state;
+  hd_scene sc;
+  hd_error e;
+  assert_int_equal(hd_scene_load_string(&sc,
+                                        "[system]\nbox = 60 60\n" RUN "[init]\n\v[disks]\n"
+                                        "count = 40\nalpha = 0.99\n",
+                                        "vt.ini", NULL, 0, &e),
+                   HD_OK);
+  assert_true(sc.n_disks == 40 && sc.disk_alpha == 0.99);
+  assert_non_null(strstr(sc.text, "[disks]\ncount = 40"));
+  hd_scene_free(&sc);
+  assert_int_equal(hd_scene_load_string(&sc, "[system]\nbox = 60 60\n[disks]\ncount = 4\n" RUN
+                                             "\f[bogus]\n",
+                                        "vt.ini", NULL, 0, &e),
+                   HD_EINPUT);
+  printf("# %s\n", e.msg);
+  assert_has(e.msg, "vt.ini:", "bogus", NULL, NULL);
+  assert_int_equal(hd_scene_load_string(&sc, "[rods]\ncount = 10\neps_step = 1e-300\n" RUN,
+                                        "es.ini", NULL, 0, &e),
+                   HD_EINPUT);
+  assert_has(e.msg, "es.ini:3:", "[rods] eps_step", "[1e-5, 0.5]", NULL);
 }
 
 static void missing_files(void **state) {
@@ -507,6 +562,11 @@ static void csv_good(void **state) {
   assert_true(rows[1].phi == 0 && rows[1].omega == 0); /* ignored for disks */
   assert_int_equal(rows[1].line, 3);
   free(rows);
+  /* with a UTF-8 byte order mark (refused before as "missing header", the mark unprintable) */
+  write_file(p, "\xEF\xBB\xBFkind,x,y,phi,vx,vy,omega\ndisk,4,5,0,6,7,0\n");
+  assert_int_equal(hd_state_csv_read(p, &rows, &n, &e), HD_OK);
+  assert_int_equal(n, 1);
+  free(rows);
 }
 
 static void csv_bad(void **state) {
@@ -663,6 +723,8 @@ int main(void) {
       cmocka_unit_test(bad_scenes),
       cmocka_unit_test(override_message_exact),
       cmocka_unit_test(long_line),
+      cmocka_unit_test(line_at_the_limit),
+      cmocka_unit_test(blank_prefixed_sections),
       cmocka_unit_test(missing_files),
       cmocka_unit_test(overrides_apply),
       cmocka_unit_test(text_round_trip),
