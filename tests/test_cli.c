@@ -529,6 +529,12 @@ static void snapshots_and_exports(void **state) {
   assert_int_equal(sh("%s export xyz rx.db > rx.xyz", haff), 0);
   assert_int_equal(sh("head -2 rx.xyz | grep -q 'Lattice=\"50 0 0 0 1 0 0 0 1\"'"), 0);
   bad_usage("veldist rx.db --run 1", "is a rods run: see haff rods-veldist");
+  /* samples_every far below a collision's cpd step: one sample per collision at most (1e-12
+   * wrote millions of rows per collision) */
+  write_file("tiny.ini", "[system]\nbox = 20 20\n[disks]\ncount = 10\n[run]\nstop_events = 10\n"
+                         "[log]\nsamples_every = 1e-12\n");
+  assert_int_equal(sh("%s run tiny.ini -o tinys.db --quiet", haff), 0);
+  assert_true(q1("tinys.db", "SELECT count(*) FROM samples") <= 11);
 }
 
 /* A read-only database directory: exit 1 with a clear message, no crash. */
