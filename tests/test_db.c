@@ -342,6 +342,8 @@ static void batches_and_kill9(void **state) {
     hd_db_set_batch_rows(c, 100);
     int64_t r2 = 0;
     if (hd_db_run_begin(c, "child", 8, "test", &r2, &e) || r2 != 2) _exit(11);
+    /* a run resumes from a checkpoint: hd_run writes one before the first event */
+    if (hd_db_checkpoint_save(c, r2, 0, 0.0, "ck", 2, &e)) _exit(14);
     for (int64_t k = 1; k <= 250; k++) {
       hd_collision_row r = coll(k);
       if (hd_db_log_collision(c, r2, &r, &e)) _exit(12);
@@ -513,8 +515,12 @@ static void find_resumable(void **state) {
     snprintf(sc, sizeof sc, "scene %d", k + 1);
     int64_t r = begin_run(db, sc, 100 + (unsigned)k);
     assert_int_equal(r, k + 1);
+    assert_int_equal(hd_db_checkpoint_save(db, r, 0, 0.0, "ck", 2, &err), HD_OK);
     assert_int_equal(hd_db_run_status(db, r, status[k], 10, 1.0, &err), HD_OK);
   }
+  /* a run that failed in its set-up has no checkpoint: never the default choice */
+  int64_t r7 = begin_run(db, "scene 7", 106);
+  assert_int_equal(hd_db_run_status(db, r7, "failed", 0, 0.0, &err), HD_OK);
   /* newest resumable: run 5 ('failed': a full disk, resumable once there is room) */
   assert_int_equal(hd_db_find_resumable(db, 0, &run, &scene, &seed, &err), HD_OK);
   assert_int_equal(run, 5);
