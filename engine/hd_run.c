@@ -365,7 +365,7 @@ int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error
   if (!rc) {
     char name[64];
     snprintf(name, sizeof name, "run %lld scene", (long long)r.run);
-    rc = hd_scene_load_string(&sc, text, name, NULL, 0, err);
+    rc = hd_scene_load_stored(&sc, text, name, err);
     if (!rc) sc.seed = seed;
   }
   free(text);

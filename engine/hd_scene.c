@@ -134,6 +134,7 @@ typedef struct ctx {
   const char *p, *end;         /* reader: rest of the text */
   long lineno;                 /* reader: lines handed out */
   char state_rel[HD_PATH_MAX]; /* `state` as written */
+  int stored; /* the canonical text of a run (hd_scene_load_stored): its state file not read */
 } ctx;
 
 static int is_set(loc l) {
@@ -686,6 +687,12 @@ double hd_scene_covered_area(const hd_scene *sc) {
 /* Resolves, checks and counts the state file. */
 static int check_state(ctx *c) {
   hd_scene *sc = c->sc;
+  if (c->stored) { /* the run's bodies are in its checkpoint; the counts are in the text */
+    if (!is_set(c->key_at[K_DCOUNT]) && !is_set(c->key_at[K_SCOUNT]))
+      return FAIL_KEY(c, K_STATE, "a stored scene gives the counts of its bodies");
+    snprintf(sc->state_file, sizeof sc->state_file, "%s", c->state_rel);
+    return HD_OK;
+  }
   char joined[2 * HD_PATH_MAX + 2];
   if (c->state_rel[0] == '/')
     snprintf(joined, sizeof joined, "%s", c->state_rel);
@@ -1005,9 +1012,10 @@ void hd_scene_free(hd_scene *sc) {
 
 /* Parses text (len bytes) into the already-defaulted *sc. */
 static int load_text(hd_scene *sc, const char *text, size_t len, const char *name,
-                     const char *const *over, int n_over, hd_error *err) {
+                     const char *const *over, int n_over, int stored, hd_error *err) {
   ctx *c = calloc(1, sizeof *c);
   if (!c) return hd_error_set(err, HD_ENOMEM, "%s: out of memory", name);
+  c->stored = stored;
   c->sc = sc;
   c->name = name;
   c->over = over;
@@ -1033,7 +1041,13 @@ int hd_scene_load_string(hd_scene *sc, const char *text, const char *name, const
                          int n_over, hd_error *err) {
   hd_scene_defaults(sc);
   if (!name) name = "<string>";
-  return load_text(sc, text, strlen(text), name, over, n_over, err);
+  return load_text(sc, text, strlen(text), name, over, n_over, 0, err);
+}
+
+int hd_scene_load_stored(hd_scene *sc, const char *text, const char *name, hd_error *err) {
+  hd_scene_defaults(sc);
+  if (!name) name = "<string>";
+  return load_text(sc, text, strlen(text), name, NULL, 0, 1, err);
 }
 
 int hd_scene_load(hd_scene *sc, const char *path, const char *const *over, int n_over,
@@ -1075,7 +1089,7 @@ int hd_scene_load(hd_scene *sc, const char *path, const char *const *over, int n
     return hd_error_set(err, HD_EIO, "%s: cannot read scene: read error", path);
   }
   buf[len] = '\0';
-  int rc = load_text(sc, buf, len, path, over, n_over, err);
+  int rc = load_text(sc, buf, len, path, over, n_over, 0, err);
   free(buf);
   return rc;
 }

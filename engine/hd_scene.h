@@ -114,6 +114,11 @@ int hd_scene_load(hd_scene *sc, const char *path, const char *const *over, int n
 int hd_scene_load_string(hd_scene *sc, const char *text, const char *name, const char *const *over,
                          int n_over, hd_error *err);
 
+/* As hd_scene_load_string for the canonical text of a run (runs.scene), to resume it from its
+ * checkpoint: a state file is not read again (the checkpoint holds the bodies, the text their
+ * counts), so a run whose CSV was moved, edited or deleted still resumes. */
+int hd_scene_load_stored(hd_scene *sc, const char *text, const char *name, hd_error *err);
+
 /* Whether override `over` ("SECTION.KEY=VALUE", as hd_scene_load reads it) sets [section] key. */
 int hd_scene_override_sets(const char *over, const char *section, const char *key);
 
