@@ -24,7 +24,7 @@ if (exists("ref")) {
   stats ref using 1 nooutput
   nr = STATS_blocks
   plot for [i=0:nb-1] in index i using 7:4 with points pt 7 ps 0.5 title columnheader(1), \
-       for [i=0:nr-1] ref index i using 7:4 with lines dt 2 lw 2 lc rgb "black" title columnheader(1), \
+       for [i=0:nr-1] ref index i using 7:4 with lines dt i+2 lw 2 lc rgb "black" title columnheader(1), \
        exp(-x/3) with lines dt 3 lw 1 lc rgb "gray50" title "exp(-x/3)"
 } else {
   plot for [i=0:nb-1] in index i using 7:4 with points pt 7 ps 0.5 title columnheader(1), \

@@ -23,6 +23,7 @@ set ylabel "P(θ)"
 set xrange [-pi:pi]
 set yrange [0:*]
 set key top right
+if (nb > 6) { set key outside right top font ",9" } # many blocks: beside the plot, not over it
 if (exists("fm")) {
   ftxt = system(sprintf("awk -F'\t' 'NR > 1 && $2 + 0 == %g { n = $1; if (n ~ /^engine/) n = sprintf(\"run, α = %%s\", $3); printf \"%%s: ⟨f⟩ = %%.4f ± %%.1g\\n\", n, $4, $5 }' '%s'", ad, fm))
   set label 1 ftxt at graph 0.02, graph 0.95 left front font ",9"

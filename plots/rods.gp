@@ -5,6 +5,7 @@ do for [fmt in "png svg"] {
   set key autotitle columnhead
   set output O.'/rods-energy.'.ext
   set logscale xy; set xlabel 't'; set ylabel 'E_{kin} per rod'
+  set format y '10^{%L}'; set format x '10^{%L}'
   set title 'Fig. 1: kinetic energy (the constant model breaks off at its collapse)'
   plot D.'/rods-stochastic.energy.tsv' u 1:4 w l t 'stochastic', \
        D.'/rods-constant.energy.tsv' u 1:4 w l t 'constant eps = gamma', \
