@@ -23,6 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 enum { S_SYSTEM, S_DIMERS, S_DISKS, S_WALLS, S_INIT, S_RUN, S_LOG, S_RODS, N_SEC };
 static const char *const sec_name[N_SEC] = {"system", "dimers", "disks", "walls",
@@ -706,6 +707,20 @@ static int check_state(ctx *c) {
     free(real);
     return FAIL_KEY(c, K_STATE, "path too long");
   }
+  struct stat stt;
+  if (stat(real, &stt) == 0 && S_ISDIR(stt.st_mode)) {
+    free(real);
+    return FAIL_KEY(c, K_STATE, "is a directory, not a state file");
+  }
+  /* the run's scene text stores the path as a value: one that INI would cut short (a comment
+   * after " ;" or " #", blanks at an end) could not be read back by a re-run */
+  size_t rl = strlen(real);
+  if (strstr(real, " ;") || strstr(real, " #") || strchr(real, '\n') || real[rl - 1] == ' ' ||
+      real[rl - 1] == '\t') {
+    free(real);
+    return FAIL_KEY(c, K_STATE, "its path holds ' ;', ' #' or a blank at its end, which a scene "
+                                "cannot store: rename the file or folder");
+  }
   strcpy(sc->state_file, real);
   free(real);
   hd_state_row *rows = NULL;
@@ -1063,6 +1078,9 @@ int hd_scene_load(hd_scene *sc, const char *path, const char *const *over, int n
     memcpy(sc->dir, path, (size_t)(slash - path));
     sc->dir[slash - path] = '\0';
   }
+  struct stat stt;
+  if (stat(path, &stt) == 0 && S_ISDIR(stt.st_mode))
+    return hd_error_set(err, HD_EIO, "%s: cannot read scene: is a directory", path);
   FILE *f = fopen(path, "rb");
   if (!f) return hd_error_set(err, HD_EIO, "%s: cannot read scene: %s", path, strerror(errno));
   char *buf = NULL;

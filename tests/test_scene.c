@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <gsl/gsl_rng.h>
@@ -363,6 +364,26 @@ static void blank_prefixed_sections(void **state) {
   assert_has(e.msg, "es.ini:3:", "[rods] eps_step", "[1e-5, 0.5]", NULL);
 }
 
+/* A directory given as the scene or the state file says so (it was "read error"); a state file
+ * whose path a scene cannot store (" ;" starts an INI comment) is refused at once instead of
+ * making a run that cannot be re-run from its stored scene. */
+static void directories_and_unstorable_paths(void **state) {
+  (void)state;
+  hd_scene sc;
+  hd_error e;
+  assert_int_equal(mkdir(tmp_path("adir"), 0755), 0);
+  assert_int_equal(hd_scene_load(&sc, tmp_path("adir"), NULL, 0, &e), HD_EIO);
+  assert_has(e.msg, "adir", "is a directory", NULL, NULL);
+  write_file(tmp_path("d.ini"), "[system]\nbox = 30 30\n[init]\nstate = adir\n" RUN);
+  assert_int_equal(hd_scene_load(&sc, tmp_path("d.ini"), NULL, 0, &e), HD_EINPUT);
+  assert_has(e.msg, "d.ini:4:", "[init] state", "is a directory", NULL);
+  assert_int_equal(mkdir(tmp_path("x ;y"), 0755), 0);
+  write_file(tmp_path("x ;y/st.csv"), "kind,x,y,phi,vx,vy,omega\ndisk,1,1,0,0,0,0\ndisk,3,3,0,1,0,0\n");
+  write_file(tmp_path("x ;y/s.ini"), "[system]\nbox = 30 30\n[init]\nstate = st.csv\n" RUN);
+  assert_int_equal(hd_scene_load(&sc, tmp_path("x ;y/s.ini"), NULL, 0, &e), HD_EINPUT);
+  assert_has(e.msg, "s.ini:4:", "cannot store", NULL, NULL);
+}
+
 static void missing_files(void **state) {
   (void)state;
   hd_scene sc;
@@ -631,8 +652,10 @@ static int setup(void **state) {
 
 static int teardown(void **state) {
   (void)state;
-  const char *names[] = {"good.csv", "bad.csv", "s.ini"};
+  const char *names[] = {"good.csv", "bad.csv", "s.ini", "d.ini", "x ;y/st.csv", "x ;y/s.ini"};
   for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) unlink(tmp_path(names[i]));
+  rmdir(tmp_path("adir"));
+  rmdir(tmp_path("x ;y"));
   return rmdir(tmpdir);
 }
 
@@ -725,6 +748,7 @@ int main(void) {
       cmocka_unit_test(long_line),
       cmocka_unit_test(line_at_the_limit),
       cmocka_unit_test(blank_prefixed_sections),
+      cmocka_unit_test(directories_and_unstorable_paths),
       cmocka_unit_test(missing_files),
       cmocka_unit_test(overrides_apply),
       cmocka_unit_test(text_round_trip),
