@@ -58,6 +58,10 @@ int haff_run_main(int argc, char **argv) {
       break;
     case 'S': {
       char *end;
+      if (have_seed) { /* as --set system.seed twice is: the first would be silently lost */
+        fprintf(stderr, "haff run: --seed given twice: give one\n");
+        return 2;
+      }
       errno = 0;
       seed = strtoull(optarg, &end, 10);
       if (!isdigit((unsigned char)optarg[0]) || *end) { /* strtoull takes " -1" */

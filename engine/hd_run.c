@@ -279,6 +279,11 @@ static int finish(runner *r, int rc, hd_error *err) {
     wrc = HD_OK;
   }
   if (rc != HD_OK) hd_db_run_message(r->db, r->run, err->msg, &e2);
+  if (rc == HD_OK && !r->idle[0] && r->st.next_vel < r->sc->n_velocities_at)
+    snprintf(r->idle, sizeof r->idle,
+             "velocities_at: %d of %d snapshots not taken, the run ended at cpd %.6g, before %g",
+             r->sc->n_velocities_at - (int)r->st.next_vel, r->sc->n_velocities_at,
+             r->ops->cpd(r->s), r->sc->velocities_at[r->st.next_vel]);
   if (rc == HD_OK && r->idle[0]) hd_db_run_message(r->db, r->run, r->idle, &e2);
   if (r->o->note && r->o->note_size) snprintf(r->o->note, r->o->note_size, "%s", rc ? "" : r->idle);
   int src = hd_db_run_status(r->db, r->run, status, r->ops->events(r->s), elapsed(r), &e2);

@@ -536,6 +536,14 @@ static void snapshots_and_exports(void **state) {
                          "[log]\nsamples_every = 1e-12\n");
   assert_int_equal(sh("%s run tiny.ini -o tinys.db --quiet", haff), 0);
   assert_true(q1("tinys.db", "SELECT count(*) FROM samples") <= 11);
+  /* velocities_at times past the run's end are said, not dropped silently */
+  write_file("va.ini", "[system]\nbox = 20 20\n[disks]\ncount = 100\n[run]\nstop_cpd = 2\n"
+                       "[log]\ncollisions = none\nvelocities_at = 1 5 10\n");
+  assert_int_equal(sh("%s run va.ini -o va.db --quiet", haff), 0);
+  assert_int_equal(q1("va.db", "SELECT count(*) FROM runs WHERE message LIKE "
+                               "'velocities_at: 2 of 3 snapshots not taken%'"),
+                   1);
+  bad_usage("run va.ini -o va2.db --seed 1 --seed 2", "--seed given twice");
 }
 
 /* A run from a state file resumes without it (resume read the CSV again, and failed once it
