@@ -22,6 +22,7 @@
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 extern const char hd_schema_sql[];
 
@@ -266,6 +267,12 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err) {
 
 int hd_db_uri_immutable(const char *path, char *buf, size_t size) {
   static const char hex[] = "0123456789ABCDEF";
+  /* immutable reads the main file only: not when a log holds rows not yet copied into it (a
+   * killed run's PATH-wal), which it would silently leave out */
+  char wal[4200];
+  struct stat st;
+  snprintf(wal, sizeof wal, "%s-wal", path);
+  if (stat(wal, &st) == 0 && st.st_size > 0) return -1;
   size_t k = (size_t)snprintf(buf, size, "file:");
   for (const unsigned char *p = (const unsigned char *)path; *p && k + 4 < size; p++) {
     if (*p == '%' || *p == '?' || *p == '#' || *p <= ' ' || *p >= 0x7f) {

@@ -76,7 +76,7 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err);
 
 /* Writes into buf the SQLite URI "file:PATH?immutable=1" (PATH percent-encoded where a URI
  * needs it), which reads a database in a read-only folder or file system; 0, or -1 when it does
- * not fit in size bytes. */
+ * not fit in size bytes or when PATH-wal holds rows (which immutable would not read). */
 int hd_db_uri_immutable(const char *path, char *buf, size_t size);
 
 /* Opens an existing database read-only (for analysis and export): no schema is applied and
@@ -137,11 +137,12 @@ int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_
                           hd_error *err);
 
 /* Deletes the rows a resumed run will write again: collisions with seq > seq, samples and
- * states with t > t; and the run's 'checkpoint' states (where it stopped: it goes on). */
+ * states with t > t; and the run's 'checkpoint' and 'final' states (where it stopped: it goes
+ * on, and writes its final state again). */
 int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error *err);
 
-/* The id of the newest run whose status is 'interrupted', 'failed' (disk full: resumable once
- * there is room) or 'running' (a killed process);
+/* The id of the newest run that has a checkpoint and whose status is 'interrupted', 'failed'
+ * (disk full: resumable once there is room) or 'running' (a killed process);
  * HD_EINPUT if none.  *scene_text malloc'd, *seed its seed.  want_run <= 0 picks the newest
  * such run; want_run > 0 asks for that run, and a run that does not exist or has ended
  * ('done', 'collapsed') is HD_EINPUT with a message that says so. */

@@ -73,7 +73,7 @@ static int run_lock(runner *r, hd_error *err) {
     if (e == EACCES || e == EAGAIN)
       return hd_error_set(err, HD_EINPUT,
                           "run %lld of %s is being run by another process (wait for it to end, "
-                          "or stop it, then resume)",
+                          "or stop it, then resume; another run of the file: --run ID)",
                           (long long)r->run, r->o->db_path);
     return hd_error_set(err, HD_EIO, "%s: cannot lock run %lld: %s", path, (long long)r->run,
                         strerror(e));

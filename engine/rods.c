@@ -299,7 +299,9 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
   r->stall = tk == r->t ? r->stall + 1 : 0;
   double gap = tk - r->t;
   if (gap <= HD_RODS_TINY * tk) {
-    if (r->tiny_run == 0) r->tiny_gap0 = gap;
+    /* the first positive spacing of the run: a first one of 0 would make the fall test pass
+     * only at 0, leaving a geometric collapse to the slower stall test */
+    if (r->tiny_run == 0 || (r->tiny_gap0 == 0 && gap > 0)) r->tiny_gap0 = gap;
     r->recent[r->tiny_run % HD_RODS_TINY_RUN] = (int32_t)k;
     r->tiny_run++;
   } else {

@@ -82,6 +82,12 @@ static void resting_spinners(void **state) {
   assert_true(fabs(ev.t - c.t) <= 1e-9 * c.t);
   assert_true(s->c.events > 2); /* found through wake-ups, not by the first search */
   hd_sim_free(s);
+  /* (3) two resting spinners out of each other's reach: nothing can happen, and hd_sim_next
+   * says so (HD_SIM_IDLE) instead of waking them up for ever (review) */
+  const double apart[2][6] = {{5, 5, 0, 0, 0, 1.0}, {15, 15, 0, 0, 0, 1.1}};
+  s = two_dimers(apart);
+  assert_int_equal(hd_sim_next(s, INFINITY, &ev, &e), HD_SIM_IDLE);
+  hd_sim_free(s);
 }
 
 /* Runs ncoll collisions (verification on when verify), returning the relative energy drift and
