@@ -18,18 +18,29 @@
 #include "rods.h"
 #include "test_util.h"
 
-static hd_rods *make(long n, long nmod, hd_rods_model model, double eps, unsigned long long seed) {
+/* The default parameters with n rods, nmod modes per rod and a seed. */
+static hd_rods_params params(long n, long nmod, unsigned long long seed) {
   hd_rods_params p;
   hd_rods_params_default(&p);
   p.n = n;
   p.nmod = nmod;
-  p.model = model;
-  p.eps = eps;
   p.seed = seed;
+  return p;
+}
+
+/* A ring of parameters p (the allocation must succeed). */
+static hd_rods *alloc_ok(const hd_rods_params *p) {
   hd_rods *r;
   hd_error e;
-  assert_int_equal(hd_rods_alloc(&r, &p, &e), HD_OK);
+  assert_int_equal(hd_rods_alloc(&r, p, &e), HD_OK);
   return r;
+}
+
+static hd_rods *make(long n, long nmod, hd_rods_model model, double eps, unsigned long long seed) {
+  hd_rods_params p = params(n, nmod, seed);
+  p.model = model;
+  p.eps = eps;
+  return alloc_ok(&p);
 }
 
 static double momentum(const hd_rods *r) {
@@ -239,16 +250,11 @@ static void checkpoint_exact(void **state) {
  * runs to t = 1e6.  Deterministic (fixed seed); the test fails with the old criterion. */
 static void damped_no_false_collapse(void **state) {
   (void)state;
-  hd_rods_params p;
-  hd_rods_params_default(&p);
-  p.n = 50;
-  p.nmod = 1000;
+  hd_rods_params p = params(50, 1000, 5);
   p.damping = 0.01;
   p.table = 1;
-  p.seed = 5;
-  hd_rods *r;
+  hd_rods *r = alloc_ok(&p);
   hd_error e;
-  assert_int_equal(hd_rods_alloc(&r, &p, &e), HD_OK);
   hd_rods_event ev;
   int rc;
   while ((rc = hd_rods_next(r, 1e6, &ev, &e)) == HD_OK) {
@@ -276,17 +282,12 @@ static double ekin_com(const hd_rods *r) {
  * centre-of-mass frame at least once. */
 static void constant_cooling_below_drift(void **state) {
   (void)state;
-  hd_rods_params p;
-  hd_rods_params_default(&p);
-  p.n = 4;
-  p.nmod = 1;
+  hd_rods_params p = params(4, 1, 2);
   p.gamma = 1;
   p.model = HD_RODS_CONSTANT;
   p.eps = 0.3;
-  p.seed = 2;
-  hd_rods *r;
+  hd_rods *r = alloc_ok(&p);
   hd_error e;
-  assert_int_equal(hd_rods_alloc(&r, &p, &e), HD_OK);
   hd_rods_event ev;
   double e0 = ekin_com(r), ek = e0;
   long bad = 0, c;
@@ -316,15 +317,10 @@ static void constant_cooling_below_drift(void **state) {
  * (fixed seeds; with the table's end node instead the test fails). */
 static void table_below_grid(void **state) {
   (void)state;
-  hd_rods_params p;
-  hd_rods_params_default(&p);
-  p.n = 50;
-  p.nmod = 1000;
+  hd_rods_params p = params(50, 1000, 9);
   p.table = 1;
-  p.seed = 9;
-  hd_rods *r;
+  hd_rods *r = alloc_ok(&p);
   hd_error e;
-  assert_int_equal(hd_rods_alloc(&r, &p, &e), HD_OK);
   gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
   gsl_rng_set(g, 99);
   hd_rods_event ev;
