@@ -322,6 +322,11 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
   int rc = r.ops->alloc(&r.s, sc, err); /* bad input fails here, before anything is written */
   if (rc) {
     signals_off();
+    if (rc == HD_EINPUT && sc->path[0] && err->msg[0] == '[') {
+      char msg[sizeof err->msg]; /* "[section] ...": a set-up the engine refused, in which file */
+      snprintf(msg, sizeof msg, "%s", err->msg);
+      hd_error_set(err, rc, "%s: %s", sc->path, msg);
+    }
     return rc;
   }
   double lx, ly;
