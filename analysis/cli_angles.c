@@ -42,8 +42,10 @@ int haff_angles_main(int argc, char **argv) {
     return 2;
   }
   if (!a.fmean && n < (size_t)a.block) { /* before -o: no empty table for a plot to choke on */
-    fprintf(stderr, "haff %s: run %lld has %zu dimer-dimer collisions, fewer than one block of %ld "
-                    "(--block)\n", argv[0], (long long)a.run, n, a.block);
+    fprintf(stderr,
+            "haff %s: run %lld has %zu dimer-dimer collisions, fewer than one block of %ld "
+            "(--block)\n",
+            argv[0], (long long)a.run, n, a.block);
     free(ti), free(tj), free(f);
     return 2;
   }

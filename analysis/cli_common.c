@@ -28,8 +28,8 @@ static int parse_int(const char *cmd, const char *opt, const char *s, long long 
   errno = 0;
   long long v = strtoll(s, &end, 10);
   if (end == s || *end || errno || v < lo || v > hi) {
-    fprintf(stderr, "haff %s: %s '%s': expected a whole number in [%lld, %lld]\n", cmd, opt, s,
-            lo, hi);
+    fprintf(stderr, "haff %s: %s '%s': expected a whole number in [%lld, %lld]\n", cmd, opt, s, lo,
+            hi);
     return 2;
   }
   *out = v;

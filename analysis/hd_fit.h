@@ -45,10 +45,10 @@ typedef struct hd_linfit {
   double a0_err, a1_err;             /* OLS standard errors (residual variance from chi2/(n-2)) */
   double tq;                         /* t quantile with n-2 dof at (1+level)/2 */
   double a0_lo, a0_hi, a1_lo, a1_hi; /* OLS Student-t intervals: a +- tq * err */
-  double tau_int;              /* integrated autocorrelation time of the residuals (0.5 = iid) */
-  double n_eff; /* n / (2 max(0.5, tau_int)), the effective number of independent points (<= n) */
-  double a0_err_ac, a1_err_ac; /* standard errors * sqrt(max(1, 2 tau_int)) */
-  double tq_ac;                /* t quantile with max(n_eff - 2, 1) dof */
+  double tau_int; /* integrated autocorrelation time of the residuals (0.5 = iid) */
+  double n_eff;   /* n / (2 max(0.5, tau_int)), the effective number of independent points (<= n) */
+  double a0_err_ac, a1_err_ac;                   /* standard errors * sqrt(max(1, 2 tau_int)) */
+  double tq_ac;                                  /* t quantile with max(n_eff - 2, 1) dof */
   double a0_lo_ac, a0_hi_ac, a1_lo_ac, a1_hi_ac; /* autocorrelation-corrected intervals */
   double chi2;                                   /* residual sum of squares */
 } hd_linfit;

@@ -58,8 +58,8 @@ typedef struct hd_group {
   long nbodies;   /* N of the species */
   double density; /* its number density (hd_run_info.density) */
   double d, m;    /* disk diameter and mass */
-  size_t n;    /* runs in the group */
-  size_t *idx; /* their indices in the array given to hd_group_runs */
+  size_t n;       /* runs in the group */
+  size_t *idx;    /* their indices in the array given to hd_group_runs */
 } hd_group;
 
 /* Groups fits[0..n-1] (in order of first appearance).  *groups malloc'd; hd_groups_free. */

@@ -604,7 +604,8 @@ int haff_rods_collapse_main(int argc, char **argv) {
       cpd = x;
       break;
     case 'g':
-      if (!finite_number(optarg, &x) || !(x > 0 && x <= 1)) return bad_arg(argv[0], "--gamma", optarg);
+      if (!finite_number(optarg, &x) || !(x > 0 && x <= 1))
+        return bad_arg(argv[0], "--gamma", optarg);
       gamma = x;
       break;
     case 'h':

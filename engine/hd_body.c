@@ -59,8 +59,8 @@
  * at t = 0 a pair with h <= TOL_0 D (a gap or an overlap left by round-off) is in contact now:
  * approaching from h <= TOL_C D -> t = 0 is returned (from a larger gap the search goes on, as
  * for any pair: a review found pairs at gaps of 5e-11 D collided at t = 0 that never touch, a
- * graze or a fast spinner's twin disk); otherwise (the pair has just collided) it is ignored until it
- * has separated to h > TOL_SEP = 2 TOL_0 or approaches again from h > TOL_C; after that it is an
+ * graze or a fast spinner's twin disk); otherwise (the pair has just collided) it is ignored until
+ * it has separated to h > TOL_SEP = 2 TOL_0 or approaches again from h > TOL_C; after that it is an
  * ordinary pair, so its next real contact (a fast spinner swinging its other disk round, or the
  * same disk pair coming back) is found.  While a pair is ignored the step is bounded by the time
  * its gap could reach TOL_SEP D (h'' <= 2 L^2/D + K), so CA cannot jump over its separation and

@@ -16,8 +16,8 @@
  * Insertion is O(1), the minimum O(1) on average when w is about the mean spacing of events
  * (hd_queue_build tunes it from the keys; the engine rebuilds the queue every 100 N events; a
  * queue whose heap, overflow or extension pool fills with stale entries rebuilds itself from
- * the keys).  The order is the total order (time, then body index), so the sequence of events is the same
- * whatever the bucket layout: runs are deterministic and checkpoints exact. */
+ * the keys).  The order is the total order (time, then body index), so the sequence of events is
+ * the same whatever the bucket layout: runs are deterministic and checkpoints exact. */
 #ifndef HD_QUEUE_H
 #define HD_QUEUE_H
 

@@ -45,9 +45,9 @@ typedef struct runner {
   double last_ckpt_wall; /* monotonic time of the last checkpoint */
   double last_tick_wall; /* monotonic time of the last progress line */
   int64_t last_tick_events;
-  int progress; /* print a progress line */
-  char idle[200]; /* "" or why the run ran out of events before its stop condition */
-  int lock_fd;    /* the run's lock (run_lock), -1 when not held */
+  int progress;            /* print a progress line */
+  char idle[200];          /* "" or why the run ran out of events before its stop condition */
+  int lock_fd;             /* the run's lock (run_lock), -1 when not held */
   double last_commit_wall; /* monotonic time of the last commit forced by the clock */
 } runner;
 
@@ -180,7 +180,8 @@ static int observe(runner *r, hd_error *err) {
     int rc = log_sample(r, err);
     if (rc) return rc;
     double k = floor(cpd / sc->samples_every) + 1.0;
-    r->st.next_sample = k > (double)r->st.next_sample ? (int64_t)fmin(k, 9e18) : r->st.next_sample + 1;
+    r->st.next_sample =
+        k > (double)r->st.next_sample ? (int64_t)fmin(k, 9e18) : r->st.next_sample + 1;
   }
   if (r->st.next_vel < sc->n_velocities_at && cpd >= sc->velocities_at[r->st.next_vel]) {
     /* one snapshot, however many of the times this event passed: two at one event used to give

@@ -718,8 +718,9 @@ static int check_state(ctx *c) {
   if (strstr(real, " ;") || strstr(real, " #") || strchr(real, '\n') || real[rl - 1] == ' ' ||
       real[rl - 1] == '\t') {
     free(real);
-    return FAIL_KEY(c, K_STATE, "its path holds ' ;', ' #' or a blank at its end, which a scene "
-                                "cannot store: rename the file or folder");
+    return FAIL_KEY(c, K_STATE,
+                    "its path holds ' ;', ' #' or a blank at its end, which a scene "
+                    "cannot store: rename the file or folder");
   }
   strcpy(sc->state_file, real);
   free(real);

@@ -455,11 +455,11 @@ static int check_collapse(hd_sim *s, double vn, hd_error *err) {
       return HD_OK;
     }
     return hd_error_set(err, HD_ECOLLAPSE,
-                          "inelastic collapse at t = %.17g after %lld collisions: %d collisions "
-                          "in a row with |vn| < %g of the thermal speed, last between bodies %d "
-                          "and %d",
-                          hd_sim_time(s), (long long)s->c.collisions, HD_SLOW_RUN, HD_SLOW_VN,
-                          s->id[s->last_i], s->id[s->last_j]);
+                        "inelastic collapse at t = %.17g after %lld collisions: %d collisions "
+                        "in a row with |vn| < %g of the thermal speed, last between bodies %d "
+                        "and %d",
+                        hd_sim_time(s), (long long)s->c.collisions, HD_SLOW_RUN, HD_SLOW_VN,
+                        s->id[s->last_i], s->id[s->last_j]);
   } else {
     s->c.slow_run = 0;
   }

@@ -101,7 +101,7 @@ typedef struct hd_event_out {
 
 /* The simulation. */
 typedef struct hd_sim {
-  int32_t n;                              /* bodies */
+  int32_t n;             /* bodies */
   int64_t drift_removed; /* times the system was taken to its centre-of-mass frame (rebase) */
   int zero_momentum;     /* velocities drawn with zero total momentum (not from a state file) */
   int32_t n_species[HD_NSPECIES];         /* bodies per species */

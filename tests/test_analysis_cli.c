@@ -417,8 +417,8 @@ static void bad_numeric_options(void **state) {
   snprintf(out, sizeof out, "%s/bad.tsv", dir);
   static const struct {
     const char *opt, *val;
-  } bad[] = {{"--run", "1e19"},  {"--run", "inf"},       {"--run", "2.7"},
-             {"--run", "-1"},    {"--block", "1e300"},   {"--block", "0"},
+  } bad[] = {{"--run", "1e19"},    {"--run", "inf"},     {"--run", "2.7"},
+             {"--run", "-1"},      {"--block", "1e300"}, {"--block", "0"},
              {"--bins", "200000"}, {"--bins", "3.5"},    {"--block", "99999999999999999999"}};
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
     char *args[] = {dbpath, "--run", "1", (char *)bad[i].opt, (char *)bad[i].val};
@@ -576,9 +576,14 @@ static void gnuplot_scripts(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(haff_fit_runs),   cmocka_unit_test(table1), cmocka_unit_test(table2),
-      cmocka_unit_test(energy),          cmocka_unit_test(angles), cmocka_unit_test(veldist),
-      cmocka_unit_test(gnuplot_scripts), cmocka_unit_test(bad_numeric_options),
+      cmocka_unit_test(haff_fit_runs),
+      cmocka_unit_test(table1),
+      cmocka_unit_test(table2),
+      cmocka_unit_test(energy),
+      cmocka_unit_test(angles),
+      cmocka_unit_test(veldist),
+      cmocka_unit_test(gnuplot_scripts),
+      cmocka_unit_test(bad_numeric_options),
       cmocka_unit_test(groups_and_density),
   };
   return cmocka_run_group_tests(tests, setup, teardown);

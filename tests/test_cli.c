@@ -305,7 +305,8 @@ static void bad_input(void **state) {
    * geometry with exit 0; --convergence ignored --model, --scan and a lone --d; --scan ignored
    * --a) */
   bad_usage("mc fmean --fig4-data --scan 1:2:1", "--scan does not apply with --fig4-data");
-  bad_usage("mc fmean --convergence --model collision", "--model does not apply with --convergence");
+  bad_usage("mc fmean --convergence --model collision",
+            "--model does not apply with --convergence");
   bad_usage("mc fmean --convergence --scan 1:2:1", "--scan does not apply with --convergence");
   bad_usage("mc fmean --convergence --d 2", "--convergence with --d needs --a");
   bad_usage("mc fmean --scan 1:2:1 --a 1", "--a does not apply with --scan");
@@ -345,7 +346,8 @@ static void tiny_bond_twin_contacts(void **state) {
   long long rep = q1("tiny.db", "SELECT count(*) FROM collisions c JOIN collisions p ON p.run = "
                                 "c.run AND p.seq = c.seq - 1 WHERE c.t = p.t AND ((c.i = p.i AND "
                                 "c.j = p.j) OR (c.i = p.j AND c.j = p.i))");
-  printf("# a = 1e-9: %lld of 50000 collisions repeat the previous pair at the same instant\n", rep);
+  printf("# a = 1e-9: %lld of 50000 collisions repeat the previous pair at the same instant\n",
+         rep);
   assert_true(rep <= 50);
 }
 
@@ -399,8 +401,9 @@ static void rods_collapse_counts(void **state) {
 }
 
 /* A full disk (the file size limit of RLIMIT_FSIZE: haff ignores SIGXFSZ, which used to kill it
- * with the run left 'running', so that writes fail with EFBIG as on a full disk): exit 1 and a clear message, a sound database, and once there is
- * room again resume completes the very same run. */
+ * with the run left 'running', so that writes fail with EFBIG as on a full disk): exit 1 and a
+ * clear message, a sound database, and once there is room again resume completes the very same run.
+ */
 static void disk_full_then_resume(void **state) {
   (void)state;
   if (!haff) skip();
@@ -594,12 +597,18 @@ static void unwritable_db(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(bad_input),          cmocka_unit_test(unwritable_db),
-      cmocka_unit_test(logged_restitution), cmocka_unit_test(disk_full_then_resume),
-      cmocka_unit_test(sigint_then_resume), cmocka_unit_test(sigterm_then_resume),
-      cmocka_unit_test(kill9_then_resume),  cmocka_unit_test(rods_collapse_counts),
-      cmocka_unit_test(tiny_bond_twin_contacts), cmocka_unit_test(resume_after_the_last_step),
-      cmocka_unit_test(resume_refuses_a_live_run), cmocka_unit_test(snapshots_and_exports),
+      cmocka_unit_test(bad_input),
+      cmocka_unit_test(unwritable_db),
+      cmocka_unit_test(logged_restitution),
+      cmocka_unit_test(disk_full_then_resume),
+      cmocka_unit_test(sigint_then_resume),
+      cmocka_unit_test(sigterm_then_resume),
+      cmocka_unit_test(kill9_then_resume),
+      cmocka_unit_test(rods_collapse_counts),
+      cmocka_unit_test(tiny_bond_twin_contacts),
+      cmocka_unit_test(resume_after_the_last_step),
+      cmocka_unit_test(resume_refuses_a_live_run),
+      cmocka_unit_test(snapshots_and_exports),
       cmocka_unit_test(resume_without_the_state_file),
   };
   return cmocka_run_group_tests(tests, setup, teardown);

@@ -76,8 +76,8 @@ static void resting_spinners(void **state) {
   assert_int_equal(hd_predict_pair(&A, &sh, &B, &sh, INFINITY, &c), 1);
   s = two_dimers(drift);
   int rc = hd_sim_next(s, 1e6, &ev, &e);
-  printf("# drifting spinners: contact at %.12g (one search: %.12g) after %lld events\n", ev.t,
-         c.t, (long long)s->c.events);
+  printf("# drifting spinners: contact at %.12g (one search: %.12g) after %lld events\n", ev.t, c.t,
+         (long long)s->c.events);
   assert_int_equal(rc, HD_OK);
   assert_true(fabs(ev.t - c.t) <= 1e-9 * c.t);
   assert_true(s->c.events > 2); /* found through wake-ups, not by the first search */

@@ -352,10 +352,10 @@ static void blank_prefixed_sections(void **state) {
   assert_true(sc.n_disks == 40 && sc.disk_alpha == 0.99);
   assert_non_null(strstr(sc.text, "[disks]\ncount = 40"));
   hd_scene_free(&sc);
-  assert_int_equal(hd_scene_load_string(&sc, "[system]\nbox = 60 60\n[disks]\ncount = 4\n" RUN
-                                             "\f[bogus]\n",
-                                        "vt.ini", NULL, 0, &e),
-                   HD_EINPUT);
+  assert_int_equal(
+      hd_scene_load_string(&sc, "[system]\nbox = 60 60\n[disks]\ncount = 4\n" RUN "\f[bogus]\n",
+                           "vt.ini", NULL, 0, &e),
+      HD_EINPUT);
   printf("# %s\n", e.msg);
   assert_has(e.msg, "vt.ini:", "bogus", NULL, NULL);
   assert_int_equal(hd_scene_load_string(&sc, "[rods]\ncount = 10\neps_step = 1e-300\n" RUN,
@@ -378,7 +378,8 @@ static void directories_and_unstorable_paths(void **state) {
   assert_int_equal(hd_scene_load(&sc, tmp_path("d.ini"), NULL, 0, &e), HD_EINPUT);
   assert_has(e.msg, "d.ini:4:", "[init] state", "is a directory", NULL);
   assert_int_equal(mkdir(tmp_path("x ;y"), 0755), 0);
-  write_file(tmp_path("x ;y/st.csv"), "kind,x,y,phi,vx,vy,omega\ndisk,1,1,0,0,0,0\ndisk,3,3,0,1,0,0\n");
+  write_file(tmp_path("x ;y/st.csv"),
+             "kind,x,y,phi,vx,vy,omega\ndisk,1,1,0,0,0,0\ndisk,3,3,0,1,0,0\n");
   write_file(tmp_path("x ;y/s.ini"), "[system]\nbox = 30 30\n[init]\nstate = st.csv\n" RUN);
   assert_int_equal(hd_scene_load(&sc, tmp_path("x ;y/s.ini"), NULL, 0, &e), HD_EINPUT);
   assert_has(e.msg, "s.ini:4:", "cannot store", NULL, NULL);
