@@ -63,7 +63,17 @@ static void predict(hd_rods *r, long k) {
 }
 
 /* Brings gap k to the current time. */
-static void advance_gap(hd_rods *r, long k);
+static void advance_gap(hd_rods *r, long k) {
+  if (r->gt[k] == r->t) return;
+  r->g[k] += (r->v[nxt(r, k)] - r->v[k]) * (r->t - r->gt[k]);
+  r->gt[k] = r->t;
+}
+
+/* Brings rod 0's position (the ring's anchor) to the current time. */
+static void advance_x0(hd_rods *r) {
+  r->x0 += r->v[0] * (r->t - r->x0t);
+  r->x0t = r->t;
+}
 
 /* After a collision of rods a, b that approached at u while moving at va, vb: if they moved
  * together much faster than they approached, and the whole ring drifts at that speed (the
@@ -81,18 +91,11 @@ static void keep_frame(hd_rods *r, double u, double va, double vb) {
   double V = P / M;
   if (!(fabs(V) > 1e-3 * (fabs(va) + fabs(vb)))) return; /* a cluster's own motion: real */
   for (long k = 0; k < n; k++) advance_gap(r, k);
-  r->x0 += r->v[0] * (r->t - r->x0t);
-  r->x0t = r->t;
+  advance_x0(r);
   for (long i = 0; i < n; i++) r->v[i] -= V;
   for (long k = 0; k < n; k++) predict(r, k);
   hd_queue_build(r->q, (int32_t)n, r->key, 1);
   r->frames++;
-}
-
-static void advance_gap(hd_rods *r, long k) {
-  if (r->gt[k] == r->t) return;
-  r->g[k] += (r->v[nxt(r, k)] - r->v[k]) * (r->t - r->gt[k]);
-  r->gt[k] = r->t;
 }
 
 static int check_params(const hd_rods_params *p, hd_error *err) {
@@ -331,8 +334,7 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
   advance_gap(r, kl);
   if (kr != kl) advance_gap(r, kr);
   if (a == 0 || b == 0) {
-    r->x0 += r->v[0] * (r->t - r->x0t);
-    r->x0t = r->t;
+    advance_x0(r);
   }
   /* baths up to now (damping) */
   double da = decay(r, r->tl[a], r->t), db = decay(r, r->tl[b], r->t);
@@ -351,7 +353,6 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
   double tbn_a = tba, tbn_b = tbb;
   if (!tc) {
     double tbn = 0.5 * (tba + tbb) + (1 - eps * eps) * e_tr / (2 * (double)r->p.nmod);
-    if (eps == 1.0) tbn = 0.5 * (tba + tbb);
     if (tbn < 0) tbn = 0; /* round-off only: draw_eps keeps eps^2 within what the baths hold */
     tbn_a = tbn_b = tbn;
   }
