@@ -46,7 +46,8 @@ typedef struct runner {
   double last_tick_wall; /* monotonic time of the last progress line */
   int64_t last_tick_events;
   int progress;            /* print a progress line */
-  char idle[200];          /* "" or why the run ran out of events before its stop condition */
+  char note[200];          /* "" or what a run that ends well left undone (no event left before
+                            its stop condition, velocities_at times not reached) */
   int lock_fd;             /* the run's lock (run_lock), -1 when not held */
   double last_commit_wall; /* monotonic time of the last commit forced by the clock */
 } runner;
@@ -194,6 +195,12 @@ static int observe(runner *r, hd_error *err) {
   return HD_OK;
 }
 
+/* The error of a run stopped by SIGINT or SIGTERM. */
+static int interrupted(const runner *r, hd_error *err) {
+  return hd_error_set(err, HD_EINTR, "interrupted at t = %.10g after %lld collisions",
+                      r->ops->time(r->s), (long long)r->st.seq);
+}
+
 /* The loop: events until a stop condition, a signal, a collapse or an error. */
 static int drive(runner *r, hd_error *err) {
   const hd_scene *sc = r->sc;
@@ -205,7 +212,7 @@ static int drive(runner *r, hd_error *err) {
     if (rc == HD_SIM_IDLE && (sc->stop_events > 0 || sc->stop_cpd > 0))
       /* nothing will ever happen again: every body at rest, or cooled below the range of
        * doubles (a rod ring below its collapse size reaches t ~ 1e308) */
-      snprintf(r->idle, sizeof r->idle,
+      snprintf(r->note, sizeof r->note,
                "no event left at t = %.6g after %lld collisions (cpd %.6g): nothing moves or "
                "collides any more, before the stop condition",
                r->ops->time(r->s), (long long)r->st.seq, r->ops->cpd(r->s));
@@ -214,11 +221,7 @@ static int drive(runner *r, hd_error *err) {
       break;
     }
     if (rc == HD_SIM_BUSY) { /* many events, no collision: a chance to see a signal */
-      rc = HD_OK;
-      if (stop_flag)
-        rc = hd_error_set(err, HD_EINTR, "interrupted at t = %.10g after %lld collisions",
-                          r->ops->time(r->s), (long long)r->st.seq);
-      if (rc) break;
+      rc = stop_flag ? interrupted(r, err) : HD_OK;
       continue;
     }
     if (rc) break;
@@ -231,8 +234,7 @@ static int drive(runner *r, hd_error *err) {
     rc = observe(r, err);
     if (rc) break;
     if (stop_flag) {
-      rc = hd_error_set(err, HD_EINTR, "interrupted at t = %.10g after %lld collisions",
-                        r->ops->time(r->s), (long long)r->st.seq);
+      rc = interrupted(r, err);
       break;
     }
     if ((r->st.seq & 1023) == 0) {
@@ -280,13 +282,13 @@ static int finish(runner *r, int rc, hd_error *err) {
     wrc = HD_OK;
   }
   if (rc != HD_OK) hd_db_run_message(r->db, r->run, err->msg, &e2);
-  if (rc == HD_OK && !r->idle[0] && r->st.next_vel < r->sc->n_velocities_at)
-    snprintf(r->idle, sizeof r->idle,
+  if (rc == HD_OK && !r->note[0] && r->st.next_vel < r->sc->n_velocities_at)
+    snprintf(r->note, sizeof r->note,
              "velocities_at: %d of %d snapshots not taken, the run ended at cpd %.6g, before %g",
              r->sc->n_velocities_at - (int)r->st.next_vel, r->sc->n_velocities_at,
              r->ops->cpd(r->s), r->sc->velocities_at[r->st.next_vel]);
-  if (rc == HD_OK && r->idle[0]) hd_db_run_message(r->db, r->run, r->idle, &e2);
-  if (r->o->note && r->o->note_size) snprintf(r->o->note, r->o->note_size, "%s", rc ? "" : r->idle);
+  if (rc == HD_OK && r->note[0]) hd_db_run_message(r->db, r->run, r->note, &e2);
+  if (r->o->note && r->o->note_size) snprintf(r->o->note, r->o->note_size, "%s", rc ? "" : r->note);
   int src = hd_db_run_status(r->db, r->run, status, r->ops->events(r->s), elapsed(r), &e2);
   if (!wrc) wrc = src;
   if (!wrc && rc == HD_OK) wrc = hd_db_build_indexes(r->db, &e2);

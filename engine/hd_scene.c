@@ -856,10 +856,13 @@ static int check_all(ctx *c) {
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
                 "no stop condition: set stop_time, stop_events or stop_cpd");
-  if (sc->n_dimers + sc->n_disks == 1 && !(sc->stop_time > 0) && !sc->walls)
-    /* its collisions would never come: the run would go on for ever */
+  if (sc->n_dimers + sc->n_disks == 1 && !(sc->stop_time > 0) &&
+      !(sc->walls && sc->stop_events > 0))
+    /* it has no pair collision ever (cpd stays 0), and without walls no collision at all: the
+     * run would go on for ever */
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
-                "one body alone in a periodic box never collides: stop it with stop_time");
+                "one body alone never collides with another: stop it with stop_time (or, between "
+                "walls, stop_events)");
   return HD_OK;
 }
 

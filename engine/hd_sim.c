@@ -102,10 +102,10 @@ static int melt(hd_sim *s, const hd_scene *sc, hd_error *err) {
   while (rc == HD_OK && hd_sim_cpd(s) < 40.0 && s->c.events <= 1000 * (int64_t)s->n + 1000) {
     hd_event_out ev;
     rc = hd_sim_next(s, INFINITY, &ev, err);
-    if (rc == HD_SIM_IDLE || rc == HD_SIM_BUSY) { /* busy: the event bound above decides */
-      int idle = rc == HD_SIM_IDLE;
+    if (rc == HD_SIM_BUSY) rc = HD_OK; /* the event bound above decides */
+    if (rc == HD_SIM_IDLE) {
       rc = HD_OK;
-      if (idle) break;
+      break;
     }
   }
   memcpy(s->alpha, alpha, sizeof alpha);
@@ -513,7 +513,7 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
     hd_body *bi = &s->b[i];
     double te = bi->ev_t;
     double stop_rel = t_stop - s->c.t_offset;
-    if (te > stop_rel || te == INFINITY) { /* (no event left: a lone disk, which is at rest) */
+    if (te > stop_rel || te == INFINITY) { /* (no event left: every body at rest) */
       if (stop_rel > s->c.t && stop_rel < INFINITY) s->c.t = stop_rel;
       return te == INFINITY && stop_rel == INFINITY ? HD_SIM_IDLE : HD_SIM_STOPTIME;
     }

@@ -333,9 +333,7 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
   /* gaps next to the pair move with the old velocities up to now */
   advance_gap(r, kl);
   if (kr != kl) advance_gap(r, kr);
-  if (a == 0 || b == 0) {
-    advance_x0(r);
-  }
+  if (a == 0 || b == 0) advance_x0(r);
   /* baths up to now (damping) */
   double da = decay(r, r->tl[a], r->t), db = decay(r, r->tl[b], r->t);
   double tba = r->tb[a] * da, tbb = r->tb[b] * db;

@@ -287,7 +287,7 @@ static void bad_input(void **state) {
   /* a lone body with only stop_cpd or stop_events would never end (a lone disk, at rest, ran to
    * t = inf and failed on an event time of NaN; a lone dimer spun for ever): refused */
   write_file("one.ini", "[system]\nbox = 10 10\n[disks]\ncount = 1\n[run]\nstop_cpd = 10\n");
-  bad_usage("run one.ini -o one.db", "one body alone in a periodic box never collides");
+  bad_usage("run one.ini -o one.db", "one body alone never collides with another");
   assert_false(exists("one.db"));
   /* a run whose collisions are rare still sees SIGINT (hd_sim_next returns every 2^22 events
    * without a collision): ten disks in a box of 1e9 */
