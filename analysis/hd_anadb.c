@@ -9,6 +9,17 @@
 #include <string.h>
 #include <unistd.h>
 
+/* How many of the tables runs and samples the database has, or -1 if it cannot be read. */
+static int haff_tables(sqlite3 *db) {
+  sqlite3_stmt *st = NULL;
+  const char *q = "SELECT count(*) FROM sqlite_master WHERE type='table' AND name IN "
+                  "('runs','samples')";
+  int ok = sqlite3_prepare_v2(db, q, -1, &st, NULL) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW;
+  int have = ok ? sqlite3_column_int(st, 0) : -1;
+  sqlite3_finalize(st);
+  return have;
+}
+
 int hd_ana_open(sqlite3 **db, const char *path, hd_error *err) {
   *db = NULL;
   if (access(path, F_OK) != 0) /* a missing file is bad input (exit 2), not a failed run */
@@ -21,28 +32,12 @@ int hd_ana_open(sqlite3 **db, const char *path, hd_error *err) {
     return HD_EIO;
   }
   sqlite3_busy_timeout(*db, 5000);
-  sqlite3_stmt *st = NULL;
-  const char *q = "SELECT count(*) FROM sqlite_master WHERE type='table' AND name IN "
-                  "('runs','samples')";
-  int ok = sqlite3_prepare_v2(*db, q, -1, &st, NULL) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW;
-  int have = ok ? sqlite3_column_int(st, 0) : -1;
-  sqlite3_finalize(st);
-  int code = sqlite3_errcode(*db) & 0xff;
-  char uri[8300];
-  if (have < 0 && (code == SQLITE_CANTOPEN || code == SQLITE_READONLY) &&
-      !hd_db_uri_immutable(path, uri, sizeof uri)) {
-    /* a read-only folder or file system (no -shm can be made): read the file as it is */
-    sqlite3_close(*db);
-    *db = NULL;
-    if (sqlite3_open_v2(uri, db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, NULL) == SQLITE_OK) {
-      sqlite3_busy_timeout(*db, 5000);
-      ok = sqlite3_prepare_v2(*db, q, -1, &st, NULL) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW;
-      have = ok ? sqlite3_column_int(st, 0) : -1;
-      sqlite3_finalize(st);
-    }
-    code = *db ? sqlite3_errcode(*db) & 0xff : SQLITE_NOMEM;
+  int have = haff_tables(*db);
+  if (have < 0 && hd_db_reopen_immutable(path, db, 0)) { /* a read-only folder */
+    sqlite3_busy_timeout(*db, 5000);
+    have = haff_tables(*db);
   }
-  if (have < 0 && code == SQLITE_NOTADB) have = -2; /* not an SQLite file: bad input */
+  if (have < 0 && *db && (sqlite3_errcode(*db) & 0xff) == SQLITE_NOTADB) have = -2; /* bad input */
   if (have != 2) {
     hd_error_set(err, have == -1 ? HD_EIO : HD_EINPUT, "%s: not a haff database (%s)", path,
                  have < 0 ? (*db ? sqlite3_errmsg(*db) : "out of memory")

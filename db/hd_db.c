@@ -265,7 +265,10 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err) {
   return HD_OK;
 }
 
-int hd_db_uri_immutable(const char *path, char *buf, size_t size) {
+/* Writes into buf the URI "file:PATH?immutable=1" (PATH percent-encoded where a URI needs it);
+ * 0, or -1 when it does not fit in size bytes or when PATH-wal holds rows (which immutable would
+ * not read). */
+static int uri_immutable(const char *path, char *buf, size_t size) {
   static const char hex[] = "0123456789ABCDEF";
   /* immutable reads the main file only: not when a log holds rows not yet copied into it (a
    * killed run's PATH-wal), which it would silently leave out */
@@ -286,6 +289,18 @@ int hd_db_uri_immutable(const char *path, char *buf, size_t size) {
   return 0;
 }
 
+int hd_db_reopen_immutable(const char *path, sqlite3 **h, int flags) {
+  int code = *h ? sqlite3_errcode(*h) & 0xff : SQLITE_NOMEM; /* primary code of an extended one */
+  char uri[8300];
+  if ((code != SQLITE_CANTOPEN && code != SQLITE_READONLY) || uri_immutable(path, uri, sizeof uri))
+    return 0;
+  sqlite3_close(*h);
+  *h = NULL;
+  if (sqlite3_open_v2(uri, h, flags | SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, NULL) != SQLITE_OK)
+    return 0;
+  return sqlite3_exec(*h, "SELECT count(*) FROM sqlite_schema", NULL, NULL, NULL) == SQLITE_OK;
+}
+
 int hd_db_open_readonly(hd_db **out, const char *path, hd_error *err) {
   if (!out) return hd_error_set(err, HD_EINPUT, "hd_db_open_readonly: out is NULL");
   hd_db *db;
@@ -294,24 +309,14 @@ int hd_db_open_readonly(hd_db **out, const char *path, hd_error *err) {
   db->readonly = 1;
   /* Reading the schema now turns "not a database" into an error here, not later. */
   if (sqlite3_exec(db->db, "SELECT count(*) FROM sqlite_schema", NULL, NULL, NULL) != SQLITE_OK) {
-    int code = sqlite3_errcode(db->db) & 0xff; /* the primary code of an extended one */
-    char uri[8300];
-    if ((code == SQLITE_CANTOPEN || code == SQLITE_READONLY) &&
-        !hd_db_uri_immutable(path, uri, sizeof uri)) {
-      /* a read-only folder or file system: the write-ahead log's index (-shm) cannot be made;
-       * read the file as it is (a finished run's log has been copied back into it) */
-      sqlite3_close(db->db);
-      db->db = NULL;
-      if (sqlite3_open_v2(uri, &db->db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, NULL) ==
-              SQLITE_OK &&
-          sqlite3_exec(db->db, "SELECT count(*) FROM sqlite_schema", NULL, NULL, NULL) ==
-              SQLITE_OK) {
-        *out = db;
-        return HD_OK;
-      }
+    if (hd_db_reopen_immutable(path, &db->db, SQLITE_OPEN_NOMUTEX)) {
+      sqlite3_extended_result_codes(db->db, 1);
+      *out = db;
+      return HD_OK;
     }
-    rc = sql_error(db, err, "open");
-    if ((sqlite3_errcode(db->db) & 0xff) == SQLITE_NOTADB) rc = err->code = HD_EINPUT;
+    rc = db->db ? sql_error(db, err, "open")
+                : hd_error_set(err, HD_ENOMEM, "%s: open: out of memory", path);
+    if (db->db && (sqlite3_errcode(db->db) & 0xff) == SQLITE_NOTADB) rc = err->code = HD_EINPUT;
     db_free(db);
     return rc;
   }

@@ -74,10 +74,12 @@ const char *hd_db_kind_name(int kind);
  * Returns HD_OK or HD_EIO with err set. */
 int hd_db_open(hd_db **out, const char *path, hd_error *err);
 
-/* Writes into buf the SQLite URI "file:PATH?immutable=1" (PATH percent-encoded where a URI
- * needs it), which reads a database in a read-only folder or file system; 0, or -1 when it does
- * not fit in size bytes or when PATH-wal holds rows (which immutable would not read). */
-int hd_db_uri_immutable(const char *path, char *buf, size_t size);
+/* After reading the schema through *h failed: if it failed because SQLite cannot make the
+ * log's index (-shm) in a read-only folder or file system, replaces *h by a connection that
+ * reads PATH as immutable (opened with flags | READONLY) and returns 1 once that one has read
+ * the schema; not when PATH-wal holds rows, which immutable would leave out.  Else 0 (*h, closed
+ * and reopened or not, is for the caller's error message and sqlite3_close). */
+int hd_db_reopen_immutable(const char *path, sqlite3 **h, int flags);
 
 /* Opens an existing database read-only (for analysis and export): no schema is applied and
  * every write fails with HD_EIO.  In a read-only folder or file system (no -shm can be made)
