@@ -53,23 +53,28 @@
  *                  collision, above VTOL L).  A touching pair with |h'| <= vtol is sliding, not
  *                  colliding: it is skipped (this also keeps an alpha = 0 collision, after which
  *                  h' = 0 up to round-off, from re-colliding) until rotation drives it into
- *                  contact again (h' < -vtol while h <= TOL_C D): then it collides at once.  At
- * alpha = 0 a sustained sliding contact is thus a train of ever smaller collisions, which the
- * engine reports as inelastic collapse (the rigid-body limit of a lasting contact). TOL_0 = 1e-10
- * at t = 0 a pair with h <= TOL_0 D (a gap or an overlap left by round-off) is in contact now:
- * approaching from h <= TOL_C D -> t = 0 is returned (from a larger gap the search goes on, as
- * for any pair: a review found pairs at gaps of 5e-11 D collided at t = 0 that never touch, a
- * graze or a fast spinner's twin disk); otherwise (the pair has just collided) it is ignored until
- * it has separated to h > TOL_SEP = 2 TOL_0 or approaches again from h > TOL_C; after that it is an
- * ordinary pair, so its next real contact (a fast spinner swinging its other disk round, or the
- * same disk pair coming back) is found.  While a pair is ignored the step is bounded by the time
- * its gap could reach TOL_SEP D (h'' <= 2 L^2/D + K), so CA cannot jump over its separation and
- * return; or, when it recedes (h' > 0), by the larger root tau_hi of bound (ii), h + h' tau - K
- * tau^2/2, if that is longer: the gap is > 0 on (tau_lo, tau_hi) with tau_lo < 0, or ~ -h/h' ~
- * 1e-16 for a round-off overlap that is receding (the collision just done), so no contact of that
- * pair, nor a separation and return, fits before tau_hi (ign_step). This saves the evaluation at
- * the separation of every just-collided pair. Linear (closed-form) pairs use the same TOL_0 and
- * vtol rules and report a contact whose normal velocity at contact is below -vtol.
+ *                  contact again (h' < -vtol while h <= TOL_C D): then it collides at once.
+ *                  At alpha = 0 a sustained sliding contact is thus a train of ever smaller
+ *                  collisions, which the engine reports as inelastic collapse (the rigid-body
+ *                  limit of a lasting contact).
+ *   TOL_0 = 1e-10  at t = 0 a pair with h <= TOL_0 D (a gap or an overlap left by round-off) is
+ *                  in contact: approaching from h <= TOL_C D, t = 0 is returned (from a larger
+ *                  gap the search goes on, as for any pair: a review found pairs at gaps of
+ *                  5e-11 D collided at t = 0 that never touch, a graze or a fast spinner's twin
+ *                  disk); not approaching (the pair has just collided), it is ignored until it
+ *                  has separated to h > TOL_SEP = 2 TOL_0 or approaches again from h > TOL_C;
+ *                  after that it is an ordinary pair, so its next real contact (a fast spinner
+ *                  swinging its other disk round, or the same disk pair coming back) is found.
+ *                  While a pair is ignored the step is bounded by the time its gap could reach
+ *                  TOL_SEP D (h'' <= 2 L^2/D + K), so CA cannot jump over its separation and
+ *                  return; or, when it recedes (h' > 0), by the larger root tau_hi of bound
+ *                  (ii), h + h' tau - K tau^2/2, if that is longer: the gap is > 0 on
+ *                  (tau_lo, tau_hi) with tau_lo < 0, or ~ -h/h' ~ 1e-16 for a round-off overlap
+ *                  that is receding (the collision just done), so no contact of that pair, nor
+ *                  a separation and return, fits before tau_hi (ign_step).  This saves the
+ *                  evaluation at the separation of every just-collided pair.
+ * Linear (closed-form) pairs use the same TOL_C, TOL_0 and vtol rules and report a contact whose
+ * normal velocity at contact is below -vtol.
  *
  * Termination: each step is >= min(h)/L > TOL_C D / L or, for ignored pairs, bounded below by the
  * time to reach TOL_SEP; the loop stops at min(tmax, parting time).  As a guard against a
