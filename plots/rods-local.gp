@@ -4,17 +4,25 @@ do for [fmt in "png svg"] {
   ext = fmt
   set output O.'/rods-density.'.ext
   set multiplot layout 1,2 title 'Figs. 3-4: coarse-grained density (100 bins)'
-  set view map; set xlabel 'x'; set ylabel 't'; set palette gray negative; set cbrange [0:5]
+  set view map scale 1; set xlabel 'x'; set ylabel 't' rotate by 90; set xtics 250
+  set palette gray negative; set cbrange [0:5]; set lmargin 9; set rmargin 9
   splot D.'/rods-stochastic.density.tsv' u 3:1:4 w pm3d notitle
-  set logscale y; set ylabel 't (log)'
+  set logscale y; set format y '10^{%L}'; set cblabel 'rods per unit length' offset 1.5
   splot D.'/rods-stochastic.density.tsv' u 3:1:4 w pm3d notitle
-  unset multiplot; unset logscale; unset view; set autoscale cb
+  unset multiplot; unset logscale; unset view; set autoscale cb; unset cblabel; set xtics autofreq
+  set format y '% h'; unset lmargin; unset rmargin
   set output O.'/rods-phase.'.ext
-  set multiplot layout 1,2 title 'Fig. 5: phase space at two times'
-  set xlabel 'x'; set ylabel 'v'
-  plot D.'/rods-stochastic.phase1.tsv' u 2:3 w d t columnhead(1)
+  set multiplot layout 1,2 title 'Fig. 5: phase space (x, v) of every rod at two times'
+  set xlabel 'x'; set ylabel 'v'; set xtics 250; set mxtics 5
+  # each panel's time is the first line of its TSV ("# t = ..."); both share the v range
+  stats D.'/rods-stochastic.phase1.tsv' u 3 nooutput name 'P1'
+  stats D.'/rods-stochastic.phase2.tsv' u 3 nooutput name 'P2'
+  set yrange [(P1_min < P2_min ? P1_min : P2_min):(P1_max > P2_max ? P1_max : P2_max)]
+  set title system("head -1 '".D."/rods-stochastic.phase1.tsv' | sed 's/^# //'")
+  plot D.'/rods-stochastic.phase1.tsv' u 2:3 w d notitle
+  set title system("head -1 '".D."/rods-stochastic.phase2.tsv' | sed 's/^# //'")
   plot D.'/rods-stochastic.phase2.tsv' u 2:3 w d notitle
-  unset multiplot
+  unset multiplot; unset title; set autoscale y; set xtics autofreq; unset mxtics
   set output O.'/rods-local.'.ext
   set title 'Fig. 6: local kinetic energy and density (last snapshot)'
   set xlabel 'x'; set ylabel 'rho'; set y2label 'E_{local}'; set y2tics; set ytics nomirror
