@@ -24,7 +24,7 @@ int hd_ana_open(sqlite3 **db, const char *path, hd_error *err) {
   *db = NULL;
   if (access(path, F_OK) != 0) /* a missing file is bad input (exit 2), not a failed run */
     return hd_error_set(err, HD_EINPUT, "%s: no such database", path);
-  if (sqlite3_open_v2(path, db, SQLITE_OPEN_READONLY, NULL) != SQLITE_OK) {
+  if (hd_db_open_reader(path, db, 0) != SQLITE_OK) {
     hd_error_set(err, HD_EIO, "%s: cannot open database: %s", path,
                  *db ? sqlite3_errmsg(*db) : "out of memory");
     sqlite3_close(*db);

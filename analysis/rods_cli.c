@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "hd_ana_cli.h"
+#include "hd_anadb.h"
 #include "hd_scene.h"
 #include "hd_sim.h"
 #include "rods.h"
@@ -121,10 +122,11 @@ typedef struct rrun {
 
 static int open_run(const char *cmd, const ropts *o, rrun *r) {
   memset(r, 0, sizeof *r);
-  if (sqlite3_open_v2(o->db, &r->db, SQLITE_OPEN_READONLY, NULL) != SQLITE_OK) {
-    fprintf(stderr, "%s: %s: cannot open: %s\n", cmd, o->db, sqlite3_errmsg(r->db));
-    sqlite3_close(r->db);
-    return 1;
+  hd_error err;
+  hd_error_clear(&err);
+  if (hd_ana_open(&r->db, o->db, &err)) { /* a missing file or not a haff database: exit 2 */
+    fprintf(stderr, "%s: %s\n", cmd, err.msg);
+    return hd_exit_code(err.code);
   }
   sqlite3_stmt *st;
   const char *sql = o->run >= 0 ? "SELECT id, scene FROM runs WHERE id = ?1"
@@ -139,7 +141,6 @@ static int open_run(const char *cmd, const ropts *o, rrun *r) {
   int rc = 2;
   if (sqlite3_step(st) == SQLITE_ROW) {
     r->id = (long)sqlite3_column_int64(st, 0);
-    hd_error err;
     if (hd_scene_load_string(&r->sc, (const char *)sqlite3_column_text(st, 1), "runs.scene", NULL,
                              0, &err) == HD_OK &&
         r->sc.n_rods > 0)

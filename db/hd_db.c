@@ -194,7 +194,11 @@ static int db_alloc_open(hd_db **out, const char *path, int flags, hd_error *err
   /* NOMUTEX: SQLite's per-call locking (17 % of a logged run) is not needed: the connection is
    * used by one thread at a time, the writer between hand-offs and the caller only after
    * drain(), and the hand-off (mu, cv) orders their accesses. */
-  if (sqlite3_open_v2(path, &db->db, flags | SQLITE_OPEN_NOMUTEX, NULL) != SQLITE_OK) {
+  int orc =
+      flags & SQLITE_OPEN_READONLY
+          ? hd_db_open_reader(path, &db->db, (flags & ~SQLITE_OPEN_READONLY) | SQLITE_OPEN_NOMUTEX)
+          : sqlite3_open_v2(path, &db->db, flags | SQLITE_OPEN_NOMUTEX, NULL);
+  if (orc != SQLITE_OK) {
     int rc = db->db ? sql_error(db, err, "open")
                     : hd_error_set(err, HD_ENOMEM, "%s: open: out of memory", path);
     db_free(db);
@@ -287,6 +291,14 @@ static int uri_immutable(const char *path, char *buf, size_t size) {
   if (k + 12 >= size) return -1;
   snprintf(buf + k, size - k, "?immutable=1");
   return 0;
+}
+
+int hd_db_open_reader(const char *path, sqlite3 **h, int flags) {
+  /* READWRITE opens a write-protected file read-only by itself; without CREATE a missing file
+   * is SQLITE_CANTOPEN, as with READONLY */
+  int rc = sqlite3_open_v2(path, h, flags | SQLITE_OPEN_READWRITE, NULL);
+  if (rc == SQLITE_OK) rc = sqlite3_exec(*h, "PRAGMA query_only = 1", NULL, NULL, NULL);
+  return rc;
 }
 
 int hd_db_reopen_immutable(const char *path, sqlite3 **h, int flags) {

@@ -74,6 +74,13 @@ const char *hd_db_kind_name(int kind);
  * Returns HD_OK or HD_EIO with err set. */
 int hd_db_open(hd_db **out, const char *path, hd_error *err);
 
+/* Opens PATH (which must exist) for reading, as sqlite3_open_v2 with flags: read-write when
+ * the file may be written, with PRAGMA query_only (no statement can change it), so that the
+ * last reader to close removes the -wal and -shm files that SQLite makes for a database in WAL
+ * mode (a read-only connection leaves them beside it for good); read-only when the file is
+ * write-protected.  Returns SQLite's code; *h as sqlite3_open_v2 leaves it. */
+int hd_db_open_reader(const char *path, sqlite3 **h, int flags);
+
 /* After reading the schema through *h failed: if it failed because SQLite cannot make the
  * log's index (-shm) in a read-only folder or file system, replaces *h by a connection that
  * reads PATH as immutable (opened with flags | READONLY) and returns 1 once that one has read

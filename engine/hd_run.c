@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -52,25 +53,56 @@ typedef struct runner {
   double last_commit_wall; /* monotonic time of the last commit forced by the clock */
 } runner;
 
+/* The path of run r's lock file, DB.lock. */
+static void lock_path(const runner *r, char *path, size_t size) {
+  snprintf(path, size, "%s.lock", r->o->db_path);
+}
+
+/* Whether fd is still the file at path (run_unlock may have removed it). */
+static int same_file(int fd, const char *path) {
+  struct stat a, b;
+  return fstat(fd, &a) == 0 && stat(path, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+}
+
 /* Takes the lock that says "this process drives run r->run": a write lock on byte r->run of
  * the file DB.lock, which the kernel drops when the process ends, however it ends (kill -9
  * too).  A resume of a run whose lock another process holds is refused: it used to take over a
- * run still going and write every row twice. */
+ * run still going and write every row twice.  The last process to let go of the file removes it
+ * (run_unlock), so a lock is only taken on the file that is at the path once it is held;
+ * otherwise it is taken again on the new one. */
 static int run_lock(runner *r, hd_error *err) {
   char path[4200];
-  snprintf(path, sizeof path, "%s.lock", r->o->db_path);
-  int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0)
-    return hd_error_set(err, HD_EIO, "%s: cannot open the run lock: %s", path, strerror(errno));
-  struct flock fl;
-  memset(&fl, 0, sizeof fl);
-  fl.l_type = F_WRLCK;
-  fl.l_whence = SEEK_SET;
-  fl.l_start = (off_t)r->run;
-  fl.l_len = 1;
-  if (fcntl(fd, F_SETLK, &fl) != 0) {
+  lock_path(r, path, sizeof path);
+  for (int attempt = 0;; attempt++) {
+    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0)
+      return hd_error_set(err, HD_EIO, "%s: cannot open the run lock: %s", path, strerror(errno));
+    struct flock fl;
+    memset(&fl, 0, sizeof fl);
+    fl.l_type = F_WRLCK;
+    fl.l_whence = SEEK_SET;
+    fl.l_start = (off_t)r->run;
+    fl.l_len = 1;
+    if (fcntl(fd, F_SETLK, &fl) == 0) {
+      if (same_file(fd, path)) {
+        r->lock_fd = fd;
+        return HD_OK;
+      }
+      close(fd); /* removed by the last holder meanwhile: the lock is on a file nobody sees */
+      continue;
+    }
     int e = errno;
+    /* the whole file locked (l_start = l_len = 0; a run's lock is byte id >= 1): its last
+     * holder removing it, for a moment; then try again */
+    struct flock who = fl;
+    int removing = (e == EACCES || e == EAGAIN) && fcntl(fd, F_GETLK, &who) == 0 &&
+                   who.l_type != F_UNLCK && who.l_start == 0 && who.l_len == 0;
     close(fd);
+    if (removing && attempt < 1000) {
+      const struct timespec ms = {0, 1000000L};
+      nanosleep(&ms, NULL);
+      continue;
+    }
     if (e == EACCES || e == EAGAIN)
       return hd_error_set(err, HD_EINPUT,
                           "run %lld of %s is being run by another process (wait for it to end, "
@@ -79,12 +111,20 @@ static int run_lock(runner *r, hd_error *err) {
     return hd_error_set(err, HD_EIO, "%s: cannot lock run %lld: %s", path, (long long)r->run,
                         strerror(e));
   }
-  r->lock_fd = fd;
-  return HD_OK;
 }
 
+/* Lets go of the run's lock; removes DB.lock when no other process holds a lock in it (a
+ * lock on the whole file, which fails if one does, is taken for the removal). */
 static void run_unlock(runner *r) {
-  if (r->lock_fd >= 0) close(r->lock_fd);
+  if (r->lock_fd < 0) return;
+  struct flock fl;
+  memset(&fl, 0, sizeof fl);
+  fl.l_type = F_WRLCK;
+  fl.l_whence = SEEK_SET; /* l_start = l_len = 0: the whole file */
+  char path[4200];
+  lock_path(r, path, sizeof path);
+  if (fcntl(r->lock_fd, F_SETLK, &fl) == 0 && same_file(r->lock_fd, path)) unlink(path);
+  close(r->lock_fd);
   r->lock_fd = -1;
 }
 

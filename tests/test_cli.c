@@ -596,7 +596,8 @@ static void unwritable_db(void **state) {
 }
 
 /* A sparsely logged run commits what it has every second (hd_run.c), so that its rows can be
- * read while it goes on, and another run appends to the same file meanwhile.  Logging every
+ * read while it goes on, and another run appends to the same file meanwhile; the lock file
+ * DB.lock stays while a run holds a lock in it and goes with the last.  Logging every
  * 10^4th collision gives ~10^2 rows/s here: without the 1-s commit its first rows would wait
  * for the writer's 4096-row buffer and a 10^4-row batch (minutes), and the deadline of 30 s
  * below would fail; with it they are there after about a second. */
@@ -627,9 +628,20 @@ static void live_run_commits_every_second(void **state) {
   assert_true(seen > 0);
   /* a second run appends to the file while the first goes on */
   int rc = sh("%s run short.ini -o live.db --quiet", haff);
+  /* which leaves the lock file, which holds the live run's lock, in place: a resume of the live
+   * run is still refused (a new file at the path would have let it through) */
+  int lock_kept = exists("live.db.lock");
+  int resume_rc = sh("%s resume live.db --run 1 --quiet", haff);
   kill(pid, SIGINT);
   waitpid(pid, &st, 0);
   assert_int_equal(rc, 0);
+  assert_true(lock_kept);
+  assert_int_equal(resume_rc, 2);
+  /* the last run to let go of the lock file removes it; readers leave no -wal or -shm */
+  assert_false(exists("live.db.lock"));
+  assert_int_equal(sh("%s export xyz live.db --run 2 > /dev/null", haff), 0);
+  assert_false(exists("live.db-wal"));
+  assert_false(exists("live.db-shm"));
   assert_true(WIFEXITED(st) && WEXITSTATUS(st) == 1);
   assert_int_equal(
       q1("live.db", "SELECT count(*) FROM runs WHERE id = 1 AND status = 'interrupted'"), 1);
