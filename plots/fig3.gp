@@ -13,7 +13,7 @@ stats in using 1 nooutput
 nb = STATS_blocks
 set xlabel "ν_0^{eff} t"
 set ylabel "(1 - α^2) N_{atcoll}/N"
-set key top left
+set key bottom right  # the curves rise from the bottom left
 plot for [i=0:nb-1] in index i using 8:7 with points pt 7 ps 0.5 title columnheader(1), \
      for [i=0:nb-1] in index i using 8:10 with lines dt 2 lw 2 lc rgb "black" \
          title (i == 0 ? "eq. (31): (1-α^2) ln(1+γν_0 t)/γ" : "")
