@@ -401,6 +401,10 @@ void hd_predict_prefetch_far(void *ctx, int32_t i, int stage) {
   int n = event_cells(s, b, cells);
   if (stage == 1) { /* 2 ahead: its partner and its cells' list heads */
     HD_PREFETCH_PARTNER(s, b);
+    if (b->p_type == HD_EV_PAIR && b->p_t < b->c_t) { /* a collision: the row names both */
+      __builtin_prefetch(&s->id[i]);
+      __builtin_prefetch(&s->id[b->p_partner]);
+    }
     for (int k = 0; k < n; k++) __builtin_prefetch(&s->head[cells[k]]);
     return;
   }

@@ -33,7 +33,9 @@ void hd_predict_after_pair(hd_sim *s, int32_t i, int32_t j);
  * outgrow a core's L2 cache.  Near (2 stages, within the last-level cache): body i 2 buckets
  * ahead, then its 3 rows of cell list heads and its partner.  Far (3 stages, past it): body i 4
  * buckets ahead, then the list heads of the cells its event walks (all 9, or for a crossing the
- * 3 new ones and its own) and its partner, then the first body of each of those cells. */
+ * 3 new ones and its own), its partner and, for a collision, both bodies' entries of id[] (the
+ * collision's row names them: 2 misses per collision at N = 1e6), then the first body of each
+ * of those cells. */
 void hd_predict_prefetch_near(void *ctx, int32_t i, int stage);
 void hd_predict_prefetch_far(void *ctx, int32_t i, int stage);
 /* Predicts body i's events after it crossed a cell face (wrapped: through the box edge). */
