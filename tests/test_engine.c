@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_fit.h>
@@ -259,6 +260,32 @@ static void lattice_fits_scene_check(void **state) {
         dmin = fmin(dmin, hypot(dx, dy));
       }
     assert_true(dmin >= range * (1 - 1e-12));
+    hd_sim_free(s);
+    hd_scene_free(&sc);
+  }
+}
+
+/* A box of more than ~1e308 diameters: the cell grid (floor(box / diameter) = inf, which the
+ * halving down to 4 cells per body never reduced) hung the set-up at 100 % CPU, deaf to
+ * SIGINT.  Now the grid starts at the cap.  The alarm turns a hang back into a failure. */
+static void huge_box_in_diameters(void **state) {
+  (void)state;
+  const char *scenes[] = {
+      "[system]\nbox = 10 10\n[disks]\ncount = 2\nsigma = 1e-308\n",
+      "[system]\nbox = 1e300 1e300\n[disks]\ncount = 2\nsigma = 1e-10\n",
+  };
+  for (int k = 0; k < 2; k++) {
+    char text[256];
+    snprintf(text, sizeof text, "%s[run]\nstop_time = 1\n", scenes[k]);
+    hd_scene sc;
+    hd_error err;
+    assert_int_equal(hd_scene_load_string(&sc, text, "huge.ini", NULL, 0, &err), HD_OK);
+    hd_sim *s;
+    alarm(60);
+    int rc = hd_sim_alloc(&s, &sc, &err);
+    alarm(0);
+    assert_int_equal(rc, HD_OK);
+    assert_true((int64_t)s->ncx * s->ncy <= 4 * s->n);
     hd_sim_free(s);
     hd_scene_free(&sc);
   }
@@ -555,6 +582,7 @@ static void cooling_many_decades(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(head_on),
+      cmocka_unit_test(huge_box_in_diameters),
       cmocka_unit_test(oblique_grazing_periodic),
       cmocka_unit_test(collision_across_wrap),
       cmocka_unit_test(image_code_long_runs),
