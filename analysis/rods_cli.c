@@ -638,12 +638,14 @@ int haff_rods_collapse_main(int argc, char **argv) {
   char nbuf[512];
   snprintf(nbuf, sizeof nbuf, "%s", nl);
   for (char *sn = strtok(nbuf, ","); sn; sn = strtok(NULL, ",")) {
-    long N = atol(sn);
+    whole_number(sn, &x); /* checked above; "1e4" too, which atol read as 1 */
+    long N = (long)x;
     char ebuf[512];
     snprintf(ebuf, sizeof ebuf, "%s", el);
     char *save = NULL;
     for (char *se = strtok_r(ebuf, ",", &save); se; se = strtok_r(NULL, ",", &save)) {
-      double eps = atof(se);
+      double eps;
+      finite_number(se, &eps);
       long col = 0;
       for (long s = 1; s <= seeds; s++) {
         hd_rods_params p;

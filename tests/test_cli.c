@@ -371,6 +371,12 @@ static void rods_collapse_counts(void **state) {
   assert_int_equal(col, 70);
   assert_int_equal(runs, 70);
   assert_true(frac == 1.0);
+  /* --n 1e1 is N = 10 (atol read it as 1, an odd count that was refused) */
+  assert_int_equal(
+      sh("(%s rods-collapse --n 1e1 --eps 3e-1 --seeds 2 --cpd 50 > e1.tsv && %s rods-collapse "
+         "--n 10 --eps 0.3 --seeds 2 --cpd 50 > e2.tsv && cmp -s e1.tsv e2.tsv)",
+         haff, haff),
+      0);
   /* 4 rods at eps 0.3 cool for ever (no collapse) until time runs out near DBL_MAX: counted as
    * not collapsed (it stopped the scan with an error once the ring kept cooling, 2d753ec) */
   assert_int_equal(sh("%s rods-collapse --n 4 --eps 0.3 --seeds 1 --cpd 1000 > rc4.tsv", haff), 0);
