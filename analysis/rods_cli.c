@@ -206,22 +206,37 @@ typedef struct rsnap {
 
 static void snap_free(rsnap *s) {
   free(s->x), free(s->v), free(s->tb);
+  s->x = s->v = s->tb = NULL;
 }
 
-/* The rods at snapshot time t into s (snap_free). */
-static int snapshot(rrun *r, double t, rsnap *s) {
+/* Says that cmd ran out of memory; returns 1 (the exit code). */
+static int out_of_memory(const char *cmd) {
+  fprintf(stderr, "%s: out of memory\n", cmd);
+  return 1;
+}
+
+/* The rods at snapshot time t into s (snap_free).  Returns 0, or 1 after saying why on stderr
+ * (nothing left allocated). */
+static int snapshot(const char *cmd, rrun *r, double t, rsnap *s) {
   long n = r->sc.n_rods;
   s->t = t;
   s->x = calloc((size_t)n, sizeof(double));
   s->v = calloc((size_t)n, sizeof(double));
   s->tb = calloc((size_t)n, sizeof(double));
-  if (!s->x || !s->v || !s->tb) return 1;
+  if (!s->x || !s->v || !s->tb) {
+    snap_free(s);
+    return out_of_memory(cmd);
+  }
   sqlite3_stmt *st;
   if (sqlite3_prepare_v2(r->db,
                          "SELECT body, x, vx, omega FROM states WHERE run = ?1 AND kind = 'rod' "
                          "AND t = ?2 AND label IN ('initial','velocities','final')",
-                         -1, &st, NULL) != SQLITE_OK)
+                         -1, &st, NULL) != SQLITE_OK) {
+    fprintf(stderr, "%s: cannot read the states of run %ld: %s\n", cmd, r->id,
+            sqlite3_errmsg(r->db));
+    snap_free(s);
     return 1;
+  }
   sqlite3_bind_int64(st, 1, r->id);
   sqlite3_bind_double(st, 2, t);
   while (sqlite3_step(st) == SQLITE_ROW) {
@@ -264,11 +279,10 @@ static int start_at(int argc, char **argv, const char *usage, int bins, ropts *o
   int rc = start(argc, argv, usage, bins, o, r);
   if (rc) return rc;
   double t;
-  if (pick_time(argv[0], r, o, &t)) {
+  if (pick_time(argv[0], r, o, &t) || snapshot(argv[0], r, t, s)) {
     close_run(r);
     return 1;
   }
-  snapshot(r, t, s);
   return 0;
 }
 
@@ -294,10 +308,15 @@ int haff_rods_energy_main(int argc, char **argv) {
   double rate_i = hd_rods_rate_ideal(N, 2 * es * (double)N / (double)(N - 1));
   double rate_35 = hd_rods_rate_eq35(N, nmod) * sqrt(sc->rod_temperature);
   sqlite3_stmt *st;
-  sqlite3_prepare_v2(r.db,
-                     "SELECT t, collisions, cpd, e_tr, e_rot FROM samples WHERE run = ?1 "
-                     "ORDER BY t",
-                     -1, &st, NULL);
+  if (sqlite3_prepare_v2(r.db,
+                         "SELECT t, collisions, cpd, e_tr, e_rot FROM samples WHERE run = ?1 "
+                         "ORDER BY t",
+                         -1, &st, NULL) != SQLITE_OK) {
+    fprintf(stderr, "%s: cannot read the samples of run %ld: %s\n", argv[0], r.id,
+            sqlite3_errmsg(r.db));
+    close_run(&r);
+    return 1;
+  }
   sqlite3_bind_int64(st, 1, r.id);
   printf("# run %ld: N=%ld gamma=%g nmod=%ld model=%s damping=%g\n", r.id, N, sc->rod_gamma, nmod,
          sc->rod_model ? "constant" : "stochastic", sc->rod_damping);
@@ -333,17 +352,26 @@ int haff_rods_density_main(int argc, char **argv) {
   long nt = snap_times(&r, &ts);
   if (!isnan(o.t)) {
     double t;
-    if (pick_time(argv[0], &r, &o, &t))
-      nt = 0;
-    else
-      ts[0] = t, nt = 1;
+    if (pick_time(argv[0], &r, &o, &t)) { /* it says why */
+      free(ts);
+      close_run(&r);
+      return 1;
+    }
+    ts[0] = t, nt = 1;
   }
   long *cnt = calloc((size_t)o.bins, sizeof *cnt);
   double *ek = calloc((size_t)o.bins, sizeof *ek);
+  if (!cnt || !ek) {
+    free(cnt), free(ek), free(ts), close_run(&r);
+    return out_of_memory(argv[0]);
+  }
   printf("t\tbin\tx\trho\te_local\n");
   for (long k = 0; k < nt; k++) {
     rsnap s;
-    snapshot(&r, ts[k], &s);
+    if (snapshot(argv[0], &r, ts[k], &s)) {
+      free(cnt), free(ek), free(ts), close_run(&r);
+      return 1;
+    }
     memset(cnt, 0, (size_t)o.bins * sizeof *cnt);
     memset(ek, 0, (size_t)o.bins * sizeof *ek);
     for (long i = 0; i < N; i++) {
@@ -402,6 +430,10 @@ int haff_rods_gofr_main(int argc, char **argv) {
   long N = r.sc.n_rods;
   double L = (double)N, dx = o.range / o.bins;
   double *h = calloc((size_t)o.bins, sizeof *h);
+  if (!h) {
+    snap_free(&s), close_run(&r);
+    return out_of_memory(argv[0]);
+  }
   for (long i = 0; i < N; i++)
     for (long j = i + 1; j < N; j++) {
       double d = fabs(x[i] - x[j]);
@@ -425,14 +457,19 @@ typedef struct rclusters {
   long *order, *start, *size;
 } rclusters;
 
-static void clusters_alloc(rclusters *cl, long n) {
+static void clusters_free(rclusters *cl) {
+  free(cl->order), free(cl->start), free(cl->size);
+  cl->order = cl->start = cl->size = NULL;
+}
+
+/* Returns 0, or 1 when out of memory (nothing left allocated). */
+static int clusters_alloc(rclusters *cl, long n) {
   cl->order = malloc((size_t)n * sizeof *cl->order);
   cl->start = malloc((size_t)n * sizeof *cl->start);
   cl->size = malloc((size_t)n * sizeof *cl->size);
-}
-
-static void clusters_free(rclusters *cl) {
-  free(cl->order), free(cl->start), free(cl->size);
+  if (cl->order && cl->start && cl->size) return 0;
+  clusters_free(cl);
+  return 1;
 }
 
 static long *g_sort_x;
@@ -485,7 +522,10 @@ int haff_rods_veldist_main(int argc, char **argv) {
   if (rc) return rc < 0 ? 0 : rc;
   long N = r.sc.n_rods;
   rclusters cl;
-  clusters_alloc(&cl, N);
+  if (clusters_alloc(&cl, N)) {
+    snap_free(&s), close_run(&r);
+    return out_of_memory(argv[0]);
+  }
   const double *x = s.x, *v = s.v;
   const long *order = cl.order, *start = cl.start, *size = cl.size;
   long nc = find_clusters(x, N, o.gap, &cl), pick = 0;
@@ -500,6 +540,11 @@ int haff_rods_veldist_main(int argc, char **argv) {
     }
   }
   double *w = malloc((size_t)N * sizeof *w);
+  double *ha = calloc((size_t)o.bins, sizeof *ha), *hc = calloc((size_t)o.bins, sizeof *hc);
+  if (!w || !ha || !hc) {
+    free(w), free(ha), free(hc), clusters_free(&cl), snap_free(&s), close_run(&r);
+    return out_of_memory(argv[0]);
+  }
   double ma = 0, sa = 0, mc = 0, scl = 0, lo = INFINITY, hi = -INFINITY;
   for (long i = 0; i < N; i++) {
     w[i] = sqrt(mass(&r.sc, i)) * v[i];
@@ -515,7 +560,6 @@ int haff_rods_veldist_main(int argc, char **argv) {
   mc /= (double)ncl, scl = sqrt(fmax(scl / (double)ncl - mc * mc, 0));
   double dw = (hi - lo) / o.bins;
   if (!(dw > 0)) dw = 1;
-  double *ha = calloc((size_t)o.bins, sizeof *ha), *hc = calloc((size_t)o.bins, sizeof *hc);
   for (long i = 0; i < N; i++) {
     long b = (long)((w[i] - lo) / dw);
     ha[b < o.bins ? b : o.bins - 1] += 1.0 / ((double)N * dw);
@@ -552,12 +596,18 @@ int haff_rods_clusters_main(int argc, char **argv) {
   double *ts;
   long nt = snap_times(&r, &ts);
   rclusters cl;
-  clusters_alloc(&cl, N);
+  if (clusters_alloc(&cl, N)) {
+    free(ts), close_run(&r);
+    return out_of_memory(argv[0]);
+  }
   const long *size = cl.size;
   printf("t\tclusters\tlargest\tin_clusters\n");
   for (long k = 0; k < nt; k++) {
     rsnap s;
-    snapshot(&r, ts[k], &s);
+    if (snapshot(argv[0], &r, ts[k], &s)) {
+      clusters_free(&cl), free(ts), close_run(&r);
+      return 1;
+    }
     long nc = find_clusters(s.x, N, o.gap, &cl), big = 0, cnt = 0, in = 0;
     for (long c = 0; c < nc; c++)
       if (size[c] >= o.minsize) cnt++, in += size[c], big = size[c] > big ? size[c] : big;
