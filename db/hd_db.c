@@ -328,7 +328,10 @@ int hd_db_open_readonly(hd_db **out, const char *path, hd_error *err) {
     }
     rc = db->db ? sql_error(db, err, "open")
                 : hd_error_set(err, HD_ENOMEM, "%s: open: out of memory", path);
-    if (db->db && (sqlite3_errcode(db->db) & 0xff) == SQLITE_NOTADB) rc = err->code = HD_EINPUT;
+    if (db->db && (sqlite3_errcode(db->db) & 0xff) == SQLITE_NOTADB) {
+      rc = HD_EINPUT; /* bad input, not a failed read */
+      if (err) err->code = rc;
+    }
     db_free(db);
     return rc;
   }

@@ -1,7 +1,9 @@
 /* `haff mc eps`: sample, study the convergence of, or tabulate p_beta(eps) (mc/eps.h). */
+#include <errno.h>
 #include <getopt.h>
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_sort.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -54,10 +56,18 @@ static int parse_d(const char *s, double *out) {
   return *s && !*end && !isnan(*out);
 }
 
+/* A whole number that fits a long (out of range is an error, not LONG_MAX). */
 static int parse_l(const char *s, long *out) {
   char *end;
+  errno = 0;
   *out = strtol(s, &end, 10);
-  return *s && !*end;
+  return *s && !*end && errno != ERANGE;
+}
+
+/* A whole number that fits an int: --adapt, --nbeta and --nu are ints, and 4294967312 cast to
+ * one was 16 (accepted); their own ranges are checked where they are used. */
+static int parse_int(const char *s, long *out) {
+  return parse_l(s, out) && *out >= INT_MIN && *out <= INT_MAX;
 }
 
 /* Mean, stderr, sd of x[0..n). */
@@ -271,7 +281,7 @@ int hd_mc_eps_main(int argc, char **argv) {
       ok = parse_d(optarg, &o.step);
       break;
     case 'a':
-      ok = parse_l(optarg, &adapt);
+      ok = parse_int(optarg, &adapt);
       break;
     case 'r':
       o.richardson = 1;
@@ -295,10 +305,10 @@ int hd_mc_eps_main(int argc, char **argv) {
       ok = parse_d(optarg, &bmax);
       break;
     case 'K':
-      ok = parse_l(optarg, &nbeta);
+      ok = parse_int(optarg, &nbeta);
       break;
     case 'U':
-      ok = parse_l(optarg, &nu);
+      ok = parse_int(optarg, &nu);
       break;
     case '?' + 256:
       usage(stdout);

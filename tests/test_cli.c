@@ -309,6 +309,12 @@ static void bad_input(void **state) {
             "--model does not apply with --convergence");
   bad_usage("mc fmean --convergence --scan 1:2:1", "--scan does not apply with --convergence");
   bad_usage("mc fmean --convergence --d 2", "--convergence with --d needs --a");
+  /* ints given past their range were cast (4294967312 -> 16, accepted); a long past its own
+   * range was LONG_MAX */
+  bad_usage("mc eps --gamma 0.8 --adapt 4294967312", "bad value '4294967312' for --adapt");
+  bad_usage("mc eps --gamma 0.8 --tabulate --db x.db --nbeta 4294967321",
+            "bad value '4294967321' for --nbeta");
+  bad_usage("mc eps --gamma 0.8 --samples 99999999999999999999", "for --samples");
   bad_usage("mc fmean --scan 1:2:1 --a 1", "--a does not apply with --scan");
   bad_usage("mc fmean --fig4-data --a 1 --samples 10", "--samples does not apply with --fig4-data");
   assert_int_equal(sh("%s mc fmean --fig4-data --a 1 --d 2 >/dev/null", haff), 0);
