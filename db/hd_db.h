@@ -108,7 +108,8 @@ int hd_db_run_begin(hd_db *db, const char *scene_text, unsigned long long seed, 
                     int64_t *run, hd_error *err);
 
 /* Sets status ('running','done','interrupted','collapsed','failed'), events, wall_seconds and
- * (for a final status) finished; commits the open batch first. */
+ * (for a final status) finished; commits the open batch first.  'done' and 'collapsed' also
+ * delete the run's checkpoint: such a run cannot be resumed. */
 int hd_db_run_status(hd_db *db, int64_t run, const char *status, int64_t events,
                      double wall_seconds, hd_error *err);
 

@@ -71,7 +71,8 @@ CREATE TABLE IF NOT EXISTS states (
   x REAL, y REAL, phi REAL, vx REAL, vy REAL, omega REAL
 );
 
--- Exact engine state for `haff resume` (opaque, bit-exact); only the newest per run is kept.
+-- Exact engine state for `haff resume` (opaque, bit-exact); only the newest per run is kept,
+-- and none once the run is done or collapsed (it cannot be resumed).
 CREATE TABLE IF NOT EXISTS checkpoints (
   run   INTEGER NOT NULL REFERENCES runs(id),
   seq   INTEGER NOT NULL,     -- collisions (pair and wall, logged or not) up to here

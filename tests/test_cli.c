@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 static char dir[256];
+static char root[4096]; /* the source tree (the tests run from it): db/schema.sql */
 static const char *haff;
 
 /* Runs a shell command, returns its exit status; its stderr goes to dir/err.txt. */
@@ -109,6 +110,7 @@ static int setup(void **state) {
   }
   haff = getenv("HAFF_BIN");
   if (!haff) haff = "bin/haff";
+  assert_non_null(getcwd(root, sizeof root));
   char tmpl[] = "/tmp/haff-cli-XXXXXX";
   assert_non_null(mkdtemp(tmpl));
   snprintf(dir, sizeof dir, "%s", tmpl);
@@ -189,6 +191,8 @@ static void same_as_reference(const char *db) {
                    q1(db, "SELECT count(*) FROM ref.states"));
   assert_int_equal(q1(db, "SELECT count(*) FROM states WHERE label='velocities'"), 4000);
   assert_int_equal(q1(db, "SELECT status='done' FROM runs"), 1);
+  /* a done run cannot be resumed: its checkpoint is gone (~150 bytes per body) */
+  assert_int_equal(q1(db, "SELECT count(*) FROM checkpoints"), 0);
   /* as the uninterrupted run: no message left from the stop ("interrupted at ...") */
   assert_int_equal(q1(db, "SELECT count(*) FROM runs WHERE message IS NOT NULL"), 0);
 }
@@ -487,15 +491,24 @@ static void logged_restitution(void **state) {
 }
 
 /* Killed after its final state and checkpoint were written but before its status was: the
- * run is still 'running' (simulated on a copy of the finished reference run), and resume must
- * not add a second set of 'final' states (it deleted only states after the checkpoint's t, and
- * the final ones are at that t; review).  Then a 'failed' run whose final write broke (status
- * set by hand the same way) resumes to the same end. */
+ * run is still 'running', and resume must not add a second set of 'final' states (it deleted
+ * only states after the checkpoint's t, and the final ones are at that t; review).  Simulated
+ * on the reference scene run into a file whose trigger keeps the checkpoint that 'done'
+ * deletes, the status then set back by hand.  Then a 'failed' run whose final write broke
+ * (status set by hand the same way) resumes to the same end. */
 static void resume_after_the_last_step(void **state) {
   (void)state;
   if (!haff) skip();
+  assert_int_equal(sh("(sqlite3 kept.db < '%s/db/schema.sql' > /dev/null && sqlite3 kept.db "
+                      "\"CREATE TRIGGER keep BEFORE DELETE ON checkpoints WHEN (SELECT status "
+                      "FROM runs WHERE id = OLD.run) = 'done' BEGIN SELECT RAISE(IGNORE); END\" "
+                      "&& %s run s.ini -o kept.db --quiet && sqlite3 kept.db \"DROP TRIGGER "
+                      "keep\")",
+                      root, haff),
+                   0);
+  assert_int_equal(q1("kept.db", "SELECT count(*) FROM checkpoints"), 1);
   for (int k = 0; k < 2; k++) {
-    assert_int_equal(sh("cp ref.db last.db && sqlite3 last.db \"UPDATE runs SET status = '%s', "
+    assert_int_equal(sh("cp kept.db last.db && sqlite3 last.db \"UPDATE runs SET status = '%s', "
                         "message = 'x'\"",
                         k ? "failed" : "running"),
                      0);
@@ -504,7 +517,7 @@ static void resume_after_the_last_step(void **state) {
     assert_int_equal(sh("rm -f last.db last.db-wal last.db-shm"), 0);
   }
   /* a later run that failed in its set-up (no checkpoint) does not hide the resumable one */
-  assert_int_equal(sh("cp ref.db last.db && sqlite3 last.db \"UPDATE runs SET status = "
+  assert_int_equal(sh("cp kept.db last.db && sqlite3 last.db \"UPDATE runs SET status = "
                       "'interrupted'; INSERT INTO runs(id, scene, seed, status, started, version) "
                       "VALUES (2, '', 1, 'failed', 'x', 'x')\""),
                    0);
