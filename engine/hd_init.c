@@ -208,6 +208,17 @@ static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
                         sc->state_file, rows[r].line, b->k.x, b->k.y, s->lx, s->ly);
       break;
     }
+    /* a speed whose square overflows (|v| ~ 1e160) gave inf energies and a run that crossed
+     * cells for ever without a collision; 16 v^2 bounds the squares of relative velocities */
+    double v2 = b->k.vx * b->k.vx + b->k.vy * b->k.vy, w2 = b->k.omega * b->k.omega;
+    double e = 0.5 * hd_shape_mass(&s->shape[sp]) * v2 + 0.5 * hd_shape_inertia(&s->shape[sp]) * w2;
+    if (!isfinite(16 * v2) || !isfinite(16 * w2) || !isfinite(e)) {
+      rc = hd_error_set(err, HD_EINPUT,
+                        "%s:%ld: velocity (%g, %g) or omega %g too large: its square is not a "
+                        "finite number",
+                        sc->state_file, rows[r].line, b->k.vx, b->k.vy, b->k.omega);
+      break;
+    }
     hd_cells_insert(s, i, hd_cells_of(s, b->k.x, b->k.y));
     int o = overlaps_any(s, i);
     if (o == -2)

@@ -773,6 +773,8 @@ static int check_box(ctx *c) {
                 "box", NULL, "missing: give box = Lx Ly or area_fraction = eta");
   double area = hd_scene_covered_area(sc);
   if (kb == K_AREA) sc->box_x = sc->box_y = sqrt(area / sc->area_fraction);
+  if (!isfinite(sc->box_x) || !isfinite(sc->box_y)) /* the bodies' area overflowed (d ~ 1e160) */
+    return FAIL_KEY(c, kb, "gives a box that is not a finite number (the bodies cover %.6g)", area);
   double ext = 0;
   if (sc->n_dimers > 0) ext = sc->dimer_a + sc->dimer_d;
   if (sc->n_disks > 0 && sc->disk_sigma > ext) ext = sc->disk_sigma;

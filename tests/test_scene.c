@@ -238,6 +238,9 @@ static const bad_case bad_cases[] = {
     /* a dimer of a + d = 2 cannot fit an edge of 1.5 */
     {RUN "[system]\nbox = 1.5 10\n[dimers]\ncount = 1\n", NULL, HD_EINPUT,
      "bad.ini:4:", "[system] box", "too small"},
+    /* disks of 1e160 cover inf: the derived box was inf, and the cell grid's set-up hung */
+    {RUN "[system]\narea_fraction = 0.05\n[disks]\ncount = 10\nsigma = 1e160\n", NULL,
+     HD_EINPUT, "bad.ini:4:", "[system] area_fraction", "not a finite number"},
     /* 100 unit disks cover pi/4 = 0.785 of a 10 x 10 box: above the random limit 0.75 */
     {RUN "[system]\nbox = 10 10\n[disks]\ncount = 100\n", NULL, HD_EINPUT,
      "bad.ini:4:", "[system] box", "dense"},
