@@ -22,8 +22,9 @@ static int haff_tables(sqlite3 *db) {
 
 int hd_ana_open(sqlite3 **db, const char *path, hd_error *err) {
   *db = NULL;
-  if (access(path, F_OK) != 0) /* a missing file is bad input (exit 2), not a failed run */
-    return hd_error_set(err, HD_EINPUT, "%s: no such database", path);
+  /* a missing file or a directory is bad input (exit 2), not a failed read */
+  int prc = hd_db_check_path(path, 1, err);
+  if (prc) return prc;
   if (hd_db_open_reader(path, db, 0) != SQLITE_OK) {
     hd_error_set(err, HD_EIO, "%s: cannot open database: %s", path,
                  *db ? sqlite3_errmsg(*db) : "out of memory");

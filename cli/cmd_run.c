@@ -123,9 +123,13 @@ int haff_run_main(int argc, char **argv) {
   int64_t run = 0;
   rc = hd_run_new(&sc, &o, &run, &err);
   hd_scene_free(&sc);
+  if (rc == HD_EINTR) { /* the command that goes on, for this file and run */
+    fprintf(stderr, "haff run: %s (continue with: haff resume %s --run %lld)\n", err.msg, db,
+            (long long)run);
+    return hd_exit_code(rc);
+  }
   if (rc) {
-    fprintf(stderr, "haff run: %s%s\n", err.msg,
-            rc == HD_EINTR ? " (continue with: haff resume DB)" : "");
+    fprintf(stderr, "haff run: %s\n", err.msg);
     return hd_exit_code(rc);
   }
   if (note[0]) fprintf(stderr, "haff run: note: run %lld %s\n", (long long)run, note);

@@ -212,8 +212,11 @@ static int db_alloc_open(hd_db **out, const char *path, int flags, hd_error *err
 
 int hd_db_open(hd_db **out, const char *path, hd_error *err) {
   if (!out) return hd_error_set(err, HD_EINPUT, "hd_db_open: out is NULL");
+  *out = NULL;
+  int rc = hd_db_check_path(path, 0, err);
+  if (rc) return rc;
   hd_db *db;
-  int rc = db_alloc_open(&db, path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, err);
+  rc = db_alloc_open(&db, path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, err);
   if (rc) return rc;
   /* SQLite quietly falls back to read-only when the file is not writable; a run could then
    * not log anything, so say it now. */
@@ -226,6 +229,8 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err) {
   /* WAL + NORMAL: see the top of this file for why a kill -9 still leaves whole batches. */
   if (sqlite3_exec(db->db, "PRAGMA journal_mode=WAL", NULL, NULL, NULL) != SQLITE_OK) {
     rc = sql_error(db, err, "set WAL mode");
+    if ((sqlite3_errcode(db->db) & 0xff) == SQLITE_NOTADB)
+      rc = err ? (err->code = HD_EINPUT) : HD_EINPUT;
   } else if (sqlite3_exec(db->db, "PRAGMA synchronous=NORMAL", NULL, NULL, NULL) != SQLITE_OK) {
     rc = sql_error(db, err, "set synchronous");
   } else if (sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK) {
@@ -313,19 +318,46 @@ int hd_db_reopen_immutable(const char *path, sqlite3 **h, int flags) {
   return sqlite3_exec(*h, "SELECT count(*) FROM sqlite_schema", NULL, NULL, NULL) == SQLITE_OK;
 }
 
+int hd_db_check_path(const char *path, int must_exist, hd_error *err) {
+  struct stat st;
+  if (stat(path, &st) != 0) {
+    if (!must_exist) return HD_OK;
+    return hd_error_set(err, HD_EINPUT, "%s: no such database", path);
+  }
+  if (S_ISDIR(st.st_mode))
+    return hd_error_set(err, HD_EINPUT, "%s: is a directory, not a database file", path);
+  return HD_OK;
+}
+
+/* Whether h has the table runs: 1, 0, or -1 when the schema cannot be read. */
+static int has_runs(sqlite3 *h) {
+  sqlite3_stmt *st;
+  if (sqlite3_prepare_v2(h,
+                         "SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = "
+                         "'runs'",
+                         -1, &st, NULL) != SQLITE_OK)
+    return -1;
+  int r = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int(st, 0) > 0 : -1;
+  sqlite3_finalize(st);
+  return r;
+}
+
 int hd_db_open_readonly(hd_db **out, const char *path, hd_error *err) {
   if (!out) return hd_error_set(err, HD_EINPUT, "hd_db_open_readonly: out is NULL");
+  *out = NULL;
+  int rc = hd_db_check_path(path, 1, err);
+  if (rc) return rc;
   hd_db *db;
-  int rc = db_alloc_open(&db, path, SQLITE_OPEN_READONLY, err);
+  rc = db_alloc_open(&db, path, SQLITE_OPEN_READONLY, err);
   if (rc) return rc;
   db->readonly = 1;
   /* Reading the schema now turns "not a database" into an error here, not later. */
-  if (sqlite3_exec(db->db, "SELECT count(*) FROM sqlite_schema", NULL, NULL, NULL) != SQLITE_OK) {
-    if (hd_db_reopen_immutable(path, &db->db, SQLITE_OPEN_NOMUTEX)) {
-      sqlite3_extended_result_codes(db->db, 1);
-      *out = db;
-      return HD_OK;
-    }
+  int have = has_runs(db->db);
+  if (have < 0 && hd_db_reopen_immutable(path, &db->db, SQLITE_OPEN_NOMUTEX)) {
+    sqlite3_extended_result_codes(db->db, 1);
+    have = has_runs(db->db);
+  }
+  if (have < 0) {
     rc = db->db ? sql_error(db, err, "open")
                 : hd_error_set(err, HD_ENOMEM, "%s: open: out of memory", path);
     if (db->db && (sqlite3_errcode(db->db) & 0xff) == SQLITE_NOTADB) {
@@ -335,8 +367,19 @@ int hd_db_open_readonly(hd_db **out, const char *path, hd_error *err) {
     db_free(db);
     return rc;
   }
+  if (!have) {
+    db_free(db);
+    return hd_error_set(err, HD_EINPUT, "%s: not a haff database (no runs table)", path);
+  }
   *out = db;
   return HD_OK;
+}
+
+int hd_db_probe(const char *path, hd_error *err) {
+  hd_db *db;
+  int rc = hd_db_open_readonly(&db, path, err);
+  if (!rc) rc = hd_db_close(db, err);
+  return rc;
 }
 
 int hd_db_close(hd_db *db, hd_error *err) {

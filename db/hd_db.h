@@ -71,8 +71,18 @@ typedef struct hd_state_rec {
 const char *hd_db_kind_name(int kind);
 
 /* Opens (creating if needed) the database at path, applies the schema, sets WAL.
- * Returns HD_OK or HD_EIO with err set. */
+ * Returns HD_OK, HD_EINPUT (path is a directory or a file that is not an SQLite database) or
+ * HD_EIO with err set. */
 int hd_db_open(hd_db **out, const char *path, hd_error *err);
+
+/* HD_EINPUT with err set when PATH is a directory, or does not exist and must_exist; else
+ * HD_OK (a missing path is a new database to hd_db_open). */
+int hd_db_check_path(const char *path, int must_exist, hd_error *err);
+
+/* Whether PATH is a haff database, read without writing anything: HD_OK; HD_EINPUT when it is
+ * missing, a directory, not an SQLite file or has no runs table; HD_EIO when it cannot be
+ * read.  `haff resume` asks before hd_db_open, which would add haff's tables to any file. */
+int hd_db_probe(const char *path, hd_error *err);
 
 /* Opens PATH (which must exist) for reading, as sqlite3_open_v2 with flags: read-write when
  * the file may be written, with PRAGMA query_only (no statement can change it), so that the
@@ -90,8 +100,8 @@ int hd_db_reopen_immutable(const char *path, sqlite3 **h, int flags);
 
 /* Opens an existing database read-only (for analysis and export): no schema is applied and
  * every write fails with HD_EIO.  In a read-only folder or file system (no -shm can be made)
- * it reads the file as immutable.  Returns HD_OK, HD_EINPUT (not an SQLite file) or HD_EIO
- * with err set. */
+ * it reads the file as immutable.  Returns HD_OK, HD_EINPUT (missing, a directory, not an
+ * SQLite file, or no runs table: not a haff database) or HD_EIO with err set. */
 int hd_db_open_readonly(hd_db **out, const char *path, hd_error *err);
 
 /* Commits any open batch and closes. NULL is allowed. Returns HD_OK or HD_EIO. */

@@ -411,9 +411,9 @@ int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error
   double t = 0;
   unsigned long long seed = 0;
   *run = 0;
-  if (access(o->db_path, F_OK) != 0) /* not created by a mistyped name */
-    return hd_error_set(err, HD_EINPUT, "%s: no such database", o->db_path);
-  int rc = hd_db_open(&r.db, o->db_path, err);
+  /* not created by a mistyped name, nor haff's tables added to a file of someone else's */
+  int rc = hd_db_probe(o->db_path, err);
+  if (!rc) rc = hd_db_open(&r.db, o->db_path, err);
   if (!rc) rc = hd_db_find_resumable(r.db, want_run, &r.run, &text, &seed, err);
   if (!rc) {
     char name[64];

@@ -206,6 +206,8 @@ static void sigint_then_resume(void **state) {
   read_err(e, sizeof e);
   assert_int_equal(rc, 1);
   assert_non_null(strstr(e, "interrupted"));
+  /* the command to go on names this file and run (it said "haff resume DB") */
+  assert_non_null(strstr(e, "(continue with: haff resume int.db --run 1)"));
   assert_int_equal(q1("int.db", "SELECT status='interrupted' FROM runs"), 1);
   assert_int_equal(q1("int.db", "SELECT count(*) FROM checkpoints"), 1);
   /* the state at the interruption is readable in `states` too */
@@ -290,6 +292,32 @@ static void bad_input(void **state) {
   bad_usage("export xyz notadb.db", "file is not a database");
   /* a lone body with only stop_cpd or stop_events would never end (a lone disk, at rest, ran to
    * t = inf and failed on an event time of NaN; a lone dimer spun for ever): refused */
+  /* a file that is not haff's: resume reads it without writing (it added haff's tables and
+   * WAL mode to any SQLite file), the analyses and export say the same with exit 2 */
+  assert_int_equal(sh("sqlite3 foreign.db \"CREATE TABLE mydata(a)\" && : > empty.db && mkdir -p "
+                      "adir.db"),
+                   0);
+  bad_usage("resume foreign.db", "foreign.db: not a haff database (no runs table)");
+  assert_int_equal(q1("foreign.db", "SELECT count(*) FROM sqlite_schema"), 1);
+  bad_usage("resume empty.db", "empty.db: not a haff database");
+  assert_int_equal(sh("test ! -s empty.db"), 0);
+  bad_usage("export xyz empty.db", "not a haff database");
+  bad_usage("export xyz foreign.db", "not a haff database");
+  bad_usage("haff-fit adir.db", "adir.db: is a directory");
+  bad_usage("rods-energy adir.db", "adir.db: is a directory");
+  bad_usage("export xyz adir.db", "adir.db: is a directory");
+  bad_usage("resume adir.db", "adir.db: is a directory");
+  bad_usage("run s.ini -o adir.db", "adir.db: is a directory");
+  write_file("junk.db", "this is not an SQLite database, and it is long enough to be read as one "
+                        "by SQLite's header check, which wants at least a hundred bytes of it\n");
+  bad_usage("run s.ini -o junk.db", "file is not a database");
+  bad_usage("resume junk.db", "file is not a database");
+  /* a state whose speeds square to inf ran for ever, crossing cells without a collision */
+  write_file("fast.csv", "kind,x,y,phi,vx,vy,omega\ndisk,5,5,0,1e160,0,0\ndisk,10,5,0,-1,0,0\n");
+  write_file("fast.ini", "[system]\nbox = 20 20\n[init]\nstate = fast.csv\n[run]\n"
+                         "stop_events = 100\n");
+  bad_usage("run fast.ini -o fast.db", "fast.csv:2: velocity (1e+160, 0) or omega 0 too large");
+  assert_false(exists("fast.db"));
   write_file("one.ini", "[system]\nbox = 10 10\n[disks]\ncount = 1\n[run]\nstop_cpd = 10\n");
   bad_usage("run one.ini -o one.db", "one body alone never collides with another");
   assert_false(exists("one.db"));

@@ -635,7 +635,7 @@ static void read_only_connection(void **state) {
   for (int k = 0; k < 200; k++) fputs("this is not an SQLite database\n", f);
   fclose(f);
   db = NULL;
-  assert_int_equal(hd_db_open(&db, junk, &err), HD_EIO);
+  assert_int_equal(hd_db_open(&db, junk, &err), HD_EINPUT); /* bad input: exit 2 */
   assert_null(db);
   assert_non_null(strstr(err.msg, "not a database"));
 }
