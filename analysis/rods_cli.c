@@ -105,8 +105,12 @@ static int parse(int argc, char **argv, const char *usage, ropts *o) {
     fprintf(stderr, "%s: expected one database (see --help)\n", argv[0]);
     return 2;
   }
+  /* named one by one: each command reads some of them only */
   if (o->bins < 0 || o->gap <= 0 || o->range <= 0) {
-    fprintf(stderr, "%s: --bins, --gap and --range must be > 0\n", argv[0]);
+    fprintf(stderr, "%s: %s must be > 0\n", argv[0],
+            o->bins < 0   ? "--bins"
+            : o->gap <= 0 ? "--gap"
+                          : "--range");
     return 2;
   }
   o->db = argv[optind];
@@ -438,8 +442,8 @@ int haff_rods_gofr_main(int argc, char **argv) {
     for (long j = i + 1; j < N; j++) {
       double d = fabs(x[i] - x[j]);
       if (d > L / 2) d = L - d;
-      long b = (long)(d / dx);
-      if (b < o.bins) h[b] += 2;
+      double q = d / dx; /* compared as a double: a tiny --range makes it past a long */
+      if (q < o.bins) h[(long)q] += 2;
     }
   printf("# t = %.10g\nx\tg\n", s.t);
   for (int b = 0; b < o.bins; b++) /* uniform: N (N-1) 2 dx / L ordered pairs per bin */
@@ -626,8 +630,9 @@ int haff_rods_collapse_main(int argc, char **argv) {
       "usage: haff rods-collapse [--n LIST] [--eps LIST] [--seeds K] [--cpd C] [--gamma G]\n"
       "Scans the constant-eps ring for inelastic collapse: for every N in LIST [4,8,16,32,64,128]\n"
       "and eps in LIST [0.3,0.5,0.7,0.8,0.9,0.95], K [4] rings (seeds 1..K) run to C [2000]\n"
-      "collisions per rod or collapse.  Columns N eps collapsed runs frac n_my (McNamara and\n"
-      "Young's -ln(1-eps)/(1-eps)) my_predicts (1 if N > n_my) median_cpd_at_collapse.\n"
+      "collisions per rod (C <= 1e10) or collapse.  Columns N eps collapsed runs frac n_my\n"
+      "(McNamara and Young's -ln(1-eps)/(1-eps)) my_predicts (1 if N > n_my)\n"
+      "median_cpd_at_collapse.\n"
       "Masses alternate with ratio G [1: equal masses, as in McNamara and Young].\n";
   const char *nl = "4,8,16,32,64,128", *el = "0.3,0.5,0.7,0.8,0.9,0.95";
   long seeds = 4;
@@ -651,7 +656,10 @@ int haff_rods_collapse_main(int argc, char **argv) {
       seeds = (long)x;
       break;
     case 'c':
-      if (!finite_number(optarg, &x) || !(x > 0)) return bad_arg(argv[0], "--cpd", optarg);
+      /* at most 1e10: the collision count cpd N / 2 must be a long for 1e8 rods (1e300 gave
+       * LONG_MIN, no ring ran and every eps read as "0 collapsed") */
+      if (!finite_number(optarg, &x) || !(x > 0 && x <= 1e10))
+        return bad_arg(argv[0], "--cpd", optarg);
       cpd = x;
       break;
     case 'g':
@@ -674,8 +682,19 @@ int haff_rods_collapse_main(int argc, char **argv) {
   /* both lists checked before any ring runs */
   char buf[512];
   snprintf(buf, sizeof buf, "%s", nl);
-  for (char *sn = strtok(buf, ","); sn; sn = strtok(NULL, ","))
+  /* an empty item (4,,8 or "") is an error, not skipped; N odd is refused before the header */
+  if (!*nl || strstr(nl, ",,") || nl[0] == ',' || nl[strlen(nl) - 1] == ',')
+    return bad_arg(argv[0], "--n", nl);
+  if (!*el || strstr(el, ",,") || el[0] == ',' || el[strlen(el) - 1] == ',')
+    return bad_arg(argv[0], "--eps", el);
+  for (char *sn = strtok(buf, ","); sn; sn = strtok(NULL, ",")) {
     if (!whole_number(sn, &x) || x < 2 || x > 1e8) return bad_arg(argv[0], "--n", sn);
+    if (fmod(x, 2) != 0) {
+      fprintf(stderr, "%s: --n '%s': a ring holds an even number of rods (2 species alternate)\n",
+              argv[0], sn);
+      return 2;
+    }
+  }
   snprintf(buf, sizeof buf, "%s", el);
   for (char *se = strtok(buf, ","); se; se = strtok(NULL, ","))
     if (!finite_number(se, &x) || !(x >= 0 && x < 1)) return bad_arg(argv[0], "--eps", se);

@@ -442,6 +442,17 @@ static void rods_collapse_counts(void **state) {
   bad_usage("rods-collapse --seeds 2.5", "--seeds '2.5'");
   bad_usage("rods-energy x.db --bins 2.5", "--bins '2.5'");
   bad_usage("rods-energy x.db --gap abc", "--gap 'abc'");
+  /* a --cpd whose collision count is past a long ran no ring and printed "0 collapsed" */
+  bad_usage("rods-collapse --n 4 --eps 0.5 --seeds 1 --cpd 1e300", "--cpd '1e300'");
+  /* empty items were skipped, an odd N failed after the header */
+  bad_usage("rods-collapse --n 4,,8", "--n '4,,8'");
+  bad_usage("rods-collapse --n ''", "--n ''");
+  assert_int_equal(sh("%s rods-collapse --n 3 --seeds 1 > odd.tsv", haff), 2);
+  assert_int_equal(sh("test ! -s odd.tsv"), 0);
+  /* a --range so small that d / dx is past a long wrote h[LONG_MIN], which aliased bin 0 */
+  assert_int_equal(sh("%s rods-gofr r4.db --t 0 --range 1e-300 --bins 2 > g.tsv", haff), 0);
+  assert_int_equal(sh("(tail -n 2 g.tsv | awk '$2 != 0 { bad = 1 } END { exit bad }')"), 0);
+  bad_usage("rods-clusters r4.db --gap 0", "rods-clusters: --gap must be > 0");
 }
 
 /* A full disk (the file size limit of RLIMIT_FSIZE: haff ignores SIGXFSZ, which used to kill it
