@@ -447,8 +447,8 @@ static int set_value(ctx *c, int k, const char *v) {
     sc->n_rods = (long)x;
     return HD_OK;
   case K_RGAMMA:
-    if ((rc = get_num(c, k, v, 'u', &x))) return rc;
-    if (!(x > 0)) return FAIL_KEY(c, k, "must be in (0, 1]");
+    if ((rc = get_num(c, k, v, 0, &x))) return rc;
+    if (!(x > 0 && x <= 1)) return FAIL_KEY(c, k, "must be in (0, 1]"); /* 0 and 1.2 alike */
     sc->rod_gamma = x;
     return HD_OK;
   case K_RNMOD:

@@ -147,6 +147,12 @@ static int alloc_bare(hd_rods **out, const hd_rods_params *p, hd_error *err) {
     hd_eps_opts_default(&o);
     if (p->eps_step > 0) o.step = p->eps_step;
     rc = hd_eps_sampler_alloc(&r->sampler, p->gamma, &o, err);
+    if (rc == HD_EINPUT) { /* the scene's keys at fault, named so that the caller adds the file */
+      char msg[sizeof err->msg];
+      snprintf(msg, sizeof msg, "%s", err->msg);
+      hd_error_set(err, rc, "[rods] gamma = %g, eps_step = %g: %s (a larger gamma or eps_step)",
+                   p->gamma, o.step, msg);
+    }
     if (!rc && p->table) {
       gsl_rng *tr = gsl_rng_alloc(gsl_rng_mt19937);
       if (!tr)

@@ -708,7 +708,7 @@ static void rods_bad(void **state) {
       {"[rods]\ncount = 5\n[run]\nstop_time = 1\n", "r.ini:2", "[rods] count = 5", "even"},
       {"[rods]\ncount = 0\n[run]\nstop_time = 1\n", "r.ini:2", "[rods] count = 0", "["},
       {"[rods]\ncount = 4\ngamma = 1.5\n[run]\nstop_time = 1\n", "r.ini:3", "gamma = 1.5",
-       "[0, 1]"},
+       "(0, 1]"},
       {"[rods]\ncount = 4\ngamma = 0\n[run]\nstop_time = 1\n", "r.ini:3", "gamma = 0", "(0, 1]"},
       {"[rods]\ncount = 4\nmodel = fixed\n[run]\nstop_time = 1\n", "r.ini:3", "model = fixed",
        "stochastic or constant"},
