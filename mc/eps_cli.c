@@ -259,7 +259,10 @@ int hd_mc_eps_main(int argc, char **argv) {
   optind = 1;
   opterr = 0;
   int c, li = 0;
+  char given[32] = ""; /* the short codes of the options given, for the mode check below */
   while ((c = getopt_long(argc, argv, "", opts, &li)) != -1) {
+    if (c > 0 && c < 256 && !strchr(given, c) && strlen(given) < sizeof given - 1)
+      given[strlen(given)] = (char)c;
     int ok = 1;
     switch (c) {
     case 'g':
@@ -331,6 +334,20 @@ int hd_mc_eps_main(int argc, char **argv) {
     fprintf(stderr, "haff mc eps: --gamma is required (see --help)\n");
     return 2;
   }
+  /* an option the mode does not read is refused, not ignored (--tabulate --beta 5 ran with
+   * no word of the beta) */
+  const char *refused = tab ? "bBdc" : conv ? "darDmMKU" : "DmMKU";
+  for (const char *g = given; *g; g++)
+    if (strchr(refused, *g)) {
+      const char *name = "?";
+      for (int k = 0; opts[k].name; k++)
+        if (opts[k].val == *g) name = opts[k].name;
+      fprintf(stderr, "haff mc eps: --%s does not apply %s (see --help)\n", name,
+              tab    ? "with --tabulate"
+              : conv ? "with --convergence"
+                     : "without --tabulate");
+      return 2;
+    }
   if (isnan(beta2)) beta2 = beta;
   if (!(beta > 0) || !(beta2 > 0)) {
     fprintf(stderr, "haff mc eps: --beta and --beta2 must be > 0\n");

@@ -21,18 +21,20 @@ static void fmean_usage(FILE *out) {
           "\n"
           "Mean orientation factor <f> of dimer-dimer collisions (Costantini et al. 2005, eq. 36)\n"
           "and the paper's effective dimension D_e = DIM/<f>, for elongation a/d = A/D.\n"
-          "  --a A          bond length a (in the units of --d; required unless --scan)\n"
-          "  --d D          disk diameter (default 1)\n"
+          "  --a A          bond length a > 0 (in the units of --d; required unless --scan)\n"
+          "  --d D          disk diameter > 0 (default 1)\n"
           "  --model M      heuristic (paper: independent uniform angles), exclusion (uniform\n"
           "                 non-overlapping contacts), collision (contacts weighted by their\n"
           "                 entry rate in an elastic gas at equipartition), all (default)\n"
-          "  --samples N    accepted samples per row (default 1e6); with --convergence: the\n"
-          "                 largest n of the sequence (default: what --seconds allows)\n"
+          "  --samples N    accepted samples per row, >= 2 (default 1e6); with --convergence:\n"
+          "                 the largest n of the sequence, >= 1e4 (default: what --seconds\n"
+          "                 allows)\n"
           "  --seconds S    sample in batches for S seconds per row instead of N samples;\n"
           "                 with --convergence: the total time budget (default 10)\n"
           "  --seed K       gsl_rng_mt19937 seed (default 1)\n"
           "  --dim DIM      D in D_e = D/<f> (default 2)\n"
-          "  --scan A0:A1:STEP  one row per a = A0, A0+STEP, ..., <= A1, per model\n"
+          "  --scan A0:A1:STEP  one row per a = A0, A0+STEP, ..., <= A1, per model (A0 > 0,\n"
+          "                 A1 >= A0, STEP > 0)\n"
           "  --convergence  heuristic MC against quadrature at n = 1e3, 1e4, ...; columns\n"
           "                 n f_mc f_stderr abs_err_vs_quadrature seconds reps rms_err, and a\n"
           "                 '# slope' line: the fitted d log(err) / d log(n) (expect -1/2)\n"
@@ -203,6 +205,13 @@ int hd_mc_fmean_main(int argc, char **argv) {
     fprintf(stderr, "haff mc fmean: --convergence with --d needs --a\n");
     return 2;
   }
+  if (conv && samples > 0 && samples < 10000) { /* it printed no row and a slope of nan */
+    fprintf(stderr,
+            "haff mc fmean: --convergence --samples %lu: the sequence n = 1e3, 1e4, ... "
+            "needs n >= 1e4 for the two rows of a slope\n",
+            (unsigned long)samples);
+    return 2;
+  }
   hd_error err;
   if (conv) {
     double ad = isnan(a) ? 1.0 : a / d;
@@ -214,6 +223,13 @@ int hd_mc_fmean_main(int argc, char **argv) {
     if (st) {
       fprintf(stderr, "haff mc fmean: %s\n", err.msg);
       return hd_exit_code(st);
+    }
+    if (nr < 2) {
+      fprintf(stderr,
+              "haff mc fmean: --convergence: %zu row%s in %g s, a slope needs 2 (more "
+              "--seconds)\n",
+              nr, nr == 1 ? "" : "s", seconds > 0.0 ? seconds : 10.0);
+      return 1;
     }
     double fq, fq_err;
     hd_fmean_quadrature(ad, &fq, &fq_err);

@@ -351,6 +351,12 @@ static void bad_input(void **state) {
   bad_usage("mc eps --gamma 0.8 --tabulate --db x.db --nbeta 4294967321",
             "bad value '4294967321' for --nbeta");
   bad_usage("mc eps --gamma 0.8 --samples 99999999999999999999", "for --samples");
+  /* options a mode does not read were ignored without a word */
+  bad_usage("mc eps --gamma 0.8 --tabulate --db x.db --beta 5", "--beta does not apply with");
+  bad_usage("mc eps --gamma 0.8 --nbeta 5", "--nbeta does not apply without --tabulate");
+  bad_usage("mc eps --gamma 0.8 --convergence --adapt 4", "--adapt does not apply with");
+  /* a convergence sequence too short for a slope printed no row and a slope of nan, exit 0 */
+  bad_usage("mc fmean --convergence --samples 100", "needs n >= 1e4");
   bad_usage("mc fmean --scan 1:2:1 --a 1", "--a does not apply with --scan");
   bad_usage("mc fmean --fig4-data --a 1 --samples 10", "--samples does not apply with --fig4-data");
   assert_int_equal(sh("%s mc fmean --fig4-data --a 1 --d 2 >/dev/null", haff), 0);
