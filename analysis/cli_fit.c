@@ -12,7 +12,7 @@
   "  --no-detect      fit the whole run, not only the homogeneous part\n"                          \
   "  --thr X          homogeneity: relative change of rate/sqrt(E) that ends it [0.1]\n"           \
   "  --min-coll N     homogeneity: pair collisions per window [2000]\n"                            \
-  "  --cpd-max X      fit only samples with cpd <= X\n"                                            \
+  "  --cpd-max X      fit only samples with cpd <= X (0: no limit, the default)\n"                 \
   "  -o FILE          write to FILE instead of stdout\n"
 
 static const char *species_name(int s) {
@@ -177,6 +177,13 @@ int haff_table2_main(int argc, char **argv) {
   hd_group *g;
   size_t n, ng;
   if ((rc = hd_cli_groups(&a, argv[0], &db, &fits, &n, &g, &ng))) return rc;
+  size_t ndimer = 0; /* K = E_tr/E_rot is a dimer quantity: a file without dimers is bad input */
+  for (size_t j = 0; j < ng; j++) ndimer += g[j].species == HD_ANA_DIMERS;
+  if (ndimer == 0) {
+    fprintf(stderr, "haff %s: no dimer run to fit (K = E_tr/E_rot needs rotation)\n", argv[0]);
+    hd_cli_groups_free(db, fits, g, ng);
+    return 2;
+  }
   FILE *out = hd_cli_out(&a);
   if (!out) {
     hd_cli_groups_free(db, fits, g, ng);

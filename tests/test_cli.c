@@ -351,6 +351,8 @@ static void bad_input(void **state) {
   bad_usage("mc eps --gamma 0.8 --tabulate --db x.db --nbeta 4294967321",
             "bad value '4294967321' for --nbeta");
   bad_usage("mc eps --gamma 0.8 --samples 99999999999999999999", "for --samples");
+  /* K = E_tr/E_rot of a file without dimers: it printed a header only, exit 0 */
+  bad_usage("table2 ref.db", "no dimer run to fit");
   /* options a mode does not read were ignored without a word */
   bad_usage("mc eps --gamma 0.8 --tabulate --db x.db --beta 5", "--beta does not apply with");
   bad_usage("mc eps --gamma 0.8 --nbeta 5", "--nbeta does not apply without --tabulate");
