@@ -15,8 +15,18 @@
   "  --cpd-max X      fit only samples with cpd <= X (0: no limit, the default)\n"                 \
   "  -o FILE          write to FILE instead of stdout\n"
 
-static const char *species_name(int s) {
-  return s == HD_ANA_DIMERS ? "dimers" : "disks";
+/* Whether group g is one of the papers' tables (one species, periodic box: dimers, or disks
+ * too when with_disks); else says on stderr that it is left out and where it is fitted. */
+static int table_group(const char *cmd, const hd_group *g, int with_disks) {
+  if (!g->walls && (g->species == HD_ANA_DIMERS || (with_disks && g->species == HD_ANA_DISKS)))
+    return 1;
+  if (g->species == HD_ANA_DISKS && !g->walls) return 0; /* table2: disks have no rotation */
+  fprintf(stderr,
+          "haff %s: note: left out %zu run%s of %s (alpha %g a/d %g): the table is for one species "
+          "in a periodic box; haff-fit --alpha-group fits them\n",
+          cmd, g->n, g->n == 1 ? "" : "s", hd_ana_species_name(g->species, g->walls), g->alpha,
+          g->a_over_d);
+  return 0;
 }
 
 /* Says on stderr why a group fitted from one run has no error (hd_ensemble_mean). */
@@ -64,10 +74,11 @@ int haff_fit_main(int argc, char **argv) {
       fprintf(
           out,
           "%lld\t%s\t%g\t%g\t%zu\t%d\t%.6g\t%.6g\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.6g\t%.3g\t%.3g\n",
-          (long long)f->info.id, species_name(f->info.species), f->info.alpha, f->info.a_over_d,
-          f->n_used, f->homog.detected, f->t_end, f->cpd_end, f->haff_ok ? h->D_e : nan,
-          f->haff_ok ? h->D_e_err : nan, f->haff_ok ? h->nu0 : nan, f->haff_ok ? h->nu0_err : nan,
-          f->nu0_enskog, f->ratio, f->ratio_err, f->haff_ok ? h->chi2 / (double)h->dof : nan);
+          (long long)f->info.id, hd_ana_species_name(f->info.species, f->info.walls), f->info.alpha,
+          f->info.a_over_d, f->n_used, f->homog.detected, f->t_end, f->cpd_end,
+          f->haff_ok ? h->D_e : nan, f->haff_ok ? h->D_e_err : nan, f->haff_ok ? h->nu0 : nan,
+          f->haff_ok ? h->nu0_err : nan, f->nu0_enskog, f->ratio, f->ratio_err,
+          f->haff_ok ? h->chi2 / (double)h->dof : nan);
     }
   } else {
     hd_group *g;
@@ -94,7 +105,8 @@ int haff_fit_main(int argc, char **argv) {
       hd_ensemble_mean(rv, m, &r[4], &r[5]);
       one_run_note(argv[0], &g[j], m);
       fprintf(out, "%g\t%g\t%s\t%zu\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.3g\n", g[j].alpha,
-              g[j].a_over_d, species_name(g[j].species), m, r[0], r[1], r[2], r[3], r[4], r[5]);
+              g[j].a_over_d, hd_ana_species_name(g[j].species, g[j].walls), m, r[0], r[1], r[2],
+              r[3], r[4], r[5]);
     }
     free(v);
     hd_groups_free(g, ng);
@@ -136,6 +148,7 @@ int haff_table1_main(int argc, char **argv) {
   else
     fprintf(out, "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\n");
   for (size_t j = 0; j < ng; j++) {
+    if (!table_group(argv[0], &g[j], 1)) continue;
     double *dv = v, *rv = v + n, D, Derr, R, Rerr;
     size_t m = 0;
     for (size_t k = 0; k < g[j].n; k++) {
@@ -178,9 +191,12 @@ int haff_table2_main(int argc, char **argv) {
   size_t n, ng;
   if ((rc = hd_cli_groups(&a, argv[0], &db, &fits, &n, &g, &ng))) return rc;
   size_t ndimer = 0; /* K = E_tr/E_rot is a dimer quantity: a file without dimers is bad input */
-  for (size_t j = 0; j < ng; j++) ndimer += g[j].species == HD_ANA_DIMERS;
+  for (size_t j = 0; j < ng; j++) ndimer += table_group(argv[0], &g[j], 0);
   if (ndimer == 0) {
-    fprintf(stderr, "haff %s: no dimer run to fit (K = E_tr/E_rot needs rotation)\n", argv[0]);
+    fprintf(stderr,
+            "haff %s: no dimer run to fit (K = E_tr/E_rot needs rotation; dimers alone in a "
+            "periodic box)\n",
+            argv[0]);
     hd_cli_groups_free(db, fits, g, ng);
     return 2;
   }
@@ -196,7 +212,7 @@ int haff_table2_main(int argc, char **argv) {
   int bad = 0;
   hd_error err;
   for (size_t j = 0; j < ng; j++) {
-    if (g[j].species != HD_ANA_DIMERS) continue;
+    if (g[j].species != HD_ANA_DIMERS || g[j].walls) continue; /* said above */
     double r[6];
     if (hd_combine_k(fits, g[j].idx, g[j].n, a.kmode, a.fit.level, r, &err)) {
       fprintf(stderr, "haff %s: alpha %g a/d %g: %s\n", argv[0], g[j].alpha, g[j].a_over_d,

@@ -57,6 +57,7 @@ typedef struct scene_keys {
   double disk_count, disk_alpha, disk_sigma, disk_mass;
   int bad;
   char badkey[96];
+  int walls; /* [walls] sides is not empty */
 } scene_keys;
 
 static int num(const char *v, double *out) {
@@ -78,6 +79,10 @@ static int on_key(void *user, const char *sec, const char *key, const char *val)
     return 1;
   }
   if (!strcmp(sec, "system") && !strcmp(key, "area_fraction")) dst = &k->eta;
+  if (!strcmp(sec, "walls") && !strcmp(key, "sides")) {
+    k->walls = strspn(val, " \t") < strlen(val);
+    return 1;
+  }
   if (!strcmp(sec, "dimers")) {
     if (!strcmp(key, "count")) dst = &k->dim_count;
     if (!strcmp(key, "alpha")) dst = &k->dim_alpha;
@@ -98,15 +103,23 @@ static int on_key(void *user, const char *sec, const char *key, const char *val)
   return 1;
 }
 
+const char *hd_ana_species_name(int species, int walls) {
+  static const char *const name[4][2] = {{"dimers", "dimers+walls"},
+                                         {"disks", "disks+walls"},
+                                         {"other", "other+walls"},
+                                         {"dimers+disks", "dimers+disks+walls"}};
+  return species >= 0 && species < 4 ? name[species][walls != 0] : "other";
+}
+
 int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
-  scene_keys k = {0, 0, 0, 0, 1, 1, 1, 1, 0, 1, 1, 1, 0, ""};
+  scene_keys k = {0, 0, 0, 0, 1, 1, 1, 1, 0, 1, 1, 1, 0, "", 0};
   int line = ini_parse_string(text, on_key, &k);
   if (line != 0)
     return hd_error_set(err, HD_EINPUT, "runs.scene: INI syntax error at line %d", line);
   if (k.bad) return hd_error_set(err, HD_EINPUT, "runs.scene: %s is not a number", k.badkey);
   double body_area;
   if (k.dim_count > 0) {
-    ri->species = HD_ANA_DIMERS;
+    ri->species = k.disk_count > 0 ? HD_ANA_MIXTURE : HD_ANA_DIMERS;
     ri->n = (long)k.dim_count;
     ri->alpha = k.dim_alpha, ri->a = k.dim_a, ri->d = k.dim_d, ri->m = k.dim_m;
     ri->mass = 2.0 * k.dim_m;
@@ -127,10 +140,11 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
     ri->n = 0, ri->alpha = 1, ri->a = 0, ri->d = 1, ri->m = 1, ri->mass = 1, ri->a_over_d = 0;
     body_area = 0;
   }
+  ri->walls = k.walls;
   ri->box_x = k.box_x, ri->box_y = k.box_y, ri->area_fraction = k.eta;
   double area = k.box_x * k.box_y;
   /* area_fraction covers every body (hd_scene_covered_area): the disks of a mixture too */
-  double covered = ri->species == HD_ANA_DIMERS
+  double covered = ri->species == HD_ANA_MIXTURE
                        ? (double)ri->n * body_area +
                              fmax(k.disk_count, 0) * M_PI * k.disk_sigma * k.disk_sigma / 4
                        : (double)ri->n * body_area;

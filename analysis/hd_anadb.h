@@ -11,15 +11,26 @@
 #include "hd_error.h"
 
 /* Species a run is analysed as. */
-enum { HD_ANA_DIMERS = 0, HD_ANA_DISKS = 1, HD_ANA_OTHER = 2 };
+enum { HD_ANA_DIMERS = 0, HD_ANA_DISKS = 1, HD_ANA_OTHER = 2, HD_ANA_MIXTURE = 3 };
+
+/* Whether a run of that species is analysed through its dimers (pure or mixed with disks). */
+static inline int hd_ana_dimers(int species) {
+  return species == HD_ANA_DIMERS || species == HD_ANA_MIXTURE;
+}
+
+/* The species' label in tables: dimers, disks, dimers+disks (a mixture) or other, with +walls
+ * when the box has walls. */
+const char *hd_ana_species_name(int species, int walls);
 
 /* One run and the scene parameters the analysis needs (parsed from runs.scene). */
 typedef struct hd_run_info {
   int64_t id;
   char status[16]; /* runs.status */
   unsigned long long seed;
-  int species;          /* HD_ANA_DIMERS if [dimers] count > 0, else HD_ANA_DISKS if [disks]
+  int species;          /* HD_ANA_DIMERS if [dimers] count > 0 (HD_ANA_MIXTURE with [disks] count
+                           > 0 too: analysed through its dimers), else HD_ANA_DISKS if [disks]
                            count > 0, else HD_ANA_OTHER (rods) */
+  int walls;            /* [walls] sides given: not the periodic box of the papers */
   long n;               /* bodies of that species */
   double alpha;         /* its restitution with itself ([dimers] or [disks] alpha, default 1) */
   double a, d;          /* bond length and disk diameter (disks: a = 0, d = sigma) */

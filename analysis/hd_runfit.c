@@ -72,7 +72,7 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
   for (size_t i = 0; i < nu; i++)
     if (s.cpd[i] >= o->cpd_min_k && s.e_rot[i] > 0)
       x[m] = s.cpd[i], k[m++] = s.e_tr[i] / s.e_rot[i];
-  if (ri->species == HD_ANA_DIMERS) {
+  if (hd_ana_dimers(ri->species)) {
     out->K_ok = hd_fit_linear_t(x, k, m, o->level, &out->K, &fe) == HD_OK;
     if (!out->K_ok && !out->why[0]) snprintf(out->why, sizeof out->why, "K fit: %.200s", fe.msg);
   }
@@ -89,7 +89,7 @@ static int rel_eq(double x, double y) {
 }
 
 int hd_group_same_label(const hd_group *a, const hd_group *b) {
-  return a->species == b->species && fabs(a->alpha - b->alpha) < 1e-9 &&
+  return a->species == b->species && a->walls == b->walls && fabs(a->alpha - b->alpha) < 1e-9 &&
          fabs(a->a_over_d - b->a_over_d) < 1e-9;
 }
 
@@ -102,14 +102,14 @@ int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *n
     hd_group *g = NULL;
     for (size_t j = 0; j < *ng && !g; j++) {
       const hd_group *q = &(*groups)[j];
-      if (q->species == r->species && fabs(q->alpha - r->alpha) < 1e-9 &&
+      if (q->species == r->species && q->walls == r->walls && fabs(q->alpha - r->alpha) < 1e-9 &&
           fabs(q->a_over_d - r->a_over_d) < 1e-9 && q->nbodies == r->n && rel_eq(q->d, r->d) &&
           rel_eq(q->m, r->m) && rel_eq(q->density, r->density))
         g = &(*groups)[j];
     }
     if (!g) {
       g = &(*groups)[(*ng)++];
-      g->species = r->species, g->alpha = r->alpha, g->a_over_d = r->a_over_d;
+      g->species = r->species, g->walls = r->walls, g->alpha = r->alpha, g->a_over_d = r->a_over_d;
       g->nbodies = r->n, g->density = r->density, g->d = r->d, g->m = r->m;
       g->idx = malloc(n * sizeof *g->idx);
       if (!g->idx) {

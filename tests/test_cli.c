@@ -725,6 +725,43 @@ static void live_run_commits_every_second(void **state) {
   assert_true(q1("live.db", "SELECT count(*) FROM collisions WHERE run = 1") >= seen);
 }
 
+/* Runs that are not the papers' case (dimers mixed with disks, walls) are told apart: haff-fit
+ * and energy label them dimers+disks and dimers+walls (both read "dimers"), and table1/table2
+ * leave them out with a note (their rows looked like the pure runs', same alpha and a/d). */
+static void mixtures_and_walls_labelled(void **state) {
+  (void)state;
+  if (!haff) skip();
+  const char *base = "[system]\narea_fraction = 0.05\n[dimers]\ncount = 100\nalpha = 0.9\n"
+                     "a = 0.5\n[run]\nstop_cpd = 20\n[log]\ncollisions = none\n"
+                     "samples_every = 0.5\n";
+  char text[512];
+  write_file("pure.ini", base);
+  snprintf(text, sizeof text, "%s[disks]\ncount = 50\n", base);
+  write_file("mixed.ini", text);
+  snprintf(text, sizeof text, "%s[walls]\nsides = left right\n", base);
+  write_file("walled.ini", text);
+  assert_int_equal(sh("(for s in pure mixed walled; do %s run $s.ini -o lab.db --quiet || exit "
+                      "1; done)",
+                      haff),
+                   0);
+  assert_int_equal(sh("(%s haff-fit lab.db | cut -f2 | tr '\\n' ' ' > species.txt)", haff), 0);
+  char p[300], line[200] = "";
+  snprintf(p, sizeof p, "%s/species.txt", dir);
+  FILE *f = fopen(p, "r");
+  assert_non_null(f);
+  assert_non_null(fgets(line, sizeof line, f));
+  fclose(f);
+  assert_string_equal(line, "species dimers dimers+disks dimers+walls ");
+  assert_int_equal(sh("%s energy lab.db | grep -c '^# dimers+disks alpha=0.9' > /dev/null", haff),
+                   0);
+  assert_int_equal(sh("(%s table1 lab.db > t1.tsv && test $(wc -l < t1.tsv) = 2)", haff), 0);
+  char e[2048];
+  read_err(e, sizeof e);
+  assert_non_null(strstr(e, "left out 1 run of dimers+disks (alpha 0.9 a/d 0.5)"));
+  assert_non_null(strstr(e, "left out 1 run of dimers+walls"));
+  assert_int_equal(sh("(%s table2 lab.db > t2.tsv && test $(wc -l < t2.tsv) = 2)", haff), 0);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(bad_input),
@@ -741,6 +778,7 @@ int main(void) {
       cmocka_unit_test(snapshots_and_exports),
       cmocka_unit_test(resume_without_the_state_file),
       cmocka_unit_test(live_run_commits_every_second),
+      cmocka_unit_test(mixtures_and_walls_labelled),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
