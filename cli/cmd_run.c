@@ -123,6 +123,10 @@ int haff_run_main(int argc, char **argv) {
   int64_t run = 0;
   rc = hd_run_new(&sc, &o, &run, &err);
   hd_scene_free(&sc);
+  if (rc == HD_EINTR && run == 0) { /* stopped in the set-up: no run was begun */
+    fprintf(stderr, "haff run: %s, before the run began: nothing was written\n", err.msg);
+    return hd_exit_code(rc);
+  }
   if (rc == HD_EINTR) { /* the command that goes on, for this file and run */
     fprintf(stderr, "haff run: %s (continue with: haff resume %s --run %lld)\n", err.msg, db,
             (long long)run);

@@ -7,6 +7,7 @@
 #include <gsl/gsl_randist.h>
 
 #include "hd_sim_internal.h"
+#include "hd_stop.h"
 
 /* Does body i overlap any body already in the cells (or a wall)? */
 static int overlaps_any(const hd_sim *s, int32_t i) {
@@ -49,10 +50,15 @@ static double uniform_phi(gsl_rng *r) {
 
 /* Random sequential addition: each body at a uniform position and orientation, retried until it
  * overlaps nothing.  Returns 1 when some body needed more than max_tries attempts (the box is
- * too full for it: the caller then melts a lattice instead). */
+ * too full for it: the caller then melts a lattice instead), -1 when a stop was requested (the
+ * last bodies of a box past the jamming density take seconds: 6 s for 3e5 disks at 0.7). */
 static int place_random(hd_sim *s) {
   const long max_tries = 20000;
   for (int32_t i = 0; i < s->n; i++) {
+    if (hd_stop_requested) {
+      for (int32_t j = 0; j < i; j++) hd_cells_remove(s, j);
+      return -1;
+    }
     hd_body *b = &s->b[i];
     long k;
     for (k = 0; k < max_tries; k++) {
@@ -246,7 +252,9 @@ int hd_init_state(hd_sim *s, const hd_scene *sc, hd_error *err) {
   }
   if (sc->placement == HD_PLACE_LATTICE)
     rc = place_lattice(s, err);
-  else if (place_random(s))
+  else if ((rc = place_random(s)) < 0)
+    rc = hd_error_set(err, HD_EINTR, "interrupted while placing the bodies of the set-up");
+  else if (rc)
     rc = place_dense_lattice(s, err); /* too dense for random addition: melt a lattice */
   if (rc) return rc;
   hd_init_velocities(s, sc->temperature);

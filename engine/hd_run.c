@@ -14,14 +14,14 @@
 #include "hd_db.h"
 #include "hd_model.h"
 #include "hd_sim.h"
+#include "hd_stop.h"
 
-static volatile sig_atomic_t stop_flag = 0;
 static void on_signal(int sig) {
   (void)sig;
-  stop_flag = 1;
+  hd_stop_requested = 1;
 }
 void hd_run_request_stop(void) {
-  stop_flag = 1;
+  hd_stop_requested = 1;
 }
 
 /* Runner state that a checkpoint carries besides the engine's. */
@@ -130,8 +130,8 @@ static void run_unlock(runner *r) {
 
 static struct sigaction old_int, old_term;
 
-/* SIGINT and SIGTERM set stop_flag from the start of a run, set-up included (a signal during
- * the placement of many bodies used to kill the process with the run left 'running'). */
+/* SIGINT and SIGTERM set hd_stop_requested from the start of a run, set-up included (a signal
+ * during the placement of many bodies used to kill the process with the run left 'running'). */
 static void signals_on(void);
 static void signals_off(void) {
   sigaction(SIGINT, &old_int, NULL);
@@ -261,7 +261,7 @@ static int drive(runner *r, hd_error *err) {
       break;
     }
     if (rc == HD_SIM_BUSY) { /* many events, no collision: a chance to see a signal */
-      rc = stop_flag ? interrupted(r, err) : HD_OK;
+      rc = hd_stop_requested ? interrupted(r, err) : HD_OK;
       continue;
     }
     if (rc) break;
@@ -273,7 +273,7 @@ static int drive(runner *r, hd_error *err) {
     }
     rc = observe(r, err);
     if (rc) break;
-    if (stop_flag) {
+    if (hd_stop_requested) {
       rc = interrupted(r, err);
       break;
     }
@@ -344,7 +344,7 @@ static void signals_on(void) {
   memset(&sa, 0, sizeof sa);
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
-  stop_flag = 0;
+  hd_stop_requested = 0;
   sigaction(SIGINT, &sa, &old_int);
   sigaction(SIGTERM, &sa, &old_term);
 }

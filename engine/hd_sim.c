@@ -8,6 +8,7 @@
 
 #include "hd_mem.h"
 #include "hd_sim_internal.h"
+#include "hd_stop.h"
 
 /* Collisions whose |vn| is below this fraction of the thermal speed count as "slow"; this many
  * slow collisions in a row is inelastic collapse (the collision rate diverges while the
@@ -101,6 +102,10 @@ static int melt(hd_sim *s, const hd_scene *sc, hd_error *err) {
    * bodies barely collide */
   while (rc == HD_OK && hd_sim_cpd(s) < 40.0 && s->c.events <= 1000 * (int64_t)s->n + 1000) {
     hd_event_out ev;
+    if ((s->c.events & 4095) == 0 && hd_stop_requested) { /* SIGINT: 15 s for 3e5 disks */
+      rc = hd_error_set(err, HD_EINTR, "interrupted while melting the lattice of the set-up");
+      break;
+    }
     rc = hd_sim_next(s, INFINITY, &ev, err);
     if (rc == HD_SIM_BUSY) rc = HD_OK; /* the event bound above decides */
     if (rc == HD_SIM_IDLE) {

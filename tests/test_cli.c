@@ -325,6 +325,18 @@ static void bad_input(void **state) {
   write_file("one.ini", "[system]\nbox = 10 10\n[disks]\ncount = 1\n[run]\nstop_cpd = 10\n");
   bad_usage("run one.ini -o one.db", "one body alone never collides with another");
   assert_false(exists("one.db"));
+  /* SIGINT in a long set-up (3e5 disks past the jamming density: random addition then a melted
+   * lattice, some 20 s here) stops it at once: exit 1, no file (it waited for the set-up's end,
+   * then wrote a run 'interrupted' at t = 1e-9) */
+  write_file("dense.ini", "[system]\narea_fraction = 0.7\n[disks]\ncount = 300000\n[run]\n"
+                          "stop_cpd = 1\n");
+  assert_int_equal(sh("(%s run dense.ini -o dense.db --quiet & p=$!; sleep 0.5; kill -INT $p; "
+                      "wait $p)",
+                      haff),
+                   1);
+  read_err(e, sizeof e);
+  assert_non_null(strstr(e, "of the set-up, before the run began: nothing was written"));
+  assert_false(exists("dense.db"));
   /* a run whose collisions are rare still sees SIGINT (hd_sim_next returns every 2^22 events
    * without a collision): ten disks in a box of 1e9 */
   write_file("rare.ini", "[system]\nbox = 1e9 1e9\n[disks]\ncount = 10\n[run]\nstop_events = "
