@@ -135,6 +135,14 @@ int haff_table1_main(int argc, char **argv) {
   hd_group *g;
   size_t n, ng;
   if ((rc = hd_cli_groups(&a, argv[0], &db, &fits, &n, &g, &ng))) return rc;
+  size_t shown = 0; /* as table2: nothing to tabulate is bad input, not an empty table */
+  for (size_t j = 0; j < ng; j++)
+    shown += !g[j].walls && (g[j].species == HD_ANA_DIMERS || g[j].species == HD_ANA_DISKS);
+  if (shown == 0) {
+    fprintf(stderr, "haff %s: no run of one species in a periodic box to tabulate\n", argv[0]);
+    hd_cli_groups_free(db, fits, g, ng);
+    return 2;
+  }
   FILE *out = hd_cli_out(&a);
   double *v = malloc(2 * n * sizeof *v);
   if (!out || !v) {

@@ -127,9 +127,11 @@ int haff_run_main(int argc, char **argv) {
     fprintf(stderr, "haff run: %s, before the run began: nothing was written\n", err.msg);
     return hd_exit_code(rc);
   }
-  if (rc == HD_EINTR) { /* the command that goes on, for this file and run */
-    fprintf(stderr, "haff run: %s (continue with: haff resume %s --run %lld)\n", err.msg, db,
-            (long long)run);
+  if (rc == HD_EINTR) { /* the command that goes on, for this file and run (quoted if need be) */
+    int plain = strspn(db, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._/-+") ==
+                strlen(db);
+    fprintf(stderr, "haff run: %s (continue with: haff resume %s%s%s --run %lld)\n", err.msg,
+            plain ? "" : "'", db, plain ? "" : "'", (long long)run);
     return hd_exit_code(rc);
   }
   if (rc) {

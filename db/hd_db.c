@@ -15,6 +15,7 @@
 #include "hd_db.h"
 #include "hd_walck.h"
 
+#include <errno.h>
 #include <math.h>
 #include <sqlite3.h>
 #include <stdlib.h>
@@ -321,6 +322,8 @@ int hd_db_reopen_immutable(const char *path, sqlite3 **h, int flags) {
 int hd_db_check_path(const char *path, int must_exist, hd_error *err) {
   struct stat st;
   if (stat(path, &st) != 0) {
+    if (errno != ENOENT) /* a folder on the way that cannot be searched, say */
+      return hd_error_set(err, HD_EINPUT, "%s: %s", path, strerror(errno));
     if (!must_exist) return HD_OK;
     return hd_error_set(err, HD_EINPUT, "%s: no such database", path);
   }
@@ -1005,7 +1008,7 @@ int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene
       rc = hd_error_set(err, HD_EINPUT,
                         "%s: run %lld is %s: only an interrupted, failed (disk "
                         "full, I/O) or killed ('running') run can be resumed; a collapsed run "
-                        "keeps its state at the collapse in `states` and `checkpoints`",
+                        "keeps its state at the collapse in `states` (label 'checkpoint')",
                         db->path, (long long)want_run, status ? status : "(no status)");
     } else {
       const char *scene = (const char *)sqlite3_column_text(st, 2);

@@ -13,9 +13,11 @@ int hd_cells_alloc(hd_sim *s, hd_error *err) {
   if (range <= 0.0) range = 1.0;
   double fx = floor(s->lx / range), fy = floor(s->ly / range);
   /* cap the grid at ~4 cells per body so that a dilute gas does not pay for empty cells; a box
-   * of more than ~1e308 diameters gives inf, which halving never brings down: start at cap */
+   * of more than ~1e308 diameters gives inf, which halving never brings down: that one starts
+   * at cap (a finite count halves as it always did: the grid is part of a checkpoint) */
   double cap = fmax(1.0, 4.0 * (double)s->n);
-  fx = fmin(fx, cap), fy = fmin(fy, cap);
+  if (!isfinite(fx)) fx = cap;
+  if (!isfinite(fy)) fy = cap;
   while (fx * fy > cap && (fx > 1 || fy > 1)) {
     if (fx >= fy)
       fx = floor(fx / 2);

@@ -89,14 +89,16 @@ static int run_lock(runner *r, hd_error *err) {
         return HD_OK;
       }
       close(fd); /* removed by the last holder meanwhile: the lock is on a file nobody sees */
-      continue;
+      if (attempt < 1000) continue;
+      return hd_error_set(err, HD_EIO, "%s: the run lock file keeps being replaced", path);
     }
     int e = errno;
     /* the whole file locked (l_start = l_len = 0; a run's lock is byte id >= 1): its last
-     * holder removing it, for a moment; then try again */
+     * holder removing it, for a moment; or no lock left by the time we look (F_UNLCK: that
+     * holder has let go); then try again */
     struct flock who = fl;
     int removing = (e == EACCES || e == EAGAIN) && fcntl(fd, F_GETLK, &who) == 0 &&
-                   who.l_type != F_UNLCK && who.l_start == 0 && who.l_len == 0;
+                   (who.l_type == F_UNLCK || (who.l_start == 0 && who.l_len == 0));
     close(fd);
     if (removing && attempt < 1000) {
       const struct timespec ms = {0, 1000000L};
@@ -136,6 +138,7 @@ static void signals_on(void);
 static void signals_off(void) {
   sigaction(SIGINT, &old_int, NULL);
   sigaction(SIGTERM, &old_term, NULL);
+  hd_stop_requested = 0; /* handled: a set-up that the library's user starts next is not stopped */
 }
 
 static double now_wall(void) {
@@ -310,9 +313,12 @@ static int finish(runner *r, int rc, hd_error *err) {
     status = "failed";
   int wrc = HD_OK;
   if (rc == HD_OK || rc == HD_EINTR || rc == HD_ECOLLAPSE) {
-    /* the state where the run ended: 'final', or 'checkpoint' for one that can go on */
+    /* the state where the run ended: 'final', or 'checkpoint' for one that can go on; the
+     * engine's checkpoint only for a run that can be resumed (a done or collapsed run's is
+     * deleted with its status: 150 MB at 1e6 bodies written for nothing), the rows committed
+     * here all the same, so that a failed write is seen before the status is set */
     wrc = log_states(r, rc == HD_OK ? "final" : "checkpoint", &e2);
-    if (!wrc) wrc = checkpoint(r, &e2);
+    if (!wrc) wrc = rc == HD_EINTR ? checkpoint(r, &e2) : hd_db_commit(r->db, &e2);
   }
   if (rc == HD_OK && wrc) { /* the final state or checkpoint could not be written: not done */
     status = "failed";

@@ -100,9 +100,10 @@ static int melt(hd_sim *s, const hd_scene *sc, hd_error *err) {
   int rc = HD_OK;
   /* 40 cpd, or until nothing moves (no event left), or a bound on events for a gas whose
    * bodies barely collide */
-  while (rc == HD_OK && hd_sim_cpd(s) < 40.0 && s->c.events <= 1000 * (int64_t)s->n + 1000) {
+  for (long calls = 1;
+       rc == HD_OK && hd_sim_cpd(s) < 40.0 && s->c.events <= 1000 * (int64_t)s->n + 1000; calls++) {
     hd_event_out ev;
-    if ((s->c.events & 4095) == 0 && hd_stop_requested) { /* SIGINT: 15 s for 3e5 disks */
+    if ((calls & 1023) == 0 && hd_stop_requested) { /* SIGINT: 15 s for 3e5 disks */
       rc = hd_error_set(err, HD_EINTR, "interrupted while melting the lattice of the set-up");
       break;
     }

@@ -284,7 +284,7 @@ int hd_mc_eps_main(int argc, char **argv) {
       ok = parse_d(optarg, &o.step);
       break;
     case 'a':
-      ok = parse_int(optarg, &adapt);
+      ok = parse_int(optarg, &adapt) && adapt >= 1; /* -1 is "not given" */
       break;
     case 'r':
       o.richardson = 1;

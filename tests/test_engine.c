@@ -289,6 +289,22 @@ static void huge_box_in_diameters(void **state) {
     hd_sim_free(s);
     hd_scene_free(&sc);
   }
+  /* a finite grid halves as it always did (it is part of a checkpoint, which a resume must
+   * match): 1000 x 10 cells for 100 disks, halved along x down to 31 x 10 <= 400 (clamping
+   * first to 400 x 10 gave 25 x 10, and old checkpoints were refused) */
+  hd_scene sc;
+  hd_error err;
+  assert_int_equal(hd_scene_load_string(&sc,
+                                        "[system]\nbox = 1000 10\n[disks]\ncount = 100\n[run]\n"
+                                        "stop_time = 1\n",
+                                        "long.ini", NULL, 0, &err),
+                   HD_OK);
+  hd_sim *s;
+  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+  assert_int_equal(s->ncx, 31);
+  assert_int_equal(s->ncy, 10);
+  hd_sim_free(s);
+  hd_scene_free(&sc);
 }
 
 /* Elastic N = 1000 at eta = 0.2 for 10^6 collisions (10^5 sanitized), verification on:
