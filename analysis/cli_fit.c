@@ -46,7 +46,8 @@ int haff_fit_main(int argc, char **argv) {
       "homogeneous part of each run (tau = cpd).  One line per run, or per group of runs with\n"
       "equal (alpha, a/d) with --alpha-group (mean +- standard error over the runs; nan with\n"
       "one run).  Per run, *_fit_err are the formal least-squares errors, which take the\n"
-      "residuals of the cumulative cpd(t) as independent: several times too small.\n"
+      "residuals of the cumulative cpd(t) as independent: several times too small.  A run that\n"
+      "cannot be fitted gets nan and a note; exit 2 when none can.\n"
       "  --all            every finished run (the default)\n"
       "  --alpha-group    one line per (alpha, a/d) group\n" FIT_OPTS_HELP;
   hd_cli_args a;
@@ -111,9 +112,16 @@ int haff_fit_main(int argc, char **argv) {
     free(v);
     hd_groups_free(g, ng);
   }
+  size_t fitted = 0; /* a script reading a row of nan should see a failure */
+  for (size_t i = 0; i < n; i++) fitted += fits[i].haff_ok != 0;
   free(fits);
   sqlite3_close(db);
-  return hd_cli_close(out, &a);
+  int crc = hd_cli_close(out, &a);
+  if (!crc && fitted == 0) {
+    fprintf(stderr, "haff %s: no run could be fitted (why: above)\n", argv[0]);
+    return 2;
+  }
+  return crc;
 }
 
 int haff_table1_main(int argc, char **argv) {

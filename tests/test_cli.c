@@ -779,6 +779,11 @@ static void mixtures_and_walls_labelled(void **state) {
   assert_non_null(strstr(e, "left out 1 run of dimers+disks (alpha 0.9 a/d 0.5)"));
   assert_non_null(strstr(e, "left out 1 run of dimers+walls"));
   assert_int_equal(sh("(%s table2 lab.db > t2.tsv && test $(wc -l < t2.tsv) = 2)", haff), 0);
+  /* no run fitted (too few samples below --cpd-max): rows of nan and exit 2, not 0 */
+  assert_int_equal(sh("(%s haff-fit lab.db --cpd-max 0.5 > nan.tsv; r=$?; test $(wc -l < nan.tsv) "
+                      "= 4 && exit $r)",
+                      haff),
+                   2);
   /* nothing left to tabulate is bad input, as in table2 (it printed a header, exit 0) */
   assert_int_equal(sh("%s run mixed.ini -o mixonly.db --quiet", haff), 0);
   bad_usage("table1 mixonly.db", "no run of one species in a periodic box to tabulate");
