@@ -60,6 +60,7 @@ static int parse(int argc, char **argv, const char *usage, ropts *o) {
   o->range = 50;
   optind = 1;
   int c, li = 0;
+  opterr = 0; /* one line of ours for a bad option, not getopt's as well */
   while ((c = getopt_long(argc, argv, "h", lo, &li)) != -1) {
     double v;
     int ok = 1;
@@ -92,7 +93,8 @@ static int parse(int argc, char **argv, const char *usage, ropts *o) {
       fputs(usage, stdout);
       return -1;
     default:
-      fprintf(stderr, "%s: bad option (see --help)\n", argv[0]);
+      fprintf(stderr, "%s: unknown option or missing value '%s' (see --help)\n", argv[0],
+              argv[optind - 1]);
       return 2;
     }
     if (!ok) {
@@ -294,6 +296,7 @@ static int start_at(int argc, char **argv, const char *usage, int bins, ropts *o
  */
 
 int haff_rods_energy_main(int argc, char **argv) {
+  argv[0] = (char *)"haff rods-energy"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-energy DB [--run ID]\n"
       "Figs. 1, 2, 9-11 data: per sample of a rods run (newest by default) the columns\n"
@@ -341,6 +344,7 @@ int haff_rods_energy_main(int argc, char **argv) {
  */
 
 int haff_rods_density_main(int argc, char **argv) {
+  argv[0] = (char *)"haff rods-density"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-density DB [--run ID] [--bins N] [--t T]\n"
       "Figs. 3, 4, 6 data: the coarse-grained density rho (rods per bin over the mean, N bins\n"
@@ -400,6 +404,7 @@ int haff_rods_density_main(int argc, char **argv) {
  */
 
 int haff_rods_phase_main(int argc, char **argv) {
+  argv[0] = (char *)"haff rods-phase"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-phase DB [--run ID] [--t T]\n"
       "Fig. 5 data: phase space of the snapshot nearest --t (default the last): columns\n"
@@ -420,6 +425,7 @@ int haff_rods_phase_main(int argc, char **argv) {
  */
 
 int haff_rods_gofr_main(int argc, char **argv) {
+  argv[0] = (char *)"haff rods-gofr"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-gofr DB [--run ID] [--t T] [--bins N] [--range X]\n"
       "Fig. 8 data: g(x) = 1/(N-1) sum_{i!=j} delta(x - |x_i - x_j|) (ring distance), normalised\n"
@@ -512,6 +518,7 @@ static long find_clusters(const double *x, long n, double gap, rclusters *cl) {
 }
 
 int haff_rods_veldist_main(int argc, char **argv) {
+  argv[0] = (char *)"haff rods-veldist"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-veldist DB [--run ID] [--t T] [--bins N] [--gap G] [--x X]\n"
       "Fig. 7 data: histograms of w = sqrt(m_i) v_i (mass-scaled so that both species share one\n"
@@ -588,6 +595,7 @@ int haff_rods_veldist_main(int argc, char **argv) {
 }
 
 int haff_rods_clusters_main(int argc, char **argv) {
+  argv[0] = (char *)"haff rods-clusters"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-clusters DB [--run ID] [--gap G] [--min-size M]\n"
       "Clusters per snapshot (maximal runs of rods closer than G [0.1] to their neighbour, at\n"
@@ -626,6 +634,7 @@ int haff_rods_clusters_main(int argc, char **argv) {
  */
 
 int haff_rods_collapse_main(int argc, char **argv) {
+  argv[0] = (char *)"haff rods-collapse"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-collapse [--n LIST] [--eps LIST] [--seeds K] [--cpd C] [--gamma G]\n"
       "Scans the constant-eps ring for inelastic collapse: for every N in LIST [4,8,16,32,64,128]\n"
@@ -643,6 +652,7 @@ int haff_rods_collapse_main(int argc, char **argv) {
   optind = 1;
   int c;
   double x;
+  opterr = 0;
   while ((c = getopt_long(argc, argv, "h", lo, NULL)) != -1) {
     switch (c) {
     case 'n':
@@ -671,7 +681,8 @@ int haff_rods_collapse_main(int argc, char **argv) {
       fputs(usage, stdout);
       return 0;
     default:
-      fprintf(stderr, "%s: bad option (see --help)\n", argv[0]);
+      fprintf(stderr, "%s: unknown option or missing value '%s' (see --help)\n", argv[0],
+              argv[optind - 1]);
       return 2;
     }
   }

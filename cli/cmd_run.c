@@ -34,6 +34,26 @@ static void default_db(const char *scene, char *out, size_t n) {
   snprintf(out + len, n - len, ".db");
 }
 
+/* Says that cmd's run was interrupted and how to go on, for this file and run (the path quoted
+ * when the shell would need it); before the run began (run 0), that nothing was written. */
+static void say_interrupted(const char *cmd, const char *msg, const char *db, int64_t run) {
+  if (run == 0) {
+    fprintf(stderr, "haff %s: %s, before the run began: nothing was written\n", cmd, msg);
+    return;
+  }
+  int plain = strspn(db, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._/-+") ==
+              strlen(db);
+  fprintf(stderr, "haff %s: %s (continue with: haff resume %s%s%s --run %lld)\n", cmd, msg,
+          plain ? "" : "'", db, plain ? "" : "'", (long long)run);
+}
+
+/* One line for an option getopt refused (opterr = 0): the argument at fault and where help is. */
+static int bad_option(const char *cmd, char **argv) {
+  fprintf(stderr, "haff %s: unknown option or missing value '%s' (see haff %s --help)\n", cmd,
+          argv[optind - 1], cmd);
+  return 2;
+}
+
 int haff_run_main(int argc, char **argv) {
   static const struct option opts[] = {{"set", required_argument, 0, 's'},
                                        {"seed", required_argument, 0, 'S'},
@@ -44,6 +64,7 @@ int haff_run_main(int argc, char **argv) {
   int nset = 0, quiet = 0, have_seed = 0, c;
   unsigned long long seed = 0;
   optind = 1;
+  opterr = 0; /* bad_option says it in one line */
   while ((c = getopt_long(argc, argv, "o:qh", opts, NULL)) != -1) {
     switch (c) {
     case 'o':
@@ -82,8 +103,7 @@ int haff_run_main(int argc, char **argv) {
       fputs(run_usage, stdout);
       return 0;
     default:
-      fputs(run_usage, stderr);
-      return 2;
+      return bad_option("run", argv);
     }
   }
   if (optind != argc - 1) {
@@ -123,15 +143,8 @@ int haff_run_main(int argc, char **argv) {
   int64_t run = 0;
   rc = hd_run_new(&sc, &o, &run, &err);
   hd_scene_free(&sc);
-  if (rc == HD_EINTR && run == 0) { /* stopped in the set-up: no run was begun */
-    fprintf(stderr, "haff run: %s, before the run began: nothing was written\n", err.msg);
-    return hd_exit_code(rc);
-  }
-  if (rc == HD_EINTR) { /* the command that goes on, for this file and run (quoted if need be) */
-    int plain = strspn(db, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._/-+") ==
-                strlen(db);
-    fprintf(stderr, "haff run: %s (continue with: haff resume %s%s%s --run %lld)\n", err.msg,
-            plain ? "" : "'", db, plain ? "" : "'", (long long)run);
+  if (rc == HD_EINTR) {
+    say_interrupted("run", err.msg, db, run);
     return hd_exit_code(rc);
   }
   if (rc) {
@@ -157,6 +170,7 @@ int haff_resume_main(int argc, char **argv) {
   long long want = 0;
   int quiet = 0, c;
   optind = 1;
+  opterr = 0;
   while ((c = getopt_long(argc, argv, "qh", opts, NULL)) != -1) {
     switch (c) {
     case 'r': {
@@ -175,8 +189,7 @@ int haff_resume_main(int argc, char **argv) {
       fputs(resume_usage, stdout);
       return 0;
     default:
-      fputs(resume_usage, stderr);
-      return 2;
+      return bad_option("resume", argv);
     }
   }
   if (optind != argc - 1) {
@@ -189,6 +202,10 @@ int haff_resume_main(int argc, char **argv) {
   hd_run_opts o = {argv[optind], quiet, HAFF_VERSION, note, sizeof note};
   int64_t run = 0;
   int rc = hd_run_resume(want, &o, &run, &err);
+  if (rc == HD_EINTR) {
+    say_interrupted("resume", err.msg, argv[optind], run);
+    return hd_exit_code(rc);
+  }
   if (rc) {
     fprintf(stderr, "haff resume: %s\n", err.msg);
     return hd_exit_code(rc);

@@ -350,6 +350,16 @@ static void bad_input(void **state) {
                       haff),
                    1);
   assert_int_equal(q1("rare.db", "SELECT count(*) FROM runs WHERE status = 'interrupted'"), 1);
+  /* a resume interrupted says how to go on too (only haff run did) */
+  assert_int_equal(sh("(%s resume rare.db --quiet & p=$!; sleep 1; while kill -INT $p 2>/dev/null; "
+                      "do sleep 0.2; done; wait $p)",
+                      haff),
+                   1);
+  read_err(e, sizeof e);
+  assert_non_null(strstr(e, "(continue with: haff resume rare.db --run 1)"));
+  /* an unknown option is one line naming it (it printed the whole usage) */
+  bad_usage("run s.ini --bogus", "haff run: unknown option or missing value '--bogus'");
+  assert_int_equal(sh("(%s resume --bogus x.db 2>&1 | wc -l | grep -qx 1)", haff), 0);
   assert_int_equal(sh("%s run --help >/dev/null", haff), 0);
   assert_int_equal(sh("%s --help >/dev/null", haff), 0);
   /* mc fmean: an option its mode does not read is refused (--fig4-data --scan printed NaN
