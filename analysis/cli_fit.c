@@ -44,10 +44,11 @@ int haff_fit_main(int argc, char **argv) {
       "usage: haff haff-fit DB [--run ID | --all] [--alpha-group] [fit options] [-o FILE]\n"
       "Fits eq. (31) tau(t) = ln(1 + gamma nu0 t)/gamma, gamma = (1-alpha^2)/(2 D_e), to the\n"
       "homogeneous part of each run (tau = cpd).  One line per run, or per group of runs with\n"
-      "equal (alpha, a/d) with --alpha-group (mean +- standard error over the runs; nan with\n"
-      "one run).  Per run, *_fit_err are the formal least-squares errors, which take the\n"
-      "residuals of the cumulative cpd(t) as independent: several times too small.  A run that\n"
-      "cannot be fitted gets nan and a note; exit 2 when none can.\n"
+      "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m and density;\n"
+      "mean +- standard error over the runs; nan with one run).  Per run, *_fit_err are the\n"
+      "formal least-squares errors, which take the residuals of the cumulative cpd(t) as\n"
+      "independent: several times too small.  A run that cannot be fitted gets nan and a note;\n"
+      "exit 2 when none can.\n"
       "  --all            every finished run (the default)\n"
       "  --alpha-group    one line per (alpha, a/d) group\n" FIT_OPTS_HELP;
   hd_cli_args a;
