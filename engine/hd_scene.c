@@ -14,6 +14,7 @@
 #include "hd_scene.h"
 
 #include "hd_body.h"
+#include "eps.h"
 
 #include <errno.h>
 #include <ini.h>
@@ -821,6 +822,16 @@ static int check_rods(ctx *c) {
   if (sc->rod_table && sc->rod_unequal)
     return FAIL_KEY(c, K_RTABLE,
                     "the table is for equal bath temperatures: not with baths = unequal");
+  if (sc->rod_model != 1 && sc->rod_gamma < 1) { /* the sampler's grid, as engine/rods.c sets it */
+    hd_eps_opts o;
+    hd_eps_opts_default(&o);
+    if (sc->rod_eps_step > 0) o.step = sc->rod_eps_step;
+    if (!hd_eps_grid_fits(sc->rod_gamma, &o))
+      return FAIL_KEY(c, K_RGAMMA,
+                      "too small for the eps sampler's grid at eps_step %g (about (1 + 1/gamma) / "
+                      "eps_step x %d points, at most 5e7): a larger gamma or eps_step",
+                      o.step, o.adapt);
+  }
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
                 "no stop condition: set stop_time, stop_events or stop_cpd");

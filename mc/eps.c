@@ -72,6 +72,11 @@ static void choose_grid(double g, long nmin, long *n1, long *n2) {
   *n2 = bq * m;
 }
 
+int hd_eps_grid_fits(double gamma, const hd_eps_opts *o) {
+  double g = gamma > 1 ? 1.0 / gamma : gamma;
+  return (1.0 + 1.0 / g) / o->step * o->adapt * (o->richardson ? 4 : 1) <= 5e7;
+}
+
 int hd_eps_sampler_alloc(hd_eps_sampler **out, double gamma, const hd_eps_opts *opts,
                          hd_error *err) {
   hd_eps_opts o;
@@ -92,7 +97,7 @@ int hd_eps_sampler_alloc(hd_eps_sampler **out, double gamma, const hd_eps_opts *
   double g = gamma > 1 ? 1.0 / gamma : gamma;
   double gam2 = 1.0 + 1.0 / g;
   int r = o.adapt * (o.richardson ? 4 : 1);
-  if ((gam2 / o.step) * r > 5e7) /* checked in doubles before the cast (1e-300 overflowed it) */
+  if (!hd_eps_grid_fits(gamma, &o)) /* checked in doubles before the cast (1e-300 overflowed it) */
     return hd_error_set(err, HD_EINPUT, "eps: step %g too small for gamma %g", o.step, gamma);
   long nmin = (long)ceil(gam2 / o.step - 1e-9);
   if ((double)nmin * r > 5e7)

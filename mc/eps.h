@@ -31,6 +31,11 @@ typedef struct hd_eps_opts {
 /* Fills opts with the defaults. */
 void hd_eps_opts_default(hd_eps_opts *opts);
 
+/* Whether the sampler's grid for gamma > 0 and o fits (about (1 + 1/gamma)/step x adapt
+ * points, x 4 with richardson, at most 5e7): what hd_eps_sampler_alloc checks, so that a scene
+ * can refuse a gamma at its key.  1 or 0. */
+int hd_eps_grid_fits(double gamma, const hd_eps_opts *o);
+
 /* A direct sampler for one length ratio (owns its work arrays; not thread-safe). */
 typedef struct hd_eps_sampler hd_eps_sampler;
 

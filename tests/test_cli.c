@@ -312,9 +312,10 @@ static void bad_input(void **state) {
                         "by SQLite's header check, which wants at least a hundred bytes of it\n");
   bad_usage("run s.ini -o junk.db", "file is not a database");
   bad_usage("resume junk.db", "file is not a database");
-  /* the rods' sampler refusing a gamma names the scene and its keys (it said only "eps: ...") */
+  /* a gamma the rods' sampler cannot grid is refused at its key, file and line (the engine's
+   * set-up said only "eps: step 0.01 too small for gamma 1e-06") */
   write_file("g6.ini", "[rods]\ncount = 10\ngamma = 1e-6\n[run]\nstop_cpd = 1\n");
-  bad_usage("run g6.ini -o g6.db", "g6.ini: [rods] gamma = 1e-06, eps_step = 0.01: eps: step");
+  bad_usage("run g6.ini -o g6.db", "g6.ini:3: [rods] gamma = 1e-6: too small for the eps sampler");
   bad_usage("run g6.ini -o g6.db --set rods.gamma=1.2", "[rods] gamma = 1.2: must be in (0, 1]");
   /* a state whose speeds square to inf ran for ever, crossing cells without a collision */
   write_file("fast.csv", "kind,x,y,phi,vx,vy,omega\ndisk,5,5,0,1e160,0,0\ndisk,10,5,0,-1,0,0\n");
