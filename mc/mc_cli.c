@@ -25,10 +25,14 @@ int haff_mc_main(int argc, char **argv) {
       if (!strcmp(argv[1], c->name)) return c->main(argc - 1, argv + 1);
   }
   int help = argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"));
-  FILE *out = help ? stdout : stderr;
-  if (argc >= 2 && !help) fprintf(stderr, "haff mc: unknown program '%s'\n", argv[1]);
-  fprintf(out, "usage: haff mc PROGRAM [ARGS...]\n\nprograms:\n");
-  for (const mc_command *c = mc_commands; c->name; c++)
-    fprintf(out, "  %-8s %s\n", c->name, c->summary);
-  return help ? 0 : 2;
+  if (!help) { /* bad usage: one line (the contract), the list is in --help */
+    if (argc >= 2)
+      fprintf(stderr, "haff mc: unknown program '%s' (haff mc --help lists them)\n", argv[1]);
+    else
+      fprintf(stderr, "haff mc: expected a program, fmean or eps (haff mc --help)\n");
+    return 2;
+  }
+  printf("usage: haff mc PROGRAM [ARGS...]\n\nprograms:\n");
+  for (const mc_command *c = mc_commands; c->name; c++) printf("  %-8s %s\n", c->name, c->summary);
+  return 0;
 }

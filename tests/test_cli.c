@@ -358,6 +358,9 @@ static void bad_input(void **state) {
                    1);
   read_err(e, sizeof e);
   assert_non_null(strstr(e, "(continue with: haff resume rare.db --run 1)"));
+  /* haff mc without a known program: one line (it printed the usage) */
+  bad_usage("mc bogus", "haff mc: unknown program 'bogus'");
+  assert_int_equal(sh("(%s mc 2>&1 | wc -l | grep -qx 1)", haff), 0);
   /* an unknown option is one line naming it (it printed the whole usage) */
   bad_usage("run s.ini --bogus", "haff run: unknown option or missing value '--bogus'");
   assert_int_equal(sh("(%s resume --bogus x.db 2>&1 | wc -l | grep -qx 1)", haff), 0);
