@@ -251,6 +251,15 @@ static void kill9_then_resume(void **state) {
 }
 
 /* `haff ARGS` (run in the test folder) exits 2 and says `needle` on stderr. */
+/* Runs `haff ARGS` in the background and sends it SIGINT after `delay` seconds, again every
+ * 0.2 s until it ends (one sent before haff installs its handler is lost: a background job of a
+ * script starts with SIGINT ignored); returns its exit status, its stderr in err.txt. */
+static int interrupt_after(const char *args, const char *delay) {
+  return sh("(%s %s & p=$!; sleep %s; while kill -INT $p 2>/dev/null; do sleep 0.2; done; "
+            "wait $p)",
+            haff, args, delay);
+}
+
 static void bad_usage(const char *args, const char *needle) {
   char e[2048];
   int rc = sh("%s %s", haff, args);
@@ -331,12 +340,7 @@ static void bad_input(void **state) {
    * then wrote a run 'interrupted' at t = 1e-9) */
   write_file("dense.ini", "[system]\narea_fraction = 0.7\n[disks]\ncount = 300000\n[run]\n"
                           "stop_cpd = 1\n");
-  /* SIGINT again every 0.2 s until it ends: one sent before haff installs its handler is lost
-   * (a background job of a script starts with SIGINT ignored) */
-  assert_int_equal(sh("(%s run dense.ini -o dense.db --quiet & p=$!; sleep 0.5; while kill -INT "
-                      "$p 2>/dev/null; do sleep 0.2; done; wait $p)",
-                      haff),
-                   1);
+  assert_int_equal(interrupt_after("run dense.ini -o dense.db --quiet", "0.5"), 1);
   read_err(e, sizeof e);
   assert_non_null(strstr(e, "of the set-up, before the run began: nothing was written"));
   assert_false(exists("dense.db"));
@@ -352,10 +356,7 @@ static void bad_input(void **state) {
                    1);
   assert_int_equal(q1("rare.db", "SELECT count(*) FROM runs WHERE status = 'interrupted'"), 1);
   /* a resume interrupted says how to go on too (only haff run did) */
-  assert_int_equal(sh("(%s resume rare.db --quiet & p=$!; sleep 1; while kill -INT $p 2>/dev/null; "
-                      "do sleep 0.2; done; wait $p)",
-                      haff),
-                   1);
+  assert_int_equal(interrupt_after("resume rare.db --quiet", "1"), 1);
   read_err(e, sizeof e);
   assert_non_null(strstr(e, "(continue with: haff resume rare.db --run 1)"));
   /* haff mc without a known program: one line (it printed the usage) */
