@@ -18,9 +18,9 @@ do for [fmt in "png svg"] {
   stats D.'/rods-stochastic.phase1.tsv' u 3 nooutput name 'P1'
   stats D.'/rods-stochastic.phase2.tsv' u 3 nooutput name 'P2'
   set yrange [(P1_min < P2_min ? P1_min : P2_min):(P1_max > P2_max ? P1_max : P2_max)]
-  set title system("head -1 '".D."/rods-stochastic.phase1.tsv' | sed 's/^# //'")
+  set title system("head -1 '".D."/rods-stochastic.phase1.tsv' | awk '{ printf \"t = %.5g\", $4 }'")
   plot D.'/rods-stochastic.phase1.tsv' u 2:3 w d notitle
-  set title system("head -1 '".D."/rods-stochastic.phase2.tsv' | sed 's/^# //'")
+  set title system("head -1 '".D."/rods-stochastic.phase2.tsv' | awk '{ printf \"t = %.5g\", $4 }'")
   plot D.'/rods-stochastic.phase2.tsv' u 2:3 w d notitle
   unset multiplot; unset title; set autoscale y; set xtics autofreq; unset mxtics
   set output O.'/rods-local.'.ext
