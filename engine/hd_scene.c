@@ -125,6 +125,7 @@ typedef struct ctx {
   hd_scene *sc;
   const char *name;        /* file name for messages */
   const char *const *over; /* the overrides */
+  int n_over;              /* how many */
   hd_error *err;
   int failed;                  /* an error has been set: stop */
   int code;                    /* its hd_status */
@@ -547,6 +548,9 @@ static int handle(ctx *c, const char *section, const char *name, const char *val
                 c->over[prev.over - 1]);
   c->key_at[k] = c->cur;
   shorten(value, c->key_val[k], sizeof c->key_val[k]);
+  /* a file's value that a --set replaces is not read: the override mends a bad line */
+  for (int i = 0; !c->cur.over && i < c->n_over; i++)
+    if (hd_scene_override_sets(c->over[i], sec_name[s], key_def[k].name)) return HD_OK;
   return set_value(c, k, value);
 }
 
@@ -1051,6 +1055,7 @@ static int load_text(hd_scene *sc, const char *text, size_t len, const char *nam
   c->sc = sc;
   c->name = name;
   c->over = over;
+  c->n_over = n_over;
   c->err = err;
   c->p = text;
   c->end = text + len;

@@ -239,8 +239,8 @@ static const bad_case bad_cases[] = {
     {RUN "[system]\nbox = 1.5 10\n[dimers]\ncount = 1\n", NULL, HD_EINPUT,
      "bad.ini:4:", "[system] box", "too small"},
     /* disks of 1e160 cover inf: the derived box was inf, and the cell grid's set-up hung */
-    {RUN "[system]\narea_fraction = 0.05\n[disks]\ncount = 10\nsigma = 1e160\n", NULL,
-     HD_EINPUT, "bad.ini:4:", "[system] area_fraction", "not a finite number"},
+    {RUN "[system]\narea_fraction = 0.05\n[disks]\ncount = 10\nsigma = 1e160\n", NULL, HD_EINPUT,
+     "bad.ini:4:", "[system] area_fraction", "not a finite number"},
     /* 100 unit disks cover pi/4 = 0.785 of a 10 x 10 box: above the random limit 0.75 */
     {RUN "[system]\nbox = 10 10\n[disks]\ncount = 100\n", NULL, HD_EINPUT,
      "bad.ini:4:", "[system] box", "dense"},
@@ -281,6 +281,30 @@ static void bad_scenes(void **state) {
     assert_null(sc.text);
     hd_scene_free(&sc);
   }
+}
+
+/* An override mends a bad line of the file: the file's value of a key that a --set replaces is
+ * not read (alpha = 1.5 stopped the run although --set disks.alpha=0.5 replaced it); the key
+ * must still exist, and a bad value of another key is still an error. */
+static void override_mends_a_bad_line(void **state) {
+  (void)state;
+  hd_scene sc;
+  hd_error e;
+  const char *text = RUN "[disks]\ncount = 2\nalpha = 1.5\n[system]\nbox = 5 5\n";
+  const char *fix[] = {"disks.alpha=0.5"};
+  assert_int_equal(hd_scene_load_string(&sc, text, "s.ini", fix, 1, &e), HD_OK);
+  assert_true(sc.disk_alpha == 0.5);
+  assert_non_null(strstr(sc.text, "alpha = 0.5"));
+  hd_scene_free(&sc);
+  assert_int_equal(hd_scene_load_string(&sc, text, "s.ini", NULL, 0, &e), HD_EINPUT);
+  assert_string_equal(e.msg, "s.ini:5: [disks] alpha = 1.5: must be in [0, 1]");
+  const char *other[] = {"disks.count=4"};
+  assert_int_equal(hd_scene_load_string(&sc, text, "s.ini", other, 1, &e), HD_EINPUT);
+  assert_string_equal(e.msg, "s.ini:5: [disks] alpha = 1.5: must be in [0, 1]");
+  const char *bad[] = {"disks.alpha=2"}; /* and the override itself is checked */
+  assert_int_equal(hd_scene_load_string(&sc, text, "s.ini", bad, 1, &e), HD_EINPUT);
+  assert_string_equal(e.msg, "--set disks.alpha=2: [disks] alpha = 2: must be in [0, 1]");
+  hd_scene_free(&sc);
 }
 
 static void override_message_exact(void **state) {
@@ -749,6 +773,7 @@ int main(void) {
       cmocka_unit_test(area_fraction_box),
       cmocka_unit_test(bad_scenes),
       cmocka_unit_test(override_message_exact),
+      cmocka_unit_test(override_mends_a_bad_line),
       cmocka_unit_test(long_line),
       cmocka_unit_test(line_at_the_limit),
       cmocka_unit_test(blank_prefixed_sections),
