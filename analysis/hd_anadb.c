@@ -7,47 +7,12 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
-
-/* How many of the tables runs and samples the database has, or -1 if it cannot be read. */
-static int haff_tables(sqlite3 *db) {
-  sqlite3_stmt *st = NULL;
-  const char *q = "SELECT count(*) FROM sqlite_master WHERE type='table' AND name IN "
-                  "('runs','samples')";
-  int ok = sqlite3_prepare_v2(db, q, -1, &st, NULL) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW;
-  int have = ok ? sqlite3_column_int(st, 0) : -1;
-  sqlite3_finalize(st);
-  return have;
-}
 
 int hd_ana_open(sqlite3 **db, const char *path, hd_error *err) {
-  *db = NULL;
-  /* a missing file or a directory is bad input (exit 2), not a failed read */
-  int prc = hd_db_check_path(path, 1, err);
-  if (prc) return prc;
-  if (hd_db_open_reader(path, db, 0) != SQLITE_OK) {
-    hd_error_set(err, HD_EIO, "%s: cannot open database: %s", path,
-                 *db ? sqlite3_errmsg(*db) : "out of memory");
-    sqlite3_close(*db);
-    *db = NULL;
-    return HD_EIO;
-  }
-  sqlite3_busy_timeout(*db, 5000);
-  int have = haff_tables(*db);
-  if (have < 0 && hd_db_reopen_immutable(path, db, 0)) { /* a read-only folder */
-    sqlite3_busy_timeout(*db, 5000);
-    have = haff_tables(*db);
-  }
-  if (have < 0 && *db && (sqlite3_errcode(*db) & 0xff) == SQLITE_NOTADB) have = -2; /* bad input */
-  if (have != 2) {
-    hd_error_set(err, have == -1 ? HD_EIO : HD_EINPUT, "%s: not a haff database (%s)", path,
-                 have < 0 ? (*db ? sqlite3_errmsg(*db) : "out of memory")
-                          : "no runs/samples tables");
-    sqlite3_close(*db);
-    *db = NULL;
-    return err ? err->code : HD_EINPUT;
-  }
-  return HD_OK;
+  static const char *const tables[] = {"runs", "samples", NULL};
+  int rc = hd_db_open_read(path, 0, tables, db, err);
+  if (!rc) sqlite3_busy_timeout(*db, 5000);
+  return rc;
 }
 
 /* Raw keys collected by the INI handler. */

@@ -45,7 +45,8 @@ typedef struct hd_run_info {
   double eta_disk;      /* pi n d^2 / 4: area fraction of the reference disks (eq. 30) */
 } hd_run_info;
 
-/* Opens path read-only and checks that the tables runs and samples exist.  HD_EIO/HD_EINPUT. */
+/* Opens path for reading (hd_db_open_read: nothing is written) and checks that the tables runs
+ * and samples exist.  HD_OK, or HD_EINPUT / HD_EIO / HD_ENOMEM with err set and *db NULL. */
 int hd_ana_open(sqlite3 **db, const char *path, hd_error *err);
 
 /* Parses an INI scene text into ri (everything but id, status, seed).  HD_EINPUT if the text is

@@ -180,8 +180,8 @@ static void db_free(hd_db *db) {
   free(db);
 }
 
-/* Allocates the handle and opens the file with flags. */
-static int db_alloc_open(hd_db **out, const char *path, int flags, hd_error *err) {
+/* Allocates the handle for path, not yet open. */
+static int db_alloc(hd_db **out, const char *path, hd_error *err) {
   *out = NULL;
   if (!path || !*path) return hd_error_set(err, HD_EINPUT, "database: no path given");
   hd_db *db = calloc(1, sizeof *db);
@@ -192,33 +192,49 @@ static int db_alloc_open(hd_db **out, const char *path, int flags, hd_error *err
     return hd_error_set(err, HD_ENOMEM, "%s: out of memory", path);
   }
   db->batch_rows = 10000;
-  /* NOMUTEX: SQLite's per-call locking (17 % of a logged run) is not needed: the connection is
-   * used by one thread at a time, the writer between hand-offs and the caller only after
-   * drain(), and the hand-off (mu, cv) orders their accesses. */
-  int orc =
-      flags & SQLITE_OPEN_READONLY
-          ? hd_db_open_reader(path, &db->db, (flags & ~SQLITE_OPEN_READONLY) | SQLITE_OPEN_NOMUTEX)
-          : sqlite3_open_v2(path, &db->db, flags | SQLITE_OPEN_NOMUTEX, NULL);
-  if (orc != SQLITE_OK) {
-    int rc = db->db ? sql_error(db, err, "open")
-                    : hd_error_set(err, HD_ENOMEM, "%s: open: out of memory", path);
-    db_free(db);
-    return rc;
-  }
-  sqlite3_extended_result_codes(db->db, 1);
-  sqlite3_busy_timeout(db->db, 10000); /* another writer: wait up to 10 s, then HD_EIO */
   *out = db;
   return HD_OK;
 }
 
-int hd_db_open(hd_db **out, const char *path, hd_error *err) {
+/* The error of a connection h to path that failed at `what`: HD_EINPUT when the file is not an
+ * SQLite database ("not a haff database": bad input, exit 2), else HD_EIO with SQLite's
+ * message; HD_ENOMEM when h could not even be made. */
+static int open_error(sqlite3 *h, const char *path, const char *what, hd_error *err) {
+  if (!h) return hd_error_set(err, HD_ENOMEM, "%s: open: out of memory", path);
+  if ((sqlite3_errcode(h) & 0xff) == SQLITE_NOTADB)
+    return hd_error_set(err, HD_EINPUT, "%s: not a haff database (%s)", path, sqlite3_errmsg(h));
+  return hd_error_set(err, HD_EIO, "%s: %s: %s", path, what, sqlite3_errmsg(h));
+}
+
+static int tables_missing(sqlite3 *h, const char *const *tables, const char **missing);
+
+/* hd_db_open (existing 0: created if missing) and hd_db_open_existing (1: must be a haff
+ * database already, checked before anything is written). */
+static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
   if (!out) return hd_error_set(err, HD_EINPUT, "hd_db_open: out is NULL");
   *out = NULL;
-  int rc = hd_db_check_path(path, 0, err);
-  if (rc) return rc;
   hd_db *db;
-  rc = db_alloc_open(&db, path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, err);
-  if (rc) return rc;
+  int rc = hd_db_check_path(path, existing, err);
+  if (rc || (rc = db_alloc(&db, path, err))) return rc;
+  /* NOMUTEX: SQLite's per-call locking (17 % of a logged run) is not needed: the connection is
+   * used by one thread at a time, the writer between hand-offs and the caller only after
+   * drain(), and the hand-off (mu, cv) orders their accesses. */
+  int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX | (existing ? 0 : SQLITE_OPEN_CREATE);
+  static const char *const runs[] = {"runs", NULL};
+  const char *none = NULL;
+  int missing = 0;
+  if (sqlite3_open_v2(path, &db->db, flags, NULL) != SQLITE_OK ||
+      (existing && (missing = tables_missing(db->db, runs, &none)) < 0)) {
+    rc = open_error(db->db, path, "open", err);
+    db_free(db);
+    return rc;
+  }
+  if (missing) {
+    db_free(db);
+    return hd_error_set(err, HD_EINPUT, "%s: not a haff database (no %s table)", path, none);
+  }
+  sqlite3_extended_result_codes(db->db, 1);
+  sqlite3_busy_timeout(db->db, 10000); /* another writer: wait up to 10 s, then HD_EIO */
   /* SQLite quietly falls back to read-only when the file is not writable; a run could then
    * not log anything, so say it now. */
   if (sqlite3_db_readonly(db->db, "main") == 1) {
@@ -229,9 +245,7 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err) {
   }
   /* WAL + NORMAL: see the top of this file for why a kill -9 still leaves whole batches. */
   if (sqlite3_exec(db->db, "PRAGMA journal_mode=WAL", NULL, NULL, NULL) != SQLITE_OK) {
-    rc = sql_error(db, err, "set WAL mode");
-    if ((sqlite3_errcode(db->db) & 0xff) == SQLITE_NOTADB)
-      rc = err ? (err->code = HD_EINPUT) : HD_EINPUT;
+    rc = open_error(db->db, path, "set WAL mode", err);
   } else if (sqlite3_exec(db->db, "PRAGMA synchronous=NORMAL", NULL, NULL, NULL) != SQLITE_OK) {
     rc = sql_error(db, err, "set synchronous");
   } else if (sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK) {
@@ -275,6 +289,14 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err) {
   return HD_OK;
 }
 
+int hd_db_open(hd_db **out, const char *path, hd_error *err) {
+  return open_rw(out, path, 0, err);
+}
+
+int hd_db_open_existing(hd_db **out, const char *path, hd_error *err) {
+  return open_rw(out, path, 1, err);
+}
+
 /* Writes into buf the URI "file:PATH?immutable=1" (PATH percent-encoded where a URI needs it);
  * 0, or -1 when it does not fit in size bytes or when PATH-wal holds rows (which immutable would
  * not read). */
@@ -299,7 +321,12 @@ static int uri_immutable(const char *path, char *buf, size_t size) {
   return 0;
 }
 
-int hd_db_open_reader(const char *path, sqlite3 **h, int flags) {
+/* Opens PATH (which must exist) for reading, as sqlite3_open_v2 with flags: read-write when
+ * the file may be written, with PRAGMA query_only (no statement can change it), so that the
+ * last reader to close removes the -wal and -shm files that SQLite makes for a database in WAL
+ * mode (a read-only connection leaves them beside it for good); read-only when the file is
+ * write-protected.  Returns SQLite's code; *h as sqlite3_open_v2 leaves it. */
+static int open_reader(const char *path, sqlite3 **h, int flags) {
   /* READWRITE opens a write-protected file read-only by itself; without CREATE a missing file
    * is SQLITE_CANTOPEN, as with READONLY */
   int rc = sqlite3_open_v2(path, h, flags | SQLITE_OPEN_READWRITE, NULL);
@@ -307,16 +334,19 @@ int hd_db_open_reader(const char *path, sqlite3 **h, int flags) {
   return rc;
 }
 
-int hd_db_reopen_immutable(const char *path, sqlite3 **h, int flags) {
+/* After reading the schema through *h failed: if it failed because SQLite cannot make the
+ * log's index (-shm) in a read-only folder or file system, replaces *h by a connection that
+ * reads PATH as immutable (opened with flags | READONLY) and returns 1; not when PATH-wal holds
+ * rows, which immutable would leave out.  Else 0 (*h, closed and reopened or not, is for the
+ * caller's error message and sqlite3_close). */
+static int reopen_immutable(const char *path, sqlite3 **h, int flags) {
   int code = *h ? sqlite3_errcode(*h) & 0xff : SQLITE_NOMEM; /* primary code of an extended one */
   char uri[8300];
   if ((code != SQLITE_CANTOPEN && code != SQLITE_READONLY) || uri_immutable(path, uri, sizeof uri))
     return 0;
   sqlite3_close(*h);
   *h = NULL;
-  if (sqlite3_open_v2(uri, h, flags | SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, NULL) != SQLITE_OK)
-    return 0;
-  return sqlite3_exec(*h, "SELECT count(*) FROM sqlite_schema", NULL, NULL, NULL) == SQLITE_OK;
+  return sqlite3_open_v2(uri, h, flags | SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, NULL) == SQLITE_OK;
 }
 
 int hd_db_check_path(const char *path, int must_exist, hd_error *err) {
@@ -332,57 +362,62 @@ int hd_db_check_path(const char *path, int must_exist, hd_error *err) {
   return HD_OK;
 }
 
-/* Whether h has the table runs: 1, 0, or -1 when the schema cannot be read. */
-static int has_runs(sqlite3 *h) {
+/* Whether h holds every table of tables (NULL-terminated names): 0; 1 with *missing the first
+ * it lacks; -1 when its schema cannot be read (not a database, or no -shm can be made). */
+static int tables_missing(sqlite3 *h, const char *const *tables, const char **missing) {
   sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(h,
-                         "SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = "
-                         "'runs'",
+  if (sqlite3_prepare_v2(h, "SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = ?1",
                          -1, &st, NULL) != SQLITE_OK)
     return -1;
-  int r = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int(st, 0) > 0 : -1;
+  int rc = 0;
+  for (const char *const *t = tables; *t && !rc; t++) {
+    sqlite3_bind_text(st, 1, *t, -1, SQLITE_STATIC);
+    if (sqlite3_step(st) != SQLITE_ROW)
+      rc = -1;
+    else if (sqlite3_column_int(st, 0) == 0)
+      rc = 1, *missing = *t;
+    sqlite3_reset(st);
+  }
   sqlite3_finalize(st);
-  return r;
+  return rc;
+}
+
+int hd_db_open_read(const char *path, int flags, const char *const *tables, sqlite3 **h,
+                    hd_error *err) {
+  *h = NULL;
+  int rc = hd_db_check_path(path, 1, err);
+  if (rc) return rc;
+  const char *none = NULL;
+  int missing = open_reader(path, h, flags) == SQLITE_OK ? tables_missing(*h, tables, &none) : -1;
+  if (missing < 0 && reopen_immutable(path, h, flags)) /* a read-only folder */
+    missing = tables_missing(*h, tables, &none);
+  if (missing) {
+    rc = missing < 0
+             ? open_error(*h, path, "open", err)
+             : hd_error_set(err, HD_EINPUT, "%s: not a haff database (no %s table)", path, none);
+    sqlite3_close(*h);
+    *h = NULL;
+    return rc;
+  }
+  sqlite3_extended_result_codes(*h, 1);
+  return HD_OK;
 }
 
 int hd_db_open_readonly(hd_db **out, const char *path, hd_error *err) {
   if (!out) return hd_error_set(err, HD_EINPUT, "hd_db_open_readonly: out is NULL");
   *out = NULL;
-  int rc = hd_db_check_path(path, 1, err);
-  if (rc) return rc;
   hd_db *db;
-  rc = db_alloc_open(&db, path, SQLITE_OPEN_READONLY, err);
-  if (rc) return rc;
-  db->readonly = 1;
-  /* Reading the schema now turns "not a database" into an error here, not later. */
-  int have = has_runs(db->db);
-  if (have < 0 && hd_db_reopen_immutable(path, &db->db, SQLITE_OPEN_NOMUTEX)) {
-    sqlite3_extended_result_codes(db->db, 1);
-    have = has_runs(db->db);
-  }
-  if (have < 0) {
-    rc = db->db ? sql_error(db, err, "open")
-                : hd_error_set(err, HD_ENOMEM, "%s: open: out of memory", path);
-    if (db->db && (sqlite3_errcode(db->db) & 0xff) == SQLITE_NOTADB) {
-      rc = HD_EINPUT; /* bad input, not a failed read */
-      if (err) err->code = rc;
-    }
+  static const char *const runs[] = {"runs", NULL};
+  int rc = db_alloc(&db, path, err);
+  if (!rc) rc = hd_db_open_read(path, SQLITE_OPEN_NOMUTEX, runs, &db->db, err);
+  if (rc) {
     db_free(db);
     return rc;
   }
-  if (!have) {
-    db_free(db);
-    return hd_error_set(err, HD_EINPUT, "%s: not a haff database (no runs table)", path);
-  }
+  sqlite3_busy_timeout(db->db, 10000);
+  db->readonly = 1;
   *out = db;
   return HD_OK;
-}
-
-int hd_db_probe(const char *path, hd_error *err) {
-  hd_db *db;
-  int rc = hd_db_open_readonly(&db, path, err);
-  if (!rc) rc = hd_db_close(db, err);
-  return rc;
 }
 
 int hd_db_close(hd_db *db, hd_error *err) {

@@ -79,24 +79,21 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err);
  * HD_OK (a missing path is a new database to hd_db_open). */
 int hd_db_check_path(const char *path, int must_exist, hd_error *err);
 
-/* Whether PATH is a haff database, read without writing anything: HD_OK; HD_EINPUT when it is
- * missing, a directory, not an SQLite file or has no runs table; HD_EIO when it cannot be
- * read.  `haff resume` asks before hd_db_open, which would add haff's tables to any file. */
-int hd_db_probe(const char *path, hd_error *err);
+/* As hd_db_open, for a file that must be a haff database already (`haff resume`): HD_EINPUT
+ * when it is missing, a directory, not an SQLite file or has no runs table, found before
+ * anything is written (hd_db_open would add haff's tables to any file). */
+int hd_db_open_existing(hd_db **out, const char *path, hd_error *err);
 
-/* Opens PATH (which must exist) for reading, as sqlite3_open_v2 with flags: read-write when
- * the file may be written, with PRAGMA query_only (no statement can change it), so that the
- * last reader to close removes the -wal and -shm files that SQLite makes for a database in WAL
- * mode (a read-only connection leaves them beside it for good); read-only when the file is
- * write-protected.  Returns SQLite's code; *h as sqlite3_open_v2 leaves it. */
-int hd_db_open_reader(const char *path, sqlite3 **h, int flags);
-
-/* After reading the schema through *h failed: if it failed because SQLite cannot make the
- * log's index (-shm) in a read-only folder or file system, replaces *h by a connection that
- * reads PATH as immutable (opened with flags | READONLY) and returns 1 once that one has read
- * the schema; not when PATH-wal holds rows, which immutable would leave out.  Else 0 (*h, closed
- * and reopened or not, is for the caller's error message and sqlite3_close). */
-int hd_db_reopen_immutable(const char *path, sqlite3 **h, int flags);
+/* Opens PATH, which must hold every table of tables (NULL-terminated names), for reading into
+ * *h (sqlite3_open_v2 flags, e.g. SQLITE_OPEN_NOMUTEX): read-write with PRAGMA query_only when
+ * the file may be written, so that the last reader to close removes the -wal and -shm files
+ * SQLite makes beside a database in WAL mode (a read-only connection leaves them); read-only
+ * when it is write-protected; as immutable in a read-only folder or file system, where no -shm
+ * can be made (not when PATH-wal holds rows, which immutable would leave out).  HD_OK; else *h
+ * NULL and HD_EINPUT (missing, a directory, not an SQLite file, a table missing: not a haff
+ * database), HD_EIO or HD_ENOMEM with err set. */
+int hd_db_open_read(const char *path, int flags, const char *const *tables, sqlite3 **h,
+                    hd_error *err);
 
 /* Opens an existing database read-only (for analysis and export): no schema is applied and
  * every write fails with HD_EIO.  In a read-only folder or file system (no -shm can be made)

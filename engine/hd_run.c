@@ -418,8 +418,7 @@ int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error
   unsigned long long seed = 0;
   *run = 0;
   /* not created by a mistyped name, nor haff's tables added to a file of someone else's */
-  int rc = hd_db_probe(o->db_path, err);
-  if (!rc) rc = hd_db_open(&r.db, o->db_path, err);
+  int rc = hd_db_open_existing(&r.db, o->db_path, err);
   if (!rc) rc = hd_db_find_resumable(r.db, want_run, &r.run, &text, &seed, err);
   if (!rc) {
     char name[64];

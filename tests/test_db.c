@@ -567,6 +567,14 @@ static int readonly_checks(const char *dir, const char *path) {
   hd_error_clear(&err);
   if (hd_db_open(&db, fresh, &err) != HD_EIO || db) bad |= 4;
   if (!strstr(err.msg, fresh) || !strstr(err.msg, "open")) bad |= 8;
+  /* readers still read it: no -shm can be made in the folder, so as immutable */
+  hd_error_clear(&err);
+  if (hd_db_open_readonly(&db, path, &err) != HD_OK || !db) {
+    bad |= 16;
+  } else {
+    if (q_int(hd_db_handle(db), "SELECT count(*) FROM runs") != 1) bad |= 32;
+    hd_db_close(db, NULL);
+  }
   if (bad) fprintf(stderr, "readonly_checks: %d: %s\n", bad, err.msg);
   return bad;
 }
