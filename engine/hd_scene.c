@@ -14,7 +14,7 @@
 #include "hd_scene.h"
 
 #include "hd_body.h"
-#include "eps.h"
+#include "rods.h"
 
 #include <errno.h>
 #include <ini.h>
@@ -826,10 +826,9 @@ static int check_rods(ctx *c) {
   if (sc->rod_table && sc->rod_unequal)
     return FAIL_KEY(c, K_RTABLE,
                     "the table is for equal bath temperatures: not with baths = unequal");
-  if (sc->rod_model != 1 && sc->rod_gamma < 1) { /* the sampler's grid, as engine/rods.c sets it */
+  if (sc->rod_model != 1 && sc->rod_gamma < 1) { /* the sampler the ring builds (rods.c) */
     hd_eps_opts o;
-    hd_eps_opts_default(&o);
-    if (sc->rod_eps_step > 0) o.step = sc->rod_eps_step;
+    hd_rods_eps_opts(sc->rod_eps_step, &o);
     if (!hd_eps_grid_fits(sc->rod_gamma, &o))
       return FAIL_KEY(c, K_RGAMMA,
                       "too small for the eps sampler's grid at eps_step %g (about (1 + 1/gamma) / "

@@ -98,6 +98,11 @@ static void keep_frame(hd_rods *r, double u, double va, double vb) {
   r->frames++;
 }
 
+void hd_rods_eps_opts(double eps_step, hd_eps_opts *o) {
+  hd_eps_opts_default(o);
+  if (eps_step > 0) o->step = eps_step;
+}
+
 static int check_params(const hd_rods_params *p, hd_error *err) {
   if (p->n < 2 || p->n % 2)
     return hd_error_set(err, HD_EINPUT, "rods: count %ld must be even and >= 2", p->n);
@@ -144,15 +149,8 @@ static int alloc_bare(hd_rods **out, const hd_rods_params *p, hd_error *err) {
   }
   if (p->model == HD_RODS_STOCHASTIC && p->gamma < 1) {
     hd_eps_opts o;
-    hd_eps_opts_default(&o);
-    if (p->eps_step > 0) o.step = p->eps_step;
+    hd_rods_eps_opts(p->eps_step, &o);
     rc = hd_eps_sampler_alloc(&r->sampler, p->gamma, &o, err);
-    if (rc == HD_EINPUT) { /* the scene's keys at fault, named so that the caller adds the file */
-      char msg[sizeof err->msg];
-      snprintf(msg, sizeof msg, "%s", err->msg);
-      hd_error_set(err, rc, "[rods] gamma = %g, eps_step = %g: %s (a larger gamma or eps_step)",
-                   p->gamma, o.step, msg);
-    }
     if (!rc && p->table) {
       gsl_rng *tr = gsl_rng_alloc(gsl_rng_mt19937);
       if (!tr)

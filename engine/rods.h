@@ -111,6 +111,10 @@ typedef struct hd_rods {
  * no TC, T0 = 1, direct sampler, mean baths, seed 1). */
 void hd_rods_params_default(hd_rods_params *p);
 
+/* The options of the ring's eps sampler for eps_step (0: the sampler's default step), so that a
+ * scene check (hd_eps_grid_fits) sees the sampler the ring will build. */
+void hd_rods_eps_opts(double eps_step, hd_eps_opts *o);
+
 /* Allocates a ring in its initial state.  HD_OK, HD_EINPUT (bad parameters) or HD_ENOMEM. */
 int hd_rods_alloc(hd_rods **out, const hd_rods_params *p, hd_error *err);
 

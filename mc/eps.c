@@ -74,7 +74,9 @@ static void choose_grid(double g, long nmin, long *n1, long *n2) {
 
 int hd_eps_grid_fits(double gamma, const hd_eps_opts *o) {
   double g = gamma > 1 ? 1.0 / gamma : gamma;
-  return (1.0 + 1.0 / g) / o->step * o->adapt * (o->richardson ? 4 : 1) <= 5e7;
+  double nmin = (1.0 + 1.0 / g) / o->step, r = o->adapt * (o->richardson ? 4 : 1);
+  /* in doubles first: 1e-300 overflowed the cast */
+  return nmin * r <= 5e7 && ceil(nmin - 1e-9) * r <= 5e7;
 }
 
 int hd_eps_sampler_alloc(hd_eps_sampler **out, double gamma, const hd_eps_opts *opts,
@@ -97,11 +99,9 @@ int hd_eps_sampler_alloc(hd_eps_sampler **out, double gamma, const hd_eps_opts *
   double g = gamma > 1 ? 1.0 / gamma : gamma;
   double gam2 = 1.0 + 1.0 / g;
   int r = o.adapt * (o.richardson ? 4 : 1);
-  if (!hd_eps_grid_fits(gamma, &o)) /* checked in doubles before the cast (1e-300 overflowed it) */
+  if (!hd_eps_grid_fits(gamma, &o))
     return hd_error_set(err, HD_EINPUT, "eps: step %g too small for gamma %g", o.step, gamma);
   long nmin = (long)ceil(gam2 / o.step - 1e-9);
-  if ((double)nmin * r > 5e7)
-    return hd_error_set(err, HD_EINPUT, "eps: step %g too small for gamma %g", o.step, gamma);
   hd_eps_sampler *s = calloc(1, sizeof *s);
   if (!s) return hd_error_set(err, HD_ENOMEM, "eps: out of memory");
   s->gamma_in = gamma;
