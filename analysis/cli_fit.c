@@ -15,18 +15,27 @@
   "  --cpd-max X      fit only samples with cpd <= X (0: no limit, the default)\n"                 \
   "  -o FILE          write to FILE instead of stdout\n"
 
-/* Whether group g is one of the papers' tables (one species, periodic box: dimers, or disks
- * too when with_disks); else says on stderr that it is left out and where it is fitted. */
-static int table_group(const char *cmd, const hd_group *g, int with_disks) {
-  if (!g->walls && (g->species == HD_ANA_DIMERS || (with_disks && g->species == HD_ANA_DISKS)))
-    return 1;
-  if (g->species == HD_ANA_DISKS && !g->walls) return 0; /* table2: disks have no rotation */
-  fprintf(stderr,
-          "haff %s: note: left out %zu run%s of %s (alpha %g a/d %g): the table is for one species "
-          "in a periodic box; haff-fit --alpha-group fits them\n",
-          cmd, g->n, g->n == 1 ? "" : "s", hd_ana_species_name(g->species, g->walls), g->alpha,
-          g->a_over_d);
-  return 0;
+/* Whether group g is in the papers' tables: one species in a periodic box, dimers (and disks
+ * when with_disks: Table I's reference; Table II's K needs rotation). */
+static int in_table(const hd_group *g, int with_disks) {
+  return !g->walls && (g->species == HD_ANA_DIMERS || (with_disks && g->species == HD_ANA_DISKS));
+}
+
+/* How many of the groups g[0..ng) are in the table; says on stderr which are left out for not
+ * being the papers' case (a mixture, walls) and where they are fitted. */
+static size_t table_groups(const char *cmd, const hd_group *g, size_t ng, int with_disks) {
+  size_t in = 0;
+  for (size_t j = 0; j < ng; j++) {
+    if (in_table(&g[j], with_disks))
+      in++;
+    else if (g[j].species != HD_ANA_DISKS || g[j].walls) /* not the disks table2 has no use for */
+      fprintf(stderr,
+              "haff %s: note: left out %zu run%s of %s (alpha %g a/d %g): the table is for one "
+              "species in a periodic box; haff-fit --alpha-group fits them\n",
+              cmd, g[j].n, g[j].n == 1 ? "" : "s", hd_ana_species_name(g[j].species, g[j].walls),
+              g[j].alpha, g[j].a_over_d);
+  }
+  return in;
 }
 
 /* Says on stderr why a group fitted from one run has no error (hd_ensemble_mean). */
@@ -144,10 +153,7 @@ int haff_table1_main(int argc, char **argv) {
   hd_group *g;
   size_t n, ng;
   if ((rc = hd_cli_groups(&a, argv[0], &db, &fits, &n, &g, &ng))) return rc;
-  size_t shown = 0; /* as table2: nothing to tabulate is bad input, not an empty table */
-  for (size_t j = 0; j < ng; j++)
-    shown += !g[j].walls && (g[j].species == HD_ANA_DIMERS || g[j].species == HD_ANA_DISKS);
-  if (shown == 0) {
+  if (table_groups(argv[0], g, ng, 1) == 0) { /* nothing to tabulate is bad input */
     fprintf(stderr, "haff %s: no run of one species in a periodic box to tabulate\n", argv[0]);
     hd_cli_groups_free(db, fits, g, ng);
     return 2;
@@ -165,7 +171,7 @@ int haff_table1_main(int argc, char **argv) {
   else
     fprintf(out, "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\n");
   for (size_t j = 0; j < ng; j++) {
-    if (!table_group(argv[0], &g[j], 1)) continue;
+    if (!in_table(&g[j], 1)) continue;
     double *dv = v, *rv = v + n, D, Derr, R, Rerr;
     size_t m = 0;
     for (size_t k = 0; k < g[j].n; k++) {
@@ -207,9 +213,8 @@ int haff_table2_main(int argc, char **argv) {
   hd_group *g;
   size_t n, ng;
   if ((rc = hd_cli_groups(&a, argv[0], &db, &fits, &n, &g, &ng))) return rc;
-  size_t ndimer = 0; /* K = E_tr/E_rot is a dimer quantity: a file without dimers is bad input */
-  for (size_t j = 0; j < ng; j++) ndimer += table_group(argv[0], &g[j], 0);
-  if (ndimer == 0) {
+  if (table_groups(argv[0], g, ng, 0) ==
+      0) { /* K = E_tr/E_rot: a file without dimers is bad input */
     fprintf(stderr,
             "haff %s: no dimer run to fit (K = E_tr/E_rot needs rotation; dimers alone in a "
             "periodic box)\n",
@@ -229,7 +234,7 @@ int haff_table2_main(int argc, char **argv) {
   int bad = 0;
   hd_error err;
   for (size_t j = 0; j < ng; j++) {
-    if (g[j].species != HD_ANA_DIMERS || g[j].walls) continue; /* said above */
+    if (!in_table(&g[j], 0)) continue;
     double r[6];
     if (hd_combine_k(fits, g[j].idx, g[j].n, a.kmode, a.fit.level, r, &err)) {
       fprintf(stderr, "haff %s: alpha %g a/d %g: %s\n", argv[0], g[j].alpha, g[j].a_over_d,
