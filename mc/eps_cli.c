@@ -259,10 +259,9 @@ int hd_mc_eps_main(int argc, char **argv) {
   optind = 1;
   opterr = 0;
   int c, li = 0;
-  char given[32] = ""; /* the short codes of the options given, for the mode check below */
+  unsigned given = 0; /* bit k: opts[k] was given (every option is long: li says which) */
   while ((c = getopt_long(argc, argv, "", opts, &li)) != -1) {
-    if (c > 0 && c < 256 && !strchr(given, c) && strlen(given) < sizeof given - 1)
-      given[strlen(given)] = (char)c;
+    if (c != '?' && c != ':') given |= 1u << li;
     int ok = 1;
     switch (c) {
     case 'g':
@@ -337,12 +336,9 @@ int hd_mc_eps_main(int argc, char **argv) {
   /* an option the mode does not read is refused, not ignored (--tabulate --beta 5 ran with
    * no word of the beta) */
   const char *refused = tab ? "bBdc" : conv ? "darDmMKU" : "DmMKU";
-  for (const char *g = given; *g; g++)
-    if (strchr(refused, *g)) {
-      const char *name = "?";
-      for (int k = 0; opts[k].name; k++)
-        if (opts[k].val == *g) name = opts[k].name;
-      fprintf(stderr, "haff mc eps: --%s does not apply %s (see --help)\n", name,
+  for (int k = 0; opts[k].name; k++)
+    if ((given >> k & 1u) && strchr(refused, opts[k].val)) {
+      fprintf(stderr, "haff mc eps: --%s does not apply %s (see --help)\n", opts[k].name,
               tab    ? "with --tabulate"
               : conv ? "with --convergence"
                      : "without --tabulate");

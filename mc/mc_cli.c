@@ -29,7 +29,7 @@ int haff_mc_main(int argc, char **argv) {
     if (argc >= 2)
       fprintf(stderr, "haff mc: unknown program '%s' (haff mc --help lists them)\n", argv[1]);
     else
-      fprintf(stderr, "haff mc: expected a program, fmean or eps (haff mc --help)\n");
+      fprintf(stderr, "haff mc: expected a program (haff mc --help lists them)\n");
     return 2;
   }
   printf("usage: haff mc PROGRAM [ARGS...]\n\nprograms:\n");
