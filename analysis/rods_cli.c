@@ -42,7 +42,7 @@ static int whole_number(const char *s, double *x) {
 
 /* Prints why an option's value is refused and returns 2. */
 static int bad_arg(const char *cmd, const char *opt, const char *val) {
-  fprintf(stderr, "%s: %s '%s': out of range or not a number (see --help)\n", cmd, opt, val);
+  fprintf(stderr, "haff %s: %s '%s': out of range or not a number (see --help)\n", cmd, opt, val);
   return 2;
 }
 
@@ -93,7 +93,7 @@ static int parse(int argc, char **argv, const char *usage, ropts *o) {
       fputs(usage, stdout);
       return -1;
     default:
-      fprintf(stderr, "%s: unknown option or missing value '%s' (see --help)\n", argv[0],
+      fprintf(stderr, "haff %s: unknown option or missing value '%s' (see --help)\n", argv[0],
               argv[optind - 1]);
       return 2;
     }
@@ -104,12 +104,12 @@ static int parse(int argc, char **argv, const char *usage, ropts *o) {
     }
   }
   if (optind != argc - 1) {
-    fprintf(stderr, "%s: expected one database (see --help)\n", argv[0]);
+    fprintf(stderr, "haff %s: expected one database (see --help)\n", argv[0]);
     return 2;
   }
   /* named one by one: each command reads some of them only */
   if (o->bins < 0 || o->gap <= 0 || o->range <= 0) {
-    fprintf(stderr, "%s: %s must be > 0\n", argv[0],
+    fprintf(stderr, "haff %s: %s must be > 0\n", argv[0],
             o->bins < 0   ? "--bins"
             : o->gap <= 0 ? "--gap"
                           : "--range");
@@ -131,7 +131,7 @@ static int open_run(const char *cmd, const ropts *o, rrun *r) {
   hd_error err;
   hd_error_clear(&err);
   if (hd_ana_open(&r->db, o->db, &err)) { /* a missing file or not a haff database: exit 2 */
-    fprintf(stderr, "%s: %s\n", cmd, err.msg);
+    fprintf(stderr, "haff %s: %s\n", cmd, err.msg);
     return hd_exit_code(err.code);
   }
   sqlite3_stmt *st;
@@ -139,7 +139,7 @@ static int open_run(const char *cmd, const ropts *o, rrun *r) {
                                 : "SELECT id, scene FROM runs WHERE scene LIKE '%[rods]%' "
                                   "ORDER BY id DESC LIMIT 1";
   if (sqlite3_prepare_v2(r->db, sql, -1, &st, NULL) != SQLITE_OK) {
-    fprintf(stderr, "%s: %s: not a haff database: %s\n", cmd, o->db, sqlite3_errmsg(r->db));
+    fprintf(stderr, "haff %s: %s: not a haff database: %s\n", cmd, o->db, sqlite3_errmsg(r->db));
     sqlite3_close(r->db);
     return 2;
   }
@@ -152,9 +152,9 @@ static int open_run(const char *cmd, const ropts *o, rrun *r) {
         r->sc.n_rods > 0)
       rc = 0;
     else
-      fprintf(stderr, "%s: %s: run %ld is not a rods run\n", cmd, o->db, r->id);
+      fprintf(stderr, "haff %s: %s: run %ld is not a rods run\n", cmd, o->db, r->id);
   } else {
-    fprintf(stderr, "%s: %s: no rods run%s\n", cmd, o->db, o->run >= 0 ? " with that id" : "");
+    fprintf(stderr, "haff %s: %s: no rods run%s\n", cmd, o->db, o->run >= 0 ? " with that id" : "");
   }
   sqlite3_finalize(st);
   if (rc) {
@@ -217,7 +217,7 @@ static void snap_free(rsnap *s) {
 
 /* Says that cmd ran out of memory; returns 1 (the exit code). */
 static int out_of_memory(const char *cmd) {
-  fprintf(stderr, "%s: out of memory\n", cmd);
+  fprintf(stderr, "haff %s: out of memory\n", cmd);
   return 1;
 }
 
@@ -238,7 +238,7 @@ static int snapshot(const char *cmd, rrun *r, double t, rsnap *s) {
                          "SELECT body, x, vx, omega FROM states WHERE run = ?1 AND kind = 'rod' "
                          "AND t = ?2 AND label IN ('initial','velocities','final')",
                          -1, &st, NULL) != SQLITE_OK) {
-    fprintf(stderr, "%s: cannot read the states of run %ld: %s\n", cmd, r->id,
+    fprintf(stderr, "haff %s: cannot read the states of run %ld: %s\n", cmd, r->id,
             sqlite3_errmsg(r->db));
     snap_free(s);
     return 1;
@@ -265,7 +265,7 @@ static int pick_time(const char *cmd, rrun *r, const ropts *o, double *t) {
   double *ts;
   long n = snap_times(r, &ts);
   if (n <= 0) {
-    fprintf(stderr, "%s: run %ld has no rod snapshots ([log] velocities_at)\n", cmd, r->id);
+    fprintf(stderr, "haff %s: run %ld has no rod snapshots ([log] velocities_at)\n", cmd, r->id);
     free(ts);
     return 1;
   }
@@ -296,7 +296,6 @@ static int start_at(int argc, char **argv, const char *usage, int bins, ropts *o
  */
 
 int haff_rods_energy_main(int argc, char **argv) {
-  argv[0] = (char *)"haff rods-energy"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-energy DB [--run ID]\n"
       "Figs. 1, 2, 9-11 data: per sample of a rods run (newest by default) the columns\n"
@@ -319,7 +318,7 @@ int haff_rods_energy_main(int argc, char **argv) {
                          "SELECT t, collisions, cpd, e_tr, e_rot FROM samples WHERE run = ?1 "
                          "ORDER BY t",
                          -1, &st, NULL) != SQLITE_OK) {
-    fprintf(stderr, "%s: cannot read the samples of run %ld: %s\n", argv[0], r.id,
+    fprintf(stderr, "haff %s: cannot read the samples of run %ld: %s\n", argv[0], r.id,
             sqlite3_errmsg(r.db));
     close_run(&r);
     return 1;
@@ -344,7 +343,6 @@ int haff_rods_energy_main(int argc, char **argv) {
  */
 
 int haff_rods_density_main(int argc, char **argv) {
-  argv[0] = (char *)"haff rods-density"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-density DB [--run ID] [--bins N] [--t T]\n"
       "Figs. 3, 4, 6 data: the coarse-grained density rho (rods per bin over the mean, N bins\n"
@@ -404,7 +402,6 @@ int haff_rods_density_main(int argc, char **argv) {
  */
 
 int haff_rods_phase_main(int argc, char **argv) {
-  argv[0] = (char *)"haff rods-phase"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-phase DB [--run ID] [--t T]\n"
       "Fig. 5 data: phase space of the snapshot nearest --t (default the last): columns\n"
@@ -425,7 +422,6 @@ int haff_rods_phase_main(int argc, char **argv) {
  */
 
 int haff_rods_gofr_main(int argc, char **argv) {
-  argv[0] = (char *)"haff rods-gofr"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-gofr DB [--run ID] [--t T] [--bins N] [--range X]\n"
       "Fig. 8 data: g(x) = 1/(N-1) sum_{i!=j} delta(x - |x_i - x_j|) (ring distance), normalised\n"
@@ -518,7 +514,6 @@ static long find_clusters(const double *x, long n, double gap, rclusters *cl) {
 }
 
 int haff_rods_veldist_main(int argc, char **argv) {
-  argv[0] = (char *)"haff rods-veldist"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-veldist DB [--run ID] [--t T] [--bins N] [--gap G] [--x X]\n"
       "Fig. 7 data: histograms of w = sqrt(m_i) v_i (mass-scaled so that both species share one\n"
@@ -595,7 +590,6 @@ int haff_rods_veldist_main(int argc, char **argv) {
 }
 
 int haff_rods_clusters_main(int argc, char **argv) {
-  argv[0] = (char *)"haff rods-clusters"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-clusters DB [--run ID] [--gap G] [--min-size M]\n"
       "Clusters per snapshot (maximal runs of rods closer than G [0.1] to their neighbour, at\n"
@@ -634,7 +628,6 @@ int haff_rods_clusters_main(int argc, char **argv) {
  */
 
 int haff_rods_collapse_main(int argc, char **argv) {
-  argv[0] = (char *)"haff rods-collapse"; /* messages start with the command, as the others' do */
   static const char usage[] =
       "usage: haff rods-collapse [--n LIST] [--eps LIST] [--seeds K] [--cpd C] [--gamma G]\n"
       "Scans the constant-eps ring for inelastic collapse: for every N in LIST [4,8,16,32,64,128]\n"
@@ -681,13 +674,13 @@ int haff_rods_collapse_main(int argc, char **argv) {
       fputs(usage, stdout);
       return 0;
     default:
-      fprintf(stderr, "%s: unknown option or missing value '%s' (see --help)\n", argv[0],
+      fprintf(stderr, "haff %s: unknown option or missing value '%s' (see --help)\n", argv[0],
               argv[optind - 1]);
       return 2;
     }
   }
   if (optind != argc) {
-    fprintf(stderr, "%s: unexpected argument '%s' (see --help)\n", argv[0], argv[optind]);
+    fprintf(stderr, "haff %s: unexpected argument '%s' (see --help)\n", argv[0], argv[optind]);
     return 2;
   }
   /* both lists checked before any ring runs */
@@ -701,7 +694,8 @@ int haff_rods_collapse_main(int argc, char **argv) {
   for (char *sn = strtok(buf, ","); sn; sn = strtok(NULL, ",")) {
     if (!whole_number(sn, &x) || x < 2 || x > 1e8) return bad_arg(argv[0], "--n", sn);
     if (fmod(x, 2) != 0) {
-      fprintf(stderr, "%s: --n '%s': a ring holds an even number of rods (2 species alternate)\n",
+      fprintf(stderr,
+              "haff %s: --n '%s': a ring holds an even number of rods (2 species alternate)\n",
               argv[0], sn);
       return 2;
     }
@@ -711,7 +705,7 @@ int haff_rods_collapse_main(int argc, char **argv) {
     if (!finite_number(se, &x) || !(x >= 0 && x < 1)) return bad_arg(argv[0], "--eps", se);
   double *at = malloc((size_t)seeds * sizeof *at); /* cpd at collapse of every collapsed ring */
   if (!at) {
-    fprintf(stderr, "%s: out of memory\n", argv[0]);
+    fprintf(stderr, "haff %s: out of memory\n", argv[0]);
     return 1;
   }
   printf("N\teps\tcollapsed\truns\tfrac\tn_my\tmy_predicts\tmedian_cpd_at_collapse\n");
@@ -735,7 +729,7 @@ int haff_rods_collapse_main(int argc, char **argv) {
         hd_rods *r;
         hd_error err;
         if (hd_rods_alloc(&r, &p, &err)) {
-          fprintf(stderr, "%s: %s\n", argv[0], err.msg);
+          fprintf(stderr, "haff %s: %s\n", argv[0], err.msg);
           free(at);
           return 2;
         }
@@ -748,7 +742,7 @@ int haff_rods_collapse_main(int argc, char **argv) {
         } else if (rr != HD_OK && rr != HD_SIM_IDLE) {
           /* HD_SIM_IDLE: a ring that cools for ever ran out of time (t near DBL_MAX, speeds
            * subnormal): not a collapse.  Anything else is an error */
-          fprintf(stderr, "%s: N %ld eps %g seed %ld: %s\n", argv[0], N, eps, s, err.msg);
+          fprintf(stderr, "haff %s: N %ld eps %g seed %ld: %s\n", argv[0], N, eps, s, err.msg);
           hd_rods_free(r);
           free(at);
           return 1;
