@@ -46,6 +46,24 @@ static int bad_arg(const char *cmd, const char *opt, const char *val) {
   return 2;
 }
 
+/* The comma-separated list s of option opt into v[0..max) (whole numbers when whole), each in
+ * [lo, hi]: the count, or -1 after bad_arg (an empty item, as in 4,,8 or "", is one). */
+static int parse_list(const char *cmd, const char *opt, const char *s, int whole, double lo,
+                      double hi, double *v, int max) {
+  char buf[512], *p = buf, *item;
+  snprintf(buf, sizeof buf, "%s", s);
+  int n = 0;
+  while ((item = strsep(&p, ",")) != NULL) {
+    if (n == max || !(whole ? whole_number(item, &v[n]) : finite_number(item, &v[n])) ||
+        !(v[n] >= lo && v[n] <= hi)) {
+      bad_arg(cmd, opt, *item ? item : s);
+      return -1;
+    }
+    n++;
+  }
+  return n;
+}
+
 static int parse(int argc, char **argv, const char *usage, ropts *o) {
   static const struct option lo[] = {
       {"run", 1, 0, 'r'},   {"bins", 1, 0, 'b'},     {"t", 1, 0, 't'},
@@ -683,43 +701,28 @@ int haff_rods_collapse_main(int argc, char **argv) {
     fprintf(stderr, "haff %s: unexpected argument '%s' (see --help)\n", argv[0], argv[optind]);
     return 2;
   }
-  /* both lists checked before any ring runs */
-  char buf[512];
-  snprintf(buf, sizeof buf, "%s", nl);
-  /* an empty item (4,,8 or "") is an error, not skipped; N odd is refused before the header */
-  if (!*nl || strstr(nl, ",,") || nl[0] == ',' || nl[strlen(nl) - 1] == ',')
-    return bad_arg(argv[0], "--n", nl);
-  if (!*el || strstr(el, ",,") || el[0] == ',' || el[strlen(el) - 1] == ',')
-    return bad_arg(argv[0], "--eps", el);
-  for (char *sn = strtok(buf, ","); sn; sn = strtok(NULL, ",")) {
-    if (!whole_number(sn, &x) || x < 2 || x > 1e8) return bad_arg(argv[0], "--n", sn);
-    if (fmod(x, 2) != 0) {
+  /* both lists read and checked once, before any ring runs (N odd too: before the header) */
+  double ns[256], epss[256];
+  int nn = parse_list(argv[0], "--n", nl, 1, 2, 1e8, ns, 256),
+      ne = nn < 0 ? -1 : parse_list(argv[0], "--eps", el, 0, 0, nextafter(1, 0), epss, 256);
+  if (nn < 0 || ne < 0) return 2;
+  for (int k = 0; k < nn; k++)
+    if (fmod(ns[k], 2) != 0) {
       fprintf(stderr,
-              "haff %s: --n '%s': a ring holds an even number of rods (2 species alternate)\n",
-              argv[0], sn);
+              "haff %s: --n '%g': a ring holds an even number of rods (2 species alternate)\n",
+              argv[0], ns[k]);
       return 2;
     }
-  }
-  snprintf(buf, sizeof buf, "%s", el);
-  for (char *se = strtok(buf, ","); se; se = strtok(NULL, ","))
-    if (!finite_number(se, &x) || !(x >= 0 && x < 1)) return bad_arg(argv[0], "--eps", se);
   double *at = malloc((size_t)seeds * sizeof *at); /* cpd at collapse of every collapsed ring */
   if (!at) {
     fprintf(stderr, "haff %s: out of memory\n", argv[0]);
     return 1;
   }
   printf("N\teps\tcollapsed\truns\tfrac\tn_my\tmy_predicts\tmedian_cpd_at_collapse\n");
-  char nbuf[512];
-  snprintf(nbuf, sizeof nbuf, "%s", nl);
-  for (char *sn = strtok(nbuf, ","); sn; sn = strtok(NULL, ",")) {
-    whole_number(sn, &x); /* checked above; "1e4" too, which atol read as 1 */
-    long N = (long)x;
-    char ebuf[512];
-    snprintf(ebuf, sizeof ebuf, "%s", el);
-    char *save = NULL;
-    for (char *se = strtok_r(ebuf, ",", &save); se; se = strtok_r(NULL, ",", &save)) {
-      double eps;
-      finite_number(se, &eps);
+  for (int in = 0; in < nn; in++) {
+    long N = (long)ns[in]; /* read as a number: "1e4" too, which atol read as 1 */
+    for (int ie = 0; ie < ne; ie++) {
+      double eps = epss[ie];
       long col = 0;
       for (long s = 1; s <= seeds; s++) {
         hd_rods_params p;
