@@ -251,6 +251,11 @@ static void kill9_then_resume(void **state) {
 }
 
 /* `haff ARGS` (run in the test folder) exits 2 and says `needle` on stderr. */
+/* Shell text that waits (at most 60 s) until a run of database DB has begun: its DB.lock exists
+ * while it runs. */
+#define WAIT_FOR_LOCK(db)                                                                          \
+  "k=0; while [ ! -e " db ".lock ] && [ $k -lt 1200 ]; do sleep 0.05; k=$((k+1)); done; "
+
 /* Runs `haff ARGS` in the background and sends it SIGINT after `delay` seconds, again every
  * 0.2 s until it ends (one sent before haff installs its handler is lost: a background job of a
  * script starts with SIGINT ignored); returns its exit status, its stderr in err.txt. */
@@ -348,10 +353,9 @@ static void bad_input(void **state) {
    * without a collision): ten disks in a box of 1e9 */
   write_file("rare.ini", "[system]\nbox = 1e9 1e9\n[disks]\ncount = 10\n[run]\nstop_events = "
                          "10\n");
-  assert_int_equal(sh("(%s run rare.ini -o rare.db --quiet & p=$!; "
-                      "k=0; while [ ! -e rare.db.lock ] && [ $k -lt 1200 ]; do sleep 0.05; "
-                      "k=$((k+1)); done; sleep 1; kill -INT $p; "
-                      "wait $p)",
+  assert_int_equal(sh("(%s run rare.ini -o rare.db --quiet & p=$!; " WAIT_FOR_LOCK(
+                          "rare.db") "sleep 1; kill -INT $p; "
+                                     "wait $p)",
                       haff),
                    1);
   assert_int_equal(q1("rare.db", "SELECT count(*) FROM runs WHERE status = 'interrupted'"), 1);
@@ -617,11 +621,9 @@ static void resume_refuses_a_live_run(void **state) {
   write_file("lk.ini", "[system]\narea_fraction = 0.2\nseed = 3\n[disks]\ncount = 2000\n[run]\n"
                        "stop_cpd = 1e6\n[log]\ncollisions = none\nsamples_every = 10\n");
   /* in a subshell, so that $! is haff's own pid and stderr goes to err.txt */
-  int rc = sh("(%s run lk.ini -o lk.db --quiet 2>/dev/null & p=$!; "
-              "k=0; while [ ! -e lk.db.lock ] && [ $k -lt 1200 ]; do "
-              "sleep 0.05; k=$((k+1)); done; "
-              "sleep 0.3; "
-              "%s resume lk.db; r=$?; kill -INT $p; wait $p; exit $r)",
+  int rc = sh("(%s run lk.ini -o lk.db --quiet 2>/dev/null & p=$!; " WAIT_FOR_LOCK(
+                  "lk.db") "sleep 0.3; "
+                           "%s resume lk.db; r=$?; kill -INT $p; wait $p; exit $r)",
               haff, haff);
   char e[2048];
   read_err(e, sizeof e);
@@ -681,10 +683,9 @@ static void resume_without_the_state_file(void **state) {
   write_file("sf.ini", "[system]\nbox = 15 15\n[init]\nstate = sf.csv\n[run]\nstop_events = "
                        "4000000\n[log]\ncollisions = none\n");
   assert_int_equal(sh("%s run sf.ini -o sf-ref.db --quiet", haff), 0);
-  assert_int_equal(sh("(%s run sf.ini -o sf.db --quiet & p=$!; "
-                      "k=0; while [ ! -e sf.db.lock ] && [ $k -lt 1200 ]; do sleep 0.05; "
-                      "k=$((k+1)); done; sleep 0.5; kill -INT $p; "
-                      "wait $p)",
+  assert_int_equal(sh("(%s run sf.ini -o sf.db --quiet & p=$!; " WAIT_FOR_LOCK(
+                          "sf.db") "sleep 0.5; kill -INT $p; "
+                                   "wait $p)",
                       haff),
                    1);
   assert_int_equal(sh("rm sf.csv && %s resume sf.db --quiet", haff), 0);
