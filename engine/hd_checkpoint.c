@@ -2,6 +2,7 @@
  * event), the body ids, the cell heads, the clocks and the RNG state.  Restoring them and
  * rebuilding the heap (whose order is total: time, then index) continues the run bit for bit.  The
  * blob is for the same build on the same machine; a header guards against anything else. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -49,6 +50,105 @@ int hd_sim_checkpoint(const hd_sim *s, void **blob, size_t *n, hd_error *err) {
   return HD_OK;
 }
 
+/* What a restored state must satisfy for the engine to run it: every count, index and link in
+ * range, every number finite, the cell lists a partition of the bodies, every pending event one
+ * the engine can have made, no two bodies overlapping.  A checkpoint that fails is damaged
+ * (hd_run.c's checksum catches a flipped bit first; this catches what a checksum cannot, a blob
+ * that was written whole but wrong, and keeps a bad blob from crashing the engine).  HD_OK or
+ * HD_EINPUT naming the first thing found wrong. */
+static int check_state(const hd_sim *s, hd_error *err) {
+  const hd_sim_clock *c = &s->c;
+  if (!isfinite(c->t) || !isfinite(c->t_offset) || c->events < 0 || c->collisions < 0 ||
+      c->wall_hits < 0 || c->stale < 0 || c->next_rebase < 0 || !(c->e_kin >= 0.0) ||
+      !isfinite(c->e_kin) || c->slow_run < 0 || c->pile_run < 0 || !(c->dt_mean >= 0.0) ||
+      !isfinite(c->dt_mean) || !(c->t_last <= c->t))
+    return hd_error_set(err, HD_EINPUT, "checkpoint: clocks and counters out of range");
+  int32_t n = s->n, ncell = s->ncx * s->ncy;
+  int32_t count[HD_NSPECIES] = {0, 0};
+  /* the box with a margin of one cell: a body is wrapped at its crossing of the box edge, so
+   * at its own time it may be just past the edge */
+  double x_lo = -s->cwx, x_hi = s->lx + s->cwx, y_lo = -s->cwy, y_hi = s->ly + s->cwy;
+  for (int32_t i = 0; i < n; i++) {
+    const hd_body *b = &s->b[i];
+    if (b->species < 0 || b->species >= HD_NSPECIES)
+      return hd_error_set(err, HD_EINPUT, "checkpoint: body %d has species %d", i, b->species);
+    count[b->species]++;
+    const hd_kin *k = &b->k;
+    if (!isfinite(b->t) || !(b->t <= c->t) || !isfinite(k->vx) || !isfinite(k->vy) ||
+        !isfinite(k->omega) || !(fabs(k->phi) <= 4.0) || !(k->x >= x_lo && k->x <= x_hi) ||
+        !(k->y >= y_lo && k->y <= y_hi))
+      return hd_error_set(err, HD_EINPUT, "checkpoint: body %d: state out of range", i);
+    if (b->cell < 0 || b->cell >= ncell || (b->next < -1 || b->next >= n))
+      return hd_error_set(err, HD_EINPUT, "checkpoint: body %d: cell links out of range", i);
+    /* its pending events: the earlier is its key, neither before its own time */
+    if (isnan(b->p_t) || isnan(b->c_t) || b->ev_t != fmin(b->p_t, b->c_t) || !(b->p_t >= b->t) ||
+        !(b->c_t >= b->t) || !(b->ev_t >= c->t))
+      return hd_error_set(err, HD_EINPUT, "checkpoint: body %d: event times out of range", i);
+    int nd_i = s->shape[b->species].kind == HD_KIND_DIMER ? 2 : 1;
+    if (b->c_dir < 0 || b->c_dir > HD_WAKE || b->p_ka < 0 || b->p_ka >= nd_i)
+      return hd_error_set(err, HD_EINPUT, "checkpoint: body %d: pending event out of range", i);
+    if (b->p_type == HD_EV_PAIR) {
+      int32_t j = b->p_partner;
+      if (j < 0 || j >= n || j == i || s->b[j].species < 0 || s->b[j].species >= HD_NSPECIES ||
+          b->p_kb < 0 || b->p_kb >= (s->shape[s->b[j].species].kind == HD_KIND_DIMER ? 2 : 1) ||
+          abs(hd_image_code(b->p_imx, s->b[j].wx, b->wx)) > 1 ||
+          abs(hd_image_code(b->p_imy, s->b[j].wy, b->wy)) > 1)
+        return hd_error_set(err, HD_EINPUT, "checkpoint: body %d: pair event out of range", i);
+    } else if (b->p_type == HD_EV_WALL) {
+      static const unsigned bit[4] = {HD_WALL_LEFT, HD_WALL_RIGHT, HD_WALL_BOTTOM, HD_WALL_TOP};
+      if (b->p_partner < 0 || b->p_partner > 3 || !(s->walls & bit[b->p_partner]))
+        return hd_error_set(err, HD_EINPUT, "checkpoint: body %d: wall event out of range", i);
+    } else if (b->p_type != HD_EV_NONE || b->p_t != INFINITY) {
+      return hd_error_set(err, HD_EINPUT, "checkpoint: body %d: pending event out of range", i);
+    }
+  }
+  if (count[0] != s->n_species[0] || count[1] != s->n_species[1])
+    return hd_error_set(err, HD_EINPUT, "checkpoint: species counts do not match the bodies");
+  /* the user's numbers: a permutation of 0..n-1; the cell lists: each body once, in its cell */
+  unsigned char *seen = calloc((size_t)(n > 0 ? n : 1), 1);
+  if (!seen) return hd_error_set(err, HD_ENOMEM, "out of memory");
+  int rc = HD_OK;
+  for (int32_t i = 0; i < n && !rc; i++) {
+    if (s->id[i] < 0 || s->id[i] >= n || seen[s->id[i]])
+      rc = hd_error_set(err, HD_EINPUT, "checkpoint: body numbers are not 0..%d once each", n - 1);
+    else
+      seen[s->id[i]] = 1;
+  }
+  memset(seen, 0, (size_t)(n > 0 ? n : 1));
+  int32_t linked = 0;
+  for (int32_t cell = 0; cell < ncell && !rc; cell++) {
+    int32_t j = s->head[cell];
+    if (j < -1 || j >= n) rc = hd_error_set(err, HD_EINPUT, "checkpoint: cell %d: bad head", cell);
+    for (; j >= 0 && !rc; j = s->b[j].next) {
+      if (seen[j] || s->b[j].cell != cell)
+        rc = hd_error_set(err, HD_EINPUT, "checkpoint: cell lists do not match the bodies");
+      else
+        seen[j] = 1, linked++;
+    }
+  }
+  free(seen);
+  if (!rc && linked != n)
+    rc = hd_error_set(err, HD_EINPUT, "checkpoint: %d of %d bodies in the cell lists", linked, n);
+  if (rc) return rc;
+  /* the bodies in their cells (with the margin of a cell: see above) */
+  for (int32_t i = 0; i < n; i++) {
+    const hd_body *b = &s->b[i];
+    int32_t cx = b->cell % s->ncx, cy = b->cell / s->ncx;
+    if (!(b->k.x >= (cx - 1) * s->cwx && b->k.x <= (cx + 2) * s->cwx &&
+          b->k.y >= (cy - 1) * s->cwy && b->k.y <= (cy + 2) * s->cwy))
+      return hd_error_set(err, HD_EINPUT, "checkpoint: body %d is not in its cell", i);
+  }
+  /* the generator's position in its table (gsl's mt19937 keeps it beside the table) */
+  if (gsl_rng_size(s->rng) == sizeof(unsigned long) * 624 + sizeof(int)) {
+    int mti;
+    memcpy(&mti, (const unsigned char *)gsl_rng_state(s->rng) + sizeof(unsigned long) * 624,
+           sizeof mti);
+    if (mti < 0 || mti > 624)
+      return hd_error_set(err, HD_EINPUT, "checkpoint: random generator state out of range");
+  }
+  return HD_OK;
+}
+
 int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err) {
   ckpt_header h;
   if (n < sizeof h) return hd_error_set(err, HD_EINPUT, "checkpoint is truncated");
@@ -59,6 +159,11 @@ int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err) {
   if (h.lx != s->lx || h.ly != s->ly)
     return hd_error_set(err, HD_EINPUT, "checkpoint box %g x %g does not match the scene's", h.lx,
                         h.ly);
+  /* the counts before any size is computed from them (a negative one wrapped round) */
+  if (h.n < 0 || h.n_species[0] < 0 || h.n_species[1] < 0 ||
+      (int64_t)h.n_species[0] + h.n_species[1] != h.n || h.ncx < 1 || h.ncy < 1 ||
+      (int64_t)h.ncx * h.ncy > (int64_t)(n / sizeof(int32_t)))
+    return hd_error_set(err, HD_EINPUT, "checkpoint: body or cell counts out of range");
   size_t ncell = (size_t)h.ncx * (size_t)h.ncy;
   size_t want = sizeof h + sizeof(hd_sim_clock) +
                 (sizeof(hd_body) + sizeof(int32_t)) * (size_t)h.n + sizeof(int32_t) * ncell +
@@ -81,8 +186,15 @@ int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err) {
   memcpy(s->id, q, sizeof(int32_t) * (size_t)h.n), q += sizeof(int32_t) * (size_t)h.n;
   memcpy(s->head, q, sizeof(int32_t) * ncell), q += sizeof(int32_t) * ncell;
   memcpy(gsl_rng_state(s->rng), q, h.rng_size);
+  rc = check_state(s, err);
+  if (rc) return rc;
   for (int32_t i = 0; i < s->n; i++) /* the rows (0 in checkpoints of older builds) */
     s->b[i].cy = s->b[i].cell / s->ncx;
+  int32_t oi, oj; /* no two bodies overlap (O(N), through the cells) */
+  double o = hd_sim_max_overlap(s, &oi, &oj);
+  if (o > 1e-6) /* the engine's verification allows 1e-9 of a diameter at a contact */
+    return hd_error_set(err, HD_EINPUT, "checkpoint: bodies %d and %d overlap by %.3g of a diameter",
+                        oi, oj, o);
   rc = hd_sim_queue_init(s, err);
   if (rc) return rc;
   hd_queue_build(s->q, s->n, &s->b[0].ev_t, HD_BODY_STRIDE);

@@ -162,6 +162,38 @@ static int log_sample(runner *r, hd_error *err) {
   return hd_db_log_sample(r->db, r->run, &row, err);
 }
 
+/* A checkpoint blob is the runner's state (run_state), the model's blob, then a trailer: the
+ * magic "HAFFSUM1" and a 64-bit checksum of everything before it.  One flipped bit anywhere
+ * (a damaged disk, a hand edit) is refused by resume as a damaged checkpoint; it used to crash
+ * the engine, or finish "done" with wrong data.  A blob without the trailer was written before
+ * it existed and is still read: the models check what they restore either way. */
+#define HD_CKSUM_MAGIC 0x314d555346464148ULL /* "HAFFSUM1" */
+typedef struct ckpt_trailer {
+  uint64_t magic; /* HD_CKSUM_MAGIC */
+  uint64_t sum;   /* ckpt_sum of the bytes before the trailer */
+} ckpt_trailer;
+
+/* The checksum of n bytes: each 8-byte word w goes in as h = (h ^ w) * K, a bijection of h for
+ * a given w and of w for a given h, so any change inside one word always changes the result;
+ * the final mixing spreads every bit over the whole sum. */
+static uint64_t ckpt_sum(const unsigned char *p, size_t n) {
+  const uint64_t K = 0x9e3779b97f4a7c15ULL; /* odd */
+  uint64_t h = (uint64_t)n * K, w;
+  size_t k = 0;
+  for (; k + 8 <= n; k += 8) {
+    memcpy(&w, p + k, 8);
+    h = (h ^ w) * K;
+  }
+  if (k < n) {
+    w = 0;
+    memcpy(&w, p + k, n - k);
+    h = (h ^ w) * K;
+  }
+  h ^= h >> 31;
+  h *= 0xff51afd7ed558ccdULL;
+  return h ^ (h >> 33);
+}
+
 static int checkpoint(runner *r, hd_error *err) {
   void *blob = NULL;
   size_t n = 0;
@@ -170,7 +202,8 @@ static int checkpoint(runner *r, hd_error *err) {
   size_t hs = sizeof r->st;
   int rc = r->ops->checkpoint(r->s, &blob, &n, err);
   if (rc) return rc;
-  unsigned char *all = malloc(hs + n);
+  ckpt_trailer tr = {HD_CKSUM_MAGIC, 0};
+  unsigned char *all = malloc(hs + n + sizeof tr);
   if (!all) {
     free(blob);
     return hd_error_set(err, HD_ENOMEM, "out of memory for a checkpoint");
@@ -178,7 +211,10 @@ static int checkpoint(runner *r, hd_error *err) {
   memcpy(all, &r->st, hs);
   memcpy(all + hs, blob, n);
   free(blob);
-  rc = hd_db_checkpoint_save(r->db, r->run, r->st.seq, r->ops->time(r->s), all, hs + n, err);
+  tr.sum = ckpt_sum(all, hs + n);
+  memcpy(all + hs + n, &tr, sizeof tr);
+  rc = hd_db_checkpoint_save(r->db, r->run, r->st.seq, r->ops->time(r->s), all,
+                             hs + n + sizeof tr, err);
   free(all);
   r->last_ckpt_wall = now_wall();
   return rc;
@@ -406,6 +442,51 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
   return rc;
 }
 
+/* Restores the runner and its model from checkpoint blob (n bytes) saved at collision seq and
+ * time t: the checksum, then what the runner's state holds (it indexes the scene's
+ * velocities_at), then the model's own checks; the clock and the collision count must agree
+ * with the row.  HD_EINPUT "DB: the checkpoint of run N is damaged (why)..." for anything
+ * wrong; r->s NULL unless HD_OK. */
+static int restore(runner *r, const unsigned char *blob, size_t n, int64_t seq, double t,
+                   hd_error *err) {
+  char why[sizeof err->msg];
+  hd_error e;
+  hd_error_clear(&e);
+  int rc = HD_OK;
+  ckpt_trailer tr;
+  if (n >= sizeof r->st + sizeof tr) {
+    memcpy(&tr, blob + n - sizeof tr, sizeof tr);
+    if (tr.magic == HD_CKSUM_MAGIC) { /* else a checkpoint of an older haff, without it */
+      n -= sizeof tr;
+      if (ckpt_sum(blob, n) != tr.sum) rc = hd_error_set(&e, HD_EINPUT, "checksum mismatch");
+    }
+  }
+  if (!rc && n < sizeof r->st) rc = hd_error_set(&e, HD_EINPUT, "truncated");
+  if (!rc) {
+    memcpy(&r->st, blob, sizeof r->st);
+    const run_state *st = &r->st;
+    if (st->seq != seq || st->seq < 0 || st->next_sample < 0 || st->next_vel < 0 ||
+        st->next_vel > r->sc->n_velocities_at || !isfinite(st->wall_seconds) ||
+        st->wall_seconds < 0)
+      rc = hd_error_set(&e, HD_EINPUT, "run counters out of range");
+  }
+  if (!rc) {
+    rc = r->ops->alloc_restore(&r->s, r->sc, blob + sizeof r->st, n - sizeof r->st, &e);
+    if (rc == HD_OK && r->ops->time(r->s) != t) /* the time the row says it was saved at */
+      rc = hd_error_set(&e, HD_EINPUT, "its time is not the row's");
+  }
+  if (rc == HD_OK || rc != HD_EINPUT) {
+    if (rc) *err = e;
+    return rc;
+  }
+  if (r->s) r->ops->free(r->s);
+  r->s = NULL;
+  snprintf(why, sizeof why, "%s", e.msg);
+  return hd_error_set(err, HD_EINPUT,
+                      "%s: the checkpoint of run %lld is damaged (%s): it cannot be resumed",
+                      r->o->db_path, (long long)r->run, why);
+}
+
 int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error *err) {
   runner r = {.o = o, .lock_fd = -1};
   r.t0_wall = r.last_ckpt_wall = now_wall();
@@ -437,12 +518,7 @@ int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error
   signals_on();
   rc = run_lock(&r, err); /* before anything of the run is touched */
   if (!rc) rc = hd_db_checkpoint_load(r.db, r.run, &blob, &n, &seq, &t, err);
-  if (!rc && n < sizeof r.st)
-    rc = hd_error_set(err, HD_EINPUT, "checkpoint of run %lld is truncated", (long long)r.run);
-  if (!rc) {
-    memcpy(&r.st, blob, sizeof r.st);
-    rc = r.ops->alloc_restore(&r.s, &sc, (unsigned char *)blob + sizeof r.st, n - sizeof r.st, err);
-  }
+  if (!rc) rc = restore(&r, blob, n, seq, t, err);
   free(blob);
   if (!rc) rc = hd_db_truncate_after(r.db, r.run, seq, t, err);
   if (!rc) /* why it stopped belongs to the stop, not to the run that now goes on */

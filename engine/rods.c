@@ -429,6 +429,35 @@ int hd_rods_checkpoint(const hd_rods *r, void **blob, size_t *n, hd_error *err) 
   return HD_OK;
 }
 
+/* What a restored ring must satisfy to be run: counters >= 0, clocks finite, every rod's and
+ * gap's numbers finite and not ahead of the ring's time, every gap's key not behind it, the
+ * recent gaps' indices in range, the generator's position in its table.  A blob written whole
+ * but wrong (hd_run.c's checksum catches a flipped bit) is refused instead of crashing the ring.
+ * HD_OK or HD_EINPUT. */
+static int check_restored(const hd_rods *r, hd_error *err) {
+  if (r->collisions < 0 || r->resampled < 0 || r->tiny_run < 0 || r->stall < 0 ||
+      r->frame_next < 0 || r->frames < 0 || !isfinite(r->t) || !isfinite(r->x0) ||
+      !isfinite(r->x0t) || !isfinite(r->e_lost) || !isfinite(r->tiny_gap0))
+    return hd_error_set(err, HD_EINPUT, "rods checkpoint: counters or clocks out of range");
+  long n = r->p.n;
+  for (long k = 0; k < HD_RODS_TINY_RUN; k++)
+    if (r->recent[k] < 0 || r->recent[k] >= n)
+      return hd_error_set(err, HD_EINPUT, "rods checkpoint: a gap index out of range");
+  for (long i = 0; i < n; i++)
+    if (!isfinite(r->v[i]) || !isfinite(r->tb[i]) || !(r->tb[i] >= 0) || isnan(r->tl[i]) ||
+        !(r->tl[i] <= r->t) || !isfinite(r->g[i]) || !isfinite(r->gt[i]) || !(r->gt[i] <= r->t) ||
+        isnan(r->key[i]) || !(r->key[i] >= r->t))
+      return hd_error_set(err, HD_EINPUT, "rods checkpoint: rod or gap %ld out of range", i);
+  if (gsl_rng_size(r->rng) == sizeof(unsigned long) * 624 + sizeof(int)) { /* gsl's mt19937 */
+    int mti;
+    memcpy(&mti, (const unsigned char *)gsl_rng_state(r->rng) + sizeof(unsigned long) * 624,
+           sizeof mti);
+    if (mti < 0 || mti > 624)
+      return hd_error_set(err, HD_EINPUT, "rods checkpoint: random generator state out of range");
+  }
+  return HD_OK;
+}
+
 int hd_rods_alloc_restore(hd_rods **out, const hd_rods_params *p, const void *blob, size_t n,
                           hd_error *err) {
   *out = NULL;
@@ -464,6 +493,11 @@ int hd_rods_alloc_restore(hd_rods **out, const hd_rods_params *p, const void *bl
     q += nr * sizeof(double);
   }
   memcpy(gsl_rng_state(r->rng), q, rs);
+  rc = check_restored(r, err);
+  if (rc) {
+    hd_rods_free(r);
+    return rc;
+  }
   hd_queue_build(r->q, (int32_t)nr, r->key, 1);
   *out = r;
   return HD_OK;

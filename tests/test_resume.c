@@ -1,0 +1,237 @@
+/* Resume from what a run left behind (engine/hd_run.c, in-process, so that the sanitizer build
+ * runs it too): damaged checkpoints are refused, never crash nor give wrong results. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <sqlite3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <gsl/gsl_rng.h>
+
+#include "hd_db.h"
+#include "hd_run.h"
+#include "hd_scene.h"
+
+/* ---------------------------------------------------------------------------------------- */
+/* helpers */
+
+static char dir[256];
+
+static int setup(void **state) {
+  (void)state;
+  const char *tmp = getenv("TMPDIR");
+  snprintf(dir, sizeof dir, "%s/haff-test-resume-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+  return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **state) {
+  (void)state;
+  char cmd[400];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  return system(cmd) == 0 ? 0 : -1;
+}
+
+/* dir/name, in one of four rotating buffers. */
+static const char *path_of(const char *name) {
+  static char buf[4][400];
+  static int k;
+  k = (k + 1) % 4;
+  snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
+  return buf[k];
+}
+
+/* Runs sql on database name (ref.db attached as ref when it exists); the first column of the
+ * first row as an integer (0 if none). */
+static long long q1(const char *name, const char *sql) {
+  sqlite3 *h = NULL;
+  assert_int_equal(sqlite3_open_v2(path_of(name), &h, SQLITE_OPEN_READWRITE, NULL), SQLITE_OK);
+  if (access(path_of("ref.db"), F_OK) == 0) {
+    char att[500];
+    snprintf(att, sizeof att, "ATTACH '%s' AS ref", path_of("ref.db"));
+    assert_int_equal(sqlite3_exec(h, att, NULL, NULL, NULL), SQLITE_OK);
+  }
+  sqlite3_stmt *st = NULL;
+  if (sqlite3_prepare_v2(h, sql, -1, &st, NULL) != SQLITE_OK) fail_msg("%s", sqlite3_errmsg(h));
+  long long v = 0;
+  int s = sqlite3_step(st);
+  if (s == SQLITE_ROW) v = sqlite3_column_int64(st, 0);
+  else if (s != SQLITE_DONE) fail_msg("%s: %s", sql, sqlite3_errmsg(h));
+  sqlite3_finalize(st);
+  sqlite3_close(h);
+  return v;
+}
+
+/* Runs scene text as a new run into database name; returns hd_run_new's status. */
+static int run_scene(const char *text, const char *name) {
+  hd_scene sc;
+  hd_error err;
+  hd_error_clear(&err);
+  assert_int_equal(hd_scene_load_string(&sc, text, "t.ini", NULL, 0, &err), HD_OK);
+  hd_run_opts o = {.db_path = path_of(name), .quiet = 1, .version = "test"};
+  int64_t run = 0;
+  int rc = hd_run_new(&sc, &o, &run, &err);
+  if (rc) print_message("run: %s\n", err.msg);
+  hd_scene_free(&sc);
+  return rc;
+}
+
+/* Resumes the newest resumable run of database name; its status, err its message. */
+static int resume(const char *name, hd_error *err) {
+  hd_error_clear(err);
+  hd_run_opts o = {.db_path = path_of(name), .quiet = 1, .version = "test"};
+  int64_t run = 0;
+  return hd_run_resume(0, &o, &run, err);
+}
+
+static void copy_file(const char *from, const char *to) {
+  char cmd[1000];
+  snprintf(cmd, sizeof cmd, "cp '%s' '%s' && rm -f '%s-wal' '%s-shm'", path_of(from), path_of(to),
+           path_of(to), path_of(to));
+  assert_int_equal(system(cmd), 0);
+}
+
+/* Database name holds the same run as ref.db: collisions, samples, states, status done. */
+static void same_as_reference(const char *name) {
+  assert_int_equal(q1(name, "SELECT count(*) FROM collisions"),
+                   q1(name, "SELECT count(*) FROM ref.collisions"));
+  assert_int_equal(q1(name, "SELECT count(*) FROM (SELECT seq,t,kind,i,j,f,de,vn,eps FROM "
+                            "collisions EXCEPT SELECT seq,t,kind,i,j,f,de,vn,eps FROM "
+                            "ref.collisions)"),
+                   0);
+  assert_int_equal(q1(name, "SELECT count(*) FROM samples"),
+                   q1(name, "SELECT count(*) FROM ref.samples"));
+  assert_int_equal(q1(name, "SELECT count(*) FROM (SELECT t,cpd,e_tr,e_rot FROM samples "
+                            "EXCEPT SELECT t,cpd,e_tr,e_rot FROM ref.samples)"),
+                   0);
+  assert_int_equal(q1(name, "SELECT count(*) FROM states"),
+                   q1(name, "SELECT count(*) FROM ref.states"));
+  assert_int_equal(q1(name, "SELECT count(*) FROM (SELECT label,t,body,x,y,phi,vx,vy,omega FROM "
+                            "states EXCEPT SELECT label,t,body,x,y,phi,vx,vy,omega FROM "
+                            "ref.states)"),
+                   0);
+  assert_int_equal(q1(name, "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* damaged checkpoints */
+
+/* A checkpoint every 1024 collisions (checkpoint_every is 1e-9 s: the clock is looked at every
+ * 1024 collisions), so the one kept is at collision 2048 of 3000, with counters, snapshots and
+ * events under way: a mixture of dimers and disks between walls. */
+static const char scene2d[] = "[system]\narea_fraction = 0.25\nseed = 5\n"
+                              "[dimers]\ncount = 40\nalpha = 0.9\n"
+                              "[disks]\ncount = 40\nalpha = 0.8\n"
+                              "[walls]\nsides = left right\n"
+                              "[run]\nstop_events = 3000\ncheckpoint_every = 1e-9\n"
+                              "[log]\ncollisions = all\nsamples_every = 1\n"
+                              "velocities_at = 10 30 70\n";
+
+/* The rods ring: 3000 collisions of 20 rods, the stochastic model. */
+static const char scene_rods[] = "[system]\nseed = 7\n[rods]\ncount = 20\n"
+                                 "[run]\nstop_events = 3000\ncheckpoint_every = 1e-9\n"
+                                 "[log]\ncollisions = all\nsamples_every = 5\n"
+                                 "velocities_at = 50 100\n";
+
+/* Makes kept.db: scene run to its end with its last checkpoint kept (a trigger keeps what
+ * 'done' deletes), then set back to 'running' as if killed after it; and ref.db, the same run
+ * uninterrupted. */
+static void kept_checkpoint(const char *scene) {
+  assert_int_equal(run_scene(scene, "ref.db"), HD_OK);
+  hd_db *db = NULL;
+  hd_error err;
+  assert_int_equal(hd_db_open(&db, path_of("kept.db"), &err), HD_OK);
+  assert_int_equal(hd_db_close(db, &err), HD_OK);
+  q1("kept.db", "CREATE TRIGGER keep BEFORE DELETE ON checkpoints WHEN (SELECT status FROM runs "
+                "WHERE id = OLD.run) = 'done' BEGIN SELECT RAISE(IGNORE); END");
+  assert_int_equal(run_scene(scene, "kept.db"), HD_OK);
+  q1("kept.db", "DROP TRIGGER keep");
+  q1("kept.db", "UPDATE runs SET status = 'running', finished = NULL");
+  assert_int_equal(q1("kept.db", "SELECT count(*) FROM checkpoints WHERE seq = 2048"), 1);
+}
+
+/* Flips bit `bit` of the checkpoint of database name. */
+static void flip_bit(const char *name, long long bit) {
+  sqlite3 *h = NULL;
+  assert_int_equal(sqlite3_open_v2(path_of(name), &h, SQLITE_OPEN_READWRITE, NULL), SQLITE_OK);
+  sqlite3_stmt *st = NULL;
+  assert_int_equal(sqlite3_prepare_v2(h, "SELECT blob FROM checkpoints", -1, &st, NULL),
+                   SQLITE_OK);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  int n = sqlite3_column_bytes(st, 0);
+  unsigned char *b = malloc((size_t)n);
+  assert_non_null(b);
+  memcpy(b, sqlite3_column_blob(st, 0), (size_t)n);
+  sqlite3_finalize(st);
+  assert_true(bit / 8 < n);
+  b[bit / 8] ^= (unsigned char)(1u << (bit % 8));
+  assert_int_equal(sqlite3_prepare_v2(h, "UPDATE checkpoints SET blob = ?1", -1, &st, NULL),
+                   SQLITE_OK);
+  sqlite3_bind_blob(st, 1, b, n, SQLITE_TRANSIENT);
+  assert_int_equal(sqlite3_step(st), SQLITE_DONE);
+  sqlite3_finalize(st);
+  sqlite3_close(h);
+  free(b);
+}
+
+/* One bit flipped at `flips` places of the kept checkpoint (the first 256 bits, the runner's
+ * counters and the model's header, one by one in steps of 7; the rest at random, fixed seed):
+ * each resume either refuses with one line saying the checkpoint is damaged (HD_EINPUT, as
+ * exit 2) or, never here since a checksum covers every byte, ends as the uninterrupted run.
+ * Without the checksum and the checks it crashed (next_vel = -1e6 read velocities_at[-1e6]; a
+ * cell link out of range in hd_cells_remove) or ended 'done' with other collisions. */
+static void flip_bits(const char *scene, int flips) {
+  kept_checkpoint(scene);
+  long long nbits = 8 * q1("kept.db", "SELECT length(blob) FROM checkpoints");
+  gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(rng, 17);
+  int refused = 0;
+  for (int k = 0; k < flips; k++) {
+    long long bit = k < 37 ? 7 * k : (long long)gsl_rng_uniform_int(rng, (unsigned long)nbits);
+    copy_file("kept.db", "f.db");
+    flip_bit("f.db", bit);
+    hd_error err;
+    int rc = resume("f.db", &err);
+    if (rc == HD_OK) {
+      same_as_reference("f.db");
+    } else {
+      if (rc != HD_EINPUT || !strstr(err.msg, "the checkpoint of run 1 is damaged") ||
+          strchr(err.msg, '\n'))
+        fail_msg("bit %lld: status %d: %s", bit, rc, err.msg);
+      refused++;
+      /* nothing was changed: the kept run is still there to resume once mended */
+      assert_int_equal(q1("f.db", "SELECT count(*) FROM runs WHERE status = 'running'"), 1);
+    }
+  }
+  gsl_rng_free(rng);
+  /* the checkpoint itself is fine: it resumes to the uninterrupted run's end */
+  hd_error err;
+  assert_int_equal(resume("kept.db", &err), HD_OK);
+  same_as_reference("kept.db");
+  print_message("%d of %d flipped bits refused\n", refused, flips);
+  assert_int_equal(refused, flips);
+}
+
+static void damaged_checkpoint_2d(void **state) {
+  (void)state;
+  flip_bits(scene2d, getenv("HAFF_SANITIZE") && getenv("HAFF_SANITIZE")[0] == '1' ? 60 : 120);
+}
+
+static void damaged_checkpoint_rods(void **state) {
+  (void)state;
+  flip_bits(scene_rods, 60);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test_setup_teardown(damaged_checkpoint_2d, setup, teardown),
+      cmocka_unit_test_setup_teardown(damaged_checkpoint_rods, setup, teardown),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
