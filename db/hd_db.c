@@ -208,6 +208,70 @@ static int open_error(sqlite3 *h, const char *path, const char *what, hd_error *
 
 static int tables_missing(sqlite3 *h, const char *const *tables, const char **missing);
 
+/* Whether haff may write its tables into the database open on h: 0 when it has no table (a new
+ * or empty file), or when it has one of haff's tables at least and each of haff's tables that
+ * it has holds every column of haff's (db/schema.sql, read from a schema applied in memory); 1
+ * with why (size bytes) set when not: a file of another program, or a table of haff's name
+ * that is not haff's (haff added its seven tables to any SQLite file, and left them behind
+ * when a `runs` table of another shape then failed); -1 when the schema cannot be read (not a
+ * database: SQLite's error is on h).  Nothing is written. */
+static int not_haffs(sqlite3 *h, char *why, size_t size) {
+  sqlite3_stmt *st = NULL;
+  if (sqlite3_prepare_v2(h,
+                         "SELECT name FROM sqlite_schema WHERE type = 'table' AND name NOT LIKE "
+                         "'sqlite\\_%' ESCAPE '\\' ORDER BY name",
+                         -1, &st, NULL) != SQLITE_OK)
+    return -1;
+  sqlite3 *mem = NULL; /* haff's own tables, in memory */
+  sqlite3_stmt *cols = NULL, *has = NULL;
+  int rc = 0, ours = 0, others = 0, s;
+  char other[64] = "";
+  if (sqlite3_open_v2(":memory:", &mem, SQLITE_OPEN_READWRITE, NULL) != SQLITE_OK ||
+      sqlite3_exec(mem, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK ||
+      sqlite3_prepare_v2(mem,
+                         "SELECT p.name FROM pragma_table_info(?1) p", -1, &cols,
+                         NULL) != SQLITE_OK ||
+      sqlite3_prepare_v2(h, "SELECT count(*) FROM pragma_table_info(?1) WHERE name = ?2", -1,
+                         &has, NULL) != SQLITE_OK) {
+    rc = 1;
+    snprintf(why, size, "cannot read haff's own schema");
+  }
+  while (!rc && (s = sqlite3_step(st)) == SQLITE_ROW) {
+    const char *table = (const char *)sqlite3_column_text(st, 0);
+    sqlite3_bind_text(cols, 1, table, -1, SQLITE_TRANSIENT);
+    int ncol = 0;
+    while (!rc && sqlite3_step(cols) == SQLITE_ROW) {
+      ncol++;
+      const char *col = (const char *)sqlite3_column_text(cols, 0);
+      sqlite3_bind_text(has, 1, table, -1, SQLITE_TRANSIENT);
+      sqlite3_bind_text(has, 2, col, -1, SQLITE_TRANSIENT);
+      if (sqlite3_step(has) != SQLITE_ROW) {
+        rc = -1;
+      } else if (sqlite3_column_int(has, 0) == 0) {
+        rc = 1;
+        snprintf(why, size, "its table %.64s has no column %.64s: it is not haff's", table, col);
+      }
+      sqlite3_reset(has);
+    }
+    sqlite3_reset(cols);
+    if (ncol)
+      ours++;
+    else if (!others++)
+      snprintf(other, sizeof other, "%.60s", table);
+  }
+  if (!rc && s != SQLITE_DONE) rc = -1;
+  if (!rc && others && !ours) {
+    rc = 1;
+    snprintf(why, size, "it holds tables of another program (%s%s) and none of haff's", other,
+             others > 1 ? ", ..." : "");
+  }
+  sqlite3_finalize(st);
+  sqlite3_finalize(cols);
+  sqlite3_finalize(has);
+  sqlite3_close(mem);
+  return rc;
+}
+
 /* hd_db_open (existing 0: created if missing) and hd_db_open_existing (1: must be a haff
  * database already, checked before anything is written). */
 static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
@@ -222,15 +286,25 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
   int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX | (existing ? 0 : SQLITE_OPEN_CREATE);
   static const char *const runs[] = {"runs", NULL};
   const char *none = NULL;
-  int missing = 0;
-  if (sqlite3_open_v2(path, &db->db, flags, NULL) != SQLITE_OK ||
-      (existing && (missing = tables_missing(db->db, runs, &none)) < 0)) {
+  int missing = 0, foreign = 0;
+  char plain[4200], why[200];
+  const char *name = hd_db_plain_name(path, plain, sizeof plain);
+  if (!name) {
+    db_free(db);
+    return hd_error_set(err, HD_EINPUT, "%.200s...: path too long", path);
+  }
+  /* checked before anything is written: not even the switch to WAL touches a file of someone
+   * else's */
+  if (sqlite3_open_v2(name, &db->db, flags, NULL) != SQLITE_OK ||
+      (foreign = not_haffs(db->db, why, sizeof why)) < 0 ||
+      (existing && !foreign && (missing = tables_missing(db->db, runs, &none)) < 0)) {
     rc = open_error(db->db, path, "open", err);
     db_free(db);
     return rc;
   }
-  if (missing) {
+  if (foreign || missing) {
     db_free(db);
+    if (foreign) return hd_error_set(err, HD_EINPUT, "%s: not a haff database: %s", path, why);
     return hd_error_set(err, HD_EINPUT, "%s: not a haff database (no %s table)", path, none);
   }
   sqlite3_extended_result_codes(db->db, 1);
@@ -309,7 +383,10 @@ static int uri_immutable(const char *path, char *buf, size_t size) {
   snprintf(wal, sizeof wal, "%s-wal", path);
   if (stat(wal, &st) == 0 && st.st_size > 0) return -1;
   size_t k = (size_t)snprintf(buf, size, "file:");
-  for (const unsigned char *p = (const unsigned char *)path; *p && k + 4 < size; p++) {
+  char plain[4200]; /* "file::memory:" would be a database in memory */
+  const char *name = hd_db_plain_name(path, plain, sizeof plain);
+  if (!name) return -1;
+  for (const unsigned char *p = (const unsigned char *)name; *p && k + 4 < size; p++) {
     if (*p == '%' || *p == '?' || *p == '#' || *p <= ' ' || *p >= 0x7f) {
       buf[k++] = '%', buf[k++] = hex[*p >> 4], buf[k++] = hex[*p & 15];
     } else {
@@ -329,7 +406,10 @@ static int uri_immutable(const char *path, char *buf, size_t size) {
 static int open_reader(const char *path, sqlite3 **h, int flags) {
   /* READWRITE opens a write-protected file read-only by itself; without CREATE a missing file
    * is SQLITE_CANTOPEN, as with READONLY */
-  int rc = sqlite3_open_v2(path, h, flags | SQLITE_OPEN_READWRITE, NULL);
+  char plain[4200];
+  const char *name = hd_db_plain_name(path, plain, sizeof plain);
+  if (!name) return SQLITE_CANTOPEN;
+  int rc = sqlite3_open_v2(name, h, flags | SQLITE_OPEN_READWRITE, NULL);
   if (rc == SQLITE_OK) rc = sqlite3_exec(*h, "PRAGMA query_only = 1", NULL, NULL, NULL);
   return rc;
 }
@@ -347,6 +427,12 @@ static int reopen_immutable(const char *path, sqlite3 **h, int flags) {
   sqlite3_close(*h);
   *h = NULL;
   return sqlite3_open_v2(uri, h, flags | SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, NULL) == SQLITE_OK;
+}
+
+const char *hd_db_plain_name(const char *path, char *buf, size_t size) {
+  if (path[0] == '/') return path;
+  int k = snprintf(buf, size, "./%s", path);
+  return k >= 0 && (size_t)k < size ? buf : NULL;
 }
 
 int hd_db_check_path(const char *path, int must_exist, hd_error *err) {

@@ -70,10 +70,19 @@ typedef struct hd_state_rec {
 /* The text of a body kind ("disk", "dimer", "rod"), or NULL for an unknown kind. */
 const char *hd_db_kind_name(int kind);
 
-/* Opens (creating if needed) the database at path, applies the schema, sets WAL.
- * Returns HD_OK, HD_EINPUT (path is a directory or a file that is not an SQLite database) or
- * HD_EIO with err set. */
+/* Opens (creating if needed) the database at path, applies the schema, sets WAL.  The path is
+ * a plain file name (hd_db_plain_name).  Returns HD_OK, HD_EINPUT (path is a directory, a file
+ * that is not an SQLite database, or a database that is not haff's: it has tables but none of
+ * haff's, or one of haff's tables without a column of haff's; such a file is left byte for
+ * byte as it was) or HD_EIO with err set. */
 int hd_db_open(hd_db **out, const char *path, hd_error *err);
+
+/* The name under which SQLite opens the file PATH as a plain file name: PATH itself when it is
+ * absolute, else "./PATH" (in buf of size bytes).  SQLite gives a name of its own meaning to
+ * ":memory:" (a database in memory), "" (a temporary one) and, with URIs enabled as Debian's
+ * build has them, "file:..." (a URI: "file:x.db?mode=memory"); "./" makes each an ordinary file
+ * in the current folder.  NULL when it does not fit in buf. */
+const char *hd_db_plain_name(const char *path, char *buf, size_t size);
 
 /* HD_EINPUT with err set when PATH is a directory, or does not exist and must_exist; else
  * HD_OK (a missing path is a new database to hd_db_open). */

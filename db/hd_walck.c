@@ -5,6 +5,8 @@
  * errors SQLite ignores too. */
 #include "hd_walck.h"
 
+#include "hd_db.h"
+
 #include <pthread.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -68,8 +70,11 @@ int hd_walck_start(hd_walck **out, sqlite3 *w, const char *path, hd_error *err) 
   hd_walck *c = calloc(1, sizeof *c);
   if (!c) return hd_error_set(err, HD_ENOMEM, "%s: out of memory for the log checkpointer", path);
   c->w = w;
-  if (sqlite3_open_v2(path, &c->own, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, NULL) !=
-      SQLITE_OK) {
+  char plain[4200]; /* the file the writer opened, not ":memory:" nor a URI */
+  const char *name = hd_db_plain_name(path, plain, sizeof plain);
+  if (!name ||
+      sqlite3_open_v2(name, &c->own, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, NULL) !=
+          SQLITE_OK) {
     hd_error_set(err, HD_EIO, "%s: open for checkpoints: %s", path,
                  c->own ? sqlite3_errmsg(c->own) : "out of memory");
     sqlite3_close(c->own);

@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include "eps.h"
+#include "hd_db.h"
 
 static void usage(FILE *out) {
   fprintf(
@@ -192,20 +193,20 @@ static int tabulate(hd_eps_sampler *s, const char *dbpath, double bmin, double b
     fprintf(stderr, "haff mc eps: %s\n", err.msg);
     return hd_exit_code(err.code);
   }
-  sqlite3 *db;
-  if (sqlite3_open(dbpath, &db) != SQLITE_OK) {
-    fprintf(stderr, "haff mc eps: cannot open %s: %s\n", dbpath, sqlite3_errmsg(db));
-    sqlite3_close(db);
-    hd_eps_table_free(t);
-    return 1;
-  }
+  /* opened as a run's writer opens it: a plain file name (not ":memory:" nor a URI), WAL, the
+   * busy timeout of a run's writer (a run writing the file made it fail at once with "database
+   * is locked"), and no table added to a database that is not haff's */
+  hd_db *db = NULL;
   int64_t id = 0;
-  int rc = hd_eps_table_save(t, db, seed, &id, &err);
-  sqlite3_close(db);
+  int rc = hd_db_open(&db, dbpath, &err);
+  if (!rc) rc = hd_eps_table_save(t, hd_db_handle(db), seed, &id, &err);
+  hd_error e2;
+  int crc = hd_db_close(db, &e2);
+  if (!rc && crc) rc = crc, err = e2;
   if (rc) {
     fprintf(stderr, "haff mc eps: %s\n", err.msg);
     hd_eps_table_free(t);
-    return 1;
+    return hd_exit_code(rc);
   }
   fprintf(stderr, "eps table %lld: gamma %g, %d x %d, %ld samples per node, %.1f s\n",
           (long long)id, t->gamma, t->nbeta, t->nu, t->samples, t->seconds);

@@ -149,7 +149,8 @@ int hd_eps_table_save(const hd_eps_table *t, sqlite3 *db, unsigned long seed, in
     sqlite3_free(msg);
     return rc;
   }
-  if (sqlite3_exec(db, "BEGIN", NULL, NULL, NULL) != SQLITE_OK) return db_fail(db, err, "begin");
+  if (sqlite3_exec(db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK)
+    return db_fail(db, err, "begin");
   sqlite3_stmt *st = NULL;
   int ok =
       sqlite3_prepare_v2(db,
