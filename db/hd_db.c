@@ -874,21 +874,40 @@ int hd_db_log_state(hd_db *db, int64_t run, const char *label, const hd_state_re
 int hd_db_run_begin(hd_db *db, const char *scene_text, unsigned long long seed, const char *version,
                     int64_t *run, hd_error *err) {
   int rc = check_db(db, err);
-  if (rc || (rc = hd_db_commit(db, err))) return rc;
+  /* in a batch of its own, left open: the row is seen by others once the caller commits */
+  if (rc || (rc = hd_db_commit(db, err)) || (rc = batch_begin(db, err))) return rc;
   sqlite3_stmt *st = db->ins_run;
   sqlite3_bind_text(st, 1, scene_text ? scene_text : "", -1, SQLITE_TRANSIENT);
   /* runs.seed is a signed 64-bit integer: a seed >= 2^63 is stored as its two's complement
    * and read back exactly by hd_db_find_resumable. */
   sqlite3_bind_int64(st, 2, (sqlite3_int64)seed);
   sqlite3_bind_text(st, 3, version ? version : "", -1, SQLITE_TRANSIENT);
-  if (sqlite3_step(st) != SQLITE_DONE) {
-    rc = sql_error(db, err, "insert run");
-    sqlite3_reset(st);
-    return rc;
-  }
+  if (sqlite3_step(st) != SQLITE_DONE) return batch_fail(db, st, err, "insert run");
   sqlite3_reset(st);
+  db->pending++;
   if (run) *run = sqlite3_last_insert_rowid(db->db);
   return HD_OK;
+}
+
+int hd_db_run_unstarted(hd_db *db, int64_t run, int *unstarted, hd_error *err) {
+  if (!db) return hd_error_set(err, HD_EIO, "database: not open");
+  *unstarted = 0;
+  int rc = drain(db, err);
+  if (rc) return rc;
+  sqlite3_stmt *st = NULL;
+  if (sqlite3_prepare_v2(db->db,
+                         "SELECT status = 'running' AND NOT EXISTS (SELECT 1 FROM checkpoints c "
+                         "WHERE c.run = runs.id) FROM runs WHERE id = ?1",
+                         -1, &st, NULL) != SQLITE_OK)
+    return sql_error(db, err, "look for the checkpoint");
+  sqlite3_bind_int64(st, 1, run);
+  int s = sqlite3_step(st);
+  if (s == SQLITE_ROW)
+    *unstarted = sqlite3_column_int(st, 0);
+  else if (s != SQLITE_DONE)
+    rc = sql_error(db, err, "look for the checkpoint");
+  sqlite3_finalize(st);
+  return rc;
 }
 
 /* Runs one UPDATE/DELETE statement sql with the run id bound to ?1 and the optional extra
@@ -1115,9 +1134,11 @@ int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene
   const char *sql = want_run > 0
                         ? "SELECT id, status, scene, seed FROM runs WHERE id = ?1"
                         : "SELECT id, status, scene, seed FROM runs "
-                          "WHERE status IN ('running','interrupted','failed') AND EXISTS "
-                          "(SELECT 1 FROM checkpoints c WHERE c.run = runs.id) ORDER BY id DESC "
-                          "LIMIT 1"; /* a run that failed in its set-up has no checkpoint */
+                          "WHERE status IN ('running','interrupted','failed') AND (EXISTS "
+                          "(SELECT 1 FROM checkpoints c WHERE c.run = runs.id) OR status = "
+                          "'running') ORDER BY id DESC LIMIT 1";
+  /* a run that failed in its set-up has no checkpoint; one left 'running' without it was
+   * killed in its set-up, and is run again from the start */
   if (sqlite3_prepare_v2(db->db, sql, -1, &st, NULL) != SQLITE_OK)
     return sql_error(db, err, "find resumable run");
   if (want_run > 0) sqlite3_bind_int64(st, 1, want_run);

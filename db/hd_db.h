@@ -119,7 +119,10 @@ void hd_db_set_batch_rows(hd_db *db, long rows);
 /* The path the database was opened with (for messages). */
 const char *hd_db_path(const hd_db *db);
 
-/* Inserts a runs row with status 'running' and returns its id in *run. */
+/* Inserts a runs row with status 'running' and returns its id in *run.  The row is left in
+ * the open batch: other connections see it once it is committed (hd_db_commit, or any call
+ * below that commits first), so that the caller can first take a lock named by the id
+ * (hd_run.c: a resume never finds a new run before its process holds the run's lock). */
 int hd_db_run_begin(hd_db *db, const char *scene_text, unsigned long long seed, const char *version,
                     int64_t *run, hd_error *err);
 
@@ -162,16 +165,22 @@ int hd_db_checkpoint_save(hd_db *db, int64_t run, int64_t seq, double t, const v
 int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_t *seq, double *t,
                           hd_error *err);
 
+/* *unstarted = 1 when run is 'running' and has no checkpoint: its process ended in its set-up,
+ * before the first checkpoint (killed in its first milliseconds), and nothing of it can be
+ * continued; else 0 (also when there is no such run).  HD_OK or HD_EIO. */
+int hd_db_run_unstarted(hd_db *db, int64_t run, int *unstarted, hd_error *err);
+
 /* Deletes the rows a resumed run will write again: collisions with seq > seq, samples and
  * states with t > t; and the run's 'checkpoint' and 'final' states (where it stopped: it goes
  * on, and writes its final state again). */
 int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error *err);
 
 /* The id of the newest run that has a checkpoint and whose status is 'interrupted', 'failed'
- * (disk full: resumable once there is room) or 'running' (a killed process);
- * HD_EINPUT if none.  *scene_text malloc'd, *seed its seed.  want_run <= 0 picks the newest
- * such run; want_run > 0 asks for that run, and a run that does not exist or has ended
- * ('done', 'collapsed') is HD_EINPUT with a message that says so. */
+ * (disk full: resumable once there is room) or 'running' (a killed process), or that is
+ * 'running' without a checkpoint (killed in its set-up: hd_db_run_unstarted); HD_EINPUT if
+ * none.  *scene_text malloc'd, *seed its seed.  want_run <= 0 picks the newest such run;
+ * want_run > 0 asks for that run, and a run that does not exist or has ended ('done',
+ * 'collapsed') is HD_EINPUT with a message that says so. */
 int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene_text,
                          unsigned long long *seed, hd_error *err);
 

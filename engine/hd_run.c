@@ -399,6 +399,19 @@ static int drive_and_finish(runner *r, hd_error *err) {
   return finish(r, rc, err);
 }
 
+/* The start of a run whose model state r->s is the scene's initial one: the box, the initial
+ * states, the t = 0 sample and a first checkpoint (so that even a run killed at once can be
+ * resumed). */
+static int start(runner *r, hd_error *err) {
+  double lx, ly;
+  r->ops->box(r->s, &lx, &ly);
+  int rc = hd_db_run_box(r->db, r->run, lx, ly, err);
+  if (!rc) rc = log_states(r, "initial", err);
+  if (!rc) rc = observe(r, err); /* the t = 0 sample */
+  if (!rc) rc = checkpoint(r, err);
+  return rc;
+}
+
 int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error *err) {
   runner r = {.sc = sc, .o = o, .ops = hd_model_for_scene(sc), .lock_fd = -1};
   r.t0_wall = r.last_ckpt_wall = now_wall();
@@ -414,17 +427,14 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
     }
     return rc;
   }
-  double lx, ly;
-  r.ops->box(r.s, &lx, &ly);
   rc = hd_db_open(&r.db, o->db_path, err);
   if (!rc) rc = hd_db_run_begin(r.db, sc->text ? sc->text : "", sc->seed, o->version, &r.run, err);
   if (!rc) {
     *run = r.run;
+    /* the lock before the row is committed (start commits it): a resume never finds this run
+     * 'running' without its lock held, so it never takes over a run in its set-up */
     rc = run_lock(&r, err);
-    if (!rc) rc = hd_db_run_box(r.db, r.run, lx, ly, err);
-    if (!rc) rc = log_states(&r, "initial", err);
-    if (!rc) rc = observe(&r, err);    /* the t = 0 sample */
-    if (!rc) rc = checkpoint(&r, err); /* so that even a run killed at once can be resumed */
+    if (!rc) rc = start(&r, err);
     if (rc) { /* any failure of the set-up marks the run, which cannot be resumed */
       hd_error e2;
       hd_db_run_message(r.db, r.run, err->msg, &e2);
@@ -517,12 +527,24 @@ int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error
   *run = r.run;
   signals_on();
   rc = run_lock(&r, err); /* before anything of the run is touched */
-  if (!rc) rc = hd_db_checkpoint_load(r.db, r.run, &blob, &n, &seq, &t, err);
-  if (!rc) rc = restore(&r, blob, n, seq, t, err);
-  free(blob);
-  if (!rc) rc = hd_db_truncate_after(r.db, r.run, seq, t, err);
-  if (!rc) /* why it stopped belongs to the stop, not to the run that now goes on */
-    rc = hd_db_run_message(r.db, r.run, NULL, err);
+  int unstarted = 0;
+  if (!rc) rc = hd_db_run_unstarted(r.db, r.run, &unstarted, err);
+  if (!rc && unstarted) {
+    /* killed in its set-up, before its first checkpoint (it is not running: we hold its lock):
+     * run again from its scene and seed, the same run as one never stopped, after the rows
+     * of the set-up that were committed */
+    rc = hd_db_truncate_after(r.db, r.run, 0, -INFINITY, err);
+    if (!rc) rc = r.ops->alloc(&r.s, &sc, err);
+    if (!rc) rc = hd_db_run_message(r.db, r.run, NULL, err);
+    if (!rc) rc = start(&r, err);
+  } else if (!rc) {
+    rc = hd_db_checkpoint_load(r.db, r.run, &blob, &n, &seq, &t, err);
+    if (!rc) rc = restore(&r, blob, n, seq, t, err);
+    free(blob);
+    if (!rc) rc = hd_db_truncate_after(r.db, r.run, seq, t, err);
+    if (!rc) /* why it stopped belongs to the stop, not to the run that now goes on */
+      rc = hd_db_run_message(r.db, r.run, NULL, err);
+  }
   if (!rc)
     rc = hd_db_run_status(r.db, r.run, "running", r.ops->events(r.s), r.st.wall_seconds, err);
   if (!rc) rc = drive_and_finish(&r, err);

@@ -311,7 +311,7 @@ static void bad_input(void **state) {
   assert_int_equal(sh("sqlite3 foreign.db \"CREATE TABLE mydata(a)\" && : > empty.db && mkdir -p "
                       "adir.db"),
                    0);
-  bad_usage("resume foreign.db", "foreign.db: not a haff database (no runs table)");
+  bad_usage("resume foreign.db", "foreign.db: not a haff database");
   assert_int_equal(q1("foreign.db", "SELECT count(*) FROM sqlite_schema"), 1);
   bad_usage("resume empty.db", "empty.db: not a haff database");
   assert_int_equal(sh("test ! -s empty.db"), 0);
@@ -805,6 +805,154 @@ static void mixtures_and_walls_labelled(void **state) {
   bad_usage("table1 mixonly.db", "no run of one species in a periodic box to tabulate");
 }
 
+/* ---- issue 17 (database side): special names, files of other programs, busy handling,
+ * damaged checkpoints, runs killed before their first checkpoint ---- */
+
+/* A small scene of 200 collisions. */
+static const char small_scene[] = "[system]\narea_fraction = 0.1\nseed = 1\n[disks]\ncount = 50\n"
+                                  "[run]\nstop_events = 200\n[log]\ncollisions = all\nsamples_every = 0.1\n";
+
+/* md5sum of file name in dir, into sum (33 bytes). */
+static void md5_of(const char *name, char *sum) {
+  char cmd[600];
+  snprintf(cmd, sizeof cmd, "md5sum '%s/%s'", dir, name);
+  FILE *p = popen(cmd, "r");
+  assert_non_null(p);
+  assert_non_null(fgets(sum, 33, p));
+  pclose(p);
+}
+
+/* SQLite's special names are plain file names: `-o :memory:` wrote nothing ("run 1 done" and
+ * exit 0, the run in memory), `-o 'file:u.db?mode=memory'` neither, `-o file:o.db` wrote o.db.
+ * Each is now the file of that very name, for run, resume, the analyses, export and mc eps. */
+static void special_names_are_files(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("small.ini", small_scene);
+  const char *names[3] = {":memory:", "file:u.db?mode=memory", "file:o.db"};
+  for (int k = 0; k < 3; k++) {
+    assert_int_equal(sh("%s run small.ini -o '%s' --quiet", haff, names[k]), 0);
+    assert_true(exists(names[k]));
+    assert_int_equal(q1(names[k], "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
+    assert_int_equal(q1(names[k], "SELECT count(*) FROM collisions"), 200);
+  }
+  assert_false(exists("o.db"));
+  assert_false(exists("u.db"));
+  /* the readers (export through hd_db_open_readonly, the analyses through hd_db_open_read)
+   * read the file: they said "no runs table" of the empty database in memory */
+  assert_int_equal(sh("%s export xyz :memory: -o m.xyz", haff), 0);
+  assert_int_equal(sh("test -s m.xyz"), 0);
+  assert_int_equal(sh("%s energy 'file:o.db' > /dev/null", haff), 0);
+  /* resume opens the file too (it said "no runs table", exit 2) */
+  assert_int_equal(sh("sqlite3 ./:memory: \"UPDATE runs SET status = 'running'\""), 0);
+  assert_int_equal(sh("%s resume :memory: --quiet", haff), 0);
+  assert_int_equal(q1(":memory:", "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
+  /* mc eps --tabulate --db ':memory:' stores its table in the file */
+  assert_int_equal(sh("%s mc eps --gamma 0.8 --tabulate --db :memory: --nbeta 3 --nu 9 "
+                      "--samples 50 > /dev/null",
+                      haff),
+                   0);
+  assert_int_equal(q1(":memory:", "SELECT count(*) FROM eps_tables"), 1);
+}
+
+/* A database of another program is bad input, and left byte for byte as it was: `run -o` and
+ * `mc eps --tabulate --db` added haff's seven tables to it (exit 0); with a `runs` table of
+ * another shape `run` exited 1 and left its tables behind.  An empty file is a new database. */
+static void foreign_database_untouched(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("small.ini", small_scene);
+  assert_int_equal(sh("sqlite3 other.db \"CREATE TABLE t(x); INSERT INTO t VALUES (1)\" && "
+                      "sqlite3 otherruns.db \"CREATE TABLE runs(x); INSERT INTO runs VALUES (2)\""),
+                   0);
+  char before[40], after[40];
+  md5_of("other.db", before);
+  bad_usage("run small.ini -o other.db --quiet",
+            "other.db: not a haff database: it holds tables of another program (t)");
+  bad_usage("mc eps --gamma 0.8 --tabulate --db other.db --nbeta 3 --nu 9 --samples 50",
+            "other.db: not a haff database");
+  md5_of("other.db", after);
+  assert_string_equal(before, after);
+  assert_false(exists("other.db-wal"));
+  md5_of("otherruns.db", before);
+  bad_usage("run small.ini -o otherruns.db --quiet",
+            "otherruns.db: not a haff database: its table runs has no column id");
+  md5_of("otherruns.db", after);
+  assert_string_equal(before, after);
+  assert_int_equal(q1("otherruns.db", "SELECT count(*) FROM sqlite_schema"), 1);
+  /* an empty file is fine, and a haff database takes a second run and an eps table */
+  assert_int_equal(sh(": > empty0.db && %s run small.ini -o empty0.db --quiet && %s run "
+                      "small.ini -o empty0.db --quiet",
+                      haff, haff),
+                   0);
+  assert_int_equal(q1("empty0.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 2);
+  assert_int_equal(sh("%s mc eps --gamma 0.8 --tabulate --db empty0.db --nbeta 3 --nu 9 "
+                      "--samples 50 > /dev/null",
+                      haff),
+                   0);
+}
+
+/* mc eps --tabulate --db waits for a run that writes the same file, as a second run does (it
+ * failed at once with "database is locked"). */
+static void eps_table_waits_for_a_run(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("busy.ini", "[system]\narea_fraction = 0.2\nseed = 3\n[disks]\ncount = 2000\n[run]\n"
+                         "stop_cpd = 1e6\n[log]\ncollisions = all\n");
+  int rc = sh("(%s run busy.ini -o busy.db --quiet 2>/dev/null & p=$!; " WAIT_FOR_LOCK(
+                  "busy.db") "sleep 0.5; "
+                             "%s mc eps --gamma 0.8 --tabulate --db busy.db --nbeta 3 --nu 9 "
+                             "--samples 50 > /dev/null; r=$?; kill -INT $p; wait $p; exit $r)",
+              haff, haff);
+  char e[2048];
+  read_err(e, sizeof e);
+  if (rc) fail_msg("mc eps against a live run: exit %d: %s", rc, e);
+  assert_int_equal(q1("busy.db", "SELECT count(*) FROM eps_tables"), 1);
+  assert_int_equal(q1("busy.db", "SELECT count(*) FROM runs WHERE status = 'interrupted'"), 1);
+}
+
+/* Flips bit `bit` of the checkpoint of database db in dir. */
+static void flip_checkpoint_bit(const char *db, long bit) {
+  char p[300];
+  snprintf(p, sizeof p, "%s/%s", dir, db);
+  sqlite3 *h;
+  assert_int_equal(sqlite3_open(p, &h), SQLITE_OK);
+  sqlite3_stmt *st;
+  assert_int_equal(sqlite3_prepare_v2(h, "SELECT blob FROM checkpoints", -1, &st, 0), SQLITE_OK);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  int n = sqlite3_column_bytes(st, 0);
+  unsigned char *b = malloc((size_t)n);
+  assert_non_null(b);
+  memcpy(b, sqlite3_column_blob(st, 0), (size_t)n);
+  sqlite3_finalize(st);
+  b[bit / 8 % n] ^= (unsigned char)(1u << bit % 8);
+  assert_int_equal(sqlite3_prepare_v2(h, "UPDATE checkpoints SET blob = ?1", -1, &st, 0),
+                   SQLITE_OK);
+  sqlite3_bind_blob(st, 1, b, n, SQLITE_TRANSIENT);
+  assert_int_equal(sqlite3_step(st), SQLITE_DONE);
+  sqlite3_finalize(st);
+  sqlite3_close(h);
+  free(b);
+}
+
+/* A damaged checkpoint: resume exits 2 with one line saying so (a flipped bit crashed it or
+ * ended 'done' with wrong data; tests/test_resume.c flips many more, in-process). */
+static void damaged_checkpoint_exit_2(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(run_and_signal("dmg.db", SIGINT, 300), 1);
+  flip_checkpoint_bit("dmg.db", 8 * 40 + 3); /* in the engine's header */
+  char e[2048];
+  assert_int_equal(sh("%s resume dmg.db --quiet", haff), 2);
+  read_err(e, sizeof e);
+  assert_non_null(strstr(e, "dmg.db: the checkpoint of run 1 is damaged"));
+  assert_int_equal(sh("test $(wc -l < err.txt) = 1"), 0);
+  assert_int_equal(q1("dmg.db", "SELECT status = 'interrupted' FROM runs"), 1);
+  flip_checkpoint_bit("dmg.db", 8 * 40 + 3); /* mended: it resumes to the very same run */
+  assert_int_equal(sh("%s resume dmg.db --quiet", haff), 0);
+  same_as_reference("dmg.db");
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(bad_input),
@@ -822,6 +970,10 @@ int main(void) {
       cmocka_unit_test(resume_without_the_state_file),
       cmocka_unit_test(live_run_commits_every_second),
       cmocka_unit_test(mixtures_and_walls_labelled),
+      cmocka_unit_test(special_names_are_files),
+      cmocka_unit_test(foreign_database_untouched),
+      cmocka_unit_test(eps_table_waits_for_a_run),
+      cmocka_unit_test(damaged_checkpoint_exit_2),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -6,16 +6,21 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <dirent.h>
+#include <fcntl.h>
 #include <math.h>
+#include <signal.h>
 #include <sqlite3.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <gsl/gsl_rng.h>
 
 #include "hd_db.h"
+#include "hd_model.h"
 #include "hd_run.h"
 #include "hd_scene.h"
 
@@ -228,10 +233,159 @@ static void damaged_checkpoint_rods(void **state) {
   flip_bits(scene_rods, 60);
 }
 
+/* ---------------------------------------------------------------------------------------- */
+/* a run killed in its set-up */
+
+/* Leaves in database name what a run of scene killed in its first milliseconds leaves: its row
+ * 'running' (and, as a large run's set-up may commit them, some initial states and a sample),
+ * no checkpoint. */
+static void killed_in_setup(const char *scene, const char *name) {
+  hd_scene sc;
+  hd_error err;
+  assert_int_equal(hd_scene_load_string(&sc, scene, "t.ini", NULL, 0, &err), HD_OK);
+  hd_db *db = NULL;
+  assert_int_equal(hd_db_open(&db, path_of(name), &err), HD_OK);
+  int64_t run = 0;
+  assert_int_equal(hd_db_run_begin(db, sc.text, sc.seed, "test", &run, &err), HD_OK);
+  hd_state_rec st = {0.0, 0, 0, 1.0, 2.0, 0.0, 0.5, 0.5, 0.0, 0.0};
+  assert_int_equal(hd_db_log_state(db, run, "initial", &st, &err), HD_OK);
+  hd_sample_row sa = {0.0, 0, 0.0, 1.0, 0.0, NAN, NAN, NAN};
+  assert_int_equal(hd_db_log_sample(db, run, &sa, &err), HD_OK);
+  assert_int_equal(hd_db_close(db, &err), HD_OK);
+  hd_scene_free(&sc);
+  assert_int_equal(q1(name, "SELECT count(*) FROM runs WHERE status = 'running'"), 1);
+  assert_int_equal(q1(name, "SELECT count(*) FROM checkpoints"), 0);
+}
+
+/* A run killed before its first checkpoint stayed 'running' for ever, and resume said "no
+ * interrupted run to resume": it is now run again from its stored scene and seed, and ends as
+ * the run never stopped (every row equal).  Not while another process holds its lock: a run
+ * in its set-up is not taken over. */
+static void rerun_killed_in_setup(void **state) {
+  (void)state;
+  assert_int_equal(run_scene(scene2d, "ref.db"), HD_OK);
+  killed_in_setup(scene2d, "early.db");
+  /* another process holds the run's lock, as a live run in its set-up does */
+  int pipefd[2];
+  assert_int_equal(pipe(pipefd), 0);
+  fflush(NULL);
+  pid_t pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) {
+    int fd = open(path_of("early.db.lock"), O_RDWR | O_CREAT, 0644);
+    struct flock fl = {.l_type = F_WRLCK, .l_whence = SEEK_SET, .l_start = 1, .l_len = 1};
+    if (fd < 0 || fcntl(fd, F_SETLK, &fl)) _exit(1);
+    char c = 'l';
+    if (write(pipefd[1], &c, 1) != 1) _exit(2);
+    pause();
+    _exit(0);
+  }
+  char c = 0;
+  assert_int_equal(read(pipefd[0], &c, 1), 1);
+  hd_error err;
+  int rc = resume("early.db", &err);
+  kill(pid, SIGKILL);
+  waitpid(pid, NULL, 0);
+  close(pipefd[0]);
+  close(pipefd[1]);
+  assert_int_equal(rc, HD_EINPUT);
+  assert_non_null(strstr(err.msg, "is being run by another process"));
+  assert_int_equal(q1("early.db", "SELECT count(*) FROM states"), 1); /* untouched */
+  /* its process gone, the run is run again */
+  rc = resume("early.db", &err);
+  if (rc) fail_msg("resume: %s", err.msg);
+  same_as_reference("early.db");
+  /* with the uninterrupted run's message ("velocities_at: 1 of 3 snapshots not taken ...") */
+  assert_int_equal(q1("early.db", "SELECT count(*) FROM runs r, ref.runs f WHERE r.message IS "
+                                  "NOT f.message OR r.events IS NOT f.events"),
+                   0);
+  /* the same for a rods run, asked for by its id */
+  unlink(path_of("ref.db"));
+  assert_int_equal(run_scene(scene_rods, "ref.db"), HD_OK);
+  killed_in_setup(scene_rods, "early2.db");
+  hd_run_opts o = {.db_path = path_of("early2.db"), .quiet = 1, .version = "test"};
+  int64_t run = 0;
+  assert_int_equal(hd_run_resume(1, &o, &run, &err), HD_OK);
+  same_as_reference("early2.db");
+}
+
+/* ---------------------------------------------------------------------------------------- */
+/* checkpoint restore below the checksum: the fuzz target and its corpus */
+
+#include "fuzz/fuzz_checkpoint.c"
+
+#define CORPUS "tests/fuzz/corpus/checkpoint"
+
+/* The bytes of file path (malloc'd, *n bytes). */
+static unsigned char *slurp(const char *path, size_t *n) {
+  FILE *f = fopen(path, "rb");
+  assert_non_null(f);
+  assert_int_equal(fseek(f, 0, SEEK_END), 0);
+  long len = ftell(f);
+  assert_true(len >= 0);
+  rewind(f);
+  unsigned char *b = malloc((size_t)len + 1);
+  assert_non_null(b);
+  assert_int_equal(fread(b, 1, (size_t)len, f), (size_t)len);
+  fclose(f);
+  *n = (size_t)len;
+  return b;
+}
+
+/* Every input of the fuzz corpus (real blobs of the target's scenes, and what the fuzzer found)
+ * goes through the target without a crash (the sanitizer build runs this too); the seeds, real
+ * checkpoints, restore; and 300 single-bit flips of each seed (fixed seed) are refused or run,
+ * never crash: the models' own checks, which the checksum shields from such flips in a resume,
+ * are what keeps a blob written whole but wrong from crashing the engine. */
+static void fuzz_corpus_replays(void **state) {
+  (void)state;
+  DIR *d = opendir(CORPUS);
+  assert_non_null(d);
+  struct dirent *e;
+  int files = 0, seeds = 0;
+  gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(rng, 23);
+  while ((e = readdir(d))) {
+    if (e->d_name[0] == '.') continue;
+    char p[600];
+    snprintf(p, sizeof p, CORPUS "/%s", e->d_name);
+    size_t n = 0;
+    unsigned char *b = slurp(p, &n);
+    LLVMFuzzerTestOneInput(b, n);
+    files++;
+    if (!strncmp(e->d_name, "bodies2d-", 9) || !strncmp(e->d_name, "rods-", 5)) {
+      seeds++;
+      hd_scene sc;
+      hd_error err;
+      assert_int_equal(hd_scene_load_string(&sc, fuzz_ckpt_scenes[b[0] & 1], "fuzz.ini", NULL, 0,
+                                            &err),
+                       HD_OK);
+      const hd_model_ops *ops = hd_model_for_scene(&sc);
+      void *m = NULL;
+      if (ops->alloc_restore(&m, &sc, b + 1, n - 1, &err)) fail_msg("%s: %s", p, err.msg);
+      ops->free(m);
+      hd_scene_free(&sc);
+      for (int k = 0; k < 300; k++) {
+        size_t bit = 8 + gsl_rng_uniform_int(rng, (unsigned long)(8 * (n - 1)));
+        b[bit / 8] ^= (unsigned char)(1u << (bit % 8));
+        LLVMFuzzerTestOneInput(b, n);
+        b[bit / 8] ^= (unsigned char)(1u << (bit % 8));
+      }
+    }
+    free(b);
+  }
+  closedir(d);
+  gsl_rng_free(rng);
+  print_message("%d inputs, %d seeds\n", files, seeds);
+  assert_true(seeds >= 6);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup_teardown(damaged_checkpoint_2d, setup, teardown),
       cmocka_unit_test_setup_teardown(damaged_checkpoint_rods, setup, teardown),
+      cmocka_unit_test_setup_teardown(rerun_killed_in_setup, setup, teardown),
+      cmocka_unit_test(fuzz_corpus_replays),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
