@@ -295,10 +295,19 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
   }
   /* checked before anything is written: not even the switch to WAL touches a file of someone
    * else's */
-  if (sqlite3_open_v2(name, &db->db, flags, NULL) != SQLITE_OK ||
-      (foreign = not_haffs(db->db, why, sizeof why)) < 0 ||
+  int opened = sqlite3_open_v2(name, &db->db, flags, NULL) == SQLITE_OK;
+  if (opened) {
+    sqlite3_extended_result_codes(db->db, 1);
+    sqlite3_busy_timeout(db->db, 10000); /* another writer: wait up to 10 s, then HD_EIO */
+  }
+  if (!opened || (foreign = not_haffs(db->db, why, sizeof why)) < 0 ||
       (existing && !foreign && (missing = tables_missing(db->db, runs, &none)) < 0)) {
-    rc = open_error(db->db, path, "open", err);
+    /* a write-protected file in a read-only folder cannot be read either (no -shm) */
+    rc = opened && sqlite3_db_readonly(db->db, "main") == 1
+             ? hd_error_set(err, HD_EIO,
+                            "%s: open: the database file is read-only (check its permissions)",
+                            path)
+             : open_error(db->db, path, "open", err);
     db_free(db);
     return rc;
   }
@@ -307,8 +316,6 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
     if (foreign) return hd_error_set(err, HD_EINPUT, "%s: not a haff database: %s", path, why);
     return hd_error_set(err, HD_EINPUT, "%s: not a haff database (no %s table)", path, none);
   }
-  sqlite3_extended_result_codes(db->db, 1);
-  sqlite3_busy_timeout(db->db, 10000); /* another writer: wait up to 10 s, then HD_EIO */
   /* SQLite quietly falls back to read-only when the file is not writable; a run could then
    * not log anything, so say it now. */
   if (sqlite3_db_readonly(db->db, "main") == 1) {
@@ -883,8 +890,7 @@ int hd_db_run_begin(hd_db *db, const char *scene_text, unsigned long long seed, 
   sqlite3_bind_int64(st, 2, (sqlite3_int64)seed);
   sqlite3_bind_text(st, 3, version ? version : "", -1, SQLITE_TRANSIENT);
   if (sqlite3_step(st) != SQLITE_DONE) return batch_fail(db, st, err, "insert run");
-  sqlite3_reset(st);
-  db->pending++;
+  sqlite3_reset(st); /* not counted in the batch's rows: batches stay whole batch_rows of logs */
   if (run) *run = sqlite3_last_insert_rowid(db->db);
   return HD_OK;
 }
