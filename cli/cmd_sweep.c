@@ -916,7 +916,9 @@ static int slurm_submit(const study *st, const int *list, int m, const slurm_opt
            "#SBATCH --ntasks=1\n"
            "#SBATCH --output=%s/logs/slurm-%%A_%%a.out\n"
            "%s"
-           "exec %s sweep --task %s %s --chunk %d --progress %g\n",
+           "# srun: a job step, which `scancel --signal=TERM` and the time limit's SIGTERM reach\n"
+           "# (haff checkpoints, marks the run interrupted; haff sweep --resume goes on)\n"
+           "exec srun --ntasks=1 %s sweep --task %s %s --chunk %d --progress %g\n",
            st->dir, sub, chunk, tasks - 1, st->dir, opt, qexe, qdir, qtodo, chunk, progress);
   if (!rc) rc = write_atomic(arr, script);
   snprintf(script, sizeof script,
