@@ -73,12 +73,10 @@ static int bad_option(const char *cmd, char **argv) {
 }
 
 int haff_run_main(int argc, char **argv) {
-  static const struct option opts[] = {{"set", required_argument, 0, 's'},
-                                       {"seed", required_argument, 0, 'S'},
-                                       {"quiet", no_argument, 0, 'q'},
-                                       {"progress", required_argument, 0, 'P'},
-                                       {"help", no_argument, 0, 'h'},
-                                       {0, 0, 0, 0}};
+  static const struct option opts[] = {
+      {"set", required_argument, 0, 's'}, {"seed", required_argument, 0, 'S'},
+      {"quiet", no_argument, 0, 'q'},     {"progress", required_argument, 0, 'P'},
+      {"help", no_argument, 0, 'h'},      {0, 0, 0, 0}};
   const char *db = NULL, *sets[MAX_SET];
   int nset = 0, quiet = 0, have_seed = 0, c;
   unsigned long long seed = 0;
@@ -162,8 +160,12 @@ int haff_run_main(int argc, char **argv) {
     return 2;
   }
   char note[256] = "";
-  hd_run_opts o = {.db_path = db, .quiet = quiet, .version = HAFF_VERSION, .note = note,
-                   .note_size = sizeof note, .progress_every = every};
+  hd_run_opts o = {.db_path = db,
+                   .quiet = quiet,
+                   .version = HAFF_VERSION,
+                   .note = note,
+                   .note_size = sizeof note,
+                   .progress_every = every};
   int64_t run = 0;
   rc = hd_run_new(&sc, &o, &run, &err);
   hd_scene_free(&sc);
@@ -193,8 +195,12 @@ static int resume_one(const char *db, long long want, int quiet, double every) {
   hd_error err;
   hd_error_clear(&err);
   char note[256] = "";
-  hd_run_opts o = {.db_path = db, .quiet = quiet, .version = HAFF_VERSION, .note = note,
-                   .note_size = sizeof note, .progress_every = every};
+  hd_run_opts o = {.db_path = db,
+                   .quiet = quiet,
+                   .version = HAFF_VERSION,
+                   .note = note,
+                   .note_size = sizeof note,
+                   .progress_every = every};
   int64_t run = 0;
   int rc = hd_run_resume(want, &o, &run, &err);
   if (rc == HD_EINTR) {
@@ -226,12 +232,10 @@ static int list_resumable(const char *db, int64_t **ids, size_t *n) {
 }
 
 int haff_resume_main(int argc, char **argv) {
-  static const struct option opts[] = {{"run", required_argument, 0, 'r'},
-                                       {"all", no_argument, 0, 'a'},
-                                       {"quiet", no_argument, 0, 'q'},
-                                       {"progress", required_argument, 0, 'P'},
-                                       {"help", no_argument, 0, 'h'},
-                                       {0, 0, 0, 0}};
+  static const struct option opts[] = {
+      {"run", required_argument, 0, 'r'}, {"all", no_argument, 0, 'a'},
+      {"quiet", no_argument, 0, 'q'},     {"progress", required_argument, 0, 'P'},
+      {"help", no_argument, 0, 'h'},      {0, 0, 0, 0}};
   long long want = 0;
   int quiet = 0, all = 0, c;
   double every = 0;

@@ -80,8 +80,8 @@ typedef struct sweep {
   long scene_line;
   axis ax[SW_MAX_AXES];
   int nax;
-  axis seeds;     /* key "system.seed", n = 0 when not given */
-  char **points;  /* [points] lines: blank-separated overrides */
+  axis seeds;    /* key "system.seed", n = 0 when not given */
+  char **points; /* [points] lines: blank-separated overrides */
   long *pt_line;
   int npoints;
 } sweep;
@@ -113,10 +113,9 @@ static char *trim(char *p) {
 }
 
 /* Bad input in the sweep file: one line "FILE:LINE: [section] key: why"; returns 2. */
-static int bad(const sweep *s, long line, const char *sec, const char *key, const char *fmt,
-               ...) __attribute__((format(printf, 5, 6)));
-static int bad(const sweep *s, long line, const char *sec, const char *key, const char *fmt,
-               ...) {
+static int bad(const sweep *s, long line, const char *sec, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+static int bad(const sweep *s, long line, const char *sec, const char *key, const char *fmt, ...) {
   char why[1024];
   va_list ap;
   va_start(ap, fmt);
@@ -382,8 +381,12 @@ static int make_points(const sweep *s, point **out, int *np) {
     /* the whole point loads (a combination can fail where each value alone does not) */
     long line = s->npoints ? s->pt_line[b] : s->ax[s->nax ? s->nax - 1 : 0].line;
     if (check_sets(s, p[b * nseed].sets, s->npoints || s->nax ? line : s->scene_line,
-                   s->npoints ? "points" : s->nax ? "axes" : "sweep",
-                   s->npoints ? "point" : s->nax ? s->ax[s->nax - 1].key : "scene")) {
+                   s->npoints ? "points"
+                   : s->nax   ? "axes"
+                              : "sweep",
+                   s->npoints ? "point"
+                   : s->nax   ? s->ax[s->nax - 1].key
+                              : "scene")) {
       for (int k = 0; k < n; k++) free(p[k].sets);
       free(p);
       return 2;
@@ -631,8 +634,10 @@ static void on_signal(int sig) {
 /* The path of this executable (for the children and the Slurm scripts). */
 static void self_exe(char *buf, size_t size) {
   ssize_t n = readlink("/proc/self/exe", buf, size - 1);
-  if (n <= 0) n = 0, snprintf(buf, size, "haff");
-  else buf[n] = '\0';
+  if (n <= 0)
+    n = 0, snprintf(buf, size, "haff");
+  else
+    buf[n] = '\0';
 }
 
 /* Starts the process that brings point k to done: `haff resume DB --all` for an interrupted
@@ -782,8 +787,8 @@ static int study_merge(const study *st, int quiet) {
   if (!list) return 1;
   int m = unfinished(st, list, 1);
   if (m) {
-    fprintf(stderr, "haff sweep: %s: %d of %d points not done (first: %d): not merged\n",
-            st->dir, m, st->n, list[0]);
+    fprintf(stderr, "haff sweep: %s: %d of %d points not done (first: %d): not merged\n", st->dir,
+            m, st->n, list[0]);
     free(list);
     return 1;
   }
@@ -795,8 +800,10 @@ static int study_merge(const study *st, int quiet) {
   int rc = in ? 0 : 1;
   for (int k = 0; !rc && k < st->n; k++) {
     in[k] = malloc(PATH_MAX + 64);
-    if (!in[k]) rc = 1;
-    else point_db(st, k, in[k], PATH_MAX + 64);
+    if (!in[k])
+      rc = 1;
+    else
+      point_db(st, k, in[k], PATH_MAX + 64);
   }
   hd_error err;
   hd_error_clear(&err);
@@ -830,8 +837,9 @@ static int study_status(const study *st) {
   }
   char out[PATH_MAX + 32];
   snprintf(out, sizeof out, "%s/study.db", st->dir);
-  fprintf(stderr, "haff sweep: %s: %d points: %d done, %d running, %d interrupted, %d failed, "
-                  "%d missing; study.db %s\n",
+  fprintf(stderr,
+          "haff sweep: %s: %d points: %d done, %d running, %d interrupted, %d failed, "
+          "%d missing; study.db %s\n",
           st->dir, st->n, count[P_DONE], count[P_RUNNING], count[P_INTERRUPTED], count[P_FAILED],
           count[P_MISSING], access(out, F_OK) == 0 ? "merged" : "not merged yet");
   return 0;
@@ -1029,8 +1037,10 @@ int haff_sweep_main(int argc, char **argv) {
                 c == 'j' ? "jobs" : "chunk", optarg);
         return 2;
       }
-      if (c == 'j') jobs = (int)v;
-      else so.chunk = (int)v;
+      if (c == 'j')
+        jobs = (int)v;
+      else
+        so.chunk = (int)v;
       break;
     }
     case 'S':
@@ -1060,8 +1070,7 @@ int haff_sweep_main(int argc, char **argv) {
     case 'P':
       progress = strtod(optarg, &end);
       if (!*optarg || *end || !(progress >= 0) || progress > 1e9) {
-        fprintf(stderr, "haff sweep: --progress %s: not a number of seconds in [0, 1e9]\n",
-                optarg);
+        fprintf(stderr, "haff sweep: --progress %s: not a number of seconds in [0, 1e9]\n", optarg);
         return 2;
       }
       break;
@@ -1105,12 +1114,17 @@ int haff_sweep_main(int argc, char **argv) {
               optind < argc ? argv[optind] : "");
       return 2;
     }
-    const char *dir = status_dir ? status_dir : resume_dir ? resume_dir : merge_dir ? merge_dir
-                                                                                     : task_dir;
+    const char *dir = status_dir   ? status_dir
+                      : resume_dir ? resume_dir
+                      : merge_dir  ? merge_dir
+                                   : task_dir;
     if ((rc = manifest_read(&st, dir))) return rc;
-    if (status_dir) rc = study_status(&st);
-    else if (merge_dir) rc = study_merge(&st, quiet);
-    else if (task_dir) rc = run_task(&st, argv[optind], so.chunk, progress, quiet);
+    if (status_dir)
+      rc = study_status(&st);
+    else if (merge_dir)
+      rc = study_merge(&st, quiet);
+    else if (task_dir)
+      rc = run_task(&st, argv[optind], so.chunk, progress, quiet);
   } else {
     if (optind != argc - 1) {
       fprintf(stderr, "haff sweep: expected one sweep file (haff sweep --help)\n");
@@ -1149,7 +1163,8 @@ int haff_sweep_main(int argc, char **argv) {
     if (!list) {
       rc = 1;
     } else if (m == 0 && access(out_db, F_OK) == 0) {
-      if (!quiet) fprintf(stderr, "haff sweep: %s: every point is done and merged: nothing to do\n", st.dir);
+      if (!quiet)
+        fprintf(stderr, "haff sweep: %s: every point is done and merged: nothing to do\n", st.dir);
     } else if (slurm) {
       if (m == 0) { /* done, not merged: a merge job alone would do; merge here */
         rc = study_merge(&st, quiet);
@@ -1161,9 +1176,13 @@ int haff_sweep_main(int argc, char **argv) {
         fprintf(stderr, "haff sweep: %s: %d of %d points to run, %d at a time\n", st.dir, m, st.n,
                 jobs);
       rc = run_points(&st, list, m, jobs, progress, quiet);
-      if (!rc) rc = study_merge(&st, quiet);
-      else fprintf(stderr, "haff sweep: not every point is done: haff sweep --status %s, then "
-                           "--resume %s\n", st.dir, st.dir);
+      if (!rc)
+        rc = study_merge(&st, quiet);
+      else
+        fprintf(stderr,
+                "haff sweep: not every point is done: haff sweep --status %s, then "
+                "--resume %s\n",
+                st.dir, st.dir);
     }
     free(list);
   }

@@ -214,9 +214,10 @@ static int tables_missing(sqlite3 *h, const char *const *tables, const char **mi
  * before. */
 static int schema_upgrade(hd_db *db, hd_error *err) {
   sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(db->db, "SELECT user_version, (SELECT count(*) FROM "
-                                 "pragma_table_info('runs') WHERE name = 'cpd') "
-                                 "FROM pragma_user_version",
+  if (sqlite3_prepare_v2(db->db,
+                         "SELECT user_version, (SELECT count(*) FROM "
+                         "pragma_table_info('runs') WHERE name = 'cpd') "
+                         "FROM pragma_user_version",
                          -1, &st, NULL) != SQLITE_OK)
     return sql_error(db, err, "read the schema version");
   int version = 0, has_cpd = 0;
@@ -229,8 +230,8 @@ static int schema_upgrade(hd_db *db, hd_error *err) {
     return hd_error_set(err, HD_EINPUT,
                         "%s: schema version %d is newer than this haff's (%d): use a newer haff",
                         db->path, version, HD_DB_SCHEMA_VERSION);
-  if (!has_cpd && sqlite3_exec(db->db, "ALTER TABLE runs ADD COLUMN cpd REAL", NULL, NULL,
-                               NULL) != SQLITE_OK)
+  if (!has_cpd &&
+      sqlite3_exec(db->db, "ALTER TABLE runs ADD COLUMN cpd REAL", NULL, NULL, NULL) != SQLITE_OK)
     return sql_error(db, err, "add runs.cpd (schema version 2)");
   if (version < HD_DB_SCHEMA_VERSION) {
     char sql[64];
@@ -1091,9 +1092,10 @@ int hd_db_list_resumable(hd_db *db, int64_t **ids, size_t *n, hd_error *err) {
   int rc = drain(db, err);
   if (rc) return rc;
   sqlite3_stmt *st = NULL;
-  if (sqlite3_prepare_v2(db->db, "SELECT id FROM runs WHERE status IN "
-                                 "('running','interrupted','failed') AND EXISTS (SELECT 1 FROM "
-                                 "checkpoints c WHERE c.run = runs.id) ORDER BY id",
+  if (sqlite3_prepare_v2(db->db,
+                         "SELECT id FROM runs WHERE status IN "
+                         "('running','interrupted','failed') AND EXISTS (SELECT 1 FROM "
+                         "checkpoints c WHERE c.run = runs.id) ORDER BY id",
                          -1, &st, NULL) != SQLITE_OK)
     return sql_error(db, err, "list resumable runs");
   size_t cap = 0;

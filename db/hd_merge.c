@@ -323,8 +323,8 @@ int hd_db_merge(const char *out, const char *const *in, int n_in, int64_t *runs,
   if (!rc) rc = hd_db_open(&db, tmp, err); /* the schema, brought to this haff's version */
   sqlite3 *h = db ? hd_db_handle(db) : NULL;
   if (!rc)
-    rc = exec(h, tmp, "PRAGMA synchronous = OFF; CREATE TEMP TABLE off (v INTEGER)",
-              "prepare", err);
+    rc =
+        exec(h, tmp, "PRAGMA synchronous = OFF; CREATE TEMP TABLE off (v INTEGER)", "prepare", err);
   for (int k = 0; k < n_in && !rc; k++) {
     sqlite3_stmt *st;
     if (sqlite3_prepare_v2(h, "ATTACH ?1 AS s", -1, &st, NULL) != SQLITE_OK)

@@ -203,7 +203,8 @@ static void tick(runner *r) {
   double f = fraction_done(r), spent = elapsed(r);
   double eta = f > 0 ? spent * (1 - f) / f : NAN;
   if (r->progress == 2) /* a log: whole lines, with the run and the time spent */
-    fprintf(stderr, "haff: %s run %lld: %lld events  %.3g ev/s  cpd %.6g  T %.4g  %.0f s  ETA %.0f s\n",
+    fprintf(stderr,
+            "haff: %s run %lld: %lld events  %.3g ev/s  cpd %.6g  T %.4g  %.0f s  ETA %.0f s\n",
             r->o->db_path, (long long)r->run, (long long)ev, rate, r->ops->cpd(r->s),
             r->ops->temperature(r->s), spent, eta);
   else
@@ -295,7 +296,8 @@ static int drive(runner *r, hd_error *err) {
         r->last_commit_wall = w;
         rc = hd_db_commit(r->db, err);
         /* and the run's row says how far it is (runs.events, runs.cpd) */
-        if (!rc) rc = hd_db_run_progress(r->db, r->run, r->ops->events(r->s), r->ops->cpd(r->s), err);
+        if (!rc)
+          rc = hd_db_run_progress(r->db, r->run, r->ops->events(r->s), r->ops->cpd(r->s), err);
         if (rc) break;
       }
       if (sc->checkpoint_every > 0 && w - r->last_ckpt_wall >= sc->checkpoint_every) {

@@ -156,7 +156,7 @@ static void progress_in_a_batch_log(void **state) {
   (void)state;
   if (!haff) skip();
   pid_t pid = start("prog-err.txt", (const char *const[]){"run", "long.ini", "-o", "prog.db",
-                                                         "--progress", "0.2", NULL});
+                                                          "--progress", "0.2", NULL});
   long long ev = wait_positive("prog.db", "SELECT events FROM runs WHERE status = 'running'", pid);
   long long cpd = q1("prog.db", "SELECT cpd > 0 FROM runs WHERE status = 'running'");
   int st;
@@ -190,7 +190,7 @@ static void resume_all(void **state) {
     char seed[8];
     snprintf(seed, sizeof seed, "%d", s);
     pid_t pid = start("ra-err.txt", (const char *const[]){"run", "long.ini", "-o", "ra.db",
-                                                         "--seed", seed, "--quiet", NULL});
+                                                          "--seed", seed, "--quiet", NULL});
     char sql[200];
     snprintf(sql, sizeof sql, "SELECT events FROM runs WHERE seed = %d", s);
     assert_true(wait_positive("ra.db", sql, pid) > 0);
@@ -432,8 +432,8 @@ static void sweep_interrupted_then_resumed(void **state) {
   (void)state;
   if (!haff) skip();
   write_file("r.ini", "[sweep]\nscene = long.ini\nseeds = 1 2\n");
-  pid_t pid = start("r-err.txt", (const char *const[]){"sweep", "r.ini", "--jobs", "2",
-                                                      "--progress", "0", NULL});
+  pid_t pid = start(
+      "r-err.txt", (const char *const[]){"sweep", "r.ini", "--jobs", "2", "--progress", "0", NULL});
   assert_true(wait_positive("r/points/p0001.db", "SELECT events FROM runs", pid) > 0);
   kill(pid, SIGTERM);
   int st;
@@ -486,12 +486,10 @@ static void sweep_slurm_scripts(void **state) {
                       "--quiet",
                       haff),
                    0);
-  assert_int_equal(q1("s/points/p0004.db", "SELECT count(*) FROM runs WHERE status = 'done'"),
-                   1);
+  assert_int_equal(q1("s/points/p0004.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
   assert_false(exists("s/points/p0003.db"));
   /* --resume --slurm: a new array of the 4 points left */
-  assert_int_equal(sh("PATH=%s/fakebin:$PATH %s sweep --resume s --slurm > ids.txt", dir, haff),
-                   0);
+  assert_int_equal(sh("PATH=%s/fakebin:$PATH %s sweep --resume s --slurm > ids.txt", dir, haff), 0);
   read_file("s/slurm/todo-2.txt", m, sizeof m);
   assert_string_equal(m, "0\n1\n2\n3\n");
   assert_int_equal(sh("PATH=%s/fakebin:$PATH %s sweep s.ini --slurm --time 'a b'", dir, haff), 2);
