@@ -751,14 +751,17 @@ static int run_points(const study *st, const int *list, int n, int jobs, double 
       if (pid[j] == w) {
         pid[j] = 0;
         active--;
-        int ok = WIFEXITED(wst) && WEXITSTATUS(wst) == 0;
+        /* judged by its database, not its exit status: a run that collapsed (exit 1) has
+         * ended, and is a result of the study */
+        char status[32];
+        int r, ok = point_state(st, who[j], status, sizeof status, &r) == P_DONE;
         if (ok)
           passed++;
         else
           failed++;
         if (!quiet || !ok)
           fprintf(stderr, "haff sweep: point %d %s\n", who[j],
-                  ok ? "done" : "not done (see its log in logs/)");
+                  ok ? status : "not done (see its log in logs/)");
       }
   }
   free(pid);

@@ -187,7 +187,7 @@ static void resume_all(void **state) {
   (void)state;
   if (!haff) skip();
   for (int s = 1; s <= 2; s++) {
-    char seed[8];
+    char seed[16];
     snprintf(seed, sizeof seed, "%d", s);
     pid_t pid = start("ra-err.txt", (const char *const[]){"run", "long.ini", "-o", "ra.db",
                                                           "--seed", seed, "--quiet", NULL});
@@ -454,6 +454,19 @@ static void sweep_interrupted_then_resumed(void **state) {
   assert_non_null(strstr(m, "interrupted"));
 }
 
+/* A point whose run collapses (the rods' inelastic collapse, exit 1 from haff run) has ended:
+ * it is done for the study, which merges it (judged by its exit status it failed the sweep and
+ * blocked the merge). */
+static void sweep_collapsed_point_is_done(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("rc.ini", "[system]\nseed = 1998\n[rods]\ncount = 1000\ngamma = 0.8\nnmod = 1000\n"
+                       "model = constant\n[run]\nstop_time = 1e4\n[log]\ncollisions = none\n");
+  write_file("c.ini", "[sweep]\nscene = rc.ini\nseeds = 1998 1999\n");
+  assert_int_equal(sh("%s sweep c.ini --quiet", haff), 0);
+  assert_int_equal(q1("c/study.db", "SELECT count(*) FROM runs WHERE status = 'collapsed'"), 2);
+}
+
 /* --slurm with a stand-in sbatch on PATH: the array script (one task per chunk of points, the
  * --time/--partition/--account given) and the merge job submitted afterok on the array. */
 static void sweep_slurm_scripts(void **state) {
@@ -505,6 +518,7 @@ int main(void) {
       cmocka_unit_test(sweep_grid_runs_and_merges),
       cmocka_unit_test(sweep_bad_input),
       cmocka_unit_test(sweep_interrupted_then_resumed),
+      cmocka_unit_test(sweep_collapsed_point_is_done),
       cmocka_unit_test(sweep_slurm_scripts),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
