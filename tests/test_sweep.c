@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include <math.h>
 #include <signal.h>
 #include <sqlite3.h>
 #include <stdio.h>
@@ -17,6 +18,9 @@
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
+
+#include "hd_db.h"
+#include "hd_merge.h"
 
 static char dir[256];
 static const char *haff;
@@ -122,14 +126,12 @@ static const char short_scene[] = "[system]\narea_fraction = 0.1\nseed = 1\n[dis
 
 static int setup(void **state) {
   (void)state;
-  if (getenv("HAFF_SANITIZE") && getenv("HAFF_SANITIZE")[0] == '1') {
-    haff = NULL; /* these tests drive bin/haff, not the sanitized build */
-    return 0;
-  }
   haff = getenv("HAFF_BIN");
   if (!haff) haff = "bin/haff";
   static char abs[4096];
   if (haff[0] != '/' && realpath(haff, abs)) haff = abs;
+  if (getenv("HAFF_SANITIZE") && getenv("HAFF_SANITIZE")[0] == '1')
+    haff = NULL; /* the tests that drive bin/haff skip: it is not the sanitized build */
   char tmpl[] = "/tmp/haff-sweep-XXXXXX";
   assert_non_null(mkdtemp(tmpl));
   snprintf(dir, sizeof dir, "%s", tmpl);
@@ -140,7 +142,6 @@ static int setup(void **state) {
 
 static int teardown(void **state) {
   (void)state;
-  if (!haff) return 0;
   char cmd[300];
   snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
   return system(cmd) == 0 ? 0 : 1;
@@ -335,6 +336,77 @@ static void old_schema_reads_and_upgrades(void **state) {
   assert_int_equal(q1("old.db", "SELECT count(*) FROM runs WHERE cpd >= 20"), 1);
 }
 
+/* hd_db_merge from the library (so that the sanitized build runs it too): runs written with
+ * the hd_db API, two inputs into a new OUT and a third into it, ids shifted and every row under
+ * its run; a duplicate run and a file given twice refused with OUT as it was; a writer refuses a
+ * file of a newer schema version. */
+static void merge_library(void **state) {
+  (void)state;
+  char path[3][400], out[400];
+  for (int f = 0; f < 3; f++) {
+    snprintf(path[f], sizeof path[f], "%s/lib%d.db", dir, f);
+    hd_db *db;
+    hd_error err;
+    assert_int_equal(hd_db_open(&db, path[f], &err), HD_OK);
+    for (int r = 0; r <= f; r++) {
+      int64_t run;
+      char scene[64];
+      snprintf(scene, sizeof scene, "[system]\nseed = %d\n", 10 * f + r);
+      assert_int_equal(
+          hd_db_run_begin(db, scene, (unsigned long long)(10 * f + r), "t", &run, &err), HD_OK);
+      for (int k = 1; k <= 50 * (r + 1); k++) {
+        hd_collision_row row = {.seq = k,
+                                .t = k,
+                                .kind = HD_CK_DISK_DISK,
+                                .i = 0,
+                                .j = 1,
+                                .theta_i = NAN,
+                                .theta_j = NAN,
+                                .f = 0.5,
+                                .de = -1,
+                                .vn = -1,
+                                .eps = NAN,
+                                .e_tr = NAN,
+                                .tb_i = NAN,
+                                .tb_j = NAN};
+        assert_int_equal(hd_db_log_collision(db, run, &row, &err), HD_OK);
+      }
+      assert_int_equal(hd_db_run_origin(db, run, "node7", "123", "4", &err), HD_OK);
+      assert_int_equal(hd_db_run_status(db, run, "done", 50, 0.1, &err), HD_OK);
+    }
+    assert_int_equal(hd_db_close(db, &err), HD_OK);
+  }
+  snprintf(out, sizeof out, "%s/libout.db", dir);
+  const char *in01[] = {path[0], path[1]};
+  int64_t n = 0;
+  hd_error err;
+  assert_int_equal(hd_db_merge(out, in01, 2, &n, &err), HD_OK);
+  assert_int_equal(n, 3);
+  const char *in2[] = {path[2]};
+  assert_int_equal(hd_db_merge(out, in2, 1, &n, &err), HD_OK);
+  assert_int_equal(n, 3);
+  assert_int_equal(q1("libout.db", "SELECT count(*) FROM runs"), 6);
+  /* run 6 is lib2's run 3 (seed 22), with 150 collisions, from node7, task 4 */
+  assert_int_equal(q1("libout.db", "SELECT count(*) FROM collisions WHERE run = 6"), 150);
+  assert_int_equal(q1("libout.db", "SELECT seed FROM runs WHERE id = 6"), 22);
+  assert_int_equal(q1("libout.db", "SELECT count(*) FROM provenance WHERE run = 6 AND host = "
+                                   "'node7' AND slurm_job = '123' AND slurm_task = '4' AND "
+                                   "source_run = 3 AND source LIKE '%/lib2.db'"),
+                   1);
+  assert_int_equal(q1("libout.db", "SELECT count(*) FROM collisions"),
+                   50 + 50 + 100 + 50 + 100 + 150);
+  assert_int_equal(hd_db_merge(out, in2, 1, &n, &err), HD_EINPUT);
+  assert_non_null(strstr(err.msg, "is already in"));
+  const char *twice[] = {path[0], path[0]};
+  assert_int_equal(hd_db_merge(out, twice, 2, &n, &err), HD_EINPUT);
+  assert_int_equal(q1("libout.db", "SELECT count(*) FROM runs"), 6);
+  /* a file of a newer schema version is not written to */
+  assert_int_equal(sh("sqlite3 libout.db 'PRAGMA user_version = %d'", HD_DB_SCHEMA_VERSION + 1), 0);
+  hd_db *db;
+  assert_int_equal(hd_db_open(&db, out, &err), HD_EINPUT);
+  assert_non_null(strstr(err.msg, "newer than this haff's"));
+}
+
 /* ------------------------------------------------------------------------------------------ */
 /* sweep */
 
@@ -515,6 +587,7 @@ int main(void) {
       cmocka_unit_test(merge_runs_and_refusals),
       cmocka_unit_test(merge_killed_leaves_out),
       cmocka_unit_test(old_schema_reads_and_upgrades),
+      cmocka_unit_test(merge_library),
       cmocka_unit_test(sweep_grid_runs_and_merges),
       cmocka_unit_test(sweep_bad_input),
       cmocka_unit_test(sweep_interrupted_then_resumed),
