@@ -9,6 +9,8 @@ CC      ?= gcc
 BUILD   ?= build
 PKGS    := gsl sqlite3 inih
 DEPS_PKGS := build-essential pkg-config libgsl-dev libsqlite3-dev sqlite3 libinih-dev gnuplot-nox libcmocka-dev
+# slurm-wlm, munge: tests/slurm/run.sh starts a one-node Slurm to test `haff sweep --slurm`
+DEPS_PKGS += slurm-wlm munge
 WARN    := -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes -Wmissing-prototypes
 # Warnings are errors in CI (CI=true) and whenever WERROR=1.
 ifneq ($(filter true 1,$(CI) $(WERROR)),)
@@ -39,6 +41,7 @@ help:
 	@echo "make deps    install missing Debian packages (run by the other targets as needed)"
 	@echo "make         build bin/haff"
 	@echo "make test    build and run every test (then an ASan+UBSan build), one summary line"
+	@echo "make test-slurm  the Slurm test alone (a one-node Slurm started and stopped for it)"
 	@echo "make demo    run the demo scene and print what it logged"
 	@echo "make bench   benchmarks -> bench/results.md"
 	@echo "make plots   the papers' figures and tables -> plots/out/"
@@ -87,6 +90,7 @@ $(BUILD)/tests/%: tests/%.c $(LIB) | $(DEPS_STAMP)
 # Each test program is a cmocka group; tests/run-tests sums their results into one line
 # "N passed, N failed" and exits non-zero on any failure.  The ASan+UBSan build of the same
 # tests runs after (HAFF_SANITIZE=1 lets long physics tests shrink their sizes there).
+.PHONY: test-slurm
 test-unit: $(TEST_BIN) bin/haff
 	@HAFF_BIN=$(CURDIR)/bin/haff tests/run-tests $(TEST_BIN)
 
@@ -96,7 +100,13 @@ test: | $(DEPS_STAMP)
 	  OPT="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined" \
 	  $(patsubst $(BUILD)/%,build-asan/%,$(TEST_BIN))
 	@HAFF_BIN=$(CURDIR)/bin/haff tests/run-tests \
-	  $(TEST_BIN) -- $(patsubst $(BUILD)/%,build-asan/%,$(TEST_BIN))
+	  $(TEST_BIN) $(SLURM_TEST) -- $(patsubst $(BUILD)/%,build-asan/%,$(TEST_BIN))
+
+# A real one-node Slurm (munged, slurmctld, slurmd started and stopped by the script): a sweep
+# as a job array, a task stopped with SIGTERM, resumed, merged.  Part of `make test`, ~40 s.
+SLURM_TEST := tests/slurm/run.sh
+test-slurm: bin/haff | $(DEPS_STAMP)
+	@HAFF_BIN=$(CURDIR)/bin/haff tests/run-tests $(SLURM_TEST)
 
 # --- user targets --------------------------------------------------------------------------
 demo: bin/haff

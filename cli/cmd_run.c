@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "haff.h"
+#include "hd_db.h"
 #include "hd_run.h"
 #include "hd_scene.h"
 
@@ -18,10 +19,13 @@ int haff_resume_main(int argc, char **argv);
 
 static const char run_usage[] =
     "usage: haff run SCENE [-o DB] [--set SECTION.KEY=VALUE]... [--seed N] [--quiet]\n"
+    "                [--progress SECONDS]\n"
     "  Runs the scene file SCENE and appends one run to DB (default: SCENE's name with .db,\n"
     "  in the current folder).  --set overrides a scene key; --seed overrides [system] seed.\n"
     "  Exit status: 0 done, 1 failed run (collapse, interrupted, database), 2 bad usage/input.\n"
-    "  SIGINT/SIGTERM: the run is checkpointed, marked 'interrupted'; continue with haff resume.\n";
+    "  SIGINT/SIGTERM: the run is checkpointed, marked 'interrupted'; continue with haff resume.\n"
+    "  Progress: redrawn on a terminal; when stderr is not one (a batch log), one line every\n"
+    "  --progress SECONDS [60] (0: none).  runs.events and runs.cpd follow the run.\n";
 
 /* DB name from the scene path: dir/name.ini -> name.db */
 static void default_db(const char *scene, char *out, size_t n) {
@@ -47,6 +51,20 @@ static void say_interrupted(const char *cmd, const char *msg, const char *db, in
           plain ? "" : "'", db, plain ? "" : "'", (long long)run);
 }
 
+/* --progress SECONDS: *every gets the seconds (0 from the user means none: -1); 0 ok, else 2
+ * with the message said. */
+static int parse_progress(const char *cmd, const char *arg, double *every) {
+  char *end;
+  errno = 0;
+  double v = strtod(arg, &end);
+  if (!*arg || *end || errno || !(v >= 0) || v > 1e9) {
+    fprintf(stderr, "haff %s: --progress %s: not a number of seconds in [0, 1e9]\n", cmd, arg);
+    return 2;
+  }
+  *every = v == 0 ? -1.0 : v;
+  return 0;
+}
+
 /* One line for an option getopt refused (opterr = 0): the argument at fault and where help is. */
 static int bad_option(const char *cmd, char **argv) {
   fprintf(stderr, "haff %s: unknown option or missing value '%s' (see haff %s --help)\n", cmd,
@@ -55,14 +73,14 @@ static int bad_option(const char *cmd, char **argv) {
 }
 
 int haff_run_main(int argc, char **argv) {
-  static const struct option opts[] = {{"set", required_argument, 0, 's'},
-                                       {"seed", required_argument, 0, 'S'},
-                                       {"quiet", no_argument, 0, 'q'},
-                                       {"help", no_argument, 0, 'h'},
-                                       {0, 0, 0, 0}};
+  static const struct option opts[] = {
+      {"set", required_argument, 0, 's'}, {"seed", required_argument, 0, 'S'},
+      {"quiet", no_argument, 0, 'q'},     {"progress", required_argument, 0, 'P'},
+      {"help", no_argument, 0, 'h'},      {0, 0, 0, 0}};
   const char *db = NULL, *sets[MAX_SET];
   int nset = 0, quiet = 0, have_seed = 0, c;
   unsigned long long seed = 0;
+  double every = 0;
   optind = 1;
   opterr = 0; /* bad_option says it in one line */
   while ((c = getopt_long(argc, argv, "o:qh", opts, NULL)) != -1) {
@@ -98,6 +116,9 @@ int haff_run_main(int argc, char **argv) {
     }
     case 'q':
       quiet = 1;
+      break;
+    case 'P':
+      if (parse_progress("run", optarg, &every)) return 2;
       break;
     case 'h':
       fputs(run_usage, stdout);
@@ -139,7 +160,12 @@ int haff_run_main(int argc, char **argv) {
     return 2;
   }
   char note[256] = "";
-  hd_run_opts o = {db, quiet, HAFF_VERSION, note, sizeof note};
+  hd_run_opts o = {.db_path = db,
+                   .quiet = quiet,
+                   .version = HAFF_VERSION,
+                   .note = note,
+                   .note_size = sizeof note,
+                   .progress_every = every};
   int64_t run = 0;
   rc = hd_run_new(&sc, &o, &run, &err);
   hd_scene_free(&sc);
@@ -157,18 +183,62 @@ int haff_run_main(int argc, char **argv) {
 }
 
 static const char resume_usage[] =
-    "usage: haff resume DB [--run ID] [--quiet]\n"
+    "usage: haff resume DB [--run ID | --all] [--quiet] [--progress SECONDS]\n"
     "  Continues an interrupted, killed or failed (disk full) run from its last checkpoint;\n"
     "  the result is the same as that of an uninterrupted run.  Without --run: the newest\n"
-    "  resumable run.\n";
+    "  resumable run; --all: every resumable run of DB in turn, oldest first (one that another\n"
+    "  process is running is left to it; a signal stops the whole series).\n";
+
+/* Resumes run want (0: the newest resumable) of db; says how it ended.  Returns the status
+ * (HD_EINTR: stopped by a signal). */
+static int resume_one(const char *db, long long want, int quiet, double every) {
+  hd_error err;
+  hd_error_clear(&err);
+  char note[256] = "";
+  hd_run_opts o = {.db_path = db,
+                   .quiet = quiet,
+                   .version = HAFF_VERSION,
+                   .note = note,
+                   .note_size = sizeof note,
+                   .progress_every = every};
+  int64_t run = 0;
+  int rc = hd_run_resume(want, &o, &run, &err);
+  if (rc == HD_EINTR) {
+    say_interrupted("resume", err.msg, db, run);
+    return rc;
+  }
+  if (rc) {
+    fprintf(stderr, "haff resume: %s\n", err.msg);
+    return rc;
+  }
+  if (note[0]) fprintf(stderr, "haff resume: note: run %lld %s\n", (long long)run, note);
+  if (!quiet) fprintf(stderr, "haff resume: run %lld done, in %s\n", (long long)run, db);
+  return HD_OK;
+}
+
+/* --all: the ids of db's resumable runs, oldest first, into *ids (malloc'd); HD_OK or an error
+ * said on stderr. */
+static int list_resumable(const char *db, int64_t **ids, size_t *n) {
+  hd_error err;
+  hd_error_clear(&err);
+  *ids = NULL;
+  *n = 0;
+  hd_db *h = NULL;
+  int rc = hd_db_open_readonly(&h, db, &err);
+  if (!rc) rc = hd_db_list_resumable(h, ids, n, &err);
+  hd_db_close(h, NULL);
+  if (rc) fprintf(stderr, "haff resume: %s\n", err.msg);
+  return rc;
+}
 
 int haff_resume_main(int argc, char **argv) {
-  static const struct option opts[] = {{"run", required_argument, 0, 'r'},
-                                       {"quiet", no_argument, 0, 'q'},
-                                       {"help", no_argument, 0, 'h'},
-                                       {0, 0, 0, 0}};
+  static const struct option opts[] = {
+      {"run", required_argument, 0, 'r'}, {"all", no_argument, 0, 'a'},
+      {"quiet", no_argument, 0, 'q'},     {"progress", required_argument, 0, 'P'},
+      {"help", no_argument, 0, 'h'},      {0, 0, 0, 0}};
   long long want = 0;
-  int quiet = 0, c;
+  int quiet = 0, all = 0, c;
+  double every = 0;
   optind = 1;
   opterr = 0;
   while ((c = getopt_long(argc, argv, "qh", opts, NULL)) != -1) {
@@ -182,8 +252,14 @@ int haff_resume_main(int argc, char **argv) {
       }
       break;
     }
+    case 'a':
+      all = 1;
+      break;
     case 'q':
       quiet = 1;
+      break;
+    case 'P':
+      if (parse_progress("resume", optarg, &every)) return 2;
       break;
     case 'h':
       fputs(resume_usage, stdout);
@@ -196,21 +272,23 @@ int haff_resume_main(int argc, char **argv) {
     fprintf(stderr, "haff resume: expected one database (haff resume --help)\n");
     return 2;
   }
-  hd_error err;
-  hd_error_clear(&err);
-  char note[256] = "";
-  hd_run_opts o = {argv[optind], quiet, HAFF_VERSION, note, sizeof note};
-  int64_t run = 0;
-  int rc = hd_run_resume(want, &o, &run, &err);
-  if (rc == HD_EINTR) {
-    say_interrupted("resume", err.msg, argv[optind], run);
-    return hd_exit_code(rc);
+  const char *db = argv[optind];
+  if (all && want) {
+    fprintf(stderr, "haff resume: --all and --run: give one\n");
+    return 2;
   }
-  if (rc) {
-    fprintf(stderr, "haff resume: %s\n", err.msg);
-    return hd_exit_code(rc);
+  if (!all) return hd_exit_code(resume_one(db, want, quiet, every));
+  int64_t *ids;
+  size_t n;
+  int rc = list_resumable(db, &ids, &n);
+  if (rc) return hd_exit_code(rc);
+  if (n == 0 && !quiet) fprintf(stderr, "haff resume: %s: no run to resume\n", db);
+  int worst = 0;
+  for (size_t k = 0; k < n; k++) {
+    int st = resume_one(db, ids[k], quiet, every);
+    if (hd_exit_code(st) > worst) worst = hd_exit_code(st);
+    if (st == HD_EINTR) break; /* a signal stops the series, not only this run */
   }
-  if (note[0]) fprintf(stderr, "haff resume: note: run %lld %s\n", (long long)run, note);
-  if (!quiet) fprintf(stderr, "haff resume: run %lld done, in %s\n", (long long)run, argv[optind]);
-  return 0;
+  free(ids);
+  return worst;
 }

@@ -272,6 +272,40 @@ static int not_haffs(sqlite3 *h, char *why, size_t size) {
   return rc;
 }
 
+/* Brings a file of an older schema version to HD_DB_SCHEMA_VERSION (db/schema.sql): the
+ * columns that CREATE TABLE IF NOT EXISTS cannot add to an existing table are added with
+ * ALTER TABLE, then user_version is set.  Additive only: older readers read the file as
+ * before. */
+static int schema_upgrade(hd_db *db, hd_error *err) {
+  sqlite3_stmt *st;
+  if (sqlite3_prepare_v2(db->db,
+                         "SELECT user_version, (SELECT count(*) FROM "
+                         "pragma_table_info('runs') WHERE name = 'cpd') "
+                         "FROM pragma_user_version",
+                         -1, &st, NULL) != SQLITE_OK)
+    return sql_error(db, err, "read the schema version");
+  int version = 0, has_cpd = 0;
+  if (sqlite3_step(st) == SQLITE_ROW) {
+    version = sqlite3_column_int(st, 0);
+    has_cpd = sqlite3_column_int(st, 1);
+  }
+  sqlite3_finalize(st);
+  if (version > HD_DB_SCHEMA_VERSION)
+    return hd_error_set(err, HD_EINPUT,
+                        "%s: schema version %d is newer than this haff's (%d): use a newer haff",
+                        db->path, version, HD_DB_SCHEMA_VERSION);
+  if (!has_cpd &&
+      sqlite3_exec(db->db, "ALTER TABLE runs ADD COLUMN cpd REAL", NULL, NULL, NULL) != SQLITE_OK)
+    return sql_error(db, err, "add runs.cpd (schema version 2)");
+  if (version < HD_DB_SCHEMA_VERSION) {
+    char sql[64];
+    snprintf(sql, sizeof sql, "PRAGMA user_version = %d", HD_DB_SCHEMA_VERSION);
+    if (sqlite3_exec(db->db, sql, NULL, NULL, NULL) != SQLITE_OK)
+      return sql_error(db, err, "set the schema version");
+  }
+  return HD_OK;
+}
+
 /* hd_db_open (existing 0: created if missing) and hd_db_open_existing (1: must be a haff
  * database already, checked before anything is written). */
 static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
@@ -331,6 +365,8 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
     rc = sql_error(db, err, "set synchronous");
   } else if (sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK) {
     rc = sql_error(db, err, "apply schema");
+  } else {
+    rc = schema_upgrade(db, err);
   }
   if (!rc)
     rc = prepare(db, &db->ins_run,
@@ -1010,6 +1046,36 @@ int hd_db_run_box(hd_db *db, int64_t run, double lx, double ly, hd_error *err) {
   return rc;
 }
 
+static void bind_progress(sqlite3_stmt *st, const void *ctx) {
+  const double *p = ctx;
+  sqlite3_bind_int64(st, 2, (sqlite3_int64)p[0]);
+  bind_real(st, 3, p[1]);
+}
+
+int hd_db_run_progress(hd_db *db, int64_t run, int64_t events, double cpd, hd_error *err) {
+  double p[2] = {(double)events, cpd};
+  return run_update(db, run, "UPDATE runs SET events = ?2, cpd = ?3 WHERE id = ?1", bind_progress,
+                    p, "set run progress", NULL, err);
+}
+
+static void bind_origin(sqlite3_stmt *st, const void *ctx) {
+  const char *const *v = ctx;
+  for (int k = 0; k < 3; k++)
+    if (v[k] && v[k][0])
+      sqlite3_bind_text(st, k + 2, v[k], -1, SQLITE_STATIC);
+    else
+      sqlite3_bind_null(st, k + 2);
+}
+
+int hd_db_run_origin(hd_db *db, int64_t run, const char *host, const char *slurm_job,
+                     const char *slurm_task, hd_error *err) {
+  const char *v[3] = {host, slurm_job, slurm_task};
+  return run_update(db, run,
+                    "INSERT OR REPLACE INTO provenance (run, host, slurm_job, slurm_task) "
+                    "VALUES (?1, ?2, ?3, ?4)",
+                    bind_origin, v, "record where the run is made", NULL, err);
+}
+
 int hd_db_build_indexes(hd_db *db, hd_error *err) {
   int rc = check_db(db, err);
   if (rc || (rc = hd_db_commit(db, err))) return rc;
@@ -1127,6 +1193,43 @@ int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error
   if (!rc && sqlite3_exec(db->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK)
     rc = sql_error(db, err, "truncate: commit");
   if (rc) rollback(db);
+  return rc;
+}
+
+int hd_db_list_resumable(hd_db *db, int64_t **ids, size_t *n, hd_error *err) {
+  *ids = NULL;
+  *n = 0;
+  if (!db) return hd_error_set(err, HD_EIO, "database: not open");
+  int rc = drain(db, err);
+  if (rc) return rc;
+  sqlite3_stmt *st = NULL;
+  if (sqlite3_prepare_v2(db->db,
+                         "SELECT id FROM runs WHERE status IN "
+                         "('running','interrupted','failed') AND EXISTS (SELECT 1 FROM "
+                         "checkpoints c WHERE c.run = runs.id) ORDER BY id",
+                         -1, &st, NULL) != SQLITE_OK)
+    return sql_error(db, err, "list resumable runs");
+  size_t cap = 0;
+  int s;
+  while ((s = sqlite3_step(st)) == SQLITE_ROW) {
+    if (*n == cap) {
+      cap = cap ? 2 * cap : 16;
+      int64_t *p = realloc(*ids, cap * sizeof *p);
+      if (!p) {
+        rc = hd_error_set(err, HD_ENOMEM, "%s: out of memory", db->path);
+        break;
+      }
+      *ids = p;
+    }
+    (*ids)[(*n)++] = sqlite3_column_int64(st, 0);
+  }
+  if (!rc && s != SQLITE_DONE) rc = sql_error(db, err, "list resumable runs");
+  sqlite3_finalize(st);
+  if (rc) {
+    free(*ids);
+    *ids = NULL;
+    *n = 0;
+  }
   return rc;
 }
 

@@ -12,6 +12,9 @@
 
 #include "hd_error.h"
 
+/* The schema version a writer sets (PRAGMA user_version; db/schema.sql says what each adds). */
+#define HD_DB_SCHEMA_VERSION 2
+
 typedef struct hd_db hd_db;
 typedef struct sqlite3 sqlite3; /* the same typedef as <sqlite3.h> (C11 allows the repeat) */
 
@@ -140,6 +143,16 @@ int hd_db_run_message(hd_db *db, int64_t run, const char *msg, hd_error *err);
  * Commits the open batch first. */
 int hd_db_run_box(hd_db *db, int64_t run, double lx, double ly, hd_error *err);
 
+/* Stores how far run has got: runs.events and runs.cpd (collisions per particle reached);
+ * commits the open batch first (hd_run calls it at every commit it forces, about once a
+ * second, so that a running run's row says how far it is). */
+int hd_db_run_progress(hd_db *db, int64_t run, int64_t events, double cpd, hd_error *err);
+
+/* Records where run is made in the provenance table: host name and Slurm job and array task
+ * ids (NULL or "" for none; source stays NULL: made here).  Commits the open batch first. */
+int hd_db_run_origin(hd_db *db, int64_t run, const char *host, const char *slurm_job,
+                     const char *slurm_task, hd_error *err);
+
 /* Builds the indexes (after a run): collisions(run,seq), collisions(run,kind), samples(run,t),
  * states(run,label,t), checkpoints(run).  Commits the open batch first. */
 int hd_db_build_indexes(hd_db *db, hd_error *err);
@@ -183,6 +196,10 @@ int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error
  * 'collapsed') is HD_EINPUT with a message that says so. */
 int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene_text,
                          unsigned long long *seed, hd_error *err);
+
+/* The ids of every run that hd_db_find_resumable would take (status 'running', 'interrupted'
+ * or 'failed' with a checkpoint), oldest first: *ids malloc'd (free(); NULL when *n is 0). */
+int hd_db_list_resumable(hd_db *db, int64_t **ids, size_t *n, hd_error *err);
 
 /* Runs sql (one or more statements, no result rows wanted) with sqlite3_exec, inside the open
  * batch if there is one.  Returns HD_OK or HD_EIO. */

@@ -1,6 +1,13 @@
 -- haff database schema (SQLite).  One file holds many runs.  This file is compiled into
 -- bin/haff and applied with CREATE ... IF NOT EXISTS on every open; DESIGN.md fixes the
 -- column names that users rely on, the rest are additions documented here.
+--
+-- Schema version (PRAGMA user_version), set by every writer that opens the file:
+--   0  files made before versions were kept (read as version 1);
+--   2  adds runs.cpd (collisions per particle reached, kept up to date while a run goes) and
+--      the provenance table.  A version-0 file opened for writing is brought to 2 by adding
+--      them (ALTER TABLE runs ADD COLUMN cpd, CREATE TABLE provenance): nothing is rewritten,
+--      and readers do not need either.
 PRAGMA journal_mode = WAL;
 
 -- One row per run.  status: running, done, interrupted, collapsed, failed.
@@ -17,7 +24,23 @@ CREATE TABLE IF NOT EXISTS runs (
   wall_seconds REAL NOT NULL DEFAULT 0,      -- wall-clock time spent, over all resumes
   message      TEXT,               -- why the run ended when not 'done' (collapse details, error)
   box_x        REAL,               -- box edges Lx, Ly (hd_db_run_box), for export and analysis
-  box_y        REAL
+  box_y        REAL,
+  cpd          REAL                -- collisions per particle reached (updated with events at
+                                   -- every commit while the run goes; schema version 2)
+);
+
+-- Where each run was made, and where it was merged from (schema version 2).  One row per run,
+-- written when the run begins (source NULL) and carried over, with source and source_run set,
+-- by `haff merge`; a run merged twice keeps its first source.  A run made by an older haff has
+-- no row here.
+CREATE TABLE IF NOT EXISTS provenance (
+  run        INTEGER PRIMARY KEY REFERENCES runs(id),
+  host       TEXT,      -- host name of the machine that began the run
+  slurm_job  TEXT,      -- $SLURM_ARRAY_JOB_ID (else $SLURM_JOB_ID) when run under Slurm
+  slurm_task TEXT,      -- $SLURM_ARRAY_TASK_ID when run as a task of a job array
+  source     TEXT,      -- the database file it was merged from (absolute path), NULL if made here
+  source_run INTEGER,   -- its id there
+  merged     TEXT       -- ISO 8601 UTC of the merge
 );
 
 -- One row per logged collision.  kind: dimer-dimer, dimer-disk, disk-disk, dimer-wall,

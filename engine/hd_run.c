@@ -46,7 +46,8 @@ typedef struct runner {
   double last_ckpt_wall; /* monotonic time of the last checkpoint */
   double last_tick_wall; /* monotonic time of the last progress line */
   int64_t last_tick_events;
-  int progress;            /* print a progress line */
+  int progress;            /* print a progress line: 1 redrawn on a terminal, 2 one per line */
+  double progress_every;   /* seconds between progress lines */
   char note[200];          /* "" or what a run that ends well left undone (no event left before
                             its stop condition, velocities_at times not reached) */
   int lock_fd;             /* the run's lock (run_lock), -1 when not held */
@@ -232,13 +233,19 @@ static double fraction_done(const runner *r) {
 
 static void tick(runner *r) {
   double w = now_wall();
-  if (w - r->last_tick_wall < 0.5) return;
+  if (w - r->last_tick_wall < r->progress_every) return;
   int64_t ev = r->ops->events(r->s);
   double rate = (double)(ev - r->last_tick_events) / (w - r->last_tick_wall);
   double f = fraction_done(r), spent = elapsed(r);
   double eta = f > 0 ? spent * (1 - f) / f : NAN;
-  fprintf(stderr, "\r%12lld events  %9.3g ev/s  cpd %9.4g  T %9.3g  ETA %6.0f s   ", (long long)ev,
-          rate, r->ops->cpd(r->s), r->ops->temperature(r->s), eta);
+  if (r->progress == 2) /* a log: whole lines, with the run and the time spent */
+    fprintf(stderr,
+            "haff: %s run %lld: %lld events  %.3g ev/s  cpd %.6g  T %.4g  %.0f s  ETA %.0f s\n",
+            r->o->db_path, (long long)r->run, (long long)ev, rate, r->ops->cpd(r->s),
+            r->ops->temperature(r->s), spent, eta);
+  else
+    fprintf(stderr, "\r%12lld events  %9.3g ev/s  cpd %9.4g  T %9.3g  ETA %6.0f s   ",
+            (long long)ev, rate, r->ops->cpd(r->s), r->ops->temperature(r->s), eta);
   r->last_tick_wall = w;
   r->last_tick_events = ev;
 }
@@ -324,6 +331,9 @@ static int drive(runner *r, hd_error *err) {
          * its minutes-long batches, and a second run appending to the file timed out */
         r->last_commit_wall = w;
         rc = hd_db_commit(r->db, err);
+        /* and the run's row says how far it is (runs.events, runs.cpd) */
+        if (!rc)
+          rc = hd_db_run_progress(r->db, r->run, r->ops->events(r->s), r->ops->cpd(r->s), err);
         if (rc) break;
       }
       if (sc->checkpoint_every > 0 && w - r->last_ckpt_wall >= sc->checkpoint_every) {
@@ -332,7 +342,7 @@ static int drive(runner *r, hd_error *err) {
       }
     }
   }
-  if (r->progress) fprintf(stderr, "\n");
+  if (r->progress == 1) fprintf(stderr, "\n");
   return rc;
 }
 
@@ -371,7 +381,8 @@ static int finish(runner *r, int rc, hd_error *err) {
              r->ops->cpd(r->s), r->sc->velocities_at[r->st.next_vel]);
   if (rc == HD_OK && r->note[0]) hd_db_run_message(r->db, r->run, r->note, &e2);
   if (r->o->note && r->o->note_size) snprintf(r->o->note, r->o->note_size, "%s", rc ? "" : r->note);
-  int src = hd_db_run_status(r->db, r->run, status, r->ops->events(r->s), elapsed(r), &e2);
+  int src = hd_db_run_progress(r->db, r->run, r->ops->events(r->s), r->ops->cpd(r->s), &e2);
+  if (!src) src = hd_db_run_status(r->db, r->run, status, r->ops->events(r->s), elapsed(r), &e2);
   if (!wrc) wrc = src;
   if (!wrc && rc == HD_OK) wrc = hd_db_build_indexes(r->db, &e2);
   if (rc == HD_OK && wrc) {
@@ -391,10 +402,21 @@ static void signals_on(void) {
   sigaction(SIGTERM, &sa, &old_term);
 }
 
+/* Records in the provenance table the host and the Slurm job and task the run is made in. */
+static int record_origin(runner *r, hd_error *err) {
+  char host[256] = "";
+  if (gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
+  const char *job = getenv("SLURM_ARRAY_JOB_ID");
+  if (!job || !*job) job = getenv("SLURM_JOB_ID");
+  return hd_db_run_origin(r->db, r->run, host, job, getenv("SLURM_ARRAY_TASK_ID"), err);
+}
+
 static int drive_and_finish(runner *r, hd_error *err) {
   r->last_ckpt_wall = r->last_tick_wall = r->last_commit_wall = now_wall();
   r->last_tick_events = r->ops->events(r->s);
-  r->progress = !r->o->quiet && isatty(2);
+  double every = r->o->progress_every == 0 ? HD_RUN_PROGRESS_EVERY : r->o->progress_every;
+  r->progress = r->o->quiet ? 0 : isatty(2) ? 1 : every > 0 ? 2 : 0;
+  r->progress_every = r->progress == 1 ? 0.5 : every;
   int rc = drive(r, err);
   return finish(r, rc, err);
 }
@@ -434,6 +456,7 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
     /* the lock before the row is committed (start commits it): a resume never finds this run
      * 'running' without its lock held, so it never takes over a run in its set-up */
     rc = run_lock(&r, err);
+    if (!rc) rc = record_origin(&r, err);
     if (!rc) rc = start(&r, err);
     if (rc) { /* any failure of the set-up marks the run, which cannot be resumed */
       hd_error e2;

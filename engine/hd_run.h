@@ -18,7 +18,13 @@ typedef struct hd_run_opts {
   char *note;          /* NULL, or note_size bytes that get "" or why a run that ended well
                           ended before its stop condition (also in runs.message) */
   size_t note_size;
+  double progress_every; /* when stderr is not a terminal (a batch log): one progress line every
+                            this many seconds; 0 takes HD_RUN_PROGRESS_EVERY, < 0 none.  On a
+                            terminal the line is redrawn in place twice a second instead. */
 } hd_run_opts;
+
+/* Seconds between progress lines in a log (stderr not a terminal) by default. */
+#define HD_RUN_PROGRESS_EVERY 60.0
 
 /* Runs scene sc as a new run in the database; *run gets its id (0 if none was created).
  * Returns HD_OK (done), HD_EINTR (signal: checkpointed, status 'interrupted'), HD_ECOLLAPSE

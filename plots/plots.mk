@@ -121,9 +121,9 @@ FIG23_DBS := $(foreach al,$(FIG2_ALPHAS),$(foreach s,$(SEEDS),$(call dimer_db,$(
 
 # MERGE(out, inputs): one database with every run of the inputs (plots/scripts/merge.sh)
 define MERGE
-$(1): $(2) $(SCRIPTS)/merge.sh $(DATA)/config.txt
+$(1): $(2) $(HAFF) $(SCRIPTS)/merge.sh $(DATA)/config.txt
 	@echo "merge $$@ ($(words $(2)) runs)"
-	@$(SCRIPTS)/merge.sh $$@ $(2)
+	@$(SCRIPTS)/merge.sh $(HAFF) $$@ $(2)
 endef
 $(eval $(call MERGE,$(DATA)/tables.db,$(GRID_DBS) $(DISK_DBS)))
 $(eval $(call MERGE,$(DATA)/fig23.db,$(FIG23_DBS)))

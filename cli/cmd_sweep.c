@@ -1,0 +1,1194 @@
+/* `haff sweep`: a study of many runs, one database per point, run locally or as a Slurm job
+ * array, then merged (docs/contract.md, README "Studies").
+ *
+ * SWEEP.ini:
+ *   [sweep]  scene = BASE.ini (relative to the sweep file), seeds = LIST (optional)
+ *   [axes]   SECTION.KEY = LIST       one axis per key: the full grid of their values
+ *   [points] point = S.K=V S.K=V ...  or a listed set of points (not both)
+ * A LIST is values separated by blanks, or a range FROM:TO:STEP (TO included).  Every point is
+ * also run for each seed.  A study folder DIR holds manifest.tsv (one line per point: number,
+ * database, overrides), points/pNNNN.db (one run each), logs/, slurm/ and, once every point is
+ * done, study.db (all runs merged, haff merge). */
+#include <ctype.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <getopt.h>
+#include <limits.h>
+#include <math.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <sqlite3.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "haff.h"
+#include "hd_db.h"
+#include "hd_error.h"
+#include "hd_merge.h"
+#include "hd_scene.h"
+
+int haff_sweep_main(int argc, char **argv);
+
+static const char sweep_usage[] =
+    "usage: haff sweep SWEEP.ini [-o DIR] [--jobs N] [--progress S] [--dry-run]\n"
+    "       haff sweep SWEEP.ini --slurm [-o DIR] [--chunk C] [--time T] [--partition P]\n"
+    "                  [--account A]\n"
+    "       haff sweep --status DIR\n"
+    "       haff sweep --resume DIR [--jobs N | --slurm ...]\n"
+    "       haff sweep --merge DIR\n"
+    "  A study: a base scene and axes of --set overrides and seeds (SWEEP.ini, below) give\n"
+    "  points; each point is one run in its own database DIR/points/pNNNN.db (DIR: SWEEP's\n"
+    "  name without .ini, in the current folder), listed in DIR/manifest.tsv.  Locally --jobs N\n"
+    "  [1] points run at once, then every run is merged into DIR/study.db.  --slurm writes\n"
+    "  DIR/slurm/array-K.sh (a job array, C points per task [1]; --time, --partition and\n"
+    "  --account go to sbatch) and merge-K.sh (afterok on the array), and submits both.\n"
+    "  --status lists each point: done, running, interrupted, failed or missing.  --resume\n"
+    "  resumes the interrupted points from their checkpoints and reruns failed or missing\n"
+    "  ones, locally or as a new array.  A finished study is not run again.\n"
+    "  SWEEP.ini:\n"
+    "    [sweep]\n"
+    "    scene = base.ini          ; relative to SWEEP.ini\n"
+    "    seeds = 1:4:1             ; values, or FROM:TO:STEP (TO included)\n"
+    "    [axes]                    ; the full grid (last axis fastest, seeds fastest of all)\n"
+    "    disks.alpha = 0.8 0.9 0.95\n"
+    "    [points]                  ; instead of [axes]: listed points\n"
+    "    point = disks.alpha=0.9 disks.count=500\n"
+    "  Exit status: 0 all points done, 1 a point not done, 2 bad usage or input.\n";
+
+#define SW_MAX_AXES 32
+#define SW_MAX_VALUES 100000
+#define SW_MAX_POINTS 1000000
+
+/* One axis: its key, its values (strings as given to --set) and its line in the sweep file. */
+typedef struct axis {
+  char *key;
+  char **v;
+  int n;
+  long line;
+} axis;
+
+/* A parsed sweep file. */
+typedef struct sweep {
+  char path[PATH_MAX];  /* the sweep file as given */
+  char scene[PATH_MAX]; /* the base scene, absolute */
+  long scene_line;
+  axis ax[SW_MAX_AXES];
+  int nax;
+  axis seeds;    /* key "system.seed", n = 0 when not given */
+  char **points; /* [points] lines: blank-separated overrides */
+  long *pt_line;
+  int npoints;
+} sweep;
+
+/* A point: its number, the overrides (owned, NUL-separated in one string), its line. */
+typedef struct point {
+  int id;
+  char *sets; /* "S.K=V S.K=V ..." */
+} point;
+
+static void sweep_free(sweep *s) {
+  for (int k = 0; k < s->nax; k++) {
+    for (int j = 0; j < s->ax[k].n; j++) free(s->ax[k].v[j]);
+    free(s->ax[k].v);
+    free(s->ax[k].key);
+  }
+  for (int j = 0; j < s->seeds.n; j++) free(s->seeds.v[j]);
+  free(s->seeds.v);
+  for (int k = 0; k < s->npoints; k++) free(s->points[k]);
+  free(s->points);
+  free(s->pt_line);
+}
+
+static char *trim(char *p) {
+  while (isspace((unsigned char)*p)) p++;
+  char *e = p + strlen(p);
+  while (e > p && isspace((unsigned char)e[-1])) *--e = '\0';
+  return p;
+}
+
+/* Bad input in the sweep file: one line "FILE:LINE: [section] key: why"; returns 2. */
+static int bad(const sweep *s, long line, const char *sec, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+static int bad(const sweep *s, long line, const char *sec, const char *key, const char *fmt, ...) {
+  char why[1024];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(why, sizeof why, fmt, ap);
+  va_end(ap);
+  fprintf(stderr, "haff sweep: %s:%ld: [%s]%s%s: %s\n", s->path, line, sec, key ? " " : "",
+          key ? key : "", why);
+  return 2;
+}
+
+/* Parses a LIST (values, or FROM:TO:STEP) into a->v; 0 or 2 (said). */
+static int parse_list(const sweep *s, axis *a, const char *sec, char *val) {
+  char *colon = strchr(val, ':');
+  if (colon) {
+    double v[3];
+    char *p = val, *end;
+    for (int k = 0; k < 3; k++) {
+      errno = 0;
+      v[k] = strtod(p, &end);
+      if (end == p || errno || !isfinite(v[k]) || (k < 2 ? *end != ':' : *trim(end) != '\0'))
+        return bad(s, a->line, sec, a->key, "'%s': not a range FROM:TO:STEP", val);
+      p = end + 1;
+    }
+    if (!(v[2] > 0) || v[1] < v[0])
+      return bad(s, a->line, sec, a->key, "'%s': a range needs FROM <= TO and STEP > 0", val);
+    double n = floor((v[1] - v[0]) / v[2] + 1e-9) + 1;
+    if (n > SW_MAX_VALUES)
+      return bad(s, a->line, sec, a->key, "'%s': more than %d values", val, SW_MAX_VALUES);
+    a->n = (int)n;
+    a->v = calloc((size_t)a->n, sizeof *a->v);
+    for (int k = 0; a->v && k < a->n; k++) {
+      char buf[64];
+      snprintf(buf, sizeof buf, "%.12g", v[0] + k * v[2]);
+      a->v[k] = strdup(buf);
+    }
+    return 0;
+  }
+  int cap = 0;
+  for (char *t = strtok(val, " \t"); t; t = strtok(NULL, " \t")) {
+    if (a->n == cap) {
+      cap = cap ? 2 * cap : 8;
+      char **p = realloc(a->v, (size_t)cap * sizeof *p);
+      if (!p) return bad(s, a->line, sec, a->key, "out of memory");
+      a->v = p;
+    }
+    a->v[a->n++] = strdup(t);
+    if (a->n > SW_MAX_VALUES)
+      return bad(s, a->line, sec, a->key, "more than %d values", SW_MAX_VALUES);
+  }
+  if (a->n == 0) return bad(s, a->line, sec, a->key, "no values");
+  for (int k = 0; k < a->n; k++)
+    for (int j = 0; j < k; j++)
+      if (!strcmp(a->v[k], a->v[j]))
+        return bad(s, a->line, sec, a->key, "value '%s' given twice", a->v[k]);
+  return 0;
+}
+
+/* Reads the sweep file (sections, key = value, ; and # comments). 0 or 2 (said). */
+static int sweep_read(sweep *s, const char *path) {
+  memset(s, 0, sizeof *s);
+  snprintf(s->path, sizeof s->path, "%s", path);
+  FILE *f = fopen(path, "r");
+  if (!f) {
+    fprintf(stderr, "haff sweep: %s: %s\n", path, strerror(errno));
+    return 2;
+  }
+  char buf[65536], sec[64] = "";
+  long line = 0;
+  int rc = 0;
+  s->seeds.key = NULL;
+  while (!rc && fgets(buf, sizeof buf, f)) {
+    line++;
+    if (!strchr(buf, '\n') && !feof(f)) {
+      rc = bad(s, line, sec, NULL, "line too long (max %zu bytes)", sizeof buf - 2);
+      break;
+    }
+    char *p = trim(buf);
+    if (!*p || *p == ';' || *p == '#') continue;
+    if (*p == '[') {
+      char *close = strchr(p, ']');
+      if (!close || *trim(close + 1)) {
+        rc = bad(s, line, p, NULL, "not a [section] line");
+        break;
+      }
+      *close = '\0';
+      snprintf(sec, sizeof sec, "%s", trim(p + 1));
+      if (strcmp(sec, "sweep") && strcmp(sec, "axes") && strcmp(sec, "points"))
+        rc = bad(s, line, sec, NULL, "unknown section (sweep, axes, points)");
+      continue;
+    }
+    char *eq = strchr(p, '=');
+    if (!eq) {
+      rc = bad(s, line, sec, NULL, "'%s': not KEY = VALUE", p);
+      break;
+    }
+    *eq = '\0';
+    char *key = trim(p), *val = eq + 1;
+    char *c = val; /* an inline comment: ; or # after a blank */
+    for (; *c; c++)
+      if ((*c == ';' || *c == '#') && c > val && isspace((unsigned char)c[-1])) {
+        *c = '\0';
+        break;
+      }
+    val = trim(val);
+    if (!sec[0]) {
+      rc = bad(s, line, "", key, "a key before any [section]");
+    } else if (!strcmp(sec, "sweep")) {
+      if (!strcmp(key, "scene")) {
+        if (s->scene_line) {
+          rc = bad(s, line, sec, key, "duplicate key (first set at line %ld)", s->scene_line);
+          break;
+        }
+        s->scene_line = line;
+        char rel[PATH_MAX * 2];
+        if (val[0] == '/') {
+          snprintf(rel, sizeof rel, "%s", val);
+        } else {
+          const char *slash = strrchr(path, '/');
+          snprintf(rel, sizeof rel, "%.*s%s", slash ? (int)(slash - path + 1) : 0, path, val);
+        }
+        if (!val[0] || !realpath(rel, s->scene))
+          rc = bad(s, line, sec, key, "'%s': %s", val, val[0] ? strerror(errno) : "no file");
+      } else if (!strcmp(key, "seeds")) {
+        if (s->seeds.line) {
+          rc = bad(s, line, sec, key, "duplicate key (first set at line %ld)", s->seeds.line);
+          break;
+        }
+        s->seeds.line = line;
+        s->seeds.key = "seeds";
+        rc = parse_list(s, &s->seeds, sec, val);
+        for (int k = 0; !rc && k < s->seeds.n; k++) {
+          const char *v = s->seeds.v[k];
+          if (!*v || strspn(v, "0123456789") != strlen(v))
+            rc = bad(s, line, sec, key, "'%s': not a non-negative integer seed", v);
+        }
+      } else {
+        rc = bad(s, line, sec, key, "unknown key (scene, seeds)");
+      }
+    } else if (!strcmp(sec, "axes")) {
+      if (s->nax == SW_MAX_AXES) {
+        rc = bad(s, line, sec, key, "more than %d axes", SW_MAX_AXES);
+        break;
+      }
+      if (!strchr(key, '.') || strchr(key, ' ')) {
+        rc = bad(s, line, sec, key, "an axis is SECTION.KEY of the scene");
+        break;
+      }
+      for (int k = 0; k < s->nax; k++)
+        if (!strcmp(s->ax[k].key, key))
+          rc = bad(s, line, sec, key, "duplicate axis (first at line %ld)", s->ax[k].line);
+      if (!rc && !strcmp(key, "system.seed"))
+        rc = bad(s, line, sec, key, "seeds are [sweep] seeds");
+      if (rc) break;
+      axis *a = &s->ax[s->nax++];
+      a->key = strdup(key);
+      a->line = line;
+      rc = parse_list(s, a, sec, val);
+    } else { /* points */
+      if (strcmp(key, "point")) {
+        rc = bad(s, line, sec, key, "unknown key (point)");
+        break;
+      }
+      char **p2 = realloc(s->points, (size_t)(s->npoints + 1) * sizeof *p2);
+      long *l2 = realloc(s->pt_line, (size_t)(s->npoints + 1) * sizeof *l2);
+      if (p2) s->points = p2;
+      if (l2) s->pt_line = l2;
+      if (!p2 || !l2) {
+        rc = bad(s, line, sec, key, "out of memory");
+        break;
+      }
+      s->points[s->npoints] = strdup(val);
+      s->pt_line[s->npoints++] = line;
+      if (!val[0]) rc = bad(s, line, sec, key, "no overrides");
+    }
+  }
+  fclose(f);
+  if (!rc && !s->scene_line) rc = bad(s, line, "sweep", "scene", "missing: the base scene");
+  if (!rc && s->nax && s->npoints)
+    rc = bad(s, s->pt_line[0], "points", "point", "a sweep has [axes] or [points], not both");
+  return rc;
+}
+
+/* Splits "S.K=V S.K=V" into the array sets (pointers into a copy *buf); returns the count. */
+static int split_sets(const char *text, char **buf, const char **sets, int max) {
+  *buf = strdup(text);
+  int n = 0;
+  for (char *t = strtok(*buf, " \t"); t && n < max; t = strtok(NULL, " \t")) sets[n++] = t;
+  return n;
+}
+
+/* Checks that the base scene with the overrides of text loads; else says where (line). */
+static int check_sets(const sweep *s, const char *text, long line, const char *sec,
+                      const char *key) {
+  const char *sets[SW_MAX_AXES + 64];
+  char *buf;
+  int n = split_sets(text, &buf, sets, (int)(sizeof sets / sizeof sets[0]));
+  for (int k = 0; k < n; k++)
+    if (!strchr(sets[k], '=') || !strchr(sets[k], '.')) {
+      int r = bad(s, line, sec, key, "'%s': not SECTION.KEY=VALUE", sets[k]);
+      free(buf);
+      return r;
+    }
+  hd_scene sc;
+  hd_error err;
+  hd_error_clear(&err);
+  int rc = hd_scene_load(&sc, s->scene, sets, n, &err);
+  free(buf);
+  if (rc) return bad(s, line, sec, key, "%s", err.msg);
+  hd_scene_free(&sc);
+  return 0;
+}
+
+/* The points of the sweep, in order, validated against the base scene.  0 or 2 (said). */
+static int make_points(const sweep *s, point **out, int *np) {
+  *out = NULL;
+  *np = 0;
+  /* each axis value alone first: the line of the value at fault */
+  for (int k = 0; k < s->nax; k++)
+    for (int j = 0; j < s->ax[k].n; j++) {
+      char one[4096];
+      snprintf(one, sizeof one, "%s=%s", s->ax[k].key, s->ax[k].v[j]);
+      if (check_sets(s, one, s->ax[k].line, "axes", s->ax[k].key)) return 2;
+    }
+  double total = s->npoints ? s->npoints : 1;
+  for (int k = 0; k < s->nax; k++) total *= s->ax[k].n;
+  int nseed = s->seeds.n ? s->seeds.n : 1;
+  total *= nseed;
+  if (total > SW_MAX_POINTS) {
+    fprintf(stderr, "haff sweep: %s: %.0f points, more than %d\n", s->path, total, SW_MAX_POINTS);
+    return 2;
+  }
+  int n = (int)total;
+  point *p = calloc((size_t)n, sizeof *p);
+  if (!p) return 2;
+  int base = n / nseed;
+  for (int b = 0; b < base; b++) {
+    char text[8192] = "";
+    size_t len = 0;
+    if (s->npoints) {
+      len = (size_t)snprintf(text, sizeof text, "%s", s->points[b]);
+    } else {
+      int rem = b;
+      int idx[SW_MAX_AXES];
+      for (int k = s->nax - 1; k >= 0; k--) idx[k] = rem % s->ax[k].n, rem /= s->ax[k].n;
+      for (int k = 0; k < s->nax && len < sizeof text; k++)
+        len += (size_t)snprintf(text + len, sizeof text - len, "%s%s=%s", k ? " " : "",
+                                s->ax[k].key, s->ax[k].v[idx[k]]);
+    }
+    if (len >= sizeof text - 64) {
+      fprintf(stderr, "haff sweep: %s: a point's overrides are too long\n", s->path);
+      free(p);
+      return 2;
+    }
+    for (int q = 0; q < nseed; q++) {
+      char full[8300];
+      if (s->seeds.n)
+        snprintf(full, sizeof full, "%s%ssystem.seed=%s", text, len ? " " : "", s->seeds.v[q]);
+      else
+        snprintf(full, sizeof full, "%s", text);
+      p[b * nseed + q].id = b * nseed + q;
+      p[b * nseed + q].sets = strdup(full);
+    }
+    /* the whole point loads (a combination can fail where each value alone does not) */
+    long line = s->npoints ? s->pt_line[b] : s->ax[s->nax ? s->nax - 1 : 0].line;
+    if (check_sets(s, p[b * nseed].sets, s->npoints || s->nax ? line : s->scene_line,
+                   s->npoints ? "points"
+                   : s->nax   ? "axes"
+                              : "sweep",
+                   s->npoints ? "point"
+                   : s->nax   ? s->ax[s->nax - 1].key
+                              : "scene")) {
+      for (int k = 0; k < n; k++) free(p[k].sets);
+      free(p);
+      return 2;
+    }
+  }
+  *out = p;
+  *np = n;
+  return 0;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* the study folder */
+
+/* A study as its manifest describes it. */
+typedef struct study {
+  char dir[PATH_MAX];   /* absolute */
+  char scene[PATH_MAX]; /* the base scene, absolute */
+  point *p;
+  int n;
+} study;
+
+static void study_free(study *st) {
+  for (int k = 0; k < st->n; k++) free(st->p[k].sets);
+  free(st->p);
+  st->p = NULL;
+  st->n = 0;
+}
+
+static int width(int n) {
+  int w = 4;
+  for (int m = 10000; m <= n - 1 && w < 9; m *= 10) w++;
+  return w;
+}
+
+/* The database of point k: DIR/points/pNNNN.db. */
+static void point_db(const study *st, int k, char *buf, size_t size) {
+  snprintf(buf, size, "%s/points/p%0*d.db", st->dir, width(st->n), k);
+}
+
+static void point_log(const study *st, int k, char *buf, size_t size) {
+  snprintf(buf, size, "%s/logs/p%0*d.log", st->dir, width(st->n), k);
+}
+
+/* The manifest text of a study (tab-separated, one line per point). */
+static char *manifest_text(const study *st) {
+  size_t cap = 4096 + (size_t)st->n * 64, len = 0;
+  for (int k = 0; k < st->n; k++) cap += strlen(st->p[k].sets);
+  char *t = malloc(cap);
+  if (!t) return NULL;
+  len += (size_t)snprintf(t + len, cap - len,
+                          "# haff sweep manifest: one line per point (point, database, --set "
+                          "overrides of the base scene)\n# scene\t%s\npoint\tdb\tsets\n",
+                          st->scene);
+  for (int k = 0; k < st->n; k++) {
+    char db[PATH_MAX + 64];
+    snprintf(db, sizeof db, "points/p%0*d.db", width(st->n), k);
+    len += (size_t)snprintf(t + len, cap - len, "%d\t%s\t%s\n", k, db, st->p[k].sets);
+  }
+  return t;
+}
+
+/* Reads DIR/manifest.tsv into *st; 0, or 2 (said). */
+static int manifest_read(study *st, const char *dir) {
+  memset(st, 0, sizeof *st);
+  if (!realpath(dir, st->dir)) {
+    fprintf(stderr, "haff sweep: %s: %s\n", dir, strerror(errno));
+    return 2;
+  }
+  char path[PATH_MAX + 32];
+  snprintf(path, sizeof path, "%s/manifest.tsv", st->dir);
+  FILE *f = fopen(path, "r");
+  if (!f) {
+    fprintf(stderr, "haff sweep: %s: %s (not a study folder)\n", path, strerror(errno));
+    return 2;
+  }
+  char line[16384];
+  long ln = 0;
+  int rc = 0, cap = 0;
+  while (!rc && fgets(line, sizeof line, f)) {
+    ln++;
+    line[strcspn(line, "\n")] = '\0';
+    if (!strncmp(line, "# scene\t", 8)) {
+      snprintf(st->scene, sizeof st->scene, "%.*s", PATH_MAX - 1, line + 8);
+      continue;
+    }
+    if (line[0] == '#' || !strncmp(line, "point\t", 6)) continue;
+    char *t1 = strchr(line, '\t'), *t2 = t1 ? strchr(t1 + 1, '\t') : NULL;
+    if (!t2 || atoi(line) != st->n) {
+      fprintf(stderr, "haff sweep: %s:%ld: not a manifest line\n", path, ln);
+      rc = 2;
+      break;
+    }
+    if (st->n == cap) {
+      cap = cap ? 2 * cap : 64;
+      point *p = realloc(st->p, (size_t)cap * sizeof *p);
+      if (!p) {
+        rc = 2;
+        break;
+      }
+      st->p = p;
+    }
+    st->p[st->n].id = st->n;
+    st->p[st->n].sets = strdup(t2 + 1);
+    st->n++;
+  }
+  fclose(f);
+  if (!rc && (!st->scene[0] || st->n == 0)) {
+    fprintf(stderr, "haff sweep: %s: no scene or no points\n", path);
+    rc = 2;
+  }
+  if (rc) study_free(st);
+  return rc;
+}
+
+static int mkdir_p(const char *path) {
+  return mkdir(path, 0777) == 0 || errno == EEXIST ? 0 : -1;
+}
+
+/* Writes path with text via a temporary file and rename (never half written). */
+static int write_atomic(const char *path, const char *text) {
+  char tmp[PATH_MAX + 32];
+  snprintf(tmp, sizeof tmp, "%s.tmp-%ld", path, (long)getpid());
+  FILE *f = fopen(tmp, "w");
+  if (!f) return -1;
+  int ok = fputs(text, f) >= 0;
+  ok &= fflush(f) == 0 && fsync(fileno(f)) == 0;
+  ok &= fclose(f) == 0;
+  if (!ok || rename(tmp, path) != 0) {
+    unlink(tmp);
+    return -1;
+  }
+  return 0;
+}
+
+/* Creates the study folder of st (or checks that the one there is this study). 0, 1 or 2. */
+static int study_create(study *st, const char *dir) {
+  if (mkdir_p(dir) || !realpath(dir, st->dir)) {
+    fprintf(stderr, "haff sweep: %s: %s\n", dir, strerror(errno));
+    return 1;
+  }
+  char *text = manifest_text(st);
+  if (!text) return 1;
+  char path[PATH_MAX + 32], sub[PATH_MAX + 32];
+  snprintf(path, sizeof path, "%s/manifest.tsv", st->dir);
+  int rc = 0;
+  FILE *f = fopen(path, "r");
+  if (f) { /* a study is there: the same one, or refused */
+    size_t n = strlen(text);
+    char *old = malloc(n + 2);
+    size_t got = old ? fread(old, 1, n + 1, f) : 0;
+    fclose(f);
+    if (!old || got != n || memcmp(old, text, n)) {
+      fprintf(stderr,
+              "haff sweep: %s: holds another study (its manifest.tsv differs from this "
+              "sweep's points): give another -o DIR, or --resume %s\n",
+              dir, dir);
+      rc = 2;
+    }
+    free(old);
+  } else {
+    static const char *const subs[] = {"points", "logs", "slurm"};
+    for (int k = 0; k < 3 && !rc; k++) {
+      snprintf(sub, sizeof sub, "%s/%s", st->dir, subs[k]);
+      if (mkdir_p(sub)) rc = 1;
+    }
+    if (!rc && write_atomic(path, text)) rc = 1;
+    if (rc) fprintf(stderr, "haff sweep: %s: cannot write: %s\n", path, strerror(errno));
+  }
+  free(text);
+  return rc;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* the state of a point */
+
+enum { P_MISSING, P_DONE, P_RUNNING, P_INTERRUPTED, P_FAILED };
+static const char *const state_name[] = {"missing", "done", "running", "interrupted", "failed"};
+
+/* Whether a process holds the lock of run `run` in db.lock (engine/hd_run.c run_lock). */
+static int run_locked(const char *db, long long run) {
+  char lk[PATH_MAX + 256];
+  snprintf(lk, sizeof lk, "%s.lock", db);
+  int fd = open(lk, O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return 0;
+  struct flock fl;
+  memset(&fl, 0, sizeof fl);
+  fl.l_type = F_RDLCK;
+  fl.l_whence = SEEK_SET;
+  fl.l_start = (off_t)run;
+  fl.l_len = 1;
+  int held = fcntl(fd, F_GETLK, &fl) == 0 && fl.l_type != F_UNLCK;
+  close(fd);
+  return held;
+}
+
+/* The state of point k; status gets the run's status text ("" when none), *resumable whether
+ * it has a checkpoint. */
+static int point_state(const study *st, int k, char *status, size_t size, int *resumable) {
+  char db[PATH_MAX + 64];
+  point_db(st, k, db, sizeof db);
+  status[0] = '\0';
+  *resumable = 0;
+  if (access(db, F_OK) != 0) return P_MISSING;
+  static const char *const need[] = {"runs", NULL};
+  sqlite3 *h;
+  hd_error err;
+  if (hd_db_open_read(db, 0, need, &h, &err)) return P_FAILED;
+  sqlite3_busy_timeout(h, 10000);
+  sqlite3_stmt *q;
+  int state = P_MISSING;
+  long long run = 0;
+  if (sqlite3_prepare_v2(h,
+                         "SELECT id, status, EXISTS (SELECT 1 FROM checkpoints c WHERE c.run = "
+                         "runs.id) FROM runs ORDER BY id DESC LIMIT 1",
+                         -1, &q, NULL) == SQLITE_OK) {
+    if (sqlite3_step(q) == SQLITE_ROW) {
+      run = sqlite3_column_int64(q, 0);
+      snprintf(status, size, "%s", (const char *)sqlite3_column_text(q, 1));
+      *resumable = sqlite3_column_int(q, 2);
+      if (!strcmp(status, "done") || !strcmp(status, "collapsed"))
+        state = P_DONE;
+      else if (!strcmp(status, "running"))
+        state = run_locked(db, run) ? P_RUNNING : P_INTERRUPTED; /* killed */
+      else if (!strcmp(status, "interrupted"))
+        state = P_INTERRUPTED;
+      else
+        state = P_FAILED;
+    }
+    sqlite3_finalize(q);
+  } else {
+    state = P_FAILED;
+  }
+  sqlite3_close(h);
+  return state;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* running points */
+
+static volatile sig_atomic_t got_signal = 0;
+static void on_signal(int sig) {
+  got_signal = sig;
+}
+
+/* The path of this executable (for the children and the Slurm scripts). */
+static void self_exe(char *buf, size_t size) {
+  ssize_t n = readlink("/proc/self/exe", buf, size - 1);
+  if (n <= 0)
+    n = 0, snprintf(buf, size, "haff");
+  else
+    buf[n] = '\0';
+}
+
+/* Starts the process that brings point k to done: `haff resume DB --all` for an interrupted
+ * one (or a failed one with a checkpoint), else `haff run SCENE -o DB --set ...` (a failed
+ * database without a checkpoint is first renamed DB.failed-N).  stderr appends to its log.
+ * Returns the pid, 0 when there is nothing to do (done or running elsewhere), -1 on error. */
+static pid_t start_point(const study *st, int k, double progress) {
+  char status[32];
+  int resumable;
+  int s = point_state(st, k, status, sizeof status, &resumable);
+  if (s == P_DONE || s == P_RUNNING) return 0;
+  char db[PATH_MAX + 64], log[PATH_MAX + 64], exe[PATH_MAX], prog[32];
+  point_db(st, k, db, sizeof db);
+  point_log(st, k, log, sizeof log);
+  self_exe(exe, sizeof exe);
+  snprintf(prog, sizeof prog, "%g", progress);
+  int resume = (s == P_INTERRUPTED || s == P_FAILED) && resumable;
+  if (s == P_FAILED && !resumable) { /* kept aside, not lost */
+    char aside[PATH_MAX + 96];
+    for (int j = 1; j < 1000; j++) {
+      snprintf(aside, sizeof aside, "%s.failed-%d", db, j);
+      if (access(aside, F_OK) != 0) break;
+    }
+    if (rename(db, aside) != 0) return -1;
+    char side[PATH_MAX + 80];
+    snprintf(side, sizeof side, "%s-wal", db);
+    unlink(side);
+    snprintf(side, sizeof side, "%s-shm", db);
+    unlink(side);
+  }
+  const char *argv[16 + 2 * (SW_MAX_AXES + 64)];
+  int a = 0;
+  char *buf = NULL;
+  argv[a++] = exe;
+  if (resume) {
+    argv[a++] = "resume";
+    argv[a++] = db;
+    argv[a++] = "--all";
+  } else {
+    argv[a++] = "run";
+    argv[a++] = st->scene;
+    argv[a++] = "-o";
+    argv[a++] = db;
+    const char *sets[SW_MAX_AXES + 64];
+    int n = split_sets(st->p[k].sets, &buf, sets, SW_MAX_AXES + 64);
+    for (int j = 0; j < n; j++) argv[a++] = "--set", argv[a++] = sets[j];
+  }
+  argv[a++] = "--progress";
+  argv[a++] = prog;
+  argv[a] = NULL;
+  fflush(NULL);
+  pid_t pid = fork();
+  if (pid == 0) {
+    int fd = open(log, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    if (fd >= 0) dup2(fd, 2);
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    execv(exe, (char *const *)argv);
+    _exit(127);
+  }
+  free(buf);
+  return pid;
+}
+
+/* Runs the points list[0..n) with at most jobs at once.  A SIGINT or SIGTERM is passed on to
+ * the running points (they checkpoint and stop) and no new one starts.  Returns 0 when every
+ * point is done, 1 otherwise. */
+static int run_points(const study *st, const int *list, int n, int jobs, double progress,
+                      int quiet) {
+  struct sigaction sa, old_int, old_term;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  got_signal = 0;
+  sigaction(SIGINT, &sa, &old_int);
+  sigaction(SIGTERM, &sa, &old_term);
+  pid_t *pid = calloc((size_t)(jobs > 0 ? jobs : 1), sizeof *pid);
+  int *who = calloc((size_t)(jobs > 0 ? jobs : 1), sizeof *who);
+  int next = 0, active = 0, failed = 0, passed = 0;
+  while (pid && who && (next < n || active > 0)) {
+    while (!got_signal && next < n && active < jobs) {
+      int k = list[next++];
+      pid_t p = start_point(st, k, progress);
+      if (p < 0) {
+        failed++;
+        fprintf(stderr, "haff sweep: point %d: cannot start: %s\n", k, strerror(errno));
+        continue;
+      }
+      if (p == 0) continue;
+      for (int j = 0; j < jobs; j++)
+        if (!pid[j]) {
+          pid[j] = p, who[j] = k;
+          break;
+        }
+      active++;
+      if (!quiet) fprintf(stderr, "haff sweep: point %d started (pid %ld)\n", k, (long)p);
+    }
+    if (active == 0) break;
+    int wst;
+    pid_t w = waitpid(-1, &wst, 0);
+    if (w < 0) {
+      if (errno == EINTR && got_signal) {
+        for (int j = 0; j < jobs; j++)
+          if (pid[j]) kill(pid[j], SIGTERM);
+        continue;
+      }
+      if (errno == EINTR) continue;
+      break;
+    }
+    for (int j = 0; j < jobs; j++)
+      if (pid[j] == w) {
+        pid[j] = 0;
+        active--;
+        /* judged by its database, not its exit status: a run that collapsed (exit 1) has
+         * ended, and is a result of the study */
+        char status[32];
+        int r, ok = point_state(st, who[j], status, sizeof status, &r) == P_DONE;
+        if (ok)
+          passed++;
+        else
+          failed++;
+        if (!quiet || !ok)
+          fprintf(stderr, "haff sweep: point %d %s\n", who[j],
+                  ok ? status : "not done (see its log in logs/)");
+      }
+  }
+  free(pid);
+  free(who);
+  sigaction(SIGINT, &old_int, NULL);
+  sigaction(SIGTERM, &old_term, NULL);
+  (void)passed;
+  return failed || got_signal || next < n ? 1 : 0;
+}
+
+/* The points not done (running ones too when with_running), into list; returns the count. */
+static int unfinished(const study *st, int *list, int with_running) {
+  int m = 0;
+  for (int k = 0; k < st->n; k++) {
+    char status[32];
+    int r;
+    int s = point_state(st, k, status, sizeof status, &r);
+    if (s != P_DONE && (with_running || s != P_RUNNING)) list[m++] = k;
+  }
+  return m;
+}
+
+/* Merges every point into DIR/study.db (replaced).  0, 1 (a point not done) or 2. */
+static int study_merge(const study *st, int quiet) {
+  int *list = malloc((size_t)st->n * sizeof *list);
+  if (!list) return 1;
+  int m = unfinished(st, list, 1);
+  if (m) {
+    fprintf(stderr, "haff sweep: %s: %d of %d points not done (first: %d): not merged\n", st->dir,
+            m, st->n, list[0]);
+    free(list);
+    return 1;
+  }
+  free(list);
+  char **in = calloc((size_t)st->n, sizeof *in);
+  char out[PATH_MAX + 32], tmp[PATH_MAX + 32];
+  snprintf(out, sizeof out, "%s/study.db", st->dir);
+  snprintf(tmp, sizeof tmp, "%s/study.db.new", st->dir);
+  int rc = in ? 0 : 1;
+  for (int k = 0; !rc && k < st->n; k++) {
+    in[k] = malloc(PATH_MAX + 64);
+    if (!in[k])
+      rc = 1;
+    else
+      point_db(st, k, in[k], PATH_MAX + 64);
+  }
+  hd_error err;
+  hd_error_clear(&err);
+  int64_t runs = 0;
+  unlink(tmp);
+  if (!rc) rc = hd_db_merge(tmp, (const char *const *)in, st->n, &runs, &err);
+  if (!rc && rename(tmp, out) != 0)
+    rc = hd_error_set(&err, HD_EIO, "%s: rename: %s", tmp, strerror(errno));
+  for (int k = 0; in && k < st->n; k++) free(in[k]);
+  free(in);
+  if (rc) {
+    fprintf(stderr, "haff sweep: merge: %s\n", err.msg);
+    return hd_exit_code(rc);
+  }
+  if (!quiet) fprintf(stderr, "haff sweep: %lld runs merged into %s\n", (long long)runs, out);
+  return 0;
+}
+
+/* --status: one line per point. */
+static int study_status(const study *st) {
+  int count[5] = {0};
+  printf("point\tstate\trun_status\tdb\tsets\n");
+  for (int k = 0; k < st->n; k++) {
+    char status[32], db[PATH_MAX + 64];
+    int r;
+    int s = point_state(st, k, status, sizeof status, &r);
+    count[s]++;
+    point_db(st, k, db, sizeof db);
+    printf("%d\t%s\t%s\tpoints/%s\t%s\n", k, state_name[s], status[0] ? status : "-",
+           strrchr(db, '/') + 1, st->p[k].sets);
+  }
+  char out[PATH_MAX + 32];
+  snprintf(out, sizeof out, "%s/study.db", st->dir);
+  fprintf(stderr,
+          "haff sweep: %s: %d points: %d done, %d running, %d interrupted, %d failed, "
+          "%d missing; study.db %s\n",
+          st->dir, st->n, count[P_DONE], count[P_RUNNING], count[P_INTERRUPTED], count[P_FAILED],
+          count[P_MISSING], access(out, F_OK) == 0 ? "merged" : "not merged yet");
+  return 0;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Slurm */
+
+typedef struct slurm_opts {
+  const char *time, *partition, *account;
+  int chunk;
+} slurm_opts;
+
+/* Runs cmd (a shell line) and reads the job id sbatch --parsable prints; 0 or -1. */
+static int submit(const char *cmd, char *id, size_t size) {
+  FILE *p = popen(cmd, "r");
+  if (!p) return -1;
+  char line[256] = "";
+  if (!fgets(line, sizeof line, p)) line[0] = '\0';
+  int st = pclose(p);
+  line[strcspn(line, ";\n")] = '\0';
+  if (st != 0 || !line[0]) return -1;
+  snprintf(id, size, "%s", line);
+  return 0;
+}
+
+/* Single-quotes s for the shell into buf. */
+static void shq(const char *s, char *buf, size_t size) {
+  size_t k = 0;
+  if (size < 3) return;
+  buf[k++] = '\'';
+  for (; *s && k + 5 < size; s++) {
+    if (*s == '\'') {
+      memcpy(buf + k, "'\\''", 4);
+      k += 4;
+    } else {
+      buf[k++] = *s;
+    }
+  }
+  buf[k++] = '\'';
+  buf[k] = '\0';
+}
+
+/* Writes and submits a job array over the points list[0..m) and a merge job after it. */
+static int slurm_submit(const study *st, const int *list, int m, const slurm_opts *so,
+                        double progress, int quiet) {
+  char exe[PATH_MAX], qexe[PATH_MAX * 2], qdir[PATH_MAX * 2];
+  self_exe(exe, sizeof exe);
+  shq(exe, qexe, sizeof qexe);
+  shq(st->dir, qdir, sizeof qdir);
+  int sub = 1; /* the submission's number K: slurm/todo-K.txt, array-K.sh, merge-K.sh */
+  char todo[PATH_MAX + 64], arr[PATH_MAX + 64], mrg[PATH_MAX + 64];
+  for (;; sub++) {
+    snprintf(todo, sizeof todo, "%s/slurm/todo-%d.txt", st->dir, sub);
+    if (access(todo, F_OK) != 0) break;
+  }
+  snprintf(arr, sizeof arr, "%s/slurm/array-%d.sh", st->dir, sub);
+  snprintf(mrg, sizeof mrg, "%s/slurm/merge-%d.sh", st->dir, sub);
+  size_t cap = (size_t)m * 12 + 16, len = 0;
+  char *t = malloc(cap);
+  if (!t) return 1;
+  for (int k = 0; k < m; k++) len += (size_t)snprintf(t + len, cap - len, "%d\n", list[k]);
+  int rc = write_atomic(todo, t);
+  free(t);
+  int chunk = so->chunk > 0 ? so->chunk : 1;
+  int tasks = (m + chunk - 1) / chunk;
+  char opt[1024] = "";
+  size_t ol = 0; /* the options checked free of blanks and quotes */
+  if (so->time) ol += (size_t)snprintf(opt + ol, sizeof opt - ol, "#SBATCH --time=%s\n", so->time);
+  if (so->partition)
+    ol += (size_t)snprintf(opt + ol, sizeof opt - ol, "#SBATCH --partition=%s\n", so->partition);
+  if (so->account)
+    ol += (size_t)snprintf(opt + ol, sizeof opt - ol, "#SBATCH --account=%s\n", so->account);
+  char script[16 * PATH_MAX];
+  char qtodo[PATH_MAX * 2];
+  shq(todo, qtodo, sizeof qtodo);
+  snprintf(script, sizeof script,
+           "#!/bin/sh\n"
+           "# haff sweep: points of %s/slurm/todo-%d.txt, %d per task (written by haff sweep)\n"
+           "#SBATCH --job-name=haff-sweep\n"
+           "#SBATCH --array=0-%d\n"
+           "#SBATCH --ntasks=1\n"
+           "#SBATCH --output=%s/logs/slurm-%%A_%%a.out\n"
+           "%s"
+           "# srun: a job step, which `scancel --signal=TERM` and the time limit's SIGTERM reach\n"
+           "# (haff checkpoints, marks the run interrupted; haff sweep --resume goes on)\n"
+           "exec srun --ntasks=1 %s sweep --task %s %s --chunk %d --progress %g\n",
+           st->dir, sub, chunk, tasks - 1, st->dir, opt, qexe, qdir, qtodo, chunk, progress);
+  if (!rc) rc = write_atomic(arr, script);
+  snprintf(script, sizeof script,
+           "#!/bin/sh\n"
+           "# haff sweep: merges the points of %s into study.db once the array has ended well\n"
+           "#SBATCH --job-name=haff-merge\n"
+           "#SBATCH --ntasks=1\n"
+           "#SBATCH --output=%s/logs/slurm-merge-%%j.out\n"
+           "%s"
+           "exec %s sweep --merge %s\n",
+           st->dir, st->dir, opt, qexe, qdir);
+  if (!rc) rc = write_atomic(mrg, script);
+  if (rc) {
+    fprintf(stderr, "haff sweep: %s/slurm: cannot write the job scripts: %s\n", st->dir,
+            strerror(errno));
+    return 1;
+  }
+  chmod(arr, 0755);
+  chmod(mrg, 0755);
+  char cmd[3 * PATH_MAX], qarr[PATH_MAX * 2], qmrg[PATH_MAX * 2], job[64], mjob[64];
+  shq(arr, qarr, sizeof qarr);
+  shq(mrg, qmrg, sizeof qmrg);
+  snprintf(cmd, sizeof cmd, "sbatch --parsable %s", qarr);
+  if (submit(cmd, job, sizeof job)) {
+    fprintf(stderr, "haff sweep: sbatch %s failed (is Slurm there?)\n", arr);
+    return 1;
+  }
+  snprintf(cmd, sizeof cmd, "sbatch --parsable --dependency=afterok:%s %s", job, qmrg);
+  if (submit(cmd, mjob, sizeof mjob)) {
+    fprintf(stderr, "haff sweep: sbatch %s failed; the array %s is submitted\n", mrg, job);
+    return 1;
+  }
+  printf("%s\t%s\n", job, mjob);
+  if (!quiet)
+    fprintf(stderr,
+            "haff sweep: submitted job array %s (%d tasks, %d points) and merge job %s "
+            "(afterok); haff sweep --status %s\n",
+            job, tasks, m, mjob, st->dir);
+  return 0;
+}
+
+/* --task DIR TODO: the points of this array task ($SLURM_ARRAY_TASK_ID) from TODO. */
+static int run_task(const study *st, const char *todo, int chunk, double progress, int quiet) {
+  const char *tid = getenv("SLURM_ARRAY_TASK_ID");
+  char *end;
+  long task = tid ? strtol(tid, &end, 10) : -1;
+  if (!tid || *end || task < 0) {
+    fprintf(stderr, "haff sweep: --task: SLURM_ARRAY_TASK_ID is not set to a task number\n");
+    return 2;
+  }
+  FILE *f = fopen(todo, "r");
+  if (!f) {
+    fprintf(stderr, "haff sweep: %s: %s\n", todo, strerror(errno));
+    return 2;
+  }
+  int list[4096], m = 0, v;
+  long idx = 0;
+  while (fscanf(f, "%d", &v) == 1) {
+    if (idx >= task * (long)chunk && idx < (task + 1) * (long)chunk && m < 4096 && v >= 0 &&
+        v < st->n)
+      list[m++] = v;
+    idx++;
+  }
+  fclose(f);
+  if (m == 0) {
+    fprintf(stderr, "haff sweep: task %ld: no points in %s\n", task, todo);
+    return 2;
+  }
+  return run_points(st, list, m, 1, progress, quiet);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+
+int haff_sweep_main(int argc, char **argv) {
+  static const struct option opts[] = {{"jobs", required_argument, 0, 'j'},
+                                       {"slurm", no_argument, 0, 'S'},
+                                       {"status", required_argument, 0, 's'},
+                                       {"resume", required_argument, 0, 'r'},
+                                       {"merge", required_argument, 0, 'm'},
+                                       {"task", required_argument, 0, 't'},
+                                       {"chunk", required_argument, 0, 'c'},
+                                       {"time", required_argument, 0, 'T'},
+                                       {"partition", required_argument, 0, 'p'},
+                                       {"account", required_argument, 0, 'A'},
+                                       {"progress", required_argument, 0, 'P'},
+                                       {"dry-run", no_argument, 0, 'n'},
+                                       {"quiet", no_argument, 0, 'q'},
+                                       {"help", no_argument, 0, 'h'},
+                                       {0, 0, 0, 0}};
+  const char *out = NULL, *status_dir = NULL, *resume_dir = NULL, *merge_dir = NULL,
+             *task_dir = NULL;
+  slurm_opts so = {NULL, NULL, NULL, 1};
+  int jobs = 1, slurm = 0, dry = 0, quiet = 0, c;
+  double progress = 60;
+  optind = 1;
+  opterr = 0;
+  while ((c = getopt_long(argc, argv, "o:j:qh", opts, NULL)) != -1) {
+    char *end;
+    switch (c) {
+    case 'o':
+      out = optarg;
+      break;
+    case 'j':
+    case 'c': {
+      long v = strtol(optarg, &end, 10);
+      if (!*optarg || *end || v < 1 || v > 4096) {
+        fprintf(stderr, "haff sweep: --%s %s: not an integer in [1, 4096]\n",
+                c == 'j' ? "jobs" : "chunk", optarg);
+        return 2;
+      }
+      if (c == 'j')
+        jobs = (int)v;
+      else
+        so.chunk = (int)v;
+      break;
+    }
+    case 'S':
+      slurm = 1;
+      break;
+    case 's':
+      status_dir = optarg;
+      break;
+    case 'r':
+      resume_dir = optarg;
+      break;
+    case 'm':
+      merge_dir = optarg;
+      break;
+    case 't':
+      task_dir = optarg;
+      break;
+    case 'T':
+      so.time = optarg;
+      break;
+    case 'p':
+      so.partition = optarg;
+      break;
+    case 'A':
+      so.account = optarg;
+      break;
+    case 'P':
+      progress = strtod(optarg, &end);
+      if (!*optarg || *end || !(progress >= 0) || progress > 1e9) {
+        fprintf(stderr, "haff sweep: --progress %s: not a number of seconds in [0, 1e9]\n", optarg);
+        return 2;
+      }
+      break;
+    case 'n':
+      dry = 1;
+      break;
+    case 'q':
+      quiet = 1;
+      break;
+    case 'h':
+      fputs(sweep_usage, stdout);
+      return 0;
+    default:
+      fprintf(stderr, "haff sweep: unknown option or missing value '%s' (see haff sweep --help)\n",
+              argv[optind - 1]);
+      return 2;
+    }
+  }
+  int modes = !!status_dir + !!resume_dir + !!merge_dir + !!task_dir;
+  if (modes > 1) {
+    fprintf(stderr, "haff sweep: give one of --status, --resume, --merge, --task\n");
+    return 2;
+  }
+  const char *given[3] = {so.time, so.partition, so.account};
+  for (int k = 0; k < 3; k++)
+    if (given[k] && (!*given[k] || strpbrk(given[k], "\n\t'\"\\ ;$`"))) {
+      fprintf(stderr, "haff sweep: '%s': not a Slurm option value (empty, blanks or quotes)\n",
+              given[k]);
+      return 2;
+    }
+  if (!slurm && (so.time || so.partition || so.account)) {
+    fprintf(stderr, "haff sweep: --time, --partition and --account go with --slurm\n");
+    return 2;
+  }
+  study st;
+  memset(&st, 0, sizeof st);
+  int rc;
+  if (modes) {
+    if (optind != argc - (task_dir ? 1 : 0)) {
+      fprintf(stderr, "haff sweep: unexpected argument '%s' (haff sweep --help)\n",
+              optind < argc ? argv[optind] : "");
+      return 2;
+    }
+    const char *dir = status_dir   ? status_dir
+                      : resume_dir ? resume_dir
+                      : merge_dir  ? merge_dir
+                                   : task_dir;
+    if ((rc = manifest_read(&st, dir))) return rc;
+    if (status_dir)
+      rc = study_status(&st);
+    else if (merge_dir)
+      rc = study_merge(&st, quiet);
+    else if (task_dir)
+      rc = run_task(&st, argv[optind], so.chunk, progress, quiet);
+  } else {
+    if (optind != argc - 1) {
+      fprintf(stderr, "haff sweep: expected one sweep file (haff sweep --help)\n");
+      return 2;
+    }
+    sweep sw;
+    rc = sweep_read(&sw, argv[optind]);
+    if (!rc) rc = make_points(&sw, &st.p, &st.n);
+    if (!rc) snprintf(st.scene, sizeof st.scene, "%s", sw.scene);
+    sweep_free(&sw);
+    if (rc) return rc;
+    if (dry) {
+      char *t = manifest_text(&st);
+      if (t) fputs(t, stdout);
+      free(t);
+      study_free(&st);
+      return 0;
+    }
+    char dir[PATH_MAX];
+    if (out) {
+      snprintf(dir, sizeof dir, "%s", out);
+    } else {
+      const char *base = strrchr(argv[optind], '/');
+      snprintf(dir, sizeof dir, "%s", base ? base + 1 : argv[optind]);
+      char *dot = strrchr(dir, '.');
+      if (dot && dot != dir) *dot = '\0';
+    }
+    rc = study_create(&st, dir);
+    if (!rc) resume_dir = dir; /* then as --resume: what is not done yet */
+  }
+  if (!rc && resume_dir) {
+    int *list = malloc((size_t)st.n * sizeof *list);
+    int m = list ? unfinished(&st, list, 0) : 0;
+    char out_db[PATH_MAX + 32];
+    snprintf(out_db, sizeof out_db, "%s/study.db", st.dir);
+    if (!list) {
+      rc = 1;
+    } else if (m == 0 && access(out_db, F_OK) == 0) {
+      if (!quiet)
+        fprintf(stderr, "haff sweep: %s: every point is done and merged: nothing to do\n", st.dir);
+    } else if (slurm) {
+      if (m == 0) { /* done, not merged: a merge job alone would do; merge here */
+        rc = study_merge(&st, quiet);
+      } else {
+        rc = slurm_submit(&st, list, m, &so, progress, quiet);
+      }
+    } else {
+      if (!quiet && m)
+        fprintf(stderr, "haff sweep: %s: %d of %d points to run, %d at a time\n", st.dir, m, st.n,
+                jobs);
+      rc = run_points(&st, list, m, jobs, progress, quiet);
+      if (!rc)
+        rc = study_merge(&st, quiet);
+      else
+        fprintf(stderr,
+                "haff sweep: not every point is done: haff sweep --status %s, then "
+                "--resume %s\n",
+                st.dir, st.dir);
+    }
+    free(list);
+  }
+  study_free(&st);
+  return rc;
+}

@@ -1,0 +1,26 @@
+/* hd_merge: merges haff databases into one (`haff merge OUT IN...`).  Every run of every input
+ * is appended to OUT with a new id (the input's ids shifted past OUT's largest) and the rows of
+ * every table with a `run` column follow it (collisions, samples, states, checkpoints, and any
+ * table of the user's such as plots_runs, created in OUT from the input's definition when OUT
+ * lacks it).  Each run's provenance row (host, Slurm job and task) is carried over with the file
+ * and id it came from (db/schema.sql, table provenance).
+ *
+ * Refused, as bad input, before OUT is touched: a file given twice (also as OUT), a file that is
+ * not a haff database or fails PRAGMA integrity_check, OUT being written by a run (its DB.lock
+ * held), and a run whose identity (scene text, seed, version) is already in OUT or in an input
+ * merged before it.  Atomic: the merge is built in a temporary file beside OUT (a copy of OUT
+ * when it exists) that is renamed over OUT at the end, so a merge that fails or is killed
+ * leaves OUT as it was. */
+#ifndef HD_MERGE_H
+#define HD_MERGE_H
+
+#include <stdint.h>
+
+#include "hd_error.h"
+
+/* Merges the n_in databases in[] into out (created when missing).  *runs gets the number of
+ * runs appended (may be NULL).  Returns HD_OK, HD_EINPUT (see above; err names the file, and
+ * the run for a duplicate), HD_EIO (a read or write failed) or HD_ENOMEM. */
+int hd_db_merge(const char *out, const char *const *in, int n_in, int64_t *runs, hd_error *err);
+
+#endif

@@ -1,0 +1,598 @@
+/* End-to-end tests of studies through bin/haff ($HAFF_BIN): haff sweep (grid, points, bad
+ * input, --status, --resume, re-running a finished study, the Slurm scripts with a stand-in
+ * sbatch; the real Slurm is tests/slurm/run.sh), haff merge (ids, rows, provenance, refusals,
+ * atomicity, old schema), haff resume --all, and the progress of a run seen from a batch log
+ * and from its runs row. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <math.h>
+#include <signal.h>
+#include <sqlite3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "hd_db.h"
+#include "hd_merge.h"
+
+static char dir[256];
+static const char *haff;
+
+/* Runs a shell command in dir, returns its exit status; its stderr goes to dir/err.txt. */
+static int sh(const char *fmt, ...) {
+  char cmd[4096];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(cmd, sizeof cmd, fmt, ap);
+  va_end(ap);
+  char full[4400];
+  snprintf(full, sizeof full, "cd %s && %s 2>err.txt", dir, cmd);
+  int st = system(full);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static void read_file(const char *name, char *buf, size_t n) {
+  char p[400];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "r");
+  size_t k = f ? fread(buf, 1, n - 1, f) : 0;
+  buf[k] = 0;
+  if (f) fclose(f);
+}
+
+static void write_file(const char *name, const char *text) {
+  char p[400];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "w");
+  assert_non_null(f);
+  fputs(text, f);
+  fclose(f);
+}
+
+static int exists(const char *name) {
+  char p[400];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  return access(p, F_OK) == 0;
+}
+
+/* One integer from an SQL query on database db in dir (-1 when there is no row or no file). */
+static long long q1(const char *db, const char *sql) {
+  char p[400];
+  snprintf(p, sizeof p, "%s/%s", dir, db);
+  sqlite3 *h;
+  if (sqlite3_open_v2(p, &h, SQLITE_OPEN_READONLY, NULL) != SQLITE_OK) {
+    sqlite3_close(h);
+    return -1;
+  }
+  sqlite3_busy_timeout(h, 5000);
+  sqlite3_stmt *st;
+  long long v = -1;
+  if (sqlite3_prepare_v2(h, sql, -1, &st, 0) == SQLITE_OK) {
+    if (sqlite3_step(st) == SQLITE_ROW) v = sqlite3_column_int64(st, 0);
+    sqlite3_finalize(st);
+  }
+  sqlite3_close(h);
+  return v;
+}
+
+/* Starts `haff ARGS...` in dir with stderr to errfile (not a terminal); returns the pid. */
+static pid_t start(const char *errfile, const char *const *args) {
+  pid_t pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) {
+    if (chdir(dir)) _exit(99);
+    if (!freopen(errfile, "w", stderr)) _exit(97);
+    const char *argv[32];
+    int n = 0;
+    argv[n++] = haff;
+    for (; args[n - 1] && n < 31; n++) argv[n] = args[n - 1];
+    argv[n] = NULL;
+    execv(haff, (char *const *)argv);
+    _exit(98);
+  }
+  return pid;
+}
+
+static const struct timespec ms10 = {0, 10000000L};
+
+/* Waits (at most 60 s) until the query on db gives a value > 0; returns it (or <= 0). */
+static long long wait_positive(const char *db, const char *sql, pid_t pid) {
+  long long v = -1;
+  int st;
+  for (int k = 0; k < 6000 && v <= 0; k++) {
+    if (waitpid(pid, &st, WNOHANG) == pid) fail_msg("the process ended before %s", sql);
+    nanosleep(&ms10, NULL);
+    v = q1(db, sql);
+  }
+  return v;
+}
+
+/* A run of a few seconds (disks, nothing logged but samples), checkpointing often. */
+static const char long_scene[] = "[system]\narea_fraction = 0.1\nseed = 1\n[disks]\ncount = 1000\n"
+                                 "alpha = 0.95\n[run]\nstop_events = 700000\n"
+                                 "checkpoint_every = 0.1\n[log]\ncollisions = none\n"
+                                 "samples_every = 5\n";
+/* A short run (well under a second), collisions logged. */
+static const char short_scene[] = "[system]\narea_fraction = 0.1\nseed = 1\n[disks]\ncount = 200\n"
+                                  "alpha = 0.9\n[run]\nstop_cpd = 20\n[log]\n"
+                                  "collisions = all\nsamples_every = 1\n";
+
+static int setup(void **state) {
+  (void)state;
+  haff = getenv("HAFF_BIN");
+  if (!haff) haff = "bin/haff";
+  static char abs[4096];
+  if (haff[0] != '/' && realpath(haff, abs)) haff = abs;
+  if (getenv("HAFF_SANITIZE") && getenv("HAFF_SANITIZE")[0] == '1')
+    haff = NULL; /* the tests that drive bin/haff skip: it is not the sanitized build */
+  char tmpl[] = "/tmp/haff-sweep-XXXXXX";
+  assert_non_null(mkdtemp(tmpl));
+  snprintf(dir, sizeof dir, "%s", tmpl);
+  write_file("long.ini", long_scene);
+  write_file("short.ini", short_scene);
+  return 0;
+}
+
+static int teardown(void **state) {
+  (void)state;
+  char cmd[300];
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  return system(cmd) == 0 ? 0 : 1;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* progress, runs.events, resume --all */
+
+/* With stderr not a terminal a run writes one progress line every --progress seconds (whole
+ * lines, no \r), and runs.events and runs.cpd grow while it goes (they stayed 0 until the end);
+ * --progress 0 writes none. */
+static void progress_in_a_batch_log(void **state) {
+  (void)state;
+  if (!haff) skip();
+  pid_t pid = start("prog-err.txt", (const char *const[]){"run", "long.ini", "-o", "prog.db",
+                                                          "--progress", "0.2", NULL});
+  long long ev = wait_positive("prog.db", "SELECT events FROM runs WHERE status = 'running'", pid);
+  long long cpd = q1("prog.db", "SELECT cpd > 0 FROM runs WHERE status = 'running'");
+  int st;
+  waitpid(pid, &st, 0);
+  assert_true(WIFEXITED(st) && WEXITSTATUS(st) == 0);
+  assert_true(ev > 0);
+  assert_int_equal(cpd, 1);
+  long long total = q1("prog.db", "SELECT events FROM runs");
+  assert_true(total >= ev);
+  assert_int_equal(q1("prog.db", "SELECT abs(cpd - (SELECT max(cpd) FROM samples)) < 5 "
+                                 "FROM runs"),
+                   1); /* samples every 5 cpd: the last is within 5 of the end */
+  char log[65536];
+  read_file("prog-err.txt", log, sizeof log);
+  int lines = 0;
+  for (const char *p = log; (p = strstr(p, "haff: prog.db run 1: ")); p++) lines++;
+  assert_true(lines >= 2);
+  assert_null(strchr(log, '\r'));
+  assert_int_equal(sh("%s run short.ini -o prog0.db --progress 0", haff), 0);
+  read_file("err.txt", log, sizeof log);
+  assert_null(strstr(log, "events"));
+  assert_int_equal(sh("%s run short.ini -o prog0.db --progress -1", haff), 2);
+}
+
+/* haff resume DB --all brings every interrupted run of DB to done, each exactly as an
+ * uninterrupted run of its seed (without --all only the newest was resumed). */
+static void resume_all(void **state) {
+  (void)state;
+  if (!haff) skip();
+  for (int s = 1; s <= 2; s++) {
+    char seed[16];
+    snprintf(seed, sizeof seed, "%d", s);
+    pid_t pid = start("ra-err.txt", (const char *const[]){"run", "long.ini", "-o", "ra.db",
+                                                          "--seed", seed, "--quiet", NULL});
+    char sql[200];
+    snprintf(sql, sizeof sql, "SELECT events FROM runs WHERE seed = %d", s);
+    assert_true(wait_positive("ra.db", sql, pid) > 0);
+    kill(pid, SIGTERM);
+    int st;
+    waitpid(pid, &st, 0);
+    assert_true(WIFEXITED(st) && WEXITSTATUS(st) == 1);
+  }
+  assert_int_equal(q1("ra.db", "SELECT count(*) FROM runs WHERE status = 'interrupted'"), 2);
+  assert_int_equal(sh("%s resume ra.db --all --run 1", haff), 2);
+  assert_int_equal(sh("%s resume ra.db --all --quiet", haff), 0);
+  assert_int_equal(q1("ra.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 2);
+  for (int s = 1; s <= 2; s++) {
+    assert_int_equal(sh("%s run long.ini -o ra-ref%d.db --seed %d --quiet", haff, s, s), 0);
+    char db[32], sql[200];
+    snprintf(db, sizeof db, "ra-ref%d.db", s);
+    long long ref = q1(db, "SELECT events FROM runs");
+    snprintf(sql, sizeof sql, "SELECT events FROM runs WHERE seed = %d", s);
+    assert_int_equal(q1("ra.db", sql), ref);
+  }
+  assert_int_equal(sh("%s resume ra.db --all", haff), 0); /* nothing left: says so, exit 0 */
+  char e[1024];
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "no run to resume"));
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* merge */
+
+/* Two inputs merge into one: ids 1..3, every row under its new id, provenance naming the
+ * source file and id; then a run already present, a file given twice (by another path too),
+ * a non-haff file and a corrupt one are refused with exit 2 and OUT left as it was. */
+static void merge_runs_and_refusals(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("%s run short.ini -o m1.db --seed 1 --quiet", haff), 0);
+  assert_int_equal(sh("%s run short.ini -o m2.db --seed 2 --quiet", haff), 0);
+  assert_int_equal(sh("%s run short.ini -o m2.db --seed 3 --quiet", haff), 0);
+  long long c1 = q1("m1.db", "SELECT count(*) FROM collisions");
+  long long c2 = q1("m2.db", "SELECT count(*) FROM collisions WHERE run = 2");
+  assert_true(c1 > 1000);
+  assert_int_equal(sh("%s merge out.db m1.db m2.db", haff), 0);
+  assert_int_equal(q1("out.db", "SELECT group_concat(id || ':' || seed) = '1:1,2:2,3:3' FROM "
+                                "(SELECT id, seed FROM runs ORDER BY id)"),
+                   1);
+  assert_int_equal(q1("out.db", "SELECT count(*) FROM collisions WHERE run = 1"), c1);
+  assert_int_equal(q1("out.db", "SELECT count(*) FROM collisions WHERE run = 3"), c2);
+  assert_int_equal(q1("out.db", "SELECT count(*) FROM states WHERE run = 3 AND label = 'final'"),
+                   200);
+  assert_int_equal(q1("out.db", "SELECT count(*) FROM provenance WHERE run = 3 AND source_run = "
+                                "2 AND source LIKE '%/m2.db' AND host IS NOT NULL"),
+                   1);
+  assert_int_equal(q1("out.db", "PRAGMA user_version"), 2);
+  /* refusals: exit 2, one line naming the file, OUT as it was */
+  char e[2048];
+  assert_int_equal(sh("%s merge out.db m2.db", haff), 2);
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "m2.db: run 1 (seed 2) is already in out.db as run 2"));
+  assert_int_equal(sh("%s merge new.db m1.db ./m1.db", haff), 2);
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "given twice"));
+  assert_false(exists("new.db"));
+  assert_int_equal(sh("ln m1.db hard.db && %s merge new.db m1.db hard.db", haff), 2);
+  assert_false(exists("new.db"));
+  write_file("text.db", "not a database, just text long enough to be looked at by sqlite\n");
+  assert_int_equal(sh("%s merge out.db text.db", haff), 2);
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "text.db: not a haff database"));
+  assert_int_equal(sh("sqlite3 other.db 'CREATE TABLE t (x)'"), 0);
+  assert_int_equal(sh("%s merge out.db other.db", haff), 2);
+  /* a corrupt input: a page of the collisions' b-tree overwritten */
+  assert_int_equal(sh("cp m1.db bad.db && dd if=/dev/urandom of=bad.db bs=4096 seek=20 count=2 "
+                      "conv=notrunc status=none"),
+                   0);
+  assert_int_equal(sh("%s merge out.db bad.db", haff), 2);
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "bad.db"));
+  assert_int_equal(q1("out.db", "SELECT count(*) FROM runs"), 3);
+  assert_int_equal(sh("%s merge out.db out.db", haff), 2);
+  /* a merged file merges on, its runs keeping the file they were made in */
+  assert_int_equal(sh("%s run short.ini -o m3.db --seed 4 --quiet", haff), 0);
+  assert_int_equal(sh("%s merge out.db m3.db", haff), 0);
+  assert_int_equal(sh("%s merge again.db out.db", haff), 0);
+  assert_int_equal(q1("again.db", "SELECT count(*) FROM provenance WHERE run = 3 AND source "
+                                  "LIKE '%/m2.db' AND source_run = 2"),
+                   1);
+  assert_int_equal(q1("again.db", "SELECT count(*) FROM runs"), 4);
+  assert_int_equal(sh("%s haff-fit again.db > /dev/null", haff), 0);
+}
+
+/* A merge killed midway leaves OUT as it was (it is built in a file beside OUT and renamed):
+ * a merge of ~10^6 rows is killed after 50 ms, many times over; OUT then holds its one run,
+ * passes the integrity check, and the merge finishes when let run. */
+static void merge_killed_leaves_out(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("big.ini", "[system]\narea_fraction = 0.1\n[disks]\ncount = 2000\n[run]\n"
+                        "stop_events = 1000000\n[log]\ncollisions = all\n");
+  assert_int_equal(sh("%s run big.ini -o big.db --quiet", haff), 0);
+  assert_int_equal(sh("%s run short.ini -o k.db --quiet", haff), 0);
+  int killed = 0;
+  for (int k = 0; k < 5; k++) {
+    pid_t pid = start("kill-err.txt", (const char *const[]){"merge", "k.db", "big.db", NULL});
+    const struct timespec ms50 = {0, 50000000L};
+    nanosleep(&ms50, NULL);
+    kill(pid, SIGKILL);
+    int st;
+    waitpid(pid, &st, 0);
+    killed += WIFSIGNALED(st);
+    if (!WIFSIGNALED(st)) break; /* it finished first: nothing more to see */
+    assert_int_equal(q1("k.db", "SELECT count(*) FROM runs"), 1);
+    assert_int_equal(q1("k.db", "SELECT count(*) FROM pragma_integrity_check WHERE "
+                                "integrity_check = 'ok'"),
+                     1);
+  }
+  assert_true(killed >= 1);
+  assert_int_equal(sh("rm -f k.db.merge-*.tmp* && %s merge k.db big.db --quiet", haff), 0);
+  assert_int_equal(q1("k.db", "SELECT count(*) FROM runs"), 2);
+  assert_int_equal(q1("k.db", "SELECT count(*) FROM collisions WHERE run = 2"),
+                   q1("big.db", "SELECT count(*) FROM collisions"));
+}
+
+/* A database of schema version 0 (before runs.cpd and provenance) is read and merged (its runs
+ * get a provenance row naming it) and, when a run is added to it, brought to version 2. */
+static void old_schema_reads_and_upgrades(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("%s run short.ini -o old.db --quiet && sqlite3 old.db 'ALTER TABLE runs "
+                      "DROP COLUMN cpd; DROP TABLE provenance; PRAGMA user_version = 0'",
+                      haff),
+                   0);
+  assert_int_equal(q1("old.db", "SELECT count(*) FROM pragma_table_info('runs') WHERE name = "
+                                "'cpd'"),
+                   0);
+  assert_int_equal(sh("%s haff-fit old.db > /dev/null", haff), 0);
+  assert_int_equal(sh("%s merge fromold.db old.db", haff), 0);
+  assert_int_equal(q1("fromold.db", "SELECT count(*) FROM provenance WHERE run = 1 AND source "
+                                    "LIKE '%/old.db' AND host IS NULL"),
+                   1);
+  assert_int_equal(sh("%s run short.ini -o old.db --seed 9 --quiet", haff), 0);
+  assert_int_equal(q1("old.db", "PRAGMA user_version"), 2);
+  assert_int_equal(q1("old.db", "SELECT count(*) FROM runs WHERE cpd >= 20"), 1);
+}
+
+/* hd_db_merge from the library (so that the sanitized build runs it too): runs written with
+ * the hd_db API, two inputs into a new OUT and a third into it, ids shifted and every row under
+ * its run; a duplicate run and a file given twice refused with OUT as it was; a writer refuses a
+ * file of a newer schema version. */
+static void merge_library(void **state) {
+  (void)state;
+  char path[3][400], out[400];
+  for (int f = 0; f < 3; f++) {
+    snprintf(path[f], sizeof path[f], "%s/lib%d.db", dir, f);
+    hd_db *db;
+    hd_error err;
+    assert_int_equal(hd_db_open(&db, path[f], &err), HD_OK);
+    for (int r = 0; r <= f; r++) {
+      int64_t run;
+      char scene[64];
+      snprintf(scene, sizeof scene, "[system]\nseed = %d\n", 10 * f + r);
+      assert_int_equal(
+          hd_db_run_begin(db, scene, (unsigned long long)(10 * f + r), "t", &run, &err), HD_OK);
+      for (int k = 1; k <= 50 * (r + 1); k++) {
+        hd_collision_row row = {.seq = k,
+                                .t = k,
+                                .kind = HD_CK_DISK_DISK,
+                                .i = 0,
+                                .j = 1,
+                                .theta_i = NAN,
+                                .theta_j = NAN,
+                                .f = 0.5,
+                                .de = -1,
+                                .vn = -1,
+                                .eps = NAN,
+                                .e_tr = NAN,
+                                .tb_i = NAN,
+                                .tb_j = NAN};
+        assert_int_equal(hd_db_log_collision(db, run, &row, &err), HD_OK);
+      }
+      assert_int_equal(hd_db_run_origin(db, run, "node7", "123", "4", &err), HD_OK);
+      assert_int_equal(hd_db_run_status(db, run, "done", 50, 0.1, &err), HD_OK);
+    }
+    assert_int_equal(hd_db_close(db, &err), HD_OK);
+  }
+  snprintf(out, sizeof out, "%s/libout.db", dir);
+  const char *in01[] = {path[0], path[1]};
+  int64_t n = 0;
+  hd_error err;
+  assert_int_equal(hd_db_merge(out, in01, 2, &n, &err), HD_OK);
+  assert_int_equal(n, 3);
+  const char *in2[] = {path[2]};
+  assert_int_equal(hd_db_merge(out, in2, 1, &n, &err), HD_OK);
+  assert_int_equal(n, 3);
+  assert_int_equal(q1("libout.db", "SELECT count(*) FROM runs"), 6);
+  /* run 6 is lib2's run 3 (seed 22), with 150 collisions, from node7, task 4 */
+  assert_int_equal(q1("libout.db", "SELECT count(*) FROM collisions WHERE run = 6"), 150);
+  assert_int_equal(q1("libout.db", "SELECT seed FROM runs WHERE id = 6"), 22);
+  assert_int_equal(q1("libout.db", "SELECT count(*) FROM provenance WHERE run = 6 AND host = "
+                                   "'node7' AND slurm_job = '123' AND slurm_task = '4' AND "
+                                   "source_run = 3 AND source LIKE '%/lib2.db'"),
+                   1);
+  assert_int_equal(q1("libout.db", "SELECT count(*) FROM collisions"),
+                   50 + 50 + 100 + 50 + 100 + 150);
+  assert_int_equal(hd_db_merge(out, in2, 1, &n, &err), HD_EINPUT);
+  assert_non_null(strstr(err.msg, "is already in"));
+  const char *twice[] = {path[0], path[0]};
+  assert_int_equal(hd_db_merge(out, twice, 2, &n, &err), HD_EINPUT);
+  assert_int_equal(q1("libout.db", "SELECT count(*) FROM runs"), 6);
+  /* a file of a newer schema version is not written to */
+  assert_int_equal(sh("sqlite3 libout.db 'PRAGMA user_version = %d'", HD_DB_SCHEMA_VERSION + 1), 0);
+  hd_db *db;
+  assert_int_equal(hd_db_open(&db, out, &err), HD_EINPUT);
+  assert_non_null(strstr(err.msg, "newer than this haff's"));
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* sweep */
+
+/* A grid of 2 values x 2 seeds runs with --jobs 2 into 4 databases and one merged study.db
+ * whose runs carry their overrides; --status says done; a second haff sweep does nothing. */
+static void sweep_grid_runs_and_merges(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("g.ini", "; a study\n[sweep]\nscene = short.ini\nseeds = 1:2:1\n[axes]\n"
+                      "disks.alpha = 0.8 0.9   ; two values\n");
+  assert_int_equal(sh("%s sweep g.ini --dry-run > dry.txt", haff), 0);
+  char m[4096];
+  read_file("dry.txt", m, sizeof m);
+  assert_non_null(strstr(m, "\n3\tpoints/p0003.db\tdisks.alpha=0.9 system.seed=2\n"));
+  assert_false(exists("g"));
+  assert_int_equal(sh("%s sweep g.ini --jobs 2", haff), 0);
+  assert_int_equal(q1("g/study.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 4);
+  assert_int_equal(q1("g/study.db", "SELECT count(*) FROM runs WHERE id = 4 AND seed = 2 AND "
+                                    "scene LIKE '%alpha = 0.9%'"),
+                   1);
+  assert_int_equal(q1("g/study.db", "SELECT count(DISTINCT source) FROM provenance"), 4);
+  assert_int_equal(q1("g/points/p0002.db", "SELECT count(*) FROM runs WHERE seed = 1 AND scene "
+                                           "LIKE '%alpha = 0.9%'"),
+                   1);
+  assert_int_equal(sh("%s sweep --status g > status.txt", haff), 0);
+  read_file("status.txt", m, sizeof m);
+  int done = 0;
+  for (const char *p = m; (p = strstr(p, "\tdone\tdone\t")); p++) done++;
+  assert_int_equal(done, 4);
+  struct stat a, b;
+  char p[400];
+  snprintf(p, sizeof p, "%s/g/study.db", dir);
+  assert_int_equal(stat(p, &a), 0);
+  assert_int_equal(sh("%s sweep g.ini", haff), 0);
+  read_file("err.txt", m, sizeof m);
+  assert_non_null(strstr(m, "nothing to do"));
+  assert_int_equal(stat(p, &b), 0);
+  assert_true(a.st_mtim.tv_sec == b.st_mtim.tv_sec && a.st_mtim.tv_nsec == b.st_mtim.tv_nsec);
+  /* another sweep into the same folder is refused */
+  write_file("g2.ini", "[sweep]\nscene = short.ini\n[axes]\ndisks.alpha = 0.7\n");
+  assert_int_equal(sh("%s sweep g2.ini -o g", haff), 2);
+  /* listed points */
+  write_file("l.ini", "[sweep]\nscene = short.ini\n[points]\npoint = disks.alpha=0.5 "
+                      "disks.count=100\npoint = disks.alpha=0.6\n");
+  assert_int_equal(sh("%s sweep l.ini -o lst --quiet", haff), 0);
+  assert_int_equal(q1("lst/study.db", "SELECT count(*) FROM runs WHERE id = 1 AND scene LIKE "
+                                      "'%count = 100%'"),
+                   1);
+  assert_int_equal(q1("lst/study.db", "SELECT count(*) FROM runs"), 2);
+}
+
+/* Bad sweep files: one line naming file, line and key, exit 2, no study folder made. */
+static void sweep_bad_input(void **state) {
+  (void)state;
+  if (!haff) skip();
+  static const struct {
+    const char *text, *needle;
+  } cases[] = {
+      {"[sweep]\nscene = short.ini\ncolour = 1\n", "b.ini:3: [sweep] colour: unknown key"},
+      {"[sweep]\nscene = short.ini\n[axes]\ndisks.colour = 1 2\n",
+       "b.ini:4: [axes] disks.colour: --set disks.colour=1: [disks] colour = 1: unknown key"},
+      {"[sweep]\nscene = short.ini\n[axes]\nhats.size = 1 2\n", "b.ini:4: [axes] hats.size:"},
+      {"[sweep]\nscene = short.ini\n[axes]\ndisks.alpha = 0.5 1.5\n",
+       "b.ini:4: [axes] disks.alpha: --set disks.alpha=1.5: [disks] alpha = 1.5: must be in"},
+      {"[sweep]\nscene = short.ini\n[axes]\ndisks.alpha = 0.9:0.5:0.1\n",
+       "b.ini:4: [axes] disks.alpha: '0.9:0.5:0.1': a range needs FROM <= TO"},
+      {"[sweep]\nscene = short.ini\nseeds = 1 x\n", "b.ini:3: [sweep] seeds: 'x'"},
+      {"[sweep]\nscene = nothere.ini\n", "b.ini:2: [sweep] scene: 'nothere.ini'"},
+      {"[sweep]\nseeds = 1\n", "[sweep] scene: missing"},
+      {"[sweep]\nscene = short.ini\n[axes]\ndisks.alpha = 0.5\n[points]\npoint = disks.count=9\n",
+       "b.ini:6: [points] point: a sweep has [axes] or [points], not both"},
+      {"[sweep]\nscene = short.ini\n[points]\npoint = disks.count=9 run.stop_cpd\n",
+       "b.ini:4: [points] point: 'run.stop_cpd': not SECTION.KEY=VALUE"},
+      {"[sweep]\nscene = short.ini\n[grid]\n", "b.ini:3: [grid]: unknown section"},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    write_file("b.ini", cases[k].text);
+    int rc = sh("%s sweep b.ini", haff);
+    char e[2048];
+    read_file("err.txt", e, sizeof e);
+    if (rc != 2 || !strstr(e, cases[k].needle) || strchr(e, '\n') != e + strlen(e) - 1)
+      fail_msg("case %zu: exit %d, stderr '%s', wanted '%s'", k, rc, e, cases[k].needle);
+    assert_false(exists("b"));
+  }
+  assert_int_equal(sh("%s sweep --status nowhere", haff), 2);
+  assert_int_equal(sh("%s sweep", haff), 2);
+  assert_int_equal(sh("%s sweep short.ini --jobs 0", haff), 2);
+  assert_int_equal(sh("%s sweep short.ini --time 5", haff), 2); /* --time without --slurm */
+}
+
+/* A local sweep stopped with SIGTERM passes it to its points (checkpointed, interrupted, exit
+ * 1, not merged); --status says so; --resume finishes them, each exactly as an uninterrupted
+ * run of the point, and merges. */
+static void sweep_interrupted_then_resumed(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("r.ini", "[sweep]\nscene = long.ini\nseeds = 1 2\n");
+  pid_t pid = start(
+      "r-err.txt", (const char *const[]){"sweep", "r.ini", "--jobs", "2", "--progress", "0", NULL});
+  assert_true(wait_positive("r/points/p0001.db", "SELECT events FROM runs", pid) > 0);
+  kill(pid, SIGTERM);
+  int st;
+  waitpid(pid, &st, 0);
+  assert_true(WIFEXITED(st) && WEXITSTATUS(st) == 1);
+  assert_false(exists("r/study.db"));
+  assert_int_equal(sh("%s sweep --status r > rs.txt", haff), 0);
+  char m[4096];
+  read_file("rs.txt", m, sizeof m);
+  assert_non_null(strstr(m, "\n1\tinterrupted\tinterrupted\t"));
+  assert_int_equal(sh("%s sweep --merge r", haff), 1); /* not every point done */
+  assert_int_equal(sh("%s sweep --resume r --jobs 2 --quiet", haff), 0);
+  assert_int_equal(q1("r/study.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 2);
+  assert_int_equal(sh("%s run long.ini -o rref.db --seed 2 --quiet", haff), 0);
+  assert_int_equal(q1("r/points/p0001.db", "SELECT events FROM runs"),
+                   q1("rref.db", "SELECT events FROM runs"));
+  read_file("r/logs/p0001.log", m, sizeof m);
+  assert_non_null(strstr(m, "interrupted"));
+}
+
+/* A point whose run collapses (the rods' inelastic collapse, exit 1 from haff run) has ended:
+ * it is done for the study, which merges it (judged by its exit status it failed the sweep and
+ * blocked the merge). */
+static void sweep_collapsed_point_is_done(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("rc.ini", "[system]\nseed = 1998\n[rods]\ncount = 1000\ngamma = 0.8\nnmod = 1000\n"
+                       "model = constant\n[run]\nstop_time = 1e4\n[log]\ncollisions = none\n");
+  write_file("c.ini", "[sweep]\nscene = rc.ini\nseeds = 1998 1999\n");
+  assert_int_equal(sh("%s sweep c.ini --quiet", haff), 0);
+  assert_int_equal(q1("c/study.db", "SELECT count(*) FROM runs WHERE status = 'collapsed'"), 2);
+}
+
+/* --slurm with a stand-in sbatch on PATH: the array script (one task per chunk of points, the
+ * --time/--partition/--account given) and the merge job submitted afterok on the array. */
+static void sweep_slurm_scripts(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("mkdir -p fakebin && printf '#!/bin/sh\\necho \"$@\" >> %s/sbatch.txt\\n"
+                      "n=$(wc -l < %s/sbatch.txt); echo $((100 + n))\\n' > fakebin/sbatch && "
+                      "chmod +x fakebin/sbatch",
+                      dir, dir),
+                   0);
+  write_file("s.ini", "[sweep]\nscene = short.ini\nseeds = 1:5:1\n");
+  assert_int_equal(sh("PATH=%s/fakebin:$PATH %s sweep s.ini --slurm --chunk 2 --time 10 "
+                      "--partition short --account phys > ids.txt",
+                      dir, haff),
+                   0);
+  char m[4096];
+  read_file("ids.txt", m, sizeof m);
+  assert_string_equal(m, "101\t102\n");
+  read_file("sbatch.txt", m, sizeof m);
+  assert_non_null(strstr(m, "--parsable --dependency=afterok:101 "));
+  read_file("s/slurm/array-1.sh", m, sizeof m);
+  assert_non_null(strstr(m, "#SBATCH --array=0-2\n")); /* 5 points, 2 per task */
+  assert_non_null(strstr(m, "#SBATCH --time=10\n#SBATCH --partition=short\n"
+                            "#SBATCH --account=phys\n"));
+  assert_non_null(strstr(m, "sweep --task "));
+  read_file("s/slurm/todo-1.txt", m, sizeof m);
+  assert_string_equal(m, "0\n1\n2\n3\n4\n");
+  /* a task runs its chunk: task 2 is point 4 alone */
+  assert_int_equal(sh("SLURM_ARRAY_TASK_ID=2 %s sweep --task s s/slurm/todo-1.txt --chunk 2 "
+                      "--quiet",
+                      haff),
+                   0);
+  assert_int_equal(q1("s/points/p0004.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
+  assert_false(exists("s/points/p0003.db"));
+  /* --resume --slurm: a new array of the 4 points left */
+  assert_int_equal(sh("PATH=%s/fakebin:$PATH %s sweep --resume s --slurm > ids.txt", dir, haff), 0);
+  read_file("s/slurm/todo-2.txt", m, sizeof m);
+  assert_string_equal(m, "0\n1\n2\n3\n");
+  assert_int_equal(sh("PATH=%s/fakebin:$PATH %s sweep s.ini --slurm --time 'a b'", dir, haff), 2);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(progress_in_a_batch_log),
+      cmocka_unit_test(resume_all),
+      cmocka_unit_test(merge_runs_and_refusals),
+      cmocka_unit_test(merge_killed_leaves_out),
+      cmocka_unit_test(old_schema_reads_and_upgrades),
+      cmocka_unit_test(merge_library),
+      cmocka_unit_test(sweep_grid_runs_and_merges),
+      cmocka_unit_test(sweep_bad_input),
+      cmocka_unit_test(sweep_interrupted_then_resumed),
+      cmocka_unit_test(sweep_collapsed_point_is_done),
+      cmocka_unit_test(sweep_slurm_scripts),
+  };
+  return cmocka_run_group_tests(tests, setup, teardown);
+}
