@@ -9,6 +9,8 @@ CC      ?= gcc
 BUILD   ?= build
 PKGS    := gsl sqlite3 inih
 DEPS_PKGS := build-essential pkg-config libgsl-dev libsqlite3-dev sqlite3 libinih-dev gnuplot-nox libcmocka-dev
+# python3-pandas: tests/test_sql.c runs the pandas answers of docs/sql.md
+DEPS_PKGS += python3-pandas
 WARN    := -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes -Wmissing-prototypes
 # Warnings are errors in CI (CI=true) and whenever WERROR=1.
 ifneq ($(filter true 1,$(CI) $(WERROR)),)

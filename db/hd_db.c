@@ -208,6 +208,35 @@ static int open_error(sqlite3 *h, const char *path, const char *what, hd_error *
 
 static int tables_missing(sqlite3 *h, const char *const *tables, const char **missing);
 
+/* The file's PRAGMA user_version, or -1 on error. */
+static int schema_version(sqlite3 *h) {
+  sqlite3_stmt *st;
+  if (sqlite3_prepare_v2(h, "PRAGMA user_version", -1, &st, NULL) != SQLITE_OK) return -1;
+  int v = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int(st, 0) : -1;
+  sqlite3_finalize(st);
+  return v;
+}
+
+/* Applies db/schema.sql (every statement IF NOT EXISTS).  A file below HD_SCHEMA_VERSION first
+ * loses the views the schema defines, so that they are made again as this version defines
+ * them, and is then stamped with it; a newer file is left as it is.  Two processes upgrading
+ * at once end the same (each step is idempotent). */
+static int schema_apply(hd_db *db, hd_error *err) {
+  int v = schema_version(db->db);
+  if (v < 0) return sql_error(db, err, "read schema version");
+  if (v < HD_SCHEMA_VERSION &&
+      sqlite3_exec(db->db, "DROP VIEW IF EXISTS params; DROP VIEW IF EXISTS run_summary;", NULL,
+                   NULL, NULL) != SQLITE_OK)
+    return sql_error(db, err, "upgrade schema");
+  if (sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK)
+    return sql_error(db, err, "apply schema");
+  char set[64];
+  snprintf(set, sizeof set, "PRAGMA user_version = %d", HD_SCHEMA_VERSION);
+  if (v < HD_SCHEMA_VERSION && sqlite3_exec(db->db, set, NULL, NULL, NULL) != SQLITE_OK)
+    return sql_error(db, err, "set schema version");
+  return HD_OK;
+}
+
 /* hd_db_open (existing 0: created if missing) and hd_db_open_existing (1: must be a haff
  * database already, checked before anything is written). */
 static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
@@ -248,8 +277,8 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
     rc = open_error(db->db, path, "set WAL mode", err);
   } else if (sqlite3_exec(db->db, "PRAGMA synchronous=NORMAL", NULL, NULL, NULL) != SQLITE_OK) {
     rc = sql_error(db, err, "set synchronous");
-  } else if (sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK) {
-    rc = sql_error(db, err, "apply schema");
+  } else {
+    rc = schema_apply(db, err);
   }
   if (!rc)
     rc = prepare(db, &db->ins_run,

@@ -12,6 +12,12 @@
 
 #include "hd_error.h"
 
+/* The schema version, stored in the file as PRAGMA user_version: 0 for the files made before it
+ * was kept, 1 adds the views params and run_summary (db/README.md lists the versions).  A file
+ * opened for writing (hd_db_open, hd_db_open_existing) is brought up to it; the change is
+ * additive, so files of every version stay readable. */
+#define HD_SCHEMA_VERSION 1
+
 typedef struct hd_db hd_db;
 typedef struct sqlite3 sqlite3; /* the same typedef as <sqlite3.h> (C11 allows the repeat) */
 
