@@ -353,6 +353,11 @@ int hd_mc_eps_main(int argc, char **argv) {
     fprintf(stderr, "haff mc eps: --tabulate needs --db DB\n");
     return 2;
   }
+  if (dbpath && !strcmp(dbpath, "-")) { /* as haff run -o -: a database is not a stream */
+    fprintf(stderr, "haff mc eps: --db -: a database cannot be written to stdout; give a file "
+                    "name\n");
+    return 2;
+  }
   if (adapt >= 0) o.adapt = (int)adapt;
   if (n < 0) n = tab ? 2000 : 10000;
   gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);

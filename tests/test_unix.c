@@ -174,6 +174,13 @@ static void run_refuses_dash(void **state) {
   free(e);
   assert_false(exists("-"));
   assert_false(exists("-.lock"));
+  /* nor is the table of mc eps --tabulate */
+  assert_int_equal(
+      sh("%s mc eps --tabulate --gamma 0.8 --nbeta 2 --nu 3 --samples 10 --db -", haff), 2);
+  e = slurp("err.txt");
+  assert_non_null(strstr(e, "haff mc eps: --db -: a database cannot be written to stdout"));
+  free(e);
+  assert_false(exists("-"));
 }
 
 /* make install PREFIX DESTDIR puts bin/haff, haff.1 and the completion under DESTDIR/PREFIX;
