@@ -20,7 +20,7 @@ int haff_angles_main(int argc, char **argv) {
       "  --bins B         histogram bins on (-pi, pi] [36]\n"
       "  --fmean          instead: one line 'run n f_mean f_err batches batch_size', <f> over\n"
       "                   the run with a batch-means standard error (batches of N, >= 20 of them)\n"
-      "  -o FILE          write to FILE instead of stdout\n";
+      "  -o FILE          write to FILE instead of stdout (- is stdout)\n";
   hd_cli_args a;
   sqlite3 *db;
   hd_run_info ri;

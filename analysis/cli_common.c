@@ -174,7 +174,7 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
 }
 
 FILE *hd_cli_out(const hd_cli_args *a) {
-  if (!a->out) return stdout;
+  if (!a->out || !strcmp(a->out, "-")) return stdout; /* -o -: the stream to stdout */
   FILE *f = fopen(a->out, "w");
   if (!f) fprintf(stderr, "haff: %s: cannot write: %s\n", a->out, strerror(errno));
   return f;
@@ -187,7 +187,7 @@ int hd_cli_close(FILE *f, const hd_cli_args *a) {
   else
     bad |= fflush(f);
   if (bad) {
-    fprintf(stderr, "haff: %s: write error\n", a->out ? a->out : "stdout");
+    fprintf(stderr, "haff: %s: write error\n", a->out && strcmp(a->out, "-") ? a->out : "stdout");
     return 1;
   }
   return 0;

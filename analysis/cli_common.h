@@ -45,7 +45,7 @@ typedef struct hd_cli_args {
  * printing help (the caller returns 0). */
 int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_cli_args *a);
 
-/* Opens a->out for writing (stdout when NULL).  Returns NULL after printing the error. */
+/* Opens a->out for writing (stdout when NULL or "-").  Returns NULL after printing the error. */
 FILE *hd_cli_out(const hd_cli_args *a);
 
 /* Closes what hd_cli_out opened (not stdout).  Returns 0, or 1 after printing a write error. */

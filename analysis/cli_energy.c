@@ -69,7 +69,7 @@ int haff_energy_main(int argc, char **argv) {
       "Columns: t cpd E E_over_E0 e_tr e_rot x=(1-alpha^2)cpd nu0t=nu0_eff*t\n"
       "         haff_E_over_E0=1/(1+gamma nu0 t)^2 x_eq31=(1-alpha^2)*eq.(31) homog (1 if fitted)\n"
       "  --no-detect, --thr X, --min-coll N, --cpd-max X: as for haff-fit (the fitted part)\n"
-      "  -o FILE          write to FILE instead of stdout\n";
+      "  -o FILE          write to FILE instead of stdout (- is stdout)\n";
   hd_cli_args a;
   int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT, usage, &a);
   if (rc) return rc < 0 ? 0 : rc;

@@ -13,7 +13,7 @@
   "  --thr X          homogeneity: relative change of rate/sqrt(E) that ends it [0.1]\n"           \
   "  --min-coll N     homogeneity: pair collisions per window [2000]\n"                            \
   "  --cpd-max X      fit only samples with cpd <= X (0: no limit, the default)\n"                 \
-  "  -o FILE          write to FILE instead of stdout\n"
+  "  -o FILE          write to FILE instead of stdout (- is stdout)\n"
 
 /* Whether group g is in the papers' tables: one species in a periodic box, dimers (and disks
  * when with_disks: Table I's reference; Table II's K needs rotation). */

@@ -27,7 +27,7 @@ int haff_veldist_main(int argc, char **argv) {
       "                   snap t cpd var n scale kurt a2 a2_err ks_d ks_p (docs/analysis.md)\n"
       "  --bins B         bins [40]     --range X   histogram on [-X, X] [5]\n"
       "  --label L        states label [velocities] (e.g. initial, final)\n"
-      "  -o FILE          write to FILE instead of stdout\n";
+      "  -o FILE          write to FILE instead of stdout (- is stdout)\n";
   hd_cli_args a;
   sqlite3 *db;
   hd_run_info ri;

@@ -86,6 +86,11 @@ int haff_run_main(int argc, char **argv) {
   while ((c = getopt_long(argc, argv, "o:qh", opts, NULL)) != -1) {
     switch (c) {
     case 'o':
+      if (!strcmp(optarg, "-")) { /* a database is a file SQLite writes in place, not a stream */
+        fprintf(stderr, "haff run: -o -: a database cannot be written to stdout; give a file "
+                        "name\n");
+        return 2;
+      }
       db = optarg;
       break;
     case 's':

@@ -47,6 +47,8 @@ static void usage(FILE *out) {
   fprintf(out, "usage: haff COMMAND [ARGS...]   (haff COMMAND --help for each)\n\ncommands:\n");
   for (size_t i = 0; i < n_commands; i++)
     fprintf(out, "  %-12s %s\n", commands[i].name, commands[i].summary);
+  fprintf(out,
+          "\noptions: -h, --help (this text), -V, --version (the version, as in runs.version)\n");
   fprintf(out, "\nexit status: 0 ok, 1 failed run (collapse, interrupted, resource), 2 bad usage "
                "or input\n");
 }
@@ -63,7 +65,7 @@ int main(int argc, char **argv) {
     usage(stdout);
     return 0;
   }
-  if (!strcmp(argv[1], "--version")) {
+  if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-V")) {
     printf("haff %s\n", HAFF_VERSION);
     return 0;
   }

@@ -56,7 +56,7 @@ static void usage(FILE *out) {
           "(label, time), one line per disk (a dimer gives two, species D; single disks S).\n"
           "  --run ID     the run [the newest run in DB]\n"
           "  --label L    which states [all]\n"
-          "  -o FILE      output file [stdout]\n");
+          "  -o FILE      output file [stdout; - is stdout]\n");
 }
 
 /* Writes the frames of run/label to out.  Returns 0 or an exit code with one line on stderr. */
@@ -257,6 +257,7 @@ int haff_export_main(int argc, char **argv) {
   xyz_geom g;
   int code = read_run(db, &r, &g);
   FILE *out = stdout;
+  if (outpath && !strcmp(outpath, "-")) outpath = NULL; /* -o -: stdout */
   if (!code && outpath && !(out = fopen(outpath, "w"))) {
     fprintf(stderr, "haff export: %s: cannot write: %m\n", outpath);
     code = 1;

@@ -208,6 +208,30 @@ static int open_error(sqlite3 *h, const char *path, const char *what, hd_error *
 
 static int tables_missing(sqlite3 *h, const char *const *tables, const char **missing);
 
+/* The columns that later schema versions added to tables that older files already have
+ * (CREATE TABLE IF NOT EXISTS cannot add them): schema_apply adds each one that is missing
+ * with ALTER TABLE, and not_haffs does not ask an older haff file for them.  Tables and views
+ * that are new in a version need no entry here: db/schema.sql creates them IF NOT EXISTS. */
+static const struct {
+  const char *table, *column, *decl;
+} added_columns[] = {
+    {"runs", "cpd", "REAL"},            /* 2: the cpd reached, updated at each commit */
+    {"samples", "flow_frac", "REAL"},   /* 2: the state measures (docs/analysis.md) */
+    {"samples", "flow_chaos", "REAL"},
+    {"samples", "count_var", "REAL"},
+    {"samples", "s_rho", "REAL"},
+    {"samples", "s_perp", "REAL"},
+    {"samples", "s_par", "REAL"},
+};
+
+/* Whether table.column is one of added_columns (an older haff file may lack it). */
+static int added_column(const char *table, const char *column) {
+  for (size_t k = 0; k < sizeof added_columns / sizeof *added_columns; k++)
+    if (!strcmp(added_columns[k].table, table) && !strcmp(added_columns[k].column, column))
+      return 1;
+  return 0;
+}
+
 /* Whether haff may write its tables into the database open on h: 0 when it has no table (a new
  * or empty file), or when it has one of haff's tables at least and each of haff's tables that
  * it has holds every column of haff's (db/schema.sql, read from a schema applied in memory); 1
@@ -247,7 +271,7 @@ static int not_haffs(sqlite3 *h, char *why, size_t size) {
       sqlite3_bind_text(has, 2, col, -1, SQLITE_TRANSIENT);
       if (sqlite3_step(has) != SQLITE_ROW) {
         rc = -1;
-      } else if (sqlite3_column_int(has, 0) == 0) {
+      } else if (sqlite3_column_int(has, 0) == 0 && !added_column(table, col)) {
         rc = 1;
         snprintf(why, size, "its table %.64s has no column %.64s: it is not haff's", table, col);
       }
@@ -272,37 +296,67 @@ static int not_haffs(sqlite3 *h, char *why, size_t size) {
   return rc;
 }
 
-/* Brings a file of an older schema version to HD_DB_SCHEMA_VERSION (db/schema.sql): the
- * columns that CREATE TABLE IF NOT EXISTS cannot add to an existing table are added with
- * ALTER TABLE, then user_version is set.  Additive only: older readers read the file as
- * before. */
-static int schema_upgrade(hd_db *db, hd_error *err) {
+/* The integer that sql (one row, one column) gives, or -1 on error. */
+static int query_int(sqlite3 *h, const char *sql) {
   sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(db->db,
-                         "SELECT user_version, (SELECT count(*) FROM "
-                         "pragma_table_info('runs') WHERE name = 'cpd') "
-                         "FROM pragma_user_version",
-                         -1, &st, NULL) != SQLITE_OK)
-    return sql_error(db, err, "read the schema version");
-  int version = 0, has_cpd = 0;
-  if (sqlite3_step(st) == SQLITE_ROW) {
-    version = sqlite3_column_int(st, 0);
-    has_cpd = sqlite3_column_int(st, 1);
-  }
+  if (sqlite3_prepare_v2(h, sql, -1, &st, NULL) != SQLITE_OK) return -1;
+  int v = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int(st, 0) : -1;
   sqlite3_finalize(st);
-  if (version > HD_DB_SCHEMA_VERSION)
+  return v;
+}
+
+/* Whether the table exists and lacks the column: 1, 0, or -1 on error. */
+static int column_missing(sqlite3 *h, const char *table, const char *column) {
+  char sql[256];
+  snprintf(sql, sizeof sql,
+           "SELECT (SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = '%s') "
+           "AND NOT (SELECT count(*) FROM pragma_table_info('%s') WHERE name = '%s')",
+           table, table, column);
+  return query_int(h, sql);
+}
+
+/* Applies db/schema.sql (every statement IF NOT EXISTS) and brings a file of an older schema
+ * version (PRAGMA user_version below HD_DB_SCHEMA_VERSION; 0 for files made before it was
+ * kept) up to this one, under the write lock so that two processes upgrading at once end the
+ * same: the columns of added_columns that its tables lack are added (old rows read NULL), the
+ * views are dropped to be made again as this version defines them, and the version is
+ * stamped.  Additive only: every older file stays readable, and older readers read it as
+ * before.  A file of a newer version is refused (HD_EINPUT): this haff does not know its
+ * columns. */
+static int schema_apply(hd_db *db, hd_error *err) {
+  int v = query_int(db->db, "PRAGMA user_version");
+  if (v < 0) return sql_error(db, err, "read the schema version");
+  if (v > HD_DB_SCHEMA_VERSION)
     return hd_error_set(err, HD_EINPUT,
                         "%s: schema version %d is newer than this haff's (%d): use a newer haff",
-                        db->path, version, HD_DB_SCHEMA_VERSION);
-  if (!has_cpd &&
-      sqlite3_exec(db->db, "ALTER TABLE runs ADD COLUMN cpd REAL", NULL, NULL, NULL) != SQLITE_OK)
-    return sql_error(db, err, "add runs.cpd (schema version 2)");
-  if (version < HD_DB_SCHEMA_VERSION) {
-    char sql[64];
-    snprintf(sql, sizeof sql, "PRAGMA user_version = %d", HD_DB_SCHEMA_VERSION);
-    if (sqlite3_exec(db->db, sql, NULL, NULL, NULL) != SQLITE_OK)
-      return sql_error(db, err, "set the schema version");
+                        db->path, v, HD_DB_SCHEMA_VERSION);
+  if (v == HD_DB_SCHEMA_VERSION) {
+    if (sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK)
+      return sql_error(db, err, "apply schema");
+    return HD_OK;
   }
+  if (sqlite3_exec(db->db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK)
+    return sql_error(db, err, "upgrade the schema");
+  int rc = HD_OK;
+  for (size_t k = 0; !rc && k < sizeof added_columns / sizeof *added_columns; k++) {
+    int m = column_missing(db->db, added_columns[k].table, added_columns[k].column);
+    char sql[256];
+    snprintf(sql, sizeof sql, "ALTER TABLE %s ADD COLUMN %s %s", added_columns[k].table,
+             added_columns[k].column, added_columns[k].decl);
+    if (m < 0 || (m && sqlite3_exec(db->db, sql, NULL, NULL, NULL) != SQLITE_OK))
+      rc = sql_error(db, err, "upgrade the schema");
+  }
+  char set[64];
+  snprintf(set, sizeof set, "PRAGMA user_version = %d", HD_DB_SCHEMA_VERSION);
+  if (!rc && (sqlite3_exec(db->db, "DROP VIEW IF EXISTS params; DROP VIEW IF EXISTS run_summary;",
+                           NULL, NULL, NULL) != SQLITE_OK ||
+              sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK ||
+              sqlite3_exec(db->db, set, NULL, NULL, NULL) != SQLITE_OK))
+    rc = sql_error(db, err, "upgrade the schema");
+  if (!rc && sqlite3_exec(db->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK)
+    rc = sql_error(db, err, "upgrade the schema");
+  if (rc) sqlite3_exec(db->db, "ROLLBACK", NULL, NULL, NULL);
+  return rc;
   return HD_OK;
 }
 
@@ -363,10 +417,8 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
     rc = open_error(db->db, path, "set WAL mode", err);
   } else if (sqlite3_exec(db->db, "PRAGMA synchronous=NORMAL", NULL, NULL, NULL) != SQLITE_OK) {
     rc = sql_error(db, err, "set synchronous");
-  } else if (sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK) {
-    rc = sql_error(db, err, "apply schema");
   } else {
-    rc = schema_upgrade(db, err);
+    rc = schema_apply(db, err);
   }
   if (!rc)
     rc = prepare(db, &db->ins_run,

@@ -12,7 +12,11 @@
 
 #include "hd_error.h"
 
-/* The schema version a writer sets (PRAGMA user_version; db/schema.sql says what each adds). */
+/* The schema version, stored in the file as PRAGMA user_version: 0 for the files made before it
+ * was kept; 2 adds runs.cpd, the provenance and frames tables, the state measures of samples and
+ * the views params and run_summary (db/README.md lists them).  A file opened for writing
+ * (hd_db_open, hd_db_open_existing) is brought up to it; the change is additive, so files of
+ * every version stay readable.  A writer refuses a file of a newer version. */
 #define HD_DB_SCHEMA_VERSION 2
 
 typedef struct hd_db hd_db;

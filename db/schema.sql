@@ -129,3 +129,95 @@ CREATE TABLE IF NOT EXISTS eps_table_points (
   u     REAL NOT NULL,          -- j/(nu-1)
   eps   REAL NOT NULL           -- Q_k(u_j)
 );
+
+-- ---- parameters as data (schema version 1; docs/sql.md) ----------------------------------------
+-- params: one row per key of each run's canonical scene text (runs.scene, made by
+-- engine/hd_scene.c: "[section]" lines, then "key = value" lines; ";" lines are comments).
+-- value is the text after "=", num its number when it is one (always REAL, so that a / b
+-- never divides integers; NULL for text
+-- such as "every 10", "left right" or a list).  A view: it always agrees with runs.scene, in
+-- merged files too, and needs no filling.  E.g. SELECT run FROM params WHERE section = 'dimers'
+-- AND key = 'alpha' AND num = 0.9.
+CREATE VIEW IF NOT EXISTS params AS
+WITH RECURSIVE split(run, section, line, rest) AS (
+  SELECT id, '', NULL, replace(scene, char(13), '') || char(10) FROM runs
+  UNION ALL
+  SELECT run,
+         CASE WHEN substr(rest, 1, 1) = '['
+              THEN substr(rest, 2, instr(substr(rest, 1, instr(rest, char(10)) - 1), ']') - 2)
+              ELSE section END,
+         substr(rest, 1, instr(rest, char(10)) - 1),
+         substr(rest, instr(rest, char(10)) + 1)
+  FROM split WHERE rest <> ''),
+kv(run, section, key, value) AS (
+  SELECT run, section, trim(substr(line, 1, instr(line, '=') - 1)),
+         trim(substr(line, instr(line, '=') + 1))
+  FROM split
+  WHERE line NOT LIKE '[%' AND line NOT LIKE ';%' AND instr(line, '=') > 0)
+SELECT run, section, key, value,
+       CASE WHEN value GLOB '*[0-9]*' AND value NOT GLOB '*[^0-9eE.+-]*'
+            THEN CAST(value AS REAL) END AS num
+FROM kv;
+
+-- run_summary: one row per run with its parameters as typed columns.
+--   species        'dimers', 'disks', 'mixture' (dimers and disks) or 'rods'
+--   n              bodies (n_dimers + n_disks, or n_rods)
+--   area_fraction  as given, or the bodies' area over the box's (the dimer's area is two disks
+--                  of diameter d at distance a, less their overlap); NULL for rods
+--   alpha          restitution of the dimers (of the disks when there are no dimers); NULL for
+--                  rods, whose restitution is eps (model = constant) or drawn (stochastic)
+--   a_over_d       dimers' a/d (NULL without dimers)
+--   cpd_reached    cpd of the newest sample; t_reached its time
+-- and the runs columns seed, status, version, started, finished, events, wall_seconds.
+-- Needs SQLite's math functions (sqrt, acos: the sqlite3 shell and Debian's library have them).
+CREATE VIEW IF NOT EXISTS run_summary AS
+WITH p AS (
+  SELECT run,
+         max(CASE WHEN section = 'system' AND key = 'area_fraction' THEN num END) AS area_fraction,
+         max(CASE WHEN section = 'system' AND key = 'box' THEN value END) AS box,
+         CAST(max(CASE WHEN section = 'dimers' AND key = 'count' THEN num END) AS INTEGER)
+           AS n_dimers,
+         max(CASE WHEN section = 'dimers' AND key = 'd' THEN num END) AS d,
+         max(CASE WHEN section = 'dimers' AND key = 'a' THEN num END) AS a,
+         max(CASE WHEN section = 'dimers' AND key = 'alpha' THEN num END) AS alpha_dimer,
+         CAST(max(CASE WHEN section = 'disks' AND key = 'count' THEN num END) AS INTEGER)
+           AS n_disks,
+         max(CASE WHEN section = 'disks' AND key = 'sigma' THEN num END) AS sigma,
+         max(CASE WHEN section = 'disks' AND key = 'alpha' THEN num END) AS alpha_disk,
+         max(CASE WHEN section = 'walls' AND key = 'sides' THEN value END) AS walls,
+         max(CASE WHEN section = 'walls' AND key = 'alpha' THEN num END) AS alpha_wall,
+         CAST(max(CASE WHEN section = 'rods' AND key = 'count' THEN num END) AS INTEGER)
+           AS n_rods,
+         max(CASE WHEN section = 'rods' AND key = 'model' THEN value END) AS rod_model,
+         max(CASE WHEN section = 'rods' AND key = 'eps' THEN num END) AS eps,
+         max(CASE WHEN section = 'rods' AND key = 'gamma' THEN num END) AS gamma
+  FROM params GROUP BY run),
+q AS (
+  SELECT r.*, p.*,
+         coalesce(p.n_dimers, 0) AS nd, coalesce(p.n_disks, 0) AS ns,
+         coalesce(r.box_x, CAST(substr(p.box, 1, instr(p.box, ' ') - 1) AS REAL)) AS lx,
+         coalesce(r.box_y, CAST(substr(p.box, instr(p.box, ' ') + 1) AS REAL)) AS ly
+  FROM runs AS r LEFT JOIN p ON p.run = r.id)
+SELECT id AS run,
+       CASE WHEN n_rods > 0 THEN 'rods' WHEN nd > 0 AND ns > 0 THEN 'mixture'
+            WHEN nd > 0 THEN 'dimers' WHEN ns > 0 THEN 'disks' END AS species,
+       CASE WHEN n_rods > 0 THEN n_rods ELSE nd + ns END AS n,
+       n_dimers, n_disks, n_rods,
+       CASE WHEN n_rods > 0 THEN NULL
+            WHEN area_fraction IS NOT NULL THEN area_fraction
+            ELSE (nd * CASE WHEN a >= d THEN pi() * d * d / 2.0
+                            ELSE pi() * d * d / 2.0
+                                 - (d * d / 2.0 * acos(a / d) - a / 2.0 * sqrt(d * d - a * a)) END
+                  + ns * pi() * sigma * sigma / 4.0) / (lx * ly) END AS area_fraction,
+       lx AS box_x, ly AS box_y,
+       CASE WHEN nd > 0 THEN alpha_dimer WHEN ns > 0 THEN alpha_disk END AS alpha,
+       CASE WHEN ns > 0 THEN alpha_disk END AS alpha_disk,
+       alpha_wall, walls,
+       CASE WHEN nd > 0 THEN a / d END AS a_over_d,
+       CASE WHEN nd > 0 THEN d END AS d, CASE WHEN nd > 0 THEN a END AS a,
+       CASE WHEN ns > 0 THEN sigma END AS sigma,
+       rod_model, eps, gamma,
+       seed, status, version, started, finished, events, wall_seconds,
+       (SELECT s.cpd FROM samples AS s WHERE s.run = q.id ORDER BY s.t DESC LIMIT 1) AS cpd_reached,
+       (SELECT max(s.t) FROM samples AS s WHERE s.run = q.id) AS t_reached
+FROM q;

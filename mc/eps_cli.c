@@ -32,7 +32,7 @@ static void usage(FILE *out) {
       "  --step H        grid step in tau at beta >= 1 [0.01]\n"
       "  --adapt A       step reduced down to H/A at beta < 1 (power of 2) [16]\n"
       "  --richardson    per-path Richardson extrapolation (4x finer grid)\n"
-      "  --dump FILE     write the samples, one per line\n"
+      "  --dump FILE     write the samples, one per line (-: to stdout, the summary to stderr)\n"
       "  --convergence   bias against the step: TSV of mean eps at steps H..H/64 on coupled\n"
       "                  paths, and the detailed-balance yardsticks <beta(eps^2-1)> and\n"
       "                  <ln eps> with beta ~ Exp(1) (both 0 exactly)\n"
@@ -354,6 +354,11 @@ int hd_mc_eps_main(int argc, char **argv) {
     fprintf(stderr, "haff mc eps: --tabulate needs --db DB\n");
     return 2;
   }
+  if (dbpath && !strcmp(dbpath, "-")) { /* as haff run -o -: a database is not a stream */
+    fprintf(stderr, "haff mc eps: --db -: a database cannot be written to stdout; give a file "
+                    "name\n");
+    return 2;
+  }
   if (adapt >= 0) o.adapt = (int)adapt;
   if (n < 0) n = tab ? 2000 : 10000;
   gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
@@ -389,14 +394,17 @@ int hd_mc_eps_main(int argc, char **argv) {
   for (long i = 0; i < n; i++) x[i] = hd_eps_sample2(s, beta, beta2, rng);
   double sec = seconds_now() - t0;
   rc = 0;
+  /* --dump -: the samples are the stream on stdout, and the summary goes to stderr */
+  int dump_stdout = dump && !strcmp(dump, "-");
+  FILE *summary = dump_stdout ? stderr : stdout;
   if (dump) {
-    FILE *f = fopen(dump, "w");
+    FILE *f = dump_stdout ? stdout : fopen(dump, "w");
     if (!f) {
       fprintf(stderr, "haff mc eps: cannot write %s\n", dump);
       rc = 1;
     } else {
       for (long i = 0; i < n; i++) fprintf(f, "%.10g\n", x[i]);
-      if (fclose(f)) {
+      if (dump_stdout ? fflush(f) != 0 || ferror(f) : fclose(f) != 0) {
         fprintf(stderr, "haff mc eps: error writing %s\n", dump);
         rc = 1;
       }
@@ -404,8 +412,8 @@ int hd_mc_eps_main(int argc, char **argv) {
   }
   double mean, se, sd;
   moments(x, n, &mean, &se, &sd);
-  printf("gamma\tbeta\teps_mean\teps_stderr\teps_sd\tsamples\tseconds\n");
-  printf("%g\t%g\t%.6f\t%.6f\t%.6f\t%ld\t%.3f\n", gamma, beta, mean, se, sd, n, sec);
+  fprintf(summary, "gamma\tbeta\teps_mean\teps_stderr\teps_sd\tsamples\tseconds\n");
+  fprintf(summary, "%g\t%g\t%.6f\t%.6f\t%.6f\t%ld\t%.3f\n", gamma, beta, mean, se, sd, n, sec);
   hd_eps_stats st;
   hd_eps_sampler_stats(s, &st);
   if (st.truncated || st.clamped)

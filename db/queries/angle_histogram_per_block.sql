@@ -13,6 +13,8 @@
 -- block), density = n / (n_block w) (a probability density: it integrates to 1).
 -- Paper (Costantini et al. 2005, Fig. 5): for a = d the density is nearly flat, 1/(4 pi/3),
 -- on |theta| <= 2 pi/3 and 0 outside.
+-- (run IN (SELECT id FROM runs ...), not "@run IS NULL OR run = @run", which SQLite answers
+-- with a SCAN of every row even when @run is set: this form searches the index run by run.)
 WITH RECURSIVE
   bins(k) AS (SELECT 0 UNION ALL SELECT k + 1 FROM bins WHERE k < 35),
   c AS (
@@ -21,7 +23,8 @@ WITH RECURSIVE
            max(0, min(35, 35 - CAST((3.141592653589793 - theta_i) / (6.283185307179586 / 36)
                                     AS INTEGER))) AS k
     FROM collisions
-    WHERE theta_i IS NOT NULL AND (@run IS NULL OR run = @run)),
+    WHERE theta_i IS NOT NULL
+      AND run IN (SELECT id FROM runs WHERE @run IS NULL OR id = @run)),
   blocks AS (SELECT run, block, count(*) AS n_block FROM c GROUP BY run, block),
   counts AS (SELECT run, block, k, count(*) AS n FROM c GROUP BY run, block, k)
 SELECT b.run, b.block, bins.k AS bin,

@@ -12,6 +12,8 @@
 --   k = e_tr / e_rot     (K of the paper; NULL when e_rot = 0, e.g. pure disks)
 -- Note: e_tr is the kinetic energy of the centre-of-mass velocities as logged (eq. 34 subtracts
 -- the mean velocity, which is zero for a periodic gas started at rest in the mean).
+-- (run IN (SELECT id FROM runs ...), not "@run IS NULL OR run = @run", which SQLite answers
+-- with a SCAN of every row even when @run is set: this form searches the index run by run.)
 SELECT run, t, collisions, cpd, e_tr, e_rot,
        e_tr AS t_tr,
        2 * e_rot AS t_rot,
@@ -19,5 +21,5 @@ SELECT run, t, collisions, cpd, e_tr, e_rot,
        (e_tr + e_rot) / first_value(e_tr + e_rot) OVER (PARTITION BY run ORDER BY t) AS e_over_e0,
        CASE WHEN e_rot > 0 THEN e_tr / e_rot END AS k
 FROM samples
-WHERE @run IS NULL OR run = @run
+WHERE run IN (SELECT id FROM runs WHERE @run IS NULL OR id = @run)
 ORDER BY run, t;

@@ -10,9 +10,12 @@
 -- The standard error treats the collisions as independent; successive collisions of a body are
 -- correlated, so read it as a lower bound (compare blocks with angle_histogram_per_block.sql).
 -- Needs SQLite's math functions (sqrt), built into the sqlite3 shell since 3.35.
+-- (run IN (SELECT id FROM runs ...), not "@run IS NULL OR run = @run", which SQLite answers
+-- with a SCAN of every row even when @run is set: this form searches the index run by run.)
 WITH
   d AS (SELECT run, f FROM collisions
-        WHERE kind = 'dimer-dimer' AND f IS NOT NULL AND (@run IS NULL OR run = @run)),
+        WHERE kind = 'dimer-dimer' AND f IS NOT NULL
+          AND run IN (SELECT id FROM runs WHERE @run IS NULL OR id = @run)),
   m AS (SELECT run, count(*) AS n, avg(f) AS mean_f FROM d GROUP BY run),
   v AS (SELECT d.run, sum((d.f - m.mean_f) * (d.f - m.mean_f)) AS ss
         FROM d JOIN m ON m.run = d.run GROUP BY d.run)

@@ -15,5 +15,5 @@ SELECT r.id, r.status, r.started, r.finished, r.seed, r.version, r.events, r.wal
        EXISTS (SELECT 1 FROM checkpoints AS k WHERE k.run = r.id) AS has_checkpoint,
        r.box_x, r.box_y, r.message
 FROM runs AS r
-WHERE @run IS NULL OR r.id = @run
+WHERE r.id BETWEEN coalesce(@run, 0) AND coalesce(@run, 9223372036854775807)  -- a search by id
 ORDER BY r.id;

@@ -1,0 +1,273 @@
+/* bin/haff as a Unix tool (path in $HAFF_BIN): -V/--version (the version runs.version stores),
+ * "-o -" as stdout where the output is a stream and refused for a database, `make install` /
+ * `make uninstall` with PREFIX and DESTDIR, the man page made from the help texts (it lists
+ * every subcommand of cli/haff.c's dispatcher table), the bash completion, and libhaff.so. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <dlfcn.h>
+#include <sqlite3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static char dir[256];
+static char root[4096]; /* the source tree (the tests run from it) */
+static const char *haff;
+
+/* Runs a shell command in dir; returns its exit status.  stdout to dir/out.txt, stderr to
+ * dir/err.txt. */
+static int sh(const char *fmt, ...) {
+  char cmd[8192];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(cmd, sizeof cmd, fmt, ap);
+  va_end(ap);
+  char full[8800];
+  snprintf(full, sizeof full, "cd %s && (%s) >out.txt 2>err.txt", dir, cmd);
+  int st = system(full);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* A file of dir (or an absolute path), malloc'd and NUL-terminated; "" when missing. */
+static char *slurp(const char *name) {
+  char p[4400];
+  if (name[0] == '/')
+    snprintf(p, sizeof p, "%s", name);
+  else
+    snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "rb");
+  if (!f) return strdup("");
+  fseek(f, 0, SEEK_END);
+  long n = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  char *s = malloc((size_t)n + 1);
+  assert_non_null(s);
+  size_t k = fread(s, 1, (size_t)n, f);
+  s[k] = 0;
+  fclose(f);
+  return s;
+}
+
+static int exists(const char *name) {
+  char p[400];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  return access(p, F_OK) == 0;
+}
+
+static void write_file(const char *name, const char *text) {
+  char p[300];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "w");
+  assert_non_null(f);
+  fputs(text, f);
+  fclose(f);
+}
+
+/* The names of the dispatcher table commands[] of cli/haff.c, read from the source: each
+ * entry starts a line with {"NAME",.  Returns how many (at most max). */
+static int dispatcher_names(char names[][32], int max) {
+  char p[4200];
+  snprintf(p, sizeof p, "%s/cli/haff.c", root);
+  char *src = slurp(p);
+  char *t = strstr(src, "commands[] = {");
+  assert_non_null(t);
+  char *end = strstr(t, "};");
+  int n = 0;
+  for (char *s = strstr(t, "{\""); s && s < end && n < max; s = strstr(s + 1, "{\"")) {
+    size_t k = strcspn(s + 2, "\"");
+    assert_true(k < 32);
+    memcpy(names[n], s + 2, k);
+    names[n++][k] = 0;
+  }
+  free(src);
+  return n;
+}
+
+static int setup(void **state) {
+  (void)state;
+  if (getenv("HAFF_SANITIZE") && getenv("HAFF_SANITIZE")[0] == '1') {
+    haff = NULL; /* these tests drive bin/haff and make, which are not the sanitized build */
+    return 0;
+  }
+  haff = getenv("HAFF_BIN");
+  if (!haff) haff = "bin/haff";
+  if (!getcwd(root, sizeof root)) return -1;
+  char tmpl[] = "/tmp/haff-unix-XXXXXX";
+  if (!mkdtemp(tmpl)) return -1;
+  snprintf(dir, sizeof dir, "%s", tmpl);
+  write_file("d.ini", "[system]\narea_fraction = 0.1\nseed = 3\n[dimers]\ncount = 40\n"
+                      "alpha = 0.9\n[run]\nstop_cpd = 6\n[log]\nsamples_every = 0.5\n"
+                      "velocities_at = 2\n");
+  return sh("%s run d.ini -o d.db --quiet", haff) ? -1 : 0;
+}
+
+static int teardown(void **state) {
+  (void)state;
+  if (haff && dir[0]) {
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (system(cmd) != 0) return -1;
+  }
+  return 0;
+}
+
+/* -V and --version print "haff VERSION", VERSION being what runs.version stores. */
+static void version(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("%s -V", haff), 0);
+  char *v = slurp("out.txt");
+  assert_int_equal(sh("%s --version", haff), 0);
+  char *v2 = slurp("out.txt");
+  assert_string_equal(v, v2);
+  assert_int_equal(sh("sqlite3 d.db \"SELECT 'haff ' || version FROM runs WHERE id = 1\""), 0);
+  char *stored = slurp("out.txt");
+  assert_string_equal(v, stored);
+  free(v);
+  free(v2);
+  free(stored);
+}
+
+/* -o - writes a stream to stdout: exactly what no -o writes, and no file named "-". */
+static void dash_is_stdout(void **state) {
+  (void)state;
+  if (!haff) skip();
+  static const char *const cmds[] = {
+      "export xyz d.db",      "energy d.db --run 1",   "angles d.db --run 1 --block 20",
+      "veldist d.db --run 1", "haff-fit d.db --run 1",
+  };
+  for (size_t k = 0; k < sizeof cmds / sizeof cmds[0]; k++) {
+    int rc = sh("%s %s > plain.txt", haff, cmds[k]);
+    assert_int_equal(sh("%s %s -o -", haff, cmds[k]), rc);
+    char *a = slurp("plain.txt"), *b = slurp("out.txt");
+    if (strcmp(a, b) || !a[0]) fail_msg("haff %s -o -: not its stdout", cmds[k]);
+    free(a);
+    free(b);
+    assert_false(exists("-"));
+  }
+  /* mc eps --dump -: the samples on stdout (one number a line), the summary on stderr */
+  assert_int_equal(sh("%s mc eps --gamma 0.8 --beta 1 --samples 50 --dump -", haff), 0);
+  char *o = slurp("out.txt"), *e = slurp("err.txt");
+  int lines = 0;
+  for (char *p = o; *p; p++) lines += *p == '\n';
+  assert_int_equal(lines, 50);
+  assert_non_null(strstr(e, "eps_mean"));
+  assert_null(strstr(o, "eps_mean"));
+  free(o);
+  free(e);
+  assert_false(exists("-"));
+}
+
+/* haff run -o -: a database cannot be a stream; exit 2 with a clear line, nothing written. */
+static void run_refuses_dash(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("%s run d.ini -o - --quiet", haff), 2);
+  char *e = slurp("err.txt");
+  assert_non_null(strstr(e, "haff run: -o -: a database cannot be written to stdout"));
+  free(e);
+  assert_false(exists("-"));
+  assert_false(exists("-.lock"));
+  /* nor is the table of mc eps --tabulate */
+  assert_int_equal(
+      sh("%s mc eps --tabulate --gamma 0.8 --nbeta 2 --nu 3 --samples 10 --db -", haff), 2);
+  e = slurp("err.txt");
+  assert_non_null(strstr(e, "haff mc eps: --db -: a database cannot be written to stdout"));
+  free(e);
+  assert_false(exists("-"));
+}
+
+/* make install PREFIX DESTDIR puts bin/haff, haff.1 and the completion under DESTDIR/PREFIX;
+ * the man page has a section for every subcommand of the dispatcher table (and of `haff mc`);
+ * the completion offers them, and a subcommand's options; make uninstall removes all three. */
+static void install_man_completion(void **state) {
+  (void)state;
+  if (!haff) skip();
+  /* MAKEFLAGS of the make that runs the tests would hand this make its jobserver */
+  const char *mk = "env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -C";
+  assert_int_equal(sh("%s %s install PREFIX=/opt/h DESTDIR=%s/stage", mk, root, dir), 0);
+  assert_true(exists("stage/opt/h/bin/haff"));
+  assert_true(exists("stage/opt/h/share/man/man1/haff.1"));
+  assert_true(exists("stage/opt/h/share/bash-completion/completions/haff"));
+  assert_int_equal(sh("stage/opt/h/bin/haff -V"), 0);
+  char names[64][32];
+  int n = dispatcher_names(names, 64);
+  assert_true(n >= 17);
+  char *man = slurp("stage/opt/h/share/man/man1/haff.1");
+  for (int i = 0; i < n; i++) {
+    char want[64];
+    snprintf(want, sizeof want, "\n.SS haff %.32s\n", names[i]);
+    if (!strstr(man, want)) fail_msg("the man page has no section for '%s'", names[i]);
+  }
+  assert_non_null(strstr(man, "\n.SS haff mc fmean\n"));
+  assert_non_null(strstr(man, "\n.SS haff mc eps\n"));
+  assert_non_null(strstr(man, ".TH HAFF 1"));
+  free(man);
+  /* troff formats it without a warning (an unescaped "." or "\\" of a help text would give one) */
+  assert_int_equal(sh("groff -man -ww -z -Tutf8 stage/opt/h/share/man/man1/haff.1"), 0);
+  char *w = slurp("err.txt");
+  assert_string_equal(w, "");
+  free(w);
+  /* completion: COMPREPLY for "haff <TAB>", "haff run --<TAB>", "haff mc <TAB>" */
+  static const char comp[] =
+      "source stage/opt/h/share/bash-completion/completions/haff; "
+      "c() { COMP_WORDS=(\"$@\"); COMP_CWORD=$(($# - 1)); _haff; echo \"${COMPREPLY[*]}\"; }; "
+      "c stage/opt/h/bin/haff ''; c stage/opt/h/bin/haff run --; c stage/opt/h/bin/haff mc ''; "
+      "c stage/opt/h/bin/haff mc fmean --sc";
+  write_file("comp.sh", comp);
+  assert_int_equal(sh("bash comp.sh"), 0);
+  char *out = slurp("out.txt");
+  char *l2 = strchr(out, '\n');
+  assert_non_null(l2);
+  *l2++ = 0;
+  for (int i = 0; i < n; i++) {
+    char want[40], line[4096];
+    snprintf(want, sizeof want, " %.32s ", names[i]);
+    snprintf(line, sizeof line, " %.4000s ", out);
+    if (!strstr(line, want)) fail_msg("completion of 'haff ' lacks '%s': %s", names[i], out);
+  }
+  char *l3 = strchr(l2, '\n');
+  assert_non_null(l3);
+  *l3++ = 0;
+  assert_non_null(strstr(l2, "--set"));
+  assert_non_null(strstr(l2, "--seed"));
+  assert_non_null(strstr(l2, "--quiet"));
+  char *l4 = strchr(l3, '\n');
+  assert_non_null(l4);
+  *l4++ = 0;
+  assert_string_equal(l3, "fmean eps");
+  assert_string_equal(l4, "--scan\n");
+  free(out);
+  assert_int_equal(sh("%s %s uninstall PREFIX=/opt/h DESTDIR=%s/stage", mk, root, dir), 0);
+  assert_false(exists("stage/opt/h/bin/haff"));
+  assert_false(exists("stage/opt/h/share/man/man1/haff.1"));
+  assert_false(exists("stage/opt/h/share/bash-completion/completions/haff"));
+}
+
+/* build/libhaff.so is built with `make` and loads, with the library's functions in it. */
+static void shared_library(void **state) {
+  (void)state;
+  if (!haff) skip();
+  char p[4200];
+  snprintf(p, sizeof p, "%s/build/libhaff.so", root);
+  void *h = dlopen(p, RTLD_NOW | RTLD_LOCAL);
+  if (!h) fail_msg("dlopen %s: %s", p, dlerror());
+  assert_non_null(dlsym(h, "hd_db_open"));
+  assert_non_null(dlsym(h, "hd_scene_load_string"));
+  dlclose(h);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(version),          cmocka_unit_test(dash_is_stdout),
+      cmocka_unit_test(run_refuses_dash), cmocka_unit_test(install_man_completion),
+      cmocka_unit_test(shared_library),
+  };
+  return cmocka_run_group_tests(tests, setup, teardown);
+}
