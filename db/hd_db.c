@@ -208,6 +208,37 @@ static int open_error(sqlite3 *h, const char *path, const char *what, hd_error *
 
 static int tables_missing(sqlite3 *h, const char *const *tables, const char **missing);
 
+#define HD_DB_SCHEMA_VERSION_S "2"
+/* Brings a file of an older schema (user_version < 2) to version 2: adds the state measures'
+ * columns to `samples` (ALTER TABLE ADD COLUMN, so old rows read NULL), in one transaction.
+ * CREATE TABLE IF NOT EXISTS in schema.sql made them for a new file.  Returns an SQLite code. */
+static int upgrade_schema(sqlite3 *h) {
+  static const char *const cols[] = {"flow_frac", "flow_chaos", "count_var",
+                                     "s_rho",     "s_perp",     "s_par"};
+  sqlite3_stmt *st;
+  int rc = sqlite3_prepare_v2(h, "PRAGMA user_version", -1, &st, NULL), version = 0;
+  if (rc != SQLITE_OK) return rc;
+  if (sqlite3_step(st) == SQLITE_ROW) version = sqlite3_column_int(st, 0);
+  sqlite3_finalize(st);
+  if (version >= 2) return SQLITE_OK;
+  int have = 0; /* a file of version 2 made by a build that did not set user_version */
+  rc = sqlite3_prepare_v2(h, "SELECT count(*) FROM pragma_table_info('samples') WHERE name = "
+                             "'flow_frac'", -1, &st, NULL);
+  if (rc != SQLITE_OK) return rc;
+  if (sqlite3_step(st) == SQLITE_ROW) have = sqlite3_column_int(st, 0);
+  sqlite3_finalize(st);
+  if ((rc = sqlite3_exec(h, "BEGIN IMMEDIATE", NULL, NULL, NULL)) != SQLITE_OK) return rc;
+  for (size_t k = 0; !have && rc == SQLITE_OK && k < sizeof cols / sizeof *cols; k++) {
+    char sql[96];
+    snprintf(sql, sizeof sql, "ALTER TABLE samples ADD COLUMN %s REAL", cols[k]);
+    rc = sqlite3_exec(h, sql, NULL, NULL, NULL);
+  }
+  if (rc == SQLITE_OK) rc = sqlite3_exec(h, "PRAGMA user_version = 2", NULL, NULL, NULL);
+  if (rc == SQLITE_OK) return sqlite3_exec(h, "COMMIT", NULL, NULL, NULL);
+  sqlite3_exec(h, "ROLLBACK", NULL, NULL, NULL);
+  return rc;
+}
+
 /* hd_db_open (existing 0: created if missing) and hd_db_open_existing (1: must be a haff
  * database already, checked before anything is written). */
 static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
@@ -250,6 +281,8 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
     rc = sql_error(db, err, "set synchronous");
   } else if (sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK) {
     rc = sql_error(db, err, "apply schema");
+  } else if (upgrade_schema(db->db) != SQLITE_OK) {
+    rc = sql_error(db, err, "upgrade schema to version " HD_DB_SCHEMA_VERSION_S);
   }
   if (!rc)
     rc = prepare(db, &db->ins_run,
@@ -270,7 +303,9 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
   if (!rc)
     rc = prepare(db, &db->ins_sample,
                  "INSERT INTO samples (run, t, collisions, cpd, e_tr, e_rot, e_tr_dimer, "
-                 "e_rot_dimer, e_tr_disk) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)",
+                 "e_rot_dimer, e_tr_disk, flow_frac, flow_chaos, count_var, s_rho, s_perp, "
+                 "s_par) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, "
+                 "?15)",
                  err);
   if (!rc)
     rc = prepare(db, &db->ins_state,
@@ -575,6 +610,12 @@ static int put_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *
   bind_real(st, 7, r->e_tr_dimer);
   bind_real(st, 8, r->e_rot_dimer);
   bind_real(st, 9, r->e_tr_disk);
+  bind_real(st, 10, r->flow_frac);
+  bind_real(st, 11, r->flow_chaos);
+  bind_real(st, 12, r->count_var);
+  bind_real(st, 13, r->s_rho);
+  bind_real(st, 14, r->s_perp);
+  bind_real(st, 15, r->s_par);
   return batch_step(db, st, err, "insert sample");
 }
 
