@@ -43,6 +43,11 @@ ELASTIC_CPD ?= 200
 # errcost: D_e at this (alpha, a/d)
 ERR_ALPHA  ?= 0.9
 ERR_A      ?= 1
+# hcs: state measures against cpd, disks at HCS_ALPHA in a stable and an unstable box (N)
+HCS_ALPHA  ?= 0.8
+HCS_STABLE ?= 200
+HCS_UNSTABLE ?= 3600
+HCS_CPD    ?= 160
 # elastic runs with logged collisions for <f> (fmean_vs_engine)
 FMEAN_A    ?= 0.5 1 2
 ifeq ($(PAPER),1)
@@ -72,11 +77,12 @@ CONFIG  := ETA=$(ETA) NDIM=$(NDIM) NRUNS=$(NRUNS) XMAX=$(XMAX) ALPHAS=$(ALPHAS) 
            LONG_ALPHA=$(LONG_ALPHA) LONG_CPD=$(LONG_CPD) \
            DISK_ALPHAS=$(DISK_ALPHAS) FIG2_ALPHAS=$(FIG2_ALPHAS) FIG2_A=$(FIG2_A) \
            ELASTIC_CPD=$(ELASTIC_CPD) ERR_ALPHA=$(ERR_ALPHA) ERR_A=$(ERR_A) ERR_RUNS=$(ERR_RUNS) \
-           ERR_CPD=$(ERR_CPD) FIG5_CPD=$(FIG5_CPD) FMEAN_A=$(FMEAN_A) MC_SAMPLES=$(MC_SAMPLES)
+           ERR_CPD=$(ERR_CPD) FIG5_CPD=$(FIG5_CPD) FMEAN_A=$(FMEAN_A) MC_SAMPLES=$(MC_SAMPLES) \
+           HCS_ALPHA=$(HCS_ALPHA) HCS_STABLE=$(HCS_STABLE) HCS_UNSTABLE=$(HCS_UNSTABLE) HCS_CPD=$(HCS_CPD)
 # $(DATA)/config.txt is rewritten only when the parameters change
 $(shell mkdir -p $(DATA); echo '$(CONFIG)' | cmp -s - $(DATA)/config.txt || echo '$(CONFIG)' > $(DATA)/config.txt)
 
-PAPER_FIGS := fig1 fig2 fig3 fig5 fig6 errcost
+PAPER_FIGS := fig1 fig2 fig3 fig5 fig6 errcost hcs
 TABLES  := $(OUT)/table1.tsv $(OUT)/table1.md $(OUT)/table2.tsv $(OUT)/table2.md \
            $(OUT)/fmean_vs_engine.tsv
 .PHONY: plots plots-clean
@@ -208,6 +214,18 @@ $(DATA)/errcost.tsv: $(foreach c,$(ERR_CPD),$(DATA)/err-c$(c).db) $(HAFF) $(SCRI
 	$(SCRIPTS)/errcost.sh $(HAFF) $(foreach c,$(ERR_CPD),$(c):$(DATA)/err-c$(c).db) > $@
 $(OUT)/errcost.png $(OUT)/errcost.svg: $(OUT)/errcost.%: $(DATA)/errcost.tsv plots/errcost.gp
 	$(GNUPLOT) -e "in='$<'; out='$@'; title='D_e at α = $(ERR_ALPHA), a/d = $(ERR_A), $(NDIM) dimers, η = $(ETA)'" plots/errcost.gp
+
+# --- hcs: the state measures against cpd below and above the HCS's critical size (issue 15) ---
+$(foreach n,$(HCS_STABLE) $(HCS_UNSTABLE),$(eval $(call RUN,$(RD)/hcs-al$(HCS_ALPHA)-n$(n).db,\
+  scenes/paper-disks.ini,--set disks.count=$(n) --set disks.alpha=$(HCS_ALPHA) --set \
+  run.stop_cpd=$(HCS_CPD) --seed 1)))
+$(DATA)/hcs-n%.tsv: $(RD)/hcs-al$(HCS_ALPHA)-n%.db
+	sqlite3 -separator $$'\t' $< "SELECT cpd, s_perp, s_par, flow_frac / flow_chaos, count_var, \
+	  s_rho FROM samples ORDER BY t" > $@
+hcs_label = $(shell awk 'BEGIN { n = $(1); printf "%d disks, α = $(HCS_ALPHA), L = %.0f σ", n, sqrt(n * 3.14159265 / 4 / $(ETA)) }')
+$(OUT)/hcs.png $(OUT)/hcs.svg: $(OUT)/hcs.%: $(DATA)/hcs-n$(HCS_STABLE).tsv $(DATA)/hcs-n$(HCS_UNSTABLE).tsv plots/hcs.gp
+	$(GNUPLOT) -e "stable='$<'; unstable='$(DATA)/hcs-n$(HCS_UNSTABLE).tsv'; out='$@'; \
+	  ls='$(call hcs_label,$(HCS_STABLE))'; lu='$(call hcs_label,$(HCS_UNSTABLE))'" plots/hcs.gp
 
 # --- plots/out/README.md: plots/README.md and this build's numbers ---------------------------
 $(OUT)/README.md: plots/README.md $(SCRIPTS)/readme.sh $(TABLES) $(DATA)/fits.tsv \

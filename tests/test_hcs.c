@@ -176,7 +176,7 @@ static int accepted(const grow *r, double kt) {
 }
 
 /* Hard disks at alpha = 0.8, area fraction 0.05: N = 200 (L = 56 d, below the critical size
- * of the HCS, ~120 d) 6 runs to 160 cpd, and N = 3600 (238 d, unstable: its shear modes grow
+ * of the HCS, ~88 d) 6 runs to 160 cpd, and N = 3600 (238 d, unstable: its shear modes grow
  * from the start) 2 runs to 60 cpd.  The small box is not flagged and its D_e is within 2.5
  * total errors (<= 0.02) of kinetic theory (2.011); the large one is flagged inhomogeneous.
  * Without the HCS window (--no-detect, the old fits) the large box is not flagged and its D_e
