@@ -48,6 +48,9 @@ HCS_ALPHA  ?= 0.8
 HCS_STABLE ?= 200
 HCS_UNSTABLE ?= 3600
 HCS_CPD    ?= 160
+# errcost's stable box: as many dimers (a = ERR_A, alpha = ERR_ALPHA) as stay below the HCS's
+# critical size (docs/analysis.md); the NDIM box is the other one
+ERR_NSTABLE ?= 200
 # elastic runs with logged collisions for <f> (fmean_vs_engine)
 FMEAN_A    ?= 0.5 1 2
 ifeq ($(PAPER),1)
@@ -78,7 +81,8 @@ CONFIG  := ETA=$(ETA) NDIM=$(NDIM) NRUNS=$(NRUNS) XMAX=$(XMAX) ALPHAS=$(ALPHAS) 
            DISK_ALPHAS=$(DISK_ALPHAS) FIG2_ALPHAS=$(FIG2_ALPHAS) FIG2_A=$(FIG2_A) \
            ELASTIC_CPD=$(ELASTIC_CPD) ERR_ALPHA=$(ERR_ALPHA) ERR_A=$(ERR_A) ERR_RUNS=$(ERR_RUNS) \
            ERR_CPD=$(ERR_CPD) FIG5_CPD=$(FIG5_CPD) FMEAN_A=$(FMEAN_A) MC_SAMPLES=$(MC_SAMPLES) \
-           HCS_ALPHA=$(HCS_ALPHA) HCS_STABLE=$(HCS_STABLE) HCS_UNSTABLE=$(HCS_UNSTABLE) HCS_CPD=$(HCS_CPD)
+           HCS_ALPHA=$(HCS_ALPHA) HCS_STABLE=$(HCS_STABLE) HCS_UNSTABLE=$(HCS_UNSTABLE) HCS_CPD=$(HCS_CPD) \
+           ERR_NSTABLE=$(ERR_NSTABLE)
 # $(DATA)/config.txt is rewritten only when the parameters change
 $(shell mkdir -p $(DATA); echo '$(CONFIG)' | cmp -s - $(DATA)/config.txt || echo '$(CONFIG)' > $(DATA)/config.txt)
 
@@ -212,8 +216,18 @@ $(foreach c,$(ERR_CPD),$(foreach s,$(ESEEDS),$(eval $(call RUN,$(call err_db,$(c
 $(foreach c,$(ERR_CPD),$(eval $(call MERGE,$(DATA)/err-c$(c).db,$(foreach s,$(ESEEDS),$(call err_db,$(c),$(s))))))
 $(DATA)/errcost.tsv: $(foreach c,$(ERR_CPD),$(DATA)/err-c$(c).db) $(HAFF) $(SCRIPTS)/errcost.sh
 	$(SCRIPTS)/errcost.sh $(HAFF) $(foreach c,$(ERR_CPD),$(c):$(DATA)/err-c$(c).db) > $@
-$(OUT)/errcost.png $(OUT)/errcost.svg: $(OUT)/errcost.%: $(DATA)/errcost.tsv plots/errcost.gp
-	$(GNUPLOT) -e "in='$<'; out='$@'; title='D_e at α = $(ERR_ALPHA), a/d = $(ERR_A), $(NDIM) dimers, η = $(ETA)'" plots/errcost.gp
+# the same in the stable box of ERR_NSTABLE dimers
+err_s_db = $(RD)/err-n$(ERR_NSTABLE)-a$(ERR_A)-al$(ERR_ALPHA)-c$(1)-s$(2).db
+$(foreach c,$(ERR_CPD),$(foreach s,$(ESEEDS),$(eval $(call RUN,$(call err_s_db,$(c),$(s)),\
+  scenes/paper-dimers.ini,--set dimers.count=$(ERR_NSTABLE) --set dimers.a=$(ERR_A) --set \
+  dimers.alpha=$(ERR_ALPHA) --set run.stop_cpd=$(c) --seed $(s)))))
+$(foreach c,$(ERR_CPD),$(eval $(call MERGE,$(DATA)/err-n$(ERR_NSTABLE)-c$(c).db,$(foreach s,$(ESEEDS),$(call err_s_db,$(c),$(s))))))
+$(DATA)/errcost-stable.tsv: $(foreach c,$(ERR_CPD),$(DATA)/err-n$(ERR_NSTABLE)-c$(c).db) $(HAFF) $(SCRIPTS)/errcost.sh
+	$(SCRIPTS)/errcost.sh $(HAFF) $(foreach c,$(ERR_CPD),$(c):$(DATA)/err-n$(ERR_NSTABLE)-c$(c).db) > $@
+$(OUT)/errcost.png $(OUT)/errcost.svg: $(OUT)/errcost.%: $(DATA)/errcost.tsv $(DATA)/errcost-stable.tsv plots/errcost.gp
+	$(GNUPLOT) -e "in='$<'; in2='$(DATA)/errcost-stable.tsv'; out='$@'; \
+	  title='$(NDIM) dimers (L ≈ L_c)'; title2='$(ERR_NSTABLE) dimers (stable)'; \
+	  suptitle='D_e at α = $(ERR_ALPHA), a/d = $(ERR_A), η = $(ETA)'" plots/errcost.gp
 
 # --- hcs: the state measures against cpd below and above the HCS's critical size (issue 15) ---
 $(foreach n,$(HCS_STABLE) $(HCS_UNSTABLE),$(eval $(call RUN,$(RD)/hcs-al$(HCS_ALPHA)-n$(n).db,\
