@@ -68,6 +68,7 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
                                      {"s-flag", required_argument, 0, 'Q'},
                                      {"min-window", required_argument, 0, 'W'},
                                      {"keep-flagged", no_argument, 0, 'Y'},
+                                     {"pool", no_argument, 0, 'O'},
                                      {0, 0, 0, 0}};
   static const struct {
     int c;
@@ -77,7 +78,7 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
               {'G', HD_OPT_GROUP}, {'b', HD_OPT_BLOCK}, {'F', HD_OPT_BLOCK}, {'B', HD_OPT_BINS},
               {'S', HD_OPT_STATS}, {'L', HD_OPT_STATS}, {'R', HD_OPT_STATS}, {'k', HD_OPT_KCI},
               {'P', HD_OPT_FIT},   {'E', HD_OPT_FIT},   {'Q', HD_OPT_FIT},   {'W', HD_OPT_FIT},
-              {'Y', HD_OPT_MD}};
+              {'Y', HD_OPT_MD},    {'O', HD_OPT_STATS}};
   optind = 0; /* full re-initialisation: the subcommands may run more than once per process */
   opterr = 0;
   int c, li;
@@ -137,6 +138,9 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
       break;
     case 'Y':
       a->keep_flagged = 1;
+      break;
+    case 'O':
+      a->pool = 1;
       break;
     case 'K':
       if (parse_num(cmd, "--cpd-min-k", optarg, 0, &a->fit.cpd_min_k)) return 2;

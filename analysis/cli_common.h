@@ -31,6 +31,7 @@ typedef struct hd_cli_args {
   int all;           /* --all */
   int md;            /* --md: Markdown table */
   int keep_flagged;  /* --keep-flagged: tables keep the groups flagged inhomogeneous */
+  int pool;          /* --pool: veldist pools the snapshots of the runs' HCS windows */
   int group;         /* --alpha-group */
   hd_fit_opts fit;   /* fit options */
   long block;        /* --block N [10000] */

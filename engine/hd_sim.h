@@ -182,7 +182,8 @@ typedef struct hd_state_measures {
                       * sum_c (sum_{i in c} m_i^2 v_i^2)/M_c / sum_i m_i v_i^2 (about 16/N) */
   double count_var;  /* variance of the bodies' counts in the 4 x 4 cells over their mean:
                       * 1 for Poisson, S(0) of the gas (0.8 for disks at 0.05) when uncorrelated */
-  double s_rho;      /* |rho_k|^2 / N at the box's 4 smallest wave vectors (mean): ~S(0) */
+  double s_rho;      /* |rho_k|^2 / N at the box's 4 smallest wave vectors (mean): ~S(0);
+                      * s_perp and s_par are means over those where their normalisation > 0 */
   double s_perp;     /* |p_k . t|^2 / sum m^2 (v . t)^2 there, t normal to k (shear): 1 */
   double s_par;      /* the same along k (sound): 1 */
 } hd_state_measures;

@@ -53,10 +53,11 @@ void hd_sim_state(const hd_sim *s, hd_state_measures *out) {
   out->flow_frac = mv2 > 0 ? flow / mv2 : NAN;
   out->flow_chaos = mv2 > 0 ? chaos / mv2 : NAN;
   out->count_var = n > 0 ? var / NC / mean : NAN;
-  /* structure factors, averaged over the NK wave vectors: S_rho = |rho_k|^2 / N; transverse
+  /* structure factors, averaged over the NK wave vectors (those where defined): S_rho = |rho_k|^2 / N; transverse
    * and longitudinal momentum |p_k . e|^2 over its value for independent velocities,
    * sum m^2 (v . e)^2 (e = k/|k| or its normal) */
   double sr = 0, st = 0, sl = 0;
+  int nt = 0, nl = 0; /* modes where the normalisation is > 0 (not all velocities along k) */
   for (int q = 0; q < NK; q++) {
     double kk = hypot(kx[q], ky[q]), ex = kx[q] / kk, ey = ky[q] / kk;
     double lr = ex * pxr[q] + ey * pyr[q], li = ex * pxi[q] + ey * pyi[q];
@@ -64,10 +65,10 @@ void hd_sim_state(const hd_sim *s, hd_state_measures *out) {
     double norm_l = ex * ex * m2vx2 + ey * ey * m2vy2 + 2 * ex * ey * m2vxy;
     double norm_t = ey * ey * m2vx2 + ex * ex * m2vy2 - 2 * ex * ey * m2vxy;
     sr += (rr[q] * rr[q] + ri[q] * ri[q]) / n;
-    sl += norm_l > 0 ? (lr * lr + li * li) / norm_l : NAN;
-    st += norm_t > 0 ? (tr * tr + ti * ti) / norm_t : NAN;
+    if (norm_l > 0) sl += (lr * lr + li * li) / norm_l, nl++;
+    if (norm_t > 0) st += (tr * tr + ti * ti) / norm_t, nt++;
   }
   out->s_rho = n > 0 ? sr / NK : NAN;
-  out->s_par = sl / NK;
-  out->s_perp = st / NK;
+  out->s_par = nl ? sl / nl : NAN;
+  out->s_perp = nt ? st / nt : NAN;
 }

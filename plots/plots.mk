@@ -59,6 +59,7 @@ NRUNS      ?= 20
 # runs stop at (1 - alpha^2) cpd = XMAX
 XMAX       ?= 24
 ERR_RUNS   ?= 128
+FIG6_RUNS  ?= 20
 ERR_CPD    ?= 20 40 80 160 320
 FIG5_CPD   ?= 300
 MC_SAMPLES ?= 10000000
@@ -66,6 +67,7 @@ else
 NRUNS      ?= 8
 XMAX       ?= 16
 ERR_RUNS   ?= 32
+FIG6_RUNS  ?= 8
 ERR_CPD    ?= 20 40 80 160
 FIG5_CPD   ?= 100
 MC_SAMPLES ?= 1000000
@@ -82,7 +84,7 @@ CONFIG  := ETA=$(ETA) NDIM=$(NDIM) NRUNS=$(NRUNS) XMAX=$(XMAX) ALPHAS=$(ALPHAS) 
            ELASTIC_CPD=$(ELASTIC_CPD) ERR_ALPHA=$(ERR_ALPHA) ERR_A=$(ERR_A) ERR_RUNS=$(ERR_RUNS) \
            ERR_CPD=$(ERR_CPD) FIG5_CPD=$(FIG5_CPD) FMEAN_A=$(FMEAN_A) MC_SAMPLES=$(MC_SAMPLES) \
            HCS_ALPHA=$(HCS_ALPHA) HCS_STABLE=$(HCS_STABLE) HCS_UNSTABLE=$(HCS_UNSTABLE) HCS_CPD=$(HCS_CPD) \
-           ERR_NSTABLE=$(ERR_NSTABLE)
+           ERR_NSTABLE=$(ERR_NSTABLE) FIG6_RUNS=$(FIG6_RUNS)
 # $(DATA)/config.txt is rewritten only when the parameters change
 $(shell mkdir -p $(DATA); echo '$(CONFIG)' | cmp -s - $(DATA)/config.txt || echo '$(CONFIG)' > $(DATA)/config.txt)
 
@@ -200,13 +202,20 @@ $(OUT)/fig5.png $(OUT)/fig5.svg: $(OUT)/fig5.%: $(DATA)/angles.tsv $(DATA)/angle
 	$(GNUPLOT) -e "in='$<'; in2='$(DATA)/angles_elastic.tsv'; fm='$(OUT)/fmean_vs_engine.tsv'; ad=1; out='$@'" plots/fig5.gp
 
 # --- Fig. 6: velocity snapshots at [log] velocities_at --------------------------------------
+# run 1's snapshots one by one, and the snapshots of FIG6_RUNS runs inside their HCS windows
+# pooled (veldist --pool), so that the tails reach |c| = 4-5
 $(eval $(call RUN,$(RD)/fig6.db,scenes/paper-fig6.ini,--seed 1))
+FIG6_DBS := $(foreach s,$(shell seq 1 $(FIG6_RUNS)),$(RD)/fig6pool-s$(s).db)
+$(foreach s,$(shell seq 1 $(FIG6_RUNS)),$(eval $(call RUN,$(RD)/fig6pool-s$(s).db,scenes/paper-fig6-pool.ini,--seed $(s))))
+$(eval $(call MERGE,$(DATA)/fig6all.db,$(FIG6_DBS)))
 $(DATA)/veldist.tsv: $(RD)/fig6.db $(HAFF)
 	$(HAFF) veldist $< --run 1 -o $@
+$(DATA)/veldist_pool.tsv: $(DATA)/fig6all.db $(HAFF)
+	$(HAFF) veldist $< --pool --bins 50 -o $@
 $(DATA)/veldist_stats.tsv: $(RD)/fig6.db $(HAFF)
 	$(HAFF) veldist $< --run 1 --stats -o $@
-$(OUT)/fig6.png $(OUT)/fig6.svg: $(OUT)/fig6.%: $(DATA)/veldist.tsv plots/fig6.gp
-	$(GNUPLOT) -e "in='$<'; out='$@'" plots/fig6.gp
+$(OUT)/fig6.png $(OUT)/fig6.svg: $(OUT)/fig6.%: $(DATA)/veldist.tsv $(DATA)/veldist_pool.tsv plots/fig6.gp
+	$(GNUPLOT) -e "in='$<'; pool='$(DATA)/veldist_pool.tsv'; out='$@'" plots/fig6.gp
 
 # --- error of D_e against CPU time (issue 5) -------------------------------------------------
 err_db = $(RD)/err-a$(ERR_A)-al$(ERR_ALPHA)-c$(1)-s$(2).db
@@ -244,7 +253,8 @@ $(OUT)/hcs.png $(OUT)/hcs.svg: $(OUT)/hcs.%: $(DATA)/hcs-n$(HCS_STABLE).tsv $(DA
 # --- plots/out/README.md: plots/README.md and this build's numbers ---------------------------
 $(OUT)/README.md: plots/README.md $(SCRIPTS)/readme.sh $(TABLES) $(DATA)/fits.tsv \
                   $(DATA)/fits-groups.tsv $(DATA)/gap.tsv $(DATA)/gap-fits.tsv \
-                  $(DATA)/long-fits.tsv $(DATA)/errcost.tsv $(DATA)/veldist_stats.tsv $(DATA)/config.txt
+                  $(DATA)/long-fits.tsv $(DATA)/errcost.tsv $(DATA)/errcost-stable.tsv \
+                  $(DATA)/veldist_stats.tsv $(DATA)/config.txt
 	$(SCRIPTS)/readme.sh $(OUT) $(DATA) '$(CONFIG)' $(HAFF) > $@
 
 plots-clean: fmean-clean

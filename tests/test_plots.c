@@ -25,7 +25,8 @@ static char root[512], tmp[256], haff[512];
 #define TINY                                                                                       \
   "NDIM=50 NRUNS=2 ALPHAS='1 0.9 0.8' AOVERD=1 GAP_A=1.5 DISK_ALPHAS=0.9 "                         \
   "FIG2_ALPHAS='0.9 0.8' ELASTIC_CPD=40 ERR_RUNS=2 ERR_CPD='20 40' FIG5_CPD=25 FMEAN_A=1 "         \
-  "MC_SAMPLES=20000 XMAX=8 HCS_STABLE=50 HCS_UNSTABLE=100 HCS_CPD=20 ERR_NSTABLE=30"
+  "MC_SAMPLES=20000 XMAX=8 HCS_STABLE=50 HCS_UNSTABLE=100 HCS_CPD=20 ERR_NSTABLE=30 "         \
+  "FIG6_RUNS=2"
 
 static int make(const char *flags, const char *targets, const char *log) {
   char cmd[4096];
@@ -40,7 +41,7 @@ static const char *data_targets =
     "$T/data/energy.tsv $T/data/energy_disks.tsv $T/data/fig1.tsv $T/data/angles.tsv "
     "$T/data/angles_elastic.tsv $T/data/veldist.tsv $T/data/errcost.tsv $T/table1.tsv "
     "$T/table2.tsv $T/fmean_vs_engine.tsv $T/data/hcs-n50.tsv $T/data/hcs-n100.tsv "
-    "$T/data/errcost-stable.tsv";
+    "$T/data/errcost-stable.tsv $T/data/veldist_pool.tsv";
 
 /* data_targets with $T replaced by tmp/out */
 static void targets(char *buf, size_t n) {
@@ -220,7 +221,7 @@ static void gnuplot_render(void **state) {
            {"fig3", "in='%1$s/%2$s/energy.tsv'"},
            {"fig5", "in='%1$s/%2$s/angles.tsv'; in2='%1$s/%2$s/angles_elastic.tsv'; "
                     "fm='%1$s/%3$s/fmean_vs_engine.tsv'; ad=1"},
-           {"fig6", "in='%1$s/%2$s/veldist.tsv'"},
+           {"fig6", "in='%1$s/%2$s/veldist.tsv'; pool='%1$s/%2$s/veldist_pool.tsv'"},
            {"errcost", "in='%1$s/%2$s/errcost.tsv'; in2='%1$s/%2$s/errcost-stable.tsv'"},
            {"hcs", "stable='%1$s/%2$s/hcs-n50.tsv'; unstable='%1$s/%2$s/hcs-n100.tsv'"}};
   for (size_t i = 0; i < sizeof s / sizeof s[0]; i++)
