@@ -56,6 +56,49 @@ static void hcs_window(void **state) {
   assert_int_equal(hd_hcs_detect(cpd, sp, ff, fc, N, &o, &h, &err), HD_EINPUT);
 }
 
+/* hd_group_fit_do on four made-up runs: eq. (31) D_e 3.00, 3.02, 3.04, 3.06 (mean 3.03, se
+ * 0.01291), slope D_e 0.05 lower in each (estimator difference 0.05 exactly: sys_est = 0.05),
+ * halves 3.00 and 3.04 (drift 0.04 exactly: sys_window = 0.02), flow excess 0.01 (sys_box =
+ * 0.0303); the total their quadrature sum.  s_perp 2 is not flagged; 3 is; so is s_perp 1
+ * when 3 of 4 runs left the HCS within min_window, and not when 2 did. */
+static void group_errors(void **state) {
+  (void)state;
+  hd_run_fit f[4];
+  size_t idx[4] = {0, 1, 2, 3};
+  memset(f, 0, sizeof f);
+  for (int k = 0; k < 4; k++) {
+    f[k].haff_ok = f[k].slope_ok = 1;
+    f[k].haff.D_e = 3.00 + 0.02 * k, f[k].D_e_slope = f[k].haff.D_e - 0.05;
+    f[k].D_e_half[0] = 3.00, f[k].D_e_half[1] = 3.04;
+    f[k].hcs.have = 1, f[k].hcs.s_perp = 2, f[k].hcs.flow_excess = 0.01;
+    f[k].cpd_start = 5, f[k].cpd_end = 160;
+  }
+  hd_group g = {0};
+  g.n = 4, g.idx = idx;
+  hd_fit_opts o = hd_fit_opts_defaults();
+  hd_group_fit q;
+  hd_group_fit_do(f, &g, &o, &q);
+  printf("# group: D_e %.4f +- %.4f sys %.4f (window %.4f estimator %.4f box %.4f)\n", q.D_e,
+         q.D_e_err, q.D_e_sys, q.sys_window, q.sys_est, q.sys_box);
+  assert_true(q.m == 4 && fabs(q.D_e - 3.03) < 1e-12 && fabs(q.D_e_err - 0.0129099) < 1e-6);
+  assert_true(fabs(q.sys_est - 0.05) < 1e-12 && fabs(q.sys_window - 0.02) < 1e-12);
+  assert_true(fabs(q.sys_box - 0.0303) < 1e-12);
+  assert_true(fabs(q.D_e_sys - sqrt(0.05 * 0.05 + 0.02 * 0.02 + 0.0303 * 0.0303)) < 1e-12);
+  assert_true(q.measured && !q.flagged);
+  for (int k = 0; k < 4; k++) f[k].hcs.s_perp = 3;
+  hd_group_fit_do(f, &g, &o, &q);
+  assert_true(q.flagged);
+  for (int k = 0; k < 4; k++) f[k].hcs.s_perp = 1, f[k].hcs.ended = k < 3, f[k].cpd_end = 30;
+  hd_group_fit_do(f, &g, &o, &q);
+  assert_true(q.flagged && q.ended == 3);
+  f[2].hcs.ended = 0;
+  hd_group_fit_do(f, &g, &o, &q);
+  assert_true(!q.flagged && q.ended == 2);
+  for (int k = 0; k < 4; k++) f[k].hcs.have = 0; /* no measures: no box term, no flag */
+  hd_group_fit_do(f, &g, &o, &q);
+  assert_true(!q.measured && !q.flagged && q.sys_box == 0);
+}
+
 /* A file written before schema version 2 (samples without the state measures) is read with NaN
  * measures, and opening it for writing adds the columns (old rows NULL) and sets user_version. */
 static void schema_upgrade(void **state) {
@@ -231,6 +274,7 @@ static int teardown(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(hcs_window),
+      cmocka_unit_test(group_errors),
       cmocka_unit_test(schema_upgrade),
       cmocka_unit_test(acceptance_cheap),
   };
