@@ -15,13 +15,14 @@ stats in using 1 nooutput
 nb = STATS_blocks
 set multiplot
 # the inset's area (with its tick labels) is opaque: a white box over the main panel's points
-set object 1 rectangle from screen 0.5, 0.47 to screen 0.99, 0.97 fillcolor rgb "white" \
+# (bottom left, below the curves, where the main panel has no data; the key goes top right)
+set object 1 rectangle from screen 0.115, 0.125 to screen 0.585, 0.555 fillcolor rgb "white" \
     fillstyle solid 1.0 border lc rgb "gray70" front
 set logscale y
 set format y "10^{%L}"
 set xlabel "(1 - α^2) N_{atcoll}/N"
 set ylabel "E(t) / E(0)"
-set key bottom left
+set key top right
 set xrange [0:*]
 if (exists("ref")) {
   stats ref using 1 nooutput
@@ -36,13 +37,13 @@ if (exists("ref")) {
 # inset: against nu0_eff t, Haff's law 1/(1 + gamma nu0 t)^2 for each group, and the late-time
 # t^-2 guide
 unset object 1
-set size 0.45, 0.45
-set origin 0.53, 0.5
+set size 0.46, 0.43
+set origin 0.12, 0.125
 set logscale xy
 set format x "10^{%L}"
 set xlabel "ν_0^{eff} t"
 set ylabel "E/E(0)"
-set key bottom left font ",9" samplen 2
+set key top right font ",9" samplen 2
 set xrange [*:*]
 plot for [i=0:nb-1] in index i using ($8 > 0 ? $8 : NaN):4 with points pt 7 ps 0.3 notitle, \
      for [i=0:nb-1] in index i using ($8 > 0 ? $8 : NaN):9 with lines dt 2 lc rgb "black" notitle, \
