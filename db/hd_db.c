@@ -212,23 +212,29 @@ static int tables_missing(sqlite3 *h, const char *const *tables, const char **mi
 /* Brings a file of an older schema (user_version < 2) to version 2: adds the state measures'
  * columns to `samples` (ALTER TABLE ADD COLUMN, so old rows read NULL), in one transaction.
  * CREATE TABLE IF NOT EXISTS in schema.sql made them for a new file.  Returns an SQLite code. */
+/* The integer that sql (one row, one column) returns into *v; an SQLite code. */
+static int query_int(sqlite3 *h, const char *sql, int *v) {
+  sqlite3_stmt *st;
+  int rc = sqlite3_prepare_v2(h, sql, -1, &st, NULL);
+  if (rc != SQLITE_OK) return rc;
+  *v = 0;
+  if ((rc = sqlite3_step(st)) == SQLITE_ROW) *v = sqlite3_column_int(st, 0), rc = SQLITE_OK;
+  sqlite3_finalize(st);
+  return rc == SQLITE_DONE ? SQLITE_OK : rc;
+}
+
 static int upgrade_schema(sqlite3 *h) {
   static const char *const cols[] = {"flow_frac", "flow_chaos", "count_var",
                                      "s_rho",     "s_perp",     "s_par"};
-  sqlite3_stmt *st;
-  int rc = sqlite3_prepare_v2(h, "PRAGMA user_version", -1, &st, NULL), version = 0;
-  if (rc != SQLITE_OK) return rc;
-  if (sqlite3_step(st) == SQLITE_ROW) version = sqlite3_column_int(st, 0);
-  sqlite3_finalize(st);
-  if (version >= 2) return SQLITE_OK;
-  int have = 0; /* a file of version 2 made by a build that did not set user_version */
-  rc = sqlite3_prepare_v2(h, "SELECT count(*) FROM pragma_table_info('samples') WHERE name = "
-                             "'flow_frac'", -1, &st, NULL);
-  if (rc != SQLITE_OK) return rc;
-  if (sqlite3_step(st) == SQLITE_ROW) have = sqlite3_column_int(st, 0);
-  sqlite3_finalize(st);
+  int version = 0, have = 0;
+  int rc = query_int(h, "PRAGMA user_version", &version);
+  if (rc != SQLITE_OK || version >= 2) return rc;
+  /* under the write lock, looked at again: another process may have upgraded it meanwhile (and a
+   * file made by this schema.sql has the columns but version 0 until here) */
   if ((rc = sqlite3_exec(h, "BEGIN IMMEDIATE", NULL, NULL, NULL)) != SQLITE_OK) return rc;
-  for (size_t k = 0; !have && rc == SQLITE_OK && k < sizeof cols / sizeof *cols; k++) {
+  rc = query_int(h, "SELECT count(*) FROM pragma_table_info('samples') WHERE name = 'flow_frac'",
+                 &have);
+  for (size_t k = 0; rc == SQLITE_OK && !have && k < sizeof cols / sizeof *cols; k++) {
     char sql[96];
     snprintf(sql, sizeof sql, "ALTER TABLE samples ADD COLUMN %s REAL", cols[k]);
     rc = sqlite3_exec(h, sql, NULL, NULL, NULL);
