@@ -63,6 +63,12 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
                                      {"label", required_argument, 0, 'L'},
                                      {"range", required_argument, 0, 'R'},
                                      {"k-ci", required_argument, 0, 'k'},
+                                     {"cpd-skip", required_argument, 0, 'P'},
+                                     {"s-end", required_argument, 0, 'E'},
+                                     {"s-flag", required_argument, 0, 'Q'},
+                                     {"min-window", required_argument, 0, 'W'},
+                                     {"keep-flagged", no_argument, 0, 'Y'},
+                                     {"pool", no_argument, 0, 'O'},
                                      {0, 0, 0, 0}};
   static const struct {
     int c;
@@ -70,7 +76,9 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
   } need[] = {{'r', HD_OPT_RUN},   {'A', HD_OPT_ALL},   {'N', HD_OPT_FIT},   {'T', HD_OPT_FIT},
               {'C', HD_OPT_FIT},   {'X', HD_OPT_FIT},   {'K', HD_OPT_KCI},   {'M', HD_OPT_MD},
               {'G', HD_OPT_GROUP}, {'b', HD_OPT_BLOCK}, {'F', HD_OPT_BLOCK}, {'B', HD_OPT_BINS},
-              {'S', HD_OPT_STATS}, {'L', HD_OPT_STATS}, {'R', HD_OPT_STATS}, {'k', HD_OPT_KCI}};
+              {'S', HD_OPT_STATS}, {'L', HD_OPT_STATS}, {'R', HD_OPT_STATS}, {'k', HD_OPT_KCI},
+              {'P', HD_OPT_FIT},   {'E', HD_OPT_FIT},   {'Q', HD_OPT_FIT},   {'W', HD_OPT_FIT},
+              {'Y', HD_OPT_MD},    {'O', HD_OPT_STATS}};
   optind = 0; /* full re-initialisation: the subcommands may run more than once per process */
   opterr = 0;
   int c, li;
@@ -115,6 +123,24 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
       break;
     case 'X':
       if (parse_num(cmd, "--cpd-max", optarg, 0, &a->fit.cpd_max)) return 2;
+      break;
+    case 'P':
+      if (parse_num(cmd, "--cpd-skip", optarg, 0, &a->fit.hcs.cpd_skip)) return 2;
+      break;
+    case 'E':
+      if (parse_num(cmd, "--s-end", optarg, 1e-6, &a->fit.hcs.s_end)) return 2;
+      break;
+    case 'Q':
+      if (parse_num(cmd, "--s-flag", optarg, 1e-6, &a->fit.s_flag)) return 2;
+      break;
+    case 'W':
+      if (parse_num(cmd, "--min-window", optarg, 0, &a->fit.min_window)) return 2;
+      break;
+    case 'Y':
+      a->keep_flagged = 1;
+      break;
+    case 'O':
+      a->pool = 1;
       break;
     case 'K':
       if (parse_num(cmd, "--cpd-min-k", optarg, 0, &a->fit.cpd_min_k)) return 2;

@@ -13,8 +13,9 @@
 enum {
   HD_OPT_RUN = 1,     /* --run ID */
   HD_OPT_ALL = 2,     /* --all */
-  HD_OPT_FIT = 4,     /* --no-detect --thr X --min-coll N --cpd-max X */
-  HD_OPT_MD = 8,      /* --md */
+  HD_OPT_FIT = 4,     /* --no-detect --thr X --min-coll N --cpd-max X --cpd-skip X --s-end X
+                       * --s-flag X --min-window X */
+  HD_OPT_MD = 8,      /* --md --keep-flagged (the tables) */
   HD_OPT_GROUP = 16,  /* --alpha-group */
   HD_OPT_BLOCK = 32,  /* --block N --fmean */
   HD_OPT_BINS = 64,   /* --bins N */
@@ -29,6 +30,8 @@ typedef struct hd_cli_args {
   int64_t run;       /* --run ID, -1 when absent */
   int all;           /* --all */
   int md;            /* --md: Markdown table */
+  int keep_flagged;  /* --keep-flagged: tables keep the groups flagged inhomogeneous */
+  int pool;          /* --pool: veldist pools the snapshots of the runs' HCS windows */
   int group;         /* --alpha-group */
   hd_fit_opts fit;   /* fit options */
   long block;        /* --block N [10000] */

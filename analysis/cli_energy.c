@@ -12,7 +12,7 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
   hd_series *s = calloc(m, sizeof *s);
   if (!s) return hd_error_set(err, HD_ENOMEM, "out of memory");
   int rc = HD_OK;
-  size_t len = (size_t)-1, homog = (size_t)-1, nfit = 0;
+  size_t len = (size_t)-1, homog = (size_t)-1, nfit = 0, i0 = 0;
   double De = 0, nu = 0;
   for (size_t k = 0; k < m && rc == HD_OK; k++) {
     const hd_run_fit *f = &fits[idx[k]];
@@ -20,6 +20,7 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
     if (rc) break;
     if (s[k].n < len) len = s[k].n;
     if (f->n_used < homog) homog = f->n_used;
+    if (f->n_start > i0) i0 = f->n_start; /* the latest window start of the runs */
     if (f->haff_ok) De += f->haff.D_e, nu += f->haff.nu0, nfit++;
   }
   if (rc == HD_OK) {
@@ -42,16 +43,22 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
     double E0 = 0;
     for (size_t k = 0; k < m; k++) E0 += s[k].e_tr[0] + s[k].e_rot[0];
     E0 /= (double)m;
+    /* the fits start at the window's first sample i0 (t counted from there): the curves too */
+    double ts = 0, cs = 0, Es = 0;
+    if (i0 >= len) i0 = len ? len - 1 : 0;
+    for (size_t k = 0; k < m && len; k++)
+      ts += s[k].t[i0], cs += s[k].cpd[i0], Es += s[k].e_tr[i0] + s[k].e_rot[i0];
+    ts /= (double)m, cs /= (double)m, Es /= (double)m;
     for (size_t i = 0; i < len; i++) {
       double t = 0, cpd = 0, et = 0, er = 0;
       for (size_t k = 0; k < m; k++)
         t += s[k].t[i], cpd += s[k].cpd[i], et += s[k].e_tr[i], er += s[k].e_rot[i];
       t /= (double)m, cpd /= (double)m, et /= (double)m, er /= (double)m;
-      double g = c / (2 * De), haff = 1 / ((1 + g * nu * t) * (1 + g * nu * t));
-      double xeq = c * hd_haff_tau(t, al, De, nu);
+      double g = c / (2 * De), u = 1 + g * nu * (t - ts), haff = Es / E0 / (u * u);
+      double xeq = c * (cs + hd_haff_tau(t - ts, al, De, nu));
       if (c == 0) haff = 1;
       fprintf(out, "%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%d\n", t, cpd,
-              et + er, (et + er) / E0, et, er, c * cpd, nu * t, haff, xeq, i < homog);
+              et + er, (et + er) / E0, et, er, c * cpd, nu * t, haff, xeq, i >= i0 && i < homog);
     }
   }
   for (size_t k = 0; k < m; k++) hd_series_free(&s[k]);
@@ -67,8 +74,10 @@ int haff_energy_main(int argc, char **argv) {
       "blocks separated by two blank lines, each headed by '# species alpha=.. a_over_d=.. ...'\n"
       "and a header line whose first field is the block's legend title (column 1 holds t).\n"
       "Columns: t cpd E E_over_E0 e_tr e_rot x=(1-alpha^2)cpd nu0t=nu0_eff*t\n"
-      "         haff_E_over_E0=1/(1+gamma nu0 t)^2 x_eq31=(1-alpha^2)*eq.(31) homog (1 if fitted)\n"
-      "  --no-detect, --thr X, --min-coll N, --cpd-max X: as for haff-fit (the fitted part)\n"
+      "         haff_E_over_E0=(E_s/E0)/(1+gamma nu0 (t-t_s))^2 x_eq31=(1-alpha^2)(cpd_s+eq.(31) at\n"
+      "         t-t_s) homog (1 if fitted); t_s, cpd_s, E_s: the HCS window's start (nu0: there)\n"
+      "  --no-detect, --thr X, --min-coll N, --cpd-max X, --cpd-skip X, --s-end X: as for\n"
+      "                   haff-fit (the fitted part, the HCS window)\n"
       "  -o FILE          write to FILE instead of stdout (- is stdout)\n";
   hd_cli_args a;
   int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT, usage, &a);

@@ -13,6 +13,10 @@
   "  --thr X          homogeneity: relative change of rate/sqrt(E) that ends it [0.1]\n"           \
   "  --min-coll N     homogeneity: pair collisions per window [2000]\n"                            \
   "  --cpd-max X      fit only samples with cpd <= X (0: no limit, the default)\n"                 \
+  "  --cpd-skip X     HCS window: leave out the initial transient cpd < X [5]\n"                   \
+  "  --s-end X        HCS window: ends where a 5-cpd block's mean s_perp exceeds X [10]\n"         \
+  "  --s-flag X       flag a group 'inhomogeneous' when its window's mean s_perp exceeds X [2.5]\n" \
+  "  --min-window X   ... or when most of its runs left the HCS within X cpd [40]\n"               \
   "  -o FILE          write to FILE instead of stdout (- is stdout)\n"
 
 /* Whether group g is in the papers' tables: one species in a periodic box, dimers (and disks
@@ -38,6 +42,22 @@ static size_t table_groups(const char *cmd, const hd_group *g, size_t ng, int wi
   return in;
 }
 
+/* Whether a table leaves group g out for being flagged inhomogeneous (not with keep); says so on
+ * stderr, and that a group without state measures could not be checked. */
+static int flagged_out(const char *cmd, const hd_group *g, const hd_group_fit *q, int keep) {
+  if (!q->measured)
+    fprintf(stderr,
+            "haff %s: note: alpha %g a/d %g: no state measures in its samples (logged before "
+            "schema 2): its homogeneity is not checked and D_e_sys has no box term\n",
+            cmd, g->alpha, g->a_over_d);
+  if (!q->flagged || keep) return 0;
+  fprintf(stderr,
+          "haff %s: note: left out alpha %g a/d %g N %ld: inhomogeneous (window mean s_perp %.3g, "
+          "%zu of %zu runs left the HCS early); --keep-flagged keeps it\n",
+          cmd, g->alpha, g->a_over_d, g->nbodies, q->s_perp, q->ended, q->m);
+  return 1;
+}
+
 /* Says on stderr why a group fitted from one run has no error (hd_ensemble_mean). */
 static void one_run_note(const char *cmd, const hd_group *g, size_t m) {
   if (m == 1)
@@ -52,7 +72,12 @@ int haff_fit_main(int argc, char **argv) {
   static const char usage[] =
       "usage: haff haff-fit DB [--run ID | --all] [--alpha-group] [fit options] [-o FILE]\n"
       "Fits eq. (31) tau(t) = ln(1 + gamma nu0 t)/gamma, gamma = (1-alpha^2)/(2 D_e), to the\n"
-      "homogeneous part of each run (tau = cpd).  One line per run, or per group of runs with\n"
+      "HCS window of each run (tau = cpd counted from the window's start): after the initial\n"
+      "transient (--cpd-skip), up to where the state measures (s_perp) or the collision rate\n"
+      "per sqrt(E) say the homogeneous cooling state ended; D_e_slope = -(1-alpha^2)/(slope of\n"
+      "ln E against cpd) on the same window needs no nu0.  Per group: D_e_sys, the systematic\n"
+      "error (window drift, estimator difference, correlated flow: docs/analysis.md), and flag\n"
+      "'inhomogeneous' for a box past the HCS's validity.  One line per run, or per group of runs with\n"
       "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m and density;\n"
       "mean +- standard error over the runs; nan with one run).  Per run, *_fit_err are the\n"
       "formal least-squares errors, which take the residuals of the cumulative cpd(t) as\n"
@@ -77,19 +102,23 @@ int haff_fit_main(int argc, char **argv) {
      * cumulative count cpd(t) are not independent, and runs scatter 10-25 times more */
     fprintf(out, "run\tspecies\talpha\ta_over_d\tn_used\tdetected\tt_end\tcpd_end\tD_e\t"
                  "D_e_fit_err\tnu0_eff\tnu0_eff_fit_err\tnu0_enskog\tratio\tratio_fit_err\t"
-                 "chi2_dof\n");
+                 "chi2_dof\tcpd_start\tD_e_slope\tD_e_slope_err\ts_perp\tflow_excess\t"
+                 "hcs_ended\n");
     for (size_t i = 0; i < n; i++) {
       const hd_run_fit *f = &fits[i];
       double nan = NAN;
       const hd_haff_fit *h = &f->haff;
       fprintf(
           out,
-          "%lld\t%s\t%g\t%g\t%zu\t%d\t%.6g\t%.6g\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.6g\t%.3g\t%.3g\n",
+          "%lld\t%s\t%g\t%g\t%zu\t%d\t%.6g\t%.6g\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.6g\t%.3g\t%.3g\t"
+          "%.6g\t%.6g\t%.3g\t%.4g\t%.4g\t%d\n",
           (long long)f->info.id, hd_ana_species_name(f->info.species, f->info.walls), f->info.alpha,
           f->info.a_over_d, f->n_used, f->homog.detected, f->t_end, f->cpd_end,
           f->haff_ok ? h->D_e : nan, f->haff_ok ? h->D_e_err : nan, f->haff_ok ? h->nu0 : nan,
           f->haff_ok ? h->nu0_err : nan, f->nu0_enskog, f->ratio, f->ratio_err,
-          f->haff_ok ? h->chi2 / (double)h->dof : nan);
+          f->haff_ok ? h->chi2 / (double)h->dof : nan, f->cpd_start, f->D_e_slope,
+          f->D_e_slope_err, f->hcs.have ? f->hcs.s_perp : nan,
+          f->hcs.have ? f->hcs.flow_excess : nan, f->hcs.ended);
     }
   } else {
     hd_group *g;
@@ -100,26 +129,21 @@ int haff_fit_main(int argc, char **argv) {
       return hd_cli_fail(argv[0], &err);
     }
     hd_cli_groups_warn(argv[0], g, ng);
-    fprintf(
-        out,
-        "alpha\ta_over_d\tspecies\truns\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\tratio\tratio_err\n");
-    double *v = malloc(3 * n * sizeof *v);
-    for (size_t j = 0; v && j < ng; j++) {
-      double *dv = v, *nv = v + n, *rv = v + 2 * n, r[6];
-      size_t m = 0;
-      for (size_t k = 0; k < g[j].n; k++) {
-        const hd_run_fit *f = &fits[g[j].idx[k]];
-        if (f->haff_ok) dv[m] = f->haff.D_e, nv[m] = f->haff.nu0, rv[m++] = f->ratio;
-      }
-      hd_ensemble_mean(dv, m, &r[0], &r[1]);
-      hd_ensemble_mean(nv, m, &r[2], &r[3]);
-      hd_ensemble_mean(rv, m, &r[4], &r[5]);
-      one_run_note(argv[0], &g[j], m);
-      fprintf(out, "%g\t%g\t%s\t%zu\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.3g\n", g[j].alpha,
-              g[j].a_over_d, hd_ana_species_name(g[j].species, g[j].walls), m, r[0], r[1], r[2],
-              r[3], r[4], r[5]);
+    fprintf(out, "alpha\ta_over_d\tspecies\truns\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\tratio\t"
+                 "ratio_err\tn\tcpd_start\tcpd_end\tD_e_slope\tD_e_slope_err\tD_e_sys\t"
+                 "sys_window\tsys_estimator\tsys_box\ts_perp\tflag\n");
+    for (size_t j = 0; j < ng; j++) {
+      hd_group_fit q;
+      hd_group_fit_do(fits, &g[j], &a.fit, &q);
+      one_run_note(argv[0], &g[j], q.m);
+      fprintf(out,
+              "%g\t%g\t%s\t%zu\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.3g\t%ld\t%.4g\t%.4g\t%.6g\t%.3g\t"
+              "%.3g\t%.3g\t%.3g\t%.3g\t%.4g\t%s\n",
+              g[j].alpha, g[j].a_over_d, hd_ana_species_name(g[j].species, g[j].walls), q.m, q.D_e,
+              q.D_e_err, q.nu0, q.nu0_err, q.ratio, q.ratio_err, g[j].nbodies, q.cpd_start,
+              q.cpd_end, q.D_e_slope, q.D_e_slope_err, q.D_e_sys, q.sys_window, q.sys_est,
+              q.sys_box, q.s_perp, q.flagged ? "inhomogeneous" : "");
     }
-    free(v);
     hd_groups_free(g, ng);
   }
   size_t fitted = 0; /* a script reading a row of nan should see a failure */
@@ -136,15 +160,17 @@ int haff_fit_main(int argc, char **argv) {
 
 int haff_table1_main(int argc, char **argv) {
   static const char usage[] =
-      "usage: haff table1 DB [--md] [fit options] [-o FILE]\n"
+      "usage: haff table1 DB [--md] [--keep-flagged] [fit options] [-o FILE]\n"
       "Table I: D_e and nu0_eff/nu0 (nu0: Enskog eq. 29 for disks of diameter d, the body mass "
       "and\n"
       "density, at the initial translational temperature) per (alpha, a/d), mean +- standard "
       "error\n"
       "over the runs (nan when a group has one run).  a_over_d = 0: hard disks.\n"
-      "Columns: alpha a_over_d D_e D_e_err ratio ratio_err runs (ratio = nu0_eff/nu0, as in "
-      "haff-fit)\n"
-      "  --md             a Markdown table instead of TSV\n" FIT_OPTS_HELP;
+      "Columns: alpha a_over_d D_e D_e_err ratio ratio_err runs D_e_sys cpd_start cpd_end flag\n"
+      "(ratio = nu0_eff/nu0, as in haff-fit; D_e_sys the systematic error, cpd_* the mean HCS\n"
+      "window; groups flagged inhomogeneous are left out, with a note)\n"
+      "  --md             a Markdown table instead of TSV\n"
+      "  --keep-flagged   keep the groups flagged inhomogeneous\n" FIT_OPTS_HELP;
   hd_cli_args a;
   int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD, usage, &a);
   if (rc) return rc < 0 ? 0 : rc;
@@ -159,42 +185,39 @@ int haff_table1_main(int argc, char **argv) {
     return 2;
   }
   FILE *out = hd_cli_out(&a);
-  double *v = malloc(2 * n * sizeof *v);
-  if (!out || !v) {
-    free(v), hd_cli_groups_free(db, fits, g, ng);
-    if (out) hd_cli_close(out, &a);
+  if (!out) {
+    hd_cli_groups_free(db, fits, g, ng);
     return 1;
   }
   if (a.md)
-    fprintf(out,
-            "| α | a/d | D_e | ±ΔD_e | ν0_eff/ν0 | ±Δ | runs |\n|---|---|---|---|---|---|---|\n");
+    fprintf(out, "| α | a/d | D_e | ±stat | ±sys | ν0_eff/ν0 | ±Δ | runs | cpd window | flag |\n"
+                 "|---|---|---|---|---|---|---|---|---|---|\n");
   else
-    fprintf(out, "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\n");
+    fprintf(out, "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\tD_e_sys\tcpd_start\t"
+                 "cpd_end\tflag\n");
   for (size_t j = 0; j < ng; j++) {
     if (!in_table(&g[j], 1)) continue;
-    double *dv = v, *rv = v + n, D, Derr, R, Rerr;
-    size_t m = 0;
-    for (size_t k = 0; k < g[j].n; k++) {
-      const hd_run_fit *f = &fits[g[j].idx[k]];
-      if (f->haff_ok) dv[m] = f->haff.D_e, rv[m++] = f->ratio;
-    }
-    hd_ensemble_mean(dv, m, &D, &Derr);
-    hd_ensemble_mean(rv, m, &R, &Rerr);
-    one_run_note(argv[0], &g[j], m);
+    hd_group_fit q;
+    hd_group_fit_do(fits, &g[j], &a.fit, &q);
+    if (flagged_out(argv[0], &g[j], &q, a.keep_flagged)) continue;
+    one_run_note(argv[0], &g[j], q.m);
     if (a.md)
-      fprintf(out, "| %g | %g | %.4f | %.2g | %.4f | %.2g | %zu |\n", g[j].alpha, g[j].a_over_d, D,
-              Derr, R, Rerr, m);
+      fprintf(out, "| %g | %g | %.4f | %.2g | %.2g | %.4f | %.2g | %zu | %.0f–%.0f | %s |\n",
+              g[j].alpha, g[j].a_over_d, q.D_e, q.D_e_err, q.D_e_sys, q.ratio, q.ratio_err, q.m,
+              q.cpd_start, q.cpd_end, q.flagged ? "inhomogeneous" : "");
     else
-      fprintf(out, "%g\t%g\t%.6g\t%.3g\t%.6g\t%.3g\t%zu\n", g[j].alpha, g[j].a_over_d, D, Derr, R,
-              Rerr, m);
+      fprintf(out, "%g\t%g\t%.6g\t%.3g\t%.6g\t%.3g\t%zu\t%.3g\t%.4g\t%.4g\t%s\n", g[j].alpha,
+              g[j].a_over_d, q.D_e, q.D_e_err, q.ratio, q.ratio_err, q.m, q.D_e_sys, q.cpd_start,
+              q.cpd_end, q.flagged ? "inhomogeneous" : "");
   }
-  free(v), hd_cli_groups_free(db, fits, g, ng);
+  hd_cli_groups_free(db, fits, g, ng);
   return hd_cli_close(out, &a);
 }
 
 int haff_table2_main(int argc, char **argv) {
   static const char usage[] =
-      "usage: haff table2 DB [--md] [--k-ci ac|ols|runs] [--cpd-min-k X] [fit options] [-o FILE]\n"
+      "usage: haff table2 DB [--md] [--keep-flagged] [--k-ci ac|ols|runs] [--cpd-min-k X] [fit "
+      "options] [-o FILE]\n"
       "Table II: K = E_tr/E_rot fitted as a0 + a1 tau (tau = cpd) by least squares on the\n"
       "homogeneous part of each dimer run, with 99% Student-t intervals, per (alpha, a/d).\n"
       "Columns: alpha a_over_d a0 a0_lo a0_hi a1 a1_lo a1_hi\n"
@@ -203,7 +226,8 @@ int haff_table2_main(int argc, char **argv) {
       "  --k-ci ols       the same with plain OLS errors (the paper's test; too narrow)\n"
       "  --k-ci runs      mean over runs, t interval with runs-1 dof (needs >= 2 runs)\n"
       "  --cpd-min-k X    skip the transient cpd < X [0]\n"
-      "  --md             a Markdown table instead of TSV\n" FIT_OPTS_HELP;
+      "  --md             a Markdown table instead of TSV\n"
+      "  --keep-flagged   keep the groups flagged inhomogeneous (left out by default)\n" FIT_OPTS_HELP;
   hd_cli_args a;
   int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD | HD_OPT_KCI,
                         usage, &a);
@@ -235,6 +259,9 @@ int haff_table2_main(int argc, char **argv) {
   hd_error err;
   for (size_t j = 0; j < ng; j++) {
     if (!in_table(&g[j], 0)) continue;
+    hd_group_fit q;
+    hd_group_fit_do(fits, &g[j], &a.fit, &q);
+    if (flagged_out(argv[0], &g[j], &q, a.keep_flagged)) continue;
     double r[6];
     if (hd_combine_k(fits, g[j].idx, g[j].n, a.kmode, a.fit.level, r, &err)) {
       fprintf(stderr, "haff %s: alpha %g a/d %g: %s\n", argv[0], g[j].alpha, g[j].a_over_d,

@@ -14,9 +14,91 @@ static void stat_line(FILE *out, size_t s, const hd_snapshot *sn, const char *va
           var, v->n, v->scale, v->kurt, v->a2, v->a2_err, v->ks_d, v->ks_p);
 }
 
+/* --pool: one histogram of the snapshots of every run (or --run) of one species whose cpd lies
+ * in the run's HCS window (hd_run_fit_do: after the transient, before the end of homogeneity),
+ * each scaled by its own s as in the per-snapshot blocks. */
+static int veldist_pool(const hd_cli_args *a, const char *cmd) {
+  sqlite3 *db;
+  hd_run_fit *fits;
+  size_t n;
+  int rc = hd_cli_fits(a, cmd, &db, &fits, &n);
+  if (rc) return rc;
+  int bins = a->bins ? a->bins : 40, species = fits[0].info.species;
+  gsl_histogram *h[3];
+  for (int k = 0; k < 3; k++) {
+    h[k] = gsl_histogram_alloc((size_t)bins);
+    gsl_histogram_set_ranges_uniform(h[k], -a->range, a->range);
+  }
+  double nv = 0, nw = 0, c0 = INFINITY, c1 = -INFINITY;
+  size_t runs = 0, snaps = 0, other = 0;
+  hd_error err;
+  for (size_t r = 0; r < n && !rc; r++) {
+    const hd_run_fit *f = &fits[r];
+    if (f->info.species != species) {
+      other++;
+      continue;
+    }
+    int dimers = species != HD_ANA_DISKS;
+    hd_snapshot *sn;
+    size_t ns, used = 0;
+    if (hd_ana_snapshots(db, f->info.id, a->label, dimers ? "dimer" : "disk", &sn, &ns, &err)) {
+      rc = hd_cli_fail(cmd, &err);
+      break;
+    }
+    for (size_t s = 0; s < ns; s++) {
+      hd_velstats vw, v2;
+      if (isnan(sn[s].cpd) || sn[s].cpd < f->cpd_start || sn[s].cpd > f->cpd_end ||
+          hd_velstats_2d(sn[s].vx, sn[s].vy, sn[s].n, &v2, &err))
+        continue;
+      int have_w = dimers && !hd_velstats_1d(sn[s].omega, sn[s].n, 0, &vw, &err);
+      for (size_t i = 0; i < sn[s].n; i++) {
+        gsl_histogram_increment(h[0], (sn[s].vx[i] - v2.mean_x) / v2.scale);
+        gsl_histogram_increment(h[1], (sn[s].vy[i] - v2.mean_y) / v2.scale);
+        if (have_w) gsl_histogram_increment(h[2], sn[s].omega[i] / vw.scale);
+      }
+      nv += (double)sn[s].n, nw += have_w ? (double)sn[s].n : 0;
+      c0 = fmin(c0, sn[s].cpd), c1 = fmax(c1, sn[s].cpd);
+      used++;
+    }
+    hd_snapshots_free(sn, ns);
+    snaps += used, runs += used > 0;
+  }
+  if (other)
+    fprintf(stderr, "haff %s: note: --pool left out %zu run%s of another species than the first\n",
+            cmd, other, other == 1 ? "" : "s");
+  if (!rc && snaps == 0) {
+    fprintf(stderr, "haff %s: --pool: no '%s' snapshot inside a run's HCS window\n", cmd, a->label);
+    rc = 2;
+  }
+  FILE *out = rc ? NULL : hd_cli_out(a);
+  if (!rc && !out) rc = 1;
+  if (!rc) {
+    double w = 2 * a->range / bins;
+    /* one block, headed like the per-snapshot ones (its first field is the legend title) */
+    fprintf(out, "pooled: %zu runs, %zu snapshots, cpd %.3g-%.3g\tcpd\tc\tp_vx\tp_vy\tp_omega\t"
+                 "gauss\tn\n",
+            runs, snaps, c0, c1);
+    for (size_t k = 0; k < (size_t)bins; k++) {
+      double lo, hi;
+      gsl_histogram_get_range(h[0], k, &lo, &hi);
+      double c = 0.5 * (lo + hi);
+      fprintf(out, "0\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.0f\n", 0.5 * (c0 + c1), c,
+              gsl_histogram_get(h[0], k) / (nv * w), gsl_histogram_get(h[1], k) / (nv * w),
+              nw > 0 ? gsl_histogram_get(h[2], k) / (nw * w) : NAN,
+              exp(-0.5 * c * c) / sqrt(2 * M_PI), nv);
+    }
+    rc = hd_cli_close(out, a);
+  }
+  for (int k = 0; k < 3; k++) gsl_histogram_free(h[k]);
+  free(fits);
+  sqlite3_close(db);
+  return rc;
+}
+
 int haff_veldist_main(int argc, char **argv) {
   static const char usage[] =
       "usage: haff veldist DB --run ID [--stats] [--bins B] [--range X] [--label L] [-o FILE]\n"
+      "       haff veldist DB --pool [--run ID] [--bins B] [--range X] [--label L] [-o FILE]\n"
       "Fig. 6: histograms of the scaled velocities c = (v - <v>)/s of every snapshot (label\n"
       "'velocities', taken at [log] velocities_at), s the snapshot's own per-component rms\n"
       "(vx, vy: sqrt(<|V-<V>|^2>/2); omega: sqrt(<omega^2>), not centred), so that a Maxwellian\n"
@@ -25,13 +107,26 @@ int haff_veldist_main(int argc, char **argv) {
       "Columns: snap cpd c p_vx p_vy p_omega gauss   (p_omega NaN for disks)\n"
       "  --stats          instead: one line per snapshot and variable (vx, vy, omega, v2d):\n"
       "                   snap t cpd var n scale kurt a2 a2_err ks_d ks_p (docs/analysis.md)\n"
+      "  --pool           one block instead: every snapshot of every finished run (or --run) of\n"
+      "                   the first run's species whose cpd is in the run's HCS window (haff-fit's\n"
+      "                   window; fit options apply), pooled; extra column n (values per component)\n"
       "  --bins B         bins [40]     --range X   histogram on [-X, X] [5]\n"
       "  --label L        states label [velocities] (e.g. initial, final)\n"
       "  -o FILE          write to FILE instead of stdout (- is stdout)\n";
   hd_cli_args a;
   sqlite3 *db;
   hd_run_info ri;
-  int rc = hd_cli_one_run(argc, argv, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS, usage, &a, &db, &ri);
+  int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT, usage, &a);
+  if (rc) return rc < 0 ? 0 : rc;
+  if (a.pool) {
+    if (a.stats) {
+      fprintf(stderr, "haff %s: --pool and --stats exclude each other\n", argv[0]);
+      return 2;
+    }
+    return veldist_pool(&a, argv[0]);
+  }
+  rc = hd_cli_one_run(argc, argv, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT, usage, &a,
+                      &db, &ri);
   if (rc) return rc < 0 ? 0 : rc;
   if (ri.species == HD_ANA_OTHER) {
     sqlite3_close(db);

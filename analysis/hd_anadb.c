@@ -174,15 +174,21 @@ int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_err
 
 void hd_series_free(hd_series *s) {
   free(s->t), free(s->coll), free(s->cpd), free(s->e_tr), free(s->e_rot);
+  free(s->s_perp), free(s->flow_frac), free(s->flow_chaos);
   memset(s, 0, sizeof *s);
 }
 
 int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err) {
   memset(s, 0, sizeof *s);
   sqlite3_stmt *st;
+  /* a file of schema < 2 has no state measures: they read as NULL */
+  int v2 = sqlite3_prepare_v2(db, "SELECT s_perp FROM samples LIMIT 0", -1, &st, NULL) == SQLITE_OK;
+  sqlite3_finalize(st);
   if (sqlite3_prepare_v2(db,
-                         "SELECT t, collisions, cpd, e_tr, e_rot FROM samples WHERE run = ?1 "
-                         "ORDER BY t, collisions",
+                         v2 ? "SELECT t, collisions, cpd, e_tr, e_rot, s_perp, flow_frac, "
+                              "flow_chaos FROM samples WHERE run = ?1 ORDER BY t, collisions"
+                            : "SELECT t, collisions, cpd, e_tr, e_rot, NULL, NULL, NULL FROM "
+                              "samples WHERE run = ?1 ORDER BY t, collisions",
                          -1, &st, NULL) != SQLITE_OK)
     return hd_error_set(err, HD_EIO, "reading samples: %s", sqlite3_errmsg(db));
   sqlite3_bind_int64(st, 1, run);
@@ -191,8 +197,9 @@ int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err) {
   while ((r = sqlite3_step(st)) == SQLITE_ROW) {
     if (s->n == cap) {
       cap = cap ? 2 * cap : 256;
-      double **cols[5] = {&s->t, &s->coll, &s->cpd, &s->e_tr, &s->e_rot};
-      for (int c = 0; c < 5 && rc == HD_OK; c++) {
+      double **cols[8] = {&s->t,      &s->coll,   &s->cpd,       &s->e_tr,
+                          &s->e_rot,  &s->s_perp, &s->flow_frac, &s->flow_chaos};
+      for (int c = 0; c < 8 && rc == HD_OK; c++) {
         double *p = realloc(*cols[c], cap * sizeof *p);
         if (!p)
           rc = hd_error_set(err, HD_ENOMEM, "reading samples: out of memory");
@@ -206,6 +213,10 @@ int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err) {
     s->cpd[s->n] = sqlite3_column_double(st, 2);
     s->e_tr[s->n] = sqlite3_column_double(st, 3);
     s->e_rot[s->n] = sqlite3_column_double(st, 4);
+    double *q[3] = {s->s_perp, s->flow_frac, s->flow_chaos};
+    for (int c = 0; c < 3; c++)
+      q[c][s->n] = sqlite3_column_type(st, 5 + c) == SQLITE_NULL ? NAN
+                                                                  : sqlite3_column_double(st, 5 + c);
     s->n++;
   }
   if (rc == HD_OK && r != SQLITE_DONE)

@@ -61,6 +61,8 @@ int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_err
 typedef struct hd_series {
   size_t n;
   double *t, *coll, *cpd, *e_tr, *e_rot;
+  /* state measures (db/schema.sql, samples; NaN when NULL or in a file of schema < 2) */
+  double *s_perp, *flow_frac, *flow_chaos;
 } hd_series;
 int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err);
 void hd_series_free(hd_series *s);

@@ -3,6 +3,7 @@
 #include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "hd_homog.h"
 
@@ -65,5 +66,50 @@ int hd_homog_detect(const double *t, const double *coll, const double *e, size_t
   }
   out->t_end = t[out->n_end - 1];
   free(start), free(end), free(r), free(tmp);
+  return HD_OK;
+}
+
+hd_hcs_opts hd_hcs_defaults(void) {
+  hd_hcs_opts o = {5.0, 5.0, 10.0};
+  return o;
+}
+
+int hd_hcs_detect(const double *cpd, const double *s_perp, const double *flow_frac,
+                  const double *flow_chaos, size_t n, const hd_hcs_opts *o, hd_hcs *out,
+                  hd_error *err) {
+  if (n < 1) return hd_error_set(err, HD_EINPUT, "HCS window: no samples");
+  if (!(o->cpd_skip >= 0) || !(o->block_cpd > 0) || !(o->s_end > 0))
+    return hd_error_set(err, HD_EINPUT, "HCS window: bad options");
+  memset(out, 0, sizeof *out);
+  size_t i0 = 0;
+  while (i0 < n && cpd[i0] < o->cpd_skip) i0++;
+  if (i0 == n) i0 = n - 1; /* a run shorter than the transient: its last sample */
+  out->n_start = i0, out->n_end = n;
+  out->s_perp = out->flow_excess = NAN;
+  for (size_t i = i0; i < n; i++) out->have |= !isnan(s_perp[i]);
+  if (!out->have) return HD_OK;
+  for (size_t b = i0; b < n;) { /* block [b, e) */
+    size_t e = b, m = 0;
+    double sum = 0;
+    while (e < n && (e == b || cpd[e] - cpd[b] < o->block_cpd)) {
+      if (!isnan(s_perp[e])) sum += s_perp[e], m++;
+      e++;
+    }
+    if (e == n && cpd[n - 1] - cpd[b] < o->block_cpd) break; /* a short last block says little */
+    if (m > 0 && sum / (double)m > o->s_end) {
+      out->ended = 1;
+      out->n_end = b + 1 > i0 + 1 ? b + 1 : i0 + 1; /* the block's first sample is kept */
+      break;
+    }
+    b = e;
+  }
+  double ss = 0, fe = 0;
+  size_t ms = 0, mf = 0;
+  for (size_t i = out->n_start; i < out->n_end; i++) {
+    if (!isnan(s_perp[i])) ss += s_perp[i], ms++;
+    if (!isnan(flow_frac[i]) && !isnan(flow_chaos[i])) fe += flow_frac[i] - flow_chaos[i], mf++;
+  }
+  out->s_perp = ms ? ss / (double)ms : NAN;
+  out->flow_excess = mf ? fe / (double)mf : NAN;
   return HD_OK;
 }

@@ -41,4 +41,37 @@ hd_homog_opts hd_homog_defaults(void);
 int hd_homog_detect(const double *t, const double *coll, const double *e, size_t n,
                     const hd_homog_opts *o, hd_homog *out, hd_error *err);
 
+/* The homogeneous cooling state's window from the state measures of `samples` (schema 2):
+ * it starts after the initial transient (cpd >= cpd_skip: the velocity distribution relaxes
+ * from the initial Maxwellian to the HCS's within a few cpd, and eq. 31 fitted across it is
+ * biased up) and ends where the box's shear modes have grown: at the start of the first block
+ * of samples (spanning >= block_cpd) whose mean s_perp (the transverse momentum structure factor
+ * at the box's smallest wave vectors, 1 without correlations) exceeds s_end.  docs/analysis.md,
+ * "The HCS window". */
+typedef struct hd_hcs_opts {
+  double cpd_skip;  /* transient left out [5] */
+  double block_cpd; /* cpd per block of s_perp [5] */
+  double s_end;     /* block mean of s_perp that ends the HCS [10] */
+} hd_hcs_opts;
+
+/* Result of hd_hcs_detect. */
+typedef struct hd_hcs {
+  int have;           /* 1 if the samples carry state measures (else only n_start is set) */
+  size_t n_start;     /* first sample of the window (first with cpd >= cpd_skip) */
+  size_t n_end;       /* samples [n_start, n_end) are in the window (n if it did not end) */
+  int ended;          /* 1 if s_perp ended it before the last sample */
+  double s_perp;      /* mean s_perp over the window */
+  double flow_excess; /* mean over the window of flow_frac - flow_chaos: the fraction of the
+                       * energy in correlated flow at the box's largest scales */
+} hd_hcs;
+
+/* The defaults above. */
+hd_hcs_opts hd_hcs_defaults(void);
+
+/* Finds the window on n samples (cpd ascending; s_perp, flow_frac, flow_chaos NaN where not
+ * recorded).  Returns HD_OK or HD_EINPUT (n < 1, bad options). */
+int hd_hcs_detect(const double *cpd, const double *s_perp, const double *flow_frac,
+                  const double *flow_chaos, size_t n, const hd_hcs_opts *o, hd_hcs *out,
+                  hd_error *err);
+
 #endif

@@ -17,6 +17,9 @@ hd_fit_opts hd_fit_opts_defaults(void) {
   o.cpd_max = 0;
   o.cpd_min_k = 0;
   o.level = 0.99;
+  o.hcs = hd_hcs_defaults();
+  o.s_flag = 2.5;
+  o.min_window = 40;
   return o;
 }
 
@@ -39,9 +42,7 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
     goto done;
   }
   for (size_t i = 0; i < s.n; i++) e[i] = s.e_tr[i] + s.e_rot[i];
-  out->E0 = e[0];
-  out->T0 = s.e_tr[0];
-  size_t nu = s.n;
+  size_t nu = s.n, n0 = 0;
   if (o->detect) {
     hd_error e2;
     if (hd_homog_detect(s.t, s.coll, e, s.n, &o->homog, &out->homog, &e2) != HD_OK) {
@@ -49,17 +50,33 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
     } else {
       nu = out->homog.n_end;
     }
+    if (hd_hcs_detect(s.cpd, s.s_perp, s.flow_frac, s.flow_chaos, s.n, &o->hcs, &out->hcs, &e2) !=
+        HD_OK) {
+      snprintf(out->why, sizeof out->why, "%.200s", e2.msg);
+    } else {
+      n0 = out->hcs.n_start;
+      if (out->hcs.n_end < nu) nu = out->hcs.n_end;
+    }
+    if (nu < n0 + 3) n0 = nu > 3 ? nu - 3 : 0; /* too short a window: the fit starts earlier */
   } else {
     out->homog.n_end = s.n;
   }
   if (o->cpd_max > 0)
-    while (nu > 1 && s.cpd[nu - 1] > o->cpd_max) nu--;
+    while (nu > n0 + 1 && s.cpd[nu - 1] > o->cpd_max) nu--;
+  out->n_start = n0;
   out->n_used = nu;
+  out->t_start = s.t[n0];
+  out->cpd_start = s.cpd[n0];
   out->t_end = s.t[nu - 1];
   out->cpd_end = s.cpd[nu - 1];
+  out->E0 = e[n0];
+  out->T0 = s.e_tr[n0];
+  /* eq. (31) from the window's first sample: t and cpd counted from there (Haff's law is the
+   * same from any origin, with nu0 the rate there) */
+  for (size_t i = n0; i < nu; i++) k[i - n0] = s.t[i] - s.t[n0], x[i - n0] = s.cpd[i] - s.cpd[n0];
 
   hd_error fe;
-  out->haff_ok = hd_fit_haff_log(s.t, s.cpd, nu, ri->alpha, &out->haff, &fe) == HD_OK;
+  out->haff_ok = hd_fit_haff_log(k, x, nu - n0, ri->alpha, &out->haff, &fe) == HD_OK;
   if (!out->haff_ok) snprintf(out->why, sizeof out->why, "eq. 31 fit: %.200s", fe.msg);
   out->nu0_enskog = hd_enskog_nu0(ri->density, ri->d, out->T0, ri->mass, ri->eta_disk);
   if (out->haff_ok && out->nu0_enskog > 0) {
@@ -68,8 +85,25 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
   } else {
     out->ratio = out->ratio_err = NAN;
   }
+  /* the slope of ln E against cpd on the window and on its two halves */
+  double g1 = 1 - ri->alpha * ri->alpha, mid = 0.5 * (s.cpd[n0] + s.cpd[nu - 1]);
+  out->D_e_slope = out->D_e_slope_err = out->D_e_half[0] = out->D_e_half[1] = NAN;
+  for (int h = -1; h < 2; h++) {
+    size_t m = 0;
+    for (size_t i = n0; i < nu; i++)
+      if (e[i] > 0 && (h < 0 || (h == 0) == (s.cpd[i] <= mid)))
+        x[m] = s.cpd[i], k[m++] = log(e[i]);
+    hd_linfit lf;
+    if (g1 > 0 && hd_fit_linear_t(x, k, m, 0.68, &lf, &fe) == HD_OK && lf.a1 < 0) {
+      double D = -g1 / lf.a1;
+      if (h < 0)
+        out->slope_ok = 1, out->D_e_slope = D, out->D_e_slope_err = D * lf.a1_err_ac / -lf.a1;
+      else
+        out->D_e_half[h] = D;
+    }
+  }
   size_t m = 0;
-  for (size_t i = 0; i < nu; i++)
+  for (size_t i = n0; i < nu; i++)
     if (s.cpd[i] >= o->cpd_min_k && s.e_rot[i] > 0)
       x[m] = s.cpd[i], k[m++] = s.e_tr[i] / s.e_rot[i];
   if (hd_ana_dimers(ri->species)) {
@@ -125,6 +159,63 @@ int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *n
 void hd_groups_free(hd_group *g, size_t ng) {
   for (size_t i = 0; g && i < ng; i++) free(g[i].idx);
   free(g);
+}
+
+/* sqrt(max(0, d^2 - se^2)): the part of a mean difference d that its standard error se does not
+ * explain (0 for NaN). */
+static double excess(double d, double se) {
+  double v = d * d - (isnan(se) ? 0 : se * se);
+  return isnan(d) || !(v > 0) ? 0 : sqrt(v);
+}
+
+void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opts *o,
+                     hd_group_fit *out) {
+  memset(out, 0, sizeof *out);
+  size_t n = g->n;
+  double *v = malloc(10 * (n ? n : 1) * sizeof *v);
+  if (!v) { /* every number NaN: the caller prints them as such */
+    double nan = NAN;
+    *out = (hd_group_fit){0, nan, nan, nan, nan, nan, nan, nan, nan, nan,
+                          nan, nan, nan, nan, nan, nan, 0, 0, 0};
+    return;
+  }
+  double *D = v, *nu = v + n, *ra = v + 2 * n, *Ds = v + 3 * n, *dh = v + 4 * n, *de = v + 5 * n,
+         *c0 = v + 6 * n, *c1 = v + 7 * n, *sp = v + 8 * n, *fx = v + 9 * n;
+  size_t m = 0, ms = 0, mh = 0, me = 0, mp = 0, mf = 0;
+  for (size_t k = 0; k < n; k++) {
+    const hd_run_fit *f = &fits[g->idx[k]];
+    if (!f->haff_ok) continue;
+    D[m] = f->haff.D_e, nu[m] = f->haff.nu0, ra[m] = f->ratio;
+    c0[m] = f->cpd_start, c1[m++] = f->cpd_end;
+    if (f->slope_ok) Ds[ms++] = f->D_e_slope, de[me++] = f->haff.D_e - f->D_e_slope;
+    if (!isnan(f->D_e_half[0]) && !isnan(f->D_e_half[1]))
+      dh[mh++] = f->D_e_half[1] - f->D_e_half[0];
+    if (f->hcs.have) {
+      out->measured = 1;
+      if (!isnan(f->hcs.s_perp)) sp[mp++] = f->hcs.s_perp;
+      if (!isnan(f->hcs.flow_excess)) fx[mf++] = f->hcs.flow_excess;
+      if (f->hcs.ended && f->cpd_end - f->cpd_start < o->min_window) out->ended++;
+    }
+  }
+  out->m = m;
+  double s, tmp;
+  hd_ensemble_mean(D, m, &out->D_e, &out->D_e_err);
+  hd_ensemble_mean(nu, m, &out->nu0, &out->nu0_err);
+  hd_ensemble_mean(ra, m, &out->ratio, &out->ratio_err);
+  hd_ensemble_mean(Ds, ms, &out->D_e_slope, &out->D_e_slope_err);
+  hd_ensemble_mean(c0, m, &out->cpd_start, &tmp);
+  hd_ensemble_mean(c1, m, &out->cpd_end, &tmp);
+  hd_ensemble_mean(dh, mh, &tmp, &s);
+  out->sys_window = 0.5 * excess(tmp, s);
+  hd_ensemble_mean(de, me, &tmp, &s);
+  out->sys_est = excess(tmp, s);
+  hd_ensemble_mean(sp, mp, &out->s_perp, &tmp);
+  hd_ensemble_mean(fx, mf, &tmp, &s);
+  out->sys_box = mf && !isnan(out->D_e) ? out->D_e * fmax(0, tmp) : 0;
+  out->D_e_sys = sqrt(out->sys_window * out->sys_window + out->sys_est * out->sys_est +
+                      out->sys_box * out->sys_box);
+  out->flagged = out->measured && ((mp && out->s_perp > o->s_flag) || 2 * out->ended > m);
+  free(v);
 }
 
 void hd_ensemble_mean(const double *vals, size_t n, double *mean, double *se) {

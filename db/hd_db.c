@@ -439,7 +439,9 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
   if (!rc)
     rc = prepare(db, &db->ins_sample,
                  "INSERT INTO samples (run, t, collisions, cpd, e_tr, e_rot, e_tr_dimer, "
-                 "e_rot_dimer, e_tr_disk) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)",
+                 "e_rot_dimer, e_tr_disk, flow_frac, flow_chaos, count_var, s_rho, s_perp, "
+                 "s_par) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, "
+                 "?15)",
                  err);
   if (!rc)
     rc = prepare(db, &db->ins_state,
@@ -756,6 +758,12 @@ static int put_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *
   bind_real(st, 7, r->e_tr_dimer);
   bind_real(st, 8, r->e_rot_dimer);
   bind_real(st, 9, r->e_tr_disk);
+  bind_real(st, 10, r->flow_frac);
+  bind_real(st, 11, r->flow_chaos);
+  bind_real(st, 12, r->count_var);
+  bind_real(st, 13, r->s_rho);
+  bind_real(st, 14, r->s_perp);
+  bind_real(st, 15, r->s_par);
   return batch_step(db, st, err, "insert sample");
 }
 

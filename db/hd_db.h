@@ -59,6 +59,8 @@ typedef struct hd_sample_row {
   double e_tr_dimer;  /* per dimer, in mixtures: translational (NaN -> NULL when absent) */
   double e_rot_dimer; /*   rotational */
   double e_tr_disk;   /* per disk, in mixtures (NaN -> NULL when absent) */
+  /* state measures (hd_sim.h, hd_state_measures; NaN -> NULL, e.g. for rods): */
+  double flow_frac, flow_chaos, count_var, s_rho, s_perp, s_par;
 } hd_sample_row;
 
 /* Body kinds in hd_state_rec.kind, stored as states.kind text: HD_KIND_DISK = 0 'disk',

@@ -9,6 +9,9 @@
 --      them (ALTER TABLE runs ADD COLUMN cpd, CREATE TABLE provenance): nothing is rewritten,
 --      and readers do not need either.
 PRAGMA journal_mode = WAL;
+-- Schema version (PRAGMA user_version): 0 or 1 before versions were kept; 2 adds the state
+-- measures to `samples`.  Opening an older file for writing adds the missing columns
+-- (hd_db.c, upgrade_schema); readers take them as NULL when absent.
 
 -- One row per run.  status: running, done, interrupted, collapsed, failed.
 -- A process killed with -9 leaves 'running'; `haff resume` accepts it.
@@ -79,7 +82,15 @@ CREATE TABLE IF NOT EXISTS samples (
   cpd        REAL NOT NULL,
   e_tr       REAL NOT NULL,
   e_rot      REAL NOT NULL,
-  e_tr_dimer REAL, e_rot_dimer REAL, e_tr_disk REAL  -- per species, NULL when absent
+  e_tr_dimer REAL, e_rot_dimer REAL, e_tr_disk REAL, -- per species, NULL when absent
+  -- State measures (schema version 2; NULL for rods and in runs logged before them), each with
+  -- its value for an uncorrelated gas: docs/analysis.md, "State measures".
+  flow_frac  REAL,  -- energy of the momentum field on a 4 x 4 grid / translational energy
+  flow_chaos REAL,  -- flow_frac's value for independent velocities (about 16/N)
+  count_var  REAL,  -- variance / mean of the counts in the 4 x 4 cells (Poisson: 1)
+  s_rho      REAL,  -- density structure factor at the 4 smallest wave vectors (~S(0))
+  s_perp     REAL,  -- transverse (shear) momentum structure factor there (uncorrelated: 1)
+  s_par      REAL   -- longitudinal momentum structure factor there (uncorrelated: 1)
 );
 
 -- Body states: label 'initial', 'final', 'checkpoint', 'velocities' (at [log] velocities_at).

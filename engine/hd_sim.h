@@ -172,6 +172,26 @@ void hd_sim_body_now(const hd_sim *s, int32_t i, hd_kin *k);
  * translational and rotational. */
 void hd_sim_energy(const hd_sim *s, int sp, double *e_tr, double *e_rot);
 
+/* O(N) measures of the state at the current time (recorded with every sample; docs/analysis.md,
+ * "State measures").  Each has the value given for a gas without correlations (molecular chaos,
+ * independent positions and velocities): */
+typedef struct hd_state_measures {
+  double flow_frac;  /* energy of the momentum field averaged on a 4 x 4 grid of the box,
+                      * sum_c |P_c|^2/(2 M_c), over the translational energy */
+  double flow_chaos; /* flow_frac's value without velocity correlations,
+                      * sum_c (sum_{i in c} m_i^2 v_i^2)/M_c / sum_i m_i v_i^2 (about 16/N) */
+  double count_var;  /* variance of the bodies' counts in the 4 x 4 cells over their mean:
+                      * 1 for Poisson, S(0) of the gas (0.8 for disks at 0.05) when uncorrelated */
+  double s_rho;      /* |rho_k|^2 / N at the box's 4 smallest wave vectors (mean): ~S(0);
+                      * s_perp and s_par are means over those where their normalisation > 0 */
+  double s_perp;     /* |p_k . t|^2 / sum m^2 (v . t)^2 there, t normal to k (shear): 1 */
+  double s_par;      /* the same along k (sound): 1 */
+} hd_state_measures;
+
+/* Fills *out from the bodies at the current time (COM positions and velocities, body masses);
+ * does not change the simulation.  NaN where undefined (no body, no motion). */
+void hd_sim_state(const hd_sim *s, hd_state_measures *out);
+
 /* Total momentum and angular momentum about the origin (unwrapped positions not tracked, so the
  * angular momentum is meaningful only without walls or for spin). */
 void hd_sim_momentum(const hd_sim *s, double *px, double *py);

@@ -14,31 +14,38 @@ set datafile separator "\t"
 stats in using 1 nooutput
 nb = STATS_blocks
 set multiplot
+# the inset's area (with its tick labels) is opaque: a white box over the main panel's points
+# (bottom left, below the curves, where the main panel has no data; the key goes top right)
+set object 1 rectangle from screen 0.115, 0.125 to screen 0.585, 0.555 fillcolor rgb "white" \
+    fillstyle solid 1.0 border lc rgb "gray70" front
 set logscale y
 set format y "10^{%L}"
 set xlabel "(1 - α^2) N_{atcoll}/N"
 set ylabel "E(t) / E(0)"
-set key bottom left
+set key top right
 set xrange [0:*]
 if (exists("ref")) {
   stats ref using 1 nooutput
   nr = STATS_blocks
   plot for [i=0:nb-1] in index i using 7:4 with points pt 7 ps 0.5 title columnheader(1), \
        for [i=0:nr-1] ref index i using 7:4 with lines dt i+2 lw 2 lc rgb "black" title columnheader(1), \
-       exp(-x/3) with lines dt 3 lw 1 lc rgb "gray50" title "exp(-x/3)"
+       exp(-x/3) with lines dt 2 lw 3 lc rgb "#d62728" title "exp(-x/3)"
 } else {
   plot for [i=0:nb-1] in index i using 7:4 with points pt 7 ps 0.5 title columnheader(1), \
        exp(-x/2) with lines dt 2 lw 2 lc rgb "black" title "hard disks, Haff: exp(-x/2)"
 }
-# inset: against nu0_eff t, Haff's law 1/(1 + gamma nu0 t)^2 for each group
-set size 0.45, 0.45
-set origin 0.53, 0.5
+# inset: against nu0_eff t, Haff's law 1/(1 + gamma nu0 t)^2 for each group, and the late-time
+# t^-2 guide
+unset object 1
+set size 0.46, 0.43
+set origin 0.12, 0.125
 set logscale xy
 set format x "10^{%L}"
 set xlabel "ν_0^{eff} t"
 set ylabel "E/E(0)"
-unset key
+set key top right font ",9" samplen 2
 set xrange [*:*]
-plot for [i=0:nb-1] in index i using ($8 > 0 ? $8 : NaN):4 with points pt 7 ps 0.3, \
-     for [i=0:nb-1] in index i using ($8 > 0 ? $8 : NaN):9 with lines dt 2 lc rgb "black"
+plot for [i=0:nb-1] in index i using ($8 > 0 ? $8 : NaN):4 with points pt 7 ps 0.3 notitle, \
+     for [i=0:nb-1] in index i using ($8 > 0 ? $8 : NaN):9 with lines dt 2 lc rgb "black" notitle, \
+     (x > 3 ? 30 / x**2 : NaN) with lines lw 2 lc rgb "#d62728" title "∝ t^{-2}"
 unset multiplot

@@ -1,6 +1,7 @@
 # Fig. 5 of Costantini et al. (2005): distribution of the contact angle theta (between r12 and
 # r13), one curve per block of collisions; optionally a second run (e.g. alpha = 1) as bullets;
-# the uniform model on |theta| <= pi - acos(a/2d) (2 pi/3 for a = d) dashed.
+# the uniform model on |theta| <= pi - acos(a/2d) (2 pi/3 for a = d) dashed; error bars: each
+# bin's standard error.
 # Input: `haff angles DB --run ID -o in` (and the same for in2).
 # Optional fm: plots/scripts/fmean_engine.sh output; its rows at a/d = ad are written in a box
 # (<f> of each run's log beside the three Monte Carlo models).
@@ -30,11 +31,14 @@ if (exists("fm")) {
   set yrange [0:*]
   set offsets 0, 0, graph 0.35, 0
 }
+# each bin with its standard error (column 6 of `haff angles`) as an error bar
 if (exists("in2")) {
-  plot for [i=0:nb-1] in index i using 4:5 with lines title columnheader(1), \
-       in2 index 0 using 4:5 with points pt 7 ps 1 lc rgb "black" title "elastic (α = 1)", \
+  plot for [i=0:nb-1] in index i using 4:5 with lines lc i+1 title columnheader(1), \
+       for [i=0:nb-1] in index i using 4:5:6 with yerrorbars pt 0 lc i+1 notitle, \
+       in2 index 0 using 4:5:6 with yerrorbars pt 7 ps 1 lc rgb "black" title "elastic (α = 1)", \
        uniform(x) with lines dt 2 lw 2 lc rgb "gray40" title "uniform on |θ| < θ_{max}"
 } else {
-  plot for [i=0:nb-1] in index i using 4:5 with lines title columnheader(1), \
+  plot for [i=0:nb-1] in index i using 4:5 with lines lc i+1 title columnheader(1), \
+       for [i=0:nb-1] in index i using 4:5:6 with yerrorbars pt 0 lc i+1 notitle, \
        uniform(x) with lines dt 2 lw 2 lc rgb "gray40" title "uniform on |θ| < θ_{max}"
 }

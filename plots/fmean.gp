@@ -34,6 +34,9 @@ do for [t in "png svg"] {
   if (t eq "png") { set terminal png size 1100,900 font ",11"; set output outbase.".png" }
   if (t eq "svg") { set terminal svg size 1100,900 dynamic font "Helvetica,13"; set output outbase.".svg" }
   set multiplot layout 2,1 title "Orientation factor of dimer–dimer collisions (Costantini et al. 2005, eq. 36–40)"
+  # the same left and right edges for both panels (their keys, outside, differ in width)
+  set lmargin at screen 0.08
+  set rmargin at screen 0.60
   set ylabel "<f>"
   set xlabel ""
   set yrange [*:*]
@@ -52,5 +55,7 @@ do for [t in "png svg"] {
        3 with lines dt 2 lw 2 lc rgb "black" title "D + 1 = 3 (consistent, equipartition)", \
        $table using 1:3 with points pt 2 ps 1.2 lw 2 lc rgb "#9467bd" title "paper, Table I (cooling fits, α = 0.85–0.99)"
   unset multiplot
+  unset lmargin
+  unset rmargin
   set output
 }

@@ -43,6 +43,14 @@ ELASTIC_CPD ?= 200
 # errcost: D_e at this (alpha, a/d)
 ERR_ALPHA  ?= 0.9
 ERR_A      ?= 1
+# hcs: state measures against cpd, disks at HCS_ALPHA in a stable and an unstable box (N)
+HCS_ALPHA  ?= 0.8
+HCS_STABLE ?= 200
+HCS_UNSTABLE ?= 3600
+HCS_CPD    ?= 160
+# errcost's stable box: as many dimers (a = ERR_A, alpha = ERR_ALPHA) as stay below the HCS's
+# critical size (docs/analysis.md); the NDIM box is the other one
+ERR_NSTABLE ?= 200
 # elastic runs with logged collisions for <f> (fmean_vs_engine)
 FMEAN_A    ?= 0.5 1 2
 ifeq ($(PAPER),1)
@@ -51,6 +59,7 @@ NRUNS      ?= 20
 # runs stop at (1 - alpha^2) cpd = XMAX
 XMAX       ?= 24
 ERR_RUNS   ?= 128
+FIG6_RUNS  ?= 20
 ERR_CPD    ?= 20 40 80 160 320
 FIG5_CPD   ?= 300
 MC_SAMPLES ?= 10000000
@@ -58,6 +67,7 @@ else
 NRUNS      ?= 8
 XMAX       ?= 16
 ERR_RUNS   ?= 32
+FIG6_RUNS  ?= 8
 ERR_CPD    ?= 20 40 80 160
 FIG5_CPD   ?= 100
 MC_SAMPLES ?= 1000000
@@ -72,11 +82,13 @@ CONFIG  := ETA=$(ETA) NDIM=$(NDIM) NRUNS=$(NRUNS) XMAX=$(XMAX) ALPHAS=$(ALPHAS) 
            LONG_ALPHA=$(LONG_ALPHA) LONG_CPD=$(LONG_CPD) \
            DISK_ALPHAS=$(DISK_ALPHAS) FIG2_ALPHAS=$(FIG2_ALPHAS) FIG2_A=$(FIG2_A) \
            ELASTIC_CPD=$(ELASTIC_CPD) ERR_ALPHA=$(ERR_ALPHA) ERR_A=$(ERR_A) ERR_RUNS=$(ERR_RUNS) \
-           ERR_CPD=$(ERR_CPD) FIG5_CPD=$(FIG5_CPD) FMEAN_A=$(FMEAN_A) MC_SAMPLES=$(MC_SAMPLES)
+           ERR_CPD=$(ERR_CPD) FIG5_CPD=$(FIG5_CPD) FMEAN_A=$(FMEAN_A) MC_SAMPLES=$(MC_SAMPLES) \
+           HCS_ALPHA=$(HCS_ALPHA) HCS_STABLE=$(HCS_STABLE) HCS_UNSTABLE=$(HCS_UNSTABLE) HCS_CPD=$(HCS_CPD) \
+           ERR_NSTABLE=$(ERR_NSTABLE) FIG6_RUNS=$(FIG6_RUNS)
 # $(DATA)/config.txt is rewritten only when the parameters change
 $(shell mkdir -p $(DATA); echo '$(CONFIG)' | cmp -s - $(DATA)/config.txt || echo '$(CONFIG)' > $(DATA)/config.txt)
 
-PAPER_FIGS := fig1 fig2 fig3 fig5 fig6 errcost
+PAPER_FIGS := fig1 fig2 fig3 fig5 fig6 errcost hcs
 TABLES  := $(OUT)/table1.tsv $(OUT)/table1.md $(OUT)/table2.tsv $(OUT)/table2.md \
            $(OUT)/fmean_vs_engine.tsv
 .PHONY: plots plots-clean
@@ -190,13 +202,20 @@ $(OUT)/fig5.png $(OUT)/fig5.svg: $(OUT)/fig5.%: $(DATA)/angles.tsv $(DATA)/angle
 	$(GNUPLOT) -e "in='$<'; in2='$(DATA)/angles_elastic.tsv'; fm='$(OUT)/fmean_vs_engine.tsv'; ad=1; out='$@'" plots/fig5.gp
 
 # --- Fig. 6: velocity snapshots at [log] velocities_at --------------------------------------
+# run 1's snapshots one by one, and the snapshots of FIG6_RUNS runs inside their HCS windows
+# pooled (veldist --pool), so that the tails reach |c| = 4-5
 $(eval $(call RUN,$(RD)/fig6.db,scenes/paper-fig6.ini,--seed 1))
+FIG6_DBS := $(foreach s,$(shell seq 1 $(FIG6_RUNS)),$(RD)/fig6pool-s$(s).db)
+$(foreach s,$(shell seq 1 $(FIG6_RUNS)),$(eval $(call RUN,$(RD)/fig6pool-s$(s).db,scenes/paper-fig6-pool.ini,--seed $(s))))
+$(eval $(call MERGE,$(DATA)/fig6all.db,$(FIG6_DBS)))
 $(DATA)/veldist.tsv: $(RD)/fig6.db $(HAFF)
 	$(HAFF) veldist $< --run 1 -o $@
+$(DATA)/veldist_pool.tsv: $(DATA)/fig6all.db $(HAFF)
+	$(HAFF) veldist $< --pool --bins 50 -o $@
 $(DATA)/veldist_stats.tsv: $(RD)/fig6.db $(HAFF)
 	$(HAFF) veldist $< --run 1 --stats -o $@
-$(OUT)/fig6.png $(OUT)/fig6.svg: $(OUT)/fig6.%: $(DATA)/veldist.tsv plots/fig6.gp
-	$(GNUPLOT) -e "in='$<'; out='$@'" plots/fig6.gp
+$(OUT)/fig6.png $(OUT)/fig6.svg: $(OUT)/fig6.%: $(DATA)/veldist.tsv $(DATA)/veldist_pool.tsv plots/fig6.gp
+	$(GNUPLOT) -e "in='$<'; pool='$(DATA)/veldist_pool.tsv'; out='$@'" plots/fig6.gp
 
 # --- error of D_e against CPU time (issue 5) -------------------------------------------------
 err_db = $(RD)/err-a$(ERR_A)-al$(ERR_ALPHA)-c$(1)-s$(2).db
@@ -206,13 +225,36 @@ $(foreach c,$(ERR_CPD),$(foreach s,$(ESEEDS),$(eval $(call RUN,$(call err_db,$(c
 $(foreach c,$(ERR_CPD),$(eval $(call MERGE,$(DATA)/err-c$(c).db,$(foreach s,$(ESEEDS),$(call err_db,$(c),$(s))))))
 $(DATA)/errcost.tsv: $(foreach c,$(ERR_CPD),$(DATA)/err-c$(c).db) $(HAFF) $(SCRIPTS)/errcost.sh
 	$(SCRIPTS)/errcost.sh $(HAFF) $(foreach c,$(ERR_CPD),$(c):$(DATA)/err-c$(c).db) > $@
-$(OUT)/errcost.png $(OUT)/errcost.svg: $(OUT)/errcost.%: $(DATA)/errcost.tsv plots/errcost.gp
-	$(GNUPLOT) -e "in='$<'; out='$@'; title='D_e at α = $(ERR_ALPHA), a/d = $(ERR_A), $(NDIM) dimers, η = $(ETA)'" plots/errcost.gp
+# the same in the stable box of ERR_NSTABLE dimers
+err_s_db = $(RD)/err-n$(ERR_NSTABLE)-a$(ERR_A)-al$(ERR_ALPHA)-c$(1)-s$(2).db
+$(foreach c,$(ERR_CPD),$(foreach s,$(ESEEDS),$(eval $(call RUN,$(call err_s_db,$(c),$(s)),\
+  scenes/paper-dimers.ini,--set dimers.count=$(ERR_NSTABLE) --set dimers.a=$(ERR_A) --set \
+  dimers.alpha=$(ERR_ALPHA) --set run.stop_cpd=$(c) --seed $(s)))))
+$(foreach c,$(ERR_CPD),$(eval $(call MERGE,$(DATA)/err-n$(ERR_NSTABLE)-c$(c).db,$(foreach s,$(ESEEDS),$(call err_s_db,$(c),$(s))))))
+$(DATA)/errcost-stable.tsv: $(foreach c,$(ERR_CPD),$(DATA)/err-n$(ERR_NSTABLE)-c$(c).db) $(HAFF) $(SCRIPTS)/errcost.sh
+	$(SCRIPTS)/errcost.sh $(HAFF) $(foreach c,$(ERR_CPD),$(c):$(DATA)/err-n$(ERR_NSTABLE)-c$(c).db) > $@
+$(OUT)/errcost.png $(OUT)/errcost.svg: $(OUT)/errcost.%: $(DATA)/errcost.tsv $(DATA)/errcost-stable.tsv plots/errcost.gp
+	$(GNUPLOT) -e "in='$<'; in2='$(DATA)/errcost-stable.tsv'; out='$@'; \
+	  title='$(NDIM) dimers (L ≈ L_c)'; title2='$(ERR_NSTABLE) dimers (stable)'; \
+	  suptitle='D_e at α = $(ERR_ALPHA), a/d = $(ERR_A), η = $(ETA)'" plots/errcost.gp
+
+# --- hcs: the state measures against cpd below and above the HCS's critical size (issue 15) ---
+$(foreach n,$(HCS_STABLE) $(HCS_UNSTABLE),$(eval $(call RUN,$(RD)/hcs-al$(HCS_ALPHA)-n$(n).db,\
+  scenes/paper-disks.ini,--set disks.count=$(n) --set disks.alpha=$(HCS_ALPHA) --set \
+  run.stop_cpd=$(HCS_CPD) --seed 1)))
+$(DATA)/hcs-n%.tsv: $(RD)/hcs-al$(HCS_ALPHA)-n%.db
+	sqlite3 -separator $$'\t' $< "SELECT cpd, s_perp, s_par, flow_frac / flow_chaos, count_var, \
+	  s_rho FROM samples ORDER BY t" > $@
+hcs_label = $(shell awk 'BEGIN { n = $(1); printf "%d disks, α = $(HCS_ALPHA), L = %.0f σ", n, sqrt(n * 3.14159265 / 4 / $(ETA)) }')
+$(OUT)/hcs.png $(OUT)/hcs.svg: $(OUT)/hcs.%: $(DATA)/hcs-n$(HCS_STABLE).tsv $(DATA)/hcs-n$(HCS_UNSTABLE).tsv plots/hcs.gp
+	$(GNUPLOT) -e "stable='$<'; unstable='$(DATA)/hcs-n$(HCS_UNSTABLE).tsv'; out='$@'; \
+	  ls='$(call hcs_label,$(HCS_STABLE))'; lu='$(call hcs_label,$(HCS_UNSTABLE))'" plots/hcs.gp
 
 # --- plots/out/README.md: plots/README.md and this build's numbers ---------------------------
 $(OUT)/README.md: plots/README.md $(SCRIPTS)/readme.sh $(TABLES) $(DATA)/fits.tsv \
                   $(DATA)/fits-groups.tsv $(DATA)/gap.tsv $(DATA)/gap-fits.tsv \
-                  $(DATA)/long-fits.tsv $(DATA)/errcost.tsv $(DATA)/veldist_stats.tsv $(DATA)/config.txt
+                  $(DATA)/long-fits.tsv $(DATA)/errcost.tsv $(DATA)/errcost-stable.tsv \
+                  $(DATA)/veldist_stats.tsv $(DATA)/config.txt
 	$(SCRIPTS)/readme.sh $(OUT) $(DATA) '$(CONFIG)' $(HAFF) > $@
 
 plots-clean: fmean-clean

@@ -230,6 +230,56 @@ static void alpha_zero_gas(void **state) {
   hd_sim_free(s);
 }
 
+/* hd_sim_state on the initial gas (random positions, independent Maxwellian velocities: no
+ * correlation).  Over 60 seeds of 400 disks at area fraction 0.05: the mean s_perp, s_par and
+ * flow_frac/flow_chaos are 1 (each sample's s averages 4 exponential |p_k|^2 of mean 1, sd 0.5;
+ * 60 samples: se 0.065; tolerance 0.3, 4.6 se), count_var and s_rho near S(0) (0.82 for
+ * disks at 0.05; se ~0.07 for the 4 modes, ~0.05 for 16 cells; tolerance 0.35).  Then an
+ * imposed shear v_x = U sin(2 pi y/Ly) on bodies at rest (exact numbers, no noise but the random
+ * positions): s_perp = N/6 (only k = (0, 1) carries it, N/2, averaged over the 3 modes where the
+ * transverse velocity is not 0 everywhere: k = (1, 0) has none), s_par ~ 1, and
+ * flow_frac = 8/pi^2 (the 4 x 4 grid's rows average sin to +-2/pi, against <sin^2> = 1/2). */
+static void state_measures(void **state) {
+  (void)state;
+  double sp = 0, sl = 0, fr = 0, cv = 0, sr = 0;
+  int n = 60;
+  for (int seed = 1; seed <= n; seed++) {
+    hd_scene sc;
+    test_disk_scene(&sc, 400, 0.05, 0.9, (unsigned long)seed);
+    hd_sim *s;
+    hd_error err;
+    assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+    hd_state_measures q;
+    hd_sim_state(s, &q);
+    assert_true(q.flow_frac >= 0 && q.flow_frac <= 1 && q.flow_chaos > 0 && q.flow_chaos <= 1);
+    sp += q.s_perp, sl += q.s_par, fr += q.flow_frac / q.flow_chaos, cv += q.count_var;
+    sr += q.s_rho;
+    hd_sim_free(s);
+  }
+  sp /= n, sl /= n, fr /= n, cv /= n, sr /= n;
+  printf("# state measures, no correlation: s_perp %.3f s_par %.3f flow/chaos %.3f count_var "
+         "%.3f s_rho %.3f\n", sp, sl, fr, cv, sr);
+  assert_true(fabs(sp - 1) < 0.3 && fabs(sl - 1) < 0.3 && fabs(fr - 1) < 0.3);
+  assert_true(fabs(cv - 0.82) < 0.35 && fabs(sr - 0.82) < 0.35);
+  hd_scene sc;
+  test_disk_scene(&sc, 4000, 0.05, 0.9, 7);
+  hd_sim *s;
+  hd_error err;
+  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
+  for (int32_t i = 0; i < s->n; i++) {
+    hd_body *b = &s->b[i];
+    b->k.vx = 0.3 * sin(2 * M_PI * b->k.y / s->ly), b->k.vy = 0, b->k.omega = 0;
+  }
+  hd_state_measures q;
+  hd_sim_state(s, &q);
+  printf("# shear flow: s_perp %.1f (N/6 = 667) s_par %.3g flow_frac %.4f (8/pi^2 = %.4f)\n",
+         q.s_perp, q.s_par, q.flow_frac, 8 / (M_PI * M_PI));
+  assert_true(fabs(q.s_perp / (4000.0 / 6) - 1) < 0.05);
+  assert_true(q.s_par < 2);
+  assert_true(fabs(q.flow_frac - 8 / (M_PI * M_PI)) < 0.02);
+  hd_sim_free(s);
+}
+
 /* placement = lattice fills every box the scene check lets through (a grid of floor(L / range)
  * sites per edge), with no two bodies closer than the range: before, the engine chose its own
  * grid and refused 35 disks in 6.5 x 6 (7 x 5 sites of 0.93) and 100 disks in 10 x 10. */
@@ -607,6 +657,7 @@ int main(void) {
       cmocka_unit_test(enskog_rate),
       cmocka_unit_test(maxwellian),
       cmocka_unit_test(haff_law),
+      cmocka_unit_test(state_measures),
       cmocka_unit_test(cooling_many_decades),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -25,7 +25,8 @@ static char root[512], tmp[256], haff[512];
 #define TINY                                                                                       \
   "NDIM=50 NRUNS=2 ALPHAS='1 0.9 0.8' AOVERD=1 GAP_A=1.5 DISK_ALPHAS=0.9 "                         \
   "FIG2_ALPHAS='0.9 0.8' ELASTIC_CPD=40 ERR_RUNS=2 ERR_CPD='20 40' FIG5_CPD=25 FMEAN_A=1 "         \
-  "MC_SAMPLES=20000 XMAX=8"
+  "MC_SAMPLES=20000 XMAX=8 HCS_STABLE=50 HCS_UNSTABLE=100 HCS_CPD=20 ERR_NSTABLE=30 "         \
+  "FIG6_RUNS=2"
 
 static int make(const char *flags, const char *targets, const char *log) {
   char cmd[4096];
@@ -39,7 +40,8 @@ static int make(const char *flags, const char *targets, const char *log) {
 static const char *data_targets =
     "$T/data/energy.tsv $T/data/energy_disks.tsv $T/data/fig1.tsv $T/data/angles.tsv "
     "$T/data/angles_elastic.tsv $T/data/veldist.tsv $T/data/errcost.tsv $T/table1.tsv "
-    "$T/table2.tsv $T/fmean_vs_engine.tsv";
+    "$T/table2.tsv $T/fmean_vs_engine.tsv $T/data/hcs-n50.tsv $T/data/hcs-n100.tsv "
+    "$T/data/errcost-stable.tsv $T/data/veldist_pool.tsv";
 
 /* data_targets with $T replaced by tmp/out */
 static void targets(char *buf, size_t n) {
@@ -182,11 +184,13 @@ static void tsv_columns(void **state) {
   (void)state;
   need();
   const char *want[][2] = {
-      {"table1.tsv", "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns"},
+      {"table1.tsv", "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\tD_e_sys\tcpd_start\t"
+                     "cpd_end\tflag"},
       {"table2.tsv", "alpha\ta_over_d\ta0\ta0_lo\ta0_hi\ta1\ta1_lo\ta1_hi"},
       {"fmean_vs_engine.tsv", "source\ta_over_d\talpha\tf_mean\tf_err\tD_over_f\tn"},
       {"data/errcost.tsv",
-       "runs to 20 cpd\truns\tcpu_seconds\tD_e\tD_e_err\tcpd_fit_end\tD_e_err_all"}};
+       "runs to 20 cpd\truns\tcpu_seconds\tD_e\tD_e_err\tcpd_fit_end\tD_e_err_all\tD_e_sys\t"
+       "D_e_total"}};
   char buf[512];
   for (size_t i = 0; i < sizeof want / sizeof want[0]; i++) {
     header(want[i][0], buf, sizeof buf);
@@ -217,8 +221,9 @@ static void gnuplot_render(void **state) {
            {"fig3", "in='%1$s/%2$s/energy.tsv'"},
            {"fig5", "in='%1$s/%2$s/angles.tsv'; in2='%1$s/%2$s/angles_elastic.tsv'; "
                     "fm='%1$s/%3$s/fmean_vs_engine.tsv'; ad=1"},
-           {"fig6", "in='%1$s/%2$s/veldist.tsv'"},
-           {"errcost", "in='%1$s/%2$s/errcost.tsv'"}};
+           {"fig6", "in='%1$s/%2$s/veldist.tsv'; pool='%1$s/%2$s/veldist_pool.tsv'"},
+           {"errcost", "in='%1$s/%2$s/errcost.tsv'; in2='%1$s/%2$s/errcost-stable.tsv'"},
+           {"hcs", "stable='%1$s/%2$s/hcs-n50.tsv'; unstable='%1$s/%2$s/hcs-n100.tsv'"}};
   for (size_t i = 0; i < sizeof s / sizeof s[0]; i++)
     for (int e = 0; e < 2; e++) {
       const char *ext = e ? "svg" : "png";

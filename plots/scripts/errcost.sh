@@ -5,9 +5,11 @@
 # CPU seconds).  For R = 2, 4, 8, ... up to all the runs (and all of them), the first R runs
 # (in seed order) give the ensemble mean of the per-run fits of eq. (31) (`haff haff-fit`,
 # homogeneous part only) and its standard error sd/sqrt(R); cpu_seconds is the CPU time of those
-# R runs.  Columns: stop_cpd runs cpu_seconds D_e D_e_err cpd_fit_end
+# R runs.  Columns: stop_cpd runs cpu_seconds D_e D_e_err cpd_fit_end D_e_err_all D_e_sys D_e_total
 # (cpd_fit_end: mean over the R runs of the cpd where the fit stopped: the run's end, or the
-# end of homogeneous cooling found by the detector).
+# end of homogeneous cooling found by the detector; D_e_err_all: sd of all the runs / sqrt(R);
+# D_e_sys: the group's systematic error from `haff-fit --alpha-group` over all the runs of that
+# length, D_e_total = sqrt(D_e_err^2 + D_e_sys^2), the error that covers the truth: issue 15).
 set -eu
 haff=$1
 shift
@@ -16,11 +18,15 @@ for arg in "$@"; do
   L=${arg%%:*} db=${arg#*:}
   [ $first = 1 ] || printf '\n\n'
   first=0
-  printf 'runs to %s cpd\truns\tcpu_seconds\tD_e\tD_e_err\tcpd_fit_end\tD_e_err_all\n' "$L"
+  printf 'runs to %s cpd\truns\tcpu_seconds\tD_e\tD_e_err\tcpd_fit_end\tD_e_err_all\tD_e_sys\t' "$L"
+  printf 'D_e_total\n'
+  sys=$("$haff" haff-fit "$db" --alpha-group 2>/dev/null |
+    awk -F '\t' 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "D_e_sys") c = i; next }
+                  { print $c; exit }')
   fits=$("$haff" haff-fit "$db" | awk -F '\t' 'NR > 1 { print $1 "\t" $9 "\t" $8 }')
   cpu=$(sqlite3 -separator $'\t' "$db" "SELECT run, cpu_seconds FROM plots_runs ORDER BY run")
   join -t $'\t' <(sort -k1,1 <<< "$fits") <(sort -k1,1 <<< "$cpu") | sort -n -k1,1 |
-    awk -F '\t' -v L="$L" '
+    awk -F '\t' -v L="$L" -v sys="${sys:-nan}" '
       { n++; de[n] = $2; ce[n] = $3; cpu[n] = $4 }
       function sd(R,   i, s, ss, m) {
         s = ss = 0
@@ -32,8 +38,9 @@ for arg in "$@"; do
       function row(R,   i, s, c, e) {
         s = c = e = 0
         for (i = 1; i <= R; i++) { s += de[i]; c += cpu[i]; e += ce[i] }
-        printf "%s\t%d\t%.4g\t%.6g\t%.4g\t%.4g\t%.4g\n", L, R, c, s / R, sd(R) / sqrt(R), e / R,
-               sd(n) / sqrt(R)
+        e1 = sd(R) / sqrt(R)
+        printf "%s\t%d\t%.4g\t%.6g\t%.4g\t%.4g\t%.4g\t%.4g\t%.4g\n", L, R, c, s / R, e1, e / R,
+               sd(n) / sqrt(R), sys, sqrt(e1 * e1 + sys * sys)
       }
       END { for (R = 2; R < n; R *= 2) row(R); if (n >= 2) row(n) }'
 done

@@ -20,6 +20,20 @@ echo "### Table I (\`table1.tsv\`): D_e and ν0_eff/ν0, mean ± standard error 
 echo
 cat "$out/table1.md"
 echo
+echo "### Inside the HCS's validity? Every (α, a/d) group (\`data/fits-groups.tsv\`)"
+echo
+echo "D_e ± stat ± sys on each run's HCS window (cpd), the window's mean s_perp (the shear modes'"
+echo "energy over molecular chaos) and the flag; Tables I and II leave the flagged groups out"
+echo "(docs/analysis.md, \"Errors of D_e\")."
+echo
+awk -F '\t' 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i
+                       print "| species | α | a/d | N | runs | D_e | ± stat | ± sys | window (cpd) | s_perp | flag |"
+                       print "|---|---|---|---|---|---|---|---|---|---|---|"; next }
+             { printf "| %s | %s | %s | %s | %s | %.4f | %.2g | %.2g | %.0f–%.0f | %.3g | %s |\n", $c["species"],
+                      $c["alpha"], $c["a_over_d"], $c["n"], $c["runs"], $c["D_e"], $c["D_e_err"],
+                      $c["D_e_sys"], $c["cpd_start"], $c["cpd_end"], $c["s_perp"], $c["flag"] }' \
+  "$data/fits-groups.tsv"
+echo
 echo "### Table II (\`table2.tsv\`): K = E_tr/E_rot = a0 + a1 τ, 99 % intervals"
 echo
 cat "$out/table2.md"
@@ -59,10 +73,16 @@ tsv2md "$out/fmean_vs_engine.tsv"
 echo
 echo "### Error of D_e against CPU time (\`data/errcost.tsv\`, \`errcost.png\`)"
 echo
-awk -F '\t' 'BEGIN { print "| stop_cpd | runs | CPU s | ⟨D_e⟩ | standard error | fit ended at cpd | sd(all)/√R |"
-                     print "|---|---|---|---|---|---|---|" }
-             NF > 1 && $1 ~ /^[0-9.]+$/ { printf "| %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7 }' \
-  "$data/errcost.tsv"
+for f in errcost errcost-stable; do
+  [ -f "$data/$f.tsv" ] || continue
+  echo "\`data/$f.tsv\`:"
+  echo
+  awk -F '\t' 'BEGIN { print "| stop_cpd | runs | CPU s | ⟨D_e⟩ | standard error | fit ended at cpd | sd(all)/√R | sys | total |"
+                       print "|---|---|---|---|---|---|---|---|---|" }
+               NF > 1 && $1 ~ /^[0-9.]+$/ { printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7, $8, $9 }' \
+    "$data/$f.tsv"
+  echo
+done
 echo
 echo "### Fig. 6: velocity statistics per snapshot (\`data/veldist_stats.tsv\`)"
 echo
