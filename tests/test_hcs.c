@@ -158,7 +158,7 @@ static void run_disks(const char *db, long count, double alpha, double stop_cpd,
     hd_error err;
     assert_int_equal(hd_scene_load_string(&sc, text, "hcs.ini", NULL, 0, &err), HD_OK);
     sc.seed = (unsigned long long)(100 + k);
-    hd_run_opts o = {db, 1, "test", NULL, 0};
+    hd_run_opts o = {.db_path = db, .quiet = 1, .version = "test"};
     int64_t run;
     int rc = hd_run_new(&sc, &o, &run, &err);
     if (rc) fprintf(stderr, "run: %s\n", err.msg);
