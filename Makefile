@@ -8,7 +8,8 @@ SHELL := /bin/bash
 CC      ?= gcc
 BUILD   ?= build
 PKGS    := gsl sqlite3 inih
-DEPS_PKGS := build-essential pkg-config libgsl-dev libsqlite3-dev sqlite3 libinih-dev gnuplot-nox libcmocka-dev
+DEPS_PKGS := build-essential pkg-config libgsl-dev libsqlite3-dev sqlite3 libinih-dev gnuplot-nox libcmocka-dev \
+             python3-ase ffmpeg
 WARN    := -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes -Wmissing-prototypes
 # Warnings are errors in CI (CI=true) and whenever WERROR=1.
 ifneq ($(filter true 1,$(CI) $(WERROR)),)
