@@ -246,6 +246,39 @@ static void ase_reads_walls_and_rods(void **state) {
     fail_msg("%s", out());
 }
 
+/* haff movie: as many video frames as stored frames (ffprobe counts them), the size asked for
+ * (720 wide, the height from the square box plus the title), a file of reasonable size, both
+ * formats, and the temporary folder removed; a run without frames, a bad file name or colour
+ * are bad input, with no movie left. */
+static void movie_of_frames(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("f.ini", dimers_ini);
+  run_ok("f.ini", "m.db", "--quiet --set log.frames_every=1 --set run.stop_cpd=8");
+  assert_int_equal(q1("m.db", "SELECT count(*) FROM frames"), 9);
+  assert_int_equal(sh("ls -d /tmp/haff-movie-* 2>/dev/null | wc -l > before.txt"), 0);
+  if (sh("%s movie m.db -o m.mp4", haff)) fail_msg("%s", out());
+  assert_non_null(strstr(out(), "m.mp4: 9 frames of run 1"));
+  assert_int_equal(sh("test \"$(ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                      "stream=nb_read_frames,width,height,codec_name -of csv=p=0 m.mp4)\" = "
+                      "'h264,720,780,9'"),
+                   0);
+  assert_int_equal(sh("s=$(stat -c %%s m.mp4); test $s -gt 10000 && test $s -lt 5000000"), 0);
+  if (sh("%s movie m.db -o m.gif --color density --size 400 --fps 5", haff))
+    fail_msg("%s", out());
+  assert_int_equal(sh("test \"$(ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                      "stream=nb_read_frames,width,height,codec_name -of csv=p=0 m.gif)\" = "
+                      "'gif,400,460,9'"),
+                   0);
+  assert_int_equal(sh("ls -d /tmp/haff-movie-* 2>/dev/null | wc -l | cmp - before.txt"), 0);
+  run_ok("f.ini", "noframes.db", "--quiet");
+  bad("movie noframes.db -o x.mp4", "run 1 has no frames: run it with [log] frames_every");
+  bad("movie m.db -o x.avi", "-o x.avi: give the movie's file, ending in .mp4 or .gif");
+  bad("movie m.db -o x.mp4 --color mass", "--color mass: must be speed or density");
+  bad("movie m.db -o x.mp4 --run 7", "there is no such run");
+  assert_int_equal(sh("test ! -e x.mp4 && test ! -e x.avi"), 0);
+}
+
 static int setup(void **state) {
   (void)state;
   if (getenv("HAFF_SANITIZE") && getenv("HAFF_SANITIZE")[0] == '1') {
@@ -276,6 +309,7 @@ int main(void) {
       cmocka_unit_test(frames_bad_input_and_cap),
       cmocka_unit_test(frames_resumed),
       cmocka_unit_test(ase_reads_walls_and_rods),
+      cmocka_unit_test(movie_of_frames),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
