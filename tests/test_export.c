@@ -142,6 +142,28 @@ static void frames_by_time(void **state) {
   if (sh("%s export xyz t.db -o t.xyz && /usr/bin/python3 %s/tests/ase_check.py t.xyz t.db 1",
          haff, root))
     fail_msg("%s", out());
+  /* stopping the engine at the frames' times changes nothing of the run: the same collisions
+   * and final state, bit for bit, as without frames (2D and rods) */
+  run_ok("f.ini", "t0.db", "--set run.stop_time=3 --set run.stop_cpd=1e6 --set log.collisions=all");
+  run_ok("f.ini", "ref.db", "--set run.stop_time=3 --set run.stop_cpd=1e6 --set log.collisions=all "
+                            "--set log.frames_every_time=0.1");
+  assert_true(q1("t0.db", "SELECT count(*) FROM collisions") > 100);
+  assert_int_equal(q1("ref.db", "SELECT count(*) FROM frames"), 31);
+  const char *same = "SELECT (SELECT count(*) FROM (SELECT seq, t, i, j, de, eps FROM collisions "
+                     "EXCEPT SELECT seq, t, i, j, de, eps FROM ref.collisions)) + (SELECT count(*) "
+                     "FROM (SELECT body, t, x, y, phi, vx, vy, omega FROM states WHERE label = "
+                     "'final' EXCEPT SELECT body, t, x, y, phi, vx, vy, omega FROM ref.states "
+                     "WHERE label = 'final')) + abs((SELECT count(*) FROM collisions) - (SELECT "
+                     "count(*) FROM ref.collisions))";
+  assert_int_equal(q1("t0.db", same), 0);
+  write_file("rods.ini", "[rods]\ncount = 40\ngamma = 0.5\n[run]\nstop_time = 30\n"
+                         "[log]\ncollisions = all\n");
+  run_ok("rods.ini", "r0.db", "--quiet");
+  assert_int_equal(sh("rm ref.db"), 0);
+  run_ok("rods.ini", "ref.db", "--quiet --set log.frames_every_time=0.7");
+  assert_true(q1("r0.db", "SELECT count(*) FROM collisions") > 100);
+  assert_int_equal(q1("ref.db", "SELECT count(*) FROM frames"), 43);
+  assert_int_equal(q1("r0.db", same), 0);
 }
 
 /* Bad input: one line naming the key, exit 2; the cap at set-up (frames_max_mb), at run time
@@ -182,6 +204,7 @@ static void frames_resumed(void **state) {
   write_file("r.ini", "[system]\narea_fraction = 0.3\nseed = 5\n[disks]\ncount = 2000\n"
                       "alpha = 0.95\n[run]\nstop_cpd = 100\n[log]\ncollisions = all\n"
                       "frames_every = 5\n");
+  assert_int_equal(sh("rm -f ref.db r.db"), 0);
   run_ok("r.ini", "ref.db", "--quiet");
   assert_int_equal(q1("ref.db", "SELECT count(*) FROM frames"), 21);
   pid_t pid = fork();
@@ -222,28 +245,43 @@ static void frames_resumed(void **state) {
                    0);
 }
 
-/* ASE reads every frame of a disk run between walls (pbc "T F F"), a rods run (masses
- * 1 + gamma, 1 + 1/gamma) and the velocities_at snapshots of a dimer run. */
-static void ase_reads_walls_and_rods(void **state) {
+/* ASE reads every frame of a pure dimer run (frames by cpd), a pure disk run between walls
+ * left and right (pbc "F T F"), a mixture with masses of its own between walls bottom and top
+ * (pbc "T F F", with velocities_at snapshots) and a rods run (masses 1 + gamma, 1 + 1/gamma;
+ * pbc "T F F"). */
+static void ase_reads_every_kind_of_run(void **state) {
   (void)state;
   if (!haff) skip();
-  write_file("w.ini", "[system]\nbox = 20 16\nseed = 2\n[dimers]\ncount = 30\na = 0.7\n"
-                      "m = 2\nalpha = 0.9\n[disks]\ncount = 10\n[walls]\nsides = bottom top\n"
-                      "[run]\nstop_cpd = 4\n[log]\ncollisions = none\nvelocities_at = 1 2\n"
-                      "frames_every = 1\n");
-  run_ok("w.ini", "w.db", "--quiet");
-  if (sh("%s export xyz w.db -o w.xyz && /usr/bin/python3 %s/tests/ase_check.py w.xyz w.db 1",
-         haff, root))
-    fail_msg("%s", out());
-  assert_int_equal(sh("head -2 w.xyz | grep -q 'pbc=\"T F F\"'"), 0);
-  write_file("rods.ini", "[rods]\ncount = 40\ngamma = 0.5\n[run]\nstop_time = 3\n"
-                         "[log]\ncollisions = none\nframes_every_time = 1\n");
-  run_ok("rods.ini", "rods.db", "--quiet");
-  assert_int_equal(q1("rods.db", "SELECT count(*) FROM frames"), 4);
-  if (sh("%s export xyz rods.db -o rods.xyz && /usr/bin/python3 %s/tests/ase_check.py rods.xyz "
-         "rods.db 1",
-         haff, root))
-    fail_msg("%s", out());
+  static const struct {
+    const char *ini, *pbc;
+  } runs[] = {
+      {"[system]\narea_fraction = 0.3\nseed = 7\n[dimers]\ncount = 60\nalpha = 0.8\n[run]\n"
+       "stop_cpd = 6\n[log]\ncollisions = none\nframes_every = 2\n",
+       "T T F"},
+      {"[system]\nbox = 15 12\nseed = 8\n[disks]\ncount = 40\nalpha = 0.9\n[walls]\n"
+       "sides = left right\n[run]\nstop_time = 4\n[log]\ncollisions = none\n"
+       "frames_every_time = 1\n",
+       "F T F"},
+      {"[system]\nbox = 20 16\nseed = 2\n[dimers]\ncount = 30\na = 0.7\nm = 2\nalpha = 0.9\n"
+       "[disks]\ncount = 10\nmass = 0.3\n[walls]\nsides = bottom top\n[run]\nstop_cpd = 4\n"
+       "[log]\ncollisions = none\nvelocities_at = 1 2\nframes_every = 1\n",
+       "T F F"},
+      {"[rods]\ncount = 40\ngamma = 0.5\n[run]\nstop_time = 3\n[log]\ncollisions = none\n"
+       "frames_every_time = 1\n",
+       "T F F"},
+  };
+  for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
+    write_file("a.ini", runs[k].ini);
+    assert_int_equal(sh("rm -f a.db"), 0);
+    run_ok("a.ini", "a.db", "--quiet");
+    assert_true(q1("a.db", "SELECT count(*) FROM frames") >= 4);
+    if (sh("%s export xyz a.db -o a.xyz && /usr/bin/python3 %s/tests/ase_check.py a.xyz a.db 1",
+           haff, root))
+      fail_msg("run %zu: %s", k, out());
+    char grep[200];
+    snprintf(grep, sizeof grep, "head -2 a.xyz | grep -q 'pbc=\"%s\"'", runs[k].pbc);
+    assert_int_equal(sh("%s", grep), 0);
+  }
 }
 
 /* haff movie: as many video frames as stored frames (ffprobe counts them), the size asked for
@@ -308,7 +346,7 @@ int main(void) {
       cmocka_unit_test(frames_by_time),
       cmocka_unit_test(frames_bad_input_and_cap),
       cmocka_unit_test(frames_resumed),
-      cmocka_unit_test(ase_reads_walls_and_rods),
+      cmocka_unit_test(ase_reads_every_kind_of_run),
       cmocka_unit_test(movie_of_frames),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
