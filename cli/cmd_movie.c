@@ -63,8 +63,7 @@ static void colour(int density, long n, const double *x, const double *y, const 
     double s2 = 0;
     for (long i = 0; i < n; i++) s2 += (double)vx[i] * vx[i] + (double)vy[i] * vy[i];
     double rms = sqrt(s2 / (double)(n > 0 ? n : 1));
-    for (long i = 0; i < n; i++)
-      val[i] = rms > 0 ? hypot((double)vx[i], (double)vy[i]) / rms : 0;
+    for (long i = 0; i < n; i++) val[i] = rms > 0 ? hypot((double)vx[i], (double)vy[i]) / rms : 0;
     return;
   }
   /* neighbours within reach on a periodic grid of cells at least reach wide */
@@ -120,8 +119,9 @@ typedef struct movie {
 /* Reads the run, its box and scene and its bodies' kinds.  0 or an exit code (said). */
 static int read_run(sqlite3 *h, movie *m) {
   sqlite3_stmt *st = NULL;
-  const char *sql = m->run > 0 ? "SELECT id, scene, box_x, box_y FROM runs WHERE id = ?1"
-                               : "SELECT id, scene, box_x, box_y FROM runs ORDER BY id DESC LIMIT 1";
+  const char *sql = m->run > 0
+                        ? "SELECT id, scene, box_x, box_y FROM runs WHERE id = ?1"
+                        : "SELECT id, scene, box_x, box_y FROM runs ORDER BY id DESC LIMIT 1";
   if (sqlite3_prepare_v2(h, sql, -1, &st, NULL) != SQLITE_OK) {
     fprintf(stderr, "haff movie: %s: read runs: %s\n", m->dbpath, sqlite3_errmsg(h));
     return 1;
@@ -183,8 +183,10 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
   snprintf(path, sizeof path, "%s/movie.gp", m->tmp);
   FILE *gp = fopen(path, "w");
   double *x = malloc((size_t)(m->n + 1) * sizeof *x), *y = malloc((size_t)(m->n + 1) * sizeof *y);
-  double *phi = malloc((size_t)(m->n + 1) * sizeof *phi), *val = malloc((size_t)(m->n + 1) * sizeof *val);
-  float *vx = malloc((size_t)(m->n + 1) * sizeof *vx), *vy = malloc((size_t)(m->n + 1) * sizeof *vy);
+  double *phi = malloc((size_t)(m->n + 1) * sizeof *phi),
+         *val = malloc((size_t)(m->n + 1) * sizeof *val);
+  float *vx = malloc((size_t)(m->n + 1) * sizeof *vx),
+        *vy = malloc((size_t)(m->n + 1) * sizeof *vy);
   int code = 0;
   if (!gp || !x || !y || !phi || !val || !vx || !vy) {
     fprintf(stderr, "haff movie: %s: %s\n", path, gp ? "out of memory" : strerror(errno));
@@ -375,13 +377,13 @@ int haff_movie_main(int argc, char **argv) {
     char in[4200], fps[16];
     snprintf(in, sizeof in, "%s/f%%06d.png", m.tmp);
     snprintf(fps, sizeof fps, "%d", m.fps);
-    char *mp4[] = {"ffmpeg", "-nostdin", "-y", "-loglevel", "error", "-framerate", fps, "-i", in,
-                   "-c:v", "libx264", "-pix_fmt", "yuv420p", (char *)m.outpath, NULL};
-    char *gif[] = {"ffmpeg", "-nostdin", "-y", "-loglevel", "error", "-framerate", fps, "-i", in,
-                   (char *)m.outpath, NULL};
+    char *mp4[] = {
+        "ffmpeg", "-nostdin", "-y",      "-loglevel", "error",   "-framerate",      fps, "-i",
+        in,       "-c:v",     "libx264", "-pix_fmt",  "yuv420p", (char *)m.outpath, NULL};
+    char *gif[] = {"ffmpeg", "-nostdin", "-y", "-loglevel",       "error", "-framerate",
+                   fps,      "-i",       in,   (char *)m.outpath, NULL};
     if (run_prog(m.gif ? gif : mp4) != 0) {
-      fprintf(stderr, "haff movie: ffmpeg could not write %s (is ffmpeg installed?)\n",
-              m.outpath);
+      fprintf(stderr, "haff movie: ffmpeg could not write %s (is ffmpeg installed?)\n", m.outpath);
       unlink(m.outpath); /* nothing half-written */
       code = 1;
     }

@@ -34,12 +34,12 @@ int haff_export_main(int argc, char **argv);
 
 /* The geometry export needs, read from the run's scene text. */
 typedef struct xyz_geom {
-  double lx, ly;     /* box edges, NAN until known */
-  hd_shape dimer;    /* [dimers] d, a, m */
-  hd_shape disk;     /* [disks] sigma, mass */
-  int wall_x, wall_y;  /* [walls] close x (left right), y (bottom top) */
-  double rod_gamma;  /* [rods] gamma (masses 1 + gamma, 1 + 1/gamma alternate) */
-  int rods;          /* a rods run */
+  double lx, ly;      /* box edges, NAN until known */
+  hd_shape dimer;     /* [dimers] d, a, m */
+  hd_shape disk;      /* [disks] sigma, mass */
+  int wall_x, wall_y; /* [walls] close x (left right), y (bottom top) */
+  double rod_gamma;   /* [rods] gamma (masses 1 + gamma, 1 + 1/gamma alternate) */
+  int rods;           /* a rods run */
 } xyz_geom;
 
 static int geom_handler(void *user, const char *section, const char *name, const char *value) {
@@ -168,7 +168,8 @@ static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geo
   static const char frames_sql[] =
       "SELECT lab, t, cpd, n, src, id FROM ("
       "SELECT label AS lab, t, max(cpd) AS cpd, sum(CASE kind WHEN 'dimer' THEN 2 ELSE 1 END) AS n,"
-      " 0 AS src, 0 AS id FROM states WHERE run = ?1 AND (?2 = 'all' OR label = ?2) GROUP BY label, t "
+      " 0 AS src, 0 AS id FROM states WHERE run = ?1 AND (?2 = 'all' OR label = ?2) GROUP BY "
+      "label, t "
       "UNION ALL SELECT 'frames', t, cpd, n, 1, rowid FROM frames "
       "WHERE run = ?1 AND ?2 IN ('all', 'frames')) "
       "ORDER BY t, CASE lab WHEN 'initial' THEN 0 WHEN 'frames' THEN 1 WHEN 'velocities' THEN 2 "
@@ -286,8 +287,8 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
   int s = sqlite3_step(st), code = 0;
   if (s == SQLITE_ROW) {
     *run = sqlite3_column_int64(st, 0);
-    *g = (xyz_geom){NAN, NAN, {HD_KIND_DIMER, 1.0, 1.0, 1.0}, {HD_KIND_DISK, 1.0, 0.0, 1.0},
-                    0, 0, 0.8, 0};
+    *g = (xyz_geom){NAN, NAN, {HD_KIND_DIMER, 1.0, 1.0, 1.0}, {HD_KIND_DISK, 1.0, 0.0, 1.0}, 0, 0,
+                    0.8, 0};
     const char *scene = (const char *)sqlite3_column_text(st, 1);
     if (scene && ini_parse_string(scene, geom_handler, g) < 0) {
       fprintf(stderr, "haff export: %s: run %lld: cannot parse its scene\n", hd_db_path(db),

@@ -958,8 +958,9 @@ int hd_db_log_frame(hd_db *db, int64_t run, double t, double cpd, int64_t n, con
   /* after the rows logged before it, in the open batch (frames are rare: no writer ring) */
   if ((rc = drain(db, err)) || (rc = batch_begin(db, err))) return rc;
   sqlite3_stmt *st = NULL;
-  if (sqlite3_prepare_v2(db->db, "INSERT INTO frames (run, t, cpd, n, data) VALUES (?1, ?2, ?3, "
-                                 "?4, ?5)",
+  if (sqlite3_prepare_v2(db->db,
+                         "INSERT INTO frames (run, t, cpd, n, data) VALUES (?1, ?2, ?3, "
+                         "?4, ?5)",
                          -1, &st, NULL) != SQLITE_OK)
     return batch_fail(db, NULL, err, "insert frame");
   sqlite3_bind_int64(st, 1, run);

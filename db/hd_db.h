@@ -163,8 +163,8 @@ int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_
                           hd_error *err);
 
 /* Deletes the rows a resumed run will write again: collisions with seq > seq, samples,
- * frames and states with t > t; and the run's 'checkpoint' and 'final' states (where it stopped: it goes
- * on, and writes its final state again). */
+ * frames and states with t > t; and the run's 'checkpoint' and 'final' states (where it stopped: it
+ * goes on, and writes its final state again). */
 int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error *err);
 
 /* The id of the newest run that has a checkpoint and whose status is 'interrupted', 'failed'

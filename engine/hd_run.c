@@ -221,8 +221,8 @@ static int take_frame(runner *r, hd_error *err) {
     memcpy(p, d, sizeof d);
     memcpy(p + sizeof d, f, sizeof f);
   }
-  rc = hd_db_log_frame(r->db, r->run, r->ops->time(r->s), r->ops->cpd(r->s), n, r->frame_buf,
-                       size, err);
+  rc = hd_db_log_frame(r->db, r->run, r->ops->time(r->s), r->ops->cpd(r->s), n, r->frame_buf, size,
+                       err);
   if (!rc) r->frame_bytes += hd_scene_frame_bytes(sc);
   return rc;
 }
@@ -238,10 +238,9 @@ static void frames_estimate(const runner *r) {
   else
     snprintf(every, sizeof every, "every %g in time", sc->frames_every_time);
   if (nf > 0)
-    fprintf(stderr,
-            "haff: frames %s: %s%.0f frames of %ld bodies, ~%.3g MB (frames_max_mb = %g)\n",
-            every, sc->frames_every > 0 && sc->stop_time > 0 ? "at most " : "", nf, hd_scene_bodies(sc), nf * hd_scene_frame_bytes(sc) / 1e6,
-            sc->frames_max_mb);
+    fprintf(stderr, "haff: frames %s: %s%.0f frames of %ld bodies, ~%.3g MB (frames_max_mb = %g)\n",
+            every, sc->frames_every > 0 && sc->stop_time > 0 ? "at most " : "", nf,
+            hd_scene_bodies(sc), nf * hd_scene_frame_bytes(sc) / 1e6, sc->frames_max_mb);
   else
     fprintf(stderr,
             "haff: frames %s: %.3g MB each; their count is not known before the run (no stop_cpd "
@@ -305,8 +304,8 @@ static int observe(runner *r, hd_error *err) {
     int rc = take_frame(r, err); /* one frame per event, as for the samples */
     if (rc) return rc;
     double k = floor(cpd / sc->frames_every) + 1.0;
-    r->st.next_frame = k > (double)r->st.next_frame ? (int32_t)fmin(k, (double)INT32_MAX)
-                                                    : r->st.next_frame + 1;
+    r->st.next_frame =
+        k > (double)r->st.next_frame ? (int32_t)fmin(k, (double)INT32_MAX) : r->st.next_frame + 1;
   }
   if (sc->frames_every_time > 0 && r->st.next_frame == 0) { /* frame 0 at t = 0; the others at
                                                                their exact times (drive) */
@@ -541,8 +540,9 @@ int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error
     int64_t bytes = 0;
     rc = hd_db_frames_bytes(r.db, r.run, &bytes, err);
     long nb = hd_scene_bodies(&sc);
-    if (nb > 0) r.frame_bytes = floor((double)bytes / ((double)nb * HD_FRAME_BODY_BYTES)) *
-                               hd_scene_frame_bytes(&sc);
+    if (nb > 0)
+      r.frame_bytes =
+          floor((double)bytes / ((double)nb * HD_FRAME_BODY_BYTES)) * hd_scene_frame_bytes(&sc);
   }
   if (!rc) /* why it stopped belongs to the stop, not to the run that now goes on */
     rc = hd_db_run_message(r.db, r.run, NULL, err);

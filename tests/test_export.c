@@ -133,20 +133,22 @@ static void frames_by_time(void **state) {
   (void)state;
   if (!haff) skip();
   write_file("f.ini", dimers_ini);
-  run_ok("f.ini", "t.db", "--set run.stop_time=3 --set run.stop_cpd=1e6 "
-                          "--set log.frames_every_time=0.25");
+  run_ok("f.ini", "t.db",
+         "--set run.stop_time=3 --set run.stop_cpd=1e6 "
+         "--set log.frames_every_time=0.25");
   assert_int_equal(q1("t.db", "SELECT count(*) FROM frames"), 13);
   assert_int_equal(q1("t.db", "SELECT count(*) FROM (SELECT row_number() OVER (ORDER BY t) - 1 AS "
                               "k, t FROM frames) WHERE t != k * 0.25"),
                    0);
-  if (sh("%s export xyz t.db -o t.xyz && /usr/bin/python3 %s/tests/ase_check.py t.xyz t.db 1",
-         haff, root))
+  if (sh("%s export xyz t.db -o t.xyz && /usr/bin/python3 %s/tests/ase_check.py t.xyz t.db 1", haff,
+         root))
     fail_msg("%s", out());
   /* stopping the engine at the frames' times changes nothing of the run: the same collisions
    * and final state, bit for bit, as without frames (2D and rods) */
   run_ok("f.ini", "t0.db", "--set run.stop_time=3 --set run.stop_cpd=1e6 --set log.collisions=all");
-  run_ok("f.ini", "ref.db", "--set run.stop_time=3 --set run.stop_cpd=1e6 --set log.collisions=all "
-                            "--set log.frames_every_time=0.1");
+  run_ok("f.ini", "ref.db",
+         "--set run.stop_time=3 --set run.stop_cpd=1e6 --set log.collisions=all "
+         "--set log.frames_every_time=0.1");
   assert_true(q1("t0.db", "SELECT count(*) FROM collisions") > 100);
   assert_int_equal(q1("ref.db", "SELECT count(*) FROM frames"), 31);
   const char *same = "SELECT (SELECT count(*) FROM (SELECT seq, t, i, j, de, eps FROM collisions "
@@ -186,8 +188,9 @@ static void frames_bad_input_and_cap(void **state) {
   strcat(many, "'");
   bad(many, "more than 64 values (snapshots for a movie or a trajectory: frames_every");
   /* 2560 B a frame: 3 fit in 0.01 MB, the 4th does not */
-  run_ok("f.ini", "cap.db", "--set run.stop_time=5 --set run.stop_cpd=1e9 "
-                            "--set log.frames_every=0.5 --set log.frames_max_mb=0.01");
+  run_ok("f.ini", "cap.db",
+         "--set run.stop_time=5 --set run.stop_cpd=1e9 "
+         "--set log.frames_every=0.5 --set log.frames_max_mb=0.01");
   assert_true(strstr(out(), "at most 2000000001 frames"));
   assert_int_equal(q1("cap.db", "SELECT count(*) FROM frames"), 3);
   assert_int_equal(q1("cap.db", "SELECT count(*) FROM runs WHERE status = 'done' AND message LIKE "
@@ -302,8 +305,7 @@ static void movie_of_frames(void **state) {
                       "'h264,720,780,9'"),
                    0);
   assert_int_equal(sh("s=$(stat -c %%s m.mp4); test $s -gt 10000 && test $s -lt 5000000"), 0);
-  if (sh("%s movie m.db -o m.gif --color density --size 400 --fps 5", haff))
-    fail_msg("%s", out());
+  if (sh("%s movie m.db -o m.gif --color density --size 400 --fps 5", haff)) fail_msg("%s", out());
   assert_int_equal(sh("test \"$(ffprobe -v error -count_frames -select_streams v:0 -show_entries "
                       "stream=nb_read_frames,width,height,codec_name -of csv=p=0 m.gif)\" = "
                       "'gif,400,460,9'"),
