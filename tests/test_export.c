@@ -17,6 +17,11 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "hd_run.h"
+#include "hd_scene.h"
+
+int haff_export_main(int argc, char **argv);
+
 static char dir[256];
 static char root[4096]; /* the source tree (the tests run from it): tests/ase_check.py */
 static const char *haff;
@@ -319,6 +324,71 @@ static void movie_of_frames(void **state) {
   assert_int_equal(sh("test ! -e x.mp4 && test ! -e x.avi"), 0);
 }
 
+/* In this process (so that the ASan+UBSan build checks them too, as the other tests drive
+ * bin/haff): frames by time of a mixture and by cpd of rods through hd_run_new, their count,
+ * sizes and exact times, and their export. */
+static void frames_in_process(void **state) {
+  (void)state;
+  char tmpl[] = "/tmp/haff-frames-XXXXXX";
+  assert_non_null(mkdtemp(tmpl));
+  static const char *const scenes[2] = {
+      "[system]\nbox = 12 12\nseed = 4\n[dimers]\ncount = 20\na = 0.5\n[disks]\ncount = 10\n"
+      "[run]\nstop_time = 2\n[log]\ncollisions = none\nframes_every_time = 0.5\n",
+      "[rods]\ncount = 30\n[run]\nstop_cpd = 6\n[log]\ncollisions = none\nframes_every = 2\n"};
+  static const long bodies[2] = {30, 30};
+  for (int k = 0; k < 2; k++) {
+    char db[300], xyz[300];
+    snprintf(db, sizeof db, "%s/p%d.db", tmpl, k);
+    snprintf(xyz, sizeof xyz, "%s/p%d.xyz", tmpl, k);
+    hd_scene sc;
+    hd_error err;
+    assert_int_equal(hd_scene_load_string(&sc, scenes[k], "p.ini", NULL, 0, &err), HD_OK);
+    assert_int_equal(hd_scene_frames_estimate(&sc), k ? 4 : 5);
+    hd_run_opts o = {db, 1, "test", NULL, 0};
+    int64_t run = 0;
+    if (hd_run_new(&sc, &o, &run, &err) != HD_OK) fail_msg("%s", err.msg);
+    hd_scene_free(&sc);
+    sqlite3 *h;
+    assert_int_equal(sqlite3_open(db, &h), SQLITE_OK);
+    sqlite3_stmt *st;
+    assert_int_equal(sqlite3_prepare_v2(h, "SELECT t, cpd, n, length(data) FROM frames ORDER BY t",
+                                        -1, &st, NULL),
+                     SQLITE_OK);
+    int n = 0;
+    while (sqlite3_step(st) == SQLITE_ROW) {
+      if (k == 0)
+        assert_true(sqlite3_column_double(st, 0) == 0.5 * n);
+      else
+        assert_true(sqlite3_column_double(st, 1) >= 2.0 * n &&
+                    sqlite3_column_double(st, 1) < 2.0 * n + 2.0 / 30);
+      assert_int_equal(sqlite3_column_int64(st, 2), bodies[k]);
+      assert_int_equal(sqlite3_column_int64(st, 3), bodies[k] * HD_FRAME_BODY_BYTES);
+      n++;
+    }
+    sqlite3_finalize(st);
+    sqlite3_close(h);
+    assert_int_equal(n, k ? 4 : 5);
+    char *argv[] = {"export", "xyz", db, "--label", "frames", "-o", xyz, NULL};
+    assert_int_equal(haff_export_main(7, argv), 0);
+    FILE *f = fopen(xyz, "r");
+    assert_non_null(f);
+    char line[512];
+    int headers = 0;
+    long lines = 0;
+    while (fgets(line, sizeof line, f)) {
+      headers += strstr(line, "Label=frames") != NULL;
+      lines++;
+    }
+    fclose(f);
+    assert_int_equal(headers, n);
+    long disks = k ? 30 : 50; /* a dimer gives its two disks */
+    assert_int_equal(lines, n * (disks + 2));
+  }
+  char cmd[300];
+  snprintf(cmd, sizeof cmd, "rm -rf %s", tmpl);
+  assert_int_equal(system(cmd), 0);
+}
+
 static int setup(void **state) {
   (void)state;
   if (getenv("HAFF_SANITIZE") && getenv("HAFF_SANITIZE")[0] == '1') {
@@ -350,6 +420,7 @@ int main(void) {
       cmocka_unit_test(frames_resumed),
       cmocka_unit_test(ase_reads_every_kind_of_run),
       cmocka_unit_test(movie_of_frames),
+      cmocka_unit_test(frames_in_process),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
