@@ -173,6 +173,14 @@ static int read_run(sqlite3 *h, movie *m) {
 static int write_frames(sqlite3 *h, const movie *m, long *frames) {
   sqlite3_stmt *st = NULL;
   *frames = 0;
+  if (sqlite3_table_column_metadata(h, "main", "frames", "data", NULL, NULL, NULL, NULL, NULL) !=
+      SQLITE_OK) { /* a database from before the frames table */
+    fprintf(stderr,
+            "haff movie: %s: run %lld has no frames: run it with [log] frames_every or "
+            "frames_every_time\n",
+            m->dbpath, (long long)m->run);
+    return 2;
+  }
   if (sqlite3_prepare_v2(h, "SELECT t, cpd, n, data FROM frames WHERE run = ?1 ORDER BY t, rowid",
                          -1, &st, NULL) != SQLITE_OK) {
     fprintf(stderr, "haff movie: %s: read frames: %s\n", m->dbpath, sqlite3_errmsg(h));
@@ -344,7 +352,7 @@ int haff_movie_main(int argc, char **argv) {
   }
   hd_error err;
   hd_error_clear(&err);
-  static const char *const tables[] = {"runs", "states", "frames", NULL};
+  static const char *const tables[] = {"runs", "states", NULL}; /* frames: not in older files */
   sqlite3 *h = NULL;
   int orc = hd_db_open_read(m.dbpath, SQLITE_OPEN_NOMUTEX, tables, &h, &err);
   if (orc) {

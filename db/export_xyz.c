@@ -164,22 +164,27 @@ static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geo
   sqlite3_stmt *frames = NULL, *bodies = NULL, *blob = NULL;
   int code = 0, *kinds = NULL;
   long nkinds = -1; /* not read yet */
-  /* states: one frame per (label, t); frames rows: one each (src 1) */
-  static const char frames_sql[] =
-      "SELECT lab, t, cpd, n, src, id FROM ("
-      "SELECT label AS lab, t, max(cpd) AS cpd, sum(CASE kind WHEN 'dimer' THEN 2 ELSE 1 END) AS n,"
-      " 0 AS src, 0 AS id FROM states WHERE run = ?1 AND (?2 = 'all' OR label = ?2) GROUP BY "
-      "label, t "
-      "UNION ALL SELECT 'frames', t, cpd, n, 1, rowid FROM frames "
-      "WHERE run = ?1 AND ?2 IN ('all', 'frames')) "
-      "ORDER BY t, CASE lab WHEN 'initial' THEN 0 WHEN 'frames' THEN 1 WHEN 'velocities' THEN 2 "
-      "WHEN 'checkpoint' THEN 3 WHEN 'final' THEN 4 ELSE 5 END, lab, id";
+  /* states: one frame per (label, t); frames rows: one each (src 1), when the file has the
+   * table (a database written before it has none, and is opened read-only: no schema added) */
+#define STATES_FRAMES                                                                              \
+  "SELECT label AS lab, t, max(cpd) AS cpd, sum(CASE kind WHEN 'dimer' THEN 2 ELSE 1 END) AS n, "  \
+  "0 AS src, 0 AS id FROM states WHERE run = ?1 AND (?2 = 'all' OR label = ?2) GROUP BY label, t"
+#define ORDER_FRAMES                                                                               \
+  " ORDER BY t, CASE lab WHEN 'initial' THEN 0 WHEN 'frames' THEN 1 WHEN 'velocities' THEN 2 "     \
+  "WHEN 'checkpoint' THEN 3 WHEN 'final' THEN 4 ELSE 5 END, lab, id"
+  static const char frames_sql[] = "SELECT lab, t, cpd, n, src, id FROM (" STATES_FRAMES
+                                   " UNION ALL SELECT 'frames', t, cpd, n, 1, rowid FROM frames "
+                                   "WHERE run = ?1 AND ?2 IN ('all', 'frames'))" ORDER_FRAMES;
+  static const char states_sql[] =
+      "SELECT lab, t, cpd, n, src, id FROM (" STATES_FRAMES ")" ORDER_FRAMES;
   static const char bodies_sql[] = "SELECT body, kind, x, y, phi, vx, vy, omega FROM states "
                                    "WHERE run = ?1 AND label = ?2 AND t = ?3 ORDER BY body";
   static const char blob_sql[] = "SELECT n, data FROM frames WHERE rowid = ?1";
-  if (sqlite3_prepare_v2(h, frames_sql, -1, &frames, NULL) != SQLITE_OK ||
+  int has_frames = sqlite3_table_column_metadata(h, "main", "frames", "data", NULL, NULL, NULL,
+                                                 NULL, NULL) == SQLITE_OK;
+  if (sqlite3_prepare_v2(h, has_frames ? frames_sql : states_sql, -1, &frames, NULL) != SQLITE_OK ||
       sqlite3_prepare_v2(h, bodies_sql, -1, &bodies, NULL) != SQLITE_OK ||
-      sqlite3_prepare_v2(h, blob_sql, -1, &blob, NULL) != SQLITE_OK) {
+      (has_frames && sqlite3_prepare_v2(h, blob_sql, -1, &blob, NULL) != SQLITE_OK)) {
     fprintf(stderr, "haff export: %s: read states: %s\n", hd_db_path(db), sqlite3_errmsg(h));
     sqlite3_finalize(frames);
     sqlite3_finalize(bodies);
@@ -262,8 +267,14 @@ static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geo
     fprintf(stderr, "haff export: %s: read states: %s\n", hd_db_path(db), sqlite3_errmsg(h));
     code = 1;
   } else if (n_frames == 0) {
-    fprintf(stderr, "haff export: %s: run %lld has no states with label %s\n", hd_db_path(db),
-            (long long)run, label);
+    if (!strcmp(label, "frames"))
+      fprintf(stderr,
+              "haff export: %s: run %lld has no frames (run it with [log] frames_every or "
+              "frames_every_time)\n",
+              hd_db_path(db), (long long)run);
+    else
+      fprintf(stderr, "haff export: %s: run %lld has no states with label %s\n", hd_db_path(db),
+              (long long)run, label);
     code = 2;
   }
   free(kinds);

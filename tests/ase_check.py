@@ -78,8 +78,12 @@ def main():
         snaps.append((t, order[label], 0, label, rows, 1e-12))
     kinds = [k for (k,) in db.execute("SELECT kind FROM states WHERE run = ? AND label = "
                                       "'initial' ORDER BY body", (run,))]
-    for rowid, t, n, data in db.execute("SELECT rowid, t, n, data FROM frames WHERE run = ?",
-                                        (run,)):
+    # a database from before the frames table has none
+    has_frames = db.execute("SELECT count(*) FROM sqlite_master "
+                            "WHERE name = 'frames'").fetchone()[0]
+    sql = ("SELECT rowid, t, n, data FROM frames WHERE run = ?" if has_frames
+           else "SELECT 1, 2, 3, 4 WHERE ? AND 0")
+    for rowid, t, n, data in db.execute(sql, (run,)):
         rows = []
         for i in range(n):
             x, y, phi, vx, vy, om = struct.unpack_from("<3d3f", data, 36 * i)

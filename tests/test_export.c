@@ -318,6 +318,14 @@ static void movie_of_frames(void **state) {
   assert_int_equal(sh("ls -d /tmp/haff-movie-* 2>/dev/null | wc -l | cmp - before.txt"), 0);
   run_ok("f.ini", "noframes.db", "--quiet");
   bad("movie noframes.db -o x.mp4", "run 1 has no frames: run it with [log] frames_every");
+  /* a database from before the frames table: export as before, no movie (exit 2, not 1) */
+  assert_int_equal(sh("sqlite3 noframes.db 'DROP TABLE frames' && chmod a-w noframes.db"), 0);
+  bad("movie noframes.db -o x.mp4", "run 1 has no frames: run it with [log] frames_every");
+  bad("export xyz noframes.db --label frames", "run 1 has no frames (run it with [log]");
+  if (sh("%s export xyz noframes.db -o nf.xyz && /usr/bin/python3 %s/tests/ase_check.py nf.xyz "
+         "noframes.db 1",
+         haff, root))
+    fail_msg("%s", out());
   bad("movie m.db -o x.avi", "-o x.avi: give the movie's file, ending in .mp4 or .gif");
   bad("movie m.db -o x.mp4 --color mass", "--color mass: must be speed or density");
   bad("movie m.db -o x.mp4 --run 7", "there is no such run");
