@@ -75,8 +75,8 @@ CREATE TABLE IF NOT EXISTS states (
 -- packed in one BLOB in body order (0 .. n-1), 36 bytes each, little-endian: x, y, phi as
 -- float64 (positions exact, as in states), then vx, vy, omega as float32 (7 digits: enough
 -- to colour a movie by speed).  Rods: x, 0, 0, v, 0, bath temperature.  The kinds of the
--- bodies are those of the run's 'initial' states.  36 bytes per body against ~60 for a states
--- row (measured in db/README.md).  `haff export xyz` and `haff movie` read them.
+-- bodies are those of the run's 'initial' states.  36 bytes per body against ~107 for a states
+-- row with its index (measured in db/README.md).  `haff export xyz` and `haff movie` read them.
 CREATE TABLE IF NOT EXISTS frames (
   run   INTEGER NOT NULL REFERENCES runs(id),
   t     REAL NOT NULL,
