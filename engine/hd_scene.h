@@ -25,7 +25,7 @@
 #define HD_FRAMES_MAX_MB 1000  /* default `frames_max_mb`: 1 GB of frames */
 #define HD_FRAME_BODY_BYTES 36 /* bytes per body in a frame (db/schema.sql, table frames) */
 #define HD_FRAME_ROW_BYTES                                                                         \
-  40 /* SQLite's bytes per frames row besides the data: ~20 of record (dbstat) and its index      \
+  40 /* SQLite's bytes per frames row besides the data: ~20 of record (dbstat) and its index       \
       * entry; a frame of a few bodies also leaves part of its page empty, not counted here */
 
 /* Where the initial state comes from ([init] placement / state). */
