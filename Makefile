@@ -14,6 +14,8 @@ DEPS_PKGS += slurm-wlm munge
 # python3-pandas: tests/test_sql.c runs the pandas answers of docs/sql.md;
 # groff-base: tests/test_unix.c formats the man page and fails on a troff warning
 DEPS_PKGS += python3-pandas groff-base
+# python3-ase: tests/ase_check.py reads the XYZ export with ASE; ffmpeg: haff movie encodes
+DEPS_PKGS += python3-ase ffmpeg
 WARN    := -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes -Wmissing-prototypes
 # Warnings are errors in CI (CI=true) and whenever WERROR=1.
 ifneq ($(filter true 1,$(CI) $(WERROR)),)

@@ -12,6 +12,7 @@ int haff_mc_main(int argc, char **argv);
 int haff_export_main(int argc, char **argv);
 int haff_merge_main(int argc, char **argv);
 int haff_sweep_main(int argc, char **argv);
+int haff_movie_main(int argc, char **argv);
 
 static const haff_command commands[] = {
     {"run", haff_run_main, "run a scene and append one run to a database"},
@@ -20,6 +21,7 @@ static const haff_command commands[] = {
     {"export", haff_export_main, "export xyz DB: extended XYZ snapshots for OVITO and VMD"},
     {"merge", haff_merge_main, "merge OUT IN...: the runs of many databases into one"},
     {"sweep", haff_sweep_main, "a study: a grid of runs, locally (--jobs) or on Slurm, merged"},
+    {"movie", haff_movie_main, "movie DB -o run.mp4|run.gif: the run's frames, drawn by gnuplot"},
     {"haff-fit", haff_fit_main, "fit eq. (31) (D_e, nu0_eff) per run or per (alpha, a/d) group"},
     {"table1", haff_table1_main, "Table I: D_e and nu0_eff/nu0 per (alpha, a/d), TSV or --md"},
     {"table2", haff_table2_main, "Table II: K = E_tr/E_rot = a0 + a1 tau with 99% intervals"},

@@ -1,18 +1,22 @@
-/* `haff export xyz DB [--run ID] [--label L] [-o FILE]`: extended XYZ snapshots of the states
- * table, which OVITO and VMD open.
+/* `haff export xyz DB [--run ID] [--label L] [-o FILE]`: extended XYZ of the states and frames
+ * tables, as OVITO and ASE (ase.io.read(..., index=':')) read it.
  *
- * One frame per (label, t) of the run, in time order (at equal t: initial, velocities,
+ * One frame per (label, t) of the run, in time order (at equal t: initial, frames, velocities,
  * checkpoint, final).  A frame is
  *   line 1: the number of particles, i.e. of disks (a dimer gives its 2 disks)
- *   line 2: Lattice="Lx 0 0 0 Ly 0 0 0 1"
- * Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:body:I:1 Time=t Label=label [Cpd=cpd] then one
- * line per disk: species (D: disk of a dimer, S: single disk, R: rod), x y 0, vx vy 0 (the velocity
- * of that disk, rotation included), radius, body index. A dimer's disk k is at R -+ (a/2)(cos phi,
- * sin phi) (disk 0 at -), with velocity V -+ (a/2) omega (-sin phi, cos phi).  Positions are not
- * wrapped into the box.
+ *   line 2: Lattice="Lx 0 0 0 Ly 0 0 0 1" Properties=PROPS pbc="T T F" Time=t Label=label [Cpd=cpd]
+ * with PROPS = species:S:1:pos:R:3:velo:R:3:masses:R:1:momenta:R:3:radius:R:1:body:I:1:phi:R:1:
+ * omega:R:1, then one line per disk: species (N: a disk of a dimer, Ar: a single disk, C: a rod;
+ * chemical symbols, which ASE requires), x y 0, its velocity vx vy 0 (rotation included), its
+ * mass, its momentum (what ASE reads as velocities times masses), its radius, the body index,
+ * the body's orientation phi and angular velocity omega.  A dimer's disk k is at R -+ (a/2)(cos
+ * phi, sin phi) (disk 0 at -; hd_kin_disk_pos).  Numbers are written in the shortest form that
+ * reads back as the same double (at most 17 digits).  Positions are not wrapped into the box.
+ * pbc is F along an axis closed by [walls], and along z.
  *
  * Lx, Ly come from runs.box_x/box_y (hd_db_run_box), else from the scene's [system] box; the
- * dimer d and a from [dimers] d, a and the disk diameter from [disks] sigma (all default 1). */
+ * shapes and masses from [dimers] d, a, m and [disks] sigma, mass (default 1), walls from
+ * [walls] sides.  Frames (table frames) take their body kinds from the run's 'initial' states. */
 #include <getopt.h>
 #include <ini.h>
 #include <math.h>
@@ -22,16 +26,20 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "hd_body.h"
 #include "hd_db.h"
+#include "hd_scene.h"
 
 int haff_export_main(int argc, char **argv);
 
 /* The geometry export needs, read from the run's scene text. */
 typedef struct xyz_geom {
-  double lx, ly;  /* box edges, NAN until known */
-  double dimer_d; /* [dimers] d */
-  double dimer_a; /* [dimers] a */
-  double sigma;   /* [disks] sigma */
+  double lx, ly;      /* box edges, NAN until known */
+  hd_shape dimer;     /* [dimers] d, a, m */
+  hd_shape disk;      /* [disks] sigma, mass */
+  int wall_x, wall_y; /* [walls] close x (left right), y (bottom top) */
+  double rod_gamma;   /* [rods] gamma (masses 1 + gamma, 1 + 1/gamma alternate) */
+  int rods;           /* a rods run */
 } xyz_geom;
 
 static int geom_handler(void *user, const char *section, const char *name, const char *value) {
@@ -39,98 +47,240 @@ static int geom_handler(void *user, const char *section, const char *name, const
   if (!strcmp(section, "system") && !strcmp(name, "box")) {
     if (sscanf(value, "%lf %lf", &g->lx, &g->ly) != 2) g->lx = g->ly = NAN;
   } else if (!strcmp(section, "dimers") && !strcmp(name, "d")) {
-    g->dimer_d = strtod(value, NULL);
+    g->dimer.d = strtod(value, NULL);
   } else if (!strcmp(section, "dimers") && !strcmp(name, "a")) {
-    g->dimer_a = strtod(value, NULL);
+    g->dimer.a = strtod(value, NULL);
+  } else if (!strcmp(section, "dimers") && !strcmp(name, "m")) {
+    g->dimer.m = strtod(value, NULL);
   } else if (!strcmp(section, "disks") && !strcmp(name, "sigma")) {
-    g->sigma = strtod(value, NULL);
+    g->disk.d = strtod(value, NULL);
+  } else if (!strcmp(section, "disks") && !strcmp(name, "mass")) {
+    g->disk.m = strtod(value, NULL);
+  } else if (!strcmp(section, "walls") && !strcmp(name, "sides")) {
+    g->wall_x = strstr(value, "left") || strstr(value, "right");
+    g->wall_y = strstr(value, "bottom") || strstr(value, "top");
+  } else if (!strcmp(section, "rods")) {
+    g->rods = 1;
+    if (!strcmp(name, "gamma")) g->rod_gamma = strtod(value, NULL);
   }
   return 1; /* other keys are not ours to judge */
 }
 
 static void usage(FILE *out) {
   fprintf(out,
-          "usage: haff export xyz DB [--run ID] [--label initial|final|checkpoint|velocities|all]"
-          " [-o FILE]\n"
-          "Writes the stored states of a run as extended XYZ (OVITO, VMD): one frame per\n"
-          "(label, time), one line per disk (a dimer gives two, species D; single disks S).\n"
+          "usage: haff export xyz DB [--run ID]\n"
+          "       [--label initial|final|checkpoint|velocities|frames|all] [-o FILE]\n"
+          "Writes the stored states and frames of a run as extended XYZ (OVITO, ASE): one frame\n"
+          "per (label, time), one line per disk (a dimer gives two, species N; single disks Ar;\n"
+          "rods C) with position, velocity, mass, momentum, radius, body, phi and omega.\n"
           "  --run ID     the run [the newest run in DB]\n"
-          "  --label L    which states [all]\n"
+          "  --label L    which states; frames: the [log] frames_every* frames [all]\n"
           "  -o FILE      output file [stdout; - is stdout]\n");
+}
+
+/* Writes x in the shortest %g form that reads back as x (15 to 17 digits). */
+static void put_num(FILE *out, double x) {
+  char b[40];
+  for (int prec = 15; prec <= 17; prec++) {
+    snprintf(b, sizeof b, "%.*g", prec, x);
+    if (strtod(b, NULL) == x) break;
+  }
+  fputs(b, out);
+}
+
+/* Writes the lines of one body (its disks). */
+static void put_body(FILE *out, const xyz_geom *g, long long body, int kind, const hd_kin *k) {
+  const hd_shape *sh = kind == HD_KIND_DIMER ? &g->dimer : &g->disk;
+  const char *species = kind == HD_KIND_DIMER ? "N" : kind == HD_DB_KIND_ROD ? "C" : "Ar";
+  double m = sh->m, r = 0.5 * sh->d;
+  if (kind == HD_DB_KIND_ROD) {
+    m = body % 2 ? 1 + 1 / g->rod_gamma : 1 + g->rod_gamma; /* engine/rods.c */
+    r = 0.5;
+  }
+  int disks = kind == HD_KIND_DIMER ? 2 : 1;
+  for (int j = 0; j < disks; j++) {
+    double x = k->x, y = k->y, vx = k->vx, vy = k->vy;
+    if (kind == HD_KIND_DIMER) {
+      hd_kin_disk_pos(k, sh, j, &x, &y);
+      hd_kin_disk_vel(k, sh, j, &vx, &vy);
+    }
+    double v[] = {x, y, 0, vx, vy, 0, m, m * vx, m * vy, 0, r};
+    fputs(species, out);
+    for (size_t c = 0; c < sizeof v / sizeof v[0]; c++) {
+      fputc(' ', out);
+      put_num(out, v[c]);
+    }
+    fprintf(out, " %lld ", body);
+    put_num(out, kind == HD_KIND_DIMER ? k->phi : 0);
+    fputc(' ', out);
+    put_num(out, kind == HD_KIND_DIMER ? k->omega : 0);
+    fputc('\n', out);
+  }
+}
+
+/* The kinds of the run's bodies (from its 'initial' states) into *kinds (malloc'd), *n. */
+static int read_kinds(hd_db *db, int64_t run, int **kinds, long *n) {
+  sqlite3 *h = hd_db_handle(db);
+  sqlite3_stmt *st = NULL;
+  *kinds = NULL;
+  *n = 0;
+  if (sqlite3_prepare_v2(h,
+                         "SELECT body, kind FROM states WHERE run = ?1 AND label = 'initial' "
+                         "AND t = (SELECT min(t) FROM states WHERE run = ?1 AND label = 'initial') "
+                         "ORDER BY body",
+                         -1, &st, NULL) != SQLITE_OK) {
+    fprintf(stderr, "haff export: %s: read states: %s\n", hd_db_path(db), sqlite3_errmsg(h));
+    return 1;
+  }
+  sqlite3_bind_int64(st, 1, run);
+  long cap = 0;
+  int s;
+  while ((s = sqlite3_step(st)) == SQLITE_ROW) {
+    long long body = sqlite3_column_int64(st, 0);
+    const char *kind = (const char *)sqlite3_column_text(st, 1);
+    if (body != *n) break; /* bodies are 0 .. n-1 */
+    if (*n == cap) {
+      cap = 2 * cap + 64;
+      int *k2 = realloc(*kinds, (size_t)cap * sizeof *k2);
+      if (!k2) break;
+      *kinds = k2;
+    }
+    (*kinds)[(*n)++] = kind && !strcmp(kind, "dimer") ? HD_KIND_DIMER
+                       : kind && !strcmp(kind, "rod") ? HD_DB_KIND_ROD
+                                                      : HD_KIND_DISK;
+  }
+  sqlite3_finalize(st);
+  if (s != SQLITE_DONE) {
+    fprintf(stderr, "haff export: %s: run %lld: its initial states are not bodies 0 .. n-1\n",
+            hd_db_path(db), (long long)run);
+    return 1;
+  }
+  return 0;
 }
 
 /* Writes the frames of run/label to out.  Returns 0 or an exit code with one line on stderr. */
 static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geom *g, FILE *out) {
   sqlite3 *h = hd_db_handle(db);
-  sqlite3_stmt *frames = NULL, *bodies = NULL;
-  int code = 0;
-  static const char frames_sql[] =
-      "SELECT label, t, max(cpd), sum(CASE kind WHEN 'dimer' THEN 2 ELSE 1 END) FROM states "
-      "WHERE run = ?1 AND (?2 = 'all' OR label = ?2) GROUP BY label, t "
-      "ORDER BY t, CASE label WHEN 'initial' THEN 0 WHEN 'velocities' THEN 1 "
-      "WHEN 'checkpoint' THEN 2 WHEN 'final' THEN 3 ELSE 4 END, label";
+  sqlite3_stmt *frames = NULL, *bodies = NULL, *blob = NULL;
+  int code = 0, *kinds = NULL;
+  long nkinds = -1; /* not read yet */
+  /* states: one frame per (label, t); frames rows: one each (src 1), when the file has the
+   * table (a database written before it has none, and is opened read-only: no schema added) */
+#define STATES_FRAMES                                                                              \
+  "SELECT label AS lab, t, max(cpd) AS cpd, sum(CASE kind WHEN 'dimer' THEN 2 ELSE 1 END) AS n, "  \
+  "0 AS src, 0 AS id FROM states WHERE run = ?1 AND (?2 = 'all' OR label = ?2) GROUP BY label, t"
+#define ORDER_FRAMES                                                                               \
+  " ORDER BY t, CASE lab WHEN 'initial' THEN 0 WHEN 'frames' THEN 1 WHEN 'velocities' THEN 2 "     \
+  "WHEN 'checkpoint' THEN 3 WHEN 'final' THEN 4 ELSE 5 END, lab, id"
+  static const char frames_sql[] = "SELECT lab, t, cpd, n, src, id FROM (" STATES_FRAMES
+                                   " UNION ALL SELECT 'frames', t, cpd, n, 1, rowid FROM frames "
+                                   "WHERE run = ?1 AND ?2 IN ('all', 'frames'))" ORDER_FRAMES;
+  static const char states_sql[] =
+      "SELECT lab, t, cpd, n, src, id FROM (" STATES_FRAMES ")" ORDER_FRAMES;
   static const char bodies_sql[] = "SELECT body, kind, x, y, phi, vx, vy, omega FROM states "
                                    "WHERE run = ?1 AND label = ?2 AND t = ?3 ORDER BY body";
-  if (sqlite3_prepare_v2(h, frames_sql, -1, &frames, NULL) != SQLITE_OK ||
-      sqlite3_prepare_v2(h, bodies_sql, -1, &bodies, NULL) != SQLITE_OK) {
+  static const char blob_sql[] = "SELECT n, data FROM frames WHERE rowid = ?1";
+  int has_frames = sqlite3_table_column_metadata(h, "main", "frames", "data", NULL, NULL, NULL,
+                                                 NULL, NULL) == SQLITE_OK;
+  if (sqlite3_prepare_v2(h, has_frames ? frames_sql : states_sql, -1, &frames, NULL) != SQLITE_OK ||
+      sqlite3_prepare_v2(h, bodies_sql, -1, &bodies, NULL) != SQLITE_OK ||
+      (has_frames && sqlite3_prepare_v2(h, blob_sql, -1, &blob, NULL) != SQLITE_OK)) {
     fprintf(stderr, "haff export: %s: read states: %s\n", hd_db_path(db), sqlite3_errmsg(h));
     sqlite3_finalize(frames);
+    sqlite3_finalize(bodies);
     return 1;
   }
   sqlite3_bind_int64(frames, 1, run);
   sqlite3_bind_text(frames, 2, label, -1, SQLITE_STATIC);
   long n_frames = 0;
-  int s;
+  int s, b = SQLITE_DONE;
   while ((s = sqlite3_step(frames)) == SQLITE_ROW) {
     const char *lab = (const char *)sqlite3_column_text(frames, 0);
     double t = sqlite3_column_double(frames, 1);
-    fprintf(out, "%lld\n", (long long)sqlite3_column_int64(frames, 3));
-    fprintf(out,
-            "Lattice=\"%.10g 0 0 0 %.10g 0 0 0 1\" "
-            "Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:body:I:1 Time=%.10g Label=%s",
-            g->lx, g->ly, t, lab);
-    if (sqlite3_column_type(frames, 2) != SQLITE_NULL)
-      fprintf(out, " Cpd=%.10g", sqlite3_column_double(frames, 2));
-    fputc('\n', out);
-    sqlite3_reset(bodies);
-    sqlite3_bind_int64(bodies, 1, run);
-    sqlite3_bind_text(bodies, 2, lab, -1, SQLITE_TRANSIENT);
-    sqlite3_bind_double(bodies, 3, t);
-    int b;
-    while ((b = sqlite3_step(bodies)) == SQLITE_ROW) {
-      long long body = sqlite3_column_int64(bodies, 0);
-      const char *kind = (const char *)sqlite3_column_text(bodies, 1);
-      double x = sqlite3_column_double(bodies, 2), y = sqlite3_column_double(bodies, 3);
-      double phi = sqlite3_column_double(bodies, 4);
-      double vx = sqlite3_column_double(bodies, 5), vy = sqlite3_column_double(bodies, 6);
-      double om = sqlite3_column_double(bodies, 7);
-      if (kind && !strcmp(kind, "dimer")) {
-        double h2 = 0.5 * g->dimer_a, c = cos(phi), sn = sin(phi);
-        for (int k = 0; k < 2; k++) {
-          double sg = k ? 1.0 : -1.0;
-          fprintf(out, "D %.10g %.10g 0 %.10g %.10g 0 %.10g %lld\n", x + sg * h2 * c,
-                  y + sg * h2 * sn, vx - sg * h2 * om * sn, vy + sg * h2 * om * c, 0.5 * g->dimer_d,
-                  body);
-        }
-      } else {
-        int rod = kind && !strcmp(kind, "rod");
-        fprintf(out, "%s %.10g %.10g 0 %.10g %.10g 0 %.10g %lld\n", rod ? "R" : "S", x, y, vx, vy,
-                0.5 * g->sigma, body);
+    int from_frames = sqlite3_column_int(frames, 4);
+    long long nb = sqlite3_column_int64(frames, 3);
+    const unsigned char *data = NULL;
+    if (from_frames) { /* the disks of a frame: its bodies' kinds, from the initial states */
+      if (nkinds < 0 && (code = read_kinds(db, run, &kinds, &nkinds))) break;
+      sqlite3_reset(blob);
+      sqlite3_bind_int64(blob, 1, sqlite3_column_int64(frames, 5));
+      if (sqlite3_step(blob) != SQLITE_ROW || nb != nkinds ||
+          sqlite3_column_bytes(blob, 1) != nb * HD_FRAME_BODY_BYTES) {
+        fprintf(stderr,
+                "haff export: %s: run %lld: the frame at t = %.17g holds %lld bodies, the run's "
+                "initial states %ld\n",
+                hd_db_path(db), (long long)run, t, nb, nkinds);
+        code = 1;
+        break;
       }
+      data = sqlite3_column_blob(blob, 1);
+      long long disks = 0;
+      for (long i = 0; i < nkinds; i++) disks += kinds[i] == HD_KIND_DIMER ? 2 : 1;
+      nb = disks;
     }
-    if (b != SQLITE_DONE) break;
+    fprintf(out, "%lld\n", nb);
+    fprintf(out,
+            "Lattice=\"%.17g 0 0 0 %.17g 0 0 0 1\" Properties=species:S:1:pos:R:3:velo:R:3:"
+            "masses:R:1:momenta:R:3:radius:R:1:body:I:1:phi:R:1:omega:R:1 pbc=\"%c %c F\" Time=",
+            g->lx, g->ly, g->wall_x ? 'F' : 'T', g->rods || g->wall_y ? 'F' : 'T');
+    put_num(out, t);
+    fprintf(out, " Label=%s", lab);
+    if (sqlite3_column_type(frames, 2) != SQLITE_NULL) {
+      fputs(" Cpd=", out);
+      put_num(out, sqlite3_column_double(frames, 2));
+    }
+    fputc('\n', out);
+    if (data) {
+      for (long i = 0; i < nkinds; i++) {
+        double d[3];
+        float f[3];
+        memcpy(d, data + (size_t)i * HD_FRAME_BODY_BYTES, sizeof d);
+        memcpy(f, data + (size_t)i * HD_FRAME_BODY_BYTES + sizeof d, sizeof f);
+        hd_kin k = {d[0], d[1], f[0], f[1], d[2], f[2]};
+        put_body(out, g, i, kinds[i], &k);
+      }
+    } else {
+      sqlite3_reset(bodies);
+      sqlite3_bind_int64(bodies, 1, run);
+      sqlite3_bind_text(bodies, 2, lab, -1, SQLITE_TRANSIENT);
+      sqlite3_bind_double(bodies, 3, t);
+      while ((b = sqlite3_step(bodies)) == SQLITE_ROW) {
+        const char *kind = (const char *)sqlite3_column_text(bodies, 1);
+        int kd = kind && !strcmp(kind, "dimer") ? HD_KIND_DIMER
+                 : kind && !strcmp(kind, "rod") ? HD_DB_KIND_ROD
+                                                : HD_KIND_DISK;
+        hd_kin k = {sqlite3_column_double(bodies, 2), sqlite3_column_double(bodies, 3),
+                    sqlite3_column_double(bodies, 5), sqlite3_column_double(bodies, 6),
+                    sqlite3_column_double(bodies, 4), sqlite3_column_double(bodies, 7)};
+        put_body(out, g, sqlite3_column_int64(bodies, 0), kd, &k);
+      }
+      if (b != SQLITE_DONE) break;
+    }
     n_frames++;
   }
-  if (s != SQLITE_DONE) {
+  if (code) {
+    /* said */
+  } else if (s != SQLITE_DONE && s != SQLITE_ROW) {
+    fprintf(stderr, "haff export: %s: read states: %s\n", hd_db_path(db), sqlite3_errmsg(h));
+    code = 1;
+  } else if (b != SQLITE_DONE) {
     fprintf(stderr, "haff export: %s: read states: %s\n", hd_db_path(db), sqlite3_errmsg(h));
     code = 1;
   } else if (n_frames == 0) {
-    fprintf(stderr, "haff export: %s: run %lld has no states with label %s\n", hd_db_path(db),
-            (long long)run, label);
+    if (!strcmp(label, "frames"))
+      fprintf(stderr,
+              "haff export: %s: run %lld has no frames (run it with [log] frames_every or "
+              "frames_every_time)\n",
+              hd_db_path(db), (long long)run);
+    else
+      fprintf(stderr, "haff export: %s: run %lld has no states with label %s\n", hd_db_path(db),
+              (long long)run, label);
     code = 2;
   }
+  free(kinds);
   sqlite3_finalize(frames);
   sqlite3_finalize(bodies);
+  sqlite3_finalize(blob);
   return code;
 }
 
@@ -148,7 +298,8 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
   int s = sqlite3_step(st), code = 0;
   if (s == SQLITE_ROW) {
     *run = sqlite3_column_int64(st, 0);
-    *g = (xyz_geom){NAN, NAN, 1.0, 1.0, 1.0};
+    *g = (xyz_geom){NAN, NAN, {HD_KIND_DIMER, 1.0, 1.0, 1.0}, {HD_KIND_DISK, 1.0, 0.0, 1.0}, 0, 0,
+                    0.8, 0};
     const char *scene = (const char *)sqlite3_column_text(st, 1);
     if (scene && ini_parse_string(scene, geom_handler, g) < 0) {
       fprintf(stderr, "haff export: %s: run %lld: cannot parse its scene\n", hd_db_path(db),
@@ -216,10 +367,10 @@ int haff_export_main(int argc, char **argv) {
     case 'l':
       label = optarg;
       if (strcmp(label, "initial") && strcmp(label, "final") && strcmp(label, "checkpoint") &&
-          strcmp(label, "velocities") && strcmp(label, "all")) {
+          strcmp(label, "velocities") && strcmp(label, "frames") && strcmp(label, "all")) {
         fprintf(stderr,
                 "haff export: --label %s: must be initial, final, checkpoint, "
-                "velocities or all\n",
+                "velocities, frames or all\n",
                 label);
         return 2;
       }

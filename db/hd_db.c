@@ -1183,6 +1183,51 @@ int hd_db_checkpoint_save(hd_db *db, int64_t run, int64_t seq, double t, const v
   return hd_db_commit(db, err);
 }
 
+int hd_db_log_frame(hd_db *db, int64_t run, double t, double cpd, int64_t n, const void *data,
+                    size_t size, hd_error *err) {
+  int rc = check_db(db, err);
+  if (rc) return rc;
+  if (size > (size_t)sqlite3_limit(db->db, SQLITE_LIMIT_LENGTH, -1))
+    return hd_error_set(err, HD_EINPUT,
+                        "%s: a frame of %lld bodies takes %zu bytes, more than SQLite's limit "
+                        "per value: frames cannot be stored for this many bodies",
+                        db->path, (long long)n, size);
+  /* after the rows logged before it, in the open batch (frames are rare: no writer ring) */
+  if ((rc = drain(db, err)) || (rc = batch_begin(db, err))) return rc;
+  sqlite3_stmt *st = NULL;
+  if (sqlite3_prepare_v2(db->db,
+                         "INSERT INTO frames (run, t, cpd, n, data) VALUES (?1, ?2, ?3, "
+                         "?4, ?5)",
+                         -1, &st, NULL) != SQLITE_OK)
+    return batch_fail(db, NULL, err, "insert frame");
+  sqlite3_bind_int64(st, 1, run);
+  bind_real(st, 2, t);
+  bind_real(st, 3, cpd);
+  sqlite3_bind_int64(st, 4, n);
+  sqlite3_bind_blob64(st, 5, data, (sqlite3_uint64)size, SQLITE_STATIC);
+  rc = sqlite3_step(st) == SQLITE_DONE ? HD_OK : batch_fail(db, st, err, "insert frame");
+  sqlite3_finalize(st);
+  if (!rc && ++db->pending >= db->batch_rows) rc = hd_db_commit_now(db, err);
+  return rc;
+}
+
+int hd_db_frames_bytes(hd_db *db, int64_t run, int64_t *bytes, hd_error *err) {
+  int rc = check_db(db, err);
+  if (rc || (rc = drain(db, err))) return rc;
+  sqlite3_stmt *st = NULL;
+  *bytes = 0;
+  if (sqlite3_prepare_v2(db->db, "SELECT coalesce(sum(length(data)), 0) FROM frames WHERE run = ?1",
+                         -1, &st, NULL) != SQLITE_OK)
+    return sql_error(db, err, "count frames");
+  sqlite3_bind_int64(st, 1, run);
+  if (sqlite3_step(st) == SQLITE_ROW)
+    *bytes = sqlite3_column_int64(st, 0);
+  else
+    rc = sql_error(db, err, "count frames");
+  sqlite3_finalize(st);
+  return rc;
+}
+
 int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_t *seq, double *t,
                           hd_error *err) {
   if (!db) return hd_error_set(err, HD_EIO, "database: not open");
@@ -1250,6 +1295,9 @@ int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error
                     "DELETE FROM states WHERE run = ?1 AND (t > ?2 OR label IN ('checkpoint', "
                     "'final'))",
                     bind_t, &a, "truncate states", NULL, err);
+  if (!rc)
+    rc = run_update(db, run, "DELETE FROM frames WHERE run = ?1 AND t > ?2", bind_t, &a,
+                    "truncate frames", NULL, err);
   if (!rc && sqlite3_exec(db->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK)
     rc = sql_error(db, err, "truncate: commit");
   if (rc) rollback(db);

@@ -170,6 +170,15 @@ int hd_db_log_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *e
 int hd_db_log_state(hd_db *db, int64_t run, const char *label, const hd_state_rec *r,
                     hd_error *err);
 
+/* Inserts a frames row of run at time t / cpd: n bodies packed in data (size bytes, the
+ * layout of db/schema.sql, HD_FRAME_BODY_BYTES per body), in the open batch after every row
+ * logged before it.  HD_EINPUT when size exceeds SQLite's limit per value. */
+int hd_db_log_frame(hd_db *db, int64_t run, double t, double cpd, int64_t n, const void *data,
+                    size_t size, hd_error *err);
+
+/* The bytes of frame data stored for run so far (sum of length(data)), in *bytes. */
+int hd_db_frames_bytes(hd_db *db, int64_t run, int64_t *bytes, hd_error *err);
+
 /* Commits the open batch, if any. */
 int hd_db_commit(hd_db *db, hd_error *err);
 
@@ -189,9 +198,9 @@ int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_
  * continued; else 0 (also when there is no such run).  HD_OK or HD_EIO. */
 int hd_db_run_unstarted(hd_db *db, int64_t run, int *unstarted, hd_error *err);
 
-/* Deletes the rows a resumed run will write again: collisions with seq > seq, samples and
- * states with t > t; and the run's 'checkpoint' and 'final' states (where it stopped: it goes
- * on, and writes its final state again). */
+/* Deletes the rows a resumed run will write again: collisions with seq > seq, samples,
+ * frames and states with t > t; and the run's 'checkpoint' and 'final' states (where it stopped: it
+ * goes on, and writes its final state again). */
 int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error *err);
 
 /* The id of the newest run that has a checkpoint and whose status is 'interrupted', 'failed'

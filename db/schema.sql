@@ -105,6 +105,21 @@ CREATE TABLE IF NOT EXISTS states (
   x REAL, y REAL, phi REAL, vx REAL, vy REAL, omega REAL
 );
 
+-- Trajectory frames ([log] frames_every / frames_every_time): one row per frame, the bodies
+-- packed in one BLOB in body order (0 .. n-1), 36 bytes each, little-endian: x, y, phi as
+-- float64 (positions exact, as in states), then vx, vy, omega as float32 (7 digits: enough
+-- to colour a movie by speed).  Rods: x, 0, 0, v, 0, bath temperature.  The kinds of the
+-- bodies are those of the run's 'initial' states.  36 bytes per body against ~107 for a states
+-- row with its index (measured in db/README.md).  `haff export xyz` and `haff movie` read them.
+CREATE TABLE IF NOT EXISTS frames (
+  run   INTEGER NOT NULL REFERENCES runs(id),
+  t     REAL NOT NULL,
+  cpd   REAL NOT NULL,
+  n     INTEGER NOT NULL,     -- bodies in the frame
+  data  BLOB NOT NULL         -- n * 36 bytes
+);
+CREATE INDEX IF NOT EXISTS frames_run_t ON frames(run, t);
+
 -- Exact engine state for `haff resume` (opaque, bit-exact); only the newest per run is kept,
 -- and none once the run is done or collapsed (it cannot be resumed).
 CREATE TABLE IF NOT EXISTS checkpoints (

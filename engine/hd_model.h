@@ -34,6 +34,9 @@ typedef struct hd_model_ops {
   int (*log_states)(const void *m, hd_db *db, int64_t run, const char *label, hd_error *err);
   /* The box (for runs.box_x/box_y; ly = 0 for 1D). */
   void (*box)(const void *m, double *lx, double *ly);
+  /* One record per body at the current time into out[0 .. bodies-1] (any order; rec.body says
+   * which), for a frame; HD_OK or HD_ENOMEM. */
+  int (*states)(const void *m, hd_state_rec *out, hd_error *err);
 } hd_model_ops;
 
 /* The model that runs scene sc. */

@@ -90,6 +90,19 @@ static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label
   return HD_OK;
 }
 
+static int m_states(const void *m, hd_state_rec *out, hd_error *err) {
+  (void)err;
+  const hd_sim *s = m;
+  for (int32_t i = 0; i < s->n; i++) {
+    hd_kin k;
+    hd_sim_body_now(s, i, &k);
+    out[i] = (hd_state_rec){
+        hd_sim_time(s), s->id[i],     s->shape[s->b[i].species].kind, k.x, k.y, k.phi, k.vx, k.vy,
+        k.omega,        hd_sim_cpd(s)};
+  }
+  return HD_OK;
+}
+
 static void m_box(const void *m, double *lx, double *ly) {
   *lx = ((const hd_sim *)m)->lx;
   *ly = ((const hd_sim *)m)->ly;
@@ -97,7 +110,7 @@ static void m_box(const void *m, double *lx, double *ly) {
 
 const hd_model_ops hd_model_bodies2d = {
     "bodies2d", m_alloc,  m_alloc_restore, m_free,   m_next,       m_checkpoint, m_time,
-    m_cpd,      m_events, m_temperature,   m_sample, m_log_states, m_box};
+    m_cpd,      m_events, m_temperature,   m_sample, m_log_states, m_box,        m_states};
 
 const hd_model_ops *hd_model_for_scene(const hd_scene *sc) {
   return sc->n_rods > 0 ? &hd_model_rods : &hd_model_bodies2d;

@@ -1,5 +1,6 @@
 #include "hd_run.h"
 
+#include <assert.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -29,7 +30,8 @@ typedef struct run_state {
   int64_t seq;         /* collisions so far (pair + wall): the seq of the last one */
   int64_t next_sample; /* index k of the next sample, taken when cpd >= k * samples_every */
   int32_t next_vel;    /* index of the next velocities_at snapshot */
-  int32_t pad;
+  int32_t next_frame;  /* index k of the next frame ([log] frames_every*); was padding (0) in
+                          the checkpoints of older versions, whose runs have no frames */
   double wall_seconds; /* wall-clock seconds spent before this process */
 } run_state;
 
@@ -52,6 +54,10 @@ typedef struct runner {
                             its stop condition, velocities_at times not reached) */
   int lock_fd;             /* the run's lock (run_lock), -1 when not held */
   double last_commit_wall; /* monotonic time of the last commit forced by the clock */
+  hd_state_rec *frame_recs; /* a frame's bodies (take_frame), NULL until the first frame */
+  unsigned char *frame_buf; /* the frame packed as db/schema.sql says */
+  double frame_bytes;       /* bytes of frames stored for the run (hd_scene_frame_bytes each) */
+  int frames_off;           /* frames_max_mb reached: no more frames */
 } runner;
 
 /* The path of run r's lock file, DB.lock. */
@@ -221,6 +227,64 @@ static int checkpoint(runner *r, hd_error *err) {
   return rc;
 }
 
+/* Stores a frame of every body at the current time (table frames), unless it would take the
+ * run's frames past frames_max_mb: then frames stop, and runs.message says so. */
+static int take_frame(runner *r, hd_error *err) {
+  const hd_scene *sc = r->sc;
+  long n = hd_scene_bodies(sc);
+  size_t size = (size_t)n * HD_FRAME_BODY_BYTES;
+  if (r->frame_bytes + hd_scene_frame_bytes(sc) > sc->frames_max_mb * 1e6) {
+    r->frames_off = 1;
+    if (!r->note[0])
+      snprintf(r->note, sizeof r->note,
+               "frames: frames_max_mb = %g reached at t = %.6g (cpd %.6g), later frames not taken",
+               sc->frames_max_mb, r->ops->time(r->s), r->ops->cpd(r->s));
+    return HD_OK;
+  }
+  if (!r->frame_buf) {
+    r->frame_recs = malloc((size_t)n * sizeof *r->frame_recs);
+    r->frame_buf = calloc(size ? size : 1, 1);
+    if (!r->frame_recs || !r->frame_buf)
+      return hd_error_set(err, HD_ENOMEM, "out of memory for a frame of %ld bodies", n);
+  }
+  int rc = r->ops->states(r->s, r->frame_recs, err);
+  if (rc) return rc;
+  for (long i = 0; i < n; i++) {
+    const hd_state_rec *b = &r->frame_recs[i];
+    assert(b->body >= 0 && b->body < n); /* the bodies are numbered 0 .. n-1 */
+    double d[3] = {b->x, b->y, b->phi};
+    float f[3] = {(float)b->vx, (float)b->vy, (float)b->omega};
+    unsigned char *p = r->frame_buf + (size_t)b->body * HD_FRAME_BODY_BYTES;
+    memcpy(p, d, sizeof d);
+    memcpy(p + sizeof d, f, sizeof f);
+  }
+  rc = hd_db_log_frame(r->db, r->run, r->ops->time(r->s), r->ops->cpd(r->s), n, r->frame_buf, size,
+                       err);
+  if (!rc) r->frame_bytes += hd_scene_frame_bytes(sc);
+  return rc;
+}
+
+/* Says at start what the frames will take (stderr), unless quiet. */
+static void frames_estimate(const runner *r) {
+  const hd_scene *sc = r->sc;
+  double nf = hd_scene_frames_estimate(sc);
+  if (nf == 0 || r->o->quiet) return;
+  char every[64];
+  if (sc->frames_every > 0)
+    snprintf(every, sizeof every, "every %g cpd", sc->frames_every);
+  else
+    snprintf(every, sizeof every, "every %g in time", sc->frames_every_time);
+  if (nf > 0)
+    fprintf(stderr, "haff: frames %s: %s%.0f frames of %ld bodies, ~%.3g MB (frames_max_mb = %g)\n",
+            every, sc->frames_every > 0 && sc->stop_time > 0 ? "at most " : "", nf,
+            hd_scene_bodies(sc), nf * hd_scene_frame_bytes(sc) / 1e6, sc->frames_max_mb);
+  else
+    fprintf(stderr,
+            "haff: frames %s: %.3g MB each; their count is not known before the run (no stop_cpd "
+            "or stop_events): frames stop at frames_max_mb = %g\n",
+            every, hd_scene_frame_bytes(sc) / 1e6, sc->frames_max_mb);
+}
+
 /* Fraction of the run done, from whichever stop condition is furthest along. */
 static double fraction_done(const runner *r) {
   const hd_scene *sc = r->sc;
@@ -278,6 +342,20 @@ static int observe(runner *r, hd_error *err) {
     int rc = log_states(r, "velocities", err);
     if (rc) return rc;
   }
+  if (sc->frames_every > 0 && !r->frames_off &&
+      cpd >= (double)r->st.next_frame * sc->frames_every) {
+    int rc = take_frame(r, err); /* one frame per event, as for the samples */
+    if (rc) return rc;
+    double k = floor(cpd / sc->frames_every) + 1.0;
+    r->st.next_frame =
+        k > (double)r->st.next_frame ? (int32_t)fmin(k, (double)INT32_MAX) : r->st.next_frame + 1;
+  }
+  if (sc->frames_every_time > 0 && r->st.next_frame == 0) { /* frame 0 at t = 0; the others at
+                                                               their exact times (drive) */
+    int rc = take_frame(r, err);
+    if (rc) return rc;
+    r->st.next_frame = 1;
+  }
   return HD_OK;
 }
 
@@ -294,7 +372,17 @@ static int drive(runner *r, hd_error *err) {
   int rc = HD_OK;
   while (rc == HD_OK && !stop_reached(r)) {
     hd_collision_row row;
-    rc = r->ops->next(r->s, t_stop, &row, err);
+    /* frames_every_time: the engine stops at each frame's time (its free flight is exact) */
+    double t_frame = sc->frames_every_time > 0 && !r->frames_off
+                         ? (double)r->st.next_frame * sc->frames_every_time
+                         : INFINITY;
+    rc = r->ops->next(r->s, fmin(t_stop, t_frame), &row, err);
+    if (rc == HD_SIM_STOPTIME && t_frame <= t_stop) {
+      rc = take_frame(r, err);
+      r->st.next_frame++;
+      if (rc || t_frame < t_stop) continue;
+      break;
+    }
     if (rc == HD_SIM_IDLE && (sc->stop_events > 0 || sc->stop_cpd > 0))
       /* nothing will ever happen again: every body at rest, or cooled below the range of
        * doubles (a rod ring below its collapse size reaches t ~ 1e308) */
@@ -455,6 +543,7 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
     *run = r.run;
     /* the lock before the row is committed (start commits it): a resume never finds this run
      * 'running' without its lock held, so it never takes over a run in its set-up */
+    frames_estimate(&r);
     rc = run_lock(&r, err);
     if (!rc) rc = record_origin(&r, err);
     if (!rc) rc = start(&r, err);
@@ -472,6 +561,8 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
   run_unlock(&r);
   signals_off();
   r.ops->free(r.s);
+  free(r.frame_recs);
+  free(r.frame_buf);
   return rc;
 }
 
@@ -499,8 +590,8 @@ static int restore(runner *r, const unsigned char *blob, size_t n, int64_t seq, 
     memcpy(&r->st, blob, sizeof r->st);
     const run_state *st = &r->st;
     if (st->seq != seq || st->seq < 0 || st->next_sample < 0 || st->next_vel < 0 ||
-        st->next_vel > r->sc->n_velocities_at || !isfinite(st->wall_seconds) ||
-        st->wall_seconds < 0)
+        st->next_vel > r->sc->n_velocities_at || st->next_frame < 0 ||
+        !isfinite(st->wall_seconds) || st->wall_seconds < 0)
       rc = hd_error_set(&e, HD_EINPUT, "run counters out of range");
   }
   if (!rc) {
@@ -568,6 +659,14 @@ int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error
     if (!rc) /* why it stopped belongs to the stop, not to the run that now goes on */
       rc = hd_db_run_message(r.db, r.run, NULL, err);
   }
+  if (!rc && (sc.frames_every > 0 || sc.frames_every_time > 0)) { /* for frames_max_mb */
+    int64_t bytes = 0;
+    rc = hd_db_frames_bytes(r.db, r.run, &bytes, err);
+    long nb = hd_scene_bodies(&sc);
+    if (nb > 0)
+      r.frame_bytes =
+          floor((double)bytes / ((double)nb * HD_FRAME_BODY_BYTES)) * hd_scene_frame_bytes(&sc);
+  }
   if (!rc)
     rc = hd_db_run_status(r.db, r.run, "running", r.ops->events(r.s), r.st.wall_seconds, err);
   if (!rc) rc = drive_and_finish(&r, err);
@@ -577,6 +676,8 @@ int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error
   run_unlock(&r);
   signals_off();
   if (r.s) r.ops->free(r.s);
+  free(r.frame_recs);
+  free(r.frame_buf);
   hd_scene_free(&sc);
   return rc;
 }

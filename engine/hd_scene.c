@@ -57,6 +57,9 @@ enum {
   K_LCOLL,
   K_LSAMPLES,
   K_LVEL,
+  K_LFRAMES,
+  K_LFRAMEST,
+  K_LFRAMESMB,
   K_RCOUNT,
   K_RGAMMA,
   K_RNMOD,
@@ -100,6 +103,9 @@ static const struct {
     {S_LOG, "collisions"},
     {S_LOG, "samples_every"},
     {S_LOG, "velocities_at"},
+    {S_LOG, "frames_every"},
+    {S_LOG, "frames_every_time"},
+    {S_LOG, "frames_max_mb"},
     {S_RODS, "count"},
     {S_RODS, "gamma"},
     {S_RODS, "nmod"},
@@ -355,7 +361,11 @@ static int set_vel_at(ctx *c, const char *v) {
     s += len;
     if (!parse_num(t, &x)) return FAIL_KEY(c, K_LVEL, "'%s': %s", t, num_why(t));
     if (x < 0) return FAIL_KEY(c, K_LVEL, "'%s': cpd values must be >= 0", t);
-    if (n == HD_MAX_VEL_AT) return FAIL_KEY(c, K_LVEL, "more than %d values", HD_MAX_VEL_AT);
+    if (n == HD_MAX_VEL_AT)
+      return FAIL_KEY(c, K_LVEL,
+                      "more than %d values (snapshots for a movie or a trajectory: "
+                      "frames_every or frames_every_time)",
+                      HD_MAX_VEL_AT);
     if (n > 0 && !(x > sc->velocities_at[n - 1]))
       return FAIL_KEY(c, K_LVEL, "'%s': values must be strictly ascending", t);
     sc->velocities_at[n++] = x;
@@ -442,6 +452,12 @@ static int set_value(ctx *c, int k, const char *v) {
     return get_num(c, k, v, 'n', &sc->samples_every);
   case K_LVEL:
     return set_vel_at(c, v);
+  case K_LFRAMES:
+    return get_num(c, k, v, 'n', &sc->frames_every);
+  case K_LFRAMEST:
+    return get_num(c, k, v, 'n', &sc->frames_every_time);
+  case K_LFRAMESMB:
+    return get_num(c, k, v, 'p', &sc->frames_max_mb);
   case K_RCOUNT:
     if ((rc = get_whole(c, k, v, 2, (double)HD_MAX_COUNT, &x))) return rc;
     if (fmod(x, 2) != 0)
@@ -841,10 +857,36 @@ static int check_rods(ctx *c) {
   return HD_OK;
 }
 
+/* [log] frames_every / frames_every_time: one of them, a bounded count under the cap. */
+static int check_frames(ctx *c) {
+  hd_scene *sc = c->sc;
+  if (sc->frames_every > 0 && sc->frames_every_time > 0)
+    return FAIL_KEY(c, K_LFRAMEST, "give frames_every (cpd) or frames_every_time, not both");
+  if (sc->frames_every_time > 0 && !(sc->stop_time > 0))
+    return FAIL_KEY(c, K_LFRAMEST,
+                    "needs [run] stop_time (frames are taken at exact times up to it; by cpd: "
+                    "frames_every)");
+  if (is_set(c->key_at[K_LFRAMESMB]) && !(sc->frames_every > 0 || sc->frames_every_time > 0))
+    return FAIL_KEY(c, K_LFRAMESMB, "set without frames_every or frames_every_time");
+  double nf = hd_scene_frames_estimate(sc);
+  if (nf > 0) {
+    double mb = nf * hd_scene_frame_bytes(sc) / 1e6;
+    int k = sc->frames_every > 0 ? K_LFRAMES : K_LFRAMEST;
+    /* frames by cpd in a run that stop_time may end first: a bound, not a count; the run
+     * stops taking frames at the cap (hd_run.c) */
+    if (mb > sc->frames_max_mb && !(sc->frames_every > 0 && sc->stop_time > 0))
+      return FAIL_KEY(c, k,
+                      "%.0f frames of %ld bodies take ~%.4g MB, more than frames_max_mb = %g: "
+                      "take fewer frames or raise frames_max_mb",
+                      nf, hd_scene_bodies(sc), mb, sc->frames_max_mb);
+  }
+  return HD_OK;
+}
+
 static int check_all(ctx *c) {
   hd_scene *sc = c->sc;
   int rc;
-  if (c->present[S_RODS]) return check_rods(c);
+  if (c->present[S_RODS]) return (rc = check_rods(c)) ? rc : check_frames(c);
   if (!is_set(c->key_at[K_SALPHAD])) sc->disk_alpha_dimer = sc->disk_alpha;
   if (is_set(c->key_at[K_STATE])) {
     if (is_set(c->key_at[K_PLACE]))
@@ -879,7 +921,7 @@ static int check_all(ctx *c) {
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
                 "one body alone never collides with another: stop it with stop_time (or, between "
                 "walls, stop_events)");
-  return HD_OK;
+  return check_frames(c);
 }
 
 /* ---- canonical text ------------------------------------------------------------------------ */
@@ -998,6 +1040,11 @@ static char *canonical_text(const ctx *c) {
       }
       put(&b, "\n");
     }
+    /* only when asked for: the text of a run without frames is as before */
+    if (sc->frames_every > 0) put_kv(&b, "frames_every", sc->frames_every);
+    if (sc->frames_every_time > 0) put_kv(&b, "frames_every_time", sc->frames_every_time);
+    if (sc->frames_every > 0 || sc->frames_every_time > 0)
+      put_kv(&b, "frames_max_mb", sc->frames_max_mb);
   }
   if (c->present[S_RODS]) {
     put(&b, "[rods]\ncount = %ld\n", sc->n_rods);
@@ -1032,11 +1079,34 @@ void hd_scene_defaults(hd_scene *sc) {
   sc->checkpoint_every = 60;
   sc->log_collisions = HD_LOG_ALL;
   sc->log_every = 1;
+  sc->frames_max_mb = HD_FRAMES_MAX_MB;
   sc->rod_gamma = 0.8;
   sc->rod_nmod = 1000;
   sc->rod_eps = 0.8;
   sc->rod_temperature = 1;
   sc->text = NULL;
+}
+
+long hd_scene_bodies(const hd_scene *sc) {
+  return sc->n_rods > 0 ? sc->n_rods : sc->n_dimers + sc->n_disks;
+}
+
+double hd_scene_frame_bytes(const hd_scene *sc) {
+  return (double)hd_scene_bodies(sc) * HD_FRAME_BODY_BYTES + HD_FRAME_ROW_BYTES;
+}
+
+double hd_scene_frames_estimate(const hd_scene *sc) {
+  double n = (double)hd_scene_bodies(sc), best = INFINITY;
+  if (sc->frames_every_time > 0 && sc->stop_time > 0)
+    best = floor(sc->stop_time / sc->frames_every_time) + 1;
+  if (sc->frames_every > 0) {
+    /* the run ends at the first stop reached; cpd = 2 pair collisions / N <= 2 events / N */
+    if (sc->stop_cpd > 0) best = fmin(best, floor(sc->stop_cpd / sc->frames_every) + 1);
+    if (sc->stop_events > 0 && n > 0)
+      best = fmin(best, floor(2 * sc->stop_events / n / sc->frames_every) + 1);
+  }
+  if (!(sc->frames_every > 0 || sc->frames_every_time > 0)) return 0;
+  return best < INFINITY ? best : -1;
 }
 
 void hd_scene_free(hd_scene *sc) {

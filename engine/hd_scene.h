@@ -22,6 +22,11 @@
                                 * sit within an ulp of the centre (collisions pile up); 1e-9 keeps \
                                 * the bond ~1e4 ulps long in a box of 1e3 d */
 #define HD_SCENE_MAX_LINE 4096 /* longest scene line, in bytes */
+#define HD_FRAMES_MAX_MB 1000  /* default `frames_max_mb`: 1 GB of frames */
+#define HD_FRAME_BODY_BYTES 36 /* bytes per body in a frame (db/schema.sql, table frames) */
+#define HD_FRAME_ROW_BYTES                                                                         \
+  40 /* SQLite's bytes per frames row besides the data: ~20 of record (dbstat) and its index       \
+      * entry; a frame of a few bodies also leaves part of its page empty, not counted here */
 
 /* Where the initial state comes from ([init] placement / state). */
 typedef enum hd_placement {
@@ -79,6 +84,11 @@ typedef struct hd_scene {
   double samples_every;                /* `samples_every` [0 = none], in cpd */
   double velocities_at[HD_MAX_VEL_AT]; /* `velocities_at`: cpd values, ascending */
   int n_velocities_at;
+  double frames_every;      /* `frames_every` [0 = none]: a frame (positions, orientations,
+                             * velocities of every body) every this many cpd */
+  double frames_every_time; /* `frames_every_time` [0 = none]: a frame at t = 0, T, 2T, ...
+                             * exactly (needs stop_time); not with frames_every */
+  double frames_max_mb;     /* `frames_max_mb` [HD_FRAMES_MAX_MB]: cap on the frames' storage */
   /* [rods] (engine/rods.h, docs/rods.md): a rods scene has no bodies, box, walls or [init] */
   long n_rods;            /* `count` [0]: rods on the ring (even, >= 2), ring length = count */
   double rod_gamma;       /* `gamma` [0.8]: length (and mass) ratio short/long, in (0, 1] */
@@ -131,6 +141,16 @@ double hd_dimer_area(double d, double a);
 
 /* Total area of the scene's bodies (dimers and disks, overlaps within a dimer counted once). */
 double hd_scene_covered_area(const hd_scene *sc);
+
+/* Bodies of the scene: dimers + disks, or rods. */
+long hd_scene_bodies(const hd_scene *sc);
+
+/* Bytes one frame of the scene takes in the database (data and row). */
+double hd_scene_frame_bytes(const hd_scene *sc);
+
+/* How many frames the scene's run takes at most (frame 0 included): 0 when it asks for none,
+ * -1 when its stops do not bound the count (frames_every with stop_time only). */
+double hd_scene_frames_estimate(const hd_scene *sc);
 
 /* One body of an [init] state CSV. */
 typedef struct hd_state_row {

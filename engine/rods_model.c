@@ -94,6 +94,18 @@ static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label
   return rc;
 }
 
+static int m_states(const void *m, hd_state_rec *out, hd_error *err) {
+  const hd_rods *r = m;
+  double *x = malloc((size_t)r->p.n * sizeof *x);
+  if (!x) return hd_error_set(err, HD_ENOMEM, "rods: out of memory");
+  hd_rods_positions(r, x);
+  for (long i = 0; i < r->p.n; i++)
+    out[i] = (hd_state_rec){r->t,    i, HD_DB_KIND_ROD,   x[i],    0.0, 0.0,
+                            r->v[i], 0, hd_rods_tb(r, i), m_cpd(m)};
+  free(x);
+  return HD_OK;
+}
+
 static void m_box(const void *m, double *lx, double *ly) {
   *lx = (double)((const hd_rods *)m)->p.n;
   *ly = 0;
@@ -101,4 +113,4 @@ static void m_box(const void *m, double *lx, double *ly) {
 
 const hd_model_ops hd_model_rods = {
     "rods", m_alloc,  m_alloc_restore, m_free,   m_next,       m_checkpoint, m_time,
-    m_cpd,  m_events, m_temperature,   m_sample, m_log_states, m_box};
+    m_cpd,  m_events, m_temperature,   m_sample, m_log_states, m_box,        m_states};

@@ -1031,25 +1031,30 @@ static void export_xyz(void **state) {
   snprintf(out, sizeof out, "%s/out.xyz", fx->dir);
   assert_int_equal(export_run(fx->path, "--run", "1", "--label", "initial", "-o", out, NULL), 0);
   /* Disk 0 of the dimer at R - (a/2)(1, 0) = (2, 3) with velocity V + omega z x (-1/2, 0) =
-   * (1, -1); disk 1 at (3, 3) with (1, 1).  Radii d/2 = 0.5 and sigma/2 = 0.25. */
+   * (1, -1); disk 1 at (3, 3) with (1, 1).  Masses m = 1 (momenta = velocities), radii d/2 =
+   * 0.5 and sigma/2 = 0.25; phi and omega of the body.  Chemical symbols N (a dimer's disk) and
+   * Ar (a disk), which ASE reads; pbc: periodic in x and y, not z. */
   const char *want =
       "3\n"
       "Lattice=\"10 0 0 0 8 0 0 0 1\" "
-      "Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:body:I:1 Time=0 Label=initial\n"
-      "D 2 3 0 1 -1 0 0.5 0\n"
-      "D 3 3 0 1 1 0 0.5 0\n"
-      "S 6 4 0 0 -1 0 0.25 1\n";
+      "Properties=species:S:1:pos:R:3:velo:R:3:masses:R:1:momenta:R:3:radius:R:1:body:I:1:"
+      "phi:R:1:omega:R:1 pbc=\"T T F\" Time=0 Label=initial\n"
+      "N 2 3 0 1 -1 0 1 1 -1 0 0.5 0 0 2\n"
+      "N 3 3 0 1 1 0 1 1 1 0 0.5 0 0 2\n"
+      "Ar 6 4 0 0 -1 0 1 0 -1 0 0.25 1 0 0\n";
   assert_string_equal(slurp(out), want);
 
-  /* all labels: two frames in time order; phi = pi puts disk 0 at R + (a/2, 0) */
+  /* all labels: two frames in time order; phi = pi puts disk 0 at R + (a/2, 0), and its
+   * velocity V - (a/2) omega (-sin phi, cos phi) = (1 + sin(pi), 1) with sin(pi) = 1.2e-16,
+   * which rounds 1 + 1.2e-16 up to the next double: the shortest exact form shows it */
   const char *want_final =
       "3\n"
       "Lattice=\"10 0 0 0 8 0 0 0 1\" "
-      "Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:body:I:1 Time=1.5 Label=final "
-      "Cpd=0.25\n"
-      "D 4.5 3 0 1 1 0 0.5 0\n"
-      "D 3.5 3 0 1 -1 0 0.5 0\n"
-      "S 6 2.5 0 0 -1 0 0.25 1\n";
+      "Properties=species:S:1:pos:R:3:velo:R:3:masses:R:1:momenta:R:3:radius:R:1:body:I:1:"
+      "phi:R:1:omega:R:1 pbc=\"T T F\" Time=1.5 Label=final Cpd=0.25\n"
+      "N 4.5 3 0 1.0000000000000002 1 0 1 1.0000000000000002 1 0 0.5 0 3.141592653589793 2\n"
+      "N 3.5 3 0 0.9999999999999999 -1 0 1 0.9999999999999999 -1 0 0.5 0 3.141592653589793 2\n"
+      "Ar 6 2.5 0 0 -1 0 1 0 -1 0 0.25 1 0 0\n";
   char both[2048];
   snprintf(both, sizeof both, "%s%s", want, want_final);
   /* the newest run (2) has no states: exit 2 with a message; so give --run 1 */

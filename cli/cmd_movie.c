@@ -1,0 +1,409 @@
+/* `haff movie DB [--run ID] -o run.mp4|run.gif [--color speed|density] [--fps N] [--size PX]`:
+ * a movie of a run's frames ([log] frames_every or frames_every_time) in the style of the dimer
+ * paper's Fig. 1: every disk drawn as its disk (a dimer as its two), coloured by its body's
+ * speed or by the local density around it, the box and the time shown.  gnuplot (pngcairo)
+ * draws the frames into a temporary folder, ffmpeg encodes them; the folder is removed after.
+ *
+ * Colours (a cooling gas slows down and clusters: scales of the frame itself, so that the
+ * structure stays visible while the energy falls by decades):
+ *   speed    |V| of the body over the frame's rms |V|, on [0, 3];
+ *   density  bodies whose centres lie within 5 diameters (periodic images included), over the
+ *            frame's mean count in such a disc, on [0, 3].
+ * Positions are wrapped into the box (a disk over an edge is cut there, not drawn twice). */
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <sqlite3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "haff.h"
+#include "hd_body.h"
+#include "hd_db.h"
+#include "hd_scene.h"
+
+int haff_movie_main(int argc, char **argv);
+
+static void usage(FILE *out) {
+  fprintf(out,
+          "usage: haff movie DB [--run ID] -o FILE.mp4|FILE.gif [--color speed|density]\n"
+          "                  [--fps N] [--size PX]\n"
+          "Draws the frames of a run ([log] frames_every or frames_every_time) as a movie: each\n"
+          "disk as its disk, coloured by its body's speed over the frame's rms speed, or by the\n"
+          "local density (bodies within 5 diameters over the frame's mean), on [0, 3]; box,\n"
+          "time and cpd shown.  gnuplot draws, ffmpeg encodes (H.264 for .mp4, GIF for .gif).\n"
+          "  --run ID       the run [the newest run in DB]\n"
+          "  -o FILE        the movie; its extension chooses the format\n"
+          "  --color C      speed or density [speed]\n"
+          "  --fps N        frames per second [10]\n"
+          "  --size PX      width of the longer side in pixels, even [720]\n");
+}
+
+/* Runs argv (a program and its arguments) with stdout to /dev/null; its exit status, or -1. */
+static int run_prog(char *const argv[]) {
+  pid_t pid = fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    if (!freopen("/dev/null", "w", stdout)) _exit(127);
+    execvp(argv[0], argv);
+    _exit(127);
+  }
+  int st;
+  if (waitpid(pid, &st, 0) != pid) return -1;
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* Colour values of the n bodies of a frame (speed or density mode) into val. */
+static void colour(int density, long n, const double *x, const double *y, const float *vx,
+                   const float *vy, double lx, double ly, double reach, double *val) {
+  if (!density) {
+    double s2 = 0;
+    for (long i = 0; i < n; i++) s2 += (double)vx[i] * vx[i] + (double)vy[i] * vy[i];
+    double rms = sqrt(s2 / (double)(n > 0 ? n : 1));
+    for (long i = 0; i < n; i++) val[i] = rms > 0 ? hypot((double)vx[i], (double)vy[i]) / rms : 0;
+    return;
+  }
+  /* neighbours within reach on a periodic grid of cells at least reach wide */
+  long cx = (long)fmax(1, floor(lx / reach)), cy = (long)fmax(1, floor(ly / reach));
+  long *head = malloc((size_t)(cx * cy) * sizeof *head), *next = malloc((size_t)n * sizeof *next);
+  if (!head || !next) {
+    for (long i = 0; i < n; i++) val[i] = 1;
+    free(head);
+    free(next);
+    return;
+  }
+  for (long c = 0; c < cx * cy; c++) head[c] = -1;
+  for (long i = 0; i < n; i++) {
+    long a = (long)floor(x[i] / lx * (double)cx), b = (long)floor(y[i] / ly * (double)cy);
+    a = ((a % cx) + cx) % cx, b = ((b % cy) + cy) % cy;
+    next[i] = head[a * cy + b];
+    head[a * cy + b] = i;
+  }
+  double mean = (double)n * M_PI * reach * reach / (lx * ly), r2 = reach * reach;
+  for (long i = 0; i < n; i++) {
+    long a = (long)floor(x[i] / lx * (double)cx), b = (long)floor(y[i] / ly * (double)cy);
+    a = ((a % cx) + cx) % cx, b = ((b % cy) + cy) % cy;
+    long count = 0, cells[9], nc = 0;
+    for (long da = -1; da <= 1; da++) /* the 3 x 3 cells around, each once (a grid may be
+                                         narrower than 3 cells) */
+      for (long db = -1; db <= 1; db++) {
+        long cell = ((((a + da) % cx) + cx) % cx) * cy + ((((b + db) % cy) + cy) % cy), seen = 0;
+        for (long q = 0; q < nc; q++) seen |= cells[q] == cell;
+        if (!seen) cells[nc++] = cell;
+      }
+    for (long q = 0; q < nc; q++)
+      for (long j = head[cells[q]]; j >= 0; j = next[j]) {
+        double dx = remainder(x[j] - x[i], lx), dy = remainder(y[j] - y[i], ly);
+        if (dx * dx + dy * dy <= r2) count++;
+      }
+    val[i] = (double)count / mean;
+  }
+  free(head);
+  free(next);
+}
+
+/* Everything a movie needs to know of its run. */
+typedef struct movie {
+  const char *dbpath, *outpath, *tmp;
+  int64_t run;
+  int density, fps, size, gif;
+  double lx, ly;
+  hd_scene sc;
+  int *kinds; /* body kinds, from the initial states */
+  long n;     /* bodies */
+} movie;
+
+/* Reads the run, its box and scene and its bodies' kinds.  0 or an exit code (said). */
+static int read_run(sqlite3 *h, movie *m) {
+  sqlite3_stmt *st = NULL;
+  const char *sql = m->run > 0
+                        ? "SELECT id, scene, box_x, box_y FROM runs WHERE id = ?1"
+                        : "SELECT id, scene, box_x, box_y FROM runs ORDER BY id DESC LIMIT 1";
+  if (sqlite3_prepare_v2(h, sql, -1, &st, NULL) != SQLITE_OK) {
+    fprintf(stderr, "haff movie: %s: read runs: %s\n", m->dbpath, sqlite3_errmsg(h));
+    return 1;
+  }
+  if (m->run > 0) sqlite3_bind_int64(st, 1, m->run);
+  int code = 0;
+  if (sqlite3_step(st) != SQLITE_ROW) {
+    fprintf(stderr, "haff movie: %s: %s\n", m->dbpath,
+            m->run > 0 ? "there is no such run" : "the database holds no run");
+    sqlite3_finalize(st);
+    return 2;
+  }
+  m->run = sqlite3_column_int64(st, 0);
+  m->lx = sqlite3_column_double(st, 2);
+  m->ly = sqlite3_column_double(st, 3);
+  hd_error err;
+  char name[64];
+  snprintf(name, sizeof name, "run %lld scene", (long long)m->run);
+  if (hd_scene_load_stored(&m->sc, (const char *)sqlite3_column_text(st, 1), name, &err)) {
+    fprintf(stderr, "haff movie: %s: %s\n", m->dbpath, err.msg);
+    code = 2;
+  }
+  sqlite3_finalize(st);
+  if (code) return code;
+  if (m->sc.n_rods > 0) m->ly = 1; /* a ring: a strip one unit wide */
+  if (!(m->lx > 0 && m->ly > 0)) {
+    fprintf(stderr, "haff movie: %s: run %lld: box unknown\n", m->dbpath, (long long)m->run);
+    return 1;
+  }
+  m->n = hd_scene_bodies(&m->sc);
+  m->kinds = calloc((size_t)(m->n > 0 ? m->n : 1), sizeof *m->kinds);
+  if (!m->kinds) return 1;
+  if (sqlite3_prepare_v2(h,
+                         "SELECT body, kind FROM states WHERE run = ?1 AND label = 'initial' "
+                         "AND t = (SELECT min(t) FROM states WHERE run = ?1 AND label = 'initial')",
+                         -1, &st, NULL) != SQLITE_OK)
+    return 1;
+  sqlite3_bind_int64(st, 1, m->run);
+  while (sqlite3_step(st) == SQLITE_ROW) {
+    long long b = sqlite3_column_int64(st, 0);
+    const char *k = (const char *)sqlite3_column_text(st, 1);
+    if (b >= 0 && b < m->n) m->kinds[b] = k && !strcmp(k, "dimer") ? HD_KIND_DIMER : HD_KIND_DISK;
+  }
+  sqlite3_finalize(st);
+  return 0;
+}
+
+/* Writes the frames' data files and the gnuplot script into m->tmp; *frames their count. */
+static int write_frames(sqlite3 *h, const movie *m, long *frames) {
+  sqlite3_stmt *st = NULL;
+  *frames = 0;
+  if (sqlite3_table_column_metadata(h, "main", "frames", "data", NULL, NULL, NULL, NULL, NULL) !=
+      SQLITE_OK) { /* a database from before the frames table */
+    fprintf(stderr,
+            "haff movie: %s: run %lld has no frames: run it with [log] frames_every or "
+            "frames_every_time\n",
+            m->dbpath, (long long)m->run);
+    return 2;
+  }
+  if (sqlite3_prepare_v2(h, "SELECT t, cpd, n, data FROM frames WHERE run = ?1 ORDER BY t, rowid",
+                         -1, &st, NULL) != SQLITE_OK) {
+    fprintf(stderr, "haff movie: %s: read frames: %s\n", m->dbpath, sqlite3_errmsg(h));
+    return 1;
+  }
+  sqlite3_bind_int64(st, 1, m->run);
+  char path[4200];
+  snprintf(path, sizeof path, "%s/movie.gp", m->tmp);
+  FILE *gp = fopen(path, "w");
+  double *x = malloc((size_t)(m->n + 1) * sizeof *x), *y = malloc((size_t)(m->n + 1) * sizeof *y);
+  double *phi = malloc((size_t)(m->n + 1) * sizeof *phi),
+         *val = malloc((size_t)(m->n + 1) * sizeof *val);
+  float *vx = malloc((size_t)(m->n + 1) * sizeof *vx),
+        *vy = malloc((size_t)(m->n + 1) * sizeof *vy);
+  int code = 0;
+  if (!gp || !x || !y || !phi || !val || !vx || !vy) {
+    fprintf(stderr, "haff movie: %s: %s\n", path, gp ? "out of memory" : strerror(errno));
+    code = 1;
+  }
+  double w = m->size, hgt = m->size;
+  if (m->lx >= m->ly)
+    hgt = 2 * fmax(40, round(0.5 * m->size * m->ly / m->lx)) + 60;
+  else
+    w = 2 * fmax(40, round(0.5 * m->size * m->lx / m->ly));
+  if (!code)
+    fprintf(gp,
+            "set terminal pngcairo size %.0f,%.0f font ',10'\n"
+            "set size ratio -1\nset xrange [0:%.17g]\nset yrange [0:%.17g]\n"
+            "set xtics out nomirror\nset ytics out nomirror\nset border lw 1.5\n"
+            "set cbrange [0:3]\nset cblabel '%s'\nset palette rgbformulae 22,13,-31\n"
+            "unset key\nset style fill solid 1.0 noborder\n",
+            w, hgt, m->lx, m->ly,
+            m->density ? "local density / mean (within 5 d)" : "|V| / rms |V|");
+  double reach = 5 * (m->sc.n_dimers > 0 ? m->sc.dimer_d : m->sc.disk_sigma);
+  int s;
+  while (!code && (s = sqlite3_step(st)) == SQLITE_ROW) {
+    double t = sqlite3_column_double(st, 0), cpd = sqlite3_column_double(st, 1);
+    long n = (long)sqlite3_column_int64(st, 2);
+    const unsigned char *data = sqlite3_column_blob(st, 3);
+    if (n != m->n || sqlite3_column_bytes(st, 3) != n * HD_FRAME_BODY_BYTES) {
+      fprintf(stderr, "haff movie: %s: run %lld: a frame of %ld bodies, the scene has %ld\n",
+              m->dbpath, (long long)m->run, n, m->n);
+      code = 1;
+      break;
+    }
+    for (long i = 0; i < n; i++) {
+      double d[3];
+      float f[3];
+      memcpy(d, data + (size_t)i * HD_FRAME_BODY_BYTES, sizeof d);
+      memcpy(f, data + (size_t)i * HD_FRAME_BODY_BYTES + sizeof d, sizeof f);
+      x[i] = d[0], y[i] = m->sc.n_rods > 0 ? 0.5 : d[1], phi[i] = d[2];
+      vx[i] = f[0], vy[i] = m->sc.n_rods > 0 ? 0.0f : f[1];
+    }
+    colour(m->density, n, x, y, vx, vy, m->lx, m->ly, reach, val);
+    snprintf(path, sizeof path, "%s/f%06ld.dat", m->tmp, *frames);
+    FILE *dat = fopen(path, "w");
+    if (!dat) {
+      fprintf(stderr, "haff movie: %s: %s\n", path, strerror(errno));
+      code = 1;
+      break;
+    }
+    hd_shape dimer = {HD_KIND_DIMER, m->sc.dimer_d, m->sc.dimer_a, m->sc.dimer_m};
+    for (long i = 0; i < n; i++) {
+      hd_kin k = {x[i], y[i], vx[i], vy[i], phi[i], 0};
+      int dimer_body = m->kinds[i] == HD_KIND_DIMER;
+      double r = 0.5 * (dimer_body ? m->sc.dimer_d : m->sc.n_rods > 0 ? 0.5 : m->sc.disk_sigma);
+      for (int j = 0; j < (dimer_body ? 2 : 1); j++) {
+        double px = x[i], py = y[i];
+        if (dimer_body) hd_kin_disk_pos(&k, &dimer, j, &px, &py);
+        px -= m->lx * floor(px / m->lx);
+        py -= m->ly * floor(py / m->ly);
+        fprintf(dat, "%.9g %.9g %.6g %.5g\n", px, py, r, val[i]);
+      }
+    }
+    fclose(dat);
+    fprintf(gp,
+            "set output '%s/f%06ld.png'\nset title sprintf('t = %%.6g   cpd = %%.4g   N = %ld', "
+            "%.17g, %.17g)\nplot '%s/f%06ld.dat' using 1:2:3:4 with circles lc palette\n",
+            m->tmp, *frames, n, t, cpd, m->tmp, *frames);
+    (*frames)++;
+  }
+  if (!code && s != SQLITE_DONE) {
+    fprintf(stderr, "haff movie: %s: read frames: %s\n", m->dbpath, sqlite3_errmsg(h));
+    code = 1;
+  }
+  if (!code && *frames == 0) {
+    fprintf(stderr,
+            "haff movie: %s: run %lld has no frames: run it with [log] frames_every or "
+            "frames_every_time\n",
+            m->dbpath, (long long)m->run);
+    code = 2;
+  }
+  if (gp && fclose(gp) != 0 && !code) code = 1;
+  sqlite3_finalize(st);
+  free(x), free(y), free(phi), free(val), free(vx), free(vy);
+  return code;
+}
+
+int haff_movie_main(int argc, char **argv) {
+  static const struct option opts[] = {{"run", required_argument, NULL, 'r'},
+                                       {"output", required_argument, NULL, 'o'},
+                                       {"color", required_argument, NULL, 'c'},
+                                       {"fps", required_argument, NULL, 'f'},
+                                       {"size", required_argument, NULL, 's'},
+                                       {"help", no_argument, NULL, 'h'},
+                                       {NULL, 0, NULL, 0}};
+  movie m = {.fps = 10, .size = 720};
+  int c;
+  optind = 0;
+  opterr = 0;
+  while ((c = getopt_long(argc, argv, "o:h", opts, NULL)) != -1) {
+    char *end = NULL;
+    long v = optarg ? strtol(optarg, &end, 10) : 0;
+    int num_ok = optarg && *optarg && !*end;
+    switch (c) {
+    case 'r':
+      if (!num_ok || v <= 0) {
+        fprintf(stderr, "haff movie: --run %s: must be a positive run id\n", optarg);
+        return 2;
+      }
+      m.run = v;
+      break;
+    case 'o':
+      m.outpath = optarg;
+      break;
+    case 'c':
+      if (strcmp(optarg, "speed") && strcmp(optarg, "density")) {
+        fprintf(stderr, "haff movie: --color %s: must be speed or density\n", optarg);
+        return 2;
+      }
+      m.density = !strcmp(optarg, "density");
+      break;
+    case 'f':
+      if (!num_ok || v < 1 || v > 120) {
+        fprintf(stderr, "haff movie: --fps %s: must be a whole number in [1, 120]\n", optarg);
+        return 2;
+      }
+      m.fps = (int)v;
+      break;
+    case 's':
+      if (!num_ok || v < 100 || v > 4000 || v % 2) {
+        fprintf(stderr, "haff movie: --size %s: must be an even number of pixels in [100, 4000]\n",
+                optarg);
+        return 2;
+      }
+      m.size = (int)v;
+      break;
+    case 'h':
+      usage(stdout);
+      return 0;
+    default:
+      fprintf(stderr, "haff movie: bad option '%s' (haff movie --help)\n",
+              argv[optind - 1] ? argv[optind - 1] : "?");
+      return 2;
+    }
+  }
+  if (optind + 1 != argc) {
+    fprintf(stderr, "haff movie: give exactly one DB (haff movie --help)\n");
+    return 2;
+  }
+  m.dbpath = argv[optind];
+  size_t len = m.outpath ? strlen(m.outpath) : 0;
+  if (len > 4 && !strcmp(m.outpath + len - 4, ".gif"))
+    m.gif = 1;
+  else if (!(len > 4 && !strcmp(m.outpath + len - 4, ".mp4"))) {
+    fprintf(stderr, "haff movie: -o %s: give the movie's file, ending in .mp4 or .gif\n",
+            m.outpath ? m.outpath : "(missing)");
+    return 2;
+  }
+  hd_error err;
+  hd_error_clear(&err);
+  static const char *const tables[] = {"runs", "states", NULL}; /* frames: not in older files */
+  sqlite3 *h = NULL;
+  int orc = hd_db_open_read(m.dbpath, SQLITE_OPEN_NOMUTEX, tables, &h, &err);
+  if (orc) {
+    fprintf(stderr, "haff movie: %s\n", err.msg);
+    return orc == HD_EINPUT ? 2 : 1;
+  }
+  hd_scene_defaults(&m.sc);
+  int code = read_run(h, &m);
+  char tmpl[] = "/tmp/haff-movie-XXXXXX";
+  long frames = 0;
+  if (!code && !mkdtemp(tmpl)) {
+    fprintf(stderr, "haff movie: cannot make a temporary folder: %s\n", strerror(errno));
+    code = 1;
+  }
+  if (!code) {
+    m.tmp = tmpl;
+    code = write_frames(h, &m, &frames);
+  }
+  sqlite3_close(h);
+  if (!code) {
+    char gpfile[4200];
+    snprintf(gpfile, sizeof gpfile, "%s/movie.gp", m.tmp);
+    char *gpa[] = {"gnuplot", gpfile, NULL};
+    if (run_prog(gpa) != 0) {
+      fprintf(stderr, "haff movie: gnuplot failed on %s (is gnuplot-nox installed?)\n", gpfile);
+      code = 1;
+    }
+  }
+  if (!code) {
+    char in[4200], fps[16];
+    snprintf(in, sizeof in, "%s/f%%06d.png", m.tmp);
+    snprintf(fps, sizeof fps, "%d", m.fps);
+    char *mp4[] = {
+        "ffmpeg", "-nostdin", "-y",      "-loglevel", "error",   "-framerate",      fps, "-i",
+        in,       "-c:v",     "libx264", "-pix_fmt",  "yuv420p", (char *)m.outpath, NULL};
+    char *gif[] = {"ffmpeg", "-nostdin", "-y", "-loglevel",       "error", "-framerate",
+                   fps,      "-i",       in,   (char *)m.outpath, NULL};
+    if (run_prog(m.gif ? gif : mp4) != 0) {
+      fprintf(stderr, "haff movie: ffmpeg could not write %s (is ffmpeg installed?)\n", m.outpath);
+      unlink(m.outpath); /* nothing half-written */
+      code = 1;
+    }
+  }
+  if (m.tmp) {
+    char *rm[] = {"rm", "-rf", (char *)m.tmp, NULL};
+    run_prog(rm);
+  }
+  if (!code)
+    fprintf(stderr, "haff movie: %s: %ld frames of run %lld\n", m.outpath, frames,
+            (long long)m.run);
+  free(m.kinds);
+  hd_scene_free(&m.sc);
+  return code;
+}
