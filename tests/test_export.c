@@ -352,7 +352,7 @@ static void frames_in_process(void **state) {
     hd_error err;
     assert_int_equal(hd_scene_load_string(&sc, scenes[k], "p.ini", NULL, 0, &err), HD_OK);
     assert_int_equal(hd_scene_frames_estimate(&sc), k ? 4 : 5);
-    hd_run_opts o = {db, 1, "test", NULL, 0};
+    hd_run_opts o = {.db_path = db, .quiet = 1, .version = "test"};
     int64_t run = 0;
     if (hd_run_new(&sc, &o, &run, &err) != HD_OK) fail_msg("%s", err.msg);
     hd_scene_free(&sc);
