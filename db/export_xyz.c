@@ -266,7 +266,10 @@ int haff_export_main(int argc, char **argv) {
     fprintf(stderr, "haff export: %s: write failed: %m\n", outpath);
     code = 1;
   }
-  if (out == stdout && fflush(stdout) != 0 && !code) code = 1;
+  if (out == stdout && (fflush(stdout) != 0 || ferror(stdout)) && !code) {
+    fprintf(stderr, "haff export: stdout: write error: %m\n");
+    code = 1;
+  }
   hd_db_close(db, NULL);
   return code;
 }

@@ -1,0 +1,139 @@
+/* End-to-end tests of bin/haff (path in $HAFF_BIN) at the edges of its input and output
+ * (issue 17): write errors on stdout, the shell-safe "continue with" hint, files that are not
+ * regular or never end, control bytes in messages, the argument named after a bad option. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static char dir[256];
+static const char *haff;
+
+/* Runs a shell command in dir, returns its exit status; its stderr goes to dir/err.txt. */
+static __attribute__((format(printf, 1, 2))) int sh(const char *fmt, ...) {
+  char cmd[4096];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(cmd, sizeof cmd, fmt, ap);
+  va_end(ap);
+  char full[4400];
+  snprintf(full, sizeof full, "cd %s && %s 2>err.txt", dir, cmd);
+  int st = system(full);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* The contents of dir/name (at most n - 1 bytes). */
+static void read_file(const char *name, char *buf, size_t n) {
+  char p[300];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "r");
+  size_t k = f ? fread(buf, 1, n - 1, f) : 0;
+  buf[k] = 0;
+  if (f) fclose(f);
+}
+
+static void write_file(const char *name, const char *text) {
+  char p[300];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "w");
+  assert_non_null(f);
+  fputs(text, f);
+  fclose(f);
+}
+
+/* Number of lines of text. */
+static int lines(const char *text) {
+  int n = 0;
+  for (const char *p = text; *p; p++) n += *p == '\n';
+  return n;
+}
+
+/* stderr of the last sh() is one line, holding needle. */
+static void one_line_with(const char *needle) {
+  char err[4096];
+  read_file("err.txt", err, sizeof err);
+  if (lines(err) != 1 || !strstr(err, needle)) fail_msg("expected one line with '%s', got: %s", needle, err);
+}
+
+static const char disks_scene[] = "[system]\narea_fraction = 0.2\nseed = 3\n[disks]\ncount = 200\n"
+                                  "alpha = 0.97\n[run]\nstop_cpd = 20\n[log]\ncollisions = all\n"
+                                  "samples_every = 1\nvelocities_at = 2 5\n";
+static const char dimers_scene[] = "[system]\narea_fraction = 0.2\nseed = 3\n[dimers]\ncount = 200\n"
+                                   "alpha = 0.9\n[run]\nstop_cpd = 20\n[log]\ncollisions = all\n"
+                                   "samples_every = 1\nvelocities_at = 2 5\n";
+static const char rods_scene[] = "[rods]\ncount = 50\n[run]\nstop_time = 10\n[log]\n"
+                                 "samples_every = 1\nvelocities_at = 2 5\n";
+
+static int setup(void **state) {
+  (void)state;
+  if (getenv("HAFF_SANITIZE") && getenv("HAFF_SANITIZE")[0] == '1') {
+    haff = NULL; /* these tests drive bin/haff, which is not the sanitized build */
+    return 0;
+  }
+  haff = getenv("HAFF_BIN");
+  if (!haff) haff = "bin/haff";
+  char abs[4096];
+  if (haff[0] != '/' && realpath(haff, abs)) haff = strdup(abs);
+  char tmpl[] = "/tmp/haff-edges-XXXXXX";
+  assert_non_null(mkdtemp(tmpl));
+  snprintf(dir, sizeof dir, "%s", tmpl);
+  write_file("disks.ini", disks_scene);
+  write_file("dimers.ini", dimers_scene);
+  write_file("rods.ini", rods_scene);
+  assert_int_equal(sh("%s run disks.ini -o d.db --quiet", haff), 0);
+  assert_int_equal(sh("%s run dimers.ini -o m.db --quiet", haff), 0);
+  assert_int_equal(sh("%s run rods.ini -o r.db --quiet", haff), 0);
+  return 0;
+}
+
+static int teardown(void **state) {
+  (void)state;
+  if (!haff) return 0;
+  char cmd[300];
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  return system(cmd) == 0 ? 0 : 1;
+}
+
+/* Item 3: every subcommand that writes on stdout, with stdout on /dev/full, exits 1 with one
+ * line saying so (before: 0 for rods-*, rods-collapse, mc, --help; export 1 with no message). */
+static void stdout_write_errors(void **state) {
+  (void)state;
+  if (!haff) skip();
+  static const char *const cmds[] = {
+      "export xyz d.db", "haff-fit d.db", "table1 m.db", "table2 m.db", "energy d.db",
+      "angles m.db --run 1 --block 500", "veldist d.db --run 1", "rods-energy r.db --run 1",
+      "rods-density r.db --run 1", "rods-phase r.db --run 1 --t 5", "rods-gofr r.db --run 1 --t 5",
+      "rods-veldist r.db --run 1 --t 5", "rods-clusters r.db --run 1",
+      "rods-collapse --n 10 --eps 0.1 --seeds 2 --cpd 100", "mc fmean --a 1 --samples 1000",
+      "mc eps --gamma 1 --beta 1 --samples 100", "--help", "--version", "run --help",
+      "resume --help", "mc --help", "mc fmean --help", "mc eps --help", "export --help",
+      "table1 --help", "rods-energy --help", "rods-collapse --help"};
+  for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
+    /* each writes something on a working stdout */
+    if (sh("%s %s > out.txt", haff, cmds[i]) != 0) fail_msg("%s: failed on a working stdout", cmds[i]);
+    char out[64];
+    read_file("out.txt", out, sizeof out);
+    if (!out[0]) fail_msg("%s: wrote nothing on stdout", cmds[i]);
+    int rc = sh("%s %s > /dev/full", haff, cmds[i]);
+    if (rc != 1) fail_msg("%s > /dev/full: exit %d, not 1", cmds[i], rc);
+    char err[4096];
+    read_file("err.txt", err, sizeof err);
+    const char *w = strstr(err, "write error"); /* once, on the last line (after notes) */
+    if (!w || strstr(w + 1, "write error") || lines(w) != 1)
+      fail_msg("%s > /dev/full: expected one line saying 'write error', got: %s", cmds[i], err);
+  }
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(stdout_write_errors),
+  };
+  return cmocka_run_group_tests(tests, setup, teardown);
+}
