@@ -34,17 +34,31 @@ static void default_db(const char *scene, char *out, size_t n) {
   snprintf(out + len, n - len, ".db");
 }
 
-/* Says that cmd's run was interrupted and how to go on, for this file and run (the path quoted
- * when the shell would need it); before the run began (run 0), that nothing was written. */
+/* Says that cmd's run was interrupted and how to go on, for this file and run: a command to
+ * paste into a POSIX shell, the path single-quoted when the shell would need it (a quote in it
+ * as '\'') and led by ./ when it begins with '-'.  A path with a control byte (which no quoting
+ * keeps on one line) is not echoed.  Before the run began (run 0), that nothing was written. */
 static void say_interrupted(const char *cmd, const char *msg, const char *db, int64_t run) {
   if (run == 0) {
     fprintf(stderr, "haff %s: %s, before the run began: nothing was written\n", cmd, msg);
     return;
   }
+  for (const char *p = db; *p; p++)
+    if ((unsigned char)*p < 0x20 || *p == 0x7f) {
+      fprintf(stderr, "haff %s: %s (continue with: haff resume DB --run %lld, DB the database)\n",
+              cmd, msg, (long long)run);
+      return;
+    }
+  const char *lead = db[0] == '-' ? "./" : "";
   int plain = strspn(db, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._/-+") ==
               strlen(db);
-  fprintf(stderr, "haff %s: %s (continue with: haff resume %s%s%s --run %lld)\n", cmd, msg,
-          plain ? "" : "'", db, plain ? "" : "'", (long long)run);
+  fprintf(stderr, "haff %s: %s (continue with: haff resume %s%s", cmd, msg, plain ? "" : "'", lead);
+  for (const char *p = db; *p; p++)
+    if (*p == '\'')
+      fputs("'\\''", stderr);
+    else
+      fputc(*p, stderr);
+  fprintf(stderr, "%s --run %lld)\n", plain ? "" : "'", (long long)run);
 }
 
 /* One line for an option getopt refused (opterr = 0): the argument at fault and where help is. */

@@ -131,9 +131,49 @@ static void stdout_write_errors(void **state) {
   }
 }
 
+/* Item 4: the "continue with" hint of an interrupted run, pasted into sh, gives haff resume
+ * the database's exact name and runs nothing else (before: a quote in the name ended the
+ * quoting, and `x'; touch PWNED; echo '.db` ran touch). */
+static void resume_hint_is_shell_safe(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("long.ini", "[system]\narea_fraction = 0.2\n[disks]\ncount = 2000\n[run]\n"
+                         "stop_events = 1e9\n[log]\ncollisions = none\n");
+  static const char *const names[] = {"x'; touch PWNED; echo '.db", "-lead $(touch PWNED) `x`.db",
+                                      "quote\"back\\slash;&|<>*?.db", "plain_name.db"};
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+    write_file("name.txt", names[i]);
+    assert_int_equal(sh("timeout --preserve-status -s INT 1 %s run long.ini -o \"$(cat name.txt)\" --quiet", haff), 1);
+    char err[4096];
+    read_file("err.txt", err, sizeof err);
+    char *hint = strstr(err, "continue with: ");
+    char *end = strrchr(err, ')');
+    if (!hint || !end || end < hint) fail_msg("no hint in: %s", err);
+    hint += strlen("continue with: ");
+    *end = 0;
+    write_file("hint.sh", "haff() { printf '%s\\n' \"$@\" > args.txt; }\n");
+    char p[300];
+    snprintf(p, sizeof p, "%s/hint.sh", dir);
+    FILE *f = fopen(p, "a");
+    assert_non_null(f);
+    fprintf(f, "%s\n", hint);
+    fclose(f);
+    assert_int_equal(sh("sh hint.sh"), 0);
+    char args[4096], want[4096];
+    read_file("args.txt", args, sizeof args);
+    const char *lead = names[i][0] == '-' ? "./" : "";
+    snprintf(want, sizeof want, "resume\n%s%s\n--run\n%d\n", lead, names[i], 1);
+    if (strcmp(args, want)) fail_msg("hint %s parsed as:\n%s", hint, args);
+    char pwned[300];
+    snprintf(pwned, sizeof pwned, "%s/PWNED", dir);
+    if (access(pwned, F_OK) == 0) fail_msg("the hint %s ran a command", hint);
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(stdout_write_errors),
+      cmocka_unit_test(resume_hint_is_shell_safe),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
