@@ -81,8 +81,9 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
       return -1;
     }
     if (c == '?') {
+      char buf[8];
       fprintf(stderr, "haff %s: unknown option or missing value '%s' (see --help)\n", cmd,
-              argv[optind - 1]);
+              hd_opt_culprit(argv, lo, buf, sizeof buf));
       return 2;
     }
     for (size_t i = 0; i < sizeof need / sizeof need[0]; i++)

@@ -62,9 +62,10 @@ static void say_interrupted(const char *cmd, const char *msg, const char *db, in
 }
 
 /* One line for an option getopt refused (opterr = 0): the argument at fault and where help is. */
-static int bad_option(const char *cmd, char **argv) {
+static int bad_option(const char *cmd, char **argv, const struct option *opts) {
+  char buf[8];
   fprintf(stderr, "haff %s: unknown option or missing value '%s' (see haff %s --help)\n", cmd,
-          argv[optind - 1], cmd);
+          hd_opt_culprit(argv, opts, buf, sizeof buf), cmd);
   return 2;
 }
 
@@ -117,7 +118,7 @@ int haff_run_main(int argc, char **argv) {
       fputs(run_usage, stdout);
       return 0;
     default:
-      return bad_option("run", argv);
+      return bad_option("run", argv, opts);
     }
   }
   if (optind != argc - 1) {
@@ -203,7 +204,7 @@ int haff_resume_main(int argc, char **argv) {
       fputs(resume_usage, stdout);
       return 0;
     default:
-      return bad_option("resume", argv);
+      return bad_option("resume", argv, opts);
     }
   }
   if (optind != argc - 1) {

@@ -776,6 +776,7 @@ static int check_box(ctx *c) {
   if (!is_set(c->key_at[K_BOX]) && !is_set(c->key_at[K_AREA]))
     return fail(c, HD_EINPUT, c->present[S_SYSTEM] ? c->sec_at[S_SYSTEM] : (loc){0, 0}, S_SYSTEM,
                 "box", NULL, "missing: give box = Lx Ly or area_fraction = eta");
+  sc->box_line = c->key_at[kb].over ? 0 : c->key_at[kb].line;
   double area = hd_scene_covered_area(sc);
   if (kb == K_AREA) sc->box_x = sc->box_y = sqrt(area / sc->area_fraction);
   if (!isfinite(sc->box_x) || !isfinite(sc->box_y)) /* the bodies' area overflowed (d ~ 1e160) */

@@ -170,10 +170,76 @@ static void resume_hint_is_shell_safe(void **state) {
   }
 }
 
+/* Item 10: one line for a newline in --set and control bytes in a scene, escaped (before: a
+ * two-line message, and the scene's ESC sequences reached the terminal raw). */
+static void messages_escape_control_bytes(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("%s run disks.ini -o x.db --set \"$(printf 'disks.alpha=0.5\\nfoo')\"", haff), 2);
+  one_line_with("alpha = 0.5\\nfoo: not a number");
+  write_file("esc.ini", "[system]\narea_fraction = 0.1\n[disks]\ncount = 10\n"
+                        "alpha = \033]0;PWN\007\033[2J\xc2\x9b\xff \xc3\xa9\n[run]\nstop_time = 1\n");
+  assert_int_equal(sh("%s run esc.ini -o x.db", haff), 2);
+  one_line_with("esc.ini:5: [disks] alpha = \\x1b]0;PWN\\x07\\x1b[2J\\xc2\\x9b\\xff \xc3\xa9: not a number");
+  char err[4096];
+  read_file("err.txt", err, sizeof err);
+  for (const char *p = err; *p; p++) /* no control byte but the final newline */
+    if ((unsigned char)*p < 0x20 && p[1]) fail_msg("control byte 0x%02x in: %s", *p, err);
+}
+
+/* Item 10: the option named after a bad short option is that option (before: `resume DB -oo`
+ * named the database, `mc fmean ... -oo` named 1000, the argument before the cluster). */
+static void bad_option_named(void **state) {
+  (void)state;
+  if (!haff) skip();
+  static const char *const cases[][2] = {
+      {"resume d.db -oo", "'-o'"},
+      {"resume --quiet -qo d.db", "'-o'"},
+      {"resume d.db --run", "'--run'"},
+      {"run disks.ini --bogus", "'--bogus'"},
+      {"mc fmean --a 1 --samples 1000 -oo", "'-o'"},
+      {"mc eps --gamma 1 -xo", "'-x'"},
+      {"table1 d.db --run 1 -zo", "'-z'"},
+      {"rods-energy r.db --run 1 -qq", "'-q'"},
+      {"rods-collapse --n 4 -zz", "'-z'"},
+      {"export xyz d.db --run 1 -zz", "'-z'"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    int rc = sh("%s %s", haff, cases[i][0]);
+    if (rc != 2) fail_msg("%s: exit %d, not 2", cases[i][0], rc);
+    one_line_with(cases[i][1]);
+  }
+}
+
+/* Item 10: a FIFO, a device or a malformed file given as the database is bad input: exit 2
+ * and one line (before: exit 1, "disk I/O error" or "database disk image is malformed"). */
+static void special_and_malformed_databases(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("rm -f fifo.db && mkfifo fifo.db"), 0);
+  static const char *const fifo[] = {"run disks.ini -o fifo.db", "resume fifo.db",
+                                     "export xyz fifo.db", "haff-fit fifo.db",
+                                     "rods-energy fifo.db --run 1", "run disks.ini -o /dev/null"};
+  for (size_t i = 0; i < sizeof fifo / sizeof fifo[0]; i++) {
+    int rc = sh("timeout 10 %s %s", haff, fifo[i]);
+    if (rc != 2) fail_msg("%s: exit %d, not 2", fifo[i], rc);
+    one_line_with("not a regular file");
+  }
+  /* pages 4 and 5 of a copy of d.db overwritten: SQLite finds it malformed when it reads them */
+  assert_int_equal(sh("cp d.db bad.db && head -c 8192 /dev/zero | tr '\\0' '\\377' | "
+                      "dd of=bad.db bs=4096 seek=3 conv=notrunc status=none"),
+                   0);
+  assert_int_equal(sh("%s veldist bad.db --run 1", haff), 2);
+  one_line_with("malformed");
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(stdout_write_errors),
       cmocka_unit_test(resume_hint_is_shell_safe),
+      cmocka_unit_test(messages_escape_control_bytes),
+      cmocka_unit_test(bad_option_named),
+      cmocka_unit_test(special_and_malformed_databases),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
