@@ -233,6 +233,39 @@ static void special_and_malformed_databases(void **state) {
   one_line_with("malformed");
 }
 
+/* Item 8: a scene or state file that is not a regular file, or too large, is refused at once
+ * with one line (before: /dev/zero grew memory until it ran out, a FIFO hung). */
+static void unbounded_inputs_refused(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("rm -f fifo.ini && mkfifo fifo.ini"), 0);
+  static const char *const scenes[] = {"/dev/zero", "/dev/full", "fifo.ini"};
+  for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; i++) {
+    /* ulimit -v: the old reader would take every byte it could; 10 s: a FIFO blocked open() */
+    int rc = sh("(ulimit -v 2000000; timeout 10 %s run %s -o x.db)", haff, scenes[i]);
+    if (rc != 2) fail_msg("run %s: exit %d, not 2", scenes[i], rc);
+    one_line_with("not a regular file");
+  }
+  write_file("zero.ini", "[system]\nbox = 10 10\n[disks]\n[init]\nstate = /dev/zero\n"
+                         "[run]\nstop_time = 1\n");
+  assert_int_equal(sh("(ulimit -v 2000000; timeout 10 %s run zero.ini -o x.db)", haff), 2);
+  one_line_with("/dev/zero: cannot read state file: not a regular file");
+  /* a regular file past 1 MiB: 2 MiB of comment lines */
+  assert_int_equal(sh("{ echo '[system]'; yes '; a comment line of sixty-four bytes, for the "
+                      "size limit' | head -c 2097152; } > huge.ini"),
+                   0);
+  assert_int_equal(sh("%s run huge.ini -o x.db", haff), 2);
+  one_line_with("huge.ini: scene larger than 1048576 bytes");
+  /* a state CSV line of 1e6 bytes: refused on its line, not read into memory */
+  assert_int_equal(sh("{ echo kind,x,y,phi,vx,vy,omega; echo disk,1,1,0,0,0,0; printf disk,1; "
+                      "head -c 1000000 /dev/zero | tr '\\0' ' '; echo ,1,0,0,0,0; } > long.csv"),
+                   0);
+  write_file("long.ini", "[system]\nbox = 10 10\n[disks]\n[init]\nstate = long.csv\n"
+                         "[run]\nstop_time = 1\n");
+  assert_int_equal(sh("%s run long.ini -o x.db", haff), 2);
+  one_line_with("long.csv:3: line longer than 4096 bytes");
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(stdout_write_errors),
@@ -240,6 +273,7 @@ int main(void) {
       cmocka_unit_test(messages_escape_control_bytes),
       cmocka_unit_test(bad_option_named),
       cmocka_unit_test(special_and_malformed_databases),
+      cmocka_unit_test(unbounded_inputs_refused),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
