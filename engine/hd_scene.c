@@ -878,8 +878,9 @@ static int check_all(ctx *c) {
     /* it has no pair collision ever (cpd stays 0), and without walls no collision at all: the
      * run would go on for ever */
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
-                "one body alone never collides with another: stop it with stop_time (or, between "
-                "walls, stop_events)");
+                "one body alone never collides with another: stop it with stop_time (stop_events "
+                "counts only its wall collisions, and a drawn velocity of one body is 0: it rests "
+                "or spins in place)");
   return HD_OK;
 }
 

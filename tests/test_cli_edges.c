@@ -266,6 +266,50 @@ static void unbounded_inputs_refused(void **state) {
   one_line_with("long.csv:3: line longer than 4096 bytes");
 }
 
+/* Item 7: scenes that cannot make progress.  A lone dimer spinning in place between walls, out
+ * of their reach, ends at once "done" with the note "no event left" (before: wake-ups for
+ * ever, 1.25e8 events in 8 s); a state whose angle or spin the run cannot resolve is refused
+ * on its line (before: 2 events in 6 s).  The lone-body refusal no longer recommends the
+ * scene that never ended. */
+static void scenes_that_never_end(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("spin.csv", "kind,x,y,phi,vx,vy,omega\ndimer,5,5,0,0,0,1\n");
+  write_file("spin.ini", "[system]\nbox = 10 10\n[dimers]\ncount = 1\n[walls]\n"
+                         "sides = left right bottom top\n[init]\nstate = spin.csv\n[run]\n"
+                         "stop_events = 10\n");
+  assert_int_equal(sh("timeout 20 %s run spin.ini -o spin.db", haff), 0);
+  char err[4096];
+  read_file("err.txt", err, sizeof err);
+  if (!strstr(err, "no event left")) fail_msg("no 'no event left' note: %s", err);
+  /* within reach of a wall (centre 0.9 from it, reach 1) it strikes the wall: 10 collisions */
+  write_file("near.csv", "kind,x,y,phi,vx,vy,omega\ndimer,0.9,5,1.5,0,0,1\n");
+  write_file("near.ini", "[system]\nbox = 10 10\n[dimers]\ncount = 1\n[walls]\n"
+                         "sides = left right bottom top\n[init]\nstate = near.csv\n[run]\n"
+                         "stop_events = 10\n");
+  assert_int_equal(sh("timeout 20 %s run near.ini -o near.db --quiet", haff), 0);
+  read_file("err.txt", err, sizeof err);
+  if (strstr(err, "no event left")) fail_msg("a dimer within reach of a wall: %s", err);
+  static const char *const rows[][2] = {
+      {"dimer,2,2,1e300,1,0.5,1", "column 4 (phi) = 1e+300"},
+      {"dimer,2,2,0.3,1,0.5,1e10", "column 7 (omega) = 1e+10"},
+  };
+  for (size_t i = 0; i < 2; i++) {
+    char csv[256];
+    snprintf(csv, sizeof csv, "kind,x,y,phi,vx,vy,omega\n%s\ndimer,7,7,0,-1,0,0\n", rows[i][0]);
+    write_file("fast.csv", csv);
+    write_file("fast.ini", "[system]\nbox = 10 10\n[dimers]\ncount = 2\n[init]\n"
+                           "state = fast.csv\n[run]\nstop_events = 100\n");
+    assert_int_equal(sh("timeout 20 %s run fast.ini -o fast.db", haff), 2);
+    one_line_with(rows[i][1]);
+    one_line_with("fast.csv:2: ");
+  }
+  write_file("one.ini", "[system]\nbox = 10 10\n[dimers]\ncount = 1\n[walls]\n"
+                        "sides = left right bottom top\n[run]\nstop_cpd = 10\n");
+  assert_int_equal(sh("%s run one.ini -o one.db", haff), 2);
+  one_line_with("a drawn velocity of one body is 0");
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(stdout_write_errors),
@@ -274,6 +318,7 @@ int main(void) {
       cmocka_unit_test(bad_option_named),
       cmocka_unit_test(special_and_malformed_databases),
       cmocka_unit_test(unbounded_inputs_refused),
+      cmocka_unit_test(scenes_that_never_end),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
