@@ -140,6 +140,7 @@ static int place_lattice(hd_sim *s, hd_error *err) {
 }
 
 void hd_init_velocities(hd_sim *s, double T) {
+  if (s->n == 0) return; /* nothing to draw (the mean momentum below would be 0 / 0) */
   double px = 0.0, py = 0.0, mtot = 0.0;
   for (int32_t i = 0; i < s->n; i++) {
     hd_body *b = &s->b[i];
@@ -289,7 +290,9 @@ int hd_init_state(hd_sim *s, const hd_scene *sc, hd_error *err) {
     s->b[i].species = i < s->n_species[0] ? HD_SP_DIMER : HD_SP_DISK;
     s->b[i].next = -1;
   }
-  if (sc->placement == HD_PLACE_LATTICE)
+  if (s->n == 0) /* a scene without bodies: no grid to size (0 / 0 sites per row) */
+    rc = HD_OK;
+  else if (sc->placement == HD_PLACE_LATTICE)
     rc = place_lattice(s, err);
   else if ((rc = place_random(s)) < 0)
     rc = hd_error_set(err, HD_EINTR, "interrupted while placing the bodies of the set-up");

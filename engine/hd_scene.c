@@ -17,6 +17,7 @@
 #include "rods.h"
 
 #include <errno.h>
+#include <float.h>
 #include <ini.h>
 #include <limits.h>
 #include <math.h>
@@ -788,6 +789,12 @@ static int check_box(ctx *c) {
   if (edge < ext)
     return FAIL_KEY(c, kb, "box too small: edge %.6g is shorter than the largest body (%.6g)", edge,
                     ext);
+  if (!(sc->box_x * sc->box_y >= DBL_MIN) || !(area >= DBL_MIN))
+    /* 1e-300 x 1e-300: the areas underflow, and the covered fraction would be 0 / 0 */
+    return FAIL_KEY(c, kb,
+                    "box %.6g x %.6g: its area or the bodies' (%.6g) is below the smallest "
+                    "normal double: rescale the lengths",
+                    sc->box_x, sc->box_y, area);
   double frac = area / (sc->box_x * sc->box_y);
   if (sc->placement == HD_PLACE_RANDOM && frac > HD_RANDOM_MAX_FRACTION)
     return FAIL_KEY(c, kb,
