@@ -13,6 +13,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "hd_scene.h"
+#include "hd_sim.h"
+
 static char dir[256];
 static const char *haff;
 
@@ -310,6 +313,28 @@ static void scenes_that_never_end(void **state) {
   one_line_with("a drawn velocity of one body is 0");
 }
 
+/* Item 9: the melted lattice of a random placement between walls in a box 1 x 1e300 counted
+ * its sites with (int32_t)floor(1e300 / 1), undefined behaviour (the message said "0 x
+ * -2147483648 sites"; the sanitizer build, with float-cast-overflow, stops on it).  Library
+ * level, so that it runs in both builds. */
+static void huge_box_site_count(void **state) {
+  (void)state;
+  hd_scene sc;
+  hd_error err;
+  assert_int_equal(hd_scene_load_string(&sc,
+                                        "[system]\nbox = 1 1e300\n[disks]\ncount = 3\n[walls]\n"
+                                        "sides = left right\n[run]\nstop_time = 1\n",
+                                        "huge.ini", NULL, 0, &err),
+                   HD_OK);
+  hd_sim *s = NULL;
+  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_EINPUT);
+  assert_null(s);
+  if (!strstr(err.msg, "[system] box 1 x 1e+300: 3 bodies do not fit") ||
+      !strstr(err.msg, "(0 x 3 sites of 1 x 1)"))
+    fail_msg("%s", err.msg);
+  hd_scene_free(&sc);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(stdout_write_errors),
@@ -319,6 +344,7 @@ int main(void) {
       cmocka_unit_test(special_and_malformed_databases),
       cmocka_unit_test(unbounded_inputs_refused),
       cmocka_unit_test(scenes_that_never_end),
+      cmocka_unit_test(huge_box_site_count),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
