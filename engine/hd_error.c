@@ -25,11 +25,10 @@ void hd_text_escape(const char *in, char *out, size_t n) {
     char esc[8];
     size_t len = 1;
     const char *piece = (const char *)s;
-    if (*s >= 0x20 && *s < 0x7f) {
-    } else if (*s == '\n' || *s == '\t' || *s == '\r') {
+    if (*s == '\n' || *s == '\t' || *s == '\r') {
       snprintf(esc, sizeof esc, "\\%c", *s == '\n' ? 'n' : *s == '\t' ? 't' : 'r');
       piece = esc;
-    } else if ((len = utf8_printable(s)) == 0) {
+    } else if ((*s < 0x20 || *s >= 0x7f) && (len = utf8_printable(s)) == 0) {
       snprintf(esc, sizeof esc, "\\x%02x", *s);
       piece = esc, len = 1;
     }

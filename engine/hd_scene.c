@@ -789,12 +789,13 @@ static int check_box(ctx *c) {
   if (edge < ext)
     return FAIL_KEY(c, kb, "box too small: edge %.6g is shorter than the largest body (%.6g)", edge,
                     ext);
-  if (!(sc->box_x * sc->box_y >= DBL_MIN) || !(area >= DBL_MIN))
-    /* 1e-300 x 1e-300: the areas underflow, and the covered fraction would be 0 / 0 */
+  if (!(sc->box_x * sc->box_y >= DBL_MIN))
+    /* 1e-300 x 1e-300: the area underflows, and the covered fraction would be 0 / 0 (bodies
+     * whose own area underflows cover 0 of a box that has one: that is fine) */
     return FAIL_KEY(c, kb,
-                    "box %.6g x %.6g: its area or the bodies' (%.6g) is below the smallest "
-                    "normal double: rescale the lengths",
-                    sc->box_x, sc->box_y, area);
+                    "box %.6g x %.6g: its area is below the smallest normal double: rescale the "
+                    "lengths",
+                    sc->box_x, sc->box_y);
   double frac = area / (sc->box_x * sc->box_y);
   if (sc->placement == HD_PLACE_RANDOM && frac > HD_RANDOM_MAX_FRACTION)
     return FAIL_KEY(c, kb,

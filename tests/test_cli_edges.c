@@ -333,6 +333,15 @@ static void huge_box_site_count(void **state) {
       !strstr(err.msg, "(0 x 3 sites of 1 x 1)"))
     fail_msg("%s", err.msg);
   hd_scene_free(&sc);
+  /* a box whose area underflows: the covered fraction was 0 / 0 (float-divide-by-zero) and the
+   * scene was accepted */
+  assert_int_equal(hd_scene_load_string(&sc,
+                                        "[system]\nbox = 1e-300 1e-300\n[disks]\ncount = 1\n"
+                                        "sigma = 1e-301\n[run]\nstop_time = 1\n",
+                                        "tiny.ini", NULL, 0, &err),
+                   HD_EINPUT);
+  if (!strstr(err.msg, "tiny.ini:2: [system] box = 1e-300 1e-300: box 1e-300 x 1e-300: its area"))
+    fail_msg("%s", err.msg);
 }
 
 int main(void) {
