@@ -234,6 +234,8 @@ static void special_and_malformed_databases(void **state) {
                    0);
   assert_int_equal(sh("%s veldist bad.db --run 1", haff), 2);
   one_line_with("malformed");
+  assert_int_equal(sh("%s haff-fit bad.db", haff), 2); /* not skipped as a short run would be */
+  one_line_with("malformed");
 }
 
 /* Item 8: a scene or state file that is not a regular file, or too large, is refused at once
