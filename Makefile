@@ -16,6 +16,8 @@ DEPS_PKGS += slurm-wlm munge
 DEPS_PKGS += python3-pandas groff-base
 # python3-ase: tests/ase_check.py reads the XYZ export with ASE; ffmpeg: haff movie encodes
 DEPS_PKGS += python3-ase ffmpeg
+# clang: make fuzz (libFuzzer on the parsers and the checkpoint restore)
+DEPS_PKGS += clang
 WARN    := -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes -Wmissing-prototypes
 # Warnings are errors in CI (CI=true) and whenever WERROR=1.
 ifneq ($(filter true 1,$(CI) $(WERROR)),)
@@ -46,7 +48,7 @@ LIB     := $(BUILD)/libhaff.a
 SOLIB   := $(BUILD)/libhaff.so
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all deps test test-unit demo bench plots clean help format install uninstall
+.PHONY: all deps test test-unit fuzz demo bench plots clean help format install uninstall
 all: bin/haff $(SOLIB) $(BUILD)/haff.1
 
 help:
@@ -54,6 +56,7 @@ help:
 	@echo "make         build bin/haff"
 	@echo "make test    build and run every test (then an ASan+UBSan build), one summary line"
 	@echo "make test-slurm  the Slurm test alone (a one-node Slurm started and stopped for it)"
+	@echo "make fuzz    libFuzzer on the parsers (tests/fuzz/fuzz_*.c), FUZZ_TIME s each"
 	@echo "make demo    run the demo scene and print what it logged"
 	@echo "make bench   benchmarks -> bench/results.md"
 	@echo "make plots   the papers' figures and tables -> plots/out/"
@@ -120,7 +123,7 @@ test-unit: $(TEST_BIN) bin/haff
 test: | $(DEPS_STAMP)
 	@$(MAKE) --no-print-directory all $(TEST_BIN)
 	@$(MAKE) --no-print-directory BUILD=build-asan \
-	  OPT="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined" \
+	  OPT="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow" \
 	  $(patsubst $(BUILD)/%,build-asan/%,$(TEST_BIN))
 	@HAFF_BIN=$(CURDIR)/bin/haff tests/run-tests \
 	  $(TEST_BIN) $(SLURM_TEST) -- $(patsubst $(BUILD)/%,build-asan/%,$(TEST_BIN))
@@ -130,6 +133,33 @@ test: | $(DEPS_STAMP)
 SLURM_TEST := tests/slurm/run.sh
 test-slurm: bin/haff | $(DEPS_STAMP)
 	@HAFF_BIN=$(CURDIR)/bin/haff tests/run-tests $(SLURM_TEST)
+
+# --- fuzzing -------------------------------------------------------------------------------
+# libFuzzer (Debian's clang) on every tests/fuzz/fuzz_NAME.c, against the library built with
+# clang, ASan and UBSan in build-fuzz/.  Seeds: tests/fuzz/corpus/NAME/ (read only); the inputs
+# it finds and any crash file go to build-fuzz/ only.  A fixed seed and run count, each target
+# bounded by FUZZ_TIME seconds.  A crash it finds is kept as a cmocka regression test.  Warnings
+# are not errors here: gcc's build (make test) is the gate, clang warns about other things.
+FUZZ_SRC  := $(wildcard tests/fuzz/fuzz_*.c)
+FUZZ_BIN  := $(FUZZ_SRC:tests/fuzz/%.c=build-fuzz/tests/fuzz/%)
+FUZZ_TIME ?= 20
+FUZZ_RUNS ?= 1000000
+FUZZ_SAN  := -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all
+
+fuzz: | $(DEPS_STAMP)
+	@$(MAKE) --no-print-directory BUILD=build-fuzz CC=clang CI= WERROR= \
+	  OPT="-O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link $(FUZZ_SAN)" $(FUZZ_BIN)
+	@for b in $(FUZZ_BIN); do name=$${b##*/fuzz_}; mkdir -p build-fuzz/corpus/$$name; \
+	  seeds=tests/fuzz/corpus/$$name; [ -d $$seeds ] || seeds=; \
+	  if ! $$b -seed=1 -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_TIME) -timeout=10 \
+	      -rss_limit_mb=2048 -artifact_prefix=build-fuzz/$$name- build-fuzz/corpus/$$name \
+	      $$seeds > build-fuzz/$$name.log 2>&1; then \
+	    tail -40 build-fuzz/$$name.log; echo "fuzz $$name: FAILED (build-fuzz/$$name.log)"; exit 1; fi; \
+	  echo "fuzz $$name: $$(grep -E '^#[0-9]+' build-fuzz/$$name.log | tail -1)"; done
+
+build-fuzz/tests/fuzz/%: tests/fuzz/%.c $(LIB)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -fsanitize=fuzzer -Itests -o $@ $< $(LIB) $(LDLIBS)
 
 # --- user targets --------------------------------------------------------------------------
 demo: bin/haff
@@ -172,6 +202,6 @@ uninstall:
 	rm -f $(INSTALLED)
 
 clean:
-	rm -rf build build-asan bin
+	rm -rf build build-asan build-fuzz bin
 
 -include $(wildcard $(BUILD)/*/*.d $(BUILD)/*/*/*.d)

@@ -1,6 +1,8 @@
 /* cli_common: option parsing and shared plumbing of the analysis subcommands. */
 #include "cli_common.h"
 
+#include "hd_db.h"
+
 #include <errno.h>
 #include <getopt.h>
 #include <limits.h>
@@ -89,8 +91,9 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
       return -1;
     }
     if (c == '?') {
+      char buf[8];
       fprintf(stderr, "haff %s: unknown option or missing value '%s' (see --help)\n", cmd,
-              argv[optind - 1]);
+              hd_opt_culprit(argv, lo, buf, sizeof buf));
       return 2;
     }
     for (size_t i = 0; i < sizeof need / sizeof need[0]; i++)
@@ -252,7 +255,9 @@ int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit 
   for (size_t i = 0; i < nr; i++) {
     if (runs[i].species == HD_ANA_OTHER) continue;
     int rc = hd_run_fit_do(*db, &runs[i], &a->fit, &(*fits)[m], &err);
-    if (rc == HD_EINPUT && a->run < 0) { /* skip short runs in an ensemble, say so */
+    /* skip short runs in an ensemble, say so; not a damaged database (SQLite's "malformed",
+     * bad input too, for the whole file) */
+    if (rc == HD_EINPUT && a->run < 0 && hd_db_status_of(sqlite3_errcode(*db)) != HD_EINPUT) {
       fprintf(stderr, "haff %s: skipping: %s\n", cmd, err.msg);
       continue;
     }

@@ -126,7 +126,7 @@ int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_err
                               "status IN ('done','collapsed','interrupted') ORDER BY id";
   sqlite3_stmt *st;
   if (sqlite3_prepare_v2(db, q, -1, &st, NULL) != SQLITE_OK)
-    return hd_error_set(err, HD_EIO, "reading runs: %s", sqlite3_errmsg(db));
+    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading runs: %s", sqlite3_errmsg(db));
   if (want >= 0) sqlite3_bind_int64(st, 1, want);
   size_t cap = 0;
   int rc = HD_OK, s;
@@ -164,7 +164,7 @@ int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_err
     (*n)++;
   }
   if (rc == HD_OK && s != SQLITE_DONE)
-    rc = hd_error_set(err, HD_EIO, "reading runs: %s", sqlite3_errmsg(db));
+    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading runs: %s", sqlite3_errmsg(db));
   sqlite3_finalize(st);
   if (rc == HD_OK && want >= 0 && *n == 0)
     rc = hd_error_set(err, HD_EINPUT, "no run with id %lld", (long long)want);
@@ -190,7 +190,7 @@ int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err) {
                             : "SELECT t, collisions, cpd, e_tr, e_rot, NULL, NULL, NULL FROM "
                               "samples WHERE run = ?1 ORDER BY t, collisions",
                          -1, &st, NULL) != SQLITE_OK)
-    return hd_error_set(err, HD_EIO, "reading samples: %s", sqlite3_errmsg(db));
+    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading samples: %s", sqlite3_errmsg(db));
   sqlite3_bind_int64(st, 1, run);
   size_t cap = 0;
   int rc = HD_OK, r;
@@ -220,7 +220,7 @@ int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err) {
     s->n++;
   }
   if (rc == HD_OK && r != SQLITE_DONE)
-    rc = hd_error_set(err, HD_EIO, "reading samples: %s", sqlite3_errmsg(db));
+    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading samples: %s", sqlite3_errmsg(db));
   sqlite3_finalize(st);
   if (rc) hd_series_free(s);
   return rc;
@@ -240,7 +240,7 @@ int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *ki
                          "SELECT t, cpd, vx, vy, omega FROM states WHERE run = ?1 AND "
                          "label = ?2 AND kind = ?3 ORDER BY t, body",
                          -1, &st, NULL) != SQLITE_OK)
-    return hd_error_set(err, HD_EIO, "reading states: %s", sqlite3_errmsg(db));
+    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading states: %s", sqlite3_errmsg(db));
   sqlite3_bind_int64(st, 1, run);
   sqlite3_bind_text(st, 2, label, -1, SQLITE_STATIC);
   sqlite3_bind_text(st, 3, kind, -1, SQLITE_STATIC);
@@ -284,7 +284,7 @@ int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *ki
     cur->n++;
   }
   if (rc == HD_OK && r != SQLITE_DONE)
-    rc = hd_error_set(err, HD_EIO, "reading states: %s", sqlite3_errmsg(db));
+    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading states: %s", sqlite3_errmsg(db));
   sqlite3_finalize(st);
   if (rc) hd_snapshots_free(*snaps, *n), *snaps = NULL, *n = 0;
   return rc;
@@ -299,7 +299,7 @@ int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **th
                          "kind = 'dimer-dimer' AND theta_i IS NOT NULL AND theta_j IS NOT NULL "
                          "ORDER BY seq",
                          -1, &st, NULL) != SQLITE_OK)
-    return hd_error_set(err, HD_EIO, "reading collisions: %s", sqlite3_errmsg(db));
+    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading collisions: %s", sqlite3_errmsg(db));
   sqlite3_bind_int64(st, 1, run);
   size_t cap = 0;
   int rc = HD_OK, r;
@@ -323,7 +323,7 @@ int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **th
     (*n)++;
   }
   if (rc == HD_OK && r != SQLITE_DONE)
-    rc = hd_error_set(err, HD_EIO, "reading collisions: %s", sqlite3_errmsg(db));
+    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading collisions: %s", sqlite3_errmsg(db));
   sqlite3_finalize(st);
   if (rc) free(*theta_i), free(*theta_j), free(*f), *theta_i = *theta_j = *f = NULL, *n = 0;
   return rc;

@@ -110,9 +110,11 @@ static int parse(int argc, char **argv, const char *usage, ropts *o) {
     case 'h':
       fputs(usage, stdout);
       return -1;
-    default:
+    default: {
+      char buf[8];
       fprintf(stderr, "haff %s: unknown option or missing value '%s' (see --help)\n", argv[0],
-              argv[optind - 1]);
+              hd_opt_culprit(argv, lo, buf, sizeof buf));
+    }
       return 2;
     }
     if (!ok) {
@@ -691,9 +693,11 @@ int haff_rods_collapse_main(int argc, char **argv) {
     case 'h':
       fputs(usage, stdout);
       return 0;
-    default:
+    default: {
+      char buf[8];
       fprintf(stderr, "haff %s: unknown option or missing value '%s' (see --help)\n", argv[0],
-              argv[optind - 1]);
+              hd_opt_culprit(argv, lo, buf, sizeof buf));
+    }
       return 2;
     }
   }

@@ -38,17 +38,31 @@ static void default_db(const char *scene, char *out, size_t n) {
   snprintf(out + len, n - len, ".db");
 }
 
-/* Says that cmd's run was interrupted and how to go on, for this file and run (the path quoted
- * when the shell would need it); before the run began (run 0), that nothing was written. */
+/* Says that cmd's run was interrupted and how to go on, for this file and run: a command to
+ * paste into a POSIX shell, the path single-quoted when the shell would need it (a quote in it
+ * as '\'') and led by ./ when it begins with '-'.  A path with a control byte (which no quoting
+ * keeps on one line) is not echoed.  Before the run began (run 0), that nothing was written. */
 static void say_interrupted(const char *cmd, const char *msg, const char *db, int64_t run) {
   if (run == 0) {
     fprintf(stderr, "haff %s: %s, before the run began: nothing was written\n", cmd, msg);
     return;
   }
+  for (const char *p = db; *p; p++)
+    if ((unsigned char)*p < 0x20 || *p == 0x7f) {
+      fprintf(stderr, "haff %s: %s (continue with: haff resume DB --run %lld, DB the database)\n",
+              cmd, msg, (long long)run);
+      return;
+    }
+  const char *lead = db[0] == '-' ? "./" : "";
   int plain = strspn(db, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._/-+") ==
               strlen(db);
-  fprintf(stderr, "haff %s: %s (continue with: haff resume %s%s%s --run %lld)\n", cmd, msg,
-          plain ? "" : "'", db, plain ? "" : "'", (long long)run);
+  fprintf(stderr, "haff %s: %s (continue with: haff resume %s%s", cmd, msg, plain ? "" : "'", lead);
+  for (const char *p = db; *p; p++)
+    if (*p == '\'')
+      fputs("'\\''", stderr);
+    else
+      fputc(*p, stderr);
+  fprintf(stderr, "%s --run %lld)\n", plain ? "" : "'", (long long)run);
 }
 
 /* --progress SECONDS: *every gets the seconds (0 from the user means none: -1); 0 ok, else 2
@@ -66,9 +80,10 @@ static int parse_progress(const char *cmd, const char *arg, double *every) {
 }
 
 /* One line for an option getopt refused (opterr = 0): the argument at fault and where help is. */
-static int bad_option(const char *cmd, char **argv) {
+static int bad_option(const char *cmd, char **argv, const struct option *opts) {
+  char buf[8];
   fprintf(stderr, "haff %s: unknown option or missing value '%s' (see haff %s --help)\n", cmd,
-          argv[optind - 1], cmd);
+          hd_opt_culprit(argv, opts, buf, sizeof buf), cmd);
   return 2;
 }
 
@@ -129,7 +144,7 @@ int haff_run_main(int argc, char **argv) {
       fputs(run_usage, stdout);
       return 0;
     default:
-      return bad_option("run", argv);
+      return bad_option("run", argv, opts);
     }
   }
   if (optind != argc - 1) {
@@ -270,7 +285,7 @@ int haff_resume_main(int argc, char **argv) {
       fputs(resume_usage, stdout);
       return 0;
     default:
-      return bad_option("resume", argv);
+      return bad_option("resume", argv, opts);
     }
   }
   if (optind != argc - 1) {

@@ -2,6 +2,7 @@
 #include "haff.h"
 #include "hd_ana_cli.h" /* the analysis subcommands */
 
+#include <errno.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
@@ -55,6 +56,21 @@ static void usage(FILE *out) {
                "or input\n");
 }
 
+/* The exit code of a command that returned rc, once what it wrote on stdout is out: a write
+ * error (a full disk, /dev/full, a closed pipe) turns a success into 1, with one line naming the
+ * command.  A command that failed already said why; its code stays. */
+static int stdout_flushed(const char *cmd, int rc) {
+  errno = 0;
+  int bad = fflush(stdout) != 0;
+  bad |= ferror(stdout) != 0;
+  if (bad && rc == 0) {
+    fprintf(stderr, "haff%s%s: stdout: write error%s%s\n", cmd ? " " : "", cmd ? cmd : "",
+            errno ? ": " : "", errno ? strerror(errno) : "");
+    return 1;
+  }
+  return rc;
+}
+
 int main(int argc, char **argv) {
   /* a file size limit (ulimit -f) then fails the write with EFBIG, which the run reports and
    * survives like a full disk, instead of killing the process with the run left 'running' */
@@ -65,14 +81,15 @@ int main(int argc, char **argv) {
   }
   if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
     usage(stdout);
-    return 0;
+    return stdout_flushed(NULL, 0);
   }
   if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-V")) {
     printf("haff %s\n", HAFF_VERSION);
-    return 0;
+    return stdout_flushed(NULL, 0);
   }
   for (size_t i = 0; i < n_commands; i++)
-    if (!strcmp(argv[1], commands[i].name)) return commands[i].main(argc - 1, argv + 1);
+    if (!strcmp(argv[1], commands[i].name))
+      return stdout_flushed(commands[i].name, commands[i].main(argc - 1, argv + 1));
   fprintf(stderr, "haff: unknown command '%s' (haff --help lists them)\n", argv[1]);
   return 2;
 }

@@ -265,7 +265,7 @@ static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geo
     code = 1;
   } else if (b != SQLITE_DONE) {
     fprintf(stderr, "haff export: %s: read states: %s\n", hd_db_path(db), sqlite3_errmsg(h));
-    code = 1;
+    code = hd_exit_code(hd_db_status_of(sqlite3_errcode(h))); /* malformed: 2 */
   } else if (n_frames == 0) {
     if (!strcmp(label, "frames"))
       fprintf(stderr,
@@ -326,7 +326,7 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
     code = 2;
   } else {
     fprintf(stderr, "haff export: %s: read runs: %s\n", hd_db_path(db), sqlite3_errmsg(h));
-    code = 1;
+    code = hd_exit_code(hd_db_status_of(sqlite3_errcode(h)));
   }
   sqlite3_finalize(st);
   return code;
@@ -381,9 +381,11 @@ int haff_export_main(int argc, char **argv) {
     case 'h':
       usage(stdout);
       return 0;
-    default:
+    default: {
+      char buf[8];
       fprintf(stderr, "haff export: bad option '%s' (haff export --help)\n",
-              argv[optind] ? argv[optind] : "?");
+              hd_opt_culprit(argv + 1, opts, buf, sizeof buf));
+    }
       return 2;
     }
   }
@@ -418,7 +420,10 @@ int haff_export_main(int argc, char **argv) {
     fprintf(stderr, "haff export: %s: write failed: %m\n", outpath);
     code = 1;
   }
-  if (out == stdout && fflush(stdout) != 0 && !code) code = 1;
+  if (out == stdout && (fflush(stdout) != 0 || ferror(stdout)) && !code) {
+    fprintf(stderr, "haff export: stdout: write error: %m\n");
+    code = 1;
+  }
   hd_db_close(db, NULL);
   return code;
 }

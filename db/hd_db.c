@@ -103,9 +103,17 @@ const char *hd_db_kind_name(int kind) {
 /* ---------------------------------------------------------------------------------------- */
 /* errors */
 
-/* Sets err to HD_EIO "path: what: sqlite's message" (the message of the last failed call). */
+int hd_db_status_of(int sqlite_code) {
+  int primary = sqlite_code & 0xff;
+  if (primary == SQLITE_CORRUPT || primary == SQLITE_NOTADB) return HD_EINPUT;
+  return primary == SQLITE_NOMEM ? HD_ENOMEM : HD_EIO;
+}
+
+/* Sets err to "path: what: sqlite's message" (the message of the last failed call), HD_EIO or
+ * as hd_db_status_of says (a malformed file is bad input). */
 static int sql_error(hd_db *db, hd_error *err, const char *what) {
-  return hd_error_set(err, HD_EIO, "%s: %s: %s", db->path, what, sqlite3_errmsg(db->db));
+  return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db->db)), "%s: %s: %s", db->path, what,
+                      sqlite3_errmsg(db->db));
 }
 
 /* Rolls back whatever transaction is open and forgets the batch.  Keeps err as it is. */
@@ -203,7 +211,8 @@ static int open_error(sqlite3 *h, const char *path, const char *what, hd_error *
   if (!h) return hd_error_set(err, HD_ENOMEM, "%s: open: out of memory", path);
   if ((sqlite3_errcode(h) & 0xff) == SQLITE_NOTADB)
     return hd_error_set(err, HD_EINPUT, "%s: not a haff database (%s)", path, sqlite3_errmsg(h));
-  return hd_error_set(err, HD_EIO, "%s: %s: %s", path, what, sqlite3_errmsg(h));
+  return hd_error_set(err, hd_db_status_of(sqlite3_errcode(h)), "%s: %s: %s", path, what,
+                      sqlite3_errmsg(h));
 }
 
 static int tables_missing(sqlite3 *h, const char *const *tables, const char **missing);
@@ -542,6 +551,9 @@ int hd_db_check_path(const char *path, int must_exist, hd_error *err) {
   }
   if (S_ISDIR(st.st_mode))
     return hd_error_set(err, HD_EINPUT, "%s: is a directory, not a database file", path);
+  if (!S_ISREG(st.st_mode))
+    return hd_error_set(err, HD_EINPUT, "%s: not a regular file (a FIFO or a device), not a database",
+                        path);
   return HD_OK;
 }
 

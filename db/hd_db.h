@@ -79,6 +79,11 @@ typedef struct hd_state_rec {
 /* The text of a body kind ("disk", "dimer", "rod"), or NULL for an unknown kind. */
 const char *hd_db_kind_name(int kind);
 
+/* The status for an SQLite result code (primary or extended) of a failed call: HD_EINPUT for a
+ * damaged or foreign file (SQLITE_CORRUPT "malformed", SQLITE_NOTADB: bad input, exit 2),
+ * HD_ENOMEM for SQLITE_NOMEM, else HD_EIO. */
+int hd_db_status_of(int sqlite_code);
+
 /* Opens (creating if needed) the database at path, applies the schema, sets WAL.  The path is
  * a plain file name (hd_db_plain_name).  Returns HD_OK, HD_EINPUT (path is a directory, a file
  * that is not an SQLite database, or a database that is not haff's: it has tables but none of
@@ -93,8 +98,9 @@ int hd_db_open(hd_db **out, const char *path, hd_error *err);
  * in the current folder.  NULL when it does not fit in buf. */
 const char *hd_db_plain_name(const char *path, char *buf, size_t size);
 
-/* HD_EINPUT with err set when PATH is a directory, or does not exist and must_exist; else
- * HD_OK (a missing path is a new database to hd_db_open). */
+/* HD_EINPUT with err set when PATH is a directory or another file that is not a regular one
+ * (a FIFO, a device: SQLite would fail on it with "disk I/O error" or hang), or does not exist
+ * and must_exist; else HD_OK (a missing path is a new database to hd_db_open). */
 int hd_db_check_path(const char *path, int must_exist, hd_error *err);
 
 /* As hd_db_open, for a file that must be a haff database already (`haff resume`): HD_EINPUT

@@ -4,6 +4,8 @@
 #ifndef HD_ERROR_H
 #define HD_ERROR_H
 
+#include <stddef.h>
+
 /* Status codes returned by library functions.  0 is success. */
 enum hd_status {
   HD_OK = 0,        /* success */
@@ -21,10 +23,24 @@ typedef struct hd_error {
   char msg[1024]; /* human-readable, no trailing newline */
 } hd_error;
 
-/* Sets err (if not NULL) to code and a printf-formatted message; returns code, so that
+/* Copies the NUL-terminated in to out (n bytes, NUL included), with every byte that is not a
+ * printable ASCII or printable UTF-8 character (controls, DEL, C1 controls, invalid UTF-8)
+ * written as \n, \t, \r or \xHH, so that a message stays one line and cannot drive the
+ * terminal.  Idempotent (a backslash is kept as it is); cut at a whole character. */
+void hd_text_escape(const char *in, char *out, size_t n);
+
+/* Sets err (if not NULL) to code and a printf-formatted message, escaped by hd_text_escape
+ * (text quoted from a file or argument stays on one line); returns code, so that
  * `return hd_error_set(err, HD_EINPUT, "...")` reads naturally. */
 int hd_error_set(hd_error *err, int code, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
+
+struct option;
+/* The argument getopt_long (opterr = 0) just refused, from its state (optind, optopt): "-o"
+ * for a bad short option, also inside a cluster ("-qo", where argv[optind - 1] is still the
+ * argument before it), else the element itself ("--bogus", "--run" without its value).
+ * opts: the long options given to getopt_long; buf: room for "-c".  For messages only. */
+const char *hd_opt_culprit(char *const *argv, const struct option *opts, char *buf, size_t n);
 
 /* Clears err to HD_OK and an empty message. */
 void hd_error_clear(hd_error *err);

@@ -90,12 +90,15 @@ static int place_dense_lattice(hd_sim *s, hd_error *err) {
                    s->shape[HD_SP_DISK].d) *
               eps;
   }
-  int32_t nx = (int32_t)floor(s->lx / ex), ny = (int32_t)floor(s->ly / ey);
-  if ((int64_t)nx * ny < s->n)
+  /* sites along each edge, in double (box = 1 1e300 overflowed an int32 cast); a row needs
+   * no more than n of them, so the casts below are exact */
+  double fx = fmin(floor(s->lx / ex), (double)s->n), fy = fmin(floor(s->ly / ey), (double)s->n);
+  if (fx * fy < (double)s->n)
     return hd_error_set(err, HD_EINPUT,
-                        "[init] placement = random: %d bodies do not fit even on a dense lattice "
-                        "(%d x %d sites of %g x %g) to melt; enlarge [system] box",
-                        s->n, nx, ny, ex, ey);
+                        "[system] box %g x %g: %d bodies do not fit for placement = random, not "
+                        "even on a dense lattice (%.0f x %.0f sites of %g x %g) to melt; enlarge it",
+                        s->lx, s->ly, s->n, fx, fy, ex, ey);
+  int32_t nx = (int32_t)fx, ny = (int32_t)fy;
   double ax = s->lx / nx, ay = s->ly / ny;
   for (int32_t i = 0; i < s->n; i++) {
     hd_body *b = &s->b[i];
@@ -137,6 +140,7 @@ static int place_lattice(hd_sim *s, hd_error *err) {
 }
 
 void hd_init_velocities(hd_sim *s, double T) {
+  if (s->n == 0) return; /* nothing to draw (the mean momentum below would be 0 / 0) */
   double px = 0.0, py = 0.0, mtot = 0.0;
   for (int32_t i = 0; i < s->n; i++) {
     hd_body *b = &s->b[i];
@@ -169,12 +173,48 @@ void hd_init_velocities(hd_sim *s, double T) {
   }
 }
 
+/* What the arithmetic of a state row can resolve: an angle of at most HD_MAX_PHI radians (its
+ * ulp 1.2e-10; phi = 1e300 is no angle), and a dimer's rim speed |omega| a / 2 at most
+ * HD_MAX_SPIN_RATIO times the largest translational speed of the state (when it moves at all).
+ * The contact search steps through the turns of a spinning dimer: its cost per unit time
+ * grows as omega (two dimers at |v| ~ 1: 200 collisions in 0.13 s at omega = 1e5, 1.4 s at
+ * 1e7; at 1e8 one collision in 11 s, at 1e10 2 events in 6 s). */
+#define HD_MAX_PHI 1e6
+#define HD_MAX_SPIN_RATIO 1e7
+
+/* HD_EINPUT when a state row's angle or spin is beyond what the run can resolve (above). */
+static int check_spins(const hd_state_row *rows, long n, const hd_scene *sc, hd_error *err) {
+  double vmax = 0.0;
+  for (long r = 0; r < n; r++) vmax = fmax(vmax, hypot(rows[r].vx, rows[r].vy));
+  for (long r = 0; r < n; r++) {
+    if (rows[r].kind != HD_KIND_DIMER) continue;
+    if (!(fabs(rows[r].phi) <= HD_MAX_PHI))
+      return hd_error_set(err, HD_EINPUT,
+                          "%s:%ld: column 4 (phi) = %g: an angle beyond +-%g rad is not resolved "
+                          "(give it in (-pi, pi])",
+                          sc->state_file, rows[r].line, rows[r].phi, HD_MAX_PHI);
+    double rim = fabs(rows[r].omega) * 0.5 * sc->dimer_a;
+    if (vmax > 0.0 && rim > HD_MAX_SPIN_RATIO * vmax)
+      return hd_error_set(err, HD_EINPUT,
+                          "%s:%ld: column 7 (omega) = %g: the rim speed |omega| a/2 = %g is more "
+                          "than %g times the largest speed %g: the run would crawl through its "
+                          "turns",
+                          sc->state_file, rows[r].line, rows[r].omega, rim, HD_MAX_SPIN_RATIO,
+                          vmax);
+  }
+  return HD_OK;
+}
+
 /* Bodies from a state CSV; the counts must agree with the scene's where the scene gives them. */
 static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
   hd_state_row *rows = NULL;
   long n = 0;
   int rc = hd_state_csv_read(sc->state_file, &rows, &n, err);
-  if (rc) return rc;
+  if (!rc) rc = check_spins(rows, n, sc, err);
+  if (rc) {
+    free(rows);
+    return rc;
+  }
   int32_t cnt[HD_NSPECIES] = {0, 0};
   for (long r = 0; r < n; r++) cnt[rows[r].kind == HD_KIND_DIMER ? HD_SP_DIMER : HD_SP_DISK]++;
   if ((sc->n_dimers && sc->n_dimers != cnt[0]) || (sc->n_disks && sc->n_disks != cnt[1])) {
@@ -250,7 +290,9 @@ int hd_init_state(hd_sim *s, const hd_scene *sc, hd_error *err) {
     s->b[i].species = i < s->n_species[0] ? HD_SP_DIMER : HD_SP_DISK;
     s->b[i].next = -1;
   }
-  if (sc->placement == HD_PLACE_LATTICE)
+  if (s->n == 0) /* a scene without bodies: no grid to size (0 / 0 sites per row) */
+    rc = HD_OK;
+  else if (sc->placement == HD_PLACE_LATTICE)
     rc = place_lattice(s, err);
   else if ((rc = place_random(s)) < 0)
     rc = hd_error_set(err, HD_EINTR, "interrupted while placing the bodies of the set-up");

@@ -533,7 +533,10 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
     if (rc == HD_EINPUT && sc->path[0] && err->msg[0] == '[') {
       char msg[sizeof err->msg]; /* "[section] ...": a set-up the engine refused, in which file */
       snprintf(msg, sizeof msg, "%s", err->msg);
-      hd_error_set(err, rc, "%s: %s", sc->path, msg);
+      if (!strncmp(msg, "[system] box", 12) && sc->box_line > 0) /* and on which line */
+        hd_error_set(err, rc, "%s:%ld: %s", sc->path, sc->box_line, msg);
+      else
+        hd_error_set(err, rc, "%s: %s", sc->path, msg);
     }
     return rc;
   }

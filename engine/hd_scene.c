@@ -17,6 +17,7 @@
 #include "rods.h"
 
 #include <errno.h>
+#include <float.h>
 #include <ini.h>
 #include <limits.h>
 #include <math.h>
@@ -792,6 +793,7 @@ static int check_box(ctx *c) {
   if (!is_set(c->key_at[K_BOX]) && !is_set(c->key_at[K_AREA]))
     return fail(c, HD_EINPUT, c->present[S_SYSTEM] ? c->sec_at[S_SYSTEM] : (loc){0, 0}, S_SYSTEM,
                 "box", NULL, "missing: give box = Lx Ly or area_fraction = eta");
+  sc->box_line = c->key_at[kb].over ? 0 : c->key_at[kb].line;
   double area = hd_scene_covered_area(sc);
   if (kb == K_AREA) sc->box_x = sc->box_y = sqrt(area / sc->area_fraction);
   if (!isfinite(sc->box_x) || !isfinite(sc->box_y)) /* the bodies' area overflowed (d ~ 1e160) */
@@ -803,6 +805,13 @@ static int check_box(ctx *c) {
   if (edge < ext)
     return FAIL_KEY(c, kb, "box too small: edge %.6g is shorter than the largest body (%.6g)", edge,
                     ext);
+  if (!(sc->box_x * sc->box_y >= DBL_MIN))
+    /* 1e-300 x 1e-300: the area underflows, and the covered fraction would be 0 / 0 (bodies
+     * whose own area underflows cover 0 of a box that has one: that is fine) */
+    return FAIL_KEY(c, kb,
+                    "box %.6g x %.6g: its area is below the smallest normal double: rescale the "
+                    "lengths",
+                    sc->box_x, sc->box_y);
   double frac = area / (sc->box_x * sc->box_y);
   if (sc->placement == HD_PLACE_RANDOM && frac > HD_RANDOM_MAX_FRACTION)
     return FAIL_KEY(c, kb,
@@ -919,8 +928,9 @@ static int check_all(ctx *c) {
     /* it has no pair collision ever (cpd stays 0), and without walls no collision at all: the
      * run would go on for ever */
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
-                "one body alone never collides with another: stop it with stop_time (or, between "
-                "walls, stop_events)");
+                "one body alone never collides with another: stop it with stop_time (stop_events "
+                "counts only its wall collisions, and a drawn velocity of one body is 0: it rests "
+                "or spins in place)");
   return check_frames(c);
 }
 
@@ -1172,6 +1182,8 @@ int hd_scene_load(hd_scene *sc, const char *path, const char *const *over, int n
   struct stat stt;
   if (stat(path, &stt) == 0 && S_ISDIR(stt.st_mode))
     return hd_error_set(err, HD_EIO, "%s: cannot read scene: is a directory", path);
+  if (stat(path, &stt) == 0 && !S_ISREG(stt.st_mode)) /* /dev/zero grew memory, a FIFO hung */
+    return hd_error_set(err, HD_EINPUT, "%s: cannot read scene: not a regular file", path);
   FILE *f = fopen(path, "rb");
   if (!f) return hd_error_set(err, HD_EIO, "%s: cannot read scene: %s", path, strerror(errno));
   char *buf = NULL;
@@ -1190,6 +1202,12 @@ int hd_scene_load(hd_scene *sc, const char *path, const char *const *over, int n
     size_t got = fread(buf + len, 1, 4096, f);
     len += got;
     if (got < 4096) break;
+    if (len > (size_t)HD_SCENE_MAX_BYTES) { /* the file grew after stat, or is not what it says */
+      free(buf);
+      fclose(f);
+      return hd_error_set(err, HD_EINPUT, "%s: scene larger than %ld bytes: not a scene file",
+                          path, HD_SCENE_MAX_BYTES);
+    }
   }
   int bad = ferror(f);
   fclose(f);
@@ -1254,20 +1272,45 @@ static int csv_row(char *line, const char *path, long lineno, hd_state_row *r, h
   return HD_OK;
 }
 
+/* One line of fp into line (room for max + 1 bytes, NUL-terminated, newline dropped): its
+ * length, -1 at the end of the file, -2 when it is longer than max (the rest is not read). */
+static long bounded_line(FILE *fp, char *line, long max) {
+  long k = 0;
+  int ch;
+  while ((ch = getc_unlocked(fp)) != EOF && ch != '\n') {
+    if (k == max) return -2;
+    line[k++] = (char)ch;
+  }
+  line[k] = '\0';
+  return ch == EOF && k == 0 ? -1 : k;
+}
+
 int hd_state_csv_read(const char *path, hd_state_row **rows, long *n, hd_error *err) {
   *rows = NULL;
   *n = 0;
+  struct stat st;
+  if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) /* /dev/zero grew memory until it ran out */
+    return hd_error_set(err, HD_EINPUT, "%s: cannot read state file: not a regular file", path);
   FILE *fp = fopen(path, "r");
   if (!fp)
     return hd_error_set(err, HD_EIO, "%s: cannot read state file: %s", path, strerror(errno));
-  char *line = NULL;
-  size_t cap = 0;
+  char line[HD_STATE_MAX_LINE + 1];
   long lineno = 0, nrow = 0, rcap = 0;
   hd_state_row *out = NULL;
   int rc = HD_OK;
-  ssize_t got;
-  while (!rc && (got = getline(&line, &cap, fp)) >= 0) {
+  long got;
+  while (!rc && (got = bounded_line(fp, line, HD_STATE_MAX_LINE)) != -1) {
     lineno++;
+    if (got == -2) {
+      rc = hd_error_set(err, HD_EINPUT, "%s:%ld: line longer than %d bytes: not a state file",
+                        path, lineno, HD_STATE_MAX_LINE);
+      break;
+    }
+    if (nrow >= 2 * HD_MAX_COUNT) {
+      rc = hd_error_set(err, HD_EINPUT, "%s:%ld: more than %ld bodies", path, lineno,
+                        2 * HD_MAX_COUNT);
+      break;
+    }
     if (memchr(line, '\0', (size_t)got)) {
       rc = hd_error_set(err, HD_EINPUT, "%s:%ld: contains a NUL byte: not a text file", path,
                         lineno);
@@ -1302,7 +1345,6 @@ int hd_state_csv_read(const char *path, hd_state_row **rows, long *n, hd_error *
                       path);
   if (!rc && nrow == 0)
     rc = hd_error_set(err, HD_EINPUT, "%s:%ld: no bodies after the header", path, lineno);
-  free(line);
   fclose(fp);
   if (rc) {
     free(out);

@@ -27,6 +27,8 @@
 #define HD_FRAME_ROW_BYTES                                                                         \
   40 /* SQLite's bytes per frames row besides the data: ~20 of record (dbstat) and its index       \
       * entry; a frame of a few bodies also leaves part of its page empty, not counted here */
+#define HD_SCENE_MAX_BYTES (1L << 20) /* largest scene file (a scene is ~1 kB) */
+#define HD_STATE_MAX_LINE 4096        /* longest line of a state CSV, in bytes */
 
 /* Where the initial state comes from ([init] placement / state). */
 typedef enum hd_placement {
@@ -53,6 +55,8 @@ typedef struct hd_scene {
   double box_x, box_y;     /* box edges: `box = Lx Ly`, or derived from area_fraction */
   double area_fraction;    /* `area_fraction = eta` instead of box: square box [0 if box given] */
   unsigned long long seed; /* `seed` [1]; the CLI's --seed overrides it */
+  long box_line; /* line of `box` or `area_fraction` in path, for the engine's set-up errors
+                  * about the box (0: given by --set, or no file) */
   /* [dimers] */
   long n_dimers;      /* `count` [0] */
   double dimer_d;     /* `d` [1]: disk diameter */
@@ -110,7 +114,8 @@ typedef struct hd_scene {
 void hd_scene_defaults(hd_scene *sc);
 
 /* Reads scene file `path` (overwriting *sc, which must not hold a loaded scene: hd_scene_free
- * it first), then applies n_over overrides "SECTION.KEY=VALUE" (errors in them
+ * it first; HD_EINPUT for a path that is not a regular file or has more than
+ * HD_SCENE_MAX_BYTES), then applies n_over overrides "SECTION.KEY=VALUE" (errors in them
  * are reported as "--set SECTION.KEY=VALUE: ..."), then checks the whole (ranges, a stop
  * condition, bodies fit in the box).  Returns HD_OK, HD_EINPUT or HD_EIO (cannot read the scene
  * or its state file).  With `state`, the state CSV is read to check it and to count its bodies:
@@ -161,7 +166,9 @@ typedef struct hd_state_row {
 } hd_state_row;
 
 /* Reads a state CSV with header `kind,x,y,phi,vx,vy,omega`.  *rows is malloc'd (free()).
- * Errors name file and line. Overlaps are checked by the engine, which knows the shapes. */
+ * Errors name file and line. Overlaps are checked by the engine, which knows the shapes.
+ * Bounded: HD_EINPUT for a path that is not a regular file (a FIFO, /dev/zero), a line longer
+ * than HD_STATE_MAX_LINE or more rows than 2 HD_MAX_COUNT, before memory grows with them. */
 int hd_state_csv_read(const char *path, hd_state_row **rows, long *n, hd_error *err);
 
 #endif

@@ -260,23 +260,31 @@ static int tc_elastic(const hd_rods *r, long a, long b) {
 
 /* Draws eps for a collision of rods a (left) and b with relative energy e_tr (not TC-elastic).
  * Returns NaN if no draw fits what the baths hold (the caller reports it). */
+/* a / b, with the IEEE result of a division by zero written out (the sanitizer build checks
+ * float-divide-by-zero): +-inf for a != 0 (cold baths: beta = E_tr / T_B = inf; a collision
+ * without energy: no cap on eps), NaN for 0 / 0 (no draw fits: redrawn, then reported). */
+static double ratio(double a, double b) {
+  if (b == 0.0) return a > 0.0 ? INFINITY : a < 0.0 ? -INFINITY : NAN;
+  return a / b;
+}
+
 static double draw_eps(hd_rods *r, long a, long b, double e_tr, double tba, double tbb) {
   const hd_rods_params *p = &r->p;
   if (p->model == HD_RODS_CONSTANT) return p->eps;
   if (!r->sampler) return 1.0; /* gamma = 1: eps = 1 for every realisation */
   /* the two baths hold 2 N_mod T_B: eps^2 <= 1 + 2 N_mod T_B / E_tr */
-  double tbm = 0.5 * (tba + tbb), cap = 1 + 2 * (double)p->nmod * tbm / e_tr, eps = 1;
+  double tbm = 0.5 * (tba + tbb), cap = 1 + ratio(2 * (double)p->nmod * tbm, e_tr), eps = 1;
   for (int tries = 0; tries < 1000; tries++) {
     if (p->unequal) {
       long s = a % 2 ? b : a, l = a % 2 ? a : b; /* short (even) and long (odd) rod */
       double ts = s == a ? tba : tbb, tl = l == a ? tba : tbb;
-      eps = hd_eps_sample2(r->sampler, e_tr / ts, e_tr / tl, r->rng);
-    } else if (r->table && e_tr / tbm >= r->table->beta_min) {
+      eps = hd_eps_sample2(r->sampler, ratio(e_tr, ts), ratio(e_tr, tl), r->rng);
+    } else if (r->table && ratio(e_tr, tbm) >= r->table->beta_min) {
       /* below the table's grid (hot baths: beta < 1e-3, ~1e-3 of the draws) the table only
        * repeats its end node (mean 3.39 against 5.71 at beta = 1e-5): sampled directly there */
-      eps = hd_eps_table_sample(r->table, e_tr / tbm, r->rng);
+      eps = hd_eps_table_sample(r->table, ratio(e_tr, tbm), r->rng);
     } else {
-      eps = hd_eps_sample(r->sampler, e_tr / tbm, r->rng);
+      eps = hd_eps_sample(r->sampler, ratio(e_tr, tbm), r->rng);
     }
     if (eps * eps <= cap) return eps; /* false for NaN: redrawn */
     r->resampled++;

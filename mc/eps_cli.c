@@ -316,9 +316,11 @@ int hd_mc_eps_main(int argc, char **argv) {
     case '?' + 256:
       usage(stdout);
       return 0;
-    default:
+    default: {
+      char buf[8];
       fprintf(stderr, "haff mc eps: unknown or incomplete option '%s' (see --help)\n",
-              argv[optind - 1]);
+              hd_opt_culprit(argv, opts, buf, sizeof buf));
+    }
       return 2;
     }
     if (!ok) {

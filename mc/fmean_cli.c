@@ -170,9 +170,11 @@ int hd_mc_fmean_main(int argc, char **argv) {
       fmean_usage(stdout);
       return 0;
     case '?':
-    default:
+    default: {
+      char buf[8];
       fprintf(stderr, "haff mc fmean: unknown option or missing value in '%s' (see --help)\n",
-              argv[optind - 1]);
+              hd_opt_culprit(argv, longopts, buf, sizeof buf));
+    }
       return 2;
     }
   }

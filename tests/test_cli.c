@@ -398,10 +398,10 @@ static void bad_input(void **state) {
   bad_usage("mc fmean --fig4-data --a 1 --samples 10", "--samples does not apply with --fig4-data");
   assert_int_equal(sh("%s mc fmean --fig4-data --a 1 --d 2 >/dev/null", haff), 0);
   /* a set-up that only the engine can refuse (the dense lattice of the random placement does
-   * not fit between the walls) names the scene file too */
+   * not fit between the walls) names the scene file and the line of its box too */
   write_file("nw.ini", "[system]\nbox = 1.5 10\n[disks]\ncount = 1\nsigma = 1.5\n[walls]\n"
                        "sides = left right\n[run]\nstop_time = 1\n");
-  bad_usage("run nw.ini -o nw.db", "nw.ini: [init] placement = random");
+  bad_usage("run nw.ini -o nw.db", "nw.ini:2: [system] box 1.5 x 10: 1 bodies do not fit");
   assert_false(exists("nw.db"));
   /* a state file with overlapping bodies names the file and line */
   write_file("st.csv", "kind,x,y,phi,vx,vy,omega\ndisk,1,1,0,0,0,0\ndisk,1.5,1,0,0,0,0\n");

@@ -1,0 +1,37 @@
+/* libFuzzer harness: the scene parser (hd_scene_load_string) on arbitrary bytes.  An accepted
+ * scene is freed; a refused one must leave one printable line in err.msg (no control byte:
+ * hd_error_set escapes them) and no allocation.  Built and run by `make fuzz`. */
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hd_scene.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+  char *text = malloc(size + 1);
+  if (!text) return 0;
+  memcpy(text, data, size);
+  text[size] = '\0'; /* a NUL inside ends the text, as it would a C string */
+  hd_scene sc;
+  hd_error err;
+  hd_error_clear(&err);
+  int rc = hd_scene_load_string(&sc, text, "fuzz.ini", NULL, 0, &err);
+  if (rc == HD_OK) {
+    if (!sc.text) abort(); /* an accepted scene has its canonical text */
+    hd_scene sc2; /* which must load again, to the same text */
+    hd_error e2;
+    if (hd_scene_load_stored(&sc2, sc.text, "canonical", &e2) != HD_OK) abort();
+    if (strcmp(sc.text, sc2.text)) abort();
+    hd_scene_free(&sc2);
+    hd_scene_free(&sc);
+  } else {
+    if (!err.msg[0]) abort(); /* a refusal says why */
+    for (const char *p = err.msg; *p; p++)
+      if ((unsigned char)*p < 0x20 || *p == 0x7f) abort(); /* on one printable line */
+  }
+  free(text);
+  return 0;
+}
