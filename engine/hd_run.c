@@ -213,7 +213,20 @@ static int stop_reached(const runner *r) {
          (sc->stop_cpd > 0 && r->ops->cpd(r->s) >= sc->stop_cpd);
 }
 
-/* Samples and velocity snapshots due at the current cpd. */
+/* The velocity snapshot due when the snapshots' clock (cpd or time) reads now. */
+static int snapshots(runner *r, double now, hd_error *err) {
+  const hd_scene *sc = r->sc;
+  if (r->st.next_vel < sc->n_velocities_at && now >= sc->velocities_at[r->st.next_vel]) {
+    /* one snapshot, however many of the times this event passed: two at one event used to give
+     * two sets of rows at the same t, which read (and export) as one frame of twice the bodies */
+    while (r->st.next_vel < sc->n_velocities_at && now >= sc->velocities_at[r->st.next_vel])
+      r->st.next_vel++;
+    return log_states(r, "velocities", err);
+  }
+  return HD_OK;
+}
+
+/* Samples and velocity snapshots due at the current cpd (or time). */
 static int observe(runner *r, hd_error *err) {
   const hd_scene *sc = r->sc;
   double cpd = r->ops->cpd(r->s);
@@ -227,15 +240,8 @@ static int observe(runner *r, hd_error *err) {
     r->st.next_sample =
         k > (double)r->st.next_sample ? (int64_t)fmin(k, 9e18) : r->st.next_sample + 1;
   }
-  if (r->st.next_vel < sc->n_velocities_at && cpd >= sc->velocities_at[r->st.next_vel]) {
-    /* one snapshot, however many of the times this event passed: two at one event used to give
-     * two sets of rows at the same t, which read (and export) as one frame of twice the bodies */
-    while (r->st.next_vel < sc->n_velocities_at && cpd >= sc->velocities_at[r->st.next_vel])
-      r->st.next_vel++;
-    int rc = log_states(r, "velocities", err);
-    if (rc) return rc;
-  }
-  return HD_OK;
+  /* the snapshots' clock: cpd, or the time (velocities_at_time; drive also stops at each) */
+  return snapshots(r, sc->velocities_in_time ? r->ops->time(r->s) : cpd, err);
 }
 
 /* The error of a run stopped by SIGINT or SIGTERM. */
@@ -247,11 +253,20 @@ static int interrupted(const runner *r, hd_error *err) {
 /* The loop: events until a stop condition, a signal, a collapse or an error. */
 static int drive(runner *r, hd_error *err) {
   const hd_scene *sc = r->sc;
-  double t_stop = sc->stop_time > 0 ? sc->stop_time : INFINITY;
+  double t_end = sc->stop_time > 0 ? sc->stop_time : INFINITY;
   int rc = HD_OK;
   while (rc == HD_OK && !stop_reached(r)) {
     hd_collision_row row;
+    /* a snapshot in time is taken at its time exactly: the engine is stopped there (its clock
+     * moves to that time, no collision is changed) and goes on */
+    int snap = sc->velocities_in_time && r->st.next_vel < sc->n_velocities_at &&
+               sc->velocities_at[r->st.next_vel] <= t_end;
+    double t_stop = snap ? sc->velocities_at[r->st.next_vel] : t_end;
     rc = r->ops->next(r->s, t_stop, &row, err);
+    if (snap && rc == HD_SIM_STOPTIME) { /* at t_stop, whatever the engine's round-off */
+      rc = snapshots(r, t_stop, err);
+      continue;
+    }
     if (rc == HD_SIM_IDLE && (sc->stop_events > 0 || sc->stop_cpd > 0))
       /* nothing will ever happen again: every body at rest, or cooled below the range of
        * doubles (a rod ring below its collapse size reaches t ~ 1e308) */
@@ -328,11 +343,15 @@ static int finish(runner *r, int rc, hd_error *err) {
     wrc = HD_OK;
   }
   if (rc != HD_OK) hd_db_run_message(r->db, r->run, err->msg, &e2);
-  if (rc == HD_OK && !r->note[0] && r->st.next_vel < r->sc->n_velocities_at)
+  if (rc == HD_OK && !r->note[0] && r->st.next_vel < r->sc->n_velocities_at) {
+    int in_time = r->sc->velocities_in_time;
     snprintf(r->note, sizeof r->note,
-             "velocities_at: %d of %d snapshots not taken, the run ended at cpd %.6g, before %g",
+             "%s: %d of %d snapshots not taken, the run ended at %s %.6g, before %g",
+             in_time ? "velocities_at_time" : "velocities_at",
              r->sc->n_velocities_at - (int)r->st.next_vel, r->sc->n_velocities_at,
-             r->ops->cpd(r->s), r->sc->velocities_at[r->st.next_vel]);
+             in_time ? "t =" : "cpd", in_time ? r->ops->time(r->s) : r->ops->cpd(r->s),
+             r->sc->velocities_at[r->st.next_vel]);
+  }
   if (rc == HD_OK && r->note[0]) hd_db_run_message(r->db, r->run, r->note, &e2);
   if (r->o->note && r->o->note_size) snprintf(r->o->note, r->o->note_size, "%s", rc ? "" : r->note);
   int src = hd_db_run_status(r->db, r->run, status, r->ops->events(r->s), elapsed(r), &e2);
