@@ -284,6 +284,17 @@ static double draw_eps(hd_rods *r, long a, long b, double e_tr, double tba, doub
   return NAN;
 }
 
+/* Whether a collision of rods a, b at time t with relative energy e_tr is cold (collapse
+ * detection, rods.h): eps fixed (constant model), or drawn at beta >= HD_RODS_COLD_BETA from the
+ * warmer of the two baths; a TC-elastic collision and gamma = 1 (eps = 1) are not. */
+static int cold(const hd_rods *r, long a, long b, double t, double e_tr) {
+  if (tc_elastic(r, a, b)) return 0;
+  if (r->p.model == HD_RODS_CONSTANT) return 1;
+  if (!r->sampler) return 0;
+  double ta = r->tb[a] * decay(r, r->tl[a], t), tb = r->tb[b] * decay(r, r->tl[b], t);
+  return e_tr >= HD_RODS_COLD_BETA * fmax(ta, tb);
+}
+
 int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
   long k = hd_queue_top(r->q);
   double tk = r->key[k];
@@ -310,15 +321,17 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
     if (r->tiny_run > 0 && !(tk - r->tiny_t0 <= HD_RODS_EPISODE * tk)) r->tiny_run = 0;
     if (r->tiny_run == 0) r->tiny_t0 = tk, r->tiny_low = 0, r->tiny_e0 = 0;
     /* blocks of HD_RODS_TINY_RUN tiny collisions: the largest E_tr of each against the first's */
-    if (r->tiny_run % HD_RODS_TINY_RUN == 0) r->tiny_eblk = 0;
+    if (r->tiny_run % HD_RODS_TINY_RUN == 0) r->tiny_eblk = 0, r->tiny_warm = 0;
     r->tiny_eblk = fmax(r->tiny_eblk, e_now);
+    if (!cold(r, a, b, tk, e_now)) r->tiny_warm++;
     r->recent[r->tiny_run % HD_RODS_TINY_RUN] = (int32_t)k;
     r->tiny_run++;
     if (r->tiny_run % HD_RODS_TINY_RUN == 0) {
       if (r->tiny_run == HD_RODS_TINY_RUN)
         r->tiny_e0 = r->tiny_eblk;
       else
-        r->tiny_low = r->tiny_eblk <= HD_RODS_TINY_FALL * r->tiny_e0 ? r->tiny_low + 1 : 0;
+        r->tiny_low =
+            r->tiny_eblk <= HD_RODS_TINY_FALL * r->tiny_e0 && !r->tiny_warm ? r->tiny_low + 1 : 0;
       tiny = r->tiny_low >= HD_RODS_TINY_LOW;
     }
   }
@@ -394,7 +407,7 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
 /* Scalars of the blob. */
 typedef struct ck_head {
   uint64_t magic;
-  int64_t n, collisions, resampled, tiny_run, tiny_low, stall, frame_next, frames;
+  int64_t n, collisions, resampled, tiny_run, tiny_low, tiny_warm, stall, frame_next, frames;
   double t, x0, x0t, e_lost, tiny_t0, tiny_e0, tiny_eblk;
   int32_t recent[HD_RODS_TINY_RUN];
   uint64_t rng_size;
@@ -415,6 +428,7 @@ int hd_rods_checkpoint(const hd_rods *r, void **blob, size_t *n, hd_error *err) 
   h.resampled = r->resampled;
   h.tiny_run = r->tiny_run;
   h.tiny_low = r->tiny_low;
+  h.tiny_warm = r->tiny_warm;
   h.tiny_t0 = r->tiny_t0;
   h.tiny_e0 = r->tiny_e0;
   h.tiny_eblk = r->tiny_eblk;
@@ -461,6 +475,7 @@ int hd_rods_alloc_restore(hd_rods **out, const hd_rods_params *p, const void *bl
   r->resampled = h.resampled;
   r->tiny_run = h.tiny_run;
   r->tiny_low = h.tiny_low;
+  r->tiny_warm = h.tiny_warm;
   r->tiny_t0 = h.tiny_t0;
   r->tiny_e0 = h.tiny_e0;
   r->tiny_eblk = h.tiny_eblk;
