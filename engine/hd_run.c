@@ -320,7 +320,20 @@ static int stop_reached(const runner *r) {
          (sc->stop_cpd > 0 && r->ops->cpd(r->s) >= sc->stop_cpd);
 }
 
-/* Samples and velocity snapshots due at the current cpd. */
+/* The velocity snapshot due when the snapshots' clock (cpd or time) reads now. */
+static int snapshots(runner *r, double now, hd_error *err) {
+  const hd_scene *sc = r->sc;
+  if (r->st.next_vel < sc->n_velocities_at && now >= sc->velocities_at[r->st.next_vel]) {
+    /* one snapshot, however many of the times this event passed: two at one event used to give
+     * two sets of rows at the same t, which read (and export) as one frame of twice the bodies */
+    while (r->st.next_vel < sc->n_velocities_at && now >= sc->velocities_at[r->st.next_vel])
+      r->st.next_vel++;
+    return log_states(r, "velocities", err);
+  }
+  return HD_OK;
+}
+
+/* Samples and velocity snapshots due at the current cpd (or time). */
 static int observe(runner *r, hd_error *err) {
   const hd_scene *sc = r->sc;
   double cpd = r->ops->cpd(r->s);
@@ -334,17 +347,12 @@ static int observe(runner *r, hd_error *err) {
     r->st.next_sample =
         k > (double)r->st.next_sample ? (int64_t)fmin(k, 9e18) : r->st.next_sample + 1;
   }
-  if (r->st.next_vel < sc->n_velocities_at && cpd >= sc->velocities_at[r->st.next_vel]) {
-    /* one snapshot, however many of the times this event passed: two at one event used to give
-     * two sets of rows at the same t, which read (and export) as one frame of twice the bodies */
-    while (r->st.next_vel < sc->n_velocities_at && cpd >= sc->velocities_at[r->st.next_vel])
-      r->st.next_vel++;
-    int rc = log_states(r, "velocities", err);
-    if (rc) return rc;
-  }
+  /* the snapshots' clock: cpd, or the time (velocities_at_time; drive also stops at each) */
+  int rc = snapshots(r, sc->velocities_in_time ? r->ops->time(r->s) : cpd, err);
+  if (rc) return rc;
   if (sc->frames_every > 0 && !r->frames_off &&
       cpd >= (double)r->st.next_frame * sc->frames_every) {
-    int rc = take_frame(r, err); /* one frame per event, as for the samples */
+    rc = take_frame(r, err); /* one frame per event, as for the samples */
     if (rc) return rc;
     double k = floor(cpd / sc->frames_every) + 1.0;
     r->st.next_frame =
@@ -352,7 +360,7 @@ static int observe(runner *r, hd_error *err) {
   }
   if (sc->frames_every_time > 0 && r->st.next_frame == 0) { /* frame 0 at t = 0; the others at
                                                                their exact times (drive) */
-    int rc = take_frame(r, err);
+    rc = take_frame(r, err);
     if (rc) return rc;
     r->st.next_frame = 1;
   }
@@ -368,20 +376,28 @@ static int interrupted(const runner *r, hd_error *err) {
 /* The loop: events until a stop condition, a signal, a collapse or an error. */
 static int drive(runner *r, hd_error *err) {
   const hd_scene *sc = r->sc;
-  double t_stop = sc->stop_time > 0 ? sc->stop_time : INFINITY;
+  double t_end = sc->stop_time > 0 ? sc->stop_time : INFINITY;
   int rc = HD_OK;
   while (rc == HD_OK && !stop_reached(r)) {
     hd_collision_row row;
-    /* frames_every_time: the engine stops at each frame's time (its free flight is exact) */
+    /* the engine stops at each frame's time (frames_every_time) and each snapshot's time
+     * (velocities_at_time), whatever its round-off: the clock moves there, its free flight is
+     * exact and no collision is changed, and the run goes on */
     double t_frame = sc->frames_every_time > 0 && !r->frames_off
                          ? (double)r->st.next_frame * sc->frames_every_time
                          : INFINITY;
-    rc = r->ops->next(r->s, fmin(t_stop, t_frame), &row, err);
-    if (rc == HD_SIM_STOPTIME && t_frame <= t_stop) {
-      rc = take_frame(r, err);
-      r->st.next_frame++;
-      if (rc || t_frame < t_stop) continue;
-      break;
+    double t_snap = sc->velocities_in_time && r->st.next_vel < sc->n_velocities_at
+                        ? sc->velocities_at[r->st.next_vel]
+                        : INFINITY;
+    double t_stop = fmin(t_end, fmin(t_frame, t_snap));
+    rc = r->ops->next(r->s, t_stop, &row, err);
+    if (rc == HD_SIM_STOPTIME && (t_stop == t_snap || t_stop == t_frame)) {
+      rc = t_stop == t_snap ? snapshots(r, t_stop, err) : HD_OK;
+      if (!rc && t_stop == t_frame) {
+        rc = take_frame(r, err);
+        r->st.next_frame++;
+      }
+      continue; /* at t_end, the next step stops at once */
     }
     if (rc == HD_SIM_IDLE && (sc->stop_events > 0 || sc->stop_cpd > 0))
       /* nothing will ever happen again: every body at rest, or cooled below the range of
@@ -462,11 +478,15 @@ static int finish(runner *r, int rc, hd_error *err) {
     wrc = HD_OK;
   }
   if (rc != HD_OK) hd_db_run_message(r->db, r->run, err->msg, &e2);
-  if (rc == HD_OK && !r->note[0] && r->st.next_vel < r->sc->n_velocities_at)
+  if (rc == HD_OK && !r->note[0] && r->st.next_vel < r->sc->n_velocities_at) {
+    int in_time = r->sc->velocities_in_time;
     snprintf(r->note, sizeof r->note,
-             "velocities_at: %d of %d snapshots not taken, the run ended at cpd %.6g, before %g",
+             "%s: %d of %d snapshots not taken, the run ended at %s %.6g, before %g",
+             in_time ? "velocities_at_time" : "velocities_at",
              r->sc->n_velocities_at - (int)r->st.next_vel, r->sc->n_velocities_at,
-             r->ops->cpd(r->s), r->sc->velocities_at[r->st.next_vel]);
+             in_time ? "t =" : "cpd", in_time ? r->ops->time(r->s) : r->ops->cpd(r->s),
+             r->sc->velocities_at[r->st.next_vel]);
+  }
   if (rc == HD_OK && r->note[0]) hd_db_run_message(r->db, r->run, r->note, &e2);
   if (r->o->note && r->o->note_size) snprintf(r->o->note, r->o->note_size, "%s", rc ? "" : r->note);
   int src = hd_db_run_progress(r->db, r->run, r->ops->events(r->s), r->ops->cpd(r->s), &e2);

@@ -61,6 +61,7 @@ enum {
   K_LFRAMES,
   K_LFRAMEST,
   K_LFRAMESMB,
+  K_LVELT,
   K_RCOUNT,
   K_RGAMMA,
   K_RNMOD,
@@ -107,6 +108,7 @@ static const struct {
     {S_LOG, "frames_every"},
     {S_LOG, "frames_every_time"},
     {S_LOG, "frames_max_mb"},
+    {S_LOG, "velocities_at_time"},
     {S_RODS, "count"},
     {S_RODS, "gamma"},
     {S_RODS, "nmod"},
@@ -346,8 +348,15 @@ static int set_collisions(ctx *c, const char *v) {
   return HD_OK;
 }
 
-static int set_vel_at(ctx *c, const char *v) {
+/* `velocities_at` (k = K_LVEL, cpd) or `velocities_at_time` (k = K_LVELT, times): the two
+ * share the list, so only one of them may be given. */
+static int set_vel_at(ctx *c, int k, const char *v) {
   hd_scene *sc = c->sc;
+  int other = k == K_LVEL ? K_LVELT : K_LVEL;
+  const char *unit = k == K_LVEL ? "cpd values" : "times";
+  if (is_set(c->key_at[other]))
+    return FAIL_KEY(c, k, "cannot be used together with %s (one list of snapshots, in cpd or in "
+                    "time)", key_def[other].name);
   int n = 0;
   const char *s = v;
   while (*s) {
@@ -356,23 +365,39 @@ static int set_vel_at(ctx *c, const char *v) {
     size_t len = strcspn(s, " \t");
     char t[64];
     double x;
-    if (len >= sizeof t) return FAIL_KEY(c, K_LVEL, "not a number: '%.20s...'", s);
+    if (len >= sizeof t) return FAIL_KEY(c, k, "not a number: '%.20s...'", s);
     memcpy(t, s, len);
     t[len] = '\0';
     s += len;
-    if (!parse_num(t, &x)) return FAIL_KEY(c, K_LVEL, "'%s': %s", t, num_why(t));
-    if (x < 0) return FAIL_KEY(c, K_LVEL, "'%s': cpd values must be >= 0", t);
+    if (!parse_num(t, &x)) return FAIL_KEY(c, k, "'%s': %s", t, num_why(t));
+    if (x < 0) return FAIL_KEY(c, k, "'%s': %s must be >= 0", t, unit);
     if (n == HD_MAX_VEL_AT)
-      return FAIL_KEY(c, K_LVEL,
+      return FAIL_KEY(c, k,
                       "more than %d values (snapshots for a movie or a trajectory: "
                       "frames_every or frames_every_time)",
                       HD_MAX_VEL_AT);
     if (n > 0 && !(x > sc->velocities_at[n - 1]))
-      return FAIL_KEY(c, K_LVEL, "'%s': values must be strictly ascending", t);
+      return FAIL_KEY(c, k, "'%s': values must be strictly ascending", t);
     sc->velocities_at[n++] = x;
   }
-  if (n == 0) return FAIL_KEY(c, K_LVEL, "missing value: list cpd values");
+  if (n == 0) return FAIL_KEY(c, k, "missing value: list %s", unit);
   sc->n_velocities_at = n;
+  sc->velocities_in_time = k == K_LVELT;
+  return HD_OK;
+}
+
+/* A snapshot that cannot be taken is refused at set-up: a time past stop_time, a cpd past
+ * stop_cpd (a list in the other unit than the stop cannot be checked before the run; the run's
+ * message says what it did not take). */
+static int check_vel_at(ctx *c) {
+  const hd_scene *sc = c->sc;
+  if (sc->n_velocities_at == 0) return HD_OK;
+  int k = sc->velocities_in_time ? K_LVELT : K_LVEL;
+  double last = sc->velocities_at[sc->n_velocities_at - 1];
+  double stop = sc->velocities_in_time ? sc->stop_time : sc->stop_cpd;
+  if (stop > 0 && last > stop)
+    return FAIL_KEY(c, k, "%.17g is past %s = %.17g: that snapshot would never be taken",
+                    last, sc->velocities_in_time ? "stop_time" : "stop_cpd", stop);
   return HD_OK;
 }
 
@@ -452,13 +477,15 @@ static int set_value(ctx *c, int k, const char *v) {
   case K_LSAMPLES:
     return get_num(c, k, v, 'n', &sc->samples_every);
   case K_LVEL:
-    return set_vel_at(c, v);
+    return set_vel_at(c, k, v);
   case K_LFRAMES:
     return get_num(c, k, v, 'n', &sc->frames_every);
   case K_LFRAMEST:
     return get_num(c, k, v, 'n', &sc->frames_every_time);
   case K_LFRAMESMB:
     return get_num(c, k, v, 'p', &sc->frames_max_mb);
+  case K_LVELT:
+    return set_vel_at(c, k, v);
   case K_RCOUNT:
     if ((rc = get_whole(c, k, v, 2, (double)HD_MAX_COUNT, &x))) return rc;
     if (fmod(x, 2) != 0)
@@ -863,7 +890,7 @@ static int check_rods(ctx *c) {
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
                 "no stop condition: set stop_time, stop_events or stop_cpd");
-  return HD_OK;
+  return check_vel_at(c);
 }
 
 /* [log] frames_every / frames_every_time: one of them, a bounded count under the cap. */
@@ -931,7 +958,8 @@ static int check_all(ctx *c) {
                 "one body alone never collides with another: stop it with stop_time (stop_events "
                 "counts only its wall collisions, and a drawn velocity of one body is 0: it rests "
                 "or spins in place)");
-  return check_frames(c);
+  if ((rc = check_frames(c))) return rc;
+  return check_vel_at(c);
 }
 
 /* ---- canonical text ------------------------------------------------------------------------ */
@@ -1043,7 +1071,7 @@ static char *canonical_text(const ctx *c) {
       put(&b, "collisions = %s\n", sc->log_collisions == HD_LOG_NONE ? "none" : "all");
     put_kv(&b, "samples_every", sc->samples_every);
     if (sc->n_velocities_at > 0) {
-      put(&b, "velocities_at =");
+      put(&b, "%s =", sc->velocities_in_time ? "velocities_at_time" : "velocities_at");
       for (int i = 0; i < sc->n_velocities_at; i++) {
         shortest(sc->velocities_at[i], v1, sizeof v1);
         put(&b, " %s", v1);

@@ -86,8 +86,11 @@ typedef struct hd_scene {
   hd_logmode log_collisions;           /* `collisions` = all | none | every N */
   long log_every;                      /* N of `every N` [1] */
   double samples_every;                /* `samples_every` [0 = none], in cpd */
-  double velocities_at[HD_MAX_VEL_AT]; /* `velocities_at`: cpd values, ascending */
-  int n_velocities_at;
+  double velocities_at[HD_MAX_VEL_AT]; /* `velocities_at` (cpd) or `velocities_at_time` (times):
+                                          snapshot values, strictly ascending */
+  int n_velocities_at;                 /* how many */
+  int velocities_in_time;              /* 1: velocities_at holds times (`velocities_at_time`), each
+                                          snapshot taken at exactly that time; 0: cpd values */
   double frames_every;      /* `frames_every` [0 = none]: a frame (positions, orientations,
                              * velocities of every body) every this many cpd */
   double frames_every_time; /* `frames_every_time` [0 = none]: a frame at t = 0, T, 2T, ...

@@ -292,6 +292,17 @@ static double draw_eps(hd_rods *r, long a, long b, double e_tr, double tba, doub
   return NAN;
 }
 
+/* Whether a collision of rods a, b at time t with relative energy e_tr is cold (collapse
+ * detection, rods.h): eps fixed (constant model), or drawn at beta >= HD_RODS_COLD_BETA from the
+ * warmer of the two baths; a TC-elastic collision and gamma = 1 (eps = 1) are not. */
+static int cold(const hd_rods *r, long a, long b, double t, double e_tr) {
+  if (tc_elastic(r, a, b)) return 0;
+  if (r->p.model == HD_RODS_CONSTANT) return 1;
+  if (!r->sampler) return 0;
+  double ta = r->tb[a] * decay(r, r->tl[a], t), tb = r->tb[b] * decay(r, r->tl[b], t);
+  return e_tr >= HD_RODS_COLD_BETA * fmax(ta, tb);
+}
+
 int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
   long k = hd_queue_top(r->q);
   double tk = r->key[k];
@@ -312,26 +323,36 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
    * since the previous collision falls below HD_RODS_TINY t */
   long kl = prv(r, a), kr = b;
   r->stall = tk == r->t ? r->stall + 1 : 0;
-  double gap = tk - r->t;
+  double gap = tk - r->t, e_now = 0.5 * u * u;
+  int tiny = 0;
   if (gap <= HD_RODS_TINY * tk) {
-    /* the first positive spacing of the run: a first one of 0 would make the fall test pass
-     * only at 0, leaving a geometric collapse to the slower stall test */
-    if (r->tiny_run == 0 || (r->tiny_gap0 == 0 && gap > 0)) r->tiny_gap0 = gap;
+    if (r->tiny_run > 0 && !(tk - r->tiny_t0 <= HD_RODS_EPISODE * tk)) r->tiny_run = 0;
+    if (r->tiny_run == 0) r->tiny_t0 = tk, r->tiny_low = 0, r->tiny_e0 = 0;
+    /* blocks of HD_RODS_TINY_RUN tiny collisions: the largest E_tr of each against the first's */
+    if (r->tiny_run % HD_RODS_TINY_RUN == 0) r->tiny_eblk = 0, r->tiny_warm = 0;
+    r->tiny_eblk = fmax(r->tiny_eblk, e_now);
+    if (!cold(r, a, b, tk, e_now)) r->tiny_warm++;
     r->recent[r->tiny_run % HD_RODS_TINY_RUN] = (int32_t)k;
     r->tiny_run++;
-  } else {
-    r->tiny_run = 0;
+    if (r->tiny_run % HD_RODS_TINY_RUN == 0) {
+      if (r->tiny_run == HD_RODS_TINY_RUN)
+        r->tiny_e0 = r->tiny_eblk;
+      else
+        r->tiny_low =
+            r->tiny_eblk <= HD_RODS_TINY_FALL * r->tiny_e0 && !r->tiny_warm ? r->tiny_low + 1 : 0;
+      tiny = r->tiny_low >= HD_RODS_TINY_LOW;
+    }
   }
-  int tiny = r->tiny_run >= HD_RODS_TINY_RUN && gap <= HD_RODS_TINY_FALL * r->tiny_gap0;
   if (tiny || r->stall >= HD_RODS_STALL) {
     long c0 = a, c1 = b;
-    char why[160];
+    char why[200];
     if (tiny) {
       cluster(r, &c0, &c1);
       snprintf(why, sizeof why,
-               "%lld successive collisions less than 1e-12 t apart, their spacing down from "
-               "%.3g to %.3g",
-               (long long)r->tiny_run, r->tiny_gap0, gap);
+               "%lld collisions less than 1e-12 t after the previous one within %.3g, the "
+               "largest relative energy of %d of them down from %.3g to %.3g",
+               (long long)r->tiny_run, tk - r->tiny_t0, HD_RODS_TINY_RUN, r->tiny_e0,
+               r->tiny_eblk);
     } else {
       snprintf(why, sizeof why, "100000 successive collisions at the same time");
     }
@@ -349,7 +370,7 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
   /* baths up to now (damping) */
   double da = decay(r, r->tl[a], r->t), db = decay(r, r->tl[b], r->t);
   double tba = r->tb[a] * da, tbb = r->tb[b] * db;
-  double e_tr = 0.5 * u * u;
+  double e_tr = e_now;
   int tc = tc_elastic(r, a, b);
   double eps = tc ? 1.0 : draw_eps(r, a, b, e_tr, tba, tbb);
   if (!isfinite(eps))
@@ -394,12 +415,13 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
 /* Scalars of the blob. */
 typedef struct ck_head {
   uint64_t magic;
-  int64_t n, collisions, resampled, tiny_run, stall, frame_next, frames;
-  double t, x0, x0t, e_lost, tiny_gap0;
+  int64_t n, collisions, resampled, tiny_run, tiny_low, tiny_warm, stall, frame_next, frames;
+  double t, x0, x0t, e_lost, tiny_t0, tiny_e0, tiny_eblk;
   int32_t recent[HD_RODS_TINY_RUN];
   uint64_t rng_size;
 } ck_head;
-#define CK_MAGIC 0x68646f7230303032ULL /* "hdor0002" (0001: before tiny_gap0 and the frame) */
+#define CK_MAGIC 0x68646f7230303033ULL /* "hdor0003" (0002: the spacing-fall detector; 0001:
+                                          before it and the frame) */
 
 int hd_rods_checkpoint(const hd_rods *r, void **blob, size_t *n, hd_error *err) {
   size_t nr = (size_t)r->p.n, rs = gsl_rng_size(r->rng);
@@ -413,7 +435,11 @@ int hd_rods_checkpoint(const hd_rods *r, void **blob, size_t *n, hd_error *err) 
   h.collisions = r->collisions;
   h.resampled = r->resampled;
   h.tiny_run = r->tiny_run;
-  h.tiny_gap0 = r->tiny_gap0;
+  h.tiny_low = r->tiny_low;
+  h.tiny_warm = r->tiny_warm;
+  h.tiny_t0 = r->tiny_t0;
+  h.tiny_e0 = r->tiny_e0;
+  h.tiny_eblk = r->tiny_eblk;
   h.stall = r->stall;
   h.frame_next = r->frame_next;
   h.frames = r->frames;
@@ -443,9 +469,10 @@ int hd_rods_checkpoint(const hd_rods *r, void **blob, size_t *n, hd_error *err) 
  * but wrong (hd_run.c's checksum catches a flipped bit) is refused instead of crashing the ring.
  * HD_OK or HD_EINPUT. */
 static int check_restored(const hd_rods *r, hd_error *err) {
-  if (r->collisions < 0 || r->resampled < 0 || r->tiny_run < 0 || r->stall < 0 ||
-      r->frame_next < 0 || r->frames < 0 || !isfinite(r->t) || !isfinite(r->x0) ||
-      !isfinite(r->x0t) || !isfinite(r->e_lost) || !isfinite(r->tiny_gap0))
+  if (r->collisions < 0 || r->resampled < 0 || r->tiny_run < 0 || r->tiny_low < 0 ||
+      r->tiny_warm < 0 || r->stall < 0 || r->frame_next < 0 || r->frames < 0 ||
+      !isfinite(r->t) || !isfinite(r->x0) || !isfinite(r->x0t) || !isfinite(r->e_lost) ||
+      isnan(r->tiny_t0) || isnan(r->tiny_e0) || isnan(r->tiny_eblk))
     return hd_error_set(err, HD_EINPUT, "rods checkpoint: counters or clocks out of range");
   long n = r->p.n;
   for (long k = 0; k < HD_RODS_TINY_RUN; k++)
@@ -485,7 +512,11 @@ int hd_rods_alloc_restore(hd_rods **out, const hd_rods_params *p, const void *bl
   r->collisions = h.collisions;
   r->resampled = h.resampled;
   r->tiny_run = h.tiny_run;
-  r->tiny_gap0 = h.tiny_gap0;
+  r->tiny_low = h.tiny_low;
+  r->tiny_warm = h.tiny_warm;
+  r->tiny_t0 = h.tiny_t0;
+  r->tiny_e0 = h.tiny_e0;
+  r->tiny_eblk = h.tiny_eblk;
   r->stall = h.stall;
   r->frame_next = h.frame_next;
   r->frames = h.frames;

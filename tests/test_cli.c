@@ -656,14 +656,24 @@ static void snapshots_and_exports(void **state) {
                          "[log]\nsamples_every = 1e-12\n");
   assert_int_equal(sh("%s run tiny.ini -o tinys.db --quiet", haff), 0);
   assert_true(q1("tinys.db", "SELECT count(*) FROM samples") <= 11);
-  /* velocities_at times past the run's end are said, not dropped silently */
-  write_file("va.ini", "[system]\nbox = 20 20\n[disks]\ncount = 100\n[run]\nstop_cpd = 2\n"
+  /* velocities_at values the run did not reach (a stop in another unit) are said, not dropped
+   * silently; past a stop in the same unit they are refused at set-up (issue 16) */
+  write_file("va.ini", "[system]\nbox = 20 20\n[disks]\ncount = 100\n[run]\nstop_events = 100\n"
                        "[log]\ncollisions = none\nvelocities_at = 1 5 10\n");
   assert_int_equal(sh("%s run va.ini -o va.db --quiet", haff), 0);
   assert_int_equal(q1("va.db", "SELECT count(*) FROM runs WHERE message LIKE "
                                "'velocities_at: 2 of 3 snapshots not taken%'"),
                    1);
   bad_usage("run va.ini -o va2.db --seed 1 --seed 2", "--seed given twice");
+  bad_usage("run va.ini -o va3.db --set run.stop_cpd=2",
+            "va.ini:9: [log] velocities_at = 1 5 10: 10 is past stop_cpd = 2");
+  /* snapshot times are taken at those times exactly, the last one at stop_time */
+  write_file("vt.ini", "[rods]\ncount = 50\n[run]\nstop_time = 5\n[log]\ncollisions = none\n"
+                       "velocities_at_time = 0 0.5 1.25 5\n");
+  assert_int_equal(sh("%s run vt.ini -o vt.db --quiet", haff), 0);
+  assert_int_equal(q1("vt.db", "SELECT count(*) FROM states WHERE label = 'velocities' AND t IN "
+                               "(0, 0.5, 1.25, 5)"),
+                   200);
 }
 
 /* A run from a state file resumes without it (resume read the CSV again, and failed once it

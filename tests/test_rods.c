@@ -266,6 +266,65 @@ static void damped_no_false_collapse(void **state) {
   hd_rods_free(r);
 }
 
+/* A damped ring of 1000 rods (nu = 0.01, N_mod = 1000, eps table, seed 2) forms dense clusters
+ * whose collisions come ~1e-10 apart, some rounded to the same double.  The former detector (a
+ * fall of the spacing by 1e6 over 64 tiny collisions, which below 1e-12 t only a spacing of 0
+ * passes) stopped it as collapsed at t = 4360 (4.48e6 collisions); in the cluster the pairs draw
+ * eps > 1 from their warm baths and their relative energies do not fall (docs/rods.md), and the
+ * ring runs on.  Deterministic (fixed seed); it must now reach t = 5000. */
+static void damped_cluster_not_collapse(void **state) {
+  (void)state;
+  if (test_sanitized()) return; /* 6.5e6 collisions: too slow under ASan */
+  hd_rods_params p = params(1000, 1000, 2);
+  p.damping = 0.01;
+  p.table = 1;
+  hd_rods *r = alloc_ok(&p);
+  hd_error e;
+  hd_rods_event ev;
+  int rc;
+  while ((rc = hd_rods_next(r, 5000, &ev, &e)) == HD_OK) {
+  }
+  if (rc != HD_SIM_STOPTIME) print_error("%s\n", e.msg);
+  printf("# damped 1000 rods, seed 2: %lld collisions to t = %g\n", (long long)r->collisions, r->t);
+  assert_int_equal(rc, HD_SIM_STOPTIME);
+  assert_true(r->collisions > 4476270);
+  hd_rods_free(r);
+}
+
+/* The criterion separates the models as the paper says (Sec. IV): 20 rods at gamma = 0.3 with
+ * constant eps = 0.3 collapse within 1000 collisions (the relative energies of the tiny
+ * collisions fall by more than 1e9), while the stochastic ring of the same size, seed and
+ * nearly cold baths (N_mod = 1e9: eps starts at gamma) does not within 2e5: by the time its
+ * collisions crowd, E_tr has fallen to the baths' temperature, beta ~ 1 and eps > 1 gives the
+ * energy back. */
+static void stochastic_baths_prevent_collapse(void **state) {
+  (void)state;
+  hd_rods_params p = params(20, 1, 3);
+  p.gamma = 0.3;
+  p.model = HD_RODS_CONSTANT;
+  p.eps = 0.3;
+  hd_rods *r = alloc_ok(&p);
+  hd_error e;
+  hd_rods_event ev;
+  int rc = HD_OK;
+  long c;
+  for (c = 0; c < 1000 && rc == HD_OK; c++) rc = hd_rods_next(r, INFINITY, &ev, &e);
+  printf("# constant eps = 0.3, 20 rods: %s\n", rc ? e.msg : "no collapse");
+  assert_int_equal(rc, HD_ECOLLAPSE);
+  assert_non_null(strstr(e.msg, "down from"));
+  hd_rods_free(r);
+  p.model = HD_RODS_STOCHASTIC;
+  p.nmod = 1000000000L;
+  r = alloc_ok(&p);
+  long nc = test_size(200000, 10);
+  for (c = 0; c < nc; c++) {
+    rc = hd_rods_next(r, INFINITY, &ev, &e);
+    if (rc) print_error("%s\n", e.msg);
+    assert_int_equal(rc, HD_OK);
+  }
+  hd_rods_free(r);
+}
+
 /* Kinetic energy in the centre-of-mass frame. */
 static double ekin_com(const hd_rods *r) {
   double P = 0, M = 0, e = 0;
@@ -478,6 +537,8 @@ int main(void) {
       cmocka_unit_test(checkpoint_exact),
       cmocka_unit_test(collapse),
       cmocka_unit_test(damped_no_false_collapse),
+      cmocka_unit_test(damped_cluster_not_collapse),
+      cmocka_unit_test(stochastic_baths_prevent_collapse),
       cmocka_unit_test(constant_cooling_below_drift),
       cmocka_unit_test(table_below_grid),
       cmocka_unit_test(equilibrium),
