@@ -2,16 +2,15 @@
 -- bin/haff and applied with CREATE ... IF NOT EXISTS on every open; DESIGN.md fixes the
 -- column names that users rely on, the rest are additions documented here.
 --
--- Schema version (PRAGMA user_version), set by every writer that opens the file:
---   0  files made before versions were kept (read as version 1);
---   2  adds runs.cpd (collisions per particle reached, kept up to date while a run goes) and
---      the provenance table.  A version-0 file opened for writing is brought to 2 by adding
---      them (ALTER TABLE runs ADD COLUMN cpd, CREATE TABLE provenance): nothing is rewritten,
---      and readers do not need either.
+-- Schema version (PRAGMA user_version), set by every writer that opens the file
+-- (HD_DB_SCHEMA_VERSION, db/README.md):
+--   0  files made before versions were kept;
+--   2  adds runs.cpd, the provenance and frames tables, the state measures of samples and the
+--      views params and run_summary.  A version-0 file opened for writing is brought to 2 in
+--      one transaction (hd_db.c, schema_apply: ALTER TABLE ... ADD COLUMN for the columns of
+--      added_columns[], old rows NULL; the rest IF NOT EXISTS); readers take a missing column
+--      as NULL.
 PRAGMA journal_mode = WAL;
--- Schema version (PRAGMA user_version): 0 or 1 before versions were kept; 2 adds the state
--- measures to `samples`.  Opening an older file for writing adds the missing columns
--- (hd_db.c, upgrade_schema); readers take them as NULL when absent.
 
 -- One row per run.  status: running, done, interrupted, collapsed, failed.
 -- A process killed with -9 leaves 'running'; `haff resume` accepts it.
@@ -156,7 +155,7 @@ CREATE TABLE IF NOT EXISTS eps_table_points (
   eps   REAL NOT NULL           -- Q_k(u_j)
 );
 
--- ---- parameters as data (schema version 1; docs/sql.md) ----------------------------------------
+-- ---- parameters as data (schema version 2; docs/sql.md) ----------------------------------------
 -- params: one row per key of each run's canonical scene text (runs.scene, made by
 -- engine/hd_scene.c: "[section]" lines, then "key = value" lines; ";" lines are comments).
 -- value is the text after "=", num its number when it is one (always REAL, so that a / b
