@@ -81,7 +81,9 @@ int haff_fit_main(int argc, char **argv) {
       "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m and density;\n"
       "mean +- standard error over the runs; nan with one run).  Per run, *_fit_err are the\n"
       "formal least-squares errors, which take the residuals of the cumulative cpd(t) as\n"
-      "independent: several times too small.  A run that cannot be fitted gets nan and a note;\n"
+      "independent: several times too small.  window: 'stored' (the run's runs.hcs_* window,\n"
+      "used when the detection options are the defaults), 'computed' (found now: other options,\n"
+      "or a file without it), 'whole' (--no-detect).  A run that cannot be fitted gets nan and a note;\n"
       "exit 2 when none can.\n"
       "  --all            every finished run (the default)\n"
       "  --alpha-group    one line per (alpha, a/d) group\n" FIT_OPTS_HELP;
@@ -103,7 +105,7 @@ int haff_fit_main(int argc, char **argv) {
     fprintf(out, "run\tspecies\talpha\ta_over_d\tn_used\tdetected\tt_end\tcpd_end\tD_e\t"
                  "D_e_fit_err\tnu0_eff\tnu0_eff_fit_err\tnu0_enskog\tratio\tratio_fit_err\t"
                  "chi2_dof\tcpd_start\tD_e_slope\tD_e_slope_err\ts_perp\tflow_excess\t"
-                 "hcs_ended\n");
+                 "hcs_ended\twindow\n");
     for (size_t i = 0; i < n; i++) {
       const hd_run_fit *f = &fits[i];
       double nan = NAN;
@@ -111,14 +113,14 @@ int haff_fit_main(int argc, char **argv) {
       fprintf(
           out,
           "%lld\t%s\t%g\t%g\t%zu\t%d\t%.6g\t%.6g\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.6g\t%.3g\t%.3g\t"
-          "%.6g\t%.6g\t%.3g\t%.4g\t%.4g\t%d\n",
+          "%.6g\t%.6g\t%.3g\t%.4g\t%.4g\t%d\t%s\n",
           (long long)f->info.id, hd_ana_species_name(f->info.species, f->info.walls), f->info.alpha,
           f->info.a_over_d, f->n_used, f->homog.detected, f->t_end, f->cpd_end,
           f->haff_ok ? h->D_e : nan, f->haff_ok ? h->D_e_err : nan, f->haff_ok ? h->nu0 : nan,
           f->haff_ok ? h->nu0_err : nan, f->nu0_enskog, f->ratio, f->ratio_err,
           f->haff_ok ? h->chi2 / (double)h->dof : nan, f->cpd_start, f->D_e_slope,
           f->D_e_slope_err, f->hcs.have ? f->hcs.s_perp : nan,
-          f->hcs.have ? f->hcs.flow_excess : nan, f->hcs.ended);
+          f->hcs.have ? f->hcs.flow_excess : nan, f->hcs.ended, hd_cli_window_name(f->window));
     }
   } else {
     hd_group *g;

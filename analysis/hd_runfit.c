@@ -20,6 +20,7 @@ hd_fit_opts hd_fit_opts_defaults(void) {
   o.hcs = hd_hcs_defaults();
   o.s_flag = 2.5;
   o.min_window = 40;
+  o.stored = 1;
   return o;
 }
 
@@ -43,22 +44,41 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
   }
   for (size_t i = 0; i < s.n; i++) e[i] = s.e_tr[i] + s.e_rot[i];
   size_t nu = s.n, n0 = 0;
-  if (o->detect) {
+  out->window = HD_WINDOW_WHOLE;
+  if (o->detect && o->stored && ri->hcs_stored && hd_hcs_opts_default(&o->homog, &o->hcs)) {
+    /* the window the run stored when it ended (runs.hcs_*): the same detection on the same
+     * samples; recomputed below if it does not fit them (samples logged after it was stored) */
+    size_t a = 0, b;
+    while (a < s.n && s.cpd[a] < ri->hcs_cpd_start) a++;
+    for (b = a; b < s.n && s.cpd[b] <= ri->hcs_cpd_end; b++) {
+    }
+    if (a < s.n && b > a && s.cpd[a] == ri->hcs_cpd_start && s.cpd[b - 1] == ri->hcs_cpd_end &&
+        (ri->hcs_end != HD_HCS_END_NONE || b == s.n)) {
+      out->window = HD_WINDOW_STORED;
+      n0 = a, nu = b;
+      out->homog.n_end = nu, out->homog.detected = ri->hcs_end == HD_HCS_END_RATE;
+      out->homog.t_end = s.t[nu - 1], out->homog.r0 = NAN;
+      out->hcs.have = !isnan(ri->hcs_s_perp);
+      out->hcs.n_start = n0, out->hcs.n_end = nu;
+      out->hcs.ended = ri->hcs_end == HD_HCS_END_SPERP;
+      out->hcs.s_perp = ri->hcs_s_perp, out->hcs.flow_excess = ri->hcs_flow_excess;
+    }
+  }
+  if (o->detect && out->window != HD_WINDOW_STORED) {
+    hd_hcs_window w;
     hd_error e2;
-    if (hd_homog_detect(s.t, s.coll, e, s.n, &o->homog, &out->homog, &e2) != HD_OK) {
-      snprintf(out->why, sizeof out->why, "%.200s", e2.msg);
-    } else {
-      nu = out->homog.n_end;
+    rc = hd_hcs_window_find(s.t, s.coll, e, s.cpd, s.s_perp, s.flow_frac, s.flow_chaos, s.n,
+                            &o->homog, &o->hcs, &w, &e2);
+    if (rc) {
+      hd_error_set(err, rc, "%s", e2.msg);
+      goto done;
     }
-    if (hd_hcs_detect(s.cpd, s.s_perp, s.flow_frac, s.flow_chaos, s.n, &o->hcs, &out->hcs, &e2) !=
-        HD_OK) {
-      snprintf(out->why, sizeof out->why, "%.200s", e2.msg);
-    } else {
-      n0 = out->hcs.n_start;
-      if (out->hcs.n_end < nu) nu = out->hcs.n_end;
-    }
-    if (nu < n0 + 3) n0 = nu > 3 ? nu - 3 : 0; /* too short a window: the fit starts earlier */
-  } else {
+    out->window = HD_WINDOW_COMPUTED;
+    if (w.why[0]) snprintf(out->why, sizeof out->why, "%.200s", w.why);
+    if (w.homog_ok) out->homog = w.homog;
+    if (w.hcs_ok) out->hcs = w.hcs;
+    n0 = w.n_start, nu = w.n_end;
+  } else if (!o->detect) {
     out->homog.n_end = s.n;
   }
   if (o->cpd_max > 0)

@@ -22,7 +22,17 @@ typedef struct hd_fit_opts {
   hd_hcs_opts hcs;     /* the HCS window from the state measures (used when detect = 1) */
   double s_flag;       /* a group whose window-mean s_perp exceeds this is flagged [2.5] */
   double min_window;   /* ... and one whose HCS ended within this many cpd of its start [40] */
+  int stored;          /* 1 [default]: a run's stored window (runs.hcs_*) is used when the
+                        * detection options (homog, hcs) are the defaults; 0: always recomputed */
 } hd_fit_opts;
+
+/* Where a run's window came from (hd_run_fit.window). */
+enum {
+  HD_WINDOW_WHOLE = 0,    /* detect = 0: the whole run */
+  HD_WINDOW_STORED = 1,   /* runs.hcs_* as the run stored it (hd_db_run_hcs) */
+  HD_WINDOW_COMPUTED = 2  /* found now from the samples (options not the defaults, or no stored
+                           * window: a file from before, or a run still going) */
+};
 
 /* The defaults above. */
 hd_fit_opts hd_fit_opts_defaults(void);
@@ -33,6 +43,7 @@ typedef struct hd_run_fit {
   size_t n_samples;      /* rows in samples */
   size_t n_start;        /* first sample used by the fits (0 when detect = 0) */
   size_t n_used;         /* samples used by the fits: [n_start, n_used) */
+  int window;            /* HD_WINDOW_*: where [n_start, n_used) came from (before cpd_max) */
   hd_homog homog;        /* rate/sqrt(E) detector result (n_end = n_samples when detect = 0) */
   hd_hcs hcs;            /* the state measures' HCS window (detect = 1; have = 0 otherwise) */
   double t_start, cpd_start; /* first sample used */

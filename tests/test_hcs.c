@@ -218,6 +218,110 @@ static int accepted(const grow *r, double kt) {
   return r->flag[0] || (tot <= 0.02 && fabs(r->D - kt) <= 2.5 * tot);
 }
 
+/* Runs one SQL statement on the file at path (the test's own edits of a run's row). */
+static void sql_on(const char *path, const char *sql) {
+  sqlite3 *h;
+  assert_int_equal(sqlite3_open(path, &h), SQLITE_OK);
+  char *msg = NULL;
+  int rc = sqlite3_exec(h, sql, NULL, NULL, &msg);
+  if (rc) fprintf(stderr, "%s: %s\n", sql, msg ? msg : "");
+  sqlite3_free(msg);
+  assert_int_equal(rc, SQLITE_OK);
+  sqlite3_close(h);
+}
+
+/* The fit of run `id` of path with options o. */
+static void fit_run(const char *path, int64_t id, const hd_fit_opts *o, hd_run_fit *f) {
+  sqlite3 *h;
+  hd_error err;
+  assert_int_equal(hd_ana_open(&h, path, &err), HD_OK);
+  hd_run_info *ri;
+  size_t n;
+  assert_int_equal(hd_ana_runs(h, id, &ri, &n, &err), HD_OK);
+  assert_int_equal(n, 1);
+  assert_int_equal(hd_run_fit_do(h, ri, o, f, &err), HD_OK);
+  free(ri);
+  sqlite3_close(h);
+}
+
+/* A run stores its HCS window when it ends (runs.hcs_*), the one the analyses find from its
+ * samples with the default options; they use it (window 'stored', the same fit to the last bit)
+ * when their options are the defaults, and find it again otherwise (other options, stored = 0,
+ * or NULL columns as in a file from before); a stored window they do not recompute is used as
+ * stored (an edited row moves the fit's end), so the analyses read it. */
+static void stored_window(void **state) {
+  (void)state;
+  char db[400];
+  snprintf(db, sizeof db, "%s/stored.db", dir);
+  run_disks(db, 200, 0.8, 40, 1);
+  sqlite3 *h;
+  assert_int_equal(sqlite3_open(db, &h), SQLITE_OK);
+  sqlite3_stmt *st;
+  assert_int_equal(sqlite3_prepare_v2(h,
+                                      "SELECT hcs_cpd_start, hcs_cpd_end, hcs_end, hcs_s_perp, "
+                                      "hcs_flow_excess FROM runs WHERE id = 1",
+                                      -1, &st, NULL),
+                   SQLITE_OK);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  double c0 = sqlite3_column_double(st, 0), c1 = sqlite3_column_double(st, 1);
+  double sp = sqlite3_column_double(st, 3), fx = sqlite3_column_double(st, 4);
+  assert_string_equal((const char *)sqlite3_column_text(st, 2), "none");
+  assert_int_equal(sqlite3_column_type(st, 3), SQLITE_FLOAT);
+  sqlite3_finalize(st);
+  sqlite3_close(h);
+  printf("# stored window %g-%g s_perp %.4g flow excess %.4g\n", c0, c1, sp, fx);
+  assert_true(c0 == 5.0 && c1 == 40.0);
+  hd_fit_opts o = hd_fit_opts_defaults();
+  hd_run_fit a, b;
+  fit_run(db, 1, &o, &a);
+  assert_int_equal(a.window, HD_WINDOW_STORED);
+  o.stored = 0;
+  fit_run(db, 1, &o, &b);
+  assert_int_equal(b.window, HD_WINDOW_COMPUTED);
+  assert_true(a.n_start == b.n_start && a.n_used == b.n_used && a.haff_ok && b.haff_ok);
+  assert_true(a.haff.D_e == b.haff.D_e && a.D_e_slope == b.D_e_slope);
+  assert_true(a.hcs.s_perp == b.hcs.s_perp && b.hcs.s_perp == sp && a.hcs.flow_excess == fx);
+  assert_true(a.cpd_start == c0 && a.cpd_end == c1);
+  /* an edited row: the analyses use what is stored */
+  sql_on(db, "UPDATE runs SET hcs_cpd_end = 20, hcs_end = 's_perp' WHERE id = 1");
+  o.stored = 1;
+  fit_run(db, 1, &o, &a);
+  assert_true(a.window == HD_WINDOW_STORED && a.cpd_end == 20.0 && a.hcs.ended);
+  o.hcs.s_end = 11; /* other options: found again */
+  fit_run(db, 1, &o, &a);
+  assert_true(a.window == HD_WINDOW_COMPUTED && a.cpd_end == 40.0 && !a.hcs.ended);
+  o = hd_fit_opts_defaults();
+  o.detect = 0;
+  fit_run(db, 1, &o, &a);
+  assert_true(a.window == HD_WINDOW_WHOLE && a.cpd_start == 0.0);
+  /* a stored window that the samples do not bear out (it ends at the run's end, which they
+   * pass: samples logged after it was stored) is found again */
+  o = hd_fit_opts_defaults();
+  sql_on(db, "UPDATE runs SET hcs_cpd_end = 30, hcs_end = 'none' WHERE id = 1");
+  fit_run(db, 1, &o, &a);
+  assert_true(a.window == HD_WINDOW_COMPUTED && a.cpd_end == 40.0);
+  sql_on(db, "UPDATE runs SET hcs_cpd_start = NULL, hcs_cpd_end = NULL, hcs_end = NULL");
+  fit_run(db, 1, &o, &a);
+  assert_true(a.window == HD_WINDOW_COMPUTED && a.cpd_end == 40.0);
+}
+
+/* A file of this schema version made before runs.hcs_* existed gets them when opened for
+ * writing (the version was not bumped for them). */
+static void schema_same_version(void **state) {
+  (void)state;
+  char path[400];
+  snprintf(path, sizeof path, "%s/v2.db", dir);
+  sql_on(path, "CREATE TABLE runs (id INTEGER PRIMARY KEY, scene TEXT NOT NULL, seed INTEGER NOT "
+               "NULL, status TEXT NOT NULL, started TEXT NOT NULL, finished TEXT, version TEXT NOT "
+               "NULL, events INTEGER NOT NULL DEFAULT 0, wall_seconds REAL NOT NULL DEFAULT 0, "
+               "message TEXT, box_x REAL, box_y REAL, cpd REAL); PRAGMA user_version = 2");
+  hd_db *db;
+  hd_error err;
+  assert_int_equal(hd_db_open(&db, path, &err), HD_OK);
+  assert_int_equal(hd_db_close(db, &err), HD_OK);
+  sql_on(path, "SELECT hcs_cpd_start, hcs_cpd_end, hcs_end, hcs_s_perp, hcs_flow_excess FROM runs");
+}
+
 /* Hard disks at alpha = 0.8, area fraction 0.05: N = 200 (L = 56 d, below the critical size
  * of the HCS, ~88 d) 6 runs to 160 cpd, and N = 3600 (238 d, unstable: its shear modes grow
  * from the start) 2 runs to 60 cpd.  The small box is not flagged and its D_e is within 2.5
@@ -232,6 +336,21 @@ static void acceptance_cheap(void **state) {
   run_disks(db, 200, 0.8, 160, 6);
   run_disks(db, 3600, 0.8, 60, 2);
   double kt = de_kt(0.8);
+  /* the windows the runs stored: the large box's shear modes ended it (s_perp) before 60 cpd */
+  sqlite3 *h;
+  sqlite3_stmt *st;
+  assert_int_equal(sqlite3_open(db, &h), SQLITE_OK);
+  assert_int_equal(sqlite3_prepare_v2(h,
+                                      "SELECT sum(scene LIKE '%count = 3600%' AND hcs_end = "
+                                      "'s_perp' AND hcs_cpd_end < 60), sum(hcs_cpd_start = 5) "
+                                      "FROM runs",
+                                      -1, &st, NULL),
+                   SQLITE_OK);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  assert_int_equal(sqlite3_column_int(st, 0), 2);
+  assert_int_equal(sqlite3_column_int(st, 1), 8);
+  sqlite3_finalize(st);
+  sqlite3_close(h);
   char *argv[] = {"haff-fit", db, "--alpha-group", "-o", out, NULL};
   assert_int_equal(haff_fit_main(5, argv), 0);
   grow g[4];
@@ -276,6 +395,8 @@ int main(void) {
       cmocka_unit_test(hcs_window),
       cmocka_unit_test(group_errors),
       cmocka_unit_test(schema_upgrade),
+      cmocka_unit_test(schema_same_version),
+      cmocka_unit_test(stored_window),
       cmocka_unit_test(acceptance_cheap),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
