@@ -129,6 +129,15 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
   if (hd_ana_dimers(ri->species)) {
     out->K_ok = hd_fit_linear_t(x, k, m, o->level, &out->K, &fe) == HD_OK;
     if (!out->K_ok && !out->why[0]) snprintf(out->why, sizeof out->why, "K fit: %.200s", fe.msg);
+    /* the same fit on the two halves (in cpd) of its samples: K's window error */
+    if (m >= 6) {
+      double kmid = 0.5 * (x[0] + x[m - 1]);
+      size_t h1 = 0;
+      while (h1 < m && x[h1] <= kmid) h1++;
+      out->K_half_ok[0] = hd_fit_linear_t(x, k, h1, o->level, &out->K_half[0], &fe) == HD_OK;
+      out->K_half_ok[1] =
+          hd_fit_linear_t(x + h1, k + h1, m - h1, o->level, &out->K_half[1], &fe) == HD_OK;
+    }
   }
 done:
   free(e), free(k), free(x);
@@ -196,7 +205,7 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
   if (!v) { /* every number NaN: the caller prints them as such */
     double nan = NAN;
     *out = (hd_group_fit){0, nan, nan, nan, nan, nan, nan, nan, nan, nan,
-                          nan, nan, nan, nan, nan, nan, 0, 0, 0};
+                          nan, nan, nan, nan, nan, nan, 0, 0, 0, nan};
     return;
   }
   double *D = v, *nu = v + n, *ra = v + 2 * n, *Ds = v + 3 * n, *dh = v + 4 * n, *de = v + 5 * n,
@@ -232,10 +241,38 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
   hd_ensemble_mean(sp, mp, &out->s_perp, &tmp);
   hd_ensemble_mean(fx, mf, &tmp, &s);
   out->sys_box = mf && !isnan(out->D_e) ? out->D_e * fmax(0, tmp) : 0;
+  out->flow_excess = mf ? tmp : NAN;
   out->D_e_sys = sqrt(out->sys_window * out->sys_window + out->sys_est * out->sys_est +
                       out->sys_box * out->sys_box);
   out->flagged = out->measured && ((mp && out->s_perp > o->s_flag) || 2 * out->ended > m);
   free(v);
+}
+
+void hd_k_sys_do(const hd_run_fit *fits, const size_t *idx, size_t n, const double a[2], double fx,
+                 hd_k_sys *out) {
+  memset(out, 0, sizeof *out);
+  double *d = malloc(2 * (n ? n : 1) * sizeof *d);
+  if (d) {
+    for (size_t i = 0; i < n; i++) {
+      const hd_run_fit *f = &fits[idx[i]];
+      if (f->K_ok && f->K_half_ok[0] && f->K_half_ok[1]) {
+        d[out->mh] = f->K_half[1].a0 - f->K_half[0].a0;
+        d[n + out->mh++] = f->K_half[1].a1 - f->K_half[0].a1;
+      }
+    }
+    for (int j = 0; j < 2; j++) {
+      double mean, se;
+      hd_ensemble_mean(d + (size_t)j * n, out->mh, &mean, &se);
+      out->win[j] = 0.5 * excess(mean, se);
+    }
+  } else {
+    out->win[0] = out->win[1] = NAN;
+  }
+  free(d);
+  double f = isnan(fx) ? 0 : fmax(0, fx);
+  out->box[0] = isnan(a[0]) ? 0 : fabs(a[0] + 1) * f;
+  out->box[1] = isnan(a[1]) ? 0 : fabs(a[1]) * f;
+  for (int j = 0; j < 2; j++) out->sys[j] = hypot(out->win[j], out->box[j]);
 }
 
 void hd_ensemble_mean(const double *vals, size_t n, double *mean, double *se) {

@@ -61,6 +61,8 @@ typedef struct hd_run_fit {
   double ratio, ratio_err; /* nu0_eff / nu0_enskog and its standard error */
   int K_ok;                /* 1 if the K fit succeeded */
   hd_linfit K;             /* K = e_tr/e_rot = a0 + a1 cpd */
+  int K_half_ok[2];        /* 1 if the K fit on the first / second half (in cpd) succeeded */
+  hd_linfit K_half[2];     /* ... its result: the window's systematic error of a0, a1 */
   char why[256];           /* why a fit failed ("" if both succeeded) */
 } hd_run_fit;
 
@@ -108,6 +110,7 @@ typedef struct hd_group_fit {
   size_t ended;       /* runs whose HCS ended within min_window cpd of its start */
   int flagged;        /* 1: "inhomogeneous" (s_perp > s_flag, or most runs ended early) */
   int measured;       /* 1 if the runs carry state measures (else no flag can be given) */
+  double flow_excess; /* mean window flow_frac - flow_chaos (NaN without state measures) */
 } hd_group_fit;
 
 /* Fills *out for the runs fits[g->idx[..]] with the rules of o (s_flag, min_window). */
@@ -119,6 +122,22 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
  * eq. (31) fit's own error is formal, 10-25 times below the scatter between runs (it used to
  * be returned here; docs/analysis.md); n == 0: NaN, NaN. */
 void hd_ensemble_mean(const double *vals, size_t n, double *mean, double *se);
+
+/* Systematic errors of a group's K = a0 + a1 cpd (docs/analysis.md, "Errors of K"), for a0
+ * ([0]) and a1 ([1]); each term the part of a measured difference its standard error does not
+ * explain, as for D_e_sys. */
+typedef struct hd_k_sys {
+  size_t mh;     /* runs with both half-window K fits */
+  double win[2]; /* half the mean (second half - first half) of a0 and of a1 over the runs */
+  double box[2]; /* correlated flow counted in e_tr: (a0 + 1) fx and |a1| fx, fx = the group's
+                  * mean flow excess (0 when NaN or < 0) */
+  double sys[2]; /* sqrt(win^2 + box^2) */
+} hd_k_sys;
+
+/* Fills *out from the runs fits[idx[0..n)] (their K_half fits), the combined a0, a1 (a[0],
+ * a[1]) and the group's flow excess fx (hd_group_fit.flow_excess). */
+void hd_k_sys_do(const hd_run_fit *fits, const size_t *idx, size_t n, const double a[2], double fx,
+                 hd_k_sys *out);
 
 /* How table2 combines the K fits of the runs of a group. */
 typedef enum hd_kmode {

@@ -322,6 +322,120 @@ static void schema_same_version(void **state) {
   sql_on(path, "SELECT hcs_cpd_start, hcs_cpd_end, hcs_end, hcs_s_perp, hcs_flow_excess FROM runs");
 }
 
+/* hd_k_sys_do on three made-up runs: a0 of the halves 2.00 and 2.10 (drift 0.1: win 0.05), a1
+ * 0.001 and 0.003 (win 0.001), in every run, so with no scatter; flow excess 0.01 with a0 = 2,
+ * a1 = 0.002: box (2 + 1) 0.01 = 0.03 and 0.002 * 0.01 = 2e-5.  A run without half fits is not
+ * counted; a negative or NaN flow excess gives no box term. */
+static void k_sys(void **state) {
+  (void)state;
+  hd_run_fit f[3];
+  size_t idx[3] = {0, 1, 2};
+  memset(f, 0, sizeof f);
+  for (int k = 0; k < 3; k++) {
+    f[k].K_ok = f[k].K_half_ok[0] = f[k].K_half_ok[1] = k < 2;
+    f[k].K_half[0].a0 = 2.00, f[k].K_half[1].a0 = 2.10;
+    f[k].K_half[0].a1 = 0.001, f[k].K_half[1].a1 = 0.003;
+  }
+  f[2].K_ok = 1; /* no half fits: left out */
+  f[2].K_half[1].a0 = 5;
+  double a[2] = {2.0, 0.002};
+  hd_k_sys q;
+  hd_k_sys_do(f, idx, 3, a, 0.01, &q);
+  printf("# K sys: a0 %.4g (window %.4g box %.4g), a1 %.3g (window %.3g box %.3g)\n", q.sys[0],
+         q.win[0], q.box[0], q.sys[1], q.win[1], q.box[1]);
+  assert_int_equal(q.mh, 2);
+  assert_true(fabs(q.win[0] - 0.05) < 1e-12 && fabs(q.win[1] - 0.001) < 1e-12);
+  assert_true(fabs(q.box[0] - 0.03) < 1e-12 && fabs(q.box[1] - 2e-5) < 1e-15);
+  assert_true(fabs(q.sys[0] - hypot(0.05, 0.03)) < 1e-12);
+  hd_k_sys_do(f, idx, 3, a, -0.01, &q);
+  assert_true(q.box[0] == 0 && q.box[1] == 0 && fabs(q.sys[0] - 0.05) < 1e-12);
+  hd_k_sys_do(f, idx, 3, a, NAN, &q);
+  assert_true(q.box[0] == 0);
+}
+
+/* Writes a dimer run (N = 900, a = d = 1, box 100 x 100, alpha) that follows Haff's law with
+ * D_e = 3 (noiseless times), K = 2 + 0.001 cpd (+ kink * (cpd - 52.5) past cpd 52.5, the middle
+ * of the 5-100 window) with noise 1e-3, and constant state measures s_perp, flow excess fx. */
+static void add_dimer_run(hd_db *db, double alpha, double kink, double sp, double fx,
+                          unsigned long seed) {
+  char scene[200];
+  snprintf(scene, sizeof scene,
+           "[system]\nbox = 100 100\n[dimers]\ncount = 900\nalpha = %g\na = 1\nd = 1\n", alpha);
+  hd_error err;
+  int64_t run;
+  assert_int_equal(hd_db_run_begin(db, scene, seed, "test", &run, &err), HD_OK);
+  assert_int_equal(hd_db_run_box(db, run, 100, 100, &err), HD_OK);
+  double g = 1 - alpha * alpha, t = 0;
+  unsigned long x = seed * 2654435761UL + 1;
+  for (int k = 0; k <= 200; k++) {
+    double cpd = 0.5 * k, E = exp(-g * cpd / 3);
+    if (k > 0) t += 0.5 / (0.3 * exp(-g * (cpd - 0.25) / 6));
+    x = x * 6364136223846793005UL + 1442695040888963407UL;
+    double u = (double)(x >> 11) / 9007199254740992.0 - 0.5; /* uniform, sd 0.29 */
+    double K = 2 + 0.001 * cpd + kink * fmax(0, cpd - 52.5) + 3.5e-3 * u;
+    hd_sample_row row = {t,   (int64_t)(450 * k), cpd, E * K / (K + 1), E / (K + 1),
+                         NAN, NAN,                NAN, 0.05 + fx,      0.05,
+                         1,   1,                  sp,  1};
+    assert_int_equal(hd_db_log_sample(db, run, &row, &err), HD_OK);
+  }
+  assert_int_equal(hd_db_run_hcs(db, run, &err), HD_OK);
+  assert_int_equal(hd_db_run_status(db, run, "done", 1, 0.0, &err), HD_OK);
+}
+
+/* Table II with its systematic errors: alpha 0.9, K with a kink at the window's middle (slope
+ * 0.001 then 0.003: halves' a0 differ by 0.105, a1 by 0.002) and flow excess 0.01: a0_sys =
+ * sqrt(0.0525^2 + (a0 + 1)^2 0.01^2) = 0.060 (a0 ~ 1.97 over the whole window), a1_sys =
+ * 0.001; alpha 0.85, K linear without flow: both below 5e-3 and 1e-4 (noise 1e-3 per sample,
+ * 3 runs: the halves' differences are known to ~1e-3 in a0); alpha 0.8 with s_perp 4 is
+ * flagged and left out unless --keep-flagged. */
+static void table2_sys(void **state) {
+  (void)state;
+  char path[400], out[400];
+  snprintf(path, sizeof path, "%s/t2.db", dir);
+  snprintf(out, sizeof out, "%s/t2.tsv", dir);
+  hd_db *db;
+  hd_error err;
+  assert_int_equal(hd_db_open(&db, path, &err), HD_OK);
+  for (unsigned long k = 1; k <= 3; k++) {
+    add_dimer_run(db, 0.9, 0.002, 1.0, 0.01, k);
+    add_dimer_run(db, 0.85, 0.0, 1.0, 0.0, 10 + k);
+    add_dimer_run(db, 0.8, 0.0, 4.0, 0.0, 20 + k);
+  }
+  assert_int_equal(hd_db_close(db, &err), HD_OK);
+  for (int keep = 0; keep < 2; keep++) {
+    char *argv[] = {"table2", path, "-o", out, "--keep-flagged", NULL};
+    assert_int_equal(haff_table2_main(4 + keep, argv), 0);
+    FILE *f = fopen(out, "r");
+    assert_non_null(f);
+    char line[1024];
+    assert_non_null(fgets(line, sizeof line, f));
+    assert_string_equal(line, "alpha\ta_over_d\ta0\ta0_lo\ta0_hi\ta1\ta1_lo\ta1_hi\ta0_sys\t"
+                              "a1_sys\n");
+    int rows = 0, seen[3] = {0, 0, 0};
+    double r[10];
+    while (fgets(line, sizeof line, f)) {
+      char *p = line;
+      for (int c = 0; c < 10; c++) r[c] = strtod(p, &p);
+      rows++;
+      printf("# table2 keep %d: alpha %g a0 %.4f [%.4f, %.4f] sys %.4f a1 %.3e sys %.3e\n", keep,
+             r[0], r[2], r[3], r[4], r[8], r[5], r[9]);
+      if (fabs(r[0] - 0.9) < 1e-9) {
+        seen[0] = 1;
+        double want = hypot(0.0525, (r[2] + 1) * 0.01);
+        assert_true(fabs(r[8] - want) < 0.003 && fabs(r[9] - 0.001) < 1e-4);
+      } else if (fabs(r[0] - 0.85) < 1e-9) {
+        seen[1] = 1;
+        assert_true(r[8] < 5e-3 && r[9] < 1e-4);
+      } else {
+        seen[2] = 1;
+      }
+    }
+    fclose(f);
+    assert_int_equal(rows, 2 + keep);
+    assert_true(seen[0] && seen[1] && seen[2] == keep);
+  }
+}
+
 /* Hard disks at alpha = 0.8, area fraction 0.05: N = 200 (L = 56 d, below the critical size
  * of the HCS, ~88 d) 6 runs to 160 cpd, and N = 3600 (238 d, unstable: its shear modes grow
  * from the start) 2 runs to 60 cpd.  The small box is not flagged and its D_e is within 2.5
@@ -397,6 +511,8 @@ int main(void) {
       cmocka_unit_test(schema_upgrade),
       cmocka_unit_test(schema_same_version),
       cmocka_unit_test(stored_window),
+      cmocka_unit_test(k_sys),
+      cmocka_unit_test(table2_sys),
       cmocka_unit_test(acceptance_cheap),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
