@@ -167,29 +167,30 @@ static void run_disks(const char *db, long count, double alpha, double stop_cpd,
   }
 }
 
-/* The columns of haff-fit --alpha-group's rows: D_e, D_e_err, D_e_sys, n, flag. */
+/* The columns of haff-fit --alpha-group's rows: D_e, D_e_err, D_e_sys, n, flag, sys_box, alpha. */
 typedef struct grow {
   double D, err, sys;
   long n;
   char flag[32];
+  double box, alpha;
 } grow;
 
 static int read_groups(const char *path, grow *g, int max) {
   FILE *f = fopen(path, "r");
   assert_non_null(f);
   char line[2048];
-  int col[5] = {-1, -1, -1, -1, -1}, m = 0;
-  static const char *const names[5] = {"D_e", "D_e_err", "D_e_sys", "n", "flag"};
+  int col[7] = {-1, -1, -1, -1, -1, -1, -1}, m = 0;
+  static const char *const names[7] = {"D_e", "D_e_err", "D_e_sys", "n", "flag", "sys_box", "alpha"};
   assert_non_null(fgets(line, sizeof line, f));
   line[strcspn(line, "\n")] = 0;
   int c = 0;
   for (char *p = line, *q; p; p = q ? q + 1 : NULL, c++) {
     q = strchr(p, '\t');
     size_t len = q ? (size_t)(q - p) : strlen(p);
-    for (int k = 0; k < 5; k++)
+    for (int k = 0; k < 7; k++)
       if (strlen(names[k]) == len && !strncmp(p, names[k], len)) col[k] = c;
   }
-  for (int k = 0; k < 5; k++) assert_true(col[k] >= 0);
+  for (int k = 0; k < 7; k++) assert_true(col[k] >= 0);
   while (m < max && fgets(line, sizeof line, f)) {
     line[strcspn(line, "\n")] = 0;
     grow *r = &g[m++];
@@ -201,6 +202,8 @@ static int read_groups(const char *path, grow *g, int max) {
       if (c == col[1]) r->err = strtod(p, NULL);
       if (c == col[2]) r->sys = strtod(p, NULL);
       if (c == col[3]) r->n = strtol(p, NULL, 10);
+      if (c == col[5]) r->box = strtod(p, NULL);
+      if (c == col[6]) r->alpha = strtod(p, NULL);
       if (c == col[4]) {
         size_t len = q ? (size_t)(q - p) : strlen(p);
         snprintf(r->flag, sizeof r->flag, "%.*s", (int)(len < 31 ? len : 31), p);
@@ -216,6 +219,18 @@ static int read_groups(const char *path, grow *g, int max) {
 static int accepted(const grow *r, double kt) {
   double tot = hypot(r->err, r->sys);
   return r->flag[0] || (tot <= 0.02 && fabs(r->D - kt) <= 2.5 * tot);
+}
+
+/* Whether the measures call a group's box stable (docs/analysis.md, "Acceptance"): not flagged,
+ * and the bias its correlated flow causes (sys_box = D_e x window flow excess) is below its
+ * standard error, so that molecular chaos holds within what the ensemble can resolve. */
+static int stable(const grow *r) {
+  return !r->flag[0] && r->box <= r->err;
+}
+
+/* The rule for the boxes the measures call stable: within 2.5 standard errors of theory. */
+static int stable_agrees(const grow *r, double kt) {
+  return !stable(r) || fabs(r->D - kt) <= 2.5 * r->err;
 }
 
 /* Runs one SQL statement on the file at path (the test's own edits of a run's row). */
@@ -449,7 +464,8 @@ static void acceptance_cheap(void **state) {
   snprintf(out, sizeof out, "%s/groups.tsv", dir);
   run_disks(db, 200, 0.8, 160, 6);
   run_disks(db, 3600, 0.8, 60, 2);
-  double kt = de_kt(0.8);
+  run_disks(db, 200, 0.9, 160, 8);
+  run_disks(db, 400, 0.9, 160, 8);
   /* the windows the runs stored: the large box's shear modes ended it (s_perp) before 60 cpd */
   sqlite3 *h;
   sqlite3_stmt *st;
@@ -462,29 +478,36 @@ static void acceptance_cheap(void **state) {
                    SQLITE_OK);
   assert_int_equal(sqlite3_step(st), SQLITE_ROW);
   assert_int_equal(sqlite3_column_int(st, 0), 2);
-  assert_int_equal(sqlite3_column_int(st, 1), 8);
+  assert_int_equal(sqlite3_column_int(st, 1), 24);
   sqlite3_finalize(st);
   sqlite3_close(h);
   char *argv[] = {"haff-fit", db, "--alpha-group", "-o", out, NULL};
   assert_int_equal(haff_fit_main(5, argv), 0);
-  grow g[4];
-  assert_int_equal(read_groups(out, g, 4), 2);
-  for (int k = 0; k < 2; k++) {
+  grow g[6];
+  assert_int_equal(read_groups(out, g, 6), 4);
+  int nstable = 0;
+  for (int k = 0; k < 4; k++) {
     grow *r = &g[k];
-    printf("# alpha 0.8 N %ld: D_e %.4f err %.4f sys %.4f (KT %.4f) flag '%s'\n", r->n, r->D,
-           r->err, r->sys, kt, r->flag);
+    double kt = de_kt(r->alpha);
+    printf("# alpha %g N %ld: D_e %.4f err %.4f sys %.4f box %.4f (KT %.4f: %+.1f err) flag '%s'"
+           "%s\n",
+           r->alpha, r->n, r->D, r->err, r->sys, r->box, kt, (r->D - kt) / r->err, r->flag,
+           stable(r) ? " stable" : "");
     assert_true(accepted(r, kt));
+    assert_true(stable_agrees(r, kt));
+    nstable += stable(r);
     if (r->n == 200) assert_true(r->flag[0] == 0);
     if (r->n == 3600) assert_string_equal(r->flag, "inhomogeneous");
   }
+  assert_true(nstable >= 1); /* the rule for stable boxes is exercised */
   char *old[] = {"haff-fit", db, "--alpha-group", "--no-detect", "-o", out, NULL};
   assert_int_equal(haff_fit_main(6, old), 0);
-  assert_int_equal(read_groups(out, g, 4), 2);
+  assert_int_equal(read_groups(out, g, 6), 4);
   int fails = 0;
-  for (int k = 0; k < 2; k++) {
-    printf("# --no-detect: N %ld: D_e %.4f err %.4f flag '%s'\n", g[k].n, g[k].D, g[k].err,
-           g[k].flag);
-    fails += !accepted(&g[k], kt);
+  for (int k = 0; k < 4; k++) {
+    printf("# --no-detect: alpha %g N %ld: D_e %.4f err %.4f flag '%s'\n", g[k].alpha, g[k].n,
+           g[k].D, g[k].err, g[k].flag);
+    fails += !accepted(&g[k], de_kt(g[k].alpha));
   }
   assert_int_equal(fails, 1);
 }
