@@ -55,8 +55,12 @@ FILE *hd_cli_out(const hd_cli_args *a);
 int hd_cli_close(FILE *f, const hd_cli_args *a);
 
 /* Opens the database and fits the selected runs (--run ID or every finished run).  Prints the
- * error and returns its exit code (1 or 2) on failure; 0 with *fits malloc'd on success. */
+ * error and returns its exit code (1 or 2) on failure; 0 with *fits malloc'd on success.  Says
+ * on stderr how many windows were stored with the runs and how many computed (and why). */
 int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits, size_t *n);
+
+/* "stored", "computed" or "whole" for hd_run_fit.window (HD_WINDOW_*). */
+const char *hd_cli_window_name(int window);
 
 /* hd_cli_fits, then the fits grouped into ensembles (hd_group_runs; warns on stderr when two
  * share an (alpha, a/d) label).  Returns as

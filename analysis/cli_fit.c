@@ -81,7 +81,9 @@ int haff_fit_main(int argc, char **argv) {
       "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m and density;\n"
       "mean +- standard error over the runs; nan with one run).  Per run, *_fit_err are the\n"
       "formal least-squares errors, which take the residuals of the cumulative cpd(t) as\n"
-      "independent: several times too small.  A run that cannot be fitted gets nan and a note;\n"
+      "independent: several times too small.  window: 'stored' (the run's runs.hcs_* window,\n"
+      "used when the detection options are the defaults), 'computed' (found now: other options,\n"
+      "or a file without it), 'whole' (--no-detect).  A run that cannot be fitted gets nan and a note;\n"
       "exit 2 when none can.\n"
       "  --all            every finished run (the default)\n"
       "  --alpha-group    one line per (alpha, a/d) group\n" FIT_OPTS_HELP;
@@ -103,7 +105,7 @@ int haff_fit_main(int argc, char **argv) {
     fprintf(out, "run\tspecies\talpha\ta_over_d\tn_used\tdetected\tt_end\tcpd_end\tD_e\t"
                  "D_e_fit_err\tnu0_eff\tnu0_eff_fit_err\tnu0_enskog\tratio\tratio_fit_err\t"
                  "chi2_dof\tcpd_start\tD_e_slope\tD_e_slope_err\ts_perp\tflow_excess\t"
-                 "hcs_ended\n");
+                 "hcs_ended\twindow\n");
     for (size_t i = 0; i < n; i++) {
       const hd_run_fit *f = &fits[i];
       double nan = NAN;
@@ -111,14 +113,14 @@ int haff_fit_main(int argc, char **argv) {
       fprintf(
           out,
           "%lld\t%s\t%g\t%g\t%zu\t%d\t%.6g\t%.6g\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.6g\t%.3g\t%.3g\t"
-          "%.6g\t%.6g\t%.3g\t%.4g\t%.4g\t%d\n",
+          "%.6g\t%.6g\t%.3g\t%.4g\t%.4g\t%d\t%s\n",
           (long long)f->info.id, hd_ana_species_name(f->info.species, f->info.walls), f->info.alpha,
           f->info.a_over_d, f->n_used, f->homog.detected, f->t_end, f->cpd_end,
           f->haff_ok ? h->D_e : nan, f->haff_ok ? h->D_e_err : nan, f->haff_ok ? h->nu0 : nan,
           f->haff_ok ? h->nu0_err : nan, f->nu0_enskog, f->ratio, f->ratio_err,
           f->haff_ok ? h->chi2 / (double)h->dof : nan, f->cpd_start, f->D_e_slope,
           f->D_e_slope_err, f->hcs.have ? f->hcs.s_perp : nan,
-          f->hcs.have ? f->hcs.flow_excess : nan, f->hcs.ended);
+          f->hcs.have ? f->hcs.flow_excess : nan, f->hcs.ended, hd_cli_window_name(f->window));
     }
   } else {
     hd_group *g;
@@ -220,7 +222,9 @@ int haff_table2_main(int argc, char **argv) {
       "options] [-o FILE]\n"
       "Table II: K = E_tr/E_rot fitted as a0 + a1 tau (tau = cpd) by least squares on the\n"
       "homogeneous part of each dimer run, with 99% Student-t intervals, per (alpha, a/d).\n"
-      "Columns: alpha a_over_d a0 a0_lo a0_hi a1 a1_lo a1_hi\n"
+      "Columns: alpha a_over_d a0 a0_lo a0_hi a1 a1_lo a1_hi a0_sys a1_sys\n"
+      "(*_sys: systematic errors, from the fits on the window's two halves and the correlated\n"
+      "flow the state measures see; docs/analysis.md, \"Errors of K\")\n"
       "  --k-ci ac        [default] runs combined by inverse-variance weights, each run's errors\n"
       "                   widened by its residuals' autocorrelation time (docs/analysis.md)\n"
       "  --k-ci ols       the same with plain OLS errors (the paper's test; too narrow)\n"
@@ -252,9 +256,10 @@ int haff_table2_main(int argc, char **argv) {
     return 1;
   }
   if (a.md)
-    fprintf(out, "| α | a/d | a0 | 99%% CI a0 | a1 | 99%% CI a1 |\n|---|---|---|---|---|---|\n");
+    fprintf(out, "| α | a/d | a0 | 99%% CI a0 | ±sys | a1 | 99%% CI a1 | ±sys |\n"
+                 "|---|---|---|---|---|---|---|---|\n");
   else
-    fprintf(out, "alpha\ta_over_d\ta0\ta0_lo\ta0_hi\ta1\ta1_lo\ta1_hi\n");
+    fprintf(out, "alpha\ta_over_d\ta0\ta0_lo\ta0_hi\ta1\ta1_lo\ta1_hi\ta0_sys\ta1_sys\n");
   int bad = 0;
   hd_error err;
   for (size_t j = 0; j < ng; j++) {
@@ -269,12 +274,16 @@ int haff_table2_main(int argc, char **argv) {
       bad = 2;
       continue;
     }
+    hd_k_sys ks;
+    double a01[2] = {r[0], r[3]};
+    hd_k_sys_do(fits, g[j].idx, g[j].n, a01, q.flow_excess, &ks);
     if (a.md)
-      fprintf(out, "| %g | %g | %.4f | [%.4f, %.4f] | %.3e | [%.3e, %.3e] |\n", g[j].alpha,
-              g[j].a_over_d, r[0], r[1], r[2], r[3], r[4], r[5]);
+      fprintf(out, "| %g | %g | %.4f | [%.4f, %.4f] | %.2g | %.3e | [%.3e, %.3e] | %.2g |\n",
+              g[j].alpha, g[j].a_over_d, r[0], r[1], r[2], ks.sys[0], r[3], r[4], r[5],
+              ks.sys[1]);
     else
-      fprintf(out, "%g\t%g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\n", g[j].alpha, g[j].a_over_d, r[0],
-              r[1], r[2], r[3], r[4], r[5]);
+      fprintf(out, "%g\t%g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.3g\t%.3g\n", g[j].alpha,
+              g[j].a_over_d, r[0], r[1], r[2], r[3], r[4], r[5], ks.sys[0], ks.sys[1]);
   }
   hd_cli_groups_free(db, fits, g, ng);
   rc = hd_cli_close(out, &a);

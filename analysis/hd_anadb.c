@@ -2,6 +2,7 @@
 #include "hd_anadb.h"
 
 #include "hd_db.h"
+#include "hd_homog.h"
 
 #include <ini.h>
 #include <math.h>
@@ -121,10 +122,16 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
 
 int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_error *err) {
   *runs = NULL, *n = 0;
-  const char *q = want >= 0 ? "SELECT id, scene, seed, status, box_x, box_y FROM runs WHERE id = ?1"
-                            : "SELECT id, scene, seed, status, box_x, box_y FROM runs WHERE "
-                              "status IN ('done','collapsed','interrupted') ORDER BY id";
+  /* the stored HCS window, in files that have its columns (NULL otherwise) */
   sqlite3_stmt *st;
+  int hcs = sqlite3_prepare_v2(db, "SELECT hcs_cpd_start FROM runs LIMIT 0", -1, &st, NULL) ==
+            SQLITE_OK;
+  sqlite3_finalize(st);
+  char q[400];
+  snprintf(q, sizeof q, "SELECT id, scene, seed, status, box_x, box_y, %s FROM runs WHERE %s",
+           hcs ? "hcs_cpd_start, hcs_cpd_end, hcs_end, hcs_s_perp, hcs_flow_excess"
+               : "NULL, NULL, NULL, NULL, NULL",
+           want >= 0 ? "id = ?1" : "status IN ('done','collapsed','interrupted') ORDER BY id");
   if (sqlite3_prepare_v2(db, q, -1, &st, NULL) != SQLITE_OK)
     return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading runs: %s", sqlite3_errmsg(db));
   if (want >= 0) sqlite3_bind_int64(st, 1, want);
@@ -155,6 +162,19 @@ int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_err
       ri->density = (double)ri->n / (bx * by);
       ri->eta_disk = M_PI * ri->density * ri->d * ri->d / 4;
     }
+    double hv[5];
+    for (int c = 0; c < 5; c++)
+      hv[c] = c == 2 || sqlite3_column_type(st, 6 + c) == SQLITE_NULL
+                  ? NAN
+                  : sqlite3_column_double(st, 6 + c); /* column 8, hcs_end, is text */
+    const char *he = (const char *)sqlite3_column_text(st, 8);
+    ri->hcs_stored = !isnan(hv[0]) && !isnan(hv[1]) && he;
+    ri->hcs_cpd_start = hv[0], ri->hcs_cpd_end = hv[1];
+    ri->hcs_end = !he                    ? HD_HCS_END_NONE
+                  : !strcmp(he, "s_perp") ? HD_HCS_END_SPERP
+                  : !strcmp(he, "rate")   ? HD_HCS_END_RATE
+                                          : HD_HCS_END_NONE;
+    ri->hcs_s_perp = hv[3], ri->hcs_flow_excess = hv[4];
     if (rc) {
       char why[1024];
       snprintf(why, sizeof why, "%s", err ? err->msg : "");

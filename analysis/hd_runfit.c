@@ -20,6 +20,7 @@ hd_fit_opts hd_fit_opts_defaults(void) {
   o.hcs = hd_hcs_defaults();
   o.s_flag = 2.5;
   o.min_window = 40;
+  o.stored = 1;
   return o;
 }
 
@@ -43,22 +44,41 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
   }
   for (size_t i = 0; i < s.n; i++) e[i] = s.e_tr[i] + s.e_rot[i];
   size_t nu = s.n, n0 = 0;
-  if (o->detect) {
+  out->window = HD_WINDOW_WHOLE;
+  if (o->detect && o->stored && ri->hcs_stored && hd_hcs_opts_default(&o->homog, &o->hcs)) {
+    /* the window the run stored when it ended (runs.hcs_*): the same detection on the same
+     * samples; recomputed below if it does not fit them (samples logged after it was stored) */
+    size_t a = 0, b;
+    while (a < s.n && s.cpd[a] < ri->hcs_cpd_start) a++;
+    for (b = a; b < s.n && s.cpd[b] <= ri->hcs_cpd_end; b++) {
+    }
+    if (a < s.n && b > a && s.cpd[a] == ri->hcs_cpd_start && s.cpd[b - 1] == ri->hcs_cpd_end &&
+        (ri->hcs_end != HD_HCS_END_NONE || b == s.n)) {
+      out->window = HD_WINDOW_STORED;
+      n0 = a, nu = b;
+      out->homog.n_end = nu, out->homog.detected = ri->hcs_end == HD_HCS_END_RATE;
+      out->homog.t_end = s.t[nu - 1], out->homog.r0 = NAN;
+      out->hcs.have = !isnan(ri->hcs_s_perp);
+      out->hcs.n_start = n0, out->hcs.n_end = nu;
+      out->hcs.ended = ri->hcs_end == HD_HCS_END_SPERP;
+      out->hcs.s_perp = ri->hcs_s_perp, out->hcs.flow_excess = ri->hcs_flow_excess;
+    }
+  }
+  if (o->detect && out->window != HD_WINDOW_STORED) {
+    hd_hcs_window w;
     hd_error e2;
-    if (hd_homog_detect(s.t, s.coll, e, s.n, &o->homog, &out->homog, &e2) != HD_OK) {
-      snprintf(out->why, sizeof out->why, "%.200s", e2.msg);
-    } else {
-      nu = out->homog.n_end;
+    rc = hd_hcs_window_find(s.t, s.coll, e, s.cpd, s.s_perp, s.flow_frac, s.flow_chaos, s.n,
+                            &o->homog, &o->hcs, &w, &e2);
+    if (rc) {
+      hd_error_set(err, rc, "%s", e2.msg);
+      goto done;
     }
-    if (hd_hcs_detect(s.cpd, s.s_perp, s.flow_frac, s.flow_chaos, s.n, &o->hcs, &out->hcs, &e2) !=
-        HD_OK) {
-      snprintf(out->why, sizeof out->why, "%.200s", e2.msg);
-    } else {
-      n0 = out->hcs.n_start;
-      if (out->hcs.n_end < nu) nu = out->hcs.n_end;
-    }
-    if (nu < n0 + 3) n0 = nu > 3 ? nu - 3 : 0; /* too short a window: the fit starts earlier */
-  } else {
+    out->window = HD_WINDOW_COMPUTED;
+    if (w.why[0]) snprintf(out->why, sizeof out->why, "%.200s", w.why);
+    if (w.homog_ok) out->homog = w.homog;
+    if (w.hcs_ok) out->hcs = w.hcs;
+    n0 = w.n_start, nu = w.n_end;
+  } else if (!o->detect) {
     out->homog.n_end = s.n;
   }
   if (o->cpd_max > 0)
@@ -109,6 +129,15 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
   if (hd_ana_dimers(ri->species)) {
     out->K_ok = hd_fit_linear_t(x, k, m, o->level, &out->K, &fe) == HD_OK;
     if (!out->K_ok && !out->why[0]) snprintf(out->why, sizeof out->why, "K fit: %.200s", fe.msg);
+    /* the same fit on the two halves (in cpd) of its samples: K's window error */
+    if (m >= 6) {
+      double kmid = 0.5 * (x[0] + x[m - 1]);
+      size_t h1 = 0;
+      while (h1 < m && x[h1] <= kmid) h1++;
+      out->K_half_ok[0] = hd_fit_linear_t(x, k, h1, o->level, &out->K_half[0], &fe) == HD_OK;
+      out->K_half_ok[1] =
+          hd_fit_linear_t(x + h1, k + h1, m - h1, o->level, &out->K_half[1], &fe) == HD_OK;
+    }
   }
 done:
   free(e), free(k), free(x);
@@ -176,7 +205,7 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
   if (!v) { /* every number NaN: the caller prints them as such */
     double nan = NAN;
     *out = (hd_group_fit){0, nan, nan, nan, nan, nan, nan, nan, nan, nan,
-                          nan, nan, nan, nan, nan, nan, 0, 0, 0};
+                          nan, nan, nan, nan, nan, nan, 0, 0, 0, nan};
     return;
   }
   double *D = v, *nu = v + n, *ra = v + 2 * n, *Ds = v + 3 * n, *dh = v + 4 * n, *de = v + 5 * n,
@@ -212,10 +241,38 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
   hd_ensemble_mean(sp, mp, &out->s_perp, &tmp);
   hd_ensemble_mean(fx, mf, &tmp, &s);
   out->sys_box = mf && !isnan(out->D_e) ? out->D_e * fmax(0, tmp) : 0;
+  out->flow_excess = mf ? tmp : NAN;
   out->D_e_sys = sqrt(out->sys_window * out->sys_window + out->sys_est * out->sys_est +
                       out->sys_box * out->sys_box);
   out->flagged = out->measured && ((mp && out->s_perp > o->s_flag) || 2 * out->ended > m);
   free(v);
+}
+
+void hd_k_sys_do(const hd_run_fit *fits, const size_t *idx, size_t n, const double a[2], double fx,
+                 hd_k_sys *out) {
+  memset(out, 0, sizeof *out);
+  double *d = malloc(2 * (n ? n : 1) * sizeof *d);
+  if (d) {
+    for (size_t i = 0; i < n; i++) {
+      const hd_run_fit *f = &fits[idx[i]];
+      if (f->K_ok && f->K_half_ok[0] && f->K_half_ok[1]) {
+        d[out->mh] = f->K_half[1].a0 - f->K_half[0].a0;
+        d[n + out->mh++] = f->K_half[1].a1 - f->K_half[0].a1;
+      }
+    }
+    for (int j = 0; j < 2; j++) {
+      double mean, se;
+      hd_ensemble_mean(d + (size_t)j * n, out->mh, &mean, &se);
+      out->win[j] = 0.5 * excess(mean, se);
+    }
+  } else {
+    out->win[0] = out->win[1] = NAN;
+  }
+  free(d);
+  double f = isnan(fx) ? 0 : fmax(0, fx);
+  out->box[0] = isnan(a[0]) ? 0 : fabs(a[0] + 1) * f;
+  out->box[1] = isnan(a[1]) ? 0 : fabs(a[1]) * f;
+  for (int j = 0; j < 2; j++) out->sys[j] = hypot(out->win[j], out->box[j]);
 }
 
 void hd_ensemble_mean(const double *vals, size_t n, double *mean, double *se) {

@@ -22,7 +22,17 @@ typedef struct hd_fit_opts {
   hd_hcs_opts hcs;     /* the HCS window from the state measures (used when detect = 1) */
   double s_flag;       /* a group whose window-mean s_perp exceeds this is flagged [2.5] */
   double min_window;   /* ... and one whose HCS ended within this many cpd of its start [40] */
+  int stored;          /* 1 [default]: a run's stored window (runs.hcs_*) is used when the
+                        * detection options (homog, hcs) are the defaults; 0: always recomputed */
 } hd_fit_opts;
+
+/* Where a run's window came from (hd_run_fit.window). */
+enum {
+  HD_WINDOW_WHOLE = 0,    /* detect = 0: the whole run */
+  HD_WINDOW_STORED = 1,   /* runs.hcs_* as the run stored it (hd_db_run_hcs) */
+  HD_WINDOW_COMPUTED = 2  /* found now from the samples (options not the defaults, or no stored
+                           * window: a file from before, or a run still going) */
+};
 
 /* The defaults above. */
 hd_fit_opts hd_fit_opts_defaults(void);
@@ -33,6 +43,7 @@ typedef struct hd_run_fit {
   size_t n_samples;      /* rows in samples */
   size_t n_start;        /* first sample used by the fits (0 when detect = 0) */
   size_t n_used;         /* samples used by the fits: [n_start, n_used) */
+  int window;            /* HD_WINDOW_*: where [n_start, n_used) came from (before cpd_max) */
   hd_homog homog;        /* rate/sqrt(E) detector result (n_end = n_samples when detect = 0) */
   hd_hcs hcs;            /* the state measures' HCS window (detect = 1; have = 0 otherwise) */
   double t_start, cpd_start; /* first sample used */
@@ -50,6 +61,8 @@ typedef struct hd_run_fit {
   double ratio, ratio_err; /* nu0_eff / nu0_enskog and its standard error */
   int K_ok;                /* 1 if the K fit succeeded */
   hd_linfit K;             /* K = e_tr/e_rot = a0 + a1 cpd */
+  int K_half_ok[2];        /* 1 if the K fit on the first / second half (in cpd) succeeded */
+  hd_linfit K_half[2];     /* ... its result: the window's systematic error of a0, a1 */
   char why[256];           /* why a fit failed ("" if both succeeded) */
 } hd_run_fit;
 
@@ -97,6 +110,7 @@ typedef struct hd_group_fit {
   size_t ended;       /* runs whose HCS ended within min_window cpd of its start */
   int flagged;        /* 1: "inhomogeneous" (s_perp > s_flag, or most runs ended early) */
   int measured;       /* 1 if the runs carry state measures (else no flag can be given) */
+  double flow_excess; /* mean window flow_frac - flow_chaos (NaN without state measures) */
 } hd_group_fit;
 
 /* Fills *out for the runs fits[g->idx[..]] with the rules of o (s_flag, min_window). */
@@ -108,6 +122,22 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
  * eq. (31) fit's own error is formal, 10-25 times below the scatter between runs (it used to
  * be returned here; docs/analysis.md); n == 0: NaN, NaN. */
 void hd_ensemble_mean(const double *vals, size_t n, double *mean, double *se);
+
+/* Systematic errors of a group's K = a0 + a1 cpd (docs/analysis.md, "Errors of K"), for a0
+ * ([0]) and a1 ([1]); each term the part of a measured difference its standard error does not
+ * explain, as for D_e_sys. */
+typedef struct hd_k_sys {
+  size_t mh;     /* runs with both half-window K fits */
+  double win[2]; /* half the mean (second half - first half) of a0 and of a1 over the runs */
+  double box[2]; /* correlated flow counted in e_tr: (a0 + 1) fx and |a1| fx, fx = the group's
+                  * mean flow excess (0 when NaN or < 0) */
+  double sys[2]; /* sqrt(win^2 + box^2) */
+} hd_k_sys;
+
+/* Fills *out from the runs fits[idx[0..n)] (their K_half fits), the combined a0, a1 (a[0],
+ * a[1]) and the group's flow excess fx (hd_group_fit.flow_excess). */
+void hd_k_sys_do(const hd_run_fit *fits, const size_t *idx, size_t n, const double a[2], double fx,
+                 hd_k_sys *out);
 
 /* How table2 combines the K fits of the runs of a group. */
 typedef enum hd_kmode {

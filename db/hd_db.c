@@ -13,6 +13,7 @@
  * holds whole batches only and stays sound; the rows of that batch are lost and the caller (the
  * run) stops with the error. */
 #include "hd_db.h"
+#include "hd_homog.h"
 #include "hd_walck.h"
 
 #include <errno.h>
@@ -231,6 +232,11 @@ static const struct {
     {"samples", "s_rho", "REAL"},
     {"samples", "s_perp", "REAL"},
     {"samples", "s_par", "REAL"},
+    {"runs", "hcs_cpd_start", "REAL"},   /* 2: the run's HCS window (hd_db_run_hcs) */
+    {"runs", "hcs_cpd_end", "REAL"},
+    {"runs", "hcs_end", "TEXT"},
+    {"runs", "hcs_s_perp", "REAL"},
+    {"runs", "hcs_flow_excess", "REAL"},
 };
 
 /* Whether table.column is one of added_columns (an older haff file may lack it). */
@@ -329,7 +335,8 @@ static int column_missing(sqlite3 *h, const char *table, const char *column) {
  * kept) up to this one, under the write lock so that two processes upgrading at once end the
  * same: the columns of added_columns that its tables lack are added (old rows read NULL), the
  * views are dropped to be made again as this version defines them, and the version is
- * stamped.  Additive only: every older file stays readable, and older readers read it as
+ * stamped; so is a file of this version that lacks some of them (made by an earlier build of
+ * it, before runs.hcs_* were added).  Additive only: every older file stays readable, and older readers read it as
  * before.  A file of a newer version is refused (HD_EINPUT): this haff does not know its
  * columns. */
 static int schema_apply(hd_db *db, hd_error *err) {
@@ -339,7 +346,14 @@ static int schema_apply(hd_db *db, hd_error *err) {
     return hd_error_set(err, HD_EINPUT,
                         "%s: schema version %d is newer than this haff's (%d): use a newer haff",
                         db->path, v, HD_DB_SCHEMA_VERSION);
-  if (v == HD_DB_SCHEMA_VERSION) {
+  int missing = 0; /* a file of this version from a build before the last added columns */
+  for (size_t k = 0; v == HD_DB_SCHEMA_VERSION && k < sizeof added_columns / sizeof *added_columns;
+       k++) {
+    int m = column_missing(db->db, added_columns[k].table, added_columns[k].column);
+    if (m < 0) return sql_error(db, err, "read the schema");
+    missing |= m;
+  }
+  if (v == HD_DB_SCHEMA_VERSION && !missing) {
     if (sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK)
       return sql_error(db, err, "apply schema");
     return HD_OK;
@@ -1128,6 +1142,80 @@ int hd_db_run_progress(hd_db *db, int64_t run, int64_t events, double cpd, hd_er
   double p[2] = {(double)events, cpd};
   return run_update(db, run, "UPDATE runs SET events = ?2, cpd = ?3 WHERE id = ?1", bind_progress,
                     p, "set run progress", NULL, err);
+}
+
+static void bind_hcs(sqlite3_stmt *st, const void *ctx) {
+  const double *v = ctx; /* cpd_start, cpd_end, end code (-1: NULL), s_perp, flow_excess */
+  static const char *const ends[] = {"none", "s_perp", "rate"};
+  bind_real(st, 2, v[0]);
+  bind_real(st, 3, v[1]);
+  if (v[2] >= 0 && v[2] < 3)
+    sqlite3_bind_text(st, 4, ends[(int)v[2]], -1, SQLITE_STATIC);
+  else
+    sqlite3_bind_null(st, 4);
+  bind_real(st, 5, v[3]);
+  bind_real(st, 6, v[4]);
+}
+
+int hd_db_run_hcs(hd_db *db, int64_t run, hd_error *err) {
+  int rc = check_db(db, err);
+  if (rc || (rc = hd_db_commit(db, err))) return rc;
+  sqlite3_stmt *st = NULL;
+  if (sqlite3_prepare_v2(db->db,
+                         "SELECT t, collisions, cpd, e_tr + e_rot, s_perp, flow_frac, flow_chaos "
+                         "FROM samples WHERE run = ?1 ORDER BY t",
+                         -1, &st, NULL) != SQLITE_OK)
+    return sql_error(db, err, "read the samples for the HCS window");
+  sqlite3_bind_int64(st, 1, run);
+  size_t n = 0, cap = 0;
+  double *v = NULL; /* 7 columns per sample */
+  int s;
+  while ((s = sqlite3_step(st)) == SQLITE_ROW) {
+    if (n == cap) {
+      cap = cap ? 2 * cap : 256;
+      double *nv = realloc(v, cap * 7 * sizeof *nv);
+      if (!nv) {
+        free(v), sqlite3_finalize(st);
+        return hd_error_set(err, HD_ENOMEM, "HCS window: out of memory");
+      }
+      v = nv;
+    }
+    for (int c = 0; c < 7; c++)
+      v[7 * n + (size_t)c] = sqlite3_column_type(st, c) == SQLITE_NULL
+                                 ? NAN
+                                 : sqlite3_column_double(st, c);
+    n++;
+  }
+  sqlite3_finalize(st);
+  if (s != SQLITE_DONE) {
+    free(v);
+    return sql_error(db, err, "read the samples for the HCS window");
+  }
+  double row[5] = {NAN, NAN, -1, NAN, NAN}; /* fewer than 3 samples: NULL, nothing to fit */
+  if (n >= 3) {
+    double *a = malloc(7 * n * sizeof *a);
+    if (!a) {
+      free(v);
+      return hd_error_set(err, HD_ENOMEM, "HCS window: out of memory");
+    }
+    for (size_t i = 0; i < n; i++)
+      for (size_t c = 0; c < 7; c++) a[c * n + i] = v[7 * i + c];
+    hd_homog_opts ho = hd_homog_defaults();
+    hd_hcs_opts hc = hd_hcs_defaults();
+    hd_hcs_window w;
+    hd_error e2;
+    if (hd_hcs_window_find(a, a + n, a + 3 * n, a + 2 * n, a + 4 * n, a + 5 * n, a + 6 * n, n, &ho,
+                           &hc, &w, &e2) == HD_OK) {
+      row[0] = a[2 * n + w.n_start], row[1] = a[2 * n + w.n_end - 1], row[2] = w.end;
+      if (w.hcs_ok && w.hcs.have) row[3] = w.hcs.s_perp, row[4] = w.hcs.flow_excess;
+    }
+    free(a);
+  }
+  free(v);
+  return run_update(db, run,
+                    "UPDATE runs SET hcs_cpd_start = ?2, hcs_cpd_end = ?3, hcs_end = ?4, "
+                    "hcs_s_perp = ?5, hcs_flow_excess = ?6 WHERE id = ?1",
+                    bind_hcs, row, "store the HCS window", NULL, err);
 }
 
 static void bind_origin(sqlite3_stmt *st, const void *ctx) {

@@ -155,6 +155,15 @@ int hd_db_run_message(hd_db *db, int64_t run, const char *msg, hd_error *err);
  * Commits the open batch first. */
 int hd_db_run_box(hd_db *db, int64_t run, double lx, double ly, hd_error *err);
 
+/* Stores run's homogeneous cooling state window in runs.hcs_cpd_start, hcs_cpd_end, hcs_end
+ * ('none', 's_perp' or 'rate': what ended it), hcs_s_perp and hcs_flow_excess (means over the
+ * state measures' window), found by hd_hcs_window_find with the default options on the samples
+ * the run has logged (all of them, over every resume); NULL with fewer than 3 samples.  hd_run
+ * calls it when a run ends (done, collapsed, interrupted); the analyses use it when their
+ * detection options are the defaults (docs/analysis.md, "The stored window").  Commits the open
+ * batch first. */
+int hd_db_run_hcs(hd_db *db, int64_t run, hd_error *err);
+
 /* Stores how far run has got: runs.events and runs.cpd (collisions per particle reached);
  * commits the open batch first (hd_run calls it at every commit it forces, about once a
  * second, so that a running run's row says how far it is). */

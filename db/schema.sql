@@ -27,8 +27,19 @@ CREATE TABLE IF NOT EXISTS runs (
   message      TEXT,               -- why the run ended when not 'done' (collapse details, error)
   box_x        REAL,               -- box edges Lx, Ly (hd_db_run_box), for export and analysis
   box_y        REAL,
-  cpd          REAL                -- collisions per particle reached (updated with events at
+  cpd          REAL,               -- collisions per particle reached (updated with events at
                                    -- every commit while the run goes; schema version 2)
+  -- The run's homogeneous cooling state window (schema version 2; NULL while it goes, with
+  -- fewer than 3 samples, and in files from before): stored when the run ends (done, collapsed,
+  -- interrupted; again at the end of a resume) from all its samples, with the default
+  -- detection (hd_hcs_window_find; docs/analysis.md, "The stored HCS window").
+  hcs_cpd_start   REAL,            -- first sample's cpd in the window (after the transient)
+  hcs_cpd_end     REAL,            -- last sample's cpd in the window
+  hcs_end         TEXT,            -- what ended the HCS: 'none' (the run's end), 's_perp' (the
+                                   -- state measures; the window may end earlier where the
+                                   -- rate detector did), 'rate' (rate/sqrt(E) alone)
+  hcs_s_perp      REAL,            -- mean s_perp over the state measures' window (NULL without)
+  hcs_flow_excess REAL             -- mean flow_frac - flow_chaos there
 );
 
 -- Where each run was made, and where it was merged from (schema version 2).  One row per run,

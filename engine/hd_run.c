@@ -489,7 +489,12 @@ static int finish(runner *r, int rc, hd_error *err) {
   }
   if (rc == HD_OK && r->note[0]) hd_db_run_message(r->db, r->run, r->note, &e2);
   if (r->o->note && r->o->note_size) snprintf(r->o->note, r->o->note_size, "%s", rc ? "" : r->note);
-  int src = hd_db_run_progress(r->db, r->run, r->ops->events(r->s), r->ops->cpd(r->s), &e2);
+  /* the HCS window of the samples logged so far (runs.hcs_*), for the analyses; before the
+   * final events and status, which a watcher takes for the run's end */
+  int src = HD_OK;
+  if (!wrc && (rc == HD_OK || rc == HD_EINTR || rc == HD_ECOLLAPSE))
+    src = hd_db_run_hcs(r->db, r->run, &e2);
+  if (!src) src = hd_db_run_progress(r->db, r->run, r->ops->events(r->s), r->ops->cpd(r->s), &e2);
   if (!src) src = hd_db_run_status(r->db, r->run, status, r->ops->events(r->s), elapsed(r), &e2);
   if (!wrc) wrc = src;
   if (!wrc && rc == HD_OK) wrc = hd_db_build_indexes(r->db, &e2);

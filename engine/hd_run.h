@@ -26,7 +26,9 @@ typedef struct hd_run_opts {
 /* Seconds between progress lines in a log (stderr not a terminal) by default. */
 #define HD_RUN_PROGRESS_EVERY 60.0
 
-/* Runs scene sc as a new run in the database; *run gets its id (0 if none was created).
+/* Runs scene sc as a new run in the database; *run gets its id (0 if none was created).  A run
+ * that ends done, collapsed or interrupted stores its HCS window (hd_db_run_hcs) before its
+ * status.
  * Returns HD_OK (done), HD_EINTR (signal: checkpointed, status 'interrupted'), HD_ECOLLAPSE
  * (status 'collapsed'), HD_EIO (database: status 'failed' when it could still be written),
  * HD_EINPUT (the scene cannot be set up: nothing is written), HD_EPHYS (verification). */

@@ -167,29 +167,30 @@ static void run_disks(const char *db, long count, double alpha, double stop_cpd,
   }
 }
 
-/* The columns of haff-fit --alpha-group's rows: D_e, D_e_err, D_e_sys, n, flag. */
+/* The columns of haff-fit --alpha-group's rows: D_e, D_e_err, D_e_sys, n, flag, sys_box, alpha. */
 typedef struct grow {
   double D, err, sys;
   long n;
   char flag[32];
+  double box, alpha;
 } grow;
 
 static int read_groups(const char *path, grow *g, int max) {
   FILE *f = fopen(path, "r");
   assert_non_null(f);
   char line[2048];
-  int col[5] = {-1, -1, -1, -1, -1}, m = 0;
-  static const char *const names[5] = {"D_e", "D_e_err", "D_e_sys", "n", "flag"};
+  int col[7] = {-1, -1, -1, -1, -1, -1, -1}, m = 0;
+  static const char *const names[7] = {"D_e", "D_e_err", "D_e_sys", "n", "flag", "sys_box", "alpha"};
   assert_non_null(fgets(line, sizeof line, f));
   line[strcspn(line, "\n")] = 0;
   int c = 0;
   for (char *p = line, *q; p; p = q ? q + 1 : NULL, c++) {
     q = strchr(p, '\t');
     size_t len = q ? (size_t)(q - p) : strlen(p);
-    for (int k = 0; k < 5; k++)
+    for (int k = 0; k < 7; k++)
       if (strlen(names[k]) == len && !strncmp(p, names[k], len)) col[k] = c;
   }
-  for (int k = 0; k < 5; k++) assert_true(col[k] >= 0);
+  for (int k = 0; k < 7; k++) assert_true(col[k] >= 0);
   while (m < max && fgets(line, sizeof line, f)) {
     line[strcspn(line, "\n")] = 0;
     grow *r = &g[m++];
@@ -201,6 +202,8 @@ static int read_groups(const char *path, grow *g, int max) {
       if (c == col[1]) r->err = strtod(p, NULL);
       if (c == col[2]) r->sys = strtod(p, NULL);
       if (c == col[3]) r->n = strtol(p, NULL, 10);
+      if (c == col[5]) r->box = strtod(p, NULL);
+      if (c == col[6]) r->alpha = strtod(p, NULL);
       if (c == col[4]) {
         size_t len = q ? (size_t)(q - p) : strlen(p);
         snprintf(r->flag, sizeof r->flag, "%.*s", (int)(len < 31 ? len : 31), p);
@@ -218,6 +221,236 @@ static int accepted(const grow *r, double kt) {
   return r->flag[0] || (tot <= 0.02 && fabs(r->D - kt) <= 2.5 * tot);
 }
 
+/* Whether the measures call a group's box stable (docs/analysis.md, "Acceptance"): not flagged,
+ * and the bias its correlated flow causes (sys_box = D_e x window flow excess) is below its
+ * standard error, so that molecular chaos holds within what the ensemble can resolve. */
+static int stable(const grow *r) {
+  return !r->flag[0] && r->box <= r->err;
+}
+
+/* The rule for the boxes the measures call stable: within 2.5 standard errors of theory. */
+static int stable_agrees(const grow *r, double kt) {
+  return !stable(r) || fabs(r->D - kt) <= 2.5 * r->err;
+}
+
+/* Runs one SQL statement on the file at path (the test's own edits of a run's row). */
+static void sql_on(const char *path, const char *sql) {
+  sqlite3 *h;
+  assert_int_equal(sqlite3_open(path, &h), SQLITE_OK);
+  char *msg = NULL;
+  int rc = sqlite3_exec(h, sql, NULL, NULL, &msg);
+  if (rc) fprintf(stderr, "%s: %s\n", sql, msg ? msg : "");
+  sqlite3_free(msg);
+  assert_int_equal(rc, SQLITE_OK);
+  sqlite3_close(h);
+}
+
+/* The fit of run `id` of path with options o. */
+static void fit_run(const char *path, int64_t id, const hd_fit_opts *o, hd_run_fit *f) {
+  sqlite3 *h;
+  hd_error err;
+  assert_int_equal(hd_ana_open(&h, path, &err), HD_OK);
+  hd_run_info *ri;
+  size_t n;
+  assert_int_equal(hd_ana_runs(h, id, &ri, &n, &err), HD_OK);
+  assert_int_equal(n, 1);
+  assert_int_equal(hd_run_fit_do(h, ri, o, f, &err), HD_OK);
+  free(ri);
+  sqlite3_close(h);
+}
+
+/* A run stores its HCS window when it ends (runs.hcs_*), the one the analyses find from its
+ * samples with the default options; they use it (window 'stored', the same fit to the last bit)
+ * when their options are the defaults, and find it again otherwise (other options, stored = 0,
+ * or NULL columns as in a file from before); a stored window they do not recompute is used as
+ * stored (an edited row moves the fit's end), so the analyses read it. */
+static void stored_window(void **state) {
+  (void)state;
+  char db[400];
+  snprintf(db, sizeof db, "%s/stored.db", dir);
+  run_disks(db, 200, 0.8, 40, 1);
+  sqlite3 *h;
+  assert_int_equal(sqlite3_open(db, &h), SQLITE_OK);
+  sqlite3_stmt *st;
+  assert_int_equal(sqlite3_prepare_v2(h,
+                                      "SELECT hcs_cpd_start, hcs_cpd_end, hcs_end, hcs_s_perp, "
+                                      "hcs_flow_excess FROM runs WHERE id = 1",
+                                      -1, &st, NULL),
+                   SQLITE_OK);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  double c0 = sqlite3_column_double(st, 0), c1 = sqlite3_column_double(st, 1);
+  double sp = sqlite3_column_double(st, 3), fx = sqlite3_column_double(st, 4);
+  assert_string_equal((const char *)sqlite3_column_text(st, 2), "none");
+  assert_int_equal(sqlite3_column_type(st, 3), SQLITE_FLOAT);
+  sqlite3_finalize(st);
+  sqlite3_close(h);
+  printf("# stored window %g-%g s_perp %.4g flow excess %.4g\n", c0, c1, sp, fx);
+  assert_true(c0 == 5.0 && c1 == 40.0);
+  hd_fit_opts o = hd_fit_opts_defaults();
+  hd_run_fit a, b;
+  fit_run(db, 1, &o, &a);
+  assert_int_equal(a.window, HD_WINDOW_STORED);
+  o.stored = 0;
+  fit_run(db, 1, &o, &b);
+  assert_int_equal(b.window, HD_WINDOW_COMPUTED);
+  assert_true(a.n_start == b.n_start && a.n_used == b.n_used && a.haff_ok && b.haff_ok);
+  assert_true(a.haff.D_e == b.haff.D_e && a.D_e_slope == b.D_e_slope);
+  assert_true(a.hcs.s_perp == b.hcs.s_perp && b.hcs.s_perp == sp && a.hcs.flow_excess == fx);
+  assert_true(a.cpd_start == c0 && a.cpd_end == c1);
+  /* an edited row: the analyses use what is stored */
+  sql_on(db, "UPDATE runs SET hcs_cpd_end = 20, hcs_end = 's_perp' WHERE id = 1");
+  o.stored = 1;
+  fit_run(db, 1, &o, &a);
+  assert_true(a.window == HD_WINDOW_STORED && a.cpd_end == 20.0 && a.hcs.ended);
+  o.hcs.s_end = 11; /* other options: found again */
+  fit_run(db, 1, &o, &a);
+  assert_true(a.window == HD_WINDOW_COMPUTED && a.cpd_end == 40.0 && !a.hcs.ended);
+  o = hd_fit_opts_defaults();
+  o.detect = 0;
+  fit_run(db, 1, &o, &a);
+  assert_true(a.window == HD_WINDOW_WHOLE && a.cpd_start == 0.0);
+  /* a stored window that the samples do not bear out (it ends at the run's end, which they
+   * pass: samples logged after it was stored) is found again */
+  o = hd_fit_opts_defaults();
+  sql_on(db, "UPDATE runs SET hcs_cpd_end = 30, hcs_end = 'none' WHERE id = 1");
+  fit_run(db, 1, &o, &a);
+  assert_true(a.window == HD_WINDOW_COMPUTED && a.cpd_end == 40.0);
+  sql_on(db, "UPDATE runs SET hcs_cpd_start = NULL, hcs_cpd_end = NULL, hcs_end = NULL");
+  fit_run(db, 1, &o, &a);
+  assert_true(a.window == HD_WINDOW_COMPUTED && a.cpd_end == 40.0);
+}
+
+/* A file of this schema version made before runs.hcs_* existed gets them when opened for
+ * writing (the version was not bumped for them). */
+static void schema_same_version(void **state) {
+  (void)state;
+  char path[400];
+  snprintf(path, sizeof path, "%s/v2.db", dir);
+  sql_on(path, "CREATE TABLE runs (id INTEGER PRIMARY KEY, scene TEXT NOT NULL, seed INTEGER NOT "
+               "NULL, status TEXT NOT NULL, started TEXT NOT NULL, finished TEXT, version TEXT NOT "
+               "NULL, events INTEGER NOT NULL DEFAULT 0, wall_seconds REAL NOT NULL DEFAULT 0, "
+               "message TEXT, box_x REAL, box_y REAL, cpd REAL); PRAGMA user_version = 2");
+  hd_db *db;
+  hd_error err;
+  assert_int_equal(hd_db_open(&db, path, &err), HD_OK);
+  assert_int_equal(hd_db_close(db, &err), HD_OK);
+  sql_on(path, "SELECT hcs_cpd_start, hcs_cpd_end, hcs_end, hcs_s_perp, hcs_flow_excess FROM runs");
+}
+
+/* hd_k_sys_do on three made-up runs: a0 of the halves 2.00 and 2.10 (drift 0.1: win 0.05), a1
+ * 0.001 and 0.003 (win 0.001), in every run, so with no scatter; flow excess 0.01 with a0 = 2,
+ * a1 = 0.002: box (2 + 1) 0.01 = 0.03 and 0.002 * 0.01 = 2e-5.  A run without half fits is not
+ * counted; a negative or NaN flow excess gives no box term. */
+static void k_sys(void **state) {
+  (void)state;
+  hd_run_fit f[3];
+  size_t idx[3] = {0, 1, 2};
+  memset(f, 0, sizeof f);
+  for (int k = 0; k < 3; k++) {
+    f[k].K_ok = f[k].K_half_ok[0] = f[k].K_half_ok[1] = k < 2;
+    f[k].K_half[0].a0 = 2.00, f[k].K_half[1].a0 = 2.10;
+    f[k].K_half[0].a1 = 0.001, f[k].K_half[1].a1 = 0.003;
+  }
+  f[2].K_ok = 1; /* no half fits: left out */
+  f[2].K_half[1].a0 = 5;
+  double a[2] = {2.0, 0.002};
+  hd_k_sys q;
+  hd_k_sys_do(f, idx, 3, a, 0.01, &q);
+  printf("# K sys: a0 %.4g (window %.4g box %.4g), a1 %.3g (window %.3g box %.3g)\n", q.sys[0],
+         q.win[0], q.box[0], q.sys[1], q.win[1], q.box[1]);
+  assert_int_equal(q.mh, 2);
+  assert_true(fabs(q.win[0] - 0.05) < 1e-12 && fabs(q.win[1] - 0.001) < 1e-12);
+  assert_true(fabs(q.box[0] - 0.03) < 1e-12 && fabs(q.box[1] - 2e-5) < 1e-15);
+  assert_true(fabs(q.sys[0] - hypot(0.05, 0.03)) < 1e-12);
+  hd_k_sys_do(f, idx, 3, a, -0.01, &q);
+  assert_true(q.box[0] == 0 && q.box[1] == 0 && fabs(q.sys[0] - 0.05) < 1e-12);
+  hd_k_sys_do(f, idx, 3, a, NAN, &q);
+  assert_true(q.box[0] == 0);
+}
+
+/* Writes a dimer run (N = 900, a = d = 1, box 100 x 100, alpha) that follows Haff's law with
+ * D_e = 3 (noiseless times), K = 2 + 0.001 cpd (+ kink * (cpd - 52.5) past cpd 52.5, the middle
+ * of the 5-100 window) with noise 1e-3, and constant state measures s_perp, flow excess fx. */
+static void add_dimer_run(hd_db *db, double alpha, double kink, double sp, double fx,
+                          unsigned long seed) {
+  char scene[200];
+  snprintf(scene, sizeof scene,
+           "[system]\nbox = 100 100\n[dimers]\ncount = 900\nalpha = %g\na = 1\nd = 1\n", alpha);
+  hd_error err;
+  int64_t run;
+  assert_int_equal(hd_db_run_begin(db, scene, seed, "test", &run, &err), HD_OK);
+  assert_int_equal(hd_db_run_box(db, run, 100, 100, &err), HD_OK);
+  double g = 1 - alpha * alpha, t = 0;
+  unsigned long x = seed * 2654435761UL + 1;
+  for (int k = 0; k <= 200; k++) {
+    double cpd = 0.5 * k, E = exp(-g * cpd / 3);
+    if (k > 0) t += 0.5 / (0.3 * exp(-g * (cpd - 0.25) / 6));
+    x = x * 6364136223846793005UL + 1442695040888963407UL;
+    double u = (double)(x >> 11) / 9007199254740992.0 - 0.5; /* uniform, sd 0.29 */
+    double K = 2 + 0.001 * cpd + kink * fmax(0, cpd - 52.5) + 3.5e-3 * u;
+    hd_sample_row row = {t,   (int64_t)(450 * k), cpd, E * K / (K + 1), E / (K + 1),
+                         NAN, NAN,                NAN, 0.05 + fx,      0.05,
+                         1,   1,                  sp,  1};
+    assert_int_equal(hd_db_log_sample(db, run, &row, &err), HD_OK);
+  }
+  assert_int_equal(hd_db_run_hcs(db, run, &err), HD_OK);
+  assert_int_equal(hd_db_run_status(db, run, "done", 1, 0.0, &err), HD_OK);
+}
+
+/* Table II with its systematic errors: alpha 0.9, K with a kink at the window's middle (slope
+ * 0.001 then 0.003: halves' a0 differ by 0.105, a1 by 0.002) and flow excess 0.01: a0_sys =
+ * sqrt(0.0525^2 + (a0 + 1)^2 0.01^2) = 0.060 (a0 ~ 1.97 over the whole window), a1_sys =
+ * 0.001; alpha 0.85, K linear without flow: both below 5e-3 and 1e-4 (noise 1e-3 per sample,
+ * 3 runs: the halves' differences are known to ~1e-3 in a0); alpha 0.8 with s_perp 4 is
+ * flagged and left out unless --keep-flagged. */
+static void table2_sys(void **state) {
+  (void)state;
+  char path[400], out[400];
+  snprintf(path, sizeof path, "%s/t2.db", dir);
+  snprintf(out, sizeof out, "%s/t2.tsv", dir);
+  hd_db *db;
+  hd_error err;
+  assert_int_equal(hd_db_open(&db, path, &err), HD_OK);
+  for (unsigned long k = 1; k <= 3; k++) {
+    add_dimer_run(db, 0.9, 0.002, 1.0, 0.01, k);
+    add_dimer_run(db, 0.85, 0.0, 1.0, 0.0, 10 + k);
+    add_dimer_run(db, 0.8, 0.0, 4.0, 0.0, 20 + k);
+  }
+  assert_int_equal(hd_db_close(db, &err), HD_OK);
+  for (int keep = 0; keep < 2; keep++) {
+    char *argv[] = {"table2", path, "-o", out, "--keep-flagged", NULL};
+    assert_int_equal(haff_table2_main(4 + keep, argv), 0);
+    FILE *f = fopen(out, "r");
+    assert_non_null(f);
+    char line[1024];
+    assert_non_null(fgets(line, sizeof line, f));
+    assert_string_equal(line, "alpha\ta_over_d\ta0\ta0_lo\ta0_hi\ta1\ta1_lo\ta1_hi\ta0_sys\t"
+                              "a1_sys\n");
+    int rows = 0, seen[3] = {0, 0, 0};
+    double r[10];
+    while (fgets(line, sizeof line, f)) {
+      char *p = line;
+      for (int c = 0; c < 10; c++) r[c] = strtod(p, &p);
+      rows++;
+      printf("# table2 keep %d: alpha %g a0 %.4f [%.4f, %.4f] sys %.4f a1 %.3e sys %.3e\n", keep,
+             r[0], r[2], r[3], r[4], r[8], r[5], r[9]);
+      if (fabs(r[0] - 0.9) < 1e-9) {
+        seen[0] = 1;
+        double want = hypot(0.0525, (r[2] + 1) * 0.01);
+        assert_true(fabs(r[8] - want) < 0.003 && fabs(r[9] - 0.001) < 1e-4);
+      } else if (fabs(r[0] - 0.85) < 1e-9) {
+        seen[1] = 1;
+        assert_true(r[8] < 5e-3 && r[9] < 1e-4);
+      } else {
+        seen[2] = 1;
+      }
+    }
+    fclose(f);
+    assert_int_equal(rows, 2 + keep);
+    assert_true(seen[0] && seen[1] && seen[2] == keep);
+  }
+}
+
 /* Hard disks at alpha = 0.8, area fraction 0.05: N = 200 (L = 56 d, below the critical size
  * of the HCS, ~88 d) 6 runs to 160 cpd, and N = 3600 (238 d, unstable: its shear modes grow
  * from the start) 2 runs to 60 cpd.  The small box is not flagged and its D_e is within 2.5
@@ -231,27 +464,50 @@ static void acceptance_cheap(void **state) {
   snprintf(out, sizeof out, "%s/groups.tsv", dir);
   run_disks(db, 200, 0.8, 160, 6);
   run_disks(db, 3600, 0.8, 60, 2);
-  double kt = de_kt(0.8);
+  run_disks(db, 200, 0.9, 160, 8);
+  run_disks(db, 400, 0.9, 160, 8);
+  /* the windows the runs stored: the large box's shear modes ended it (s_perp) before 60 cpd */
+  sqlite3 *h;
+  sqlite3_stmt *st;
+  assert_int_equal(sqlite3_open(db, &h), SQLITE_OK);
+  assert_int_equal(sqlite3_prepare_v2(h,
+                                      "SELECT sum(scene LIKE '%count = 3600%' AND hcs_end = "
+                                      "'s_perp' AND hcs_cpd_end < 60), sum(hcs_cpd_start = 5) "
+                                      "FROM runs",
+                                      -1, &st, NULL),
+                   SQLITE_OK);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  assert_int_equal(sqlite3_column_int(st, 0), 2);
+  assert_int_equal(sqlite3_column_int(st, 1), 24);
+  sqlite3_finalize(st);
+  sqlite3_close(h);
   char *argv[] = {"haff-fit", db, "--alpha-group", "-o", out, NULL};
   assert_int_equal(haff_fit_main(5, argv), 0);
-  grow g[4];
-  assert_int_equal(read_groups(out, g, 4), 2);
-  for (int k = 0; k < 2; k++) {
+  grow g[6];
+  assert_int_equal(read_groups(out, g, 6), 4);
+  int nstable = 0;
+  for (int k = 0; k < 4; k++) {
     grow *r = &g[k];
-    printf("# alpha 0.8 N %ld: D_e %.4f err %.4f sys %.4f (KT %.4f) flag '%s'\n", r->n, r->D,
-           r->err, r->sys, kt, r->flag);
+    double kt = de_kt(r->alpha);
+    printf("# alpha %g N %ld: D_e %.4f err %.4f sys %.4f box %.4f (KT %.4f: %+.1f err) flag '%s'"
+           "%s\n",
+           r->alpha, r->n, r->D, r->err, r->sys, r->box, kt, (r->D - kt) / r->err, r->flag,
+           stable(r) ? " stable" : "");
     assert_true(accepted(r, kt));
+    assert_true(stable_agrees(r, kt));
+    nstable += stable(r);
     if (r->n == 200) assert_true(r->flag[0] == 0);
     if (r->n == 3600) assert_string_equal(r->flag, "inhomogeneous");
   }
+  assert_true(nstable >= 1); /* the rule for stable boxes is exercised */
   char *old[] = {"haff-fit", db, "--alpha-group", "--no-detect", "-o", out, NULL};
   assert_int_equal(haff_fit_main(6, old), 0);
-  assert_int_equal(read_groups(out, g, 4), 2);
+  assert_int_equal(read_groups(out, g, 6), 4);
   int fails = 0;
-  for (int k = 0; k < 2; k++) {
-    printf("# --no-detect: N %ld: D_e %.4f err %.4f flag '%s'\n", g[k].n, g[k].D, g[k].err,
-           g[k].flag);
-    fails += !accepted(&g[k], kt);
+  for (int k = 0; k < 4; k++) {
+    printf("# --no-detect: alpha %g N %ld: D_e %.4f err %.4f flag '%s'\n", g[k].alpha, g[k].n,
+           g[k].D, g[k].err, g[k].flag);
+    fails += !accepted(&g[k], de_kt(g[k].alpha));
   }
   assert_int_equal(fails, 1);
 }
@@ -276,6 +532,10 @@ int main(void) {
       cmocka_unit_test(hcs_window),
       cmocka_unit_test(group_errors),
       cmocka_unit_test(schema_upgrade),
+      cmocka_unit_test(schema_same_version),
+      cmocka_unit_test(stored_window),
+      cmocka_unit_test(k_sys),
+      cmocka_unit_test(table2_sys),
       cmocka_unit_test(acceptance_cheap),
   };
   return cmocka_run_group_tests(tests, setup, teardown);

@@ -116,7 +116,7 @@ static long long wait_positive(const char *db, const char *sql, pid_t pid) {
 
 /* A run of a few seconds (disks, nothing logged but samples), checkpointing often. */
 static const char long_scene[] = "[system]\narea_fraction = 0.1\nseed = 1\n[disks]\ncount = 1000\n"
-                                 "alpha = 0.95\n[run]\nstop_events = 700000\n"
+                                 "alpha = 0.95\n[run]\nstop_events = 2000000\n"
                                  "checkpoint_every = 0.1\n[log]\ncollisions = none\n"
                                  "samples_every = 5\n";
 /* A short run (well under a second), collisions logged. */

@@ -1,4 +1,6 @@
-/* hd_homog: where homogeneous cooling ends, from the `samples` series alone.
+/* hd_homog: where homogeneous cooling ends, from the `samples` series alone.  Pure numerics on
+ * arrays (no database): the run layer stores each run's window with it at the run's end
+ * (runs.hcs_*, hd_db_run_hcs) and the analyses (analysis/hd_runfit.c) use the same code.
  * In the homogeneous cooling state Haff's law (eq. 27) and the collision count (eq. 31) give a
  * collision rate per particle d(cpd)/dt = nu0 sqrt(T/T0): the ratio
  *     r = (d cpd / dt) / sqrt(E)        (E = e_tr + e_rot, the energy per body)
@@ -73,5 +75,37 @@ hd_hcs_opts hd_hcs_defaults(void);
 int hd_hcs_detect(const double *cpd, const double *s_perp, const double *flow_frac,
                   const double *flow_chaos, size_t n, const hd_hcs_opts *o, hd_hcs *out,
                   hd_error *err);
+
+/* How a window ended (runs.hcs_end). */
+enum {
+  HD_HCS_END_NONE = 0,  /* it reaches the last sample */
+  HD_HCS_END_SPERP = 1, /* s_perp's block mean passed s_end (hd_hcs_detect); the window may
+                         * end earlier, where the rate detector fired */
+  HD_HCS_END_RATE = 2   /* the rate/sqrt(E) detector ended it, s_perp did not */
+};
+
+/* The window the fits use: the state measures' (hd_hcs_detect) cut also by the rate/sqrt(E)
+ * detector's end (hd_homog_detect), whichever ends first; a window of fewer than 3 samples is
+ * moved to start 3 samples before its end (so that a line can be fitted). */
+typedef struct hd_hcs_window {
+  size_t n_start, n_end; /* samples [n_start, n_end), n_end - n_start >= min(n, 3) */
+  int end;               /* HD_HCS_END_* */
+  int homog_ok, hcs_ok;  /* 1 if each detector ran (0: bad input to it, e.g. energy <= 0) */
+  hd_homog homog;        /* the rate detector's result (when homog_ok) */
+  hd_hcs hcs;            /* the state measures' result (when hcs_ok) */
+  char why[160];         /* "" or why a detector could not run */
+} hd_hcs_window;
+
+/* Runs both detectors on n samples (t, coll, cpd ascending; e the energy per body; the
+ * measures NaN where not recorded) and combines them into *w.  A detector that cannot run
+ * (its input is bad) leaves its bound out and says why in w->why.  Returns HD_OK, or
+ * HD_EINPUT for n < 1 or bad options (err set). */
+int hd_hcs_window_find(const double *t, const double *coll, const double *e, const double *cpd,
+                       const double *s_perp, const double *flow_frac, const double *flow_chaos,
+                       size_t n, const hd_homog_opts *ho, const hd_hcs_opts *hc,
+                       hd_hcs_window *w, hd_error *err);
+
+/* Whether the options are the defaults (the runs' stored windows used them). */
+int hd_hcs_opts_default(const hd_homog_opts *ho, const hd_hcs_opts *hc);
 
 #endif

@@ -2,6 +2,7 @@
 #include <gsl/gsl_sort.h>
 #include <gsl/gsl_statistics_double.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -112,4 +113,43 @@ int hd_hcs_detect(const double *cpd, const double *s_perp, const double *flow_fr
   out->s_perp = ms ? ss / (double)ms : NAN;
   out->flow_excess = mf ? fe / (double)mf : NAN;
   return HD_OK;
+}
+
+int hd_hcs_window_find(const double *t, const double *coll, const double *e, const double *cpd,
+                       const double *s_perp, const double *flow_frac, const double *flow_chaos,
+                       size_t n, const hd_homog_opts *ho, const hd_hcs_opts *hc,
+                       hd_hcs_window *w, hd_error *err) {
+  memset(w, 0, sizeof *w);
+  if (n < 1) return hd_error_set(err, HD_EINPUT, "HCS window: no samples");
+  if (!(ho->thr > 0) || !(ho->min_coll >= 1) || ho->n_ref < 1 || ho->persist < 1 ||
+      !(hc->cpd_skip >= 0) || !(hc->block_cpd > 0) || !(hc->s_end > 0))
+    return hd_error_set(err, HD_EINPUT, "HCS window: bad options");
+  size_t nu = n, n0 = 0;
+  hd_error e2;
+  if (hd_homog_detect(t, coll, e, n, ho, &w->homog, &e2) != HD_OK) {
+    snprintf(w->why, sizeof w->why, "%.150s", e2.msg);
+  } else {
+    w->homog_ok = 1;
+    nu = w->homog.n_end;
+    if (w->homog.detected) w->end = HD_HCS_END_RATE;
+  }
+  if (hd_hcs_detect(cpd, s_perp, flow_frac, flow_chaos, n, hc, &w->hcs, &e2) != HD_OK) {
+    snprintf(w->why, sizeof w->why, "%.150s", e2.msg);
+  } else {
+    w->hcs_ok = 1;
+    n0 = w->hcs.n_start;
+    if (w->hcs.n_end < nu) nu = w->hcs.n_end;
+    if (w->hcs.ended) w->end = HD_HCS_END_SPERP; /* even where the rate ended the window first */
+  }
+  if (nu < n0 + 3) n0 = nu > 3 ? nu - 3 : 0; /* too short a window: the fit starts earlier */
+  w->n_start = n0, w->n_end = nu;
+  return HD_OK;
+}
+
+int hd_hcs_opts_default(const hd_homog_opts *ho, const hd_hcs_opts *hc) {
+  hd_homog_opts h = hd_homog_defaults();
+  hd_hcs_opts c = hd_hcs_defaults();
+  return ho->thr == h.thr && ho->min_coll == h.min_coll && ho->n_ref == h.n_ref &&
+         ho->persist == h.persist && hc->cpd_skip == c.cpd_skip && hc->block_cpd == c.block_cpd &&
+         hc->s_end == c.s_end;
 }
