@@ -158,6 +158,9 @@ static int alloc_bare(hd_rods **out, const hd_rods_params *p, hd_error *err) {
       else {
         gsl_rng_set(tr, HD_RODS_TABLE_SEED);
         rc = hd_eps_table_build(&r->table, r->sampler, 1e-3, 1e3, 25, 129, 1000, tr, err);
+        /* its detailed-balance moment projected to 0 (eq. 19): the table's noise and step bias
+         * otherwise move the stationary E_kin by -6 % (docs/mc-eps.md section 4c) */
+        if (!rc) rc = hd_eps_table_balance(r->table, NULL, err);
         gsl_rng_free(tr);
       }
     }

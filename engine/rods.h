@@ -83,7 +83,8 @@ typedef struct hd_rods_params {
 
 /* Size of the eps table built when params.table is set: beta in [1e-3, 1e3], 25 nodes x 129
  * quantiles x 1000 samples per node (docs/mc-eps.md: KS at the noise level; ~2 s), from an
- * mt19937 seeded with HD_RODS_TABLE_SEED so that every run of a gamma uses the same table. */
+ * mt19937 seeded with HD_RODS_TABLE_SEED so that every run of a gamma uses the same table, then
+ * scaled by hd_eps_table_balance so that its detailed-balance moment D is 0. */
 #define HD_RODS_TABLE_SEED 20250601UL
 
 /* One collision as the ring reports it. */

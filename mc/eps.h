@@ -135,6 +135,24 @@ double hd_eps_table_sample(const hd_eps_table *t, double beta, gsl_rng *rng);
 /* The inverse CDF of the table at (beta, u), u in [0,1], with the interpolation above. */
 double hd_eps_table_quantile(const hd_eps_table *t, double beta, double u);
 
+/* The table's detailed-balance moment M = int_0^inf E e^-E <eps^2>_T(beta = E) dE, the mean of
+ * eps^2 of the table at beta = E over the collision-weighted law E ~ Exp(1) at T_B = 1 (eq. 19);
+ * the exact p_beta has M = 1, i.e. F(1) = <E (1 - eps^2)> = 1 - M = 0 (docs/mc-eps.md 4b-4c;
+ * the D of section 4b is M - 1).
+ * <eps^2> is exact for the interpolation of hd_eps_table_quantile (piecewise linear in u and in
+ * ln beta); the integral over E is gsl_integration_qags per node interval, relative error 1e-10.
+ * Below beta_min the beta_min node counts (weight 5e-7); above beta_max the weight (< 1e-430 for
+ * beta_max = 1e3) is left out.  Returns M, or NaN if the integration fails. */
+double hd_eps_table_moment(const hd_eps_table *t);
+
+/* Projects the table onto the detailed-balance identity: multiplies every node quantile by
+ * c = 1/sqrt(M) (M of hd_eps_table_moment), so that the table's M - 1 becomes 0 to the quadrature's
+ * precision.  This removes the one moment of the table's error (grid step and Monte Carlo noise)
+ * that sets the rods ring's stationary kinetic energy; it is a correction toward eq. (19), not a
+ * property of the sampler.  *scale (if not NULL) gets c.  HD_OK, or HD_EINPUT if M is not
+ * finite and positive (the table is then unchanged). */
+int hd_eps_table_balance(hd_eps_table *t, double *scale, hd_error *err);
+
 /* Writes the table to db (tables eps_tables and eps_table_points of db/schema.sql, created if
  * missing) in one transaction; *id (if not NULL) gets its eps_tables.id.  HD_OK or HD_EIO. */
 int hd_eps_table_save(const hd_eps_table *t, sqlite3 *db, unsigned long seed, int64_t *id,

@@ -1,5 +1,7 @@
 /* hd_eps tables: p_beta(eps) as inverse CDFs on a logarithmic beta grid, their sampler and
  * their storage in the run database (tables eps_tables, eps_table_points of db/schema.sql). */
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
 #include <gsl/gsl_sort.h>
 #include <gsl/gsl_statistics_double.h>
 #include <math.h>
@@ -135,6 +137,75 @@ double hd_eps_table_quantile(const hd_eps_table *t, double beta, double u) {
 
 double hd_eps_table_sample(const hd_eps_table *t, double beta, gsl_rng *rng) {
   return hd_eps_table_quantile(t, beta, gsl_rng_uniform(rng));
+}
+
+/* int_0^1 Q_k(u) Q_l(u) du for the piecewise-linear quantile rows k and l (same u grid). */
+static double row_cross(const hd_eps_table *t, int k, int l) {
+  const double *a = t->q + k * t->nu, *b = t->q + l * t->nu;
+  double s = 0;
+  for (int j = 0; j + 1 < t->nu; j++)
+    s += 2 * a[j] * b[j] + a[j] * b[j + 1] + a[j + 1] * b[j] + 2 * a[j + 1] * b[j + 1];
+  return s / (6.0 * (t->nu - 1));
+}
+
+/* E e^-E <eps^2>(E) on one node interval [beta_k, beta_k+1] (params: table, k, the three cross
+ * moments A_kk, A_k,k+1, A_k+1,k+1); with Q = (1-f) Q_k + f Q_k+1, f linear in ln beta. */
+typedef struct moment_seg {
+  const hd_eps_table *t;
+  int k;
+  double akk, akl, all;
+} moment_seg;
+
+static double moment_integrand(double e, void *par) {
+  const moment_seg *m = par;
+  const hd_eps_table *t = m->t;
+  double f = 0;
+  if (m->k >= 0) {
+    f = log(e / t->beta_min) / log(t->beta_max / t->beta_min) * (t->nbeta - 1) - m->k;
+    if (f < 0) f = 0;
+    if (f > 1) f = 1;
+  }
+  double e2 = (1 - f) * (1 - f) * m->akk + 2 * f * (1 - f) * m->akl + f * f * m->all;
+  return e * exp(-e) * e2;
+}
+
+double hd_eps_table_moment(const hd_eps_table *t) {
+  gsl_integration_workspace *w = gsl_integration_workspace_alloc(200);
+  if (!w) return NAN;
+  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  double total = 0;
+  int bad = 0;
+  gsl_function F = {moment_integrand, NULL};
+  /* below beta_min: the beta_min node as is (k = -1 means no interpolation) */
+  double a00 = row_cross(t, 0, 0);
+  moment_seg m0 = {t, -1, a00, a00, a00};
+  F.params = &m0;
+  double r, er;
+  bad |= gsl_integration_qags(&F, 0, t->beta_min, 0, 1e-10, 200, w, &r, &er) != GSL_SUCCESS;
+  total += r;
+  double akk = a00;
+  for (int k = 0; k + 1 < t->nbeta; k++) {
+    double all = row_cross(t, k + 1, k + 1);
+    moment_seg m = {t, k, akk, row_cross(t, k, k + 1), all};
+    F.params = &m;
+    double lo = node_beta(t, k), hi = node_beta(t, k + 1);
+    bad |= gsl_integration_qags(&F, lo, hi, 0, 1e-10, 200, w, &r, &er) != GSL_SUCCESS;
+    total += r;
+    akk = all;
+  }
+  gsl_set_error_handler(old);
+  gsl_integration_workspace_free(w);
+  return bad ? NAN : total;
+}
+
+int hd_eps_table_balance(hd_eps_table *t, double *scale, hd_error *err) {
+  double m = hd_eps_table_moment(t);
+  if (!isfinite(m) || !(m > 0))
+    return hd_error_set(err, HD_EINPUT, "eps table: detailed-balance moment %g not positive", m);
+  double c = 1 / sqrt(m);
+  for (size_t i = 0; i < (size_t)t->nbeta * (size_t)t->nu; i++) t->q[i] *= c;
+  if (scale) *scale = c;
+  return HD_OK;
 }
 
 static int db_fail(sqlite3 *db, hd_error *err, const char *what) {

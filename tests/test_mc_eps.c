@@ -293,6 +293,59 @@ static void table_build_sample_store(void **state) {
   hd_eps_sampler_free(s);
 }
 
+/* Mean of E (1 - eps^2) over E ~ Exp(1) and eps drawn from the table at beta = E (T_B = 1): the
+ * table's detailed-balance moment F(1) = 1 - M by plain Monte Carlo, independent of the
+ * quadrature of hd_eps_table_moment.  *se gets its standard error. */
+static double table_d_mc(const hd_eps_table *t, long n, gsl_rng *g, double *se) {
+  double a = 0, a2 = 0;
+  for (long i = 0; i < n; i++) {
+    double E = gsl_ran_exponential(g, 1.0), x = hd_eps_table_sample(t, E, g), y = E * (1 - x * x);
+    a += y, a2 += y * y;
+  }
+  a /= (double)n;
+  *se = sqrt((a2 / (double)n - a * a) / (double)n);
+  return a;
+}
+
+/* hd_eps_table_balance (issue 16): a small table (gamma = 0.8, 25 x 129 x 200, fixed seed) has
+ * an F(1) = <E (1 - eps^2)> (= -D of docs/mc-eps.md 4b) far from 0 from its noise; the quadrature
+ * of hd_eps_table_moment must agree with a Monte Carlo estimate of the same moment (1e7 draws, s.e.
+ * ~1.7e-4) within 4 s.e., and after the balance the Monte Carlo F(1) must be 0 within 7e-4, which
+ * is 4 s.e. and the precision the rods ring needs for its E_kin to 0.5 % (docs/mc-eps.md section
+ * 4b: 1 % of E_kin is D ~ 0.0015).  The unbalanced table is checked to miss that tolerance. */
+static void table_balance(void **state) {
+  (void)state;
+  hd_eps_sampler *s = make(0.8, 0.01);
+  gsl_rng *g = rng_seeded(11);
+  hd_eps_table *t = NULL;
+  hd_error err;
+  assert_int_equal(hd_eps_table_build(&t, s, 1e-3, 1e3, 25, 129, sanitize() ? 40 : 200, g, &err),
+                   HD_OK);
+  long n = sanitize() ? 1000000 : 10000000;
+  double se0, d0 = table_d_mc(t, n, g, &se0), m0 = hd_eps_table_moment(t);
+  double c;
+  assert_int_equal(hd_eps_table_balance(t, &c, &err), HD_OK);
+  double se1, d1 = table_d_mc(t, n, g, &se1), m1 = hd_eps_table_moment(t);
+  printf("# table D: quadrature %.5f, MC %.5f +- %.5f; balanced (x %.5f): quadrature %.1e, MC "
+         "%.5f +- %.5f\n",
+         1 - m0, d0, se0, c, 1 - m1, d1, se1);
+  assert_true(fabs((1 - m0) - d0) < 4 * se0);
+  assert_true(fabs(1 - m1) < 1e-9);
+  assert_true(fabs(c * c * m0 - 1) < 1e-12);
+  for (int k = 0; k < t->nbeta; k++) /* still a quantile function: nondecreasing, >= 0 */
+    for (int j = 0; j < t->nu; j++)
+      assert_true(t->q[k * t->nu + j] >= 0 &&
+                  (j == 0 || t->q[k * t->nu + j] >= t->q[k * t->nu + j - 1]));
+  if (!sanitize()) {
+    assert_true(se1 < 2e-4);
+    assert_true(fabs(d0) > 7e-4); /* the unbalanced table fails the test below */
+    assert_true(fabs(d1) < 7e-4);
+  }
+  hd_eps_table_free(t);
+  gsl_rng_free(g);
+  hd_eps_sampler_free(s);
+}
+
 /* CLI exit codes: --help 0, missing --gamma 2, bad value 2, --tabulate without --db 2. */
 static void cli_usage(void **state) {
   (void)state;
@@ -316,6 +369,7 @@ int main(void) {
                                      cmocka_unit_test(pair_is_paired),
                                      cmocka_unit_test(bad_input),
                                      cmocka_unit_test(table_build_sample_store),
+                                     cmocka_unit_test(table_balance),
                                      cmocka_unit_test(cli_usage)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -247,7 +247,9 @@ static void checkpoint_exact(void **state) {
  * 1e-12 t = 4e-7 apart, at spacings going up and down between 1e-8 and 5e-7, which is two slow
  * clusters meeting, not a collapse (the paper: the damped model does not collapse).  The
  * detector also wants the spacing to fall by 1e6 over the run of tiny collisions; the ring now
- * runs to t = 1e6.  Deterministic (fixed seed); the test fails with the old criterion. */
+ * runs to t = 1e6.  Deterministic (fixed seed); the test failed with the old criterion on the
+ * unbalanced table of that time.  Since the table is balanced (issue 16, hd_eps_table_balance)
+ * the trajectory differs: 56744 collisions to t = 1e6, so the count is checked against that. */
 static void damped_no_false_collapse(void **state) {
   (void)state;
   hd_rods_params p = params(50, 1000, 5);
@@ -262,7 +264,7 @@ static void damped_no_false_collapse(void **state) {
   if (rc != HD_SIM_STOPTIME) print_error("%s\n", e.msg);
   printf("# damped 50 rods, seed 5: %lld collisions to t = %g\n", (long long)r->collisions, r->t);
   assert_int_equal(rc, HD_SIM_STOPTIME);
-  assert_true(r->collisions > 60545);
+  assert_true(r->collisions >= 56744);
   hd_rods_free(r);
 }
 
@@ -514,6 +516,54 @@ static void equilibrium(void **state) {
   hd_rods_free(r);
 }
 
+/* The ring with `table = yes` (issue 16): the same conservative ring (N = 50, N_mod = 5, seed
+ * 17) after 300 collisions per rod, E_kin time-averaged over 20 blocks of 5e5 collisions (2e4
+ * per rod, >> the ~80 of a velocity relaxation).  Held to the issue's target, |E_kin/E_th - 1| <
+ * 0.5 % with E_th = E(0)(N-1)/(N-1+2 N N_mod), and the standard error of the block mean must be
+ * below 0.15 % so that the test can see it (measured 0.1 %).  Fails with the table unbalanced
+ * (-6 %, its Monte Carlo noise) and with the direct sampler at steps >= 0.0025 (-1.2 % and
+ * more; docs/mc-eps.md section 4b); measured with the balanced table: -0.3 +- 0.1 %. */
+static void equilibrium_table(void **state) {
+  (void)state;
+  if (test_sanitized()) return; /* statistics need the full length: skip under ASan */
+  long N = 50, nmod = 5;
+  hd_rods_params p;
+  hd_rods_params_default(&p);
+  p.n = N;
+  p.nmod = nmod;
+  p.seed = 17;
+  p.table = 1;
+  hd_rods *r;
+  hd_error e;
+  assert_int_equal(hd_rods_alloc(&r, &p, &e), HD_OK);
+  hd_rods_event ev;
+  for (long c = 0; c < 300 * N / 2; c++)
+    assert_int_equal(hd_rods_next(r, INFINITY, &ev, &e), HD_OK);
+  enum { NB = 20 };
+  long per = 500000;
+  double m1 = 0, m2 = 0;
+  for (int b = 0; b < NB; b++) {
+    double t0 = r->t, acc = 0, ek;
+    hd_rods_energy(r, &ek, NULL, NULL);
+    for (long c = 0; c < per; c++) {
+      double tprev = r->t;
+      assert_int_equal(hd_rods_next(r, INFINITY, &ev, &e), HD_OK);
+      acc += ek * (ev.t - tprev);
+      ek -= (1 - ev.eps * ev.eps) * ev.e_tr;
+    }
+    double x = acc / (r->t - t0);
+    m1 += x, m2 += x * x;
+  }
+  m1 /= NB;
+  double se = sqrt((m2 / NB - m1 * m1) / (NB - 1));
+  double e_th = hd_rods_ekin_stat(N, nmod, 0.5 * (double)N);
+  print_message("table: E_kin/E_th - 1 = %+.3f %% +- %.3f %%\n", 100 * (m1 / e_th - 1),
+                100 * se / e_th);
+  assert_true(se < 1.5e-3 * e_th);
+  assert_true(fabs(m1 / e_th - 1) < 5e-3);
+  hd_rods_free(r);
+}
+
 /* The theory helpers against hand values. */
 static void theory(void **state) {
   (void)state;
@@ -542,6 +592,7 @@ int main(void) {
       cmocka_unit_test(constant_cooling_below_drift),
       cmocka_unit_test(table_below_grid),
       cmocka_unit_test(equilibrium),
+      cmocka_unit_test(equilibrium_table),
       cmocka_unit_test(theory),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
