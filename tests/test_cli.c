@@ -16,47 +16,12 @@
 #include <time.h>
 #include <unistd.h>
 
-static char dir[256];
+#include "test_cli_util.h"
+
 static char root[4096]; /* the source tree (the tests run from it): db/schema.sql */
-static const char *haff;
 
-/* Runs a shell command, returns its exit status; its stderr goes to dir/err.txt. */
-static int sh(const char *fmt, ...) {
-  char cmd[2048];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(cmd, sizeof cmd, fmt, ap);
-  va_end(ap);
-  char full[2400];
-  snprintf(full, sizeof full, "cd %s && %s 2>err.txt", dir, cmd);
-  int st = system(full);
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-
-static void read_err(char *buf, size_t n) {
-  char p[300];
-  snprintf(p, sizeof p, "%s/err.txt", dir);
-  FILE *f = fopen(p, "r");
-  size_t k = f ? fread(buf, 1, n - 1, f) : 0;
-  buf[k] = 0;
-  if (f) fclose(f);
-}
-
-/* Whether file name exists in dir (where sh runs its commands). */
-static int exists(const char *name) {
-  char p[300];
-  snprintf(p, sizeof p, "%s/%s", dir, name);
-  return access(p, F_OK) == 0;
-}
-
-static void write_file(const char *name, const char *text) {
-  char p[300];
-  snprintf(p, sizeof p, "%s/%s", dir, name);
-  FILE *f = fopen(p, "w");
-  assert_non_null(f);
-  fputs(text, f);
-  fclose(f);
-}
+/* The stderr of the last sh() (dir/err.txt), at most n - 1 bytes. */
+static void read_err(char *buf, size_t n) { read_file("err.txt", buf, n); }
 
 /* One integer from an SQL query on a database in dir (ATTACHing b.db as b when present). */
 static long long q1(const char *db, const char *sql) {
@@ -111,9 +76,7 @@ static int setup(void **state) {
   haff = getenv("HAFF_BIN");
   if (!haff) haff = "bin/haff";
   assert_non_null(getcwd(root, sizeof root));
-  char tmpl[] = "/tmp/haff-cli-XXXXXX";
-  assert_non_null(mkdtemp(tmpl));
-  snprintf(dir, sizeof dir, "%s", tmpl);
+  assert_int_equal(test_cli_mkdtemp("cli"), 0);
   write_file("s.ini", scene);
   assert_int_equal(sh("%s run s.ini -o ref.db --quiet", haff), 0);
   return 0;
@@ -122,9 +85,7 @@ static int setup(void **state) {
 static int teardown(void **state) {
   (void)state;
   if (!haff) return 0;
-  char cmd[300];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-  return system(cmd) == 0 ? 0 : 1;
+  return test_cli_rmdir();
 }
 
 /* Collisions committed so far in database db of dir, -1 while it cannot be read yet. */

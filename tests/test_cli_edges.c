@@ -16,40 +16,7 @@
 #include "hd_scene.h"
 #include "hd_sim.h"
 
-static char dir[256];
-static const char *haff;
-
-/* Runs a shell command in dir, returns its exit status; its stderr goes to dir/err.txt. */
-static __attribute__((format(printf, 1, 2))) int sh(const char *fmt, ...) {
-  char cmd[4096];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(cmd, sizeof cmd, fmt, ap);
-  va_end(ap);
-  char full[4400];
-  snprintf(full, sizeof full, "cd %s && %s 2>err.txt", dir, cmd);
-  int st = system(full);
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-
-/* The contents of dir/name (at most n - 1 bytes). */
-static void read_file(const char *name, char *buf, size_t n) {
-  char p[300];
-  snprintf(p, sizeof p, "%s/%s", dir, name);
-  FILE *f = fopen(p, "r");
-  size_t k = f ? fread(buf, 1, n - 1, f) : 0;
-  buf[k] = 0;
-  if (f) fclose(f);
-}
-
-static void write_file(const char *name, const char *text) {
-  char p[300];
-  snprintf(p, sizeof p, "%s/%s", dir, name);
-  FILE *f = fopen(p, "w");
-  assert_non_null(f);
-  fputs(text, f);
-  fclose(f);
-}
+#include "test_cli_util.h"
 
 /* Number of lines of text. */
 static int lines(const char *text) {
@@ -84,9 +51,7 @@ static int setup(void **state) {
   if (!haff) haff = "bin/haff";
   char abs[4096];
   if (haff[0] != '/' && realpath(haff, abs)) haff = strdup(abs);
-  char tmpl[] = "/tmp/haff-edges-XXXXXX";
-  assert_non_null(mkdtemp(tmpl));
-  snprintf(dir, sizeof dir, "%s", tmpl);
+  assert_int_equal(test_cli_mkdtemp("edges"), 0);
   write_file("disks.ini", disks_scene);
   write_file("dimers.ini", dimers_scene);
   write_file("rods.ini", rods_scene);
@@ -99,9 +64,7 @@ static int setup(void **state) {
 static int teardown(void **state) {
   (void)state;
   if (!haff) return 0;
-  char cmd[300];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-  return system(cmd) == 0 ? 0 : 1;
+  return test_cli_rmdir();
 }
 
 /* Item 3: every subcommand that writes on stdout, with stdout on /dev/full, exits 1 with one

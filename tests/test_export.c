@@ -22,22 +22,11 @@
 
 int haff_export_main(int argc, char **argv);
 
-static char dir[256];
-static char root[4096]; /* the source tree (the tests run from it): tests/ase_check.py */
-static const char *haff;
+/* sh() sends the command's stdout and stderr to dir/out.txt. */
+#define TEST_CLI_SH_FORMAT "cd %s && (%s) >out.txt 2>&1"
+#include "test_cli_util.h"
 
-/* Runs a shell command in dir, returns its exit status; its stdout and stderr go to out.txt. */
-static int sh(const char *fmt, ...) {
-  char cmd[2048];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(cmd, sizeof cmd, fmt, ap);
-  va_end(ap);
-  char full[2400];
-  snprintf(full, sizeof full, "cd %s && (%s) >out.txt 2>&1", dir, cmd);
-  int st = system(full);
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
+static char root[4096]; /* the source tree (the tests run from it): tests/ase_check.py */
 
 /* The output of the last sh(). */
 static const char *out(void) {
@@ -49,15 +38,6 @@ static const char *out(void) {
   buf[k] = 0;
   if (f) fclose(f);
   return buf;
-}
-
-static void write_file(const char *name, const char *text) {
-  char p[300];
-  snprintf(p, sizeof p, "%s/%s", dir, name);
-  FILE *f = fopen(p, "w");
-  assert_non_null(f);
-  fputs(text, f);
-  fclose(f);
 }
 
 /* One number from an SQL query on database db in dir (ATTACHing ref.db as ref when present). */
@@ -406,18 +386,14 @@ static int setup(void **state) {
   haff = getenv("HAFF_BIN");
   if (!haff) haff = "bin/haff";
   assert_non_null(getcwd(root, sizeof root));
-  char tmpl[] = "/tmp/haff-export-XXXXXX";
-  assert_non_null(mkdtemp(tmpl));
-  snprintf(dir, sizeof dir, "%s", tmpl);
+  assert_int_equal(test_cli_mkdtemp("export"), 0);
   return 0;
 }
 
 static int teardown(void **state) {
   (void)state;
   if (!haff) return 0;
-  char cmd[300];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-  return system(cmd) == 0 ? 0 : 1;
+  return test_cli_rmdir();
 }
 
 int main(void) {

@@ -20,8 +20,7 @@
 #include "hd_run.h"
 #include "hd_runfit.h"
 #include "hd_scene.h"
-
-static char dir[256];
+#include "test_cli_util.h"
 
 /* D_e of hard disks with van Noije and Ernst's first Sonine correction (2D). */
 static double de_kt(double a) {
@@ -514,17 +513,12 @@ static void acceptance_cheap(void **state) {
 
 static int setup(void **state) {
   (void)state;
-  char tmpl[] = "/tmp/haff-hcs-XXXXXX";
-  if (!mkdtemp(tmpl)) return 1;
-  snprintf(dir, sizeof dir, "%s", tmpl);
-  return 0;
+  return test_cli_mkdtemp("hcs");
 }
 
 static int teardown(void **state) {
   (void)state;
-  char cmd[300];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-  return system(cmd) == 0 ? 0 : 1;
+  return test_cli_rmdir();
 }
 
 int main(void) {

@@ -19,31 +19,11 @@
 
 #include "hd_db.h"
 
-static char dir[256];
+/* sh() sends the command's stdout and stderr to dir/out.txt. */
+#define TEST_CLI_SH_FORMAT "cd %s && (%s) >out.txt 2>&1"
+#include "test_cli_util.h"
+
 static char root[4096]; /* the source tree (the tests run from it) */
-static const char *haff;
-
-/* Runs a shell command in dir, returns its exit status; stdout and stderr go to dir/out.txt. */
-static int sh(const char *fmt, ...) {
-  char cmd[3000];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(cmd, sizeof cmd, fmt, ap);
-  va_end(ap);
-  char full[3400];
-  snprintf(full, sizeof full, "cd %s && (%s) >out.txt 2>&1", dir, cmd);
-  int st = system(full);
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-
-static void write_file(const char *name, const char *text) {
-  char p[300];
-  snprintf(p, sizeof p, "%s/%s", dir, name);
-  FILE *f = fopen(p, "w");
-  assert_non_null(f);
-  fputs(text, f);
-  fclose(f);
-}
 
 /* The contents of a file (malloc'd, NUL-terminated), or NULL. */
 static char *slurp(const char *path) {
@@ -109,9 +89,7 @@ static int setup(void **state) {
   haff = getenv("HAFF_BIN");
   if (!haff) haff = "bin/haff";
   if (!getcwd(root, sizeof root)) return -1;
-  char tmpl[] = "/tmp/haff-sql-XXXXXX";
-  if (!mkdtemp(tmpl)) return -1;
-  snprintf(dir, sizeof dir, "%s", tmpl);
+  if (test_cli_mkdtemp("sql")) return -1;
   write_file("base.ini", base_ini);
   write_file("mix.ini", mix_ini);
   const char *alphas[] = {"0.8", "0.95"}, *as[] = {"0.5", "1"};
@@ -132,12 +110,7 @@ static int setup(void **state) {
 
 static int teardown(void **state) {
   (void)state;
-  if (haff && dir[0]) {
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (system(cmd) != 0) return -1;
-  }
-  return 0;
+  return haff && dir[0] ? test_cli_rmdir() : 0;
 }
 
 /* params: one row per key of runs.scene, in its section, with num a REAL or NULL for text. */

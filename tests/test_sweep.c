@@ -22,45 +22,7 @@
 #include "hd_db.h"
 #include "hd_merge.h"
 
-static char dir[256];
-static const char *haff;
-
-/* Runs a shell command in dir, returns its exit status; its stderr goes to dir/err.txt. */
-static int sh(const char *fmt, ...) {
-  char cmd[4096];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(cmd, sizeof cmd, fmt, ap);
-  va_end(ap);
-  char full[4400];
-  snprintf(full, sizeof full, "cd %s && %s 2>err.txt", dir, cmd);
-  int st = system(full);
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
-
-static void read_file(const char *name, char *buf, size_t n) {
-  char p[400];
-  snprintf(p, sizeof p, "%s/%s", dir, name);
-  FILE *f = fopen(p, "r");
-  size_t k = f ? fread(buf, 1, n - 1, f) : 0;
-  buf[k] = 0;
-  if (f) fclose(f);
-}
-
-static void write_file(const char *name, const char *text) {
-  char p[400];
-  snprintf(p, sizeof p, "%s/%s", dir, name);
-  FILE *f = fopen(p, "w");
-  assert_non_null(f);
-  fputs(text, f);
-  fclose(f);
-}
-
-static int exists(const char *name) {
-  char p[400];
-  snprintf(p, sizeof p, "%s/%s", dir, name);
-  return access(p, F_OK) == 0;
-}
+#include "test_cli_util.h"
 
 /* One integer from an SQL query on database db in dir (-1 when there is no row or no file). */
 static long long q1(const char *db, const char *sql) {
@@ -132,9 +94,7 @@ static int setup(void **state) {
   if (haff[0] != '/' && realpath(haff, abs)) haff = abs;
   if (getenv("HAFF_SANITIZE") && getenv("HAFF_SANITIZE")[0] == '1')
     haff = NULL; /* the tests that drive bin/haff skip: it is not the sanitized build */
-  char tmpl[] = "/tmp/haff-sweep-XXXXXX";
-  assert_non_null(mkdtemp(tmpl));
-  snprintf(dir, sizeof dir, "%s", tmpl);
+  assert_int_equal(test_cli_mkdtemp("sweep"), 0);
   write_file("long.ini", long_scene);
   write_file("short.ini", short_scene);
   return 0;
@@ -142,9 +102,7 @@ static int setup(void **state) {
 
 static int teardown(void **state) {
   (void)state;
-  char cmd[300];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-  return system(cmd) == 0 ? 0 : 1;
+  return test_cli_rmdir();
 }
 
 /* ------------------------------------------------------------------------------------------ */

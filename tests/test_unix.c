@@ -16,23 +16,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-static char dir[256];
-static char root[4096]; /* the source tree (the tests run from it) */
-static const char *haff;
+/* sh() sends the command's stdout to dir/out.txt, its stderr to dir/err.txt. */
+#define TEST_CLI_SH_FORMAT "cd %s && (%s) >out.txt 2>err.txt"
+#include "test_cli_util.h"
 
-/* Runs a shell command in dir; returns its exit status.  stdout to dir/out.txt, stderr to
- * dir/err.txt. */
-static int sh(const char *fmt, ...) {
-  char cmd[8192];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(cmd, sizeof cmd, fmt, ap);
-  va_end(ap);
-  char full[8800];
-  snprintf(full, sizeof full, "cd %s && (%s) >out.txt 2>err.txt", dir, cmd);
-  int st = system(full);
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
+static char root[4096]; /* the source tree (the tests run from it) */
 
 /* A file of dir (or an absolute path), malloc'd and NUL-terminated; "" when missing. */
 static char *slurp(const char *name) {
@@ -52,21 +40,6 @@ static char *slurp(const char *name) {
   s[k] = 0;
   fclose(f);
   return s;
-}
-
-static int exists(const char *name) {
-  char p[400];
-  snprintf(p, sizeof p, "%s/%s", dir, name);
-  return access(p, F_OK) == 0;
-}
-
-static void write_file(const char *name, const char *text) {
-  char p[300];
-  snprintf(p, sizeof p, "%s/%s", dir, name);
-  FILE *f = fopen(p, "w");
-  assert_non_null(f);
-  fputs(text, f);
-  fclose(f);
 }
 
 /* The names of the dispatcher table commands[] of cli/haff.c, read from the source: each
@@ -98,9 +71,7 @@ static int setup(void **state) {
   haff = getenv("HAFF_BIN");
   if (!haff) haff = "bin/haff";
   if (!getcwd(root, sizeof root)) return -1;
-  char tmpl[] = "/tmp/haff-unix-XXXXXX";
-  if (!mkdtemp(tmpl)) return -1;
-  snprintf(dir, sizeof dir, "%s", tmpl);
+  if (test_cli_mkdtemp("unix")) return -1;
   write_file("d.ini", "[system]\narea_fraction = 0.1\nseed = 3\n[dimers]\ncount = 40\n"
                       "alpha = 0.9\n[run]\nstop_cpd = 6\n[log]\nsamples_every = 0.5\n"
                       "velocities_at = 2\n");
@@ -109,12 +80,7 @@ static int setup(void **state) {
 
 static int teardown(void **state) {
   (void)state;
-  if (haff && dir[0]) {
-    char cmd[300];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (system(cmd) != 0) return -1;
-  }
-  return 0;
+  return haff && dir[0] ? test_cli_rmdir() : 0;
 }
 
 /* -V and --version print "haff VERSION", VERSION being what runs.version stores. */

@@ -1,0 +1,82 @@
+/* Helpers shared by the tests that drive bin/haff from a shell: a temporary folder dir where
+ * the commands run, the path of the haff binary, and small file helpers on dir.  Each test
+ * program includes this once (all of it is static). */
+#ifndef HD_TEST_CLI_UTIL_H
+#define HD_TEST_CLI_UTIL_H
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+/* How sh() runs a command: a printf format taking dir then the command.  The default sends
+ * stderr to dir/err.txt; a test program defines its own before including this header. */
+#ifndef TEST_CLI_SH_FORMAT
+#define TEST_CLI_SH_FORMAT "cd %s && %s 2>err.txt"
+#endif
+
+/* The temporary folder of the test program (made by test_cli_mkdtemp), where sh() runs. */
+static char dir[256];
+/* The haff binary (HAFF_BIN, else bin/haff); NULL in the sanitized build, where the tests
+ * that drive it skip.  Set by each program's setup. */
+static __attribute__((unused)) const char *haff;
+
+/* Runs a shell command (printf-style) in dir as TEST_CLI_SH_FORMAT says; returns its exit
+ * status, -1 when it did not exit normally. */
+static inline __attribute__((format(printf, 1, 2))) int sh(const char *fmt, ...) {
+  char cmd[8192];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(cmd, sizeof cmd, fmt, ap);
+  va_end(ap);
+  char full[8800];
+  snprintf(full, sizeof full, TEST_CLI_SH_FORMAT, dir, cmd);
+  int st = system(full);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* The contents of dir/name in buf (at most n - 1 bytes, NUL-terminated; "" when missing). */
+static inline void read_file(const char *name, char *buf, size_t n) {
+  char p[400];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "r");
+  size_t k = f ? fread(buf, 1, n - 1, f) : 0;
+  buf[k] = 0;
+  if (f) fclose(f);
+}
+
+/* Writes text to dir/name (replacing it); fails the test when the file cannot be opened. */
+static inline void write_file(const char *name, const char *text) {
+  char p[400];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "w");
+  assert_non_null(f);
+  fputs(text, f);
+  fclose(f);
+}
+
+/* Whether dir/name exists. */
+static inline int exists(const char *name) {
+  char p[400];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  return access(p, F_OK) == 0;
+}
+
+/* Makes dir a new folder /tmp/haff-NAME-XXXXXX; 0, or -1 when it cannot. */
+static inline int test_cli_mkdtemp(const char *name) {
+  char tmpl[200];
+  snprintf(tmpl, sizeof tmpl, "/tmp/haff-%s-XXXXXX", name);
+  if (!mkdtemp(tmpl)) return -1;
+  snprintf(dir, sizeof dir, "%s", tmpl);
+  return 0;
+}
+
+/* Removes dir and all it holds; 0, or -1 when rm fails. */
+static inline int test_cli_rmdir(void) {
+  char cmd[300];
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  return system(cmd) == 0 ? 0 : -1;
+}
+
+#endif
