@@ -275,13 +275,14 @@ int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit 
   size_t cnt[3] = {0, 0, 0};
   for (size_t i = 0; i < m; i++) cnt[(*fits)[i].window]++;
   if (m && a->fit.detect)
-    fprintf(stderr,
-            "haff %s: note: HCS windows: %zu stored with the runs (runs.hcs_*), %zu computed now%s\n",
-            cmd, cnt[HD_WINDOW_STORED], cnt[HD_WINDOW_COMPUTED],
-            cnt[HD_WINDOW_COMPUTED] == 0 ? ""
-            : hd_hcs_opts_default(&a->fit.homog, &a->fit.hcs)
-                ? " (no stored window: a file from before, or a run that has not ended)"
-                : " (detection options other than the defaults)");
+    fprintf(
+        stderr,
+        "haff %s: note: HCS windows: %zu stored with the runs (runs.hcs_*), %zu computed now%s\n",
+        cmd, cnt[HD_WINDOW_STORED], cnt[HD_WINDOW_COMPUTED],
+        cnt[HD_WINDOW_COMPUTED] == 0 ? ""
+        : hd_hcs_opts_default(&a->fit.homog, &a->fit.hcs)
+            ? " (no stored window: a file from before, or a run that has not ended)"
+            : " (detection options other than the defaults)");
   if (m == 0) {
     free(*fits), *fits = NULL;
     sqlite3_close(*db), *db = NULL;
@@ -344,5 +345,7 @@ int hd_cli_one_run(int argc, char **argv, unsigned allowed, const char *usage, h
 }
 
 const char *hd_cli_window_name(int window) {
-  return window == HD_WINDOW_STORED ? "stored" : window == HD_WINDOW_COMPUTED ? "computed" : "whole";
+  return window == HD_WINDOW_STORED     ? "stored"
+         : window == HD_WINDOW_COMPUTED ? "computed"
+                                        : "whole";
 }

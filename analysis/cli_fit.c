@@ -15,7 +15,8 @@
   "  --cpd-max X      fit only samples with cpd <= X (0: no limit, the default)\n"                 \
   "  --cpd-skip X     HCS window: leave out the initial transient cpd < X [5]\n"                   \
   "  --s-end X        HCS window: ends where a 5-cpd block's mean s_perp exceeds X [10]\n"         \
-  "  --s-flag X       flag a group 'inhomogeneous' when its window's mean s_perp exceeds X [2.5]\n" \
+  "  --s-flag X       flag a group 'inhomogeneous' when its window's mean s_perp exceeds X "       \
+  "[2.5]\n"                                                                                        \
   "  --min-window X   ... or when most of its runs left the HCS within X cpd [40]\n"               \
   "  -o FILE          write to FILE instead of stdout (- is stdout)\n"
 
@@ -77,13 +78,15 @@ int haff_fit_main(int argc, char **argv) {
       "per sqrt(E) say the homogeneous cooling state ended; D_e_slope = -(1-alpha^2)/(slope of\n"
       "ln E against cpd) on the same window needs no nu0.  Per group: D_e_sys, the systematic\n"
       "error (window drift, estimator difference, correlated flow: docs/analysis.md), and flag\n"
-      "'inhomogeneous' for a box past the HCS's validity.  One line per run, or per group of runs with\n"
+      "'inhomogeneous' for a box past the HCS's validity.  One line per run, or per group of runs "
+      "with\n"
       "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m and density;\n"
       "mean +- standard error over the runs; nan with one run).  Per run, *_fit_err are the\n"
       "formal least-squares errors, which take the residuals of the cumulative cpd(t) as\n"
       "independent: several times too small.  window: 'stored' (the run's runs.hcs_* window,\n"
       "used when the detection options are the defaults), 'computed' (found now: other options,\n"
-      "or a file without it), 'whole' (--no-detect).  A run that cannot be fitted gets nan and a note;\n"
+      "or a file without it), 'whole' (--no-detect).  A run that cannot be fitted gets nan and a "
+      "note;\n"
       "exit 2 when none can.\n"
       "  --all            every finished run (the default)\n"
       "  --alpha-group    one line per (alpha, a/d) group\n" FIT_OPTS_HELP;
@@ -118,9 +121,9 @@ int haff_fit_main(int argc, char **argv) {
           f->info.a_over_d, f->n_used, f->homog.detected, f->t_end, f->cpd_end,
           f->haff_ok ? h->D_e : nan, f->haff_ok ? h->D_e_err : nan, f->haff_ok ? h->nu0 : nan,
           f->haff_ok ? h->nu0_err : nan, f->nu0_enskog, f->ratio, f->ratio_err,
-          f->haff_ok ? h->chi2 / (double)h->dof : nan, f->cpd_start, f->D_e_slope,
-          f->D_e_slope_err, f->hcs.have ? f->hcs.s_perp : nan,
-          f->hcs.have ? f->hcs.flow_excess : nan, f->hcs.ended, hd_cli_window_name(f->window));
+          f->haff_ok ? h->chi2 / (double)h->dof : nan, f->cpd_start, f->D_e_slope, f->D_e_slope_err,
+          f->hcs.have ? f->hcs.s_perp : nan, f->hcs.have ? f->hcs.flow_excess : nan, f->hcs.ended,
+          hd_cli_window_name(f->window));
     }
   } else {
     hd_group *g;
@@ -231,7 +234,8 @@ int haff_table2_main(int argc, char **argv) {
       "  --k-ci runs      mean over runs, t interval with runs-1 dof (needs >= 2 runs)\n"
       "  --cpd-min-k X    skip the transient cpd < X [0]\n"
       "  --md             a Markdown table instead of TSV\n"
-      "  --keep-flagged   keep the groups flagged inhomogeneous (left out by default)\n" FIT_OPTS_HELP;
+      "  --keep-flagged   keep the groups flagged inhomogeneous (left out by "
+      "default)\n" FIT_OPTS_HELP;
   hd_cli_args a;
   int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD | HD_OPT_KCI,
                         usage, &a);
@@ -279,8 +283,7 @@ int haff_table2_main(int argc, char **argv) {
     hd_k_sys_do(fits, g[j].idx, g[j].n, a01, q.flow_excess, &ks);
     if (a.md)
       fprintf(out, "| %g | %g | %.4f | [%.4f, %.4f] | %.2g | %.3e | [%.3e, %.3e] | %.2g |\n",
-              g[j].alpha, g[j].a_over_d, r[0], r[1], r[2], ks.sys[0], r[3], r[4], r[5],
-              ks.sys[1]);
+              g[j].alpha, g[j].a_over_d, r[0], r[1], r[2], ks.sys[0], r[3], r[4], r[5], ks.sys[1]);
     else
       fprintf(out, "%g\t%g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.3g\t%.3g\n", g[j].alpha,
               g[j].a_over_d, r[0], r[1], r[2], r[3], r[4], r[5], ks.sys[0], ks.sys[1]);

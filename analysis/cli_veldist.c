@@ -75,8 +75,9 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
   if (!rc) {
     double w = 2 * a->range / bins;
     /* one block, headed like the per-snapshot ones (its first field is the legend title) */
-    fprintf(out, "pooled: %zu runs, %zu snapshots, cpd %.3g-%.3g\tcpd\tc\tp_vx\tp_vy\tp_omega\t"
-                 "gauss\tn\n",
+    fprintf(out,
+            "pooled: %zu runs, %zu snapshots, cpd %.3g-%.3g\tcpd\tc\tp_vx\tp_vy\tp_omega\t"
+            "gauss\tn\n",
             runs, snaps, c0, c1);
     for (size_t k = 0; k < (size_t)bins; k++) {
       double lo, hi;
@@ -108,15 +109,18 @@ int haff_veldist_main(int argc, char **argv) {
       "  --stats          instead: one line per snapshot and variable (vx, vy, omega, v2d):\n"
       "                   snap t cpd var n scale kurt a2 a2_err ks_d ks_p (docs/analysis.md)\n"
       "  --pool           one block instead: every snapshot of every finished run (or --run) of\n"
-      "                   the first run's species whose cpd is in the run's HCS window (haff-fit's\n"
-      "                   window; fit options apply), pooled; extra column n (values per component)\n"
+      "                   the first run's species whose cpd is in the run's HCS window "
+      "(haff-fit's\n"
+      "                   window; fit options apply), pooled; extra column n (values per "
+      "component)\n"
       "  --bins B         bins [40]     --range X   histogram on [-X, X] [5]\n"
       "  --label L        states label [velocities] (e.g. initial, final)\n"
       "  -o FILE          write to FILE instead of stdout (- is stdout)\n";
   hd_cli_args a;
   sqlite3 *db;
   hd_run_info ri;
-  int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT, usage, &a);
+  int rc =
+      hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT, usage, &a);
   if (rc) return rc < 0 ? 0 : rc;
   if (a.pool) {
     if (a.stats) {

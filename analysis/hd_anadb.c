@@ -124,8 +124,8 @@ int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_err
   *runs = NULL, *n = 0;
   /* the stored HCS window, in files that have its columns (NULL otherwise) */
   sqlite3_stmt *st;
-  int hcs = sqlite3_prepare_v2(db, "SELECT hcs_cpd_start FROM runs LIMIT 0", -1, &st, NULL) ==
-            SQLITE_OK;
+  int hcs =
+      sqlite3_prepare_v2(db, "SELECT hcs_cpd_start FROM runs LIMIT 0", -1, &st, NULL) == SQLITE_OK;
   sqlite3_finalize(st);
   char q[400];
   snprintf(q, sizeof q, "SELECT id, scene, seed, status, box_x, box_y, %s FROM runs WHERE %s",
@@ -133,7 +133,8 @@ int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_err
                : "NULL, NULL, NULL, NULL, NULL",
            want >= 0 ? "id = ?1" : "status IN ('done','collapsed','interrupted') ORDER BY id");
   if (sqlite3_prepare_v2(db, q, -1, &st, NULL) != SQLITE_OK)
-    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading runs: %s", sqlite3_errmsg(db));
+    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading runs: %s",
+                        sqlite3_errmsg(db));
   if (want >= 0) sqlite3_bind_int64(st, 1, want);
   size_t cap = 0;
   int rc = HD_OK, s;
@@ -170,7 +171,7 @@ int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_err
     const char *he = (const char *)sqlite3_column_text(st, 8);
     ri->hcs_stored = !isnan(hv[0]) && !isnan(hv[1]) && he;
     ri->hcs_cpd_start = hv[0], ri->hcs_cpd_end = hv[1];
-    ri->hcs_end = !he                    ? HD_HCS_END_NONE
+    ri->hcs_end = !he                     ? HD_HCS_END_NONE
                   : !strcmp(he, "s_perp") ? HD_HCS_END_SPERP
                   : !strcmp(he, "rate")   ? HD_HCS_END_RATE
                                           : HD_HCS_END_NONE;
@@ -184,7 +185,8 @@ int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_err
     (*n)++;
   }
   if (rc == HD_OK && s != SQLITE_DONE)
-    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading runs: %s", sqlite3_errmsg(db));
+    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading runs: %s",
+                      sqlite3_errmsg(db));
   sqlite3_finalize(st);
   if (rc == HD_OK && want >= 0 && *n == 0)
     rc = hd_error_set(err, HD_EINPUT, "no run with id %lld", (long long)want);
@@ -210,15 +212,16 @@ int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err) {
                             : "SELECT t, collisions, cpd, e_tr, e_rot, NULL, NULL, NULL FROM "
                               "samples WHERE run = ?1 ORDER BY t, collisions",
                          -1, &st, NULL) != SQLITE_OK)
-    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading samples: %s", sqlite3_errmsg(db));
+    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading samples: %s",
+                        sqlite3_errmsg(db));
   sqlite3_bind_int64(st, 1, run);
   size_t cap = 0;
   int rc = HD_OK, r;
   while ((r = sqlite3_step(st)) == SQLITE_ROW) {
     if (s->n == cap) {
       cap = cap ? 2 * cap : 256;
-      double **cols[8] = {&s->t,      &s->coll,   &s->cpd,       &s->e_tr,
-                          &s->e_rot,  &s->s_perp, &s->flow_frac, &s->flow_chaos};
+      double **cols[8] = {&s->t,     &s->coll,   &s->cpd,       &s->e_tr,
+                          &s->e_rot, &s->s_perp, &s->flow_frac, &s->flow_chaos};
       for (int c = 0; c < 8 && rc == HD_OK; c++) {
         double *p = realloc(*cols[c], cap * sizeof *p);
         if (!p)
@@ -235,12 +238,13 @@ int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err) {
     s->e_rot[s->n] = sqlite3_column_double(st, 4);
     double *q[3] = {s->s_perp, s->flow_frac, s->flow_chaos};
     for (int c = 0; c < 3; c++)
-      q[c][s->n] = sqlite3_column_type(st, 5 + c) == SQLITE_NULL ? NAN
-                                                                  : sqlite3_column_double(st, 5 + c);
+      q[c][s->n] =
+          sqlite3_column_type(st, 5 + c) == SQLITE_NULL ? NAN : sqlite3_column_double(st, 5 + c);
     s->n++;
   }
   if (rc == HD_OK && r != SQLITE_DONE)
-    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading samples: %s", sqlite3_errmsg(db));
+    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading samples: %s",
+                      sqlite3_errmsg(db));
   sqlite3_finalize(st);
   if (rc) hd_series_free(s);
   return rc;
@@ -260,7 +264,8 @@ int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *ki
                          "SELECT t, cpd, vx, vy, omega FROM states WHERE run = ?1 AND "
                          "label = ?2 AND kind = ?3 ORDER BY t, body",
                          -1, &st, NULL) != SQLITE_OK)
-    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading states: %s", sqlite3_errmsg(db));
+    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading states: %s",
+                        sqlite3_errmsg(db));
   sqlite3_bind_int64(st, 1, run);
   sqlite3_bind_text(st, 2, label, -1, SQLITE_STATIC);
   sqlite3_bind_text(st, 3, kind, -1, SQLITE_STATIC);
@@ -304,7 +309,8 @@ int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *ki
     cur->n++;
   }
   if (rc == HD_OK && r != SQLITE_DONE)
-    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading states: %s", sqlite3_errmsg(db));
+    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading states: %s",
+                      sqlite3_errmsg(db));
   sqlite3_finalize(st);
   if (rc) hd_snapshots_free(*snaps, *n), *snaps = NULL, *n = 0;
   return rc;
@@ -319,7 +325,8 @@ int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **th
                          "kind = 'dimer-dimer' AND theta_i IS NOT NULL AND theta_j IS NOT NULL "
                          "ORDER BY seq",
                          -1, &st, NULL) != SQLITE_OK)
-    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading collisions: %s", sqlite3_errmsg(db));
+    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading collisions: %s",
+                        sqlite3_errmsg(db));
   sqlite3_bind_int64(st, 1, run);
   size_t cap = 0;
   int rc = HD_OK, r;
@@ -343,7 +350,8 @@ int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **th
     (*n)++;
   }
   if (rc == HD_OK && r != SQLITE_DONE)
-    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading collisions: %s", sqlite3_errmsg(db));
+    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading collisions: %s",
+                      sqlite3_errmsg(db));
   sqlite3_finalize(st);
   if (rc) free(*theta_i), free(*theta_j), free(*f), *theta_i = *theta_j = *f = NULL, *n = 0;
   return rc;

@@ -44,8 +44,8 @@ typedef struct hd_run_info {
                            runs.box_x, this species' area / area_fraction) */
   double eta_disk;      /* pi n d^2 / 4: area fraction of the reference disks (eq. 30) */
   int hcs_stored;       /* 1 if runs.hcs_cpd_start/end are set (hd_db_run_hcs), else 0 */
-  double hcs_cpd_start, hcs_cpd_end; /* the stored HCS window (NaN when not stored) */
-  int hcs_end;                       /* runs.hcs_end as HD_HCS_END_* (hd_homog.h) */
+  double hcs_cpd_start, hcs_cpd_end;  /* the stored HCS window (NaN when not stored) */
+  int hcs_end;                        /* runs.hcs_end as HD_HCS_END_* (hd_homog.h) */
   double hcs_s_perp, hcs_flow_excess; /* runs.hcs_s_perp, hcs_flow_excess (NaN when NULL) */
 } hd_run_info;
 

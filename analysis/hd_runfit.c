@@ -111,8 +111,7 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
   for (int h = -1; h < 2; h++) {
     size_t m = 0;
     for (size_t i = n0; i < nu; i++)
-      if (e[i] > 0 && (h < 0 || (h == 0) == (s.cpd[i] <= mid)))
-        x[m] = s.cpd[i], k[m++] = log(e[i]);
+      if (e[i] > 0 && (h < 0 || (h == 0) == (s.cpd[i] <= mid))) x[m] = s.cpd[i], k[m++] = log(e[i]);
     hd_linfit lf;
     if (g1 > 0 && hd_fit_linear_t(x, k, m, 0.68, &lf, &fe) == HD_OK && lf.a1 < 0) {
       double D = -g1 / lf.a1;
@@ -204,8 +203,8 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
   double *v = malloc(10 * (n ? n : 1) * sizeof *v);
   if (!v) { /* every number NaN: the caller prints them as such */
     double nan = NAN;
-    *out = (hd_group_fit){0, nan, nan, nan, nan, nan, nan, nan, nan, nan,
-                          nan, nan, nan, nan, nan, nan, 0, 0, 0, nan};
+    *out = (hd_group_fit){0,   nan, nan, nan, nan, nan, nan, nan, nan, nan,
+                          nan, nan, nan, nan, nan, nan, 0,   0,   0,   nan};
     return;
   }
   double *D = v, *nu = v + n, *ra = v + 2 * n, *Ds = v + 3 * n, *dh = v + 4 * n, *de = v + 5 * n,

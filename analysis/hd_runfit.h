@@ -28,10 +28,10 @@ typedef struct hd_fit_opts {
 
 /* Where a run's window came from (hd_run_fit.window). */
 enum {
-  HD_WINDOW_WHOLE = 0,    /* detect = 0: the whole run */
-  HD_WINDOW_STORED = 1,   /* runs.hcs_* as the run stored it (hd_db_run_hcs) */
-  HD_WINDOW_COMPUTED = 2  /* found now from the samples (options not the defaults, or no stored
-                           * window: a file from before, or a run still going) */
+  HD_WINDOW_WHOLE = 0,   /* detect = 0: the whole run */
+  HD_WINDOW_STORED = 1,  /* runs.hcs_* as the run stored it (hd_db_run_hcs) */
+  HD_WINDOW_COMPUTED = 2 /* found now from the samples (options not the defaults, or no stored
+                          * window: a file from before, or a run still going) */
 };
 
 /* The defaults above. */
@@ -40,24 +40,24 @@ hd_fit_opts hd_fit_opts_defaults(void);
 /* Everything measured on one run. */
 typedef struct hd_run_fit {
   hd_run_info info;
-  size_t n_samples;      /* rows in samples */
-  size_t n_start;        /* first sample used by the fits (0 when detect = 0) */
-  size_t n_used;         /* samples used by the fits: [n_start, n_used) */
-  int window;            /* HD_WINDOW_*: where [n_start, n_used) came from (before cpd_max) */
-  hd_homog homog;        /* rate/sqrt(E) detector result (n_end = n_samples when detect = 0) */
-  hd_hcs hcs;            /* the state measures' HCS window (detect = 1; have = 0 otherwise) */
+  size_t n_samples;          /* rows in samples */
+  size_t n_start;            /* first sample used by the fits (0 when detect = 0) */
+  size_t n_used;             /* samples used by the fits: [n_start, n_used) */
+  int window;                /* HD_WINDOW_*: where [n_start, n_used) came from (before cpd_max) */
+  hd_homog homog;            /* rate/sqrt(E) detector result (n_end = n_samples when detect = 0) */
+  hd_hcs hcs;                /* the state measures' HCS window (detect = 1; have = 0 otherwise) */
   double t_start, cpd_start; /* first sample used */
-  double t_end, cpd_end; /* last sample used */
-  double E0;             /* e_tr + e_rot of the first sample used */
-  double T0;             /* translational temperature of the first sample used (= e_tr in 2D) */
-  int slope_ok;          /* 1 if the ln E against cpd fit succeeded */
-  double D_e_slope;      /* -(1 - alpha^2) / (slope of ln E against cpd): needs no nu0 */
-  double D_e_slope_err;  /* its error from the residuals' autocorrelation-corrected OLS error */
-  double D_e_half[2];    /* D_e_slope over the first and second half (in cpd) of the window
-                          * (NaN if a half has < 3 samples): the window's systematic error */
-  int haff_ok;           /* 1 if the eq. (31) fit succeeded */
-  hd_haff_fit haff;      /* its result */
-  double nu0_enskog;     /* eq. (29) for disks of diameter d, body mass, density n, T0, eta_disk */
+  double t_end, cpd_end;     /* last sample used */
+  double E0;                 /* e_tr + e_rot of the first sample used */
+  double T0;                 /* translational temperature of the first sample used (= e_tr in 2D) */
+  int slope_ok;              /* 1 if the ln E against cpd fit succeeded */
+  double D_e_slope;          /* -(1 - alpha^2) / (slope of ln E against cpd): needs no nu0 */
+  double D_e_slope_err;      /* its error from the residuals' autocorrelation-corrected OLS error */
+  double D_e_half[2];        /* D_e_slope over the first and second half (in cpd) of the window
+                              * (NaN if a half has < 3 samples): the window's systematic error */
+  int haff_ok;               /* 1 if the eq. (31) fit succeeded */
+  hd_haff_fit haff;          /* its result */
+  double nu0_enskog; /* eq. (29) for disks of diameter d, body mass, density n, T0, eta_disk */
   double ratio, ratio_err; /* nu0_eff / nu0_enskog and its standard error */
   int K_ok;                /* 1 if the K fit succeeded */
   hd_linfit K;             /* K = e_tr/e_rot = a0 + a1 cpd */
@@ -97,20 +97,20 @@ void hd_groups_free(hd_group *g, size_t ng);
 /* The ensemble's D_e with its statistical and systematic errors (docs/analysis.md, "Errors of
  * D_e").  Every mean below is over the group's fitted runs, every *_err its standard error. */
 typedef struct hd_group_fit {
-  size_t m;                 /* runs whose eq. (31) fit succeeded */
-  double D_e, D_e_err;      /* eq. (31) on the HCS windows */
+  size_t m;            /* runs whose eq. (31) fit succeeded */
+  double D_e, D_e_err; /* eq. (31) on the HCS windows */
   double nu0, nu0_err, ratio, ratio_err;
   double D_e_slope, D_e_slope_err; /* the slope of ln E against cpd */
-  double sys_window;  /* half the drift D_e(second half) - D_e(first half), less its noise */
-  double sys_est;     /* |eq. (31) - slope| less its noise */
-  double sys_box;     /* D_e times the mean excess flow energy fraction (state measures) */
-  double D_e_sys;     /* sqrt of the sum of the three squares (NaN terms count 0) */
+  double sys_window;         /* half the drift D_e(second half) - D_e(first half), less its noise */
+  double sys_est;            /* |eq. (31) - slope| less its noise */
+  double sys_box;            /* D_e times the mean excess flow energy fraction (state measures) */
+  double D_e_sys;            /* sqrt of the sum of the three squares (NaN terms count 0) */
   double cpd_start, cpd_end; /* mean window */
-  double s_perp;      /* mean window s_perp (NaN without state measures) */
-  size_t ended;       /* runs whose HCS ended within min_window cpd of its start */
-  int flagged;        /* 1: "inhomogeneous" (s_perp > s_flag, or most runs ended early) */
-  int measured;       /* 1 if the runs carry state measures (else no flag can be given) */
-  double flow_excess; /* mean window flow_frac - flow_chaos (NaN without state measures) */
+  double s_perp;             /* mean window s_perp (NaN without state measures) */
+  size_t ended;              /* runs whose HCS ended within min_window cpd of its start */
+  int flagged;               /* 1: "inhomogeneous" (s_perp > s_flag, or most runs ended early) */
+  int measured;              /* 1 if the runs carry state measures (else no flag can be given) */
+  double flow_excess;        /* mean window flow_frac - flow_chaos (NaN without state measures) */
 } hd_group_fit;
 
 /* Fills *out for the runs fits[g->idx[..]] with the rules of o (s_flag, min_window). */

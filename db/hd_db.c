@@ -225,14 +225,14 @@ static int tables_missing(sqlite3 *h, const char *const *tables, const char **mi
 static const struct {
   const char *table, *column, *decl;
 } added_columns[] = {
-    {"runs", "cpd", "REAL"},            /* 2: the cpd reached, updated at each commit */
-    {"samples", "flow_frac", "REAL"},   /* 2: the state measures (docs/analysis.md) */
+    {"runs", "cpd", "REAL"},          /* 2: the cpd reached, updated at each commit */
+    {"samples", "flow_frac", "REAL"}, /* 2: the state measures (docs/analysis.md) */
     {"samples", "flow_chaos", "REAL"},
     {"samples", "count_var", "REAL"},
     {"samples", "s_rho", "REAL"},
     {"samples", "s_perp", "REAL"},
     {"samples", "s_par", "REAL"},
-    {"runs", "hcs_cpd_start", "REAL"},   /* 2: the run's HCS window (hd_db_run_hcs) */
+    {"runs", "hcs_cpd_start", "REAL"}, /* 2: the run's HCS window (hd_db_run_hcs) */
     {"runs", "hcs_cpd_end", "REAL"},
     {"runs", "hcs_end", "TEXT"},
     {"runs", "hcs_s_perp", "REAL"},
@@ -267,11 +267,10 @@ static int not_haffs(sqlite3 *h, char *why, size_t size) {
   char other[64] = "";
   if (sqlite3_open_v2(":memory:", &mem, SQLITE_OPEN_READWRITE, NULL) != SQLITE_OK ||
       sqlite3_exec(mem, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK ||
-      sqlite3_prepare_v2(mem,
-                         "SELECT p.name FROM pragma_table_info(?1) p", -1, &cols,
-                         NULL) != SQLITE_OK ||
-      sqlite3_prepare_v2(h, "SELECT count(*) FROM pragma_table_info(?1) WHERE name = ?2", -1,
-                         &has, NULL) != SQLITE_OK) {
+      sqlite3_prepare_v2(mem, "SELECT p.name FROM pragma_table_info(?1) p", -1, &cols, NULL) !=
+          SQLITE_OK ||
+      sqlite3_prepare_v2(h, "SELECT count(*) FROM pragma_table_info(?1) WHERE name = ?2", -1, &has,
+                         NULL) != SQLITE_OK) {
     rc = 1;
     snprintf(why, size, "cannot read haff's own schema");
   }
@@ -336,9 +335,9 @@ static int column_missing(sqlite3 *h, const char *table, const char *column) {
  * same: the columns of added_columns that its tables lack are added (old rows read NULL), the
  * views are dropped to be made again as this version defines them, and the version is
  * stamped; so is a file of this version that lacks some of them (made by an earlier build of
- * it, before runs.hcs_* were added).  Additive only: every older file stays readable, and older readers read it as
- * before.  A file of a newer version is refused (HD_EINPUT): this haff does not know its
- * columns. */
+ * it, before runs.hcs_* were added).  Additive only: every older file stays readable, and older
+ * readers read it as before.  A file of a newer version is refused (HD_EINPUT): this haff does not
+ * know its columns. */
 static int schema_apply(hd_db *db, hd_error *err) {
   int v = query_int(db->db, "PRAGMA user_version");
   if (v < 0) return sql_error(db, err, "read the schema version");
@@ -414,11 +413,11 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
   if (!opened || (foreign = not_haffs(db->db, why, sizeof why)) < 0 ||
       (existing && !foreign && (missing = tables_missing(db->db, runs, &none)) < 0)) {
     /* a write-protected file in a read-only folder cannot be read either (no -shm) */
-    rc = opened && sqlite3_db_readonly(db->db, "main") == 1
-             ? hd_error_set(err, HD_EIO,
-                            "%s: open: the database file is read-only (check its permissions)",
-                            path)
-             : open_error(db->db, path, "open", err);
+    rc =
+        opened && sqlite3_db_readonly(db->db, "main") == 1
+            ? hd_error_set(err, HD_EIO,
+                           "%s: open: the database file is read-only (check its permissions)", path)
+            : open_error(db->db, path, "open", err);
     db_free(db);
     return rc;
   }
@@ -566,8 +565,8 @@ int hd_db_check_path(const char *path, int must_exist, hd_error *err) {
   if (S_ISDIR(st.st_mode))
     return hd_error_set(err, HD_EINPUT, "%s: is a directory, not a database file", path);
   if (!S_ISREG(st.st_mode))
-    return hd_error_set(err, HD_EINPUT, "%s: not a regular file (a FIFO or a device), not a database",
-                        path);
+    return hd_error_set(err, HD_EINPUT,
+                        "%s: not a regular file (a FIFO or a device), not a database", path);
   return HD_OK;
 }
 
@@ -1181,9 +1180,8 @@ int hd_db_run_hcs(hd_db *db, int64_t run, hd_error *err) {
       v = nv;
     }
     for (int c = 0; c < 7; c++)
-      v[7 * n + (size_t)c] = sqlite3_column_type(st, c) == SQLITE_NULL
-                                 ? NAN
-                                 : sqlite3_column_double(st, c);
+      v[7 * n + (size_t)c] =
+          sqlite3_column_type(st, c) == SQLITE_NULL ? NAN : sqlite3_column_double(st, c);
     n++;
   }
   sqlite3_finalize(st);

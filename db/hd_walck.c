@@ -72,9 +72,8 @@ int hd_walck_start(hd_walck **out, sqlite3 *w, const char *path, hd_error *err) 
   c->w = w;
   char plain[4200]; /* the file the writer opened, not ":memory:" nor a URI */
   const char *name = hd_db_plain_name(path, plain, sizeof plain);
-  if (!name ||
-      sqlite3_open_v2(name, &c->own, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, NULL) !=
-          SQLITE_OK) {
+  if (!name || sqlite3_open_v2(name, &c->own, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, NULL) !=
+                   SQLITE_OK) {
     hd_error_set(err, HD_EIO, "%s: open for checkpoints: %s", path,
                  c->own ? sqlite3_errmsg(c->own) : "out of memory");
     sqlite3_close(c->own);

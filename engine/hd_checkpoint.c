@@ -200,8 +200,8 @@ int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err) {
   int32_t oi, oj; /* no two bodies overlap (O(N), through the cells) */
   double o = hd_sim_max_overlap(s, &oi, &oj);
   if (o > 1e-6) /* the engine's verification allows 1e-9 of a diameter at a contact */
-    return hd_error_set(err, HD_EINPUT, "checkpoint: bodies %d and %d overlap by %.3g of a diameter",
-                        oi, oj, o);
+    return hd_error_set(err, HD_EINPUT,
+                        "checkpoint: bodies %d and %d overlap by %.3g of a diameter", oi, oj, o);
   rc = hd_sim_queue_init(s, err);
   if (rc) return rc;
   hd_queue_build(s->q, s->n, &s->b[0].ev_t, HD_BODY_STRIDE);

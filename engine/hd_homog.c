@@ -117,8 +117,8 @@ int hd_hcs_detect(const double *cpd, const double *s_perp, const double *flow_fr
 
 int hd_hcs_window_find(const double *t, const double *coll, const double *e, const double *cpd,
                        const double *s_perp, const double *flow_frac, const double *flow_chaos,
-                       size_t n, const hd_homog_opts *ho, const hd_hcs_opts *hc,
-                       hd_hcs_window *w, hd_error *err) {
+                       size_t n, const hd_homog_opts *ho, const hd_hcs_opts *hc, hd_hcs_window *w,
+                       hd_error *err) {
   memset(w, 0, sizeof *w);
   if (n < 1) return hd_error_set(err, HD_EINPUT, "HCS window: no samples");
   if (!(ho->thr > 0) || !(ho->min_coll >= 1) || ho->n_ref < 1 || ho->persist < 1 ||

@@ -102,8 +102,8 @@ typedef struct hd_hcs_window {
  * HD_EINPUT for n < 1 or bad options (err set). */
 int hd_hcs_window_find(const double *t, const double *coll, const double *e, const double *cpd,
                        const double *s_perp, const double *flow_frac, const double *flow_chaos,
-                       size_t n, const hd_homog_opts *ho, const hd_hcs_opts *hc,
-                       hd_hcs_window *w, hd_error *err);
+                       size_t n, const hd_homog_opts *ho, const hd_hcs_opts *hc, hd_hcs_window *w,
+                       hd_error *err);
 
 /* Whether the options are the defaults (the runs' stored windows used them). */
 int hd_hcs_opts_default(const hd_homog_opts *ho, const hd_hcs_opts *hc);

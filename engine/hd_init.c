@@ -94,10 +94,11 @@ static int place_dense_lattice(hd_sim *s, hd_error *err) {
    * no more than n of them, so the casts below are exact */
   double fx = fmin(floor(s->lx / ex), (double)s->n), fy = fmin(floor(s->ly / ey), (double)s->n);
   if (fx * fy < (double)s->n)
-    return hd_error_set(err, HD_EINPUT,
-                        "[system] box %g x %g: %d bodies do not fit for placement = random, not "
-                        "even on a dense lattice (%.0f x %.0f sites of %g x %g) to melt; enlarge it",
-                        s->lx, s->ly, s->n, fx, fy, ex, ey);
+    return hd_error_set(
+        err, HD_EINPUT,
+        "[system] box %g x %g: %d bodies do not fit for placement = random, not "
+        "even on a dense lattice (%.0f x %.0f sites of %g x %g) to melt; enlarge it",
+        s->lx, s->ly, s->n, fx, fy, ex, ey);
   int32_t nx = (int32_t)fx, ny = (int32_t)fy;
   double ax = s->lx / nx, ay = s->ly / ny;
   for (int32_t i = 0; i < s->n; i++) {

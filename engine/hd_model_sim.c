@@ -69,11 +69,20 @@ static void m_sample(const void *m, hd_sample_row *row) {
   hd_sim_energy(s, HD_SP_DISK, &st, &sr);
   hd_state_measures q;
   hd_sim_state(s, &q);
-  *row = (hd_sample_row){hd_sim_time(s),        s->c.collisions,      hd_sim_cpd(s),
-                         e_tr / s->n,           e_rot / s->n,         mixed ? dt / nd : NAN,
-                         mixed ? dr / nd : NAN, mixed ? st / nk : NAN, q.flow_frac,
-                         q.flow_chaos,          q.count_var,          q.s_rho,
-                         q.s_perp,              q.s_par};
+  *row = (hd_sample_row){hd_sim_time(s),
+                         s->c.collisions,
+                         hd_sim_cpd(s),
+                         e_tr / s->n,
+                         e_rot / s->n,
+                         mixed ? dt / nd : NAN,
+                         mixed ? dr / nd : NAN,
+                         mixed ? st / nk : NAN,
+                         q.flow_frac,
+                         q.flow_chaos,
+                         q.count_var,
+                         q.s_rho,
+                         q.s_perp,
+                         q.s_par};
 }
 
 static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label, hd_error *err) {

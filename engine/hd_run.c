@@ -48,12 +48,12 @@ typedef struct runner {
   double last_ckpt_wall; /* monotonic time of the last checkpoint */
   double last_tick_wall; /* monotonic time of the last progress line */
   int64_t last_tick_events;
-  int progress;            /* print a progress line: 1 redrawn on a terminal, 2 one per line */
-  double progress_every;   /* seconds between progress lines */
-  char note[200];          /* "" or what a run that ends well left undone (no event left before
-                            its stop condition, velocities_at times not reached) */
-  int lock_fd;             /* the run's lock (run_lock), -1 when not held */
-  double last_commit_wall; /* monotonic time of the last commit forced by the clock */
+  int progress;             /* print a progress line: 1 redrawn on a terminal, 2 one per line */
+  double progress_every;    /* seconds between progress lines */
+  char note[200];           /* "" or what a run that ends well left undone (no event left before
+                             its stop condition, velocities_at times not reached) */
+  int lock_fd;              /* the run's lock (run_lock), -1 when not held */
+  double last_commit_wall;  /* monotonic time of the last commit forced by the clock */
   hd_state_rec *frame_recs; /* a frame's bodies (take_frame), NULL until the first frame */
   unsigned char *frame_buf; /* the frame packed as db/schema.sql says */
   double frame_bytes;       /* bytes of frames stored for the run (hd_scene_frame_bytes each) */
@@ -220,8 +220,8 @@ static int checkpoint(runner *r, hd_error *err) {
   free(blob);
   tr.sum = ckpt_sum(all, hs + n);
   memcpy(all + hs + n, &tr, sizeof tr);
-  rc = hd_db_checkpoint_save(r->db, r->run, r->st.seq, r->ops->time(r->s), all,
-                             hs + n + sizeof tr, err);
+  rc = hd_db_checkpoint_save(r->db, r->run, r->st.seq, r->ops->time(r->s), all, hs + n + sizeof tr,
+                             err);
   free(all);
   r->last_ckpt_wall = now_wall();
   return rc;

@@ -355,8 +355,10 @@ static int set_vel_at(ctx *c, int k, const char *v) {
   int other = k == K_LVEL ? K_LVELT : K_LVEL;
   const char *unit = k == K_LVEL ? "cpd values" : "times";
   if (is_set(c->key_at[other]))
-    return FAIL_KEY(c, k, "cannot be used together with %s (one list of snapshots, in cpd or in "
-                    "time)", key_def[other].name);
+    return FAIL_KEY(c, k,
+                    "cannot be used together with %s (one list of snapshots, in cpd or in "
+                    "time)",
+                    key_def[other].name);
   int n = 0;
   const char *s = v;
   while (*s) {
@@ -396,8 +398,8 @@ static int check_vel_at(ctx *c) {
   double last = sc->velocities_at[sc->n_velocities_at - 1];
   double stop = sc->velocities_in_time ? sc->stop_time : sc->stop_cpd;
   if (stop > 0 && last > stop)
-    return FAIL_KEY(c, k, "%.17g is past %s = %.17g: that snapshot would never be taken",
-                    last, sc->velocities_in_time ? "stop_time" : "stop_cpd", stop);
+    return FAIL_KEY(c, k, "%.17g is past %s = %.17g: that snapshot would never be taken", last,
+                    sc->velocities_in_time ? "stop_time" : "stop_cpd", stop);
   return HD_OK;
 }
 
@@ -1233,8 +1235,8 @@ int hd_scene_load(hd_scene *sc, const char *path, const char *const *over, int n
     if (len > (size_t)HD_SCENE_MAX_BYTES) { /* the file grew after stat, or is not what it says */
       free(buf);
       fclose(f);
-      return hd_error_set(err, HD_EINPUT, "%s: scene larger than %ld bytes: not a scene file",
-                          path, HD_SCENE_MAX_BYTES);
+      return hd_error_set(err, HD_EINPUT, "%s: scene larger than %ld bytes: not a scene file", path,
+                          HD_SCENE_MAX_BYTES);
     }
   }
   int bad = ferror(f);
@@ -1330,8 +1332,8 @@ int hd_state_csv_read(const char *path, hd_state_row **rows, long *n, hd_error *
   while (!rc && (got = bounded_line(fp, line, HD_STATE_MAX_LINE)) != -1) {
     lineno++;
     if (got == -2) {
-      rc = hd_error_set(err, HD_EINPUT, "%s:%ld: line longer than %d bytes: not a state file",
-                        path, lineno, HD_STATE_MAX_LINE);
+      rc = hd_error_set(err, HD_EINPUT, "%s:%ld: line longer than %d bytes: not a state file", path,
+                        lineno, HD_STATE_MAX_LINE);
       break;
     }
     if (nrow >= 2 * HD_MAX_COUNT) {

@@ -53,8 +53,8 @@ void hd_sim_state(const hd_sim *s, hd_state_measures *out) {
   out->flow_frac = mv2 > 0 ? flow / mv2 : NAN;
   out->flow_chaos = mv2 > 0 ? chaos / mv2 : NAN;
   out->count_var = n > 0 ? var / NC / mean : NAN;
-  /* structure factors, averaged over the NK wave vectors (those where defined): S_rho = |rho_k|^2 / N; transverse
-   * and longitudinal momentum |p_k . e|^2 over its value for independent velocities,
+  /* structure factors, averaged over the NK wave vectors (those where defined): S_rho = |rho_k|^2 /
+   * N; transverse and longitudinal momentum |p_k . e|^2 over its value for independent velocities,
    * sum m^2 (v . e)^2 (e = k/|k| or its normal) */
   double sr = 0, st = 0, sl = 0;
   int nt = 0, nl = 0; /* modes where the normalisation is > 0 (not all velocities along k) */

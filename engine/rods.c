@@ -354,8 +354,7 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
       snprintf(why, sizeof why,
                "%lld collisions less than 1e-12 t after the previous one within %.3g, the "
                "largest relative energy of %d of them down from %.3g to %.3g",
-               (long long)r->tiny_run, tk - r->tiny_t0, HD_RODS_TINY_RUN, r->tiny_e0,
-               r->tiny_eblk);
+               (long long)r->tiny_run, tk - r->tiny_t0, HD_RODS_TINY_RUN, r->tiny_e0, r->tiny_eblk);
     } else {
       snprintf(why, sizeof why, "100000 successive collisions at the same time");
     }
@@ -423,8 +422,9 @@ typedef struct ck_head {
   int32_t recent[HD_RODS_TINY_RUN];
   uint64_t rng_size;
 } ck_head;
-#define CK_MAGIC 0x68646f7230303033ULL /* "hdor0003" (0002: the spacing-fall detector; 0001:
-                                          before it and the frame) */
+#define CK_MAGIC                                                                                   \
+  0x68646f7230303033ULL /* "hdor0003" (0002: the spacing-fall detector; 0001:                      \
+                           before it and the frame) */
 
 int hd_rods_checkpoint(const hd_rods *r, void **blob, size_t *n, hd_error *err) {
   size_t nr = (size_t)r->p.n, rs = gsl_rng_size(r->rng);
@@ -473,9 +473,9 @@ int hd_rods_checkpoint(const hd_rods *r, void **blob, size_t *n, hd_error *err) 
  * HD_OK or HD_EINPUT. */
 static int check_restored(const hd_rods *r, hd_error *err) {
   if (r->collisions < 0 || r->resampled < 0 || r->tiny_run < 0 || r->tiny_low < 0 ||
-      r->tiny_warm < 0 || r->stall < 0 || r->frame_next < 0 || r->frames < 0 ||
-      !isfinite(r->t) || !isfinite(r->x0) || !isfinite(r->x0t) || !isfinite(r->e_lost) ||
-      isnan(r->tiny_t0) || isnan(r->tiny_e0) || isnan(r->tiny_eblk))
+      r->tiny_warm < 0 || r->stall < 0 || r->frame_next < 0 || r->frames < 0 || !isfinite(r->t) ||
+      !isfinite(r->x0) || !isfinite(r->x0t) || !isfinite(r->e_lost) || isnan(r->tiny_t0) ||
+      isnan(r->tiny_e0) || isnan(r->tiny_eblk))
     return hd_error_set(err, HD_EINPUT, "rods checkpoint: counters or clocks out of range");
   long n = r->p.n;
   for (long k = 0; k < HD_RODS_TINY_RUN; k++)

@@ -75,8 +75,8 @@ static void m_sample(const void *m, hd_sample_row *row) {
   const hd_rods *r = m;
   double ek, eb, N = (double)r->p.n;
   hd_rods_energy(r, &ek, &eb, NULL);
-  *row = (hd_sample_row){r->t, r->collisions, m_cpd(m), ek / N, eb / N, NAN, NAN, NAN,
-                         NAN,  NAN,           NAN,      NAN,    NAN,    NAN};
+  *row = (hd_sample_row){r->t, r->collisions, m_cpd(m), ek / N, eb / N, NAN, NAN,
+                         NAN,  NAN,           NAN,      NAN,    NAN,    NAN, NAN};
 }
 
 static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label, hd_error *err) {

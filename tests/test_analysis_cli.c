@@ -542,8 +542,11 @@ static void veldist_pool(void **state) {
   const char *cases[][2] = {{"0", "50"}, {"30", "50"}, {"0", "70"}};
   const double want[] = {8000, 4000, 12000};
   for (int k = 0; k < 3; k++) {
-    char *args[] = {dbpath,      "--pool",          "--run",    "1", "--bins", "41", "--cpd-skip",
-                    (char *)cases[k][0], "--cpd-max", (char *)cases[k][1]};
+    char *args[] = {dbpath,       "--pool",
+                    "--run",      "1",
+                    "--bins",     "41",
+                    "--cpd-skip", (char *)cases[k][0],
+                    "--cpd-max",  (char *)cases[k][1]};
     assert_int_equal(run_cmd(haff_veldist_main, "veldist", args, 10, out), 0);
     int n = read_rows(out, rows, 100, 1);
     assert_int_equal(n, 41);

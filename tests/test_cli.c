@@ -21,7 +21,9 @@
 static char root[4096]; /* the source tree (the tests run from it): db/schema.sql */
 
 /* The stderr of the last sh() (dir/err.txt), at most n - 1 bytes. */
-static void read_err(char *buf, size_t n) { read_file("err.txt", buf, n); }
+static void read_err(char *buf, size_t n) {
+  read_file("err.txt", buf, n);
+}
 
 /* One integer from an SQL query on a database in dir (ATTACHing b.db as b when present). */
 static long long q1(const char *db, const char *sql) {
@@ -780,8 +782,9 @@ static void mixtures_and_walls_labelled(void **state) {
  * damaged checkpoints, runs killed before their first checkpoint ---- */
 
 /* A small scene of 200 collisions. */
-static const char small_scene[] = "[system]\narea_fraction = 0.1\nseed = 1\n[disks]\ncount = 50\n"
-                                  "[run]\nstop_events = 200\n[log]\ncollisions = all\nsamples_every = 0.1\n";
+static const char small_scene[] =
+    "[system]\narea_fraction = 0.1\nseed = 1\n[disks]\ncount = 50\n"
+    "[run]\nstop_events = 200\n[log]\ncollisions = all\nsamples_every = 0.1\n";
 
 /* md5sum of file name in dir, into sum (33 bytes). */
 static void md5_of(const char *name, char *sum) {

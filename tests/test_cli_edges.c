@@ -29,15 +29,17 @@ static int lines(const char *text) {
 static void one_line_with(const char *needle) {
   char err[4096];
   read_file("err.txt", err, sizeof err);
-  if (lines(err) != 1 || !strstr(err, needle)) fail_msg("expected one line with '%s', got: %s", needle, err);
+  if (lines(err) != 1 || !strstr(err, needle))
+    fail_msg("expected one line with '%s', got: %s", needle, err);
 }
 
 static const char disks_scene[] = "[system]\narea_fraction = 0.2\nseed = 3\n[disks]\ncount = 200\n"
                                   "alpha = 0.97\n[run]\nstop_cpd = 20\n[log]\ncollisions = all\n"
                                   "samples_every = 1\nvelocities_at = 2 5\n";
-static const char dimers_scene[] = "[system]\narea_fraction = 0.2\nseed = 3\n[dimers]\ncount = 200\n"
-                                   "alpha = 0.9\n[run]\nstop_cpd = 20\n[log]\ncollisions = all\n"
-                                   "samples_every = 1\nvelocities_at = 2 5\n";
+static const char dimers_scene[] =
+    "[system]\narea_fraction = 0.2\nseed = 3\n[dimers]\ncount = 200\n"
+    "alpha = 0.9\n[run]\nstop_cpd = 20\n[log]\ncollisions = all\n"
+    "samples_every = 1\nvelocities_at = 2 5\n";
 static const char rods_scene[] = "[rods]\ncount = 50\n[run]\nstop_time = 10\n[log]\n"
                                  "samples_every = 1\nvelocities_at = 2 5\n";
 
@@ -72,18 +74,37 @@ static int teardown(void **state) {
 static void stdout_write_errors(void **state) {
   (void)state;
   if (!haff) skip();
-  static const char *const cmds[] = {
-      "export xyz d.db", "haff-fit d.db", "table1 m.db", "table2 m.db", "energy d.db",
-      "angles m.db --run 1 --block 500", "veldist d.db --run 1", "rods-energy r.db --run 1",
-      "rods-density r.db --run 1", "rods-phase r.db --run 1 --t 5", "rods-gofr r.db --run 1 --t 5",
-      "rods-veldist r.db --run 1 --t 5", "rods-clusters r.db --run 1",
-      "rods-collapse --n 10 --eps 0.1 --seeds 2 --cpd 100", "mc fmean --a 1 --samples 1000",
-      "mc eps --gamma 1 --beta 1 --samples 100", "--help", "--version", "run --help",
-      "resume --help", "mc --help", "mc fmean --help", "mc eps --help", "export --help",
-      "table1 --help", "rods-energy --help", "rods-collapse --help"};
+  static const char *const cmds[] = {"export xyz d.db",
+                                     "haff-fit d.db",
+                                     "table1 m.db",
+                                     "table2 m.db",
+                                     "energy d.db",
+                                     "angles m.db --run 1 --block 500",
+                                     "veldist d.db --run 1",
+                                     "rods-energy r.db --run 1",
+                                     "rods-density r.db --run 1",
+                                     "rods-phase r.db --run 1 --t 5",
+                                     "rods-gofr r.db --run 1 --t 5",
+                                     "rods-veldist r.db --run 1 --t 5",
+                                     "rods-clusters r.db --run 1",
+                                     "rods-collapse --n 10 --eps 0.1 --seeds 2 --cpd 100",
+                                     "mc fmean --a 1 --samples 1000",
+                                     "mc eps --gamma 1 --beta 1 --samples 100",
+                                     "--help",
+                                     "--version",
+                                     "run --help",
+                                     "resume --help",
+                                     "mc --help",
+                                     "mc fmean --help",
+                                     "mc eps --help",
+                                     "export --help",
+                                     "table1 --help",
+                                     "rods-energy --help",
+                                     "rods-collapse --help"};
   for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
     /* each writes something on a working stdout */
-    if (sh("%s %s > out.txt", haff, cmds[i]) != 0) fail_msg("%s: failed on a working stdout", cmds[i]);
+    if (sh("%s %s > out.txt", haff, cmds[i]) != 0)
+      fail_msg("%s: failed on a working stdout", cmds[i]);
     char out[64];
     read_file("out.txt", out, sizeof out);
     if (!out[0]) fail_msg("%s: wrote nothing on stdout", cmds[i]);
@@ -109,7 +130,10 @@ static void resume_hint_is_shell_safe(void **state) {
                                       "quote\"back\\slash;&|<>*?.db", "plain_name.db"};
   for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
     write_file("name.txt", names[i]);
-    assert_int_equal(sh("timeout --preserve-status -s INT 1 %s run long.ini -o \"$(cat name.txt)\" --quiet", haff), 1);
+    assert_int_equal(
+        sh("timeout --preserve-status -s INT 1 %s run long.ini -o \"$(cat name.txt)\" --quiet",
+           haff),
+        1);
     char err[4096];
     read_file("err.txt", err, sizeof err);
     char *hint = strstr(err, "continue with: ");
@@ -141,12 +165,15 @@ static void resume_hint_is_shell_safe(void **state) {
 static void messages_escape_control_bytes(void **state) {
   (void)state;
   if (!haff) skip();
-  assert_int_equal(sh("%s run disks.ini -o x.db --set \"$(printf 'disks.alpha=0.5\\nfoo')\"", haff), 2);
+  assert_int_equal(sh("%s run disks.ini -o x.db --set \"$(printf 'disks.alpha=0.5\\nfoo')\"", haff),
+                   2);
   one_line_with("alpha = 0.5\\nfoo: not a number");
-  write_file("esc.ini", "[system]\narea_fraction = 0.1\n[disks]\ncount = 10\n"
-                        "alpha = \033]0;PWN\007\033[2J\xc2\x9b\xff \xc3\xa9\n[run]\nstop_time = 1\n");
+  write_file("esc.ini",
+             "[system]\narea_fraction = 0.1\n[disks]\ncount = 10\n"
+             "alpha = \033]0;PWN\007\033[2J\xc2\x9b\xff \xc3\xa9\n[run]\nstop_time = 1\n");
   assert_int_equal(sh("%s run esc.ini -o x.db", haff), 2);
-  one_line_with("esc.ini:5: [disks] alpha = \\x1b]0;PWN\\x07\\x1b[2J\\xc2\\x9b\\xff \xc3\xa9: not a number");
+  one_line_with(
+      "esc.ini:5: [disks] alpha = \\x1b]0;PWN\\x07\\x1b[2J\\xc2\\x9b\\xff \xc3\xa9: not a number");
   char err[4096];
   read_file("err.txt", err, sizeof err);
   for (const char *p = err; *p; p++) /* no control byte but the final newline */
@@ -183,8 +210,8 @@ static void special_and_malformed_databases(void **state) {
   (void)state;
   if (!haff) skip();
   assert_int_equal(sh("rm -f fifo.db && mkfifo fifo.db"), 0);
-  static const char *const fifo[] = {"run disks.ini -o fifo.db", "resume fifo.db",
-                                     "export xyz fifo.db", "haff-fit fifo.db",
+  static const char *const fifo[] = {"run disks.ini -o fifo.db",    "resume fifo.db",
+                                     "export xyz fifo.db",          "haff-fit fifo.db",
                                      "rods-energy fifo.db --run 1", "run disks.ini -o /dev/null"};
   for (size_t i = 0; i < sizeof fifo / sizeof fifo[0]; i++) {
     int rc = sh("timeout 10 %s %s", haff, fifo[i]);

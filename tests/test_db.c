@@ -434,7 +434,8 @@ static void checkpoint_save_load_truncate(void **state) {
     r.t = (double)(k - 1);
     assert_int_equal(hd_db_log_collision(db, r1, &r, &err), HD_OK);
     assert_int_equal(hd_db_log_collision(db, r2, &r, &err), HD_OK);
-    hd_sample_row s = {(double)(k - 1), k, 0.1 * (double)k, 1.0, 0.5, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
+    hd_sample_row s = {
+        (double)(k - 1), k, 0.1 * (double)k, 1.0, 0.5, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
     assert_int_equal(hd_db_log_sample(db, r1, &s, &err), HD_OK);
     assert_int_equal(hd_db_log_sample(db, r2, &s, &err), HD_OK);
   }
@@ -858,7 +859,9 @@ static void fill_query_db(const char *path, qdata *q) {
     for (int k = 0; k < 20; k++) {
       q->e_tr[r][k] = 2.0 * exp(-0.1 * k) + r;
       q->e_rot[r][k] = 1.0 * exp(-0.05 * k);
-      hd_sample_row sm = {0.5 * k, 100 * k, 0.2 * k, q->e_tr[r][k], q->e_rot[r][k], NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
+      hd_sample_row sm = {
+          0.5 * k, 100 * k, 0.2 * k, q->e_tr[r][k], q->e_rot[r][k], NAN, NAN, NAN, NAN, NAN, NAN,
+          NAN,     NAN,     NAN};
       assert_int_equal(hd_db_log_sample(db, run, &sm, &err), HD_OK);
     }
     assert_int_equal(

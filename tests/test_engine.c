@@ -258,7 +258,8 @@ static void state_measures(void **state) {
   }
   sp /= n, sl /= n, fr /= n, cv /= n, sr /= n;
   printf("# state measures, no correlation: s_perp %.3f s_par %.3f flow/chaos %.3f count_var "
-         "%.3f s_rho %.3f\n", sp, sl, fr, cv, sr);
+         "%.3f s_rho %.3f\n",
+         sp, sl, fr, cv, sr);
   assert_true(fabs(sp - 1) < 0.3 && fabs(sl - 1) < 0.3 && fabs(fr - 1) < 0.3);
   assert_true(fabs(cv - 0.82) < 0.35 && fabs(sr - 0.82) < 0.35);
   hd_scene sc;

@@ -46,7 +46,7 @@ static void hcs_window(void **state) {
   assert_true(cpd[h.n_end - 1] == 60.0);
   assert_true(fabs(h.flow_excess - 0.01) < 1e-12);
   assert_true(h.s_perp > 1 && h.s_perp < 1.2); /* one sample of 20 among 111 */
-  o.s_end = 30; /* never passed */
+  o.s_end = 30;                                /* never passed */
   assert_int_equal(hd_hcs_detect(cpd, sp, ff, fc, N, &o, &h, &err), HD_OK);
   assert_true(!h.ended && h.n_end == N);
   assert_int_equal(hd_hcs_detect(cpd, nan, nan, nan, N, &o, &h, &err), HD_OK);
@@ -179,7 +179,8 @@ static int read_groups(const char *path, grow *g, int max) {
   assert_non_null(f);
   char line[2048];
   int col[7] = {-1, -1, -1, -1, -1, -1, -1}, m = 0;
-  static const char *const names[7] = {"D_e", "D_e_err", "D_e_sys", "n", "flag", "sys_box", "alpha"};
+  static const char *const names[7] = {"D_e",  "D_e_err", "D_e_sys", "n",
+                                       "flag", "sys_box", "alpha"};
   assert_non_null(fgets(line, sizeof line, f));
   line[strcspn(line, "\n")] = 0;
   int c = 0;
@@ -387,9 +388,13 @@ static void add_dimer_run(hd_db *db, double alpha, double kink, double sp, doubl
     x = x * 6364136223846793005UL + 1442695040888963407UL;
     double u = (double)(x >> 11) / 9007199254740992.0 - 0.5; /* uniform, sd 0.29 */
     double K = 2 + 0.001 * cpd + kink * fmax(0, cpd - 52.5) + 3.5e-3 * u;
-    hd_sample_row row = {t,   (int64_t)(450 * k), cpd, E * K / (K + 1), E / (K + 1),
-                         NAN, NAN,                NAN, 0.05 + fx,      0.05,
-                         1,   1,                  sp,  1};
+    hd_sample_row row = {t,           (int64_t)(450 * k),
+                         cpd,         E * K / (K + 1),
+                         E / (K + 1), NAN,
+                         NAN,         NAN,
+                         0.05 + fx,   0.05,
+                         1,           1,
+                         sp,          1};
     assert_int_equal(hd_db_log_sample(db, run, &row, &err), HD_OK);
   }
   assert_int_equal(hd_db_run_hcs(db, run, &err), HD_OK);
@@ -523,14 +528,10 @@ static int teardown(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(hcs_window),
-      cmocka_unit_test(group_errors),
-      cmocka_unit_test(schema_upgrade),
-      cmocka_unit_test(schema_same_version),
-      cmocka_unit_test(stored_window),
-      cmocka_unit_test(k_sys),
-      cmocka_unit_test(table2_sys),
-      cmocka_unit_test(acceptance_cheap),
+      cmocka_unit_test(hcs_window),     cmocka_unit_test(group_errors),
+      cmocka_unit_test(schema_upgrade), cmocka_unit_test(schema_same_version),
+      cmocka_unit_test(stored_window),  cmocka_unit_test(k_sys),
+      cmocka_unit_test(table2_sys),     cmocka_unit_test(acceptance_cheap),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

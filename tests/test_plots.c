@@ -25,7 +25,7 @@ static char root[512], tmp[256], haff[512];
 #define TINY                                                                                       \
   "NDIM=50 NRUNS=2 ALPHAS='1 0.9 0.8' AOVERD=1 GAP_A=1.5 DISK_ALPHAS=0.9 "                         \
   "FIG2_ALPHAS='0.9 0.8' ELASTIC_CPD=40 ERR_RUNS=2 ERR_CPD='20 40' FIG5_CPD=25 FMEAN_A=1 "         \
-  "MC_SAMPLES=20000 XMAX=8 HCS_STABLE=50 HCS_UNSTABLE=100 HCS_CPD=20 ERR_NSTABLE=30 "         \
+  "MC_SAMPLES=20000 XMAX=8 HCS_STABLE=50 HCS_UNSTABLE=100 HCS_CPD=20 ERR_NSTABLE=30 "              \
   "FIG6_RUNS=2"
 
 static int make(const char *flags, const char *targets, const char *log) {

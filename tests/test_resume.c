@@ -66,8 +66,10 @@ static long long q1(const char *name, const char *sql) {
   if (sqlite3_prepare_v2(h, sql, -1, &st, NULL) != SQLITE_OK) fail_msg("%s", sqlite3_errmsg(h));
   long long v = 0;
   int s = sqlite3_step(st);
-  if (s == SQLITE_ROW) v = sqlite3_column_int64(st, 0);
-  else if (s != SQLITE_DONE) fail_msg("%s: %s", sql, sqlite3_errmsg(h));
+  if (s == SQLITE_ROW)
+    v = sqlite3_column_int64(st, 0);
+  else if (s != SQLITE_DONE)
+    fail_msg("%s: %s", sql, sqlite3_errmsg(h));
   sqlite3_finalize(st);
   sqlite3_close(h);
   return v;
@@ -166,8 +168,7 @@ static void flip_bit(const char *name, long long bit) {
   sqlite3 *h = NULL;
   assert_int_equal(sqlite3_open_v2(path_of(name), &h, SQLITE_OPEN_READWRITE, NULL), SQLITE_OK);
   sqlite3_stmt *st = NULL;
-  assert_int_equal(sqlite3_prepare_v2(h, "SELECT blob FROM checkpoints", -1, &st, NULL),
-                   SQLITE_OK);
+  assert_int_equal(sqlite3_prepare_v2(h, "SELECT blob FROM checkpoints", -1, &st, NULL), SQLITE_OK);
   assert_int_equal(sqlite3_step(st), SQLITE_ROW);
   int n = sqlite3_column_bytes(st, 0);
   unsigned char *b = malloc((size_t)n);
@@ -357,9 +358,8 @@ static void fuzz_corpus_replays(void **state) {
       seeds++;
       hd_scene sc;
       hd_error err;
-      assert_int_equal(hd_scene_load_string(&sc, fuzz_ckpt_scenes[b[0] & 1], "fuzz.ini", NULL, 0,
-                                            &err),
-                       HD_OK);
+      assert_int_equal(
+          hd_scene_load_string(&sc, fuzz_ckpt_scenes[b[0] & 1], "fuzz.ini", NULL, 0, &err), HD_OK);
       const hd_model_ops *ops = hd_model_for_scene(&sc);
       void *m = NULL;
       if (ops->alloc_restore(&m, &sc, b + 1, n - 1, &err)) fail_msg("%s: %s", p, err.msg);

@@ -220,12 +220,12 @@ static const bad_case bad_cases[] = {
     /* a snapshot past the stop (in the same unit) is refused at set-up (issue 16) */
     {RUN "[log]\nvelocities_at = 0.5 2\n", NULL, HD_EINPUT, "bad.ini:4:", "[log] velocities_at",
      "past stop_cpd"},
-    {"[run]\nstop_time = 10\n[log]\nvelocities_at_time = 1 20\n", NULL, HD_EINPUT, "bad.ini:4:",
-     "[log] velocities_at_time", "past stop_time"},
-    {RUN "[log]\nvelocities_at = 0.5\nvelocities_at_time = 1\n", NULL, HD_EINPUT, "bad.ini:5:",
-     "[log] velocities_at_time", "together with velocities_at"},
-    {RUN "[log]\nvelocities_at_time = 2 1\n", NULL, HD_EINPUT, "bad.ini:4:",
-     "[log] velocities_at_time", "ascending"},
+    {"[run]\nstop_time = 10\n[log]\nvelocities_at_time = 1 20\n", NULL, HD_EINPUT,
+     "bad.ini:4:", "[log] velocities_at_time", "past stop_time"},
+    {RUN "[log]\nvelocities_at = 0.5\nvelocities_at_time = 1\n", NULL, HD_EINPUT,
+     "bad.ini:5:", "[log] velocities_at_time", "together with velocities_at"},
+    {RUN "[log]\nvelocities_at_time = 2 1\n", NULL, HD_EINPUT,
+     "bad.ini:4:", "[log] velocities_at_time", "ascending"},
     {RUN "[walls]\nsides = left left\n", NULL, HD_EINPUT, "bad.ini:4:", "[walls] sides",
      "repeated"},
     {RUN "[walls]\nsides = left front\n", NULL, HD_EINPUT, "bad.ini:4:", "[walls] sides",
@@ -548,8 +548,9 @@ static void text_round_trip(void **state) {
   round_trip_one(&a);
   hd_scene_free(&a);
   /* snapshot times (velocities_at_time) keep their unit through the text */
-  assert_int_equal(hd_scene_load_string(&a, "[rods]\ncount = 4\n[run]\nstop_time = 5\n[log]\n"
-                                            "velocities_at_time = 0.1 5\n",
+  assert_int_equal(hd_scene_load_string(&a,
+                                        "[rods]\ncount = 4\n[run]\nstop_time = 5\n[log]\n"
+                                        "velocities_at_time = 0.1 5\n",
                                         "vt.ini", NULL, 0, &e),
                    HD_OK);
   assert_true(a.velocities_in_time == 1 && a.n_velocities_at == 2 && a.velocities_at[1] == 5);

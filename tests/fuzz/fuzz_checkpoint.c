@@ -2,9 +2,9 @@
  * checksum that hd_run.c puts over a whole checkpoint, so that what the models check is what is
  * fuzzed.  Input: one byte that picks the model (even: the 2D scene below, odd: the rods ring),
  * then the model's blob (the rods ring with constant eps: the stochastic model's sampler takes
- * a second to build under the sanitizers), as hd_sim_checkpoint / hd_rods_checkpoint write it for that scene.  A
- * blob that restores is run for up to 200 collisions and checkpointed again: a restore that
- * accepts a state the engine cannot run is a bug, as is a crash in the restore itself.
+ * a second to build under the sanitizers), as hd_sim_checkpoint / hd_rods_checkpoint write it for
+ * that scene.  A blob that restores is run for up to 200 collisions and checkpointed again: a
+ * restore that accepts a state the engine cannot run is a bug, as is a crash in the restore itself.
  * Seeds: tests/fuzz/corpus/checkpoint/ (real blobs of these scenes); crashes found are kept
  * there and replayed by tests/test_resume.c (fuzz_corpus_replays). */
 #include <math.h>

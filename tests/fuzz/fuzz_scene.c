@@ -21,7 +21,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   int rc = hd_scene_load_string(&sc, text, "fuzz.ini", NULL, 0, &err);
   if (rc == HD_OK) {
     if (!sc.text) abort(); /* an accepted scene has its canonical text */
-    hd_scene sc2; /* which must load again, to the same text */
+    hd_scene sc2;          /* which must load again, to the same text */
     hd_error e2;
     if (hd_scene_load_stored(&sc2, sc.text, "canonical", &e2) != HD_OK) abort();
     if (strcmp(sc.text, sc2.text)) abort();
