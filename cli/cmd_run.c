@@ -67,6 +67,36 @@ static void say_interrupted(const char *cmd, const char *msg, const char *db, in
 
 /* --progress SECONDS: *every gets the seconds (0 from the user means none: -1); 0 ok, else 2
  * with the message said. */
+/* Runs scene sc as a new run of db (sc != NULL), or resumes run want of db (sc NULL; want 0:
+ * the newest resumable), and says on stderr how it ended, as "haff CMD: ...": the interruption
+ * with how to go on, the error, a note, or "done" unless quiet.  *run gets the run's id.
+ * Returns the status (HD_EINTR: stopped by a signal). */
+static int drive_run(const char *cmd, const hd_scene *sc, int64_t want, const char *db, int quiet,
+                     double every, int64_t *run) {
+  hd_error err;
+  hd_error_clear(&err);
+  char note[256] = "";
+  hd_run_opts o = {.db_path = db,
+                   .quiet = quiet,
+                   .version = HAFF_VERSION,
+                   .note = note,
+                   .note_size = sizeof note,
+                   .progress_every = every};
+  *run = 0;
+  int rc = sc ? hd_run_new(sc, &o, run, &err) : hd_run_resume(want, &o, run, &err);
+  if (rc == HD_EINTR) {
+    say_interrupted(cmd, err.msg, db, *run);
+    return rc;
+  }
+  if (rc) {
+    fprintf(stderr, "haff %s: %s\n", cmd, err.msg);
+    return rc;
+  }
+  if (note[0]) fprintf(stderr, "haff %s: note: run %lld %s\n", cmd, (long long)*run, note);
+  if (!quiet) fprintf(stderr, "haff %s: run %lld done, in %s\n", cmd, (long long)*run, db);
+  return HD_OK;
+}
+
 static int parse_progress(const char *cmd, const char *arg, double *every) {
   char *end;
   errno = 0;
@@ -179,27 +209,10 @@ int haff_run_main(int argc, char **argv) {
     fprintf(stderr, "haff run: %s\n", err.msg);
     return 2;
   }
-  char note[256] = "";
-  hd_run_opts o = {.db_path = db,
-                   .quiet = quiet,
-                   .version = HAFF_VERSION,
-                   .note = note,
-                   .note_size = sizeof note,
-                   .progress_every = every};
   int64_t run = 0;
-  rc = hd_run_new(&sc, &o, &run, &err);
+  rc = drive_run("run", &sc, 0, db, quiet, every, &run);
   hd_scene_free(&sc);
-  if (rc == HD_EINTR) {
-    say_interrupted("run", err.msg, db, run);
-    return hd_exit_code(rc);
-  }
-  if (rc) {
-    fprintf(stderr, "haff run: %s\n", err.msg);
-    return hd_exit_code(rc);
-  }
-  if (note[0]) fprintf(stderr, "haff run: note: run %lld %s\n", (long long)run, note);
-  if (!quiet) fprintf(stderr, "haff run: run %lld done, in %s\n", (long long)run, db);
-  return 0;
+  return hd_exit_code(rc);
 }
 
 static const char resume_usage[] =
@@ -212,28 +225,8 @@ static const char resume_usage[] =
 /* Resumes run want (0: the newest resumable) of db; says how it ended.  Returns the status
  * (HD_EINTR: stopped by a signal). */
 static int resume_one(const char *db, long long want, int quiet, double every) {
-  hd_error err;
-  hd_error_clear(&err);
-  char note[256] = "";
-  hd_run_opts o = {.db_path = db,
-                   .quiet = quiet,
-                   .version = HAFF_VERSION,
-                   .note = note,
-                   .note_size = sizeof note,
-                   .progress_every = every};
   int64_t run = 0;
-  int rc = hd_run_resume(want, &o, &run, &err);
-  if (rc == HD_EINTR) {
-    say_interrupted("resume", err.msg, db, run);
-    return rc;
-  }
-  if (rc) {
-    fprintf(stderr, "haff resume: %s\n", err.msg);
-    return rc;
-  }
-  if (note[0]) fprintf(stderr, "haff resume: note: run %lld %s\n", (long long)run, note);
-  if (!quiet) fprintf(stderr, "haff resume: run %lld done, in %s\n", (long long)run, db);
-  return HD_OK;
+  return drive_run("resume", NULL, (int64_t)want, db, quiet, every, &run);
 }
 
 /* --all: the ids of db's resumable runs, oldest first, into *ids (malloc'd); HD_OK or an error
