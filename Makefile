@@ -33,12 +33,14 @@ OPT     ?= -O2 -g -fno-math-errno
 # 1000 at 0.45 1.59 +- 0.03 against 1.55 +- 0.02 (8 runs each), dimers 1000 at 0.30 8.61 +- 0.11
 # against 8.59 +- 0.05 (3 runs): no difference beyond the noise (2 %)
 PIC     ?= -fPIC -fno-semantic-interposition
-CFLAGS  := -std=c11 -D_GNU_SOURCE -pthread $(OPT) $(PIC) $(WARN) -MMD -MP -Iengine -Idb -Imc -Ianalysis -Icli \
+LIB_DIRS:= engine/core engine/body engine/rods engine/scene engine/sim db engine/run analysis mc
+SRC_DIRS:= $(LIB_DIRS) cli
+CFLAGS  := -std=c11 -D_GNU_SOURCE -pthread $(OPT) $(PIC) $(WARN) -MMD -MP $(addprefix -I,$(SRC_DIRS)) \
            $(shell pkg-config --cflags $(PKGS) 2>/dev/null) $(EXTRA_CFLAGS)
 LDLIBS  := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lgsl -lgslcblas -lsqlite3 -linih) -lm -pthread
 TESTLIBS:= -lcmocka
 
-LIB_SRC := $(wildcard engine/*.c db/*.c mc/*.c analysis/*.c)
+LIB_SRC := $(wildcard $(addsuffix /*.c,$(LIB_DIRS)))
 CLI_SRC := $(wildcard cli/*.c)
 TEST_SRC:= $(wildcard tests/test_*.c)
 LIB_OBJ := $(LIB_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/schema_sql.o
@@ -182,7 +184,7 @@ plots: bin/haff
 	@$(MAKE) --no-print-directory -f plots/plots.mk
 
 format:
-	clang-format -i $(LIB_SRC) $(CLI_SRC) $(TEST_SRC) $(wildcard */*.h)
+	clang-format -i $(LIB_SRC) $(CLI_SRC) $(TEST_SRC) $(wildcard */*.h */*/*.h)
 
 # --- install -------------------------------------------------------------------------------
 PREFIX  ?= /usr/local
@@ -204,4 +206,4 @@ uninstall:
 clean:
 	rm -rf build build-asan build-fuzz bin
 
--include $(wildcard $(BUILD)/*/*.d $(BUILD)/*/*/*.d)
+-include $(wildcard $(BUILD)/*/*.d $(BUILD)/*/*/*.d $(BUILD)/*/*/*/*.d)
