@@ -17,6 +17,12 @@ enum hd_status {
   HD_EPHYS = 6      /* a physics invariant failed in verification mode (CLI exit 1) */
 };
 
+/* Statuses of a simulation step that are not errors (hd_sim_next, hd_rods_next, the models of
+ * the runner): the next event is after the stop time; no event is left; many events passed
+ * without a collision (call again).  Here, below every simulation, so that the 2D engine and
+ * the rod ring share them without including each other. */
+enum { HD_SIM_STOPTIME = 100, HD_SIM_IDLE = 101, HD_SIM_BUSY = 102 };
+
 /* A one-line error message.  msg is "" when no error has been set. */
 typedef struct hd_error {
   int code;       /* the hd_status of the error, HD_OK when none */

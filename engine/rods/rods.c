@@ -9,8 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "hd_sim.h"
-
 void hd_rods_params_default(hd_rods_params *p) {
   memset(p, 0, sizeof *p);
   p->gamma = 0.8;

@@ -17,7 +17,6 @@
 #include <stdint.h>
 
 #include "eps.h"
-#include "hd_db.h"
 #include "hd_error.h"
 #include "hd_queue.h"
 
@@ -144,7 +143,7 @@ int hd_rods_alloc(hd_rods **out, const hd_rods_params *p, hd_error *err);
 void hd_rods_free(hd_rods *r);
 
 /* Advances to the next collision, processes it and describes it in *ev.  Returns HD_OK,
- * HD_SIM_STOPTIME (hd_sim.h: the next collision is after t_stop; the clock is set to t_stop),
+ * HD_SIM_STOPTIME (hd_error.h: the next collision is after t_stop; the clock is set to t_stop),
  * HD_SIM_IDLE (no gap closes: every eps was 0 and the ring froze), or HD_ECOLLAPSE (err names
  * the time, the collisions and the cluster of rods; the state is that before the collision). */
 int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err);

@@ -137,8 +137,8 @@ int hd_sim_alloc(hd_sim **out, const hd_scene *sc, hd_error *err);
 /* Frees everything (NULL allowed). */
 void hd_sim_free(hd_sim *s);
 
-/* Status of hd_sim_next besides HD_OK (a collision happened). */
-enum { HD_SIM_STOPTIME = 100, HD_SIM_IDLE = 101, HD_SIM_BUSY = 102 };
+/* Status of hd_sim_next besides HD_OK (a collision happened): HD_SIM_STOPTIME, HD_SIM_IDLE,
+ * HD_SIM_BUSY (hd_error.h). */
 /* Events hd_sim_next processes without a collision before it returns HD_SIM_BUSY. */
 #define HD_SIM_BUSY_EVENTS (1L << 22)
 
