@@ -12,6 +12,7 @@
 
 #include "eps.h"
 #include "hd_db.h"
+#include "hd_epsdb.h"
 
 static void usage(FILE *out) {
   fprintf(

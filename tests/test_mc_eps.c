@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "eps.h"
+#include "hd_epsdb.h"
 
 static int sanitize(void) {
   const char *s = getenv("HAFF_SANITIZE");

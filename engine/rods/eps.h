@@ -11,7 +11,6 @@
 #define HD_EPS_H
 
 #include <gsl/gsl_rng.h>
-#include <sqlite3.h>
 #include <stdint.h>
 
 #include "hd_error.h"
@@ -125,6 +124,13 @@ int hd_eps_table_build(hd_eps_table **out, hd_eps_sampler *s, double beta_min, d
 /* Frees a table.  NULL is allowed. */
 void hd_eps_table_free(hd_eps_table *t);
 
+/* An empty table of nbeta x nu nodes (q not set, the other fields 0), or NULL when out of
+ * memory; for a reader that fills it (db/hd_epsdb.c).  Free with hd_eps_table_free. */
+hd_eps_table *hd_eps_table_alloc(int nbeta, int nu);
+
+/* beta_k of node k < nbeta: beta_min (beta_max/beta_min)^(k/(nbeta-1)). */
+double hd_eps_table_beta(const hd_eps_table *t, int k);
+
 /* One eps from the table: u ~ U(0,1), Q linear in u within a node and linear in ln beta between
  * nodes (same u).  Below beta_min the beta_min node is used as is (p_beta has no simple scaling
  * there, docs/mc-eps.md); above beta_max, eps = g + (Q(beta_max) - g) sqrt(beta_max/beta) with
@@ -152,15 +158,6 @@ double hd_eps_table_moment(const hd_eps_table *t);
  * property of the sampler.  *scale (if not NULL) gets c.  HD_OK, or HD_EINPUT if M is not
  * finite and positive (the table is then unchanged). */
 int hd_eps_table_balance(hd_eps_table *t, double *scale, hd_error *err);
-
-/* Writes the table to db (tables eps_tables and eps_table_points of db/schema.sql, created if
- * missing) in one transaction; *id (if not NULL) gets its eps_tables.id.  HD_OK or HD_EIO. */
-int hd_eps_table_save(const hd_eps_table *t, sqlite3 *db, unsigned long seed, int64_t *id,
-                      hd_error *err);
-
-/* Loads table id from db; id <= 0 loads the newest table whose gamma equals gamma (within
- * 1e-12).  Returns HD_OK, HD_EINPUT (no such table) or HD_EIO. */
-int hd_eps_table_load(hd_eps_table **out, sqlite3 *db, int64_t id, double gamma, hd_error *err);
 
 /* The `haff mc eps` program. */
 int hd_mc_eps_main(int argc, char **argv);

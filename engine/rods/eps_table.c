@@ -1,5 +1,5 @@
-/* hd_eps tables: p_beta(eps) as inverse CDFs on a logarithmic beta grid, their sampler and
- * their storage in the run database (tables eps_tables, eps_table_points of db/schema.sql). */
+/* hd_eps tables: p_beta(eps) as inverse CDFs on a logarithmic beta grid and their sampler
+ * (their storage in the run database: db/hd_epsdb.c). */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_sort.h>
@@ -10,8 +10,6 @@
 #include <time.h>
 
 #include "eps.h"
-
-extern const char hd_schema_sql[]; /* db/schema.sql, compiled in by the Makefile */
 
 void hd_eps_table_free(hd_eps_table *t) {
   if (!t) return;
@@ -208,133 +206,10 @@ int hd_eps_table_balance(hd_eps_table *t, double *scale, hd_error *err) {
   return HD_OK;
 }
 
-static int db_fail(sqlite3 *db, hd_error *err, const char *what) {
-  return hd_error_set(err, HD_EIO, "eps table: %s: %s", what, sqlite3_errmsg(db));
+hd_eps_table *hd_eps_table_alloc(int nbeta, int nu) {
+  return table_alloc(nbeta, nu);
 }
 
-int hd_eps_table_save(const hd_eps_table *t, sqlite3 *db, unsigned long seed, int64_t *id,
-                      hd_error *err) {
-  char *msg = NULL;
-  if (sqlite3_exec(db, hd_schema_sql, NULL, NULL, &msg) != SQLITE_OK) {
-    int rc = hd_error_set(err, HD_EIO, "eps table: schema: %s", msg ? msg : "?");
-    sqlite3_free(msg);
-    return rc;
-  }
-  if (sqlite3_exec(db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK)
-    return db_fail(db, err, "begin");
-  sqlite3_stmt *st = NULL;
-  int ok =
-      sqlite3_prepare_v2(db,
-                         "INSERT INTO eps_tables (gamma, gamma_eff, nbeta, nu, beta_min, "
-                         "beta_max, samples, step, adapt, richardson, seed, seconds, created)"
-                         " VALUES (?,?,?,?,?,?,?,?,?,?,?,?,strftime('%Y-%m-%dT%H:%M:%SZ','now'))",
-                         -1, &st, NULL) == SQLITE_OK;
-  if (ok) {
-    sqlite3_bind_double(st, 1, t->gamma);
-    sqlite3_bind_double(st, 2, t->gamma_eff);
-    sqlite3_bind_int(st, 3, t->nbeta);
-    sqlite3_bind_int(st, 4, t->nu);
-    sqlite3_bind_double(st, 5, t->beta_min);
-    sqlite3_bind_double(st, 6, t->beta_max);
-    sqlite3_bind_int64(st, 7, t->samples);
-    sqlite3_bind_double(st, 8, t->step);
-    sqlite3_bind_int(st, 9, t->adapt);
-    sqlite3_bind_int(st, 10, t->richardson);
-    sqlite3_bind_int64(st, 11, (sqlite3_int64)seed);
-    sqlite3_bind_double(st, 12, t->seconds);
-    ok = sqlite3_step(st) == SQLITE_DONE;
-  }
-  sqlite3_finalize(st);
-  st = NULL;
-  sqlite3_int64 tab = sqlite3_last_insert_rowid(db);
-  if (ok)
-    ok = sqlite3_prepare_v2(db,
-                            "INSERT INTO eps_table_points (tab, k, beta, j, u, eps) "
-                            "VALUES (?,?,?,?,?,?)",
-                            -1, &st, NULL) == SQLITE_OK;
-  for (int k = 0; ok && k < t->nbeta; k++)
-    for (int j = 0; ok && j < t->nu; j++) {
-      sqlite3_bind_int64(st, 1, tab);
-      sqlite3_bind_int(st, 2, k);
-      sqlite3_bind_double(st, 3, node_beta(t, k));
-      sqlite3_bind_int(st, 4, j);
-      sqlite3_bind_double(st, 5, (double)j / (t->nu - 1));
-      sqlite3_bind_double(st, 6, t->q[k * t->nu + j]);
-      ok = sqlite3_step(st) == SQLITE_DONE;
-      sqlite3_reset(st);
-    }
-  sqlite3_finalize(st);
-  if (!ok) {
-    int rc = db_fail(db, err, "insert");
-    sqlite3_exec(db, "ROLLBACK", NULL, NULL, NULL);
-    return rc;
-  }
-  if (sqlite3_exec(db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK) return db_fail(db, err, "commit");
-  if (id) *id = tab;
-  return HD_OK;
-}
-
-int hd_eps_table_load(hd_eps_table **out, sqlite3 *db, int64_t id, double gamma, hd_error *err) {
-  *out = NULL;
-  sqlite3_stmt *st = NULL;
-  const char *sql =
-      id > 0 ? "SELECT id, gamma, gamma_eff, nbeta, nu, beta_min, beta_max, samples, step, adapt,"
-               " richardson, seconds FROM eps_tables WHERE id = ?"
-             : "SELECT id, gamma, gamma_eff, nbeta, nu, beta_min, beta_max, samples, step, adapt,"
-               " richardson, seconds FROM eps_tables WHERE abs(gamma - ?) < 1e-12"
-               " ORDER BY id DESC LIMIT 1";
-  if (sqlite3_prepare_v2(db, sql, -1, &st, NULL) != SQLITE_OK)
-    return db_fail(db, err, "no eps_tables in this database");
-  if (id > 0)
-    sqlite3_bind_int64(st, 1, id);
-  else
-    sqlite3_bind_double(st, 1, gamma);
-  int rc = sqlite3_step(st);
-  if (rc != SQLITE_ROW) {
-    sqlite3_finalize(st);
-    if (rc != SQLITE_DONE) return db_fail(db, err, "select");
-    if (id > 0)
-      return hd_error_set(err, HD_EINPUT, "eps table: no table with id %lld", (long long)id);
-    return hd_error_set(err, HD_EINPUT, "eps table: no table for gamma %g", gamma);
-  }
-  int64_t tab = sqlite3_column_int64(st, 0);
-  int nbeta = sqlite3_column_int(st, 3), nu = sqlite3_column_int(st, 4);
-  hd_eps_table *t = nbeta >= 2 && nu >= 2 ? table_alloc(nbeta, nu) : NULL;
-  if (!t) {
-    sqlite3_finalize(st);
-    return hd_error_set(err, HD_EIO, "eps table %lld: bad sizes or out of memory", (long long)tab);
-  }
-  t->gamma = sqlite3_column_double(st, 1);
-  t->gamma_eff = sqlite3_column_double(st, 2);
-  t->beta_min = sqlite3_column_double(st, 5);
-  t->beta_max = sqlite3_column_double(st, 6);
-  t->samples = sqlite3_column_int64(st, 7);
-  t->step = sqlite3_column_double(st, 8);
-  t->adapt = sqlite3_column_int(st, 9);
-  t->richardson = sqlite3_column_int(st, 10);
-  t->seconds = sqlite3_column_double(st, 11);
-  sqlite3_finalize(st);
-  for (size_t i = 0; i < (size_t)nbeta * (size_t)nu; i++) t->q[i] = NAN;
-  if (sqlite3_prepare_v2(db, "SELECT k, j, eps FROM eps_table_points WHERE tab = ?", -1, &st,
-                         NULL) != SQLITE_OK) {
-    hd_eps_table_free(t);
-    return db_fail(db, err, "select points");
-  }
-  sqlite3_bind_int64(st, 1, tab);
-  long n = 0;
-  while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
-    int k = sqlite3_column_int(st, 0), j = sqlite3_column_int(st, 1);
-    if (k >= 0 && k < nbeta && j >= 0 && j < nu) {
-      t->q[k * nu + j] = sqlite3_column_double(st, 2);
-      n++;
-    }
-  }
-  sqlite3_finalize(st);
-  if (rc != SQLITE_DONE || n != (long)nbeta * nu) {
-    hd_eps_table_free(t);
-    return hd_error_set(err, HD_EIO, "eps table %lld: %ld of %d points present", (long long)tab, n,
-                        nbeta * nu);
-  }
-  *out = t;
-  return HD_OK;
+double hd_eps_table_beta(const hd_eps_table *t, int k) {
+  return node_beta(t, k);
 }
