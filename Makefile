@@ -1,6 +1,6 @@
 # haff: one non-recursive Makefile.  `make help` lists the targets.
-# Sources are found by wildcard: a new engine/, db/, mc/, analysis/ or cli/ file needs no edit here,
-# and every tests/test_*.c is its own cmocka program.
+# Sources are found by wildcard: a new file in a layer's folder (LAYERS below: engine/*/, db/,
+# analysis/, mc/, cli/) needs no edit here, and every tests/test_*.c is its own cmocka program.
 .SUFFIXES:
 .DEFAULT_GOAL := all
 SHELL := /bin/bash
@@ -33,13 +33,34 @@ OPT     ?= -O2 -g -fno-math-errno
 # 1000 at 0.45 1.59 +- 0.03 against 1.55 +- 0.02 (8 runs each), dimers 1000 at 0.30 8.61 +- 0.11
 # against 8.59 +- 0.05 (3 runs): no difference beyond the noise (2 %)
 PIC     ?= -fPIC -fno-semantic-interposition
-LIB_DIRS:= engine/core engine/body engine/rods engine/scene engine/sim db engine/run analysis mc
-SRC_DIRS:= $(LIB_DIRS) cli
-CFLAGS  := -std=c11 -D_GNU_SOURCE -pthread $(OPT) $(PIC) $(WARN) -MMD -MP $(addprefix -I,$(SRC_DIRS)) \
+CFLAGS  := -std=c11 -D_GNU_SOURCE -pthread $(OPT) $(PIC) $(WARN) -MMD -MP \
            $(shell pkg-config --cflags $(PKGS) 2>/dev/null) $(EXTRA_CFLAGS)
 LDLIBS  := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lgsl -lgslcblas -lsqlite3 -linih) -lm -pthread
 TESTLIBS:= -lcmocka
 
+# --- layers --------------------------------------------------------------------------------
+# The source folders are layers, lowest first (docs/architecture.md).  A layer's sources are
+# compiled with the include path of their own layer and of the layers below (-I per folder),
+# so an #include of a higher layer's header does not compile; tests/check-layers (make
+# check-layers, part of make test) checks every #include "..." against the same order, headers
+# that no source of their layer compiles included.  Tests, benchmarks and fuzzers see all.
+LAYERS          := core kernels scene sim store run programs tools
+LAYER_core      := engine/core
+LAYER_kernels   := engine/body engine/rods
+LAYER_scene     := engine/scene
+LAYER_sim       := engine/sim
+LAYER_store     := db
+LAYER_run       := engine/run
+LAYER_programs  := analysis mc
+LAYER_tools     := cli
+SRC_DIRS := $(foreach l,$(LAYERS),$(LAYER_$(l)))
+LIB_DIRS := $(filter-out $(LAYER_tools),$(SRC_DIRS))
+ALL_INC  := $(addprefix -I,$(SRC_DIRS))
+_below   :=
+$(foreach l,$(LAYERS),$(eval _below += $(LAYER_$(l)))$(eval INC_$(l) := $(addprefix -I,$(_below))))
+$(foreach l,$(LAYERS),$(foreach d,$(LAYER_$(l)),$(eval $$(BUILD)/$(d)/%.o: LAYER_INC := $$(INC_$(l)))))
+
+# Sources: every .c of the layer folders (the library) and of cli/ (the program).
 LIB_SRC := $(wildcard $(addsuffix /*.c,$(LIB_DIRS)))
 CLI_SRC := $(wildcard cli/*.c)
 TEST_SRC:= $(wildcard tests/test_*.c)
@@ -50,13 +71,14 @@ LIB     := $(BUILD)/libhaff.a
 SOLIB   := $(BUILD)/libhaff.so
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all deps test test-unit fuzz demo bench plots clean help format install uninstall
+.PHONY: all deps test test-unit check-layers fuzz demo bench plots clean help format install uninstall
 all: bin/haff $(SOLIB) $(BUILD)/haff.1
 
 help:
 	@echo "make deps    install missing Debian packages (run by the other targets as needed)"
 	@echo "make         build bin/haff"
 	@echo "make test    build and run every test (then an ASan+UBSan build), one summary line"
+	@echo "make check-layers  no source includes a header of a higher layer (part of make test)"
 	@echo "make test-slurm  the Slurm test alone (a one-node Slurm started and stopped for it)"
 	@echo "make fuzz    libFuzzer on the parsers (tests/fuzz/fuzz_*.c), FUZZ_TIME s each"
 	@echo "make demo    run the demo scene and print what it logged"
@@ -82,7 +104,7 @@ $(DEPS_STAMP):
 # --- build ---------------------------------------------------------------------------------
 $(BUILD)/%.o: %.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -c $< -o $@
+	$(CC) $(CFLAGS) $(LAYER_INC) -c $< -o $@
 
 # db/schema.sql is compiled into the binary as a string (hd_schema_sql).
 $(BUILD)/gen/schema_sql.c: db/schema.sql
@@ -112,7 +134,7 @@ $(BUILD)/haff.1: bin/haff cli/haff-man.sh
 
 $(BUILD)/tests/%: tests/%.c $(LIB) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -Itests -o $@ $< $(LIB) $(LDLIBS) $(TESTLIBS)
+	$(CC) $(CFLAGS) $(ALL_INC) -Itests -o $@ $< $(LIB) $(LDLIBS) $(TESTLIBS)
 
 # --- tests ---------------------------------------------------------------------------------
 # Each test program is a cmocka group; tests/run-tests sums their results into one line
@@ -127,8 +149,14 @@ test: | $(DEPS_STAMP)
 	@$(MAKE) --no-print-directory BUILD=build-asan \
 	  OPT="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow" \
 	  $(patsubst $(BUILD)/%,build-asan/%,$(TEST_BIN))
-	@HAFF_BIN=$(CURDIR)/bin/haff tests/run-tests \
-	  $(TEST_BIN) $(SLURM_TEST) -- $(patsubst $(BUILD)/%,build-asan/%,$(TEST_BIN))
+	@HAFF_BIN=$(CURDIR)/bin/haff HAFF_LAYERS="$(LAYER_SPEC)" tests/run-tests \
+	  $(TEST_BIN) $(SLURM_TEST) tests/check-layers -- $(patsubst $(BUILD)/%,build-asan/%,$(TEST_BIN))
+
+# The layer order checked on the sources' #include lines: tests/check-layers reads the layers'
+# folders from HAFF_LAYERS, lowest first, layers separated by ":".
+LAYER_SPEC := $(strip $(foreach l,$(LAYERS),: $(LAYER_$(l))))
+check-layers:
+	@HAFF_LAYERS="$(LAYER_SPEC)" tests/check-layers
 
 # A real one-node Slurm (munged, slurmctld, slurmd started and stopped by the script): a sweep
 # as a job array, a task stopped with SIGTERM, resumed, merged.  Part of `make test`, ~40 s.
@@ -161,7 +189,7 @@ fuzz: | $(DEPS_STAMP)
 
 build-fuzz/tests/fuzz/%: tests/fuzz/%.c $(LIB)
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -fsanitize=fuzzer -Itests -o $@ $< $(LIB) $(LDLIBS)
+	$(CC) $(CFLAGS) $(ALL_INC) -fsanitize=fuzzer -Itests -o $@ $< $(LIB) $(LDLIBS)
 
 # --- user targets --------------------------------------------------------------------------
 demo: bin/haff
@@ -170,7 +198,7 @@ demo: bin/haff
 BENCH_BIN := $(BUILD)/bench/bench_engine
 $(BENCH_BIN): bench/bench_engine.c $(LIB) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS)
+	$(CC) $(CFLAGS) $(ALL_INC) -o $@ $< $(LIB) $(LDLIBS)
 
 MEMLAT_BIN := $(BUILD)/bench/memlat
 $(MEMLAT_BIN): bench/memlat.c | $(DEPS_STAMP)
