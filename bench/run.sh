@@ -77,7 +77,7 @@ cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
   echo "At N = 1e6 the bodies (128 B each), cell heads and queue blocks (~250 MB) are far past the"
   echo "last-level cache, and events come in time order, at random places: each touches lines no"
   echo "recent event has, so its speed is set by the DRAM latency above and by how many of those"
-  echo "loads the prefetch hints (engine/hd_predict.c) can keep in flight at once."
+  echo "loads the prefetch hints (engine/sim/hd_predict.c) can keep in flight at once."
 } >"$out"
 rm -f "$raw" "$lat"
 cat "$out"

@@ -43,7 +43,7 @@ static int check_input(const char *path, hd_error *err) {
   return rc;
 }
 
-/* Whether a process holds a lock in path.lock (a run writing to path: engine/hd_run.c). */
+/* Whether a process holds a lock in path.lock (a run writing to path: engine/run/hd_run.c). */
 static int being_written(const char *path) {
   char lk[PATH_MAX + 8];
   snprintf(lk, sizeof lk, "%s.lock", path);

@@ -139,7 +139,7 @@ CREATE TABLE IF NOT EXISTS checkpoints (
   blob  BLOB NOT NULL
 );
 
--- Tabulated p_beta(eps) of the rod paper (`haff mc eps --tabulate`, mc/eps_table.c): inverse
+-- Tabulated p_beta(eps) of the rod paper (`haff mc eps --tabulate`, db/hd_epsdb.c): inverse
 -- CDFs Q_k(u_j) on a logarithmic beta grid for one length ratio; docs/mc-eps.md.
 CREATE TABLE IF NOT EXISTS eps_tables (
   id         INTEGER PRIMARY KEY,
@@ -168,7 +168,7 @@ CREATE TABLE IF NOT EXISTS eps_table_points (
 
 -- ---- parameters as data (schema version 2; docs/sql.md) ----------------------------------------
 -- params: one row per key of each run's canonical scene text (runs.scene, made by
--- engine/hd_scene.c: "[section]" lines, then "key = value" lines; ";" lines are comments).
+-- engine/scene/hd_scene.c: "[section]" lines, then "key = value" lines; ";" lines are comments).
 -- value is the text after "=", num its number when it is one (always REAL, so that a / b
 -- never divides integers; NULL for text
 -- such as "every 10", "left right" or a list).  A view: it always agrees with runs.scene, in

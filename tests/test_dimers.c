@@ -398,7 +398,7 @@ static void mixture_equipartition(void **state) {
 
 /* Crowded neighbourhoods: 40 long dimers (a = 3d) among 2000 small disks (sigma = 0.2 d), so
  * the cells (>= 4d wide) hold ~80 disks each and a prediction sees far more neighbours than it
- * sorts (HD_MAX_CAND in engine/hd_predict.c): the unsorted remainder must stay exact.  Elastic,
+ * sorts (HD_MAX_CAND in engine/sim/hd_predict.c): the unsorted remainder must stay exact.  Elastic,
  * verification on, 1e4 collisions: energy drift < 1e-9 relative, |momentum| < 1e-12 sqrt(N),
  * the same bounds as the elastic dimer test. */
 static void crowded_neighbours(void **state) {

@@ -1,4 +1,5 @@
-/* Tests of mc/eps: the rods' stochastic coefficient of restitution (docs/mc-eps.md). */
+/* Tests of engine/rods/eps (and its store, db/hd_epsdb): the rods' stochastic coefficient of
+ * restitution (docs/mc-eps.md). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

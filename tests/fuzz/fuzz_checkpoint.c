@@ -1,4 +1,4 @@
-/* libFuzzer target: checkpoint restore (engine/hd_checkpoint.c, engine/rods.c), below the
+/* libFuzzer target: checkpoint restore (engine/sim/hd_checkpoint.c, engine/rods/rods.c), below the
  * checksum that hd_run.c puts over a whole checkpoint, so that what the models check is what is
  * fuzzed.  Input: one byte that picks the model (even: the 2D scene below, odd: the rods ring),
  * then the model's blob (the rods ring with constant eps: the stochastic model's sampler takes
