@@ -23,6 +23,7 @@
 #include "haff.h"
 #include "hd_body.h"
 #include "hd_db.h"
+#include "hd_framedb.h"
 #include "hd_scene.h"
 
 int haff_movie_main(int argc, char **argv);
@@ -118,33 +119,25 @@ typedef struct movie {
 
 /* Reads the run, its box and scene and its bodies' kinds.  0 or an exit code (said). */
 static int read_run(sqlite3 *h, movie *m) {
-  sqlite3_stmt *st = NULL;
-  const char *sql = m->run > 0
-                        ? "SELECT id, scene, box_x, box_y FROM runs WHERE id = ?1"
-                        : "SELECT id, scene, box_x, box_y FROM runs ORDER BY id DESC LIMIT 1";
-  if (sqlite3_prepare_v2(h, sql, -1, &st, NULL) != SQLITE_OK) {
-    fprintf(stderr, "haff movie: %s: read runs: %s\n", m->dbpath, sqlite3_errmsg(h));
-    return 1;
-  }
-  if (m->run > 0) sqlite3_bind_int64(st, 1, m->run);
-  int code = 0;
-  if (sqlite3_step(st) != SQLITE_ROW) {
-    fprintf(stderr, "haff movie: %s: %s\n", m->dbpath,
-            m->run > 0 ? "there is no such run" : "the database holds no run");
-    sqlite3_finalize(st);
-    return 2;
-  }
-  m->run = sqlite3_column_int64(st, 0);
-  m->lx = sqlite3_column_double(st, 2);
-  m->ly = sqlite3_column_double(st, 3);
+  hd_framedb_run run;
   hd_error err;
+  int rc = hd_framedb_run_read(h, m->run, &run, &err);
+  if (rc) {
+    fprintf(stderr, "haff movie: %s: %s%s\n", m->dbpath, rc == HD_EIO ? "read runs: " : "",
+            err.msg);
+    return rc == HD_EINPUT ? 2 : 1;
+  }
+  m->run = run.id;
+  m->lx = run.box_x;
+  m->ly = run.box_y;
+  int code = 0;
   char name[64];
   snprintf(name, sizeof name, "run %lld scene", (long long)m->run);
-  if (hd_scene_load_stored(&m->sc, (const char *)sqlite3_column_text(st, 1), name, &err)) {
+  if (hd_scene_load_stored(&m->sc, run.scene, name, &err)) {
     fprintf(stderr, "haff movie: %s: %s\n", m->dbpath, err.msg);
     code = 2;
   }
-  sqlite3_finalize(st);
+  free(run.scene);
   if (code) return code;
   if (m->sc.n_rods > 0) m->ly = 1; /* a ring: a strip one unit wide */
   if (!(m->lx > 0 && m->ly > 0)) {
@@ -154,39 +147,30 @@ static int read_run(sqlite3 *h, movie *m) {
   m->n = hd_scene_bodies(&m->sc);
   m->kinds = calloc((size_t)(m->n > 0 ? m->n : 1), sizeof *m->kinds);
   if (!m->kinds) return 1;
-  if (sqlite3_prepare_v2(h,
-                         "SELECT body, kind FROM states WHERE run = ?1 AND label = 'initial' "
-                         "AND t = (SELECT min(t) FROM states WHERE run = ?1 AND label = 'initial')",
-                         -1, &st, NULL) != SQLITE_OK)
+  if (hd_framedb_kinds(h, m->run, m->kinds, m->n, HD_KIND_DIMER, HD_KIND_DISK, &err)) {
+    fprintf(stderr, "haff movie: %s: read states: %s\n", m->dbpath, err.msg);
     return 1;
-  sqlite3_bind_int64(st, 1, m->run);
-  while (sqlite3_step(st) == SQLITE_ROW) {
-    long long b = sqlite3_column_int64(st, 0);
-    const char *k = (const char *)sqlite3_column_text(st, 1);
-    if (b >= 0 && b < m->n) m->kinds[b] = k && !strcmp(k, "dimer") ? HD_KIND_DIMER : HD_KIND_DISK;
   }
-  sqlite3_finalize(st);
   return 0;
 }
 
 /* Writes the frames' data files and the gnuplot script into m->tmp; *frames their count. */
 static int write_frames(sqlite3 *h, const movie *m, long *frames) {
-  sqlite3_stmt *st = NULL;
+  hd_framedb *st = NULL;
+  hd_error err;
   *frames = 0;
-  if (sqlite3_table_column_metadata(h, "main", "frames", "data", NULL, NULL, NULL, NULL, NULL) !=
-      SQLITE_OK) { /* a database from before the frames table */
+  int rc = hd_framedb_open(h, m->run, &st, &err);
+  if (rc == HD_EINPUT) { /* a database from before the frames table */
     fprintf(stderr,
             "haff movie: %s: run %lld has no frames: run it with [log] frames_every or "
             "frames_every_time\n",
             m->dbpath, (long long)m->run);
     return 2;
   }
-  if (sqlite3_prepare_v2(h, "SELECT t, cpd, n, data FROM frames WHERE run = ?1 ORDER BY t, rowid",
-                         -1, &st, NULL) != SQLITE_OK) {
-    fprintf(stderr, "haff movie: %s: read frames: %s\n", m->dbpath, sqlite3_errmsg(h));
+  if (rc) {
+    fprintf(stderr, "haff movie: %s: read frames: %s\n", m->dbpath, err.msg);
     return 1;
   }
-  sqlite3_bind_int64(st, 1, m->run);
   char path[4200];
   snprintf(path, sizeof path, "%s/movie.gp", m->tmp);
   FILE *gp = fopen(path, "w");
@@ -215,12 +199,13 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
             w, hgt, m->lx, m->ly,
             m->density ? "local density / mean (within 5 d)" : "|V| / rms |V|");
   double reach = 5 * (m->sc.n_dimers > 0 ? m->sc.dimer_d : m->sc.disk_sigma);
-  int s;
-  while (!code && (s = sqlite3_step(st)) == SQLITE_ROW) {
-    double t = sqlite3_column_double(st, 0), cpd = sqlite3_column_double(st, 1);
-    long n = (long)sqlite3_column_int64(st, 2);
-    const unsigned char *data = sqlite3_column_blob(st, 3);
-    if (n != m->n || sqlite3_column_bytes(st, 3) != n * HD_FRAME_BODY_BYTES) {
+  int s = 0;
+  hd_framedb_frame fr;
+  while (!code && (s = hd_framedb_next(st, &fr, &err)) == 1) {
+    double t = fr.t, cpd = fr.cpd;
+    long n = fr.n;
+    const unsigned char *data = fr.data;
+    if (n != m->n || fr.bytes != n * HD_FRAME_BODY_BYTES) {
       fprintf(stderr, "haff movie: %s: run %lld: a frame of %ld bodies, the scene has %ld\n",
               m->dbpath, (long long)m->run, n, m->n);
       code = 1;
@@ -262,8 +247,8 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
             m->tmp, *frames, n, t, cpd, m->tmp, *frames);
     (*frames)++;
   }
-  if (!code && s != SQLITE_DONE) {
-    fprintf(stderr, "haff movie: %s: read frames: %s\n", m->dbpath, sqlite3_errmsg(h));
+  if (!code && s < 0) {
+    fprintf(stderr, "haff movie: %s: read frames: %s\n", m->dbpath, err.msg);
     code = 1;
   }
   if (!code && *frames == 0) {
@@ -274,7 +259,7 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
     code = 2;
   }
   if (gp && fclose(gp) != 0 && !code) code = 1;
-  sqlite3_finalize(st);
+  hd_framedb_close(st);
   free(x), free(y), free(phi), free(val), free(vx), free(vy);
   return code;
 }
@@ -371,7 +356,7 @@ int haff_movie_main(int argc, char **argv) {
     m.tmp = tmpl;
     code = write_frames(h, &m, &frames);
   }
-  sqlite3_close(h);
+  hd_db_close_read(h);
   if (!code) {
     char gpfile[4200];
     snprintf(gpfile, sizeof gpfile, "%s/movie.gp", m.tmp);

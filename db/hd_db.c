@@ -611,6 +611,10 @@ int hd_db_open_read(const char *path, int flags, const char *const *tables, sqli
   return HD_OK;
 }
 
+void hd_db_close_read(sqlite3 *h) {
+  sqlite3_close(h);
+}
+
 int hd_db_open_readonly(hd_db **out, const char *path, hd_error *err) {
   if (!out) return hd_error_set(err, HD_EINPUT, "hd_db_open_readonly: out is NULL");
   *out = NULL;

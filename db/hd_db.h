@@ -119,6 +119,10 @@ int hd_db_open_existing(hd_db **out, const char *path, hd_error *err);
 int hd_db_open_read(const char *path, int flags, const char *const *tables, sqlite3 **h,
                     hd_error *err);
 
+/* Closes a connection of hd_db_open_read (NULL allowed), so that a reader above the store
+ * does not call SQLite itself. */
+void hd_db_close_read(sqlite3 *h);
+
 /* Opens an existing database read-only (for analysis and export): no schema is applied and
  * every write fails with HD_EIO.  In a read-only folder or file system (no -shm can be made)
  * it reads the file as immutable.  Returns HD_OK, HD_EINPUT (missing, a directory, not an
@@ -237,5 +241,6 @@ int hd_db_exec(hd_db *db, const char *sql, hd_error *err);
 
 /* The SQLite handle, for analysis code that reads with its own statements.  Owned by db. */
 sqlite3 *hd_db_handle(hd_db *db);
+
 
 #endif
