@@ -590,37 +590,15 @@ static int point_state(const study *st, int k, char *status, size_t size, int *r
   status[0] = '\0';
   *resumable = 0;
   if (access(db, F_OK) != 0) return P_MISSING;
-  static const char *const need[] = {"runs", NULL};
-  sqlite3 *h;
   hd_error err;
-  if (hd_db_open_read(db, 0, need, &h, &err)) return P_FAILED;
-  sqlite3_busy_timeout(h, 10000);
-  sqlite3_stmt *q;
-  int state = P_MISSING;
-  long long run = 0;
-  if (sqlite3_prepare_v2(h,
-                         "SELECT id, status, EXISTS (SELECT 1 FROM checkpoints c WHERE c.run = "
-                         "runs.id) FROM runs ORDER BY id DESC LIMIT 1",
-                         -1, &q, NULL) == SQLITE_OK) {
-    if (sqlite3_step(q) == SQLITE_ROW) {
-      run = sqlite3_column_int64(q, 0);
-      snprintf(status, size, "%s", (const char *)sqlite3_column_text(q, 1));
-      *resumable = sqlite3_column_int(q, 2);
-      if (!strcmp(status, "done") || !strcmp(status, "collapsed"))
-        state = P_DONE;
-      else if (!strcmp(status, "running"))
-        state = run_locked(db, run) ? P_RUNNING : P_INTERRUPTED; /* killed */
-      else if (!strcmp(status, "interrupted"))
-        state = P_INTERRUPTED;
-      else
-        state = P_FAILED;
-    }
-    sqlite3_finalize(q);
-  } else {
-    state = P_FAILED;
-  }
-  sqlite3_close(h);
-  return state;
+  int64_t run = 0;
+  if (hd_db_newest_run(db, &run, status, size, resumable, &err)) return P_FAILED;
+  if (run == 0) return P_MISSING;
+  if (!strcmp(status, "done") || !strcmp(status, "collapsed")) return P_DONE;
+  if (!strcmp(status, "running"))
+    return run_locked(db, run) ? P_RUNNING : P_INTERRUPTED; /* killed */
+  if (!strcmp(status, "interrupted")) return P_INTERRUPTED;
+  return P_FAILED;
 }
 
 /* ------------------------------------------------------------------------------------------ */

@@ -1493,3 +1493,31 @@ int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene
   sqlite3_finalize(st);
   return rc;
 }
+
+int hd_db_newest_run(const char *path, int64_t *run, char *status, size_t size, int *resumable,
+                     hd_error *err) {
+  *run = 0;
+  status[0] = '\0';
+  *resumable = 0;
+  static const char *const need[] = {"runs", NULL};
+  sqlite3 *h;
+  int rc = hd_db_open_read(path, 0, need, &h, err);
+  if (rc) return rc;
+  sqlite3_busy_timeout(h, 10000);
+  sqlite3_stmt *q;
+  if (sqlite3_prepare_v2(h,
+                         "SELECT id, status, EXISTS (SELECT 1 FROM checkpoints c WHERE c.run = "
+                         "runs.id) FROM runs ORDER BY id DESC LIMIT 1",
+                         -1, &q, NULL) == SQLITE_OK) {
+    if (sqlite3_step(q) == SQLITE_ROW) {
+      *run = sqlite3_column_int64(q, 0);
+      snprintf(status, size, "%s", (const char *)sqlite3_column_text(q, 1));
+      *resumable = sqlite3_column_int(q, 2);
+    }
+    sqlite3_finalize(q);
+  } else {
+    rc = hd_error_set(err, HD_EIO, "%s: read runs: %s", path, sqlite3_errmsg(h));
+  }
+  sqlite3_close(h);
+  return rc;
+}

@@ -242,5 +242,11 @@ int hd_db_exec(hd_db *db, const char *sql, hd_error *err);
 /* The SQLite handle, for analysis code that reads with its own statements.  Owned by db. */
 sqlite3 *hd_db_handle(hd_db *db);
 
+/* The newest run of the database at path (a sweep's point): opens it for reading (waiting up
+ * to 10 s for a writer), and gives its id in *run (0 when the file has no run), its status in
+ * status (size bytes; "" when none) and in *resumable whether it has a checkpoint.  HD_OK, or
+ * the status of hd_db_open_read, or HD_EIO when the runs cannot be read. */
+int hd_db_newest_run(const char *path, int64_t *run, char *status, size_t size, int *resumable,
+                     hd_error *err);
 
 #endif
