@@ -154,32 +154,31 @@ static int open_run(const char *cmd, const ropts *o, rrun *r) {
     fprintf(stderr, "haff %s: %s\n", cmd, err.msg);
     return hd_exit_code(err.code);
   }
-  sqlite3_stmt *st;
-  const char *sql = o->run >= 0 ? "SELECT id, scene FROM runs WHERE id = ?1"
-                                : "SELECT id, scene FROM runs WHERE scene LIKE '%[rods]%' "
-                                  "ORDER BY id DESC LIMIT 1";
-  if (sqlite3_prepare_v2(r->db, sql, -1, &st, NULL) != SQLITE_OK) {
-    fprintf(stderr, "haff %s: %s: not a haff database: %s\n", cmd, o->db, sqlite3_errmsg(r->db));
-    sqlite3_close(r->db);
-    return 2;
+  int64_t id;
+  char *scene;
+  int rc = hd_ana_rods_run(r->db, o->run, &id, &scene, &err);
+  if (rc == HD_EIO || rc == HD_ENOMEM) {
+    fprintf(stderr, "haff %s: %s: %s%s\n", cmd, o->db, rc == HD_EIO ? "not a haff database: " : "",
+            err.msg);
+    hd_ana_close(r->db);
+    return rc == HD_EIO ? 2 : 1;
   }
-  if (o->run >= 0) sqlite3_bind_int64(st, 1, o->run);
-  int rc = 2;
-  if (sqlite3_step(st) == SQLITE_ROW) {
-    r->id = (long)sqlite3_column_int64(st, 0);
-    if (hd_scene_load_string(&r->sc, (const char *)sqlite3_column_text(st, 1), "runs.scene", NULL,
-                             0, &err) == HD_OK &&
+  if (rc == HD_OK) {
+    r->id = (long)id;
+    rc = 2;
+    if (hd_scene_load_string(&r->sc, scene, "runs.scene", NULL, 0, &err) == HD_OK &&
         r->sc.n_rods > 0)
       rc = 0;
     else
       fprintf(stderr, "haff %s: %s: run %ld is not a rods run\n", cmd, o->db, r->id);
   } else {
+    rc = 2;
     fprintf(stderr, "haff %s: %s: no rods run%s\n", cmd, o->db, o->run >= 0 ? " with that id" : "");
   }
-  sqlite3_finalize(st);
+  free(scene);
   if (rc) {
     hd_scene_free(&r->sc);
-    sqlite3_close(r->db);
+    hd_ana_close(r->db);
   }
   return rc;
 }
@@ -187,7 +186,7 @@ static int open_run(const char *cmd, const ropts *o, rrun *r) {
 /* Closes what open_run opened; returns 0, the exit code of a command that got this far. */
 static int close_run(rrun *r) {
   hd_scene_free(&r->sc);
-  sqlite3_close(r->db);
+  hd_ana_close(r->db);
   return 0;
 }
 
@@ -203,26 +202,7 @@ static int start(int argc, char **argv, const char *usage, int bins, ropts *o, r
 
 /* Snapshot times of the run (labels initial, velocities, final), ascending; malloc'd. */
 static long snap_times(rrun *r, double **t) {
-  sqlite3_stmt *st;
-  *t = NULL;
-  if (sqlite3_prepare_v2(r->db,
-                         "SELECT DISTINCT t FROM states WHERE run = ?1 AND kind = 'rod' AND "
-                         "label IN ('initial','velocities','final') ORDER BY t",
-                         -1, &st, NULL) != SQLITE_OK)
-    return -1;
-  sqlite3_bind_int64(st, 1, r->id);
-  long n = 0, cap = 0;
-  while (sqlite3_step(st) == SQLITE_ROW) {
-    if (n == cap) {
-      cap = 2 * cap + 16;
-      double *nt = realloc(*t, (size_t)cap * sizeof *nt);
-      if (!nt) break;
-      *t = nt;
-    }
-    (*t)[n++] = sqlite3_column_double(st, 0);
-  }
-  sqlite3_finalize(st);
-  return n;
+  return hd_ana_rods_times(r->db, r->id, t);
 }
 
 /* One snapshot: its time and x, v, T_B by body index (arrays of sc.n_rods, malloc'd). */
@@ -253,26 +233,12 @@ static int snapshot(const char *cmd, rrun *r, double t, rsnap *s) {
     snap_free(s);
     return out_of_memory(cmd);
   }
-  sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(r->db,
-                         "SELECT body, x, vx, omega FROM states WHERE run = ?1 AND kind = 'rod' "
-                         "AND t = ?2 AND label IN ('initial','velocities','final')",
-                         -1, &st, NULL) != SQLITE_OK) {
-    fprintf(stderr, "haff %s: cannot read the states of run %ld: %s\n", cmd, r->id,
-            sqlite3_errmsg(r->db));
+  hd_error err;
+  if (hd_ana_rods_snapshot(r->db, r->id, t, n, s->x, s->v, s->tb, &err)) {
+    fprintf(stderr, "haff %s: cannot read the states of run %ld: %s\n", cmd, r->id, err.msg);
     snap_free(s);
     return 1;
   }
-  sqlite3_bind_int64(st, 1, r->id);
-  sqlite3_bind_double(st, 2, t);
-  while (sqlite3_step(st) == SQLITE_ROW) {
-    long b = (long)sqlite3_column_int64(st, 0);
-    if (b < 0 || b >= n) continue;
-    s->x[b] = sqlite3_column_double(st, 1);
-    s->v[b] = sqlite3_column_double(st, 2);
-    s->tb[b] = sqlite3_column_double(st, 3);
-  }
-  sqlite3_finalize(st);
   return 0;
 }
 
@@ -333,29 +299,25 @@ int haff_rods_energy_main(int argc, char **argv) {
   double es = hd_rods_ekin_stat(N, nmod, e0 * (double)N) / (double)N;
   double rate_i = hd_rods_rate_ideal(N, 2 * es * (double)N / (double)(N - 1));
   double rate_35 = hd_rods_rate_eq35(N, nmod) * sqrt(sc->rod_temperature);
-  sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(r.db,
-                         "SELECT t, collisions, cpd, e_tr, e_rot FROM samples WHERE run = ?1 "
-                         "ORDER BY t",
-                         -1, &st, NULL) != SQLITE_OK) {
-    fprintf(stderr, "haff %s: cannot read the samples of run %ld: %s\n", argv[0], r.id,
-            sqlite3_errmsg(r.db));
+  hd_series ser;
+  hd_error err;
+  if (hd_ana_samples(r.db, r.id, &ser, &err)) {
+    fprintf(stderr, "haff %s: cannot read the samples of run %ld: %s\n", argv[0], r.id, err.msg);
     close_run(&r);
     return 1;
   }
-  sqlite3_bind_int64(st, 1, r.id);
   printf("# run %ld: N=%ld gamma=%g nmod=%ld model=%s damping=%g\n", r.id, N, sc->rod_gamma, nmod,
          sc->rod_model ? "constant" : "stochastic", sc->rod_damping);
   printf("t\tcollisions\tcpd\te_kin\te_bath\te_kin_over_e0\te_mode\te_kin_stat\tcoll_ideal\t"
          "coll_eq35\n");
-  while (sqlite3_step(st) == SQLITE_ROW) {
-    double t = sqlite3_column_double(st, 0);
-    double ek = sqlite3_column_double(st, 3), eb = sqlite3_column_double(st, 4);
+  for (size_t k = 0; k < ser.n; k++) {
+    double t = ser.t[k];
+    double ek = ser.e_tr[k], eb = ser.e_rot[k];
     printf("%.10g\t%lld\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\n", t,
-           (long long)sqlite3_column_int64(st, 1), sqlite3_column_double(st, 2), ek, eb, ek / e0,
-           eb / (double)nmod, es, rate_i * t, rate_35 * t);
+           (long long)ser.coll[k], ser.cpd[k], ek, eb, ek / e0, eb / (double)nmod, es, rate_i * t,
+           rate_35 * t);
   }
-  sqlite3_finalize(st);
+  hd_series_free(&ser);
   return close_run(&r);
 }
 

@@ -356,3 +356,78 @@ int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **th
   if (rc) free(*theta_i), free(*theta_j), free(*f), *theta_i = *theta_j = *f = NULL, *n = 0;
   return rc;
 }
+
+void hd_ana_close(sqlite3 *db) {
+  sqlite3_close(db);
+}
+
+int hd_ana_status(sqlite3 *db) {
+  return hd_db_status_of(sqlite3_errcode(db));
+}
+
+int hd_ana_rods_run(sqlite3 *db, int64_t want, int64_t *id, char **scene, hd_error *err) {
+  *id = 0;
+  *scene = NULL;
+  hd_error_clear(err);
+  sqlite3_stmt *st;
+  const char *sql = want >= 0 ? "SELECT id, scene FROM runs WHERE id = ?1"
+                              : "SELECT id, scene FROM runs WHERE scene LIKE '%[rods]%' "
+                                "ORDER BY id DESC LIMIT 1";
+  if (sqlite3_prepare_v2(db, sql, -1, &st, NULL) != SQLITE_OK)
+    return hd_error_set(err, HD_EIO, "%s", sqlite3_errmsg(db));
+  if (want >= 0) sqlite3_bind_int64(st, 1, want);
+  int rc = HD_EINPUT;
+  if (sqlite3_step(st) == SQLITE_ROW) {
+    *id = sqlite3_column_int64(st, 0);
+    const char *text = (const char *)sqlite3_column_text(st, 1);
+    rc = HD_OK;
+    if (text && !(*scene = strdup(text)))
+      rc = hd_error_set(err, HD_ENOMEM, "out of memory for the scene of run %lld", (long long)*id);
+  }
+  sqlite3_finalize(st);
+  return rc;
+}
+
+long hd_ana_rods_times(sqlite3 *db, int64_t run, double **t) {
+  sqlite3_stmt *st;
+  *t = NULL;
+  if (sqlite3_prepare_v2(db,
+                         "SELECT DISTINCT t FROM states WHERE run = ?1 AND kind = 'rod' AND "
+                         "label IN ('initial','velocities','final') ORDER BY t",
+                         -1, &st, NULL) != SQLITE_OK)
+    return -1;
+  sqlite3_bind_int64(st, 1, run);
+  long n = 0, cap = 0;
+  while (sqlite3_step(st) == SQLITE_ROW) {
+    if (n == cap) {
+      cap = 2 * cap + 16;
+      double *nt = realloc(*t, (size_t)cap * sizeof *nt);
+      if (!nt) break;
+      *t = nt;
+    }
+    (*t)[n++] = sqlite3_column_double(st, 0);
+  }
+  sqlite3_finalize(st);
+  return n;
+}
+
+int hd_ana_rods_snapshot(sqlite3 *db, int64_t run, double t, long n, double *x, double *v,
+                         double *tb, hd_error *err) {
+  sqlite3_stmt *st;
+  if (sqlite3_prepare_v2(db,
+                         "SELECT body, x, vx, omega FROM states WHERE run = ?1 AND kind = 'rod' "
+                         "AND t = ?2 AND label IN ('initial','velocities','final')",
+                         -1, &st, NULL) != SQLITE_OK)
+    return hd_error_set(err, HD_EIO, "%s", sqlite3_errmsg(db));
+  sqlite3_bind_int64(st, 1, run);
+  sqlite3_bind_double(st, 2, t);
+  while (sqlite3_step(st) == SQLITE_ROW) {
+    long b = (long)sqlite3_column_int64(st, 0);
+    if (b < 0 || b >= n) continue;
+    x[b] = sqlite3_column_double(st, 1);
+    v[b] = sqlite3_column_double(st, 2);
+    tb[b] = sqlite3_column_double(st, 3);
+  }
+  sqlite3_finalize(st);
+  return HD_OK;
+}

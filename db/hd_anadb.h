@@ -89,4 +89,29 @@ void hd_snapshots_free(hd_snapshot *snaps, size_t n);
 int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **theta_j, double **f,
                          size_t *n, hd_error *err);
 
+/* Closes a database of hd_ana_open (NULL allowed). */
+void hd_ana_close(sqlite3 *db);
+
+/* The status (hd_db_status_of) of the last failure on db: HD_EINPUT for a damaged file. */
+int hd_ana_status(sqlite3 *db);
+
+/* ---- the rod paper's analyses (analysis/rods_cli.c) ---- */
+
+/* The rods run to analyse: want >= 0 gives that run, want < 0 the newest run whose scene has a
+ * [rods] section; *id, and its scene text in *scene (malloc'd, free(); NULL when none).  HD_OK;
+ * HD_EINPUT with err.msg "" when there is no such run; HD_EIO with SQLite's message when the
+ * runs cannot be read; HD_ENOMEM. */
+int hd_ana_rods_run(sqlite3 *db, int64_t want, int64_t *id, char **scene, hd_error *err);
+
+/* The times of the run's rod snapshots (states of kind 'rod' labelled initial, velocities or
+ * final), ascending, into *t (malloc'd, free()): their count (the ones read before running out
+ * of memory), or -1 when they cannot be read. */
+long hd_ana_rods_times(sqlite3 *db, int64_t run, double **t);
+
+/* The rods of the run's snapshot at time t: for each body b < n in it, x[b], v[b] (states.vx)
+ * and its bath temperature tb[b] (states.omega); other entries are left as they are.  HD_OK,
+ * or HD_EIO with SQLite's message. */
+int hd_ana_rods_snapshot(sqlite3 *db, int64_t run, double t, long n, double *x, double *v,
+                         double *tb, hd_error *err);
+
 #endif
