@@ -31,10 +31,10 @@ int haff_angles_main(int argc, char **argv) {
   size_t n;
   double *ti, *tj, *f;
   if (hd_ana_dd_collisions(db, a.run, &ti, &tj, &f, &n, &err)) {
-    sqlite3_close(db);
+    hd_ana_close(db);
     return hd_cli_fail(argv[0], &err);
   }
-  sqlite3_close(db);
+  hd_ana_close(db);
   if (n == 0) {
     free(ti), free(tj), free(f);
     fprintf(stderr, "haff %s: run %lld has no logged dimer-dimer collisions\n", argv[0],

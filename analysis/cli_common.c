@@ -235,19 +235,19 @@ int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit 
   hd_run_info *runs;
   size_t nr;
   if (hd_ana_runs(*db, a->run, &runs, &nr, &err)) {
-    sqlite3_close(*db), *db = NULL;
+    hd_ana_close(*db), *db = NULL;
     return hd_cli_fail(cmd, &err);
   }
   if (nr == 0) {
     free(runs);
-    sqlite3_close(*db), *db = NULL;
+    hd_ana_close(*db), *db = NULL;
     fprintf(stderr, "haff %s: %s: no finished runs\n", cmd, a->db);
     return 2;
   }
   *fits = calloc(nr, sizeof **fits);
   if (!*fits) {
     free(runs);
-    sqlite3_close(*db), *db = NULL;
+    hd_ana_close(*db), *db = NULL;
     fprintf(stderr, "haff %s: out of memory\n", cmd);
     return 1;
   }
@@ -257,13 +257,13 @@ int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit 
     int rc = hd_run_fit_do(*db, &runs[i], &a->fit, &(*fits)[m], &err);
     /* skip short runs in an ensemble, say so; not a damaged database (SQLite's "malformed",
      * bad input too, for the whole file) */
-    if (rc == HD_EINPUT && a->run < 0 && hd_db_status_of(sqlite3_errcode(*db)) != HD_EINPUT) {
+    if (rc == HD_EINPUT && a->run < 0 && hd_ana_status(*db) != HD_EINPUT) {
       fprintf(stderr, "haff %s: skipping: %s\n", cmd, err.msg);
       continue;
     }
     if (rc) {
       free(runs), free(*fits), *fits = NULL;
-      sqlite3_close(*db), *db = NULL;
+      hd_ana_close(*db), *db = NULL;
       return hd_cli_fail(cmd, &err);
     }
     if ((*fits)[m].why[0])
@@ -285,7 +285,7 @@ int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit 
             : " (detection options other than the defaults)");
   if (m == 0) {
     free(*fits), *fits = NULL;
-    sqlite3_close(*db), *db = NULL;
+    hd_ana_close(*db), *db = NULL;
     fprintf(stderr, "haff %s: no run with dimers or disks and enough samples\n", cmd);
     return 2;
   }
@@ -299,7 +299,7 @@ int hd_cli_groups(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fi
   hd_error err;
   if (hd_group_runs(*fits, *n, g, ng, &err)) {
     free(*fits), *fits = NULL;
-    sqlite3_close(*db), *db = NULL;
+    hd_ana_close(*db), *db = NULL;
     return hd_cli_fail(cmd, &err);
   }
   hd_cli_groups_warn(cmd, *g, *ng);
@@ -320,7 +320,7 @@ void hd_cli_groups_warn(const char *cmd, const hd_group *g, size_t ng) {
 }
 
 void hd_cli_groups_free(sqlite3 *db, hd_run_fit *fits, hd_group *g, size_t ng) {
-  free(fits), hd_groups_free(g, ng), sqlite3_close(db);
+  free(fits), hd_groups_free(g, ng), hd_ana_close(db);
 }
 
 int hd_cli_one_run(int argc, char **argv, unsigned allowed, const char *usage, hd_cli_args *a,
@@ -336,7 +336,7 @@ int hd_cli_one_run(int argc, char **argv, unsigned allowed, const char *usage, h
   hd_run_info *ri;
   size_t nr;
   if (hd_ana_runs(*db, a->run, &ri, &nr, &err)) {
-    sqlite3_close(*db), *db = NULL;
+    hd_ana_close(*db), *db = NULL;
     return hd_cli_fail(argv[0], &err);
   }
   *info = ri[0];

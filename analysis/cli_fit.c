@@ -99,7 +99,7 @@ int haff_fit_main(int argc, char **argv) {
   if ((rc = hd_cli_fits(&a, argv[0], &db, &fits, &n))) return rc;
   FILE *out = hd_cli_out(&a);
   if (!out) {
-    free(fits), sqlite3_close(db);
+    free(fits), hd_ana_close(db);
     return 1;
   }
   if (!a.group) {
@@ -130,7 +130,7 @@ int haff_fit_main(int argc, char **argv) {
     size_t ng;
     hd_error err;
     if (hd_group_runs(fits, n, &g, &ng, &err)) {
-      free(fits), sqlite3_close(db), hd_cli_close(out, &a);
+      free(fits), hd_ana_close(db), hd_cli_close(out, &a);
       return hd_cli_fail(argv[0], &err);
     }
     hd_cli_groups_warn(argv[0], g, ng);
@@ -154,7 +154,7 @@ int haff_fit_main(int argc, char **argv) {
   size_t fitted = 0; /* a script reading a row of nan should see a failure */
   for (size_t i = 0; i < n; i++) fitted += fits[i].haff_ok != 0;
   free(fits);
-  sqlite3_close(db);
+  hd_ana_close(db);
   int crc = hd_cli_close(out, &a);
   if (!crc && fitted == 0) {
     fprintf(stderr, "haff %s: no run could be fitted (why: above)\n", argv[0]);

@@ -92,7 +92,7 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
   }
   for (int k = 0; k < 3; k++) gsl_histogram_free(h[k]);
   free(fits);
-  sqlite3_close(db);
+  hd_ana_close(db);
   return rc;
 }
 
@@ -133,7 +133,7 @@ int haff_veldist_main(int argc, char **argv) {
                       &db, &ri);
   if (rc) return rc < 0 ? 0 : rc;
   if (ri.species == HD_ANA_OTHER) {
-    sqlite3_close(db);
+    hd_ana_close(db);
     fprintf(stderr, "haff %s: run %lld is a rods run: see haff rods-veldist\n", argv[0],
             (long long)a.run);
     return 2;
@@ -144,7 +144,7 @@ int haff_veldist_main(int argc, char **argv) {
   hd_snapshot *sn;
   int dimers = ri.species != HD_ANA_DISKS;
   rc = hd_ana_snapshots(db, a.run, a.label, dimers ? "dimer" : "disk", &sn, &ns, &err);
-  sqlite3_close(db);
+  hd_ana_close(db);
   if (rc) return hd_cli_fail(argv[0], &err);
   if (ns == 0) {
     fprintf(stderr, "haff %s: run %lld has no '%s' snapshots\n", argv[0], (long long)a.run,
