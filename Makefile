@@ -60,8 +60,13 @@ _below   :=
 $(foreach l,$(LAYERS),$(eval _below += $(LAYER_$(l)))$(eval INC_$(l) := $(addprefix -I,$(_below))))
 $(foreach l,$(LAYERS),$(foreach d,$(LAYER_$(l)),$(eval $$(BUILD)/$(d)/%.o: LAYER_INC := $$(INC_$(l)))))
 
-# Sources: every .c of the layer folders (the library) and of cli/ (the program).
+# Sources: every .c of the layer folders (the library) and of cli/ (the program).  A .c or .h
+# elsewhere under engine/, db/, analysis/, mc/ or cli/ belongs to no layer and is not built:
+# said here, and an error of make check-layers.
 LIB_SRC := $(wildcard $(addsuffix /*.c,$(LIB_DIRS)))
+SRC_ROOTS := $(sort $(foreach d,$(SRC_DIRS),$(firstword $(subst /, ,$(d)))))
+STRAY_SRC := $(filter-out $(addsuffix /%,$(SRC_DIRS)),$(wildcard $(foreach r,$(SRC_ROOTS),$(r)/*.[ch] $(r)/*/*.[ch])))
+$(if $(STRAY_SRC),$(warning not in a layer folder (LAYERS), not built: $(STRAY_SRC)))
 CLI_SRC := $(wildcard cli/*.c)
 TEST_SRC:= $(wildcard tests/test_*.c)
 LIB_OBJ := $(LIB_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/schema_sql.o
