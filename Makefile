@@ -42,8 +42,8 @@ TESTLIBS:= -lcmocka
 # The source folders are layers, lowest first (docs/architecture.md).  A layer's sources are
 # compiled with the include path of their own layer and of the layers below (-I per folder),
 # so an #include of a higher layer's header does not compile; tests/check-layers (make
-# check-layers, part of make test) checks every #include "..." against the same order, headers
-# that no source of their layer compiles included.  Tests, benchmarks and fuzzers see all.
+# check-layers, part of make test) checks every #include "..." against the same order, also in
+# headers that no source of their layer includes.  Tests, benchmarks and fuzzers see all.
 LAYERS          := core kernels scene sim store run programs tools
 LAYER_core      := engine/core
 LAYER_kernels   := engine/body engine/rods
