@@ -565,7 +565,7 @@ static int study_create(study *st, const char *dir) {
 enum { P_MISSING, P_DONE, P_RUNNING, P_INTERRUPTED, P_FAILED };
 static const char *const state_name[] = {"missing", "done", "running", "interrupted", "failed"};
 
-/* Whether a process holds the lock of run `run` in db.lock (engine/hd_run.c run_lock). */
+/* Whether a process holds the lock of run `run` in db.lock (engine/run/hd_run.c run_lock). */
 static int run_locked(const char *db, long long run) {
   char lk[PATH_MAX + 256];
   snprintf(lk, sizeof lk, "%s.lock", db);

@@ -94,7 +94,7 @@ static void put_body(FILE *out, const xyz_geom *g, long long body, int kind, con
   const char *species = kind == HD_KIND_DIMER ? "N" : kind == HD_DB_KIND_ROD ? "C" : "Ar";
   double m = sh->m, r = 0.5 * sh->d;
   if (kind == HD_DB_KIND_ROD) {
-    m = body % 2 ? 1 + 1 / g->rod_gamma : 1 + g->rod_gamma; /* engine/rods.c */
+    m = body % 2 ? 1 + 1 / g->rod_gamma : 1 + g->rod_gamma; /* engine/rods/rods.c */
     r = 0.5;
   }
   int disks = kind == HD_KIND_DIMER ? 2 : 1;

@@ -1,4 +1,4 @@
-/* `haff mc eps`: sample, study the convergence of, or tabulate p_beta(eps) (mc/eps.h). */
+/* `haff mc eps`: sample, study the convergence of, or tabulate p_beta(eps) (engine/rods/eps.h). */
 #include <errno.h>
 #include <getopt.h>
 #include <gsl/gsl_randist.h>

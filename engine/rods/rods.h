@@ -2,7 +2,7 @@
  * and IV: N point rods on a ring of length N (mean spacing 1), alternating short/long with
  * length ratio gamma and masses in the same ratio, each with a bath of N_mod vibrational modes
  * at temperature T_B.  Event driven between collisions (one event per gap i|i+1 in an indexed
- * heap), Monte Carlo at collisions (eps drawn from p_beta, mc/eps.h).  docs/rods.md.
+ * heap), Monte Carlo at collisions (eps drawn from p_beta, eps.h).  docs/rods.md.
  *
  * Units (paper Sec. II C): masses m_short = Gamma_1 = 1 + gamma, m_long = Gamma_2 = 1 + 1/gamma,
  * so that the reduced mass of every colliding pair is mu = Gamma_1 Gamma_2/(Gamma_1 + Gamma_2)

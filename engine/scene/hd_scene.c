@@ -524,7 +524,7 @@ static int set_value(ctx *c, int k, const char *v) {
   case K_RSTEP: {
     int got = get_num(c, k, v, 'n', &sc->rod_eps_step);
     /* 0 is the sampler's default; its grid needs ~(1 + 1/gamma)/step points, at most 5e7 / 64
-     * (mc/eps.c), and 1e-300 overflowed the size check and crashed the run (SIGFPE) */
+     * (engine/rods/eps.c), and 1e-300 overflowed the size check and crashed the run (SIGFPE) */
     if (!got && sc->rod_eps_step != 0 && !(sc->rod_eps_step >= 1e-5 && sc->rod_eps_step <= 0.5))
       return FAIL_KEY(c, k, "must be 0 (the default step) or in [1e-5, 0.5]");
     return got;

@@ -96,7 +96,7 @@ typedef struct hd_scene {
   double frames_every_time; /* `frames_every_time` [0 = none]: a frame at t = 0, T, 2T, ...
                              * exactly (needs stop_time); not with frames_every */
   double frames_max_mb;     /* `frames_max_mb` [HD_FRAMES_MAX_MB]: cap on the frames' storage */
-  /* [rods] (engine/rods.h, docs/rods.md): a rods scene has no bodies, box, walls or [init] */
+  /* [rods] (engine/rods/rods.h, docs/rods.md): a rods scene has no bodies, box, walls or [init] */
   long n_rods;            /* `count` [0]: rods on the ring (even, >= 2), ring length = count */
   double rod_gamma;       /* `gamma` [0.8]: length (and mass) ratio short/long, in (0, 1] */
   long rod_nmod;          /* `nmod` [1000]: vibrational modes per rod */
@@ -105,7 +105,7 @@ typedef struct hd_scene {
   double rod_damping;     /* `damping` [0]: nu, bath temperatures decay as exp(-nu t) */
   double rod_tc;          /* `tc` [0 = off]: TC model, eps = 1 if a rod collided within tc */
   double rod_temperature; /* `temperature` [1]: initial <m v^2> (sets the units: 1) */
-  int rod_table;          /* `table` [no]: draw eps from a tabulated p_beta (mc/eps_table.c) */
+  int rod_table;          /* `table` [no]: draw eps from a tabulated p_beta (eps_table.c) */
   double rod_eps_step;    /* `eps_step` [0 = the sampler's 0.01]: grid step of the direct eps
                            * sampler; its sqrt(step) bias lowers the stationary E_kin by ~3 % at
                            * 0.01, ~1 % at 0.0025 (docs/rods.md) */
