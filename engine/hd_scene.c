@@ -169,11 +169,9 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
                  "`bent ANGLE [S]`",                                                               \
     .doc = "a short form (below); S, the centre spacing, defaults to `d`")                         \
   X(PD, S_SPECIES, "d", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,              \
-    .put = put_sp_dm, .doc_def = "1", .doc_range = "> 0",                                          \
-    .doc = "with `shape`: the diameter of every disk")                                             \
+    .put = put_sp_dm, .doc = "with `shape`: the diameter of every disk")                         \
   X(PM, S_SPECIES, "m", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,              \
-    .put = put_sp_dm, .doc_def = "1", .doc_range = "> 0",                                          \
-    .doc = "with `shape`: the mass of every disk")                                                 \
+    .put = put_sp_dm, .doc = "with `shape`: the mass of every disk")                             \
   X(PDISKS, S_SPECIES, "disks", CUSTOM(set_disks), .show = show_explicit, .put = put_disks,        \
     .doc_key = "disks = x y d m; x y d m; ...", .doc_def = "— (or `shape`)",                       \
     .doc_range = "1 to 8 disks, d > 0, m > 0; no blank before `;`",                                \
