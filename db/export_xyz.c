@@ -17,7 +17,8 @@
  * Lx, Ly come from runs.box_x/box_y (hd_db_run_box), else from the scene's box (given, or
  * derived from area_fraction); the shapes and masses from [dimers] d, a, m and [disks] sigma,
  * mass, walls from [walls] sides: the run's stored scene read by the engine's loader
- * (hd_scene_read_stored), with its defaults.  Frames (table frames) take their body kinds from the run's 'initial' states. */
+ * (hd_scene_read_stored), with its defaults.  Frames (table frames) take their body kinds from the
+ * run's 'initial' states. */
 #include <getopt.h>
 #include <math.h>
 #include <sqlite3.h>
@@ -297,8 +298,7 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
     hd_error err;
     hd_error_clear(&err);
     if (scene && geom_of_scene(scene, g, &err)) {
-      fprintf(stderr, "haff export: %s: run %lld: %s\n", hd_db_path(db), (long long)*run,
-              err.msg);
+      fprintf(stderr, "haff export: %s: run %lld: %s\n", hd_db_path(db), (long long)*run, err.msg);
       code = 1;
     }
     if (sqlite3_column_type(st, 2) != SQLITE_NULL && sqlite3_column_type(st, 3) != SQLITE_NULL) {

@@ -76,11 +76,11 @@ typedef struct key_def {
   const char *const *names; /* KT_BOOL: written forms of 0 and 1; KT_ENUM: the values */
   int (*set)(ctx *c, int si, int k, const char *v); /* KT_CUSTOM: parses and stores */
   int (*check)(ctx *c, int si, int k);              /* further check after a generic parse */
-  int if_pos;                              /* written only when > 0 (0 means unset) */
-  int (*show)(const ctx *c, int si);       /* whether the canonical text writes it (NULL: yes) */
+  int if_pos;                                       /* written only when > 0 (0 means unset) */
+  int (*show)(const ctx *c, int si); /* whether the canonical text writes it (NULL: yes) */
   void (*put)(const ctx *c, int si, int k, sbuf *b); /* writes it (NULL: "name = value") */
-  const char *doc_key;   /* docs: the key column (NULL: the name) */
-  const char *doc_def;   /* docs: the default column (NULL: from def) */
+  const char *doc_key;                               /* docs: the key column (NULL: the name) */
+  const char *doc_def;                               /* docs: the default column (NULL: from def) */
   const char *doc_range; /* docs: the range column (NULL: from the type and range) */
   const char *doc;       /* docs: what it means */
 } key_def;
@@ -149,7 +149,7 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
   X(DCOUNT, S_DIMERS, "count", COUNT(n_dimers, "dimers"))                                          \
   X(DD, S_DIMERS, "d", REAL(1), F(dimer_d), R_POS, .doc = "diameter of each disk")                 \
   X(DA, S_DIMERS, "a", REAL(1), F(dimer_a), R_NONNEG, .doc_range = "0 or ≥ 10⁻⁹ d",                \
-    .doc = "bond length, centre to centre (below 10⁻⁹ d the bond is lost in the round-off of "    \
+    .doc = "bond length, centre to centre (below 10⁻⁹ d the bond is lost in the round-off of " \
            "the positions; `a = 0` is a disk of mass 2m)")                                         \
   X(DM, S_DIMERS, "m", REAL(1), F(dimer_m), R_POS, .doc = "mass of each disk (a dimer weighs 2m)") \
   X(DALPHA, S_DIMERS, "alpha", REAL(1), F(dimer_alpha), R_UNIT, .doc = "dimer–dimer restitution")  \
@@ -169,16 +169,16 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
                  "`bent ANGLE [S]`",                                                               \
     .doc = "a short form (below); S, the centre spacing, defaults to `d`")                         \
   X(PD, S_SPECIES, "d", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,              \
-    .put = put_sp_dm, .doc = "with `shape`: the diameter of every disk")                         \
+    .put = put_sp_dm, .doc = "with `shape`: the diameter of every disk")                           \
   X(PM, S_SPECIES, "m", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,              \
-    .put = put_sp_dm, .doc = "with `shape`: the mass of every disk")                             \
+    .put = put_sp_dm, .doc = "with `shape`: the mass of every disk")                               \
   X(PDISKS, S_SPECIES, "disks", CUSTOM(set_disks), .show = show_explicit, .put = put_disks,        \
     .doc_key = "disks = x y d m; x y d m; ...", .doc_def = "— (or `shape`)",                       \
     .doc_range = "1 to 8 disks, d > 0, m > 0; no blank before `;`",                                \
     .doc = "instead of `shape`: each disk's centre in the body frame, diameter and mass")          \
   X(PALPHAX, S_SPECIES, "alpha_OTHER", CUSTOM(set_alpha_other), .put = put_pairs,                  \
     .doc_def = "the smaller of the two `alpha`s", .doc_range = "[0, 1]",                           \
-    .doc = "restitution between this species and OTHER: another species' NAME, `dimers` or "     \
+    .doc = "restitution between this species and OTHER: another species' NAME, `dimers` or "       \
            "`disks` (the pair is set once, in either section)")                                    \
   X(WSIDES, S_WALLS, "sides", CUSTOM(set_sides), F(walls), .put = put_sides,                       \
     .doc_def = "required",                                                                         \
@@ -194,12 +194,12 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
   X(STATE, S_INIT, "state", CUSTOM(set_state), F(state_file), .show = show_state,                  \
     .put = put_state, .doc_def = "—", .doc_range = "a CSV file",                                   \
     .doc = "every body given explicitly; relative to the scene file's folder")                     \
-  X(STIME, S_RUN, "stop_time", REAL(0), F(stop_time), R_POS, .if_pos = 1,                     \
-    .doc_def = "unset", .doc = "stop at this time")                                                \
+  X(STIME, S_RUN, "stop_time", REAL(0), F(stop_time), R_POS, .if_pos = 1, .doc_def = "unset",      \
+    .doc = "stop at this time")                                                                    \
   X(SEVENTS, S_RUN, "stop_events", .type = KT_WHOLE, F(stop_events), .lo = 1,                      \
-    .hi = 9007199254740992.0, .if_pos = 1, .doc_def = "unset",                                \
-    .doc_range = "whole, 1 to 2⁵³", .doc = "stop after this many collisions")                      \
-  X(SCPD, S_RUN, "stop_cpd", REAL(0), F(stop_cpd), R_POS, .if_pos = 1, .doc_def = "unset",    \
+    .hi = 9007199254740992.0, .if_pos = 1, .doc_def = "unset", .doc_range = "whole, 1 to 2⁵³",     \
+    .doc = "stop after this many collisions")                                                      \
+  X(SCPD, S_RUN, "stop_cpd", REAL(0), F(stop_cpd), R_POS, .if_pos = 1, .doc_def = "unset",         \
     .doc = "stop at this many collisions per particle")                                            \
   X(VERIFY, S_RUN, "verify", .type = KT_BOOL, F(verify), .names = zero_one,                        \
     .doc = "check no-overlap and time order at every event")                                       \
@@ -208,12 +208,12 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
   X(LCOLL, S_LOG, "collisions", CUSTOM(set_collisions), F(log_collisions), .put = put_collisions,  \
     .doc_def = "`all`", .doc_range = "`all` \\| `none` \\| `every N` (N whole ≥ 1)",               \
     .doc = "which collisions get a row")                                                           \
-  X(LSAMPLES, S_LOG, "samples_every", REAL(0), F(samples_every), R_NONNEG,                         \
-    .doc_def = "0 (none)", .doc = "cpd between samples of E_tr, E_rot")                            \
+  X(LSAMPLES, S_LOG, "samples_every", REAL(0), F(samples_every), R_NONNEG, .doc_def = "0 (none)",  \
+    .doc = "cpd between samples of E_tr, E_rot")                                                   \
   X(LVEL, S_LOG, "velocities_at", CUSTOM(set_vel_at), F(velocities_at), .show = show_vel,          \
     .put = put_vel, .doc_def = "none",                                                             \
     .doc_range = "up to 64 cpd values ≥ 0, strictly ascending, space separated",                   \
-    .doc = "when every body's velocity is stored (at the first collision at or past each value; " \
+    .doc = "when every body's velocity is stored (at the first collision at or past each value; "  \
            "values that one collision passes together give one snapshot). A value past "           \
            "`stop_cpd` is an error at set-up; values the run does not reach for another stop "     \
            "give none, and the run's message says how many")                                       \
@@ -222,15 +222,14 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
     .doc_range = "up to 64 times ≥ 0, strictly ascending; not with `velocities_at`",               \
     .doc = "the same in time: each snapshot is taken at exactly that time (the run is advanced "   \
            "to it, no collision changed). A time past `stop_time` is an error at set-up")          \
-  X(LFRAMES, S_LOG, "frames_every", REAL(0), F(frames_every), R_NONNEG, .if_pos = 1,          \
+  X(LFRAMES, S_LOG, "frames_every", REAL(0), F(frames_every), R_NONNEG, .if_pos = 1,               \
     .doc_def = "0 (none)",                                                                         \
     .doc = "a frame (position, orientation, velocity of every body, table `frames`) every this "   \
            "many cpd: at cpd 0 and at the first collision at or past each multiple, one per "      \
            "collision at most")                                                                    \
-  X(LFRAMEST, S_LOG, "frames_every_time", REAL(0), F(frames_every_time), R_NONNEG,                 \
-    .if_pos = 1, .doc_def = "0 (none)",                                                       \
-    .doc_range = "≥ 0; needs `stop_time`; not with `frames_every`",                                \
-    .doc = "a frame at t = 0, T, 2T, … up to `stop_time`, at exactly those times (the engine "     \
+  X(LFRAMEST, S_LOG, "frames_every_time", REAL(0), F(frames_every_time), R_NONNEG, .if_pos = 1,    \
+    .doc_def = "0 (none)", .doc_range = "≥ 0; needs `stop_time`; not with `frames_every`",         \
+    .doc = "a frame at t = 0, T, 2T, … up to `stop_time`, at exactly those times (the engine "   \
            "stops there; the run's collisions are bit for bit those of a run without frames)")     \
   X(LFRAMESMB, S_LOG, "frames_max_mb", REAL(HD_FRAMES_MAX_MB), F(frames_max_mb), R_POS,            \
     .show = show_frames, .doc_range = "> 0; only with frames",                                     \
@@ -252,7 +251,7 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
     .doc = "TC model: ε = 1 when a rod collided less than tc ago (0 = off)")                       \
   X(RSTEP, S_RODS, "eps_step", REAL(0), F(rod_eps_step), R_NONNEG, .check = check_eps_step,        \
     .doc_def = "0 (= 0.01)", .doc_range = "0 or in [1e-5, 0.5]",                                   \
-    .doc = "grid step of the direct ε sampler; its √step bias lowers the stationary E_kin by "     \
+    .doc = "grid step of the direct ε sampler; its √step bias lowers the stationary E_kin by "  \
            "~3 % at 0.01 and ~1 % at 0.0025 (4× slower); see docs/rods.md")                        \
   X(RTEMP, S_RODS, "temperature", REAL(HD_RODS_TEMPERATURE_DEFAULT), F(rod_temperature), R_POS,    \
     .doc = "initial temperature T0: E_kin(0) = N T0/2")                                            \
@@ -304,14 +303,14 @@ struct ctx {
   const char *const *over; /* the overrides */
   int n_over;              /* how many */
   hd_error *err;
-  int failed;                    /* an error has been set: stop */
-  int code;                      /* its hd_status */
-  loc cur;                       /* where the key being handled comes from */
-  int cur_si;                    /* the section of the line being read (-1: none yet) */
-  loc key_at[N_SI][N_KEY];       /* where each key of each section was set */
-  char key_val[N_SI][N_KEY][96]; /* its value as written (shortened), for later messages */
-  int present[N_SI];             /* the section appears (header or --set) */
-  loc sec_at[N_SI];              /* its first header */
+  int failed;                      /* an error has been set: stop */
+  int code;                        /* its hd_status */
+  loc cur;                         /* where the key being handled comes from */
+  int cur_si;                      /* the section of the line being read (-1: none yet) */
+  loc key_at[N_SI][N_KEY];         /* where each key of each section was set */
+  char key_val[N_SI][N_KEY][96];   /* its value as written (shortened), for later messages */
+  int present[N_SI];               /* the section appears (header or --set) */
+  loc sec_at[N_SI];                /* its first header */
   sp_parse sp[HD_MAX_SPECIES - 2]; /* the named species' sections */
   const char *p, *end;             /* reader: rest of the text */
   long lineno;                     /* reader: lines handed out */
@@ -796,8 +795,7 @@ static int unknown_section(ctx *c, const char *s) {
   char at[600];
   where(c, c->cur, at, sizeof at);
   if (!strcmp(s, "species"))
-    return cfail(c, HD_EINPUT, "%s: [species]: a species section needs a name: [species NAME]",
-                 at);
+    return cfail(c, HD_EINPUT, "%s: [species]: a species section needs a name: [species NAME]", at);
   return cfail(c, HD_EINPUT,
                "%s: [%.60s]: unknown section (known: system dimers disks species NAME walls init "
                "run log rods)",
@@ -845,7 +843,8 @@ static int section_index(ctx *c, const char *s, int create) {
   strcpy(sp->name, name);
   sp->line = c->cur.over ? 0 : c->cur.line;
   for (int k = 0; k < N_KEY; k++)
-    if (keys[k].sec == S_SPECIES && keys[k].type == KT_REAL) *(double *)field(c, si, k) = keys[k].def;
+    if (keys[k].sec == S_SPECIES && keys[k].type == KT_REAL)
+      *(double *)field(c, si, k) = keys[k].def;
   sp_parse *p = &c->sp[si - N_SEC];
   memset(p, 0, sizeof *p);
   p->d = keys[K_PD].def;
@@ -986,8 +985,8 @@ static char *reader(char *str, int num, void *stream) {
     char at[600];
     where(c, c->cur, at, sizeof at);
     cfail(c, HD_EINPUT,
-          "%s: [species %s] disks: a blank before ';' starts a comment: write x y d m; x y d m",
-          at, c->sc->named[c->cur_si - N_SEC].name);
+          "%s: [species %s] disks: a blank before ';' starts a comment: write x y d m; x y d m", at,
+          c->sc->named[c->cur_si - N_SEC].name);
     return NULL;
   }
   return str;
@@ -1105,9 +1104,8 @@ static int check_state(ctx *c) {
     snprintf(joined, sizeof joined, "%s/%s", sc->dir, c->state_rel);
   char *real = realpath(joined, NULL);
   if (!real)
-    return fail(c, HD_EIO, c->key_at[S_INIT][K_STATE], S_INIT, "state",
-                c->key_val[S_INIT][K_STATE], "cannot read state file '%s': %s", joined,
-                strerror(errno));
+    return fail(c, HD_EIO, c->key_at[S_INIT][K_STATE], S_INIT, "state", c->key_val[S_INIT][K_STATE],
+                "cannot read state file '%s': %s", joined, strerror(errno));
   if (strlen(real) >= sizeof sc->state_file) {
     free(real);
     return FAIL_KEY(c, K_STATE, "path too long");
@@ -1304,9 +1302,10 @@ static int fill_pairs(ctx *c) {
   int set_by[HD_MAX_SPECIES][HD_MAX_SPECIES];
   memset(set_at, 0, sizeof set_at);
   for (int i = 0; i < HD_MAX_SPECIES; i++)
-    own[i] = i == 0 ? sc->dimer_alpha : i == 1 ? sc->disk_alpha
-                                    : i - 2 < sc->n_named ? sc->named[i - 2].alpha
-                                                          : 1;
+    own[i] = i == 0                ? sc->dimer_alpha
+             : i == 1              ? sc->disk_alpha
+             : i - 2 < sc->n_named ? sc->named[i - 2].alpha
+                                   : 1;
   for (int i = 0; i < HD_MAX_SPECIES; i++)
     for (int j = 0; j < HD_MAX_SPECIES; j++) sc->alpha_pair[i][j] = fmin(own[i], own[j]);
   sc->alpha_pair[0][1] = sc->alpha_pair[1][0] = sc->disk_alpha_dimer;
@@ -1329,8 +1328,8 @@ static int fill_pairs(ctx *c) {
         for (int j = 0; j < sc->n_named; j++)
           if (j != k) strcat(known, " "), strcat(known, sc->named[j].name);
         return fail(c, HD_EINPUT, pr->at, si, key, pr->val,
-                    "no [%s%s] section in the scene (other species:%s)",
-                    o < 0 ? "species " : "", pr->other, known[0] ? known : " none");
+                    "no [%s%s] section in the scene (other species:%s)", o < 0 ? "species " : "",
+                    pr->other, known[0] ? known : " none");
       }
       int i = 2 + k;
       if (is_set(set_at[i][o])) {
@@ -1626,7 +1625,10 @@ static void put_pairs(const ctx *c, int si, int k, sbuf *b) {
   char key[HD_SPECIES_NAME_MAX + 8];
   for (int o = 0; o < i; o++) {
     if (o < 2 && !c->present[o == 0 ? S_DIMERS : S_DISKS]) continue;
-    snprintf(key, sizeof key, "alpha_%s", o == 0 ? "dimers" : o == 1 ? "disks" : sc->named[o - 2].name);
+    snprintf(key, sizeof key, "alpha_%s",
+             o == 0   ? "dimers"
+             : o == 1 ? "disks"
+                      : sc->named[o - 2].name);
     put_kv(b, key, sc->alpha_pair[i][o]);
   }
 }
@@ -1755,8 +1757,8 @@ int hd_scene_keys_doc(const char *in, char **out, hd_error *err) {
       }
       if (!*p) {
         free(b.s);
-        return hd_error_set(err, HD_EINPUT, "line %ld: table of [%s] not closed by %s", line,
-                            name, end_tag);
+        return hd_error_set(err, HD_EINPUT, "line %ld: table of [%s] not closed by %s", line, name,
+                            end_tag);
       }
       continue;
     }
@@ -1983,7 +1985,8 @@ static int csv_row(char *line, const char *path, long lineno, const hd_scene *sc
     }
   if (r->species < 0) {
     char names[HD_MAX_SPECIES * (HD_SPECIES_NAME_MAX + 1)] = "";
-    for (int j = 0; sc && j < sc->n_named; j++) strcat(names, " "), strcat(names, sc->named[j].name);
+    for (int j = 0; sc && j < sc->n_named; j++)
+      strcat(names, " "), strcat(names, sc->named[j].name);
     return hd_error_set(err, HD_EINPUT, "%s:%ld: column 1 (kind): '%.40s' is not dimer or disk%s%s",
                         path, lineno, kind, names[0] ? ", nor a [species] of the scene:" : "",
                         names);

@@ -30,8 +30,8 @@
 #define HD_SCENE_MAX_BYTES (1L << 20) /* largest scene file (a scene is ~1 kB) */
 #define HD_STATE_MAX_LINE 4096        /* longest line of a state CSV, in bytes */
 
-#define HD_MAX_SPECIES 8     /* species in one scene, [dimers] and [disks] included */
-#define HD_MAX_BODY_DISKS 8  /* disks in one rigid body */
+#define HD_MAX_SPECIES 8    /* species in one scene, [dimers] and [disks] included */
+#define HD_MAX_BODY_DISKS 8 /* disks in one rigid body */
 #define HD_SPECIES_NAME_MAX 32
 
 /* One `[species NAME]` section: a rigid planar cluster of disks (issue 18, docs/scene-keys.md). */
@@ -91,9 +91,10 @@ typedef struct hd_scene {
    * species 0 and [disks] species 1 as now) */
   int n_named;                                /* how many */
   hd_scene_species named[HD_MAX_SPECIES - 2]; /* the sections */
-  double alpha_pair[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* restitution between engine species i != j
-                                                      * (symmetric); filled by the loader, with
-                                                      * the defaults applied (never NaN after load) */
+  double alpha_pair[HD_MAX_SPECIES]
+                   [HD_MAX_SPECIES]; /* restitution between engine species i != j
+                                      * (symmetric); filled by the loader, with
+                                      * the defaults applied (never NaN after load) */
   /* [walls] */
   unsigned walls;    /* `sides`: HD_WALL_* bits [0: fully periodic] */
   double wall_alpha; /* `alpha` [1] */

@@ -49,7 +49,7 @@ double hd_disks_area(int n, const double *x, const double *y, const double *d) {
         hidden = j < i;
         continue;
       }
-      if (dist + ri <= rj) hidden = 1;                 /* inside disk j: no boundary arc */
+      if (dist + ri <= rj) hidden = 1;                  /* inside disk j: no boundary arc */
       if (hidden || dist >= ri + rj || dist + rj <= ri) /* apart, or j inside i */
         continue;
       /* the arc of circle i inside disk j: centred on the direction to j, half-angle h */

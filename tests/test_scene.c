@@ -695,7 +695,6 @@ static void example_scenes(void **state) {
   hd_scene_free(&sc);
 }
 
-
 /* ---- one key table: the docs, and the canonical texts of before ---------------------------- */
 
 /* Reads a whole file into a malloc'd string. */
@@ -834,12 +833,12 @@ static void species_alpha_pairs(void **state) {
                      "alpha_b = 0.3\n[species b]\ncount = 1\nshape = disk\nalpha = 0.95\n"
                      "alpha_dimers = 0.1\n");
   double(*p)[HD_MAX_SPECIES] = sc.alpha_pair;
-  assert_true(p[0][1] == 0.2 && p[1][0] == 0.2);   /* alpha_dimer */
-  assert_true(p[2][0] == 0.8 && p[0][2] == 0.8);   /* min(0.9, 0.8) */
-  assert_true(p[2][1] == 0.7 && p[1][2] == 0.7);   /* min(0.7, 0.8) */
-  assert_true(p[2][3] == 0.3 && p[3][2] == 0.3);   /* a.alpha_b */
-  assert_true(p[3][0] == 0.1 && p[0][3] == 0.1);   /* b.alpha_dimers */
-  assert_true(p[3][1] == 0.7);                     /* min(0.95, 0.7) */
+  assert_true(p[0][1] == 0.2 && p[1][0] == 0.2); /* alpha_dimer */
+  assert_true(p[2][0] == 0.8 && p[0][2] == 0.8); /* min(0.9, 0.8) */
+  assert_true(p[2][1] == 0.7 && p[1][2] == 0.7); /* min(0.7, 0.8) */
+  assert_true(p[2][3] == 0.3 && p[3][2] == 0.3); /* a.alpha_b */
+  assert_true(p[3][0] == 0.1 && p[0][3] == 0.1); /* b.alpha_dimers */
+  assert_true(p[3][1] == 0.7);                   /* min(0.95, 0.7) */
   assert_true(p[0][0] == 0.9 && p[2][2] == 0.8 && p[3][3] == 0.95);
   for (int i = 0; i < HD_MAX_SPECIES; i++)
     for (int j = 0; j < HD_MAX_SPECIES; j++) assert_false(isnan(p[i][j]));
@@ -913,8 +912,8 @@ static const bad_case species_bad[] = {
      "[species t] shape = linear 3 1.5", "disk 2 at (0, 0) is not connected to disk 1"},
     {SPBOX SP "shape = dimer 1.01\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] shape",
      "not connected"},
-    {SPBOX SP "shape = disk\ndisks = 0 0 1 1\n", NULL, HD_EINPUT, "bad.ini:8:",
-     "[species t] disks = 0 0 1 1", "either shape or disks, not both"},
+    {SPBOX SP "shape = disk\ndisks = 0 0 1 1\n", NULL, HD_EINPUT,
+     "bad.ini:8:", "[species t] disks = 0 0 1 1", "either shape or disks, not both"},
     {SPBOX SP "alpha = 0.5\n", NULL, HD_EINPUT, "bad.ini:5:", "[species t] shape",
      "missing: give shape ="},
     {SPBOX SP "disks = 0 0 1 1\nd = 2\n", NULL, HD_EINPUT, "bad.ini:8:", "[species t] d = 2",
@@ -922,8 +921,8 @@ static const bad_case species_bad[] = {
     {SPBOX SP "disks = 0 0 1 1; 5 0 1 1\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] disks",
      "disk 2 at (5, 0) is not connected to disk 1"},
     /* 1 touches 2 and 3 touches 4, but the pairs are apart */
-    {SPBOX SP "disks = 0 0 1 1; 1 0 1 1; 5 0 1 1; 6 0 1 1\n", NULL, HD_EINPUT, "bad.ini:7:",
-     "[species t] disks", "disk 3 at (5, 0) is not connected"},
+    {SPBOX SP "disks = 0 0 1 1; 1 0 1 1; 5 0 1 1; 6 0 1 1\n", NULL, HD_EINPUT,
+     "bad.ini:7:", "[species t] disks", "disk 3 at (5, 0) is not connected"},
     {SPBOX SP "disks = 0 0 1\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] disks",
      "disk 1: expected x y d m"},
     {SPBOX SP "disks = 0 0 1 1; 1 0 -1 1\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] disks",
@@ -934,20 +933,20 @@ static const bad_case species_bad[] = {
      "blank before ';'"},
     {SPBOX SP "disks = 0 0 1 1;1 0 1 1;2 0 1 1;3 0 1 1;4 0 1 1;5 0 1 1;6 0 1 1;7 0 1 1;8 0 1 1\n",
      NULL, HD_EINPUT, "bad.ini:7:", "[species t] disks", "more than 8 disks"},
-    {SPBOX SP "shape = disk\nalpha = 2\n", NULL, HD_EINPUT, "bad.ini:8:",
-     "[species t] alpha = 2", "must be in [0, 1]"},
-    {SPBOX SP "shape = disk\nalpha_t = 0.5\n", NULL, HD_EINPUT, "bad.ini:8:",
-     "[species t] alpha_t = 0.5", "the species itself"},
-    {SPBOX SP "shape = disk\nalpha_foo = 0.5\n", NULL, HD_EINPUT, "bad.ini:8:",
-     "[species t] alpha_foo = 0.5", "no [species foo] section"},
-    {SPBOX SP "shape = disk\nalpha_dimers = 0.5\n", NULL, HD_EINPUT, "bad.ini:8:",
-     "[species t] alpha_dimers", "no [dimers] section"},
+    {SPBOX SP "shape = disk\nalpha = 2\n", NULL, HD_EINPUT, "bad.ini:8:", "[species t] alpha = 2",
+     "must be in [0, 1]"},
+    {SPBOX SP "shape = disk\nalpha_t = 0.5\n", NULL, HD_EINPUT,
+     "bad.ini:8:", "[species t] alpha_t = 0.5", "the species itself"},
+    {SPBOX SP "shape = disk\nalpha_foo = 0.5\n", NULL, HD_EINPUT,
+     "bad.ini:8:", "[species t] alpha_foo = 0.5", "no [species foo] section"},
+    {SPBOX SP "shape = disk\nalpha_dimers = 0.5\n", NULL, HD_EINPUT,
+     "bad.ini:8:", "[species t] alpha_dimers", "no [dimers] section"},
     {SPBOX SP "shape = disk\nalpha_u = 1.5\n[species u]\ncount = 1\nshape = disk\n", NULL,
      HD_EINPUT, "bad.ini:8:", "[species t] alpha_u = 1.5", "must be in [0, 1]"},
     {SPBOX SP "shape = disk\nalpha_u = 0.5\n[species u]\ncount = 1\nshape = disk\nalpha_t = 0.5\n",
      NULL, HD_EINPUT, "bad.ini:12:", "[species u] alpha_t", "also set by [species t] alpha_u"},
-    {SPBOX SP "shape = disk\nalpha_u = 0.5\nalpha_u = 0.6\n", NULL, HD_EINPUT, "bad.ini:9:",
-     "[species t] alpha_u", "duplicate key (first set at line 8)"},
+    {SPBOX SP "shape = disk\nalpha_u = 0.5\nalpha_u = 0.6\n", NULL, HD_EINPUT,
+     "bad.ini:9:", "[species t] alpha_u", "duplicate key (first set at line 8)"},
     {SPBOX "[species t]\nshape = disk\n", NULL, HD_EINPUT, "bad.ini:5:", "[species t] count",
      "missing: required"},
     {"[rods]\ncount = 4\n[run]\nstop_time = 1\n[species t]\ncount = 1\nshape = disk\n", NULL,
@@ -956,12 +955,12 @@ static const bad_case species_bad[] = {
     {"[system]\nbox = 7 7\n[run]\nstop_time = 1\n" SP "shape = linear 8\n", NULL, HD_EINPUT,
      "bad.ini:2:", "[system] box", "shorter than the largest body (8)"},
     /* overrides name themselves */
-    {SPBOX SP "shape = disk\n", "species.t.alpha=2", HD_EINPUT, "--set species.t.alpha=2:",
-     "[species t] alpha = 2", "[0, 1]"},
-    {SPBOX SP "shape = disk\n", "species.t=2", HD_EINPUT, "--set species.t=2:",
-     "SECTION.KEY=VALUE", NULL},
-    {SPBOX SP "shape = disk\n", "species.t.colour=2", HD_EINPUT, "--set species.t.colour=2:",
-     "[species t] colour", "unknown key"},
+    {SPBOX SP "shape = disk\n", "species.t.alpha=2", HD_EINPUT,
+     "--set species.t.alpha=2:", "[species t] alpha = 2", "[0, 1]"},
+    {SPBOX SP "shape = disk\n", "species.t=2", HD_EINPUT, "--set species.t=2:", "SECTION.KEY=VALUE",
+     NULL},
+    {SPBOX SP "shape = disk\n", "species.t.colour=2", HD_EINPUT,
+     "--set species.t.colour=2:", "[species t] colour", "unknown key"},
 };
 
 static void species_errors(void **state) {
