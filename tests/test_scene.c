@@ -500,6 +500,13 @@ static void assert_same_scene(const hd_scene *a, const hd_scene *b) {
   SAME(velocities_in_time);
   assert_memory_equal(a->velocities_at, b->velocities_at,
                       (size_t)a->n_velocities_at * sizeof a->velocities_at[0]);
+  SAME(n_named); /* [species NAME]: every field but the header's line */
+  for (int j = 0; j < a->n_named; j++) {
+    hd_scene_species x = a->named[j], y = b->named[j];
+    x.line = y.line = 0;
+    assert_memory_equal(&x, &y, sizeof x);
+  }
+  SAME(alpha_pair);
   assert_string_equal(a->text, b->text);
 }
 
@@ -812,14 +819,6 @@ static void species_shapes(void **state) {
   assert_non_null(strstr(sc.text, "[species asym]\ncount = 6\nalpha = 1\n"
                                   "disks = 0 0 1 1; 0.75 0 0.5 0.25\n"));
   round_trip_one(&sc);
-  hd_scene b;
-  hd_error e;
-  assert_int_equal(hd_scene_load_stored(&b, sc.text, "stored", &e), HD_OK);
-  assert_string_equal(b.text, sc.text);
-  for (int j = 0; j < sc.n_named; j++) b.named[j].line = sc.named[j].line; /* lines differ */
-  assert_memory_equal(b.named, sc.named, sizeof sc.named);
-  assert_memory_equal(b.alpha_pair, sc.alpha_pair, sizeof sc.alpha_pair);
-  hd_scene_free(&b);
   hd_scene_free(&sc);
 }
 
@@ -847,11 +846,6 @@ static void species_alpha_pairs(void **state) {
                                   "1\nm = 1\nalpha_dimers = 0.8\nalpha_disks = 0.7\n[species b]"));
   assert_non_null(strstr(sc.text, "alpha_dimers = 0.1\nalpha_disks = 0.7\nalpha_a = 0.3\n"));
   round_trip_one(&sc);
-  hd_scene b;
-  hd_error e;
-  assert_int_equal(hd_scene_load_string(&b, sc.text, "canon", NULL, 0, &e), HD_OK);
-  assert_memory_equal(b.alpha_pair, sc.alpha_pair, sizeof sc.alpha_pair);
-  hd_scene_free(&b);
   hd_scene_free(&sc);
 }
 
@@ -1036,14 +1030,15 @@ static void disks_union_area(void **state) {
   printf("# 5-disk union: exact %.10f, grid %.10f, |diff| %.2e <= bound %.2e\n", exact, grid,
          fabs(exact - grid), bound);
   assert_true(fabs(exact - grid) < bound);
-  /* and the inclusion-exclusion of the pairs alone overcounts here: the check is sharp */
+  /* and the inclusion-exclusion of the pairs alone misses here by 0.29 (the triples it leaves
+   * out), more than 5 bounds at either grid (0.0098 at 4000, 0.039 at 1000): the check is sharp */
   double pairs = 0;
   for (int i = 0; i < 5; i++)
     for (int j = i + 1; j < 5; j++)
       pairs += lens(cd[i] / 2, cd[j] / 2, hypot(cx[i] - cx[j], cy[i] - cy[j]));
   double sum = 0;
   for (int i = 0; i < 5; i++) sum += M_PI * cd[i] * cd[i] / 4;
-  assert_true(fabs(sum - pairs - grid) > 10 * bound);
+  assert_true(fabs(sum - pairs - grid) > 5 * bound);
 }
 
 /* area_fraction counts a species' bodies by their union of disks: `shape = dimer A` gives the
