@@ -101,6 +101,7 @@ static int show_set(const ctx *c, int si);
 static int show_box(const ctx *c, int si);
 static int show_not_state(const ctx *c, int si);
 static int show_state(const ctx *c, int si);
+static int show_sides(const ctx *c, int si);
 static int show_vel(const ctx *c, int si);
 static int show_vel_time(const ctx *c, int si);
 static int show_frames(const ctx *c, int si);
@@ -180,7 +181,7 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
     .doc_def = "the smaller of the two `alpha`s", .doc_range = "[0, 1]",                           \
     .doc = "restitution between this species and OTHER: another species' NAME, `dimers` or "       \
            "`disks` (the pair is set once, in either section)")                                    \
-  X(WSIDES, S_WALLS, "sides", CUSTOM(set_sides), F(walls), .put = put_sides,                       \
+  X(WSIDES, S_WALLS, "sides", CUSTOM(set_sides), F(walls), .show = show_sides, .put = put_sides,   \
     .doc_def = "required",                                                                         \
     .doc_range = "`left right`, `bottom top` or all four, space separated, no repeats",            \
     .doc = "flat hard walls on those box edges")                                                   \
@@ -1517,6 +1518,11 @@ static int show_not_state(const ctx *c, int si) {
 }
 static int show_state(const ctx *c, int si) {
   return !show_not_state(c, si);
+}
+/* (always, in a scene to run: [walls] requires sides; not in one only read without them) */
+static int show_sides(const ctx *c, int si) {
+  (void)si;
+  return c->sc->walls != 0;
 }
 static int show_vel(const ctx *c, int si) {
   (void)si;
