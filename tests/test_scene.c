@@ -276,10 +276,10 @@ static const bad_case bad_cases[] = {
     {"[system]\nseed = 3\n", "system.seed=4", HD_EINPUT, "bad.ini:0:", "[run]", "stop"},
 };
 
-static void bad_scenes(void **state) {
-  (void)state;
-  for (size_t i = 0; i < sizeof bad_cases / sizeof bad_cases[0]; i++) {
-    const bad_case *b = &bad_cases[i];
+/* Each case is refused with its code and one line holding its place, key and why. */
+static void check_bad_cases(const bad_case *cases, size_t n) {
+  for (size_t i = 0; i < n; i++) {
+    const bad_case *b = &cases[i];
     hd_scene sc;
     hd_error e;
     const char *over[1] = {b->over};
@@ -288,9 +288,15 @@ static void bad_scenes(void **state) {
     assert_int_equal(rc, b->code);
     assert_int_equal(e.code, b->code);
     assert_has(e.msg, b->at, b->what, b->why, NULL);
+    assert_null(strchr(e.msg, '\n'));
     assert_null(sc.text);
     hd_scene_free(&sc);
   }
+}
+
+static void bad_scenes(void **state) {
+  (void)state;
+  check_bad_cases(bad_cases, sizeof bad_cases / sizeof bad_cases[0]);
 }
 
 /* An override mends a bad line of the file: the file's value of a key that a --set replaces is
@@ -959,18 +965,7 @@ static const bad_case species_bad[] = {
 
 static void species_errors(void **state) {
   (void)state;
-  for (size_t i = 0; i < sizeof species_bad / sizeof species_bad[0]; i++) {
-    const bad_case *b = &species_bad[i];
-    hd_scene sc;
-    hd_error e;
-    const char *over[1] = {b->over};
-    int rc = hd_scene_load_string(&sc, b->text, "bad.ini", over, b->over ? 1 : 0, &e);
-    if (rc != b->code) print_error("case %zu: rc %d, message \"%s\"\n", i, rc, e.msg);
-    assert_int_equal(rc, b->code);
-    assert_has(e.msg, b->at, b->what, b->why, NULL);
-    assert_null(strchr(e.msg, '\n'));
-    assert_null(sc.text);
-  }
+  check_bad_cases(species_bad, sizeof species_bad / sizeof species_bad[0]);
 }
 
 /* Lens of two circles of radii r1, r2 at distance a (textbook formula), for the checks below. */
