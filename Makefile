@@ -76,7 +76,7 @@ LIB     := $(BUILD)/libhaff.a
 SOLIB   := $(BUILD)/libhaff.so
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all deps test test-unit check-layers fuzz demo bench plots clean help format install uninstall
+.PHONY: all deps test test-unit check-layers fuzz demo bench plots clean help format install uninstall scene-keys
 all: bin/haff $(SOLIB) $(BUILD)/haff.1
 
 help:
@@ -87,6 +87,7 @@ help:
 	@echo "make test-slurm  the Slurm test alone (a one-node Slurm started and stopped for it)"
 	@echo "make fuzz    libFuzzer on the parsers (tests/fuzz/fuzz_*.c), FUZZ_TIME s each"
 	@echo "make demo    run the demo scene and print what it logged"
+	@echo "make scene-keys  rewrite the key tables of docs/scene-keys.md from the key table"
 	@echo "make bench   benchmarks -> bench/results.md"
 	@echo "make plots   the papers' figures and tables -> plots/out/"
 	@echo "make install PREFIX=/usr/local DESTDIR=   bin/haff, man page haff(1), bash completion"
@@ -197,6 +198,11 @@ build-fuzz/tests/fuzz/%: tests/fuzz/%.c $(LIB)
 	$(CC) $(CFLAGS) $(ALL_INC) -fsanitize=fuzzer -Itests -o $@ $< $(LIB) $(LDLIBS)
 
 # --- user targets --------------------------------------------------------------------------
+# The key tables of docs/scene-keys.md come from the scene key table (engine/scene/hd_scene.c);
+# tests/test_scene.c fails when they differ.
+scene-keys: $(BUILD)/tests/gen_scene_keys
+	@$< docs/scene-keys.md
+
 demo: bin/haff
 	@scenes/demo.sh
 

@@ -14,11 +14,12 @@
  * reads back as the same double (at most 17 digits).  Positions are not wrapped into the box.
  * pbc is F along an axis closed by [walls], and along z.
  *
- * Lx, Ly come from runs.box_x/box_y (hd_db_run_box), else from the scene's [system] box; the
- * shapes and masses from [dimers] d, a, m and [disks] sigma, mass (default 1), walls from
- * [walls] sides.  Frames (table frames) take their body kinds from the run's 'initial' states. */
+ * Lx, Ly come from runs.box_x/box_y (hd_db_run_box), else from the scene's box (given, or
+ * derived from area_fraction); the shapes and masses from [dimers] d, a, m and [disks] sigma,
+ * mass, walls from [walls] sides: the run's stored scene read by the engine's loader
+ * (hd_scene_read_stored), with its defaults.  Frames (table frames) take their body kinds from the
+ * run's 'initial' states. */
 #include <getopt.h>
-#include <ini.h>
 #include <math.h>
 #include <sqlite3.h>
 #include <stdio.h>
@@ -42,28 +43,21 @@ typedef struct xyz_geom {
   int rods;           /* a rods run */
 } xyz_geom;
 
-static int geom_handler(void *user, const char *section, const char *name, const char *value) {
-  xyz_geom *g = user;
-  if (!strcmp(section, "system") && !strcmp(name, "box")) {
-    if (sscanf(value, "%lf %lf", &g->lx, &g->ly) != 2) g->lx = g->ly = NAN;
-  } else if (!strcmp(section, "dimers") && !strcmp(name, "d")) {
-    g->dimer.d = strtod(value, NULL);
-  } else if (!strcmp(section, "dimers") && !strcmp(name, "a")) {
-    g->dimer.a = strtod(value, NULL);
-  } else if (!strcmp(section, "dimers") && !strcmp(name, "m")) {
-    g->dimer.m = strtod(value, NULL);
-  } else if (!strcmp(section, "disks") && !strcmp(name, "sigma")) {
-    g->disk.d = strtod(value, NULL);
-  } else if (!strcmp(section, "disks") && !strcmp(name, "mass")) {
-    g->disk.m = strtod(value, NULL);
-  } else if (!strcmp(section, "walls") && !strcmp(name, "sides")) {
-    g->wall_x = strstr(value, "left") || strstr(value, "right");
-    g->wall_y = strstr(value, "bottom") || strstr(value, "top");
-  } else if (!strcmp(section, "rods")) {
-    g->rods = 1;
-    if (!strcmp(name, "gamma")) g->rod_gamma = strtod(value, NULL);
-  }
-  return 1; /* other keys are not ours to judge */
+/* The geometry of a run's stored scene, read by the engine's own loader (hd_scene_read_stored:
+ * the same keys and defaults as the run had).  HD_OK or its error. */
+static int geom_of_scene(const char *text, xyz_geom *g, hd_error *err) {
+  hd_scene sc;
+  int rc = hd_scene_read_stored(&sc, text, "runs.scene", err);
+  if (rc) return rc;
+  hd_scene_free(&sc);
+  if (sc.box_x > 0 && sc.box_y > 0) g->lx = sc.box_x, g->ly = sc.box_y;
+  g->dimer = (hd_shape){HD_KIND_DIMER, sc.dimer_d, sc.dimer_a, sc.dimer_m};
+  g->disk = (hd_shape){HD_KIND_DISK, sc.disk_sigma, 0.0, sc.disk_mass};
+  g->wall_x = (sc.walls & (HD_WALL_LEFT | HD_WALL_RIGHT)) != 0;
+  g->wall_y = (sc.walls & (HD_WALL_BOTTOM | HD_WALL_TOP)) != 0;
+  g->rods = sc.n_rods > 0;
+  g->rod_gamma = sc.rod_gamma;
+  return HD_OK;
 }
 
 static void usage(FILE *out) {
@@ -301,9 +295,10 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
     *g = (xyz_geom){NAN, NAN, {HD_KIND_DIMER, 1.0, 1.0, 1.0}, {HD_KIND_DISK, 1.0, 0.0, 1.0}, 0, 0,
                     0.8, 0};
     const char *scene = (const char *)sqlite3_column_text(st, 1);
-    if (scene && ini_parse_string(scene, geom_handler, g) < 0) {
-      fprintf(stderr, "haff export: %s: run %lld: cannot parse its scene\n", hd_db_path(db),
-              (long long)*run);
+    hd_error err;
+    hd_error_clear(&err);
+    if (scene && geom_of_scene(scene, g, &err)) {
+      fprintf(stderr, "haff export: %s: run %lld: %s\n", hd_db_path(db), (long long)*run, err.msg);
       code = 1;
     }
     if (sqlite3_column_type(st, 2) != SQLITE_NULL && sqlite3_column_type(st, 3) != SQLITE_NULL) {

@@ -3,9 +3,10 @@
 
 #include "hd_db.h"
 #include "hd_homog.h"
+#include "hd_scene.h"
 
-#include <ini.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,59 +15,6 @@ int hd_ana_open(sqlite3 **db, const char *path, hd_error *err) {
   int rc = hd_db_open_read(path, 0, tables, db, err);
   if (!rc) sqlite3_busy_timeout(*db, 5000);
   return rc;
-}
-
-/* Raw keys collected by the INI handler. */
-typedef struct scene_keys {
-  double box_x, box_y, eta;
-  double dim_count, dim_alpha, dim_a, dim_d, dim_m;
-  double disk_count, disk_alpha, disk_sigma, disk_mass;
-  int bad;
-  char badkey[96];
-  int walls; /* [walls] sides is not empty */
-} scene_keys;
-
-static int num(const char *v, double *out) {
-  char *end;
-  double x = strtod(v, &end);
-  while (*end == ' ' || *end == '\t') end++;
-  if (end == v || *end) return 0;
-  *out = x;
-  return 1;
-}
-
-static int on_key(void *user, const char *sec, const char *key, const char *val) {
-  scene_keys *k = user;
-  double *dst = NULL;
-  if (!strcmp(sec, "system") && !strcmp(key, "box")) {
-    char *end;
-    k->box_x = strtod(val, &end);
-    k->box_y = strtod(end, NULL);
-    return 1;
-  }
-  if (!strcmp(sec, "system") && !strcmp(key, "area_fraction")) dst = &k->eta;
-  if (!strcmp(sec, "walls") && !strcmp(key, "sides")) {
-    k->walls = strspn(val, " \t") < strlen(val);
-    return 1;
-  }
-  if (!strcmp(sec, "dimers")) {
-    if (!strcmp(key, "count")) dst = &k->dim_count;
-    if (!strcmp(key, "alpha")) dst = &k->dim_alpha;
-    if (!strcmp(key, "a")) dst = &k->dim_a;
-    if (!strcmp(key, "d")) dst = &k->dim_d;
-    if (!strcmp(key, "m")) dst = &k->dim_m;
-  }
-  if (!strcmp(sec, "disks")) {
-    if (!strcmp(key, "count")) dst = &k->disk_count;
-    if (!strcmp(key, "alpha")) dst = &k->disk_alpha;
-    if (!strcmp(key, "sigma")) dst = &k->disk_sigma;
-    if (!strcmp(key, "mass")) dst = &k->disk_mass;
-  }
-  if (dst && !num(val, dst) && !k->bad) {
-    k->bad = 1;
-    snprintf(k->badkey, sizeof k->badkey, "[%s] %s", sec, key);
-  }
-  return 1;
 }
 
 const char *hd_ana_species_name(int species, int walls) {
@@ -78,43 +26,31 @@ const char *hd_ana_species_name(int species, int walls) {
 }
 
 int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
-  scene_keys k = {0, 0, 0, 0, 1, 1, 1, 1, 0, 1, 1, 1, 0, "", 0};
-  int line = ini_parse_string(text, on_key, &k);
-  if (line != 0)
-    return hd_error_set(err, HD_EINPUT, "runs.scene: INI syntax error at line %d", line);
-  if (k.bad) return hd_error_set(err, HD_EINPUT, "runs.scene: %s is not a number", k.badkey);
-  double body_area;
-  if (k.dim_count > 0) {
-    ri->species = k.disk_count > 0 ? HD_ANA_MIXTURE : HD_ANA_DIMERS;
-    ri->n = (long)k.dim_count;
-    ri->alpha = k.dim_alpha, ri->a = k.dim_a, ri->d = k.dim_d, ri->m = k.dim_m;
-    ri->mass = 2.0 * k.dim_m;
-    ri->a_over_d = k.dim_a / k.dim_d;
-    /* two disks minus their lens overlap when a < d */
-    double r = 0.5 * k.dim_d, a = k.dim_a, lens = 0;
-    if (a < 2 * r) lens = 2 * r * r * acos(a / (2 * r)) - 0.5 * a * sqrt(4 * r * r - a * a);
-    body_area = 2 * M_PI * r * r - lens;
-  } else if (k.disk_count > 0) {
+  /* the engine's own loader (keys, defaults, areas), without the checks of a scene to run */
+  hd_scene sc;
+  int rc = hd_scene_read_stored(&sc, text, "runs.scene", err);
+  if (rc) return rc;
+  hd_scene_free(&sc);
+  if (sc.n_dimers > 0) {
+    ri->species = sc.n_disks > 0 ? HD_ANA_MIXTURE : HD_ANA_DIMERS;
+    ri->n = sc.n_dimers;
+    ri->alpha = sc.dimer_alpha, ri->a = sc.dimer_a, ri->d = sc.dimer_d, ri->m = sc.dimer_m;
+    ri->mass = 2.0 * sc.dimer_m;
+    ri->a_over_d = sc.dimer_a / sc.dimer_d;
+  } else if (sc.n_disks > 0) {
     ri->species = HD_ANA_DISKS;
-    ri->n = (long)k.disk_count;
-    ri->alpha = k.disk_alpha, ri->a = 0, ri->d = k.disk_sigma, ri->m = k.disk_mass;
-    ri->mass = k.disk_mass;
+    ri->n = sc.n_disks;
+    ri->alpha = sc.disk_alpha, ri->a = 0, ri->d = sc.disk_sigma, ri->m = sc.disk_mass;
+    ri->mass = sc.disk_mass;
     ri->a_over_d = 0;
-    body_area = M_PI * k.disk_sigma * k.disk_sigma / 4;
   } else {
     ri->species = HD_ANA_OTHER;
     ri->n = 0, ri->alpha = 1, ri->a = 0, ri->d = 1, ri->m = 1, ri->mass = 1, ri->a_over_d = 0;
-    body_area = 0;
   }
-  ri->walls = k.walls;
-  ri->box_x = k.box_x, ri->box_y = k.box_y, ri->area_fraction = k.eta;
-  double area = k.box_x * k.box_y;
-  /* area_fraction covers every body (hd_scene_covered_area): the disks of a mixture too */
-  double covered = ri->species == HD_ANA_MIXTURE
-                       ? (double)ri->n * body_area +
-                             fmax(k.disk_count, 0) * M_PI * k.disk_sigma * k.disk_sigma / 4
-                       : (double)ri->n * body_area;
-  if (!(area > 0) && k.eta > 0 && ri->n > 0) area = covered / k.eta;
+  ri->walls = sc.walls != 0;
+  /* the box as given, or derived from area_fraction over every body (hd_scene_covered_area) */
+  ri->box_x = sc.box_x, ri->box_y = sc.box_y, ri->area_fraction = sc.area_fraction;
+  double area = sc.box_x * sc.box_y;
   ri->density = area > 0 ? (double)ri->n / area : NAN;
   ri->eta_disk = M_PI * ri->density * ri->d * ri->d / 4;
   return HD_OK;

@@ -37,11 +37,10 @@ typedef struct hd_run_info {
   double m;             /* disk mass ([dimers] m or [disks] mass, default 1) */
   double mass;          /* body mass: 2 m for a dimer, m for a disk */
   double a_over_d;      /* a / d (0 for disks) */
-  double box_x, box_y;  /* the box: runs.box_x/box_y (the engine's), else [system] box; 0 when
-                           only area_fraction is known */
+  double box_x, box_y;  /* the box: runs.box_x/box_y (the engine's), else the scene's: [system]
+                           box, or derived from area_fraction as the loader does (0: none) */
   double area_fraction; /* [system] area_fraction (0 if absent) */
-  double density;       /* n / area of this species (area = the box, else, for runs without
-                           runs.box_x, this species' area / area_fraction) */
+  double density;       /* n / area of this species (area = the box above; NaN without one) */
   double eta_disk;      /* pi n d^2 / 4: area fraction of the reference disks (eq. 30) */
   int hcs_stored;       /* 1 if runs.hcs_cpd_start/end are set (hd_db_run_hcs), else 0 */
   double hcs_cpd_start, hcs_cpd_end;  /* the stored HCS window (NaN when not stored) */
@@ -53,8 +52,9 @@ typedef struct hd_run_info {
  * and samples exist.  HD_OK, or HD_EINPUT / HD_EIO / HD_ENOMEM with err set and *db NULL. */
 int hd_ana_open(sqlite3 **db, const char *path, hd_error *err);
 
-/* Parses an INI scene text into ri (everything but id, status, seed).  HD_EINPUT if the text is
- * not INI or a value is not a number. */
+/* Parses a stored scene text into ri (everything but id, status, seed) with the engine's loader
+ * (hd_scene_read_stored: its keys, defaults and body areas).  HD_EINPUT, with the loader's
+ * "runs.scene:LINE: [section] key = value: why", for a text it refuses. */
 int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err);
 
 /* The runs to analyse: want >= 0 gives that run (any status; HD_EINPUT if absent), want < 0

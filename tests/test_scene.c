@@ -22,6 +22,7 @@
 
 #include "hd_body.h"
 #include "hd_scene.h"
+#include "hd_sim.h"
 
 static char tmpdir[] = "/tmp/haff-test-scene-XXXXXX";
 
@@ -275,10 +276,10 @@ static const bad_case bad_cases[] = {
     {"[system]\nseed = 3\n", "system.seed=4", HD_EINPUT, "bad.ini:0:", "[run]", "stop"},
 };
 
-static void bad_scenes(void **state) {
-  (void)state;
-  for (size_t i = 0; i < sizeof bad_cases / sizeof bad_cases[0]; i++) {
-    const bad_case *b = &bad_cases[i];
+/* Each case is refused with its code and one line holding its place, key and why. */
+static void check_bad_cases(const bad_case *cases, size_t n) {
+  for (size_t i = 0; i < n; i++) {
+    const bad_case *b = &cases[i];
     hd_scene sc;
     hd_error e;
     const char *over[1] = {b->over};
@@ -287,9 +288,15 @@ static void bad_scenes(void **state) {
     assert_int_equal(rc, b->code);
     assert_int_equal(e.code, b->code);
     assert_has(e.msg, b->at, b->what, b->why, NULL);
+    assert_null(strchr(e.msg, '\n'));
     assert_null(sc.text);
     hd_scene_free(&sc);
   }
+}
+
+static void bad_scenes(void **state) {
+  (void)state;
+  check_bad_cases(bad_cases, sizeof bad_cases / sizeof bad_cases[0]);
 }
 
 /* An override mends a bad line of the file: the file's value of a key that a --set replaces is
@@ -499,6 +506,13 @@ static void assert_same_scene(const hd_scene *a, const hd_scene *b) {
   SAME(velocities_in_time);
   assert_memory_equal(a->velocities_at, b->velocities_at,
                       (size_t)a->n_velocities_at * sizeof a->velocities_at[0]);
+  SAME(n_named); /* [species NAME]: every field but the header's line */
+  for (int j = 0; j < a->n_named; j++) {
+    hd_scene_species x = a->named[j], y = b->named[j];
+    x.line = y.line = 0;
+    assert_memory_equal(&x, &y, sizeof x);
+  }
+  SAME(alpha_pair);
   assert_string_equal(a->text, b->text);
 }
 
@@ -694,6 +708,441 @@ static void example_scenes(void **state) {
   hd_scene_free(&sc);
 }
 
+/* ---- one key table: the docs, and the canonical texts of before ---------------------------- */
+
+/* Reads a whole file into a malloc'd string. */
+static char *slurp(const char *path) {
+  FILE *f = fopen(path, "rb");
+  assert_non_null(f);
+  fseek(f, 0, SEEK_END);
+  long n = ftell(f);
+  rewind(f);
+  char *s = malloc((size_t)n + 1);
+  assert_non_null(s);
+  assert_int_equal(fread(s, 1, (size_t)n, f), (size_t)n);
+  s[n] = '\0';
+  fclose(f);
+  return s;
+}
+
+/* docs/scene-keys.md holds the tables the key table gives (`make scene-keys` rewrites them); a
+ * table edited by hand, or a key added without its docs, fails here. */
+static void scene_keys_doc_current(void **state) {
+  (void)state;
+  char *doc = slurp("docs/scene-keys.md"), *gen = NULL;
+  hd_error e;
+  assert_int_equal(hd_scene_keys_doc(doc, &gen, &e), HD_OK);
+  if (strcmp(doc, gen))
+    print_error("docs/scene-keys.md is not what the key table gives: run make scene-keys\n");
+  assert_string_equal(doc, gen);
+  free(gen);
+  /* the check is sharp: one changed default in a table is seen */
+  char *row = strstr(doc, "| `checkpoint_every` | 60 |");
+  assert_non_null(row);
+  row[strlen("| `checkpoint_every` | ")] = '7';
+  assert_int_equal(hd_scene_keys_doc(doc, &gen, &e), HD_OK);
+  assert_true(strcmp(doc, gen) != 0);
+  assert_non_null(strstr(gen, "| `checkpoint_every` | 60 |"));
+  free(gen);
+  assert_int_equal(hd_scene_keys_doc("<!-- keys bogus -->\n<!-- end keys -->\n", &gen, &e),
+                   HD_EINPUT);
+  assert_int_equal(hd_scene_keys_doc("<!-- keys run -->\n| old |\n", &gen, &e), HD_EINPUT);
+  free(doc);
+}
+
+/* The canonical text of every scene in scenes/ and of tests/data/scenes/good.ini is what the
+ * binary of main at b0b522c wrote before the keys moved into one table
+ * (tests/data/scenes/canonical-b0b522c.txt, made by that binary): runs.scene keeps its form. */
+static void canonical_text_as_before(void **state) {
+  (void)state;
+  char *all = slurp("tests/data/scenes/canonical-b0b522c.txt");
+  int n = 0;
+  for (char *p = strstr(all, "=== "); p; n++) {
+    char path[256];
+    assert_int_equal(sscanf(p, "=== %255s rc=0", path), 1);
+    char *text = strchr(p, '\n') + 1, *next = strstr(text, "=== ");
+    if (next) next[-0] = '\0';
+    hd_scene sc;
+    hd_error e;
+    assert_int_equal(hd_scene_load(&sc, path, NULL, 0, &e), HD_OK);
+    if (strcmp(sc.text, text)) print_error("%s: canonical text changed\n", path);
+    assert_string_equal(sc.text, text);
+    hd_scene_free(&sc);
+    if (next) next[0] = '=';
+    p = next;
+  }
+  assert_true(n >= 16);
+  free(all);
+}
+
+/* ---- [species NAME] ------------------------------------------------------------------------ */
+
+#define SPBOX "[system]\nbox = 40 40\n[run]\nstop_time = 1\n"
+
+static void load_ok(hd_scene *sc, const char *text) {
+  hd_error e;
+  int rc = hd_scene_load_string(sc, text, "sp.ini", NULL, 0, &e);
+  if (rc) print_error("%s\n", e.msg);
+  assert_int_equal(rc, HD_OK);
+}
+
+static double dist(const hd_scene_species *sp, int i, int j) {
+  return hypot(sp->x[i] - sp->x[j], sp->y[i] - sp->y[j]);
+}
+
+/* Every short form and the explicit form give the disks they describe: counts, diameters,
+ * masses, and centre distances from geometry (1e-15 relative: a cos and a sin). */
+static void species_shapes(void **state) {
+  (void)state;
+  hd_scene sc;
+  load_ok(&sc, SPBOX "[species one]\ncount = 3\nshape = disk\nd = 2\nm = 5\nalpha = 0.5\n"
+                     "[species dd]\ncount = 4\nshape = dimer 0.5\n"
+                     "[species rod4]\ncount = 2\nshape = linear 4 0.9\nd = 1.2\n"
+                     "[species tri]\ncount = 1\nshape = triangle\n"
+                     "[species v]\ncount = 1\nshape = bent 90 0.8\n"
+                     "[species asym]\ncount = 6\ndisks = 0 0 1 1; 0.75 0 0.5 0.25\n");
+  assert_int_equal(sc.n_named, 6);
+  const hd_scene_species *sp = sc.named;
+  assert_string_equal(sp[0].name, "one");
+  assert_true(sp[0].count == 3 && sp[0].ndisk == 1 && sp[0].d[0] == 2 && sp[0].m[0] == 5);
+  assert_true(sp[0].alpha == 0.5 && sp[0].line == 5);
+  assert_true(sp[1].ndisk == 2 && dist(&sp[1], 0, 1) == 0.5 && sp[1].d[1] == 1 && sp[1].alpha == 1);
+  assert_int_equal(sp[2].ndisk, 4);
+  for (int i = 0; i < 3; i++) assert_true(fabs(dist(&sp[2], i, i + 1) - 0.9) < 1e-15);
+  assert_true(sp[2].d[3] == 1.2 && sp[2].m[3] == 1);
+  assert_int_equal(sp[3].ndisk, 3); /* S = d = 1: three touching disks */
+  for (int i = 0; i < 3; i++) assert_true(fabs(dist(&sp[3], i, (i + 1) % 3) - 1) < 1e-15);
+  assert_int_equal(sp[4].ndisk, 3); /* arms of 0.8 at a right angle: ends 0.8 sqrt 2 apart */
+  assert_true(fabs(dist(&sp[4], 0, 1) - 0.8) < 1e-15 && fabs(dist(&sp[4], 2, 1) - 0.8) < 1e-15);
+  assert_true(fabs(dist(&sp[4], 0, 2) - 0.8 * sqrt(2)) < 1e-15);
+  assert_true(sp[5].ndisk == 2 && sp[5].x[1] == 0.75 && sp[5].d[1] == 0.5 && sp[5].m[1] == 0.25);
+  assert_int_equal(hd_scene_bodies(&sc), 17);
+  /* the canonical text says it all, and reads back to itself */
+  assert_non_null(strstr(sc.text, "[species rod4]\ncount = 2\nalpha = 1\nshape = linear 4 0.9\n"
+                                  "d = 1.2\nm = 1\n"));
+  assert_non_null(strstr(sc.text, "shape = triangle 1\n"));
+  assert_non_null(strstr(sc.text, "shape = bent 90 0.8\n"));
+  assert_non_null(strstr(sc.text, "[species asym]\ncount = 6\nalpha = 1\n"
+                                  "disks = 0 0 1 1; 0.75 0 0.5 0.25\n"));
+  round_trip_one(&sc);
+  hd_scene_free(&sc);
+}
+
+/* alpha_pair: the smaller alpha by default, alpha_OTHER from either side, [disks] alpha_dimer
+ * for the pair dimers-disks; the diagonal is each species' own alpha. */
+static void species_alpha_pairs(void **state) {
+  (void)state;
+  hd_scene sc;
+  load_ok(&sc, SPBOX "[dimers]\ncount = 2\nalpha = 0.9\n[disks]\ncount = 2\nalpha = 0.7\n"
+                     "alpha_dimer = 0.2\n[species a]\ncount = 1\nshape = triangle\nalpha = 0.8\n"
+                     "alpha_b = 0.3\n[species b]\ncount = 1\nshape = disk\nalpha = 0.95\n"
+                     "alpha_dimers = 0.1\n");
+  double(*p)[HD_MAX_SPECIES] = sc.alpha_pair;
+  assert_true(p[0][1] == 0.2 && p[1][0] == 0.2); /* alpha_dimer */
+  assert_true(p[2][0] == 0.8 && p[0][2] == 0.8); /* min(0.9, 0.8) */
+  assert_true(p[2][1] == 0.7 && p[1][2] == 0.7); /* min(0.7, 0.8) */
+  assert_true(p[2][3] == 0.3 && p[3][2] == 0.3); /* a.alpha_b */
+  assert_true(p[3][0] == 0.1 && p[0][3] == 0.1); /* b.alpha_dimers */
+  assert_true(p[3][1] == 0.7);                   /* min(0.95, 0.7) */
+  assert_true(p[0][0] == 0.9 && p[2][2] == 0.8 && p[3][3] == 0.95);
+  for (int i = 0; i < HD_MAX_SPECIES; i++)
+    for (int j = 0; j < HD_MAX_SPECIES; j++) assert_false(isnan(p[i][j]));
+  /* each pair once, in the later section */
+  assert_non_null(strstr(sc.text, "[species a]\ncount = 1\nalpha = 0.8\nshape = triangle 1\nd = "
+                                  "1\nm = 1\nalpha_dimers = 0.8\nalpha_disks = 0.7\n[species b]"));
+  assert_non_null(strstr(sc.text, "alpha_dimers = 0.1\nalpha_disks = 0.7\nalpha_a = 0.3\n"));
+  round_trip_one(&sc);
+  hd_scene_free(&sc);
+}
+
+/* --set species.NAME.KEY=VALUE replaces the file's value, or makes the section. */
+static void species_overrides(void **state) {
+  (void)state;
+  hd_scene sc;
+  hd_error e;
+  const char *over[] = {"species.tri.count=100", " species . new . shape = linear 2",
+                        "species.new.count=5"};
+  assert_int_equal(hd_scene_load_string(&sc, SPBOX "[species tri]\ncount = 1\nshape = triangle\n",
+                                        "o.ini", over, 3, &e),
+                   HD_OK);
+  assert_true(sc.n_named == 2 && sc.named[0].count == 100 && sc.named[1].count == 5);
+  assert_true(sc.named[1].ndisk == 2 && sc.named[1].line == 0);
+  assert_non_null(strstr(sc.text, "[species new]\ncount = 5\n"));
+  assert_true(hd_scene_override_sets("species.tri.count=4", "species tri", "count"));
+  assert_false(hd_scene_override_sets("species.tri.count=4", "species tr", "count"));
+  hd_scene_free(&sc);
+  /* a --set mends a bad file value of a species key */
+  const char *fix[] = {"species.tri.alpha=0.5"};
+  assert_int_equal(hd_scene_load_string(&sc,
+                                        SPBOX "[species tri]\ncount = 1\nshape = triangle\n"
+                                              "alpha = 7\n",
+                                        "o.ini", fix, 1, &e),
+                   HD_OK);
+  assert_true(sc.named[0].alpha == 0.5);
+  hd_scene_free(&sc);
+}
+
+#define SP "[species t]\ncount = 2\n"
+static const bad_case species_bad[] = {
+    {SPBOX "[species a-b]\ncount = 1\n", NULL, HD_EINPUT, "bad.ini:5:", "[species a-b]",
+     "letters, digits or _"},
+    {SPBOX "[species disks]\ncount = 1\n", NULL, HD_EINPUT, "bad.ini:5:", "[species disks]",
+     "reserved"},
+    {SPBOX "[species]\ncount = 1\n", NULL, HD_EINPUT, "bad.ini:5:", "[species]", "needs a name"},
+    {SPBOX "[species a]\n[species b]\n[species c]\n[species d]\n[species e]\n[species f]\n"
+           "[species g]\n",
+     NULL, HD_EINPUT, "bad.ini:11:", "[species g]", "more than 6"},
+    {SPBOX SP "colour = red\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] colour = red",
+     "unknown key (keys of [species NAME]: count alpha shape d m disks alpha_OTHER)"},
+    {SPBOX SP "count = 3\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] count", "duplicate"},
+    {SPBOX SP "shape = hexagon\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] shape = hexagon",
+     "expected disk, dimer A, linear N [S], triangle [S] or bent ANGLE [S]"},
+    {SPBOX SP "shape = linear 9\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] shape",
+     "N must be a whole number in [1, 8]"},
+    {SPBOX SP "shape = linear 3 x\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] shape",
+     "S 'x': not a number"},
+    {SPBOX SP "shape = dimer 0\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] shape = dimer 0",
+     "A must be > 0"},
+    {SPBOX SP "shape = bent 200\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] shape",
+     "ANGLE must be in (0, 180]"},
+    {SPBOX SP "shape = triangle 1 2\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] shape",
+     "expected disk"},
+    /* S > d: the disks of a row do not touch */
+    {SPBOX SP "shape = linear 3 1.5\n", NULL, HD_EINPUT, "bad.ini:7:",
+     "[species t] shape = linear 3 1.5", "disk 2 at (0, 0) is not connected to disk 1"},
+    {SPBOX SP "shape = dimer 1.01\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] shape",
+     "not connected"},
+    {SPBOX SP "shape = disk\ndisks = 0 0 1 1\n", NULL, HD_EINPUT,
+     "bad.ini:8:", "[species t] disks = 0 0 1 1", "either shape or disks, not both"},
+    {SPBOX SP "alpha = 0.5\n", NULL, HD_EINPUT, "bad.ini:5:", "[species t] shape",
+     "missing: give shape ="},
+    {SPBOX SP "disks = 0 0 1 1\nd = 2\n", NULL, HD_EINPUT, "bad.ini:8:", "[species t] d = 2",
+     "not used with disks"},
+    {SPBOX SP "disks = 0 0 1 1; 5 0 1 1\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] disks",
+     "disk 2 at (5, 0) is not connected to disk 1"},
+    /* 1 touches 2 and 3 touches 4, but the pairs are apart */
+    {SPBOX SP "disks = 0 0 1 1; 1 0 1 1; 5 0 1 1; 6 0 1 1\n", NULL, HD_EINPUT,
+     "bad.ini:7:", "[species t] disks", "disk 3 at (5, 0) is not connected"},
+    {SPBOX SP "disks = 0 0 1\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] disks",
+     "disk 1: expected x y d m"},
+    {SPBOX SP "disks = 0 0 1 1; 1 0 -1 1\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] disks",
+     "disk 2: d must be > 0"},
+    {SPBOX SP "disks = 0 0 1 1; 1 0 1 nan\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] disks",
+     "disk 2: m 'nan': must be a finite number"},
+    {SPBOX SP "disks = 0 0 1 1 ; 1 0 1 1\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] disks",
+     "blank before ';'"},
+    {SPBOX SP "disks = 0 0 1 1;1 0 1 1;2 0 1 1;3 0 1 1;4 0 1 1;5 0 1 1;6 0 1 1;7 0 1 1;8 0 1 1\n",
+     NULL, HD_EINPUT, "bad.ini:7:", "[species t] disks", "more than 8 disks"},
+    {SPBOX SP "shape = disk\nalpha = 2\n", NULL, HD_EINPUT, "bad.ini:8:", "[species t] alpha = 2",
+     "must be in [0, 1]"},
+    {SPBOX SP "shape = disk\nalpha_t = 0.5\n", NULL, HD_EINPUT,
+     "bad.ini:8:", "[species t] alpha_t = 0.5", "the species itself"},
+    {SPBOX SP "shape = disk\nalpha_foo = 0.5\n", NULL, HD_EINPUT,
+     "bad.ini:8:", "[species t] alpha_foo = 0.5", "no [species foo] section"},
+    {SPBOX SP "shape = disk\nalpha_dimers = 0.5\n", NULL, HD_EINPUT,
+     "bad.ini:8:", "[species t] alpha_dimers", "no [dimers] section"},
+    {SPBOX SP "shape = disk\nalpha_u = 1.5\n[species u]\ncount = 1\nshape = disk\n", NULL,
+     HD_EINPUT, "bad.ini:8:", "[species t] alpha_u = 1.5", "must be in [0, 1]"},
+    {SPBOX SP "shape = disk\nalpha_u = 0.5\n[species u]\ncount = 1\nshape = disk\nalpha_t = 0.5\n",
+     NULL, HD_EINPUT, "bad.ini:12:", "[species u] alpha_t", "also set by [species t] alpha_u"},
+    {SPBOX SP "shape = disk\nalpha_u = 0.5\nalpha_u = 0.6\n", NULL, HD_EINPUT,
+     "bad.ini:9:", "[species t] alpha_u", "duplicate key (first set at line 8)"},
+    {SPBOX "[species t]\nshape = disk\n", NULL, HD_EINPUT, "bad.ini:5:", "[species t] count",
+     "missing: required"},
+    {"[rods]\ncount = 4\n[run]\nstop_time = 1\n[species t]\ncount = 1\nshape = disk\n", NULL,
+     HD_EINPUT, "bad.ini:5:", "[species t]", "cannot be combined with [rods]"},
+    /* the body must fit the box: a row of 8 unit disks is 8 long */
+    {"[system]\nbox = 7 7\n[run]\nstop_time = 1\n" SP "shape = linear 8\n", NULL, HD_EINPUT,
+     "bad.ini:2:", "[system] box", "shorter than the largest body (8)"},
+    /* overrides name themselves */
+    {SPBOX SP "shape = disk\n", "species.t.alpha=2", HD_EINPUT,
+     "--set species.t.alpha=2:", "[species t] alpha = 2", "[0, 1]"},
+    {SPBOX SP "shape = disk\n", "species.t=2", HD_EINPUT, "--set species.t=2:", "SECTION.KEY=VALUE",
+     NULL},
+    {SPBOX SP "shape = disk\n", "species.t.colour=2", HD_EINPUT,
+     "--set species.t.colour=2:", "[species t] colour", "unknown key"},
+};
+
+static void species_errors(void **state) {
+  (void)state;
+  check_bad_cases(species_bad, sizeof species_bad / sizeof species_bad[0]);
+}
+
+/* Lens of two circles of radii r1, r2 at distance a (textbook formula), for the checks below. */
+static double lens(double r1, double r2, double a) {
+  if (a >= r1 + r2) return 0;
+  if (a <= fabs(r1 - r2)) return M_PI * fmin(r1, r2) * fmin(r1, r2);
+  return r1 * r1 * acos((a * a + r1 * r1 - r2 * r2) / (2 * a * r1)) +
+         r2 * r2 * acos((a * a + r2 * r2 - r1 * r1) / (2 * a * r2)) -
+         0.5 * sqrt((-a + r1 + r2) * (a + r1 - r2) * (a - r1 + r2) * (a + r1 + r2));
+}
+
+/* hd_disks_area, the union of disks, against closed forms: two disks (equal: hd_dimer_area;
+ * unequal: the lens), three in a row with no triple overlap (inclusion-exclusion: three disks
+ * minus two lenses), three touching in a triangle (three whole disks), coincident and contained
+ * disks.  1e-13 relative: round-off of a few dozen operations.  Then a random cluster of 5 disks
+ * against a midpoint-rule count on a 4000 x 4000 grid, whose error is at most the cells the
+ * boundary crosses: perimeter (< sum of circumferences) x cell diagonal, stated below. */
+static void disks_union_area(void **state) {
+  (void)state;
+  double x[8], y[8], d[8];
+  for (int k = 0; k < 50; k++) { /* two equal disks, 0 <= a <= 1.2 d */
+    double a = 1.2 * k / 49;
+    x[0] = 0.3, y[0] = -0.1, x[1] = 0.3 + a * 0.6, y[1] = -0.1 + a * 0.8, d[0] = d[1] = 1;
+    double want = hd_dimer_area(1, hypot(x[1] - x[0], y[1] - y[0]));
+    assert_true(fabs(hd_disks_area(2, x, y, d) - want) < 1e-13 * want);
+  }
+  x[0] = y[0] = 0, x[1] = 0.9, y[1] = 0, d[0] = 1, d[1] = 1.6; /* unequal */
+  double want = M_PI * (0.25 + 0.64) - lens(0.5, 0.8, 0.9);
+  assert_true(fabs(hd_disks_area(2, x, y, d) - want) < 1e-13 * want);
+  for (int i = 0; i < 3; i++) x[i] = 0.7 * i, y[i] = 0, d[i] = 1; /* a row, S = 0.7 < d */
+  want = 3 * M_PI / 4 - 2 * lens(0.5, 0.5, 0.7);
+  assert_true(fabs(hd_disks_area(3, x, y, d) - want) < 1e-13 * want);
+  double h = 1 / (2 * sqrt(3.0)); /* touching triangle of side 1 */
+  double tx[3] = {0, -0.5, 0.5}, ty[3] = {2 * h, -h, -h};
+  assert_true(fabs(hd_disks_area(3, tx, ty, d) - 3 * M_PI / 4) < 1e-13);
+  x[0] = x[1] = x[2] = 1, y[0] = y[1] = y[2] = 2; /* three times the same disk */
+  assert_true(fabs(hd_disks_area(3, x, y, d) - M_PI / 4) < 1e-15);
+  x[1] = 1.1, d[1] = 0.5; /* a small disk inside */
+  assert_true(fabs(hd_disks_area(3, x, y, d) - M_PI / 4) < 1e-15);
+  /* a dense 5-disk cluster (every triple overlapping somewhere) against a grid count */
+  double cx[5] = {0, 0.4, 0.1, -0.35, 0.3}, cy[5] = {0, 0.1, 0.45, 0.2, -0.4},
+         cd[5] = {1, 0.8, 0.9, 0.6, 0.7};
+  int n = getenv("HAFF_SANITIZE") && atoi(getenv("HAFF_SANITIZE")) ? 1000 : 4000;
+  double lo = -1, span = 2.2, cell = span / n, inside = 0, perim = 0;
+  for (int i = 0; i < 5; i++) perim += M_PI * cd[i];
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) {
+      double px = lo + (i + 0.5) * cell, py = lo + (j + 0.5) * cell;
+      for (int k = 0; k < 5; k++)
+        if (hypot(px - cx[k], py - cy[k]) < cd[k] / 2) {
+          inside++;
+          break;
+        }
+    }
+  double grid = inside * cell * cell, exact = hd_disks_area(5, cx, cy, cd);
+  double bound = perim * cell * sqrt(2.0);
+  printf("# 5-disk union: exact %.10f, grid %.10f, |diff| %.2e <= bound %.2e\n", exact, grid,
+         fabs(exact - grid), bound);
+  assert_true(fabs(exact - grid) < bound);
+  /* and the inclusion-exclusion of the pairs alone misses here by 0.29 (the triples it leaves
+   * out), more than 5 bounds at either grid (0.0098 at 4000, 0.039 at 1000): the check is sharp */
+  double pairs = 0;
+  for (int i = 0; i < 5; i++)
+    for (int j = i + 1; j < 5; j++)
+      pairs += lens(cd[i] / 2, cd[j] / 2, hypot(cx[i] - cx[j], cy[i] - cy[j]));
+  double sum = 0;
+  for (int i = 0; i < 5; i++) sum += M_PI * cd[i] * cd[i] / 4;
+  assert_true(fabs(sum - pairs - grid) > 5 * bound);
+}
+
+/* area_fraction counts a species' bodies by their union of disks: `shape = dimer A` gives the
+ * box of [dimers] a = A bit for bit (hd_dimer_area for both); a triangle of touching disks
+ * covers three whole disks. */
+static void species_area_fraction(void **state) {
+  (void)state;
+  hd_scene a, b;
+  load_ok(&a, "[system]\narea_fraction = 0.2\n[run]\nstop_time = 1\n[dimers]\ncount = 50\n"
+              "a = 0.6\n");
+  load_ok(&b, "[system]\narea_fraction = 0.2\n[run]\nstop_time = 1\n[species dd]\ncount = 50\n"
+              "shape = dimer 0.6\n");
+  assert_true(a.box_x == b.box_x && a.box_y == b.box_y);
+  hd_scene_free(&a);
+  hd_scene_free(&b);
+  load_ok(&a, "[system]\narea_fraction = 0.1\n[run]\nstop_time = 1\n[disks]\ncount = 30\n"
+              "[species tri]\ncount = 10\nshape = triangle\n");
+  double area = 30 * M_PI / 4 + 10 * 3 * M_PI / 4;
+  assert_true(fabs(hd_scene_covered_area(&a) - area) < 1e-13 * area);
+  assert_true(fabs(a.box_x * a.box_y * 0.1 - area) < 1e-12 * area);
+  /* the extent of a bent trimer: ends 2 sin(60) apart plus d */
+  assert_true(fabs(hd_species_extent(&a.named[0]) - 2) < 1e-15);
+  hd_scene_free(&a);
+}
+
+/* A state CSV may name a species: its rows count for that species, phi and omega kept when it
+ * has two disks or more; an unknown name is refused naming the scene's species. */
+static void species_state_csv(void **state) {
+  (void)state;
+  write_file(tmp_path("sp.csv"), "kind,x,y,phi,vx,vy,omega\ntri,5,5,0.5,1,0,2\ndisk,9,9,1,0,1,3\n"
+                                 "tri,15,15,0.1,0,0,1\nuno,20,20,3,0,0,4\n");
+  write_file(tmp_path("sp.ini"), "[system]\nbox = 30 30\n[init]\nstate = sp.csv\n[run]\n"
+                                 "stop_time = 1\n[species tri]\nshape = triangle\n"
+                                 "[species uno]\nshape = disk\n");
+  hd_scene sc;
+  hd_error e;
+  int rc = hd_scene_load(&sc, tmp_path("sp.ini"), NULL, 0, &e);
+  if (rc) print_error("%s\n", e.msg);
+  assert_int_equal(rc, HD_OK);
+  assert_true(sc.named[0].count == 2 && sc.named[1].count == 1 && sc.n_disks == 1);
+  hd_state_row *rows;
+  long n;
+  assert_int_equal(hd_state_csv_read_species(sc.state_file, &sc, &rows, &n, &e), HD_OK);
+  assert_int_equal(n, 4);
+  assert_true(rows[0].species == 2 && rows[0].kind == HD_KIND_DIMER && rows[0].phi == 0.5 &&
+              rows[0].omega == 2);
+  assert_true(rows[1].species == 1 && rows[1].phi == 0 && rows[1].omega == 0);
+  assert_true(rows[3].species == 3 && rows[3].kind == HD_KIND_DISK && rows[3].omega == 0);
+  free(rows);
+  hd_scene_free(&sc);
+  /* without the scene (or with another) the names are not known */
+  assert_int_equal(hd_state_csv_read(tmp_path("sp.csv"), &rows, &n, &e), HD_EINPUT);
+  assert_has(e.msg, "sp.csv:2:", "'tri' is not dimer or disk", NULL, NULL);
+  write_file(tmp_path("sp.ini"), "[system]\nbox = 30 30\n[init]\nstate = sp.csv\n[run]\n"
+                                 "stop_time = 1\n[species tri]\nshape = triangle\n"
+                                 "[species due]\nshape = disk\n");
+  assert_int_equal(hd_scene_load(&sc, tmp_path("sp.ini"), NULL, 0, &e), HD_EINPUT);
+  assert_has(e.msg, "sp.csv:5:", "'uno'", "nor a [species] of the scene: tri due", NULL);
+  /* a count that disagrees with the file */
+  write_file(tmp_path("sp.ini"), "[system]\nbox = 30 30\n[init]\nstate = sp.csv\n[run]\n"
+                                 "stop_time = 1\n[species tri]\ncount = 3\nshape = triangle\n"
+                                 "[species uno]\nshape = disk\n");
+  assert_int_equal(hd_scene_load(&sc, tmp_path("sp.ini"), NULL, 0, &e), HD_EINPUT);
+  assert_has(e.msg, "sp.ini:8:", "[species tri] count = 3", "holds 2 tri rows", NULL);
+  unlink(tmp_path("sp.csv"));
+  unlink(tmp_path("sp.ini"));
+}
+
+/* The engine of this branch runs no named species: hd_sim_alloc says so, naming the section. */
+static void species_refused_by_engine(void **state) {
+  (void)state;
+  hd_scene sc;
+  load_ok(&sc, SPBOX "[species tri]\ncount = 3\nshape = triangle\n");
+  hd_sim *s = NULL;
+  hd_error e;
+  assert_int_equal(hd_sim_alloc(&s, &sc, &e), HD_EINPUT);
+  assert_null(s);
+  assert_has(e.msg, ":5: [species tri]: not supported by this engine", NULL, NULL, NULL);
+  hd_scene_free(&sc);
+}
+
+/* A stored text read only (analysis, export) needs no stop, counts or fit: the scenes the
+ * analysis tests store by hand; the box comes from area_fraction as the loader derives it. */
+static void read_stored_lenient(void **state) {
+  (void)state;
+  hd_scene sc;
+  hd_error e;
+  assert_int_equal(hd_scene_read_stored(&sc,
+                                        "[system]\narea_fraction = 0.1\n[dimers]\ncount = 300\n"
+                                        "alpha = 0.9\n[disks]\ncount = 600\n",
+                                        "runs.scene", &e),
+                   HD_OK);
+  double area = 300 * hd_dimer_area(1, 1) + 600 * M_PI / 4;
+  assert_true(fabs(sc.box_x * sc.box_y * 0.1 - area) < 1e-12 * area);
+  assert_true(sc.disk_alpha_dimer == 1 && sc.dimer_alpha == 0.9);
+  hd_scene_free(&sc);
+  /* found by make fuzz: a [walls] section without sides, read only, wrote "sides =", which it
+   * could not read back */
+  assert_int_equal(hd_scene_read_stored(&sc, "[walls]\n", "runs.scene", &e), HD_OK);
+  hd_scene again;
+  assert_int_equal(hd_scene_read_stored(&again, sc.text, "canon", &e), HD_OK);
+  assert_string_equal(again.text, sc.text);
+  hd_scene_free(&again);
+  hd_scene_free(&sc);
+  /* but a bad value is still an error, named as the loader names it */
+  assert_int_equal(hd_scene_read_stored(&sc, "[dimers]\nalpha = x\n", "runs.scene", &e), HD_EINPUT);
+  assert_string_equal(e.msg, "runs.scene:2: [dimers] alpha = x: not a number");
+}
+
 static int setup(void **state) {
   (void)state;
   return mkdtemp(tmpdir) ? 0 : -1;
@@ -809,6 +1258,17 @@ int main(void) {
       cmocka_unit_test(example_scenes),
       cmocka_unit_test(rods_scene),
       cmocka_unit_test(rods_bad),
+      cmocka_unit_test(scene_keys_doc_current),
+      cmocka_unit_test(canonical_text_as_before),
+      cmocka_unit_test(species_shapes),
+      cmocka_unit_test(species_alpha_pairs),
+      cmocka_unit_test(species_overrides),
+      cmocka_unit_test(species_errors),
+      cmocka_unit_test(disks_union_area),
+      cmocka_unit_test(species_area_fraction),
+      cmocka_unit_test(species_state_csv),
+      cmocka_unit_test(species_refused_by_engine),
+      cmocka_unit_test(read_stored_lenient),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

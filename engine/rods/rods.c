@@ -11,11 +11,11 @@
 
 void hd_rods_params_default(hd_rods_params *p) {
   memset(p, 0, sizeof *p);
-  p->gamma = 0.8;
-  p->nmod = 1000;
+  p->gamma = HD_RODS_GAMMA_DEFAULT;
+  p->nmod = HD_RODS_NMOD_DEFAULT;
   p->model = HD_RODS_STOCHASTIC;
-  p->eps = 0.8;
-  p->temperature = 1;
+  p->eps = HD_RODS_GAMMA_DEFAULT;
+  p->temperature = HD_RODS_TEMPERATURE_DEFAULT;
   p->seed = 1;
 }
 

@@ -26,6 +26,12 @@ typedef enum hd_rods_model {
   HD_RODS_CONSTANT = 1    /* eps fixed (collapses: McNamara and Young) */
 } hd_rods_model;
 
+/* Defaults of a ring's parameters: hd_rods_params_default and the [rods] keys of a scene
+ * (engine/scene/hd_scene.c) both take them from here.  The constant model's eps defaults to gamma. */
+#define HD_RODS_GAMMA_DEFAULT 0.8
+#define HD_RODS_NMOD_DEFAULT 1000
+#define HD_RODS_TEMPERATURE_DEFAULT 1.0
+
 /* The parameters of a ring ([rods] section of a scene). */
 typedef struct hd_rods_params {
   long n;                  /* rods, even, >= 2 */

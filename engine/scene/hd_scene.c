@@ -1,6 +1,13 @@
 /* hd_scene: scene files (INI via libinih), `--set SECTION.KEY=VALUE` overrides, the canonical
  * text of a scene, and [init] state CSV files.
  *
+ * Every key is declared once, in SCENE_KEYS below: section, name, type, where it is stored
+ * (offsetof into hd_scene or hd_scene_species, or a handler for the few keys with a syntax of
+ * their own), default, range, when and how the canonical text writes it, and its row in
+ * docs/scene-keys.md.  The parser, hd_scene_defaults, the canonical text (runs.scene) and the
+ * key tables of docs/scene-keys.md (hd_scene_keys_doc, checked by tests/test_scene.c) all come
+ * from that one table; its order is the order of the canonical text and of the docs.
+ *
  * Line numbers: libinih's handler is not told the line, so the scene is fed to ini_parse_stream
  * through our own reader, which hands over one physical line per call and counts them; the
  * handler then knows the line it is called for.  The reader also
@@ -16,111 +23,248 @@
 #include "hd_body.h"
 #include "rods.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <float.h>
 #include <ini.h>
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
-enum { S_SYSTEM, S_DIMERS, S_DISKS, S_WALLS, S_INIT, S_RUN, S_LOG, S_RODS, N_SEC };
-static const char *const sec_name[N_SEC] = {"system", "dimers", "disks", "walls",
+/* Sections in the order of the canonical text.  S_SPECIES stands for every `[species NAME]`
+ * section; a section instance `si` is a fixed section (si < N_SEC) or named species k
+ * (si = N_SEC + k). */
+enum { S_SYSTEM, S_DIMERS, S_DISKS, S_SPECIES, S_WALLS, S_INIT, S_RUN, S_LOG, S_RODS, N_SEC };
+enum { N_SI = N_SEC + HD_MAX_SPECIES - 2 };
+static const char *const sec_name[N_SEC] = {"system", "dimers", "disks", "species", "walls",
                                             "init",   "run",    "log",   "rods"};
 
-enum {
-  K_BOX,
-  K_AREA,
-  K_SEED,
-  K_DCOUNT,
-  K_DD,
-  K_DA,
-  K_DM,
-  K_DALPHA,
-  K_SCOUNT,
-  K_SSIGMA,
-  K_SMASS,
-  K_SALPHA,
-  K_SALPHAD,
-  K_WSIDES,
-  K_WALPHA,
-  K_TEMP,
-  K_PLACE,
-  K_STATE,
-  K_STIME,
-  K_SEVENTS,
-  K_SCPD,
-  K_VERIFY,
-  K_CKPT,
-  K_LCOLL,
-  K_LSAMPLES,
-  K_LVEL,
-  K_LFRAMES,
-  K_LFRAMEST,
-  K_LFRAMESMB,
-  K_LVELT,
-  K_RCOUNT,
-  K_RGAMMA,
-  K_RNMOD,
-  K_RMODEL,
-  K_REPS,
-  K_RDAMP,
-  K_RTC,
-  K_RTEMP,
-  K_RTABLE,
-  K_RBATHS,
-  K_RSTEP,
-  N_KEY
-};
-static const struct {
-  int sec;
-  const char *name;
-} key_def[N_KEY] = {
-    {S_SYSTEM, "box"},
-    {S_SYSTEM, "area_fraction"},
-    {S_SYSTEM, "seed"},
-    {S_DIMERS, "count"},
-    {S_DIMERS, "d"},
-    {S_DIMERS, "a"},
-    {S_DIMERS, "m"},
-    {S_DIMERS, "alpha"},
-    {S_DISKS, "count"},
-    {S_DISKS, "sigma"},
-    {S_DISKS, "mass"},
-    {S_DISKS, "alpha"},
-    {S_DISKS, "alpha_dimer"},
-    {S_WALLS, "sides"},
-    {S_WALLS, "alpha"},
-    {S_INIT, "temperature"},
-    {S_INIT, "placement"},
-    {S_INIT, "state"},
-    {S_RUN, "stop_time"},
-    {S_RUN, "stop_events"},
-    {S_RUN, "stop_cpd"},
-    {S_RUN, "verify"},
-    {S_RUN, "checkpoint_every"},
-    {S_LOG, "collisions"},
-    {S_LOG, "samples_every"},
-    {S_LOG, "velocities_at"},
-    {S_LOG, "frames_every"},
-    {S_LOG, "frames_every_time"},
-    {S_LOG, "frames_max_mb"},
-    {S_LOG, "velocities_at_time"},
-    {S_RODS, "count"},
-    {S_RODS, "gamma"},
-    {S_RODS, "nmod"},
-    {S_RODS, "model"},
-    {S_RODS, "eps"},
-    {S_RODS, "damping"},
-    {S_RODS, "tc"},
-    {S_RODS, "temperature"},
-    {S_RODS, "table"},
-    {S_RODS, "baths"},
-    {S_RODS, "eps_step"},
-};
+static int sec_of(int si) {
+  return si >= N_SEC ? S_SPECIES : si;
+}
+
+typedef struct ctx ctx;
+typedef struct sbuf sbuf;
+
+/* How a key's value is read, stored and written. */
+typedef enum kt {
+  KT_REAL,  /* a finite number in [lo, hi] (ends open per lo_open, hi_open): double */
+  KT_LONG,  /* a whole number in [lo, hi]: long */
+  KT_WHOLE, /* a whole number in [lo, hi]: double */
+  KT_U64,   /* a whole number 0 .. 2^64 - 1: unsigned long long */
+  KT_BOOL,  /* 1 0 true false yes no on off: int 0/1, written as names[0] / names[1] */
+  KT_ENUM,  /* one of names: int index */
+  KT_CUSTOM /* parsed by set (its fields default to zero bytes) */
+} kt;
+
+/* One scene key.  Which fields matter depends on type (above). */
+typedef struct key_def {
+  int sec;                  /* S_* */
+  const char *name;         /* as written in the scene */
+  kt type;                  /* how it is read and stored */
+  size_t off;               /* offsetof(hd_scene, field), or offsetof(hd_scene_species, field)
+                             * for S_SPECIES */
+  double def;               /* default (not KT_CUSTOM) */
+  double lo, hi;            /* range (KT_REAL, KT_LONG, KT_WHOLE) */
+  int lo_open, hi_open;     /* the range excludes lo, hi */
+  const char *why;          /* message when out of range, instead of the generic one */
+  const char *const *names; /* KT_BOOL: written forms of 0 and 1; KT_ENUM: the values */
+  int (*set)(ctx *c, int si, int k, const char *v); /* KT_CUSTOM: parses and stores */
+  int (*check)(ctx *c, int si, int k);              /* further check after a generic parse */
+  int if_pos;                                       /* written only when > 0 (0 means unset) */
+  int (*show)(const ctx *c, int si); /* whether the canonical text writes it (NULL: yes) */
+  void (*put)(const ctx *c, int si, int k, sbuf *b); /* writes it (NULL: "name = value") */
+  const char *doc_key;                               /* docs: the key column (NULL: the name) */
+  const char *doc_def;                               /* docs: the default column (NULL: from def) */
+  const char *doc_range; /* docs: the range column (NULL: from the type and range) */
+  const char *doc;       /* docs: what it means */
+} key_def;
+
+/* Handlers of the custom keys, and the predicates and writers of the canonical text. */
+static int set_box(ctx *c, int si, int k, const char *v);
+static int set_sides(ctx *c, int si, int k, const char *v);
+static int set_state(ctx *c, int si, int k, const char *v);
+static int set_collisions(ctx *c, int si, int k, const char *v);
+static int set_vel_at(ctx *c, int si, int k, const char *v);
+static int set_shape(ctx *c, int si, int k, const char *v);
+static int set_disks(ctx *c, int si, int k, const char *v);
+static int set_sp_dm(ctx *c, int si, int k, const char *v);
+static int set_alpha_other(ctx *c, int si, int k, const char *v);
+static int check_rod_count(ctx *c, int si, int k);
+static int check_eps_step(ctx *c, int si, int k);
+static int show_set(const ctx *c, int si);
+static int show_box(const ctx *c, int si);
+static int show_not_state(const ctx *c, int si);
+static int show_state(const ctx *c, int si);
+static int show_sides(const ctx *c, int si);
+static int show_vel(const ctx *c, int si);
+static int show_vel_time(const ctx *c, int si);
+static int show_frames(const ctx *c, int si);
+static int show_rod_eps(const ctx *c, int si);
+static int show_short_shape(const ctx *c, int si);
+static int show_explicit(const ctx *c, int si);
+static void put_area(const ctx *c, int si, int k, sbuf *b);
+static void put_box(const ctx *c, int si, int k, sbuf *b);
+static void put_sides(const ctx *c, int si, int k, sbuf *b);
+static void put_state(const ctx *c, int si, int k, sbuf *b);
+static void put_collisions(const ctx *c, int si, int k, sbuf *b);
+static void put_vel(const ctx *c, int si, int k, sbuf *b);
+static void put_shape(const ctx *c, int si, int k, sbuf *b);
+static void put_sp_dm(const ctx *c, int si, int k, sbuf *b);
+static void put_disks(const ctx *c, int si, int k, sbuf *b);
+static void put_pairs(const ctx *c, int si, int k, sbuf *b);
+
+static const char *const no_yes[] = {"no", "yes", NULL};
+static const char *const zero_one[] = {"0", "1", NULL};
+static const char *const placements[] = {"random", "lattice", NULL};
+static const char *const rod_models[] = {"stochastic", "constant", NULL};
+static const char *const rod_baths[] = {"mean", "unequal", NULL};
+
+#define F(field) .off = offsetof(hd_scene, field)
+#define SPF(field) .off = offsetof(hd_scene_species, field)
+#define REAL(d) .type = KT_REAL, .def = (d)
+#define R_POS .lo = 0, .hi = INFINITY, .lo_open = 1
+#define R_NONNEG .lo = 0, .hi = INFINITY
+#define R_UNIT .lo = 0, .hi = 1
+#define COUNT(field, what)                                                                         \
+  .type = KT_LONG, F(field), .lo = 0, .hi = (double)HD_MAX_COUNT, .doc_def = "required",           \
+  .doc = "number of " what
+#define CUSTOM(fn) .type = KT_CUSTOM, .set = (fn)
+
+/* Every key: X(ID, section, name, the rest of its key_def).  K_ID is its index. */
+#define SCENE_KEYS(X)                                                                              \
+  X(AREA, S_SYSTEM, "area_fraction", REAL(0), F(area_fraction), .lo = 0,                           \
+    .hi = HD_MAX_AREA_FRACTION, .lo_open = 1, .hi_open = 1, .show = show_set, .put = put_area,     \
+    .doc_key = "area_fraction = eta", .doc_def = "—",                                              \
+    .doc = "instead of `box`: a square box whose area makes the bodies cover eta")                 \
+  X(BOX, S_SYSTEM, "box", CUSTOM(set_box), F(box_x), .show = show_box, .put = put_box,             \
+    .doc_key = "box = Lx Ly", .doc_def = "—", .doc_range = "both > 0",                             \
+    .doc = "box edges; periodic in every direction no wall closes")                                \
+  X(SEED, S_SYSTEM, "seed", .type = KT_U64, F(seed), .def = 1, .doc_range = "0 … 2^64−1",          \
+    .doc = "RNG seed (`haff run --seed N` is the override `--set system.seed=N`)")                 \
+  X(DCOUNT, S_DIMERS, "count", COUNT(n_dimers, "dimers"))                                          \
+  X(DD, S_DIMERS, "d", REAL(1), F(dimer_d), R_POS, .doc = "diameter of each disk")                 \
+  X(DA, S_DIMERS, "a", REAL(1), F(dimer_a), R_NONNEG, .doc_range = "0 or ≥ 10⁻⁹ d",                \
+    .doc = "bond length, centre to centre (below 10⁻⁹ d the bond is lost in the round-off of " \
+           "the positions; `a = 0` is a disk of mass 2m)")                                         \
+  X(DM, S_DIMERS, "m", REAL(1), F(dimer_m), R_POS, .doc = "mass of each disk (a dimer weighs 2m)") \
+  X(DALPHA, S_DIMERS, "alpha", REAL(1), F(dimer_alpha), R_UNIT, .doc = "dimer–dimer restitution")  \
+  X(SCOUNT, S_DISKS, "count", COUNT(n_disks, "disks"))                                             \
+  X(SSIGMA, S_DISKS, "sigma", REAL(1), F(disk_sigma), R_POS, .doc = "diameter")                    \
+  X(SMASS, S_DISKS, "mass", REAL(1), F(disk_mass), R_POS, .doc = "mass")                           \
+  X(SALPHA, S_DISKS, "alpha", REAL(1), F(disk_alpha), R_UNIT, .doc = "disk–disk restitution")      \
+  X(SALPHAD, S_DISKS, "alpha_dimer", REAL(1), F(disk_alpha_dimer), R_UNIT, .doc_def = "= `alpha`", \
+    .doc = "dimer–disk restitution (eq. 21–22)")                                                   \
+  X(PCOUNT, S_SPECIES, "count", .type = KT_LONG, SPF(count), .lo = 0, .hi = (double)HD_MAX_COUNT,  \
+    .doc_def = "required", .doc = "number of bodies")                                              \
+  X(PALPHA, S_SPECIES, "alpha", REAL(1), SPF(alpha), R_UNIT,                                       \
+    .doc = "restitution between two bodies of the species")                                        \
+  X(PSHAPE, S_SPECIES, "shape", CUSTOM(set_shape), .show = show_short_shape, .put = put_shape,     \
+    .doc_def = "— (or `disks`)",                                                                   \
+    .doc_range = "`disk` \\| `dimer A` \\| `linear N [S]` \\| `triangle [S]` \\| "                 \
+                 "`bent ANGLE [S]`",                                                               \
+    .doc = "a short form (below); S, the centre spacing, defaults to `d`")                         \
+  X(PD, S_SPECIES, "d", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,              \
+    .put = put_sp_dm, .doc = "with `shape`: the diameter of every disk")                           \
+  X(PM, S_SPECIES, "m", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,              \
+    .put = put_sp_dm, .doc = "with `shape`: the mass of every disk")                               \
+  X(PDISKS, S_SPECIES, "disks", CUSTOM(set_disks), .show = show_explicit, .put = put_disks,        \
+    .doc_key = "disks = x y d m; x y d m; ...", .doc_def = "— (or `shape`)",                       \
+    .doc_range = "1 to 8 disks, d > 0, m > 0; no blank before `;`",                                \
+    .doc = "instead of `shape`: each disk's centre in the body frame, diameter and mass")          \
+  X(PALPHAX, S_SPECIES, "alpha_OTHER", CUSTOM(set_alpha_other), .put = put_pairs,                  \
+    .doc_def = "the smaller of the two `alpha`s", .doc_range = "[0, 1]",                           \
+    .doc = "restitution between this species and OTHER: another species' NAME, `dimers` or "       \
+           "`disks` (the pair is set once, in either section)")                                    \
+  X(WSIDES, S_WALLS, "sides", CUSTOM(set_sides), F(walls), .show = show_sides, .put = put_sides,   \
+    .doc_def = "required",                                                                         \
+    .doc_range = "`left right`, `bottom top` or all four, space separated, no repeats",            \
+    .doc = "flat hard walls on those box edges")                                                   \
+  X(WALPHA, S_WALLS, "alpha", REAL(1), F(wall_alpha), R_UNIT,                                      \
+    .doc = "body–wall restitution (eq. 24–25)")                                                    \
+  X(TEMP, S_INIT, "temperature", REAL(1), F(temperature), R_NONNEG, .why = "must be > 0",          \
+    .doc_range = "> 0 (≥ 0 with `state`)",                                                         \
+    .doc = "kT per degree of freedom of the initial velocities; not used with `state`")            \
+  X(PLACE, S_INIT, "placement", .type = KT_ENUM, F(placement), .names = placements,                \
+    .show = show_not_state, .doc = "how bodies are placed, orientations random")                   \
+  X(STATE, S_INIT, "state", CUSTOM(set_state), F(state_file), .show = show_state,                  \
+    .put = put_state, .doc_def = "—", .doc_range = "a CSV file",                                   \
+    .doc = "every body given explicitly; relative to the scene file's folder")                     \
+  X(STIME, S_RUN, "stop_time", REAL(0), F(stop_time), R_POS, .if_pos = 1, .doc_def = "unset",      \
+    .doc = "stop at this time")                                                                    \
+  X(SEVENTS, S_RUN, "stop_events", .type = KT_WHOLE, F(stop_events), .lo = 1,                      \
+    .hi = 9007199254740992.0, .if_pos = 1, .doc_def = "unset", .doc_range = "whole, 1 to 2⁵³",     \
+    .doc = "stop after this many collisions")                                                      \
+  X(SCPD, S_RUN, "stop_cpd", REAL(0), F(stop_cpd), R_POS, .if_pos = 1, .doc_def = "unset",         \
+    .doc = "stop at this many collisions per particle")                                            \
+  X(VERIFY, S_RUN, "verify", .type = KT_BOOL, F(verify), .names = zero_one,                        \
+    .doc = "check no-overlap and time order at every event")                                       \
+  X(CKPT, S_RUN, "checkpoint_every", REAL(60), F(checkpoint_every), R_POS,                         \
+    .doc = "wall-clock seconds between checkpoints")                                               \
+  X(LCOLL, S_LOG, "collisions", CUSTOM(set_collisions), F(log_collisions), .put = put_collisions,  \
+    .doc_def = "`all`", .doc_range = "`all` \\| `none` \\| `every N` (N whole ≥ 1)",               \
+    .doc = "which collisions get a row")                                                           \
+  X(LSAMPLES, S_LOG, "samples_every", REAL(0), F(samples_every), R_NONNEG, .doc_def = "0 (none)",  \
+    .doc = "cpd between samples of E_tr, E_rot")                                                   \
+  X(LVEL, S_LOG, "velocities_at", CUSTOM(set_vel_at), F(velocities_at), .show = show_vel,          \
+    .put = put_vel, .doc_def = "none",                                                             \
+    .doc_range = "up to 64 cpd values ≥ 0, strictly ascending, space separated",                   \
+    .doc = "when every body's velocity is stored (at the first collision at or past each value; "  \
+           "values that one collision passes together give one snapshot). A value past "           \
+           "`stop_cpd` is an error at set-up; values the run does not reach for another stop "     \
+           "give none, and the run's message says how many")                                       \
+  X(LVELT, S_LOG, "velocities_at_time", CUSTOM(set_vel_at), F(velocities_at),                      \
+    .show = show_vel_time, .put = put_vel, .doc_def = "none",                                      \
+    .doc_range = "up to 64 times ≥ 0, strictly ascending; not with `velocities_at`",               \
+    .doc = "the same in time: each snapshot is taken at exactly that time (the run is advanced "   \
+           "to it, no collision changed). A time past `stop_time` is an error at set-up")          \
+  X(LFRAMES, S_LOG, "frames_every", REAL(0), F(frames_every), R_NONNEG, .if_pos = 1,               \
+    .doc_def = "0 (none)",                                                                         \
+    .doc = "a frame (position, orientation, velocity of every body, table `frames`) every this "   \
+           "many cpd: at cpd 0 and at the first collision at or past each multiple, one per "      \
+           "collision at most")                                                                    \
+  X(LFRAMEST, S_LOG, "frames_every_time", REAL(0), F(frames_every_time), R_NONNEG, .if_pos = 1,    \
+    .doc_def = "0 (none)", .doc_range = "≥ 0; needs `stop_time`; not with `frames_every`",         \
+    .doc = "a frame at t = 0, T, 2T, … up to `stop_time`, at exactly those times (the engine "   \
+           "stops there; the run's collisions are bit for bit those of a run without frames)")     \
+  X(LFRAMESMB, S_LOG, "frames_max_mb", REAL(HD_FRAMES_MAX_MB), F(frames_max_mb), R_POS,            \
+    .show = show_frames, .doc_range = "> 0; only with frames",                                     \
+    .doc = "cap on the frames' storage, in MB (10⁶ bytes)")                                        \
+  X(RCOUNT, S_RODS, "count", .type = KT_LONG, F(n_rods), .lo = 2, .hi = (double)HD_MAX_COUNT,      \
+    .check = check_rod_count, .doc_def = "required", .doc_range = "whole, even, ≥ 2",              \
+    .doc = "rods on the ring (lengths alternate short/long); the ring length is `count`")          \
+  X(RGAMMA, S_RODS, "gamma", REAL(HD_RODS_GAMMA_DEFAULT), F(rod_gamma), .lo = 0, .hi = 1,          \
+    .lo_open = 1, .doc = "length and mass ratio short/long")                                       \
+  X(RNMOD, S_RODS, "nmod", .type = KT_LONG, F(rod_nmod), .def = HD_RODS_NMOD_DEFAULT, .lo = 1,     \
+    .hi = 1e9, .doc = "vibrational modes per rod")                                                 \
+  X(RMODEL, S_RODS, "model", .type = KT_ENUM, F(rod_model), .names = rod_models,                   \
+    .doc = "`stochastic` (ε ~ p_β) or `constant`")                                                 \
+  X(REPS, S_RODS, "eps", REAL(HD_RODS_GAMMA_DEFAULT), F(rod_eps), R_UNIT, .show = show_rod_eps,    \
+    .doc_def = "= `gamma`", .doc = "the constant model's ε (only with model = constant)")          \
+  X(RDAMP, S_RODS, "damping", REAL(0), F(rod_damping), R_NONNEG,                                   \
+    .doc = "ν: bath temperatures decay as e^{−νt} between collisions")                             \
+  X(RTC, S_RODS, "tc", REAL(0), F(rod_tc), R_NONNEG,                                               \
+    .doc = "TC model: ε = 1 when a rod collided less than tc ago (0 = off)")                       \
+  X(RSTEP, S_RODS, "eps_step", REAL(0), F(rod_eps_step), R_NONNEG, .check = check_eps_step,        \
+    .doc_def = "0 (= 0.01)", .doc_range = "0 or in [1e-5, 0.5]",                                   \
+    .doc = "grid step of the direct ε sampler; its √step bias lowers the stationary E_kin by "  \
+           "~3 % at 0.01 and ~1 % at 0.0025 (4× slower); see docs/rods.md")                        \
+  X(RTEMP, S_RODS, "temperature", REAL(HD_RODS_TEMPERATURE_DEFAULT), F(rod_temperature), R_POS,    \
+    .doc = "initial temperature T0: E_kin(0) = N T0/2")                                            \
+  X(RTABLE, S_RODS, "table", .type = KT_BOOL, F(rod_table), .names = no_yes,                       \
+    .doc = "yes: ε from a tabulated p_β (fast; not with baths = unequal)")                         \
+  X(RBATHS, S_RODS, "baths", .type = KT_ENUM, F(rod_unequal), .names = rod_baths,                  \
+    .doc = "`mean` (paper: β = E_tr/mean T_B) or `unequal` (β per rod)")
+
+#define KEY_ENUM(id, ...) K_##id,
+enum { SCENE_KEYS(KEY_ENUM) N_KEY };
+#define KEY_DEF(id, s, n, ...) [K_##id] = {.sec = s, .name = n, __VA_ARGS__},
+static const key_def keys[N_KEY] = {SCENE_KEYS(KEY_DEF)};
 
 static const char *const wall_name[4] = {"left", "right", "bottom", "top"};
 
@@ -130,27 +274,75 @@ typedef struct loc {
   int over;
 } loc;
 
-typedef struct ctx {
+/* The shapes of `shape = ...` (SH_EXPLICIT: `disks = ...`). */
+enum { SH_NONE, SH_DISK, SH_DIMER, SH_LINEAR, SH_TRIANGLE, SH_BENT, SH_EXPLICIT };
+static const char *const shape_name[] = {"", "disk", "dimer", "linear", "triangle", "bent", ""};
+
+/* An `alpha_OTHER` key of a [species NAME] section. */
+typedef struct sp_pair {
+  char other[HD_SPECIES_NAME_MAX]; /* OTHER */
+  double v;                        /* its value */
+  loc at;                          /* where it was set */
+  char val[96];                    /* as written */
+} sp_pair;
+
+/* What a [species NAME] section says besides its hd_scene_species fields. */
+typedef struct sp_parse {
+  int shape;                    /* SH_* */
+  int n;                        /* linear N */
+  double a;                     /* dimer A */
+  double s;                     /* spacing S (NAN: = d) */
+  double angle;                 /* bent ANGLE, degrees */
+  double d, m;                  /* `d`, `m` */
+  int npair;                    /* alpha_OTHER keys */
+  sp_pair pair[HD_MAX_SPECIES]; /* (at most one per other species; one more to report) */
+} sp_parse;
+
+struct ctx {
   hd_scene *sc;
   const char *name;        /* file name for messages */
   const char *const *over; /* the overrides */
   int n_over;              /* how many */
   hd_error *err;
-  int failed;                  /* an error has been set: stop */
-  int code;                    /* its hd_status */
-  loc cur;                     /* where the key being handled comes from */
-  loc key_at[N_KEY];           /* where each key was set */
-  char key_val[N_KEY][96];     /* its value as written (shortened), for later messages */
-  int present[N_SEC];          /* the section appears (header or --set) */
-  loc sec_at[N_SEC];           /* its first header */
-  const char *p, *end;         /* reader: rest of the text */
-  long lineno;                 /* reader: lines handed out */
-  char state_rel[HD_PATH_MAX]; /* `state` as written */
-  int stored; /* the canonical text of a run (hd_scene_load_stored): its state file not read */
-} ctx;
+  int failed;                      /* an error has been set: stop */
+  int code;                        /* its hd_status */
+  loc cur;                         /* where the key being handled comes from */
+  int cur_si;                      /* the section of the line being read (-1: none yet) */
+  loc key_at[N_SI][N_KEY];         /* where each key of each section was set */
+  char key_val[N_SI][N_KEY][96];   /* its value as written (shortened), for later messages */
+  int present[N_SI];               /* the section appears (header or --set) */
+  loc sec_at[N_SI];                /* its first header */
+  sp_parse sp[HD_MAX_SPECIES - 2]; /* the named species' sections */
+  const char *p, *end;             /* reader: rest of the text */
+  long lineno;                     /* reader: lines handed out */
+  char state_rel[HD_PATH_MAX];     /* `state` as written */
+  int mode;                        /* M_* */
+};
+
+/* What a load checks: everything (a scene to run), a run's stored text (its state file not
+ * read), or a stored text only read (hd_scene_read_stored). */
+enum { M_RUN, M_STORED, M_READ };
 
 static int is_set(loc l) {
   return l.line > 0 || l.over > 0;
+}
+
+static int key_set(const ctx *c, int si, int k) {
+  return is_set(c->key_at[si][k]);
+}
+
+/* Where key k of section si is stored. */
+static void *field(const ctx *c, int si, int k) {
+  char *base = si >= N_SEC ? (char *)&c->sc->named[si - N_SEC] : (char *)c->sc;
+  return base + keys[k].off;
+}
+
+/* "dimers", or "species NAME" */
+static void sec_label(const ctx *c, int si, char *buf, size_t n) {
+  if (si >= N_SEC)
+    snprintf(buf, n, "species %s", c->sc->named[si - N_SEC].name);
+  else
+    snprintf(buf, n, "%s", si >= 0 ? sec_name[si] : "?");
 }
 
 static void where(const ctx *c, loc l, char *buf, size_t n) {
@@ -183,30 +375,32 @@ static void shorten(const char *v, char *buf, size_t n) {
   }
 }
 
-/* "WHERE: [sec] key = value: why" (key < 0: "WHERE: [sec]: why"; val NULL: "[sec] key: why"). */
+/* "WHERE: [sec] key = value: why" (key NULL: "WHERE: [sec]: why"; val NULL: "[sec] key: why"). */
 static __attribute__((format(printf, 7, 8))) int
-fail(ctx *c, int code, loc l, int sec, const char *key, const char *val, const char *fmt, ...) {
-  char at[600], why[400], v[96], what[200];
+fail(ctx *c, int code, loc l, int si, const char *key, const char *val, const char *fmt, ...) {
+  char at[600], why[400], v[96], what[240], sec[64];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(why, sizeof why, fmt, ap);
   va_end(ap);
   where(c, l, at, sizeof at);
+  sec_label(c, si, sec, sizeof sec);
   if (!key)
-    snprintf(what, sizeof what, "[%s]", sec >= 0 ? sec_name[sec] : "?");
+    snprintf(what, sizeof what, "[%s]", sec);
   else if (!val)
-    snprintf(what, sizeof what, "[%s] %s", sec_name[sec], key);
+    snprintf(what, sizeof what, "[%s] %s", sec, key);
   else {
     shorten(val, v, sizeof v);
-    snprintf(what, sizeof what, "[%s] %s = %s", sec_name[sec], key, v);
+    snprintf(what, sizeof what, "[%s] %s = %s", sec, key, v);
   }
   return cfail(c, code, "%s: %s: %s", at, what, why);
 }
 
-/* Error about key k where it was set, with its value. */
-#define FAIL_KEY(c, k, ...)                                                                        \
-  fail((c), HD_EINPUT, (c)->key_at[k], key_def[k].sec, key_def[k].name, (c)->key_val[k],           \
-       __VA_ARGS__)
+/* Error about key k of section si where it was set, with its value. */
+#define FAIL_AT(c, si, k, ...)                                                                     \
+  fail((c), HD_EINPUT, (c)->key_at[si][k], (si), keys[k].name, (c)->key_val[si][k], __VA_ARGS__)
+/* The same for a key of a fixed section. */
+#define FAIL_KEY(c, k, ...) FAIL_AT(c, keys[k].sec, k, __VA_ARGS__)
 
 /* ---- value parsing ------------------------------------------------------------------------ */
 
@@ -229,23 +423,43 @@ static const char *num_why(const char *s) {
   return "not a number";
 }
 
-/* A whole number in [lo, hi]; else an error on key k. */
-static int get_whole(ctx *c, int k, const char *s, double lo, double hi, double *x) {
-  double v;
-  if (!parse_num(s, &v)) return FAIL_KEY(c, k, "%s", num_why(s));
-  if (v != floor(v)) return FAIL_KEY(c, k, "must be a whole number");
-  if (v < lo || v > hi) return FAIL_KEY(c, k, "must be in [%.17g, %.17g]", lo, hi);
-  *x = v;
-  return HD_OK;
+/* The shortest of %.15g, %.16g, %.17g that reads back as exactly x (so the text round-trips
+ * bit for bit, and 0.95 stays "0.95" rather than "0.94999999999999996"). */
+static void shortest(double x, char *buf, size_t n) {
+  for (int prec = 15; prec <= 17; prec++) {
+    snprintf(buf, n, "%.*g", prec, x);
+    if (strtod(buf, NULL) == x) return;
+  }
 }
 
-/* A number checked by kind: 'p' > 0, 'n' >= 0, 'u' in [0, 1]. */
-static int get_num(ctx *c, int k, const char *s, char kind, double *x) {
+/* Whether x is in key k's range. */
+static int in_range(const key_def *kd, double x) {
+  return (kd->lo_open ? x > kd->lo : x >= kd->lo) && (kd->hi_open ? x < kd->hi : x <= kd->hi);
+}
+
+/* The generic "must be ..." of key k's range. */
+static void range_why(const key_def *kd, char *buf, size_t n) {
+  char lo[40], hi[40];
+  shortest(kd->lo, lo, sizeof lo);
+  shortest(kd->hi, hi, sizeof hi);
+  if (kd->hi == INFINITY)
+    snprintf(buf, n, "must be %s %s", kd->lo_open ? ">" : ">=", lo);
+  else
+    snprintf(buf, n, "must be in %c%s, %s%c", kd->lo_open ? '(' : '[', lo, hi,
+             kd->hi_open ? ')' : ']');
+}
+
+/* A number in key k's range (whole: a whole number too); else an error on key k of si. */
+static int get_ranged(ctx *c, int si, int k, const char *s, int whole, double *x) {
+  const key_def *kd = &keys[k];
   double v;
-  if (!parse_num(s, &v)) return FAIL_KEY(c, k, "%s", num_why(s));
-  if (kind == 'p' && !(v > 0)) return FAIL_KEY(c, k, "must be > 0");
-  if (kind == 'n' && !(v >= 0)) return FAIL_KEY(c, k, "must be >= 0");
-  if (kind == 'u' && !(v >= 0 && v <= 1)) return FAIL_KEY(c, k, "must be in [0, 1]");
+  char why[120];
+  if (!parse_num(s, &v)) return FAIL_AT(c, si, k, "%s", num_why(s));
+  if (whole && v != floor(v)) return FAIL_AT(c, si, k, "must be a whole number");
+  if (!in_range(kd, v)) {
+    range_why(kd, why, sizeof why);
+    return FAIL_AT(c, si, k, "%s", kd->why ? kd->why : why);
+  }
   *x = v;
   return HD_OK;
 }
@@ -267,82 +481,121 @@ static int split(const char *s, char tok[][64], int max) {
   return n;
 }
 
-static int set_box(ctx *c, const char *v) {
+/* Parses the value of key k of section si into the scene. */
+static int set_value(ctx *c, int si, int k, const char *v) {
+  const key_def *kd = &keys[k];
+  void *p = field(c, si, k);
+  double x;
+  int rc = HD_OK;
+  switch (kd->type) {
+  case KT_CUSTOM:
+    return kd->set(c, si, k, v);
+  case KT_REAL:
+  case KT_WHOLE:
+    if ((rc = get_ranged(c, si, k, v, kd->type == KT_WHOLE, &x))) return rc;
+    *(double *)p = x;
+    break;
+  case KT_LONG:
+    if ((rc = get_ranged(c, si, k, v, 1, &x))) return rc;
+    *(long *)p = (long)x;
+    break;
+  case KT_U64: {
+    char *e;
+    if (!*v || *v == '-' || *v == '+' || strpbrk(v, " \t"))
+      return FAIL_AT(c, si, k, "expected a whole number >= 0");
+    errno = 0;
+    unsigned long long u = strtoull(v, &e, 10);
+    if (*e || e == v) return FAIL_AT(c, si, k, "expected a whole number >= 0");
+    if (errno == ERANGE) return FAIL_AT(c, si, k, "too large (max %llu)", ULLONG_MAX);
+    *(unsigned long long *)p = u;
+    break;
+  }
+  case KT_BOOL: {
+    static const char *const yes[] = {"1", "true", "yes", "on"}, *const no[] = {"0", "false", "no",
+                                                                                "off"};
+    int i = 0;
+    while (i < 4 && strcmp(v, yes[i]) && strcmp(v, no[i])) i++;
+    if (i == 4) return FAIL_AT(c, si, k, "expected 1 or 0 (true/false, yes/no, on/off)");
+    *(int *)p = !strcmp(v, yes[i]);
+    break;
+  }
+  case KT_ENUM: {
+    int i = 0;
+    while (kd->names[i] && strcmp(v, kd->names[i])) i++;
+    if (!kd->names[i]) {
+      char list[200] = "";
+      for (int j = 0; kd->names[j]; j++) {
+        const char *sep = !j ? "" : kd->names[j + 1] ? ", " : " or ";
+        size_t at = strlen(list);
+        snprintf(list + at, sizeof list - at, "%s%s", sep, kd->names[j]);
+      }
+      return FAIL_AT(c, si, k, "expected %s", list);
+    }
+    *(int *)p = i;
+    break;
+  }
+  }
+  return kd->check ? kd->check(c, si, k) : HD_OK;
+}
+
+/* ---- the custom keys ------------------------------------------------------------------------ */
+
+static int set_box(ctx *c, int si, int k, const char *v) {
   char tok[2][64];
   double lx, ly;
   if (split(v, tok, 2) != 2 || !parse_num(tok[0], &lx) || !parse_num(tok[1], &ly))
-    return FAIL_KEY(c, K_BOX, "expected two finite numbers Lx Ly");
-  if (!(lx > 0 && ly > 0)) return FAIL_KEY(c, K_BOX, "box edges must be > 0");
+    return FAIL_AT(c, si, k, "expected two finite numbers Lx Ly");
+  if (!(lx > 0 && ly > 0)) return FAIL_AT(c, si, k, "box edges must be > 0");
   c->sc->box_x = lx;
   c->sc->box_y = ly;
   return HD_OK;
 }
 
-static int set_seed(ctx *c, const char *v) {
-  char *e;
-  if (!*v || *v == '-' || *v == '+' || strpbrk(v, " \t"))
-    return FAIL_KEY(c, K_SEED, "expected a whole number >= 0");
-  errno = 0;
-  unsigned long long s = strtoull(v, &e, 10);
-  if (*e || e == v) return FAIL_KEY(c, K_SEED, "expected a whole number >= 0");
-  if (errno == ERANGE) return FAIL_KEY(c, K_SEED, "too large (max %llu)", ULLONG_MAX);
-  c->sc->seed = s;
-  return HD_OK;
-}
-
-static int set_sides(ctx *c, const char *v) {
+static int set_sides(ctx *c, int si, int k, const char *v) {
   char tok[5][64];
   int n = split(v, tok, 4);
-  if (n < 0) return FAIL_KEY(c, K_WSIDES, "at most the four sides left right bottom top");
-  if (n == 0) return FAIL_KEY(c, K_WSIDES, "missing value: list some of left right bottom top");
+  if (n < 0) return FAIL_AT(c, si, k, "at most the four sides left right bottom top");
+  if (n == 0) return FAIL_AT(c, si, k, "missing value: list some of left right bottom top");
   unsigned w = 0;
   for (int i = 0; i < n; i++) {
     int j = 0;
     while (j < 4 && strcmp(tok[i], wall_name[j])) j++;
-    if (j == 4) return FAIL_KEY(c, K_WSIDES, "unknown side '%s' (left right bottom top)", tok[i]);
-    if (w & (1u << j)) return FAIL_KEY(c, K_WSIDES, "side '%s' repeated", tok[i]);
+    if (j == 4) return FAIL_AT(c, si, k, "unknown side '%s' (left right bottom top)", tok[i]);
+    if (w & (1u << j)) return FAIL_AT(c, si, k, "side '%s' repeated", tok[i]);
     w |= 1u << j;
   }
   /* a wall closes its axis: past it there is no periodic image, so the opposite edge must be
    * closed too (a lone wall let bodies wrap through the open edge to land behind it) */
   if (!(w & HD_WALL_LEFT) != !(w & HD_WALL_RIGHT))
-    return FAIL_KEY(c, K_WSIDES, "'%s' needs '%s' too: walls close an axis at both edges",
-                    w & HD_WALL_LEFT ? "left" : "right", w & HD_WALL_LEFT ? "right" : "left");
+    return FAIL_AT(c, si, k, "'%s' needs '%s' too: walls close an axis at both edges",
+                   w & HD_WALL_LEFT ? "left" : "right", w & HD_WALL_LEFT ? "right" : "left");
   if (!(w & HD_WALL_BOTTOM) != !(w & HD_WALL_TOP))
-    return FAIL_KEY(c, K_WSIDES, "'%s' needs '%s' too: walls close an axis at both edges",
-                    w & HD_WALL_BOTTOM ? "bottom" : "top", w & HD_WALL_BOTTOM ? "top" : "bottom");
+    return FAIL_AT(c, si, k, "'%s' needs '%s' too: walls close an axis at both edges",
+                   w & HD_WALL_BOTTOM ? "bottom" : "top", w & HD_WALL_BOTTOM ? "top" : "bottom");
   c->sc->walls = w;
   return HD_OK;
 }
 
-static int set_bool(ctx *c, int k, const char *v, int *out) {
-  static const char *const yes[] = {"1", "true", "yes", "on"}, *const no[] = {"0", "false", "no",
-                                                                              "off"};
-  for (int i = 0; i < 4; i++) {
-    if (!strcmp(v, yes[i])) return *out = 1, HD_OK;
-    if (!strcmp(v, no[i])) return *out = 0, HD_OK;
-  }
-  return FAIL_KEY(c, k, "expected 1 or 0 (true/false, yes/no, on/off)");
+static int set_state(ctx *c, int si, int k, const char *v) {
+  if (!*v) return FAIL_AT(c, si, k, "missing value: expected a CSV file name");
+  if (strlen(v) >= sizeof c->state_rel) return FAIL_AT(c, si, k, "file name too long");
+  strcpy(c->state_rel, v);
+  return HD_OK;
 }
 
-static int set_collisions(ctx *c, const char *v) {
+static int set_collisions(ctx *c, int si, int k, const char *v) {
   hd_scene *sc = c->sc;
-  if (!strcmp(v, "all")) {
-    sc->log_collisions = HD_LOG_ALL;
-    sc->log_every = 1;
-    return HD_OK;
-  }
-  if (!strcmp(v, "none")) {
-    sc->log_collisions = HD_LOG_NONE;
+  if (!strcmp(v, "all") || !strcmp(v, "none")) {
+    sc->log_collisions = !strcmp(v, "all") ? HD_LOG_ALL : HD_LOG_NONE;
     sc->log_every = 1;
     return HD_OK;
   }
   char tok[3][64];
   double n;
   if (split(v, tok, 2) != 2 || strcmp(tok[0], "every"))
-    return FAIL_KEY(c, K_LCOLL, "expected all, none or every N");
+    return FAIL_AT(c, si, k, "expected all, none or every N");
   if (!parse_num(tok[1], &n) || n != floor(n) || n < 1 || n > (double)LONG_MAX / 2)
-    return FAIL_KEY(c, K_LCOLL, "every N needs a whole number N >= 1");
+    return FAIL_AT(c, si, k, "every N needs a whole number N >= 1");
   sc->log_collisions = HD_LOG_EVERY;
   sc->log_every = (long)n;
   return HD_OK;
@@ -350,15 +603,15 @@ static int set_collisions(ctx *c, const char *v) {
 
 /* `velocities_at` (k = K_LVEL, cpd) or `velocities_at_time` (k = K_LVELT, times): the two
  * share the list, so only one of them may be given. */
-static int set_vel_at(ctx *c, int k, const char *v) {
+static int set_vel_at(ctx *c, int si, int k, const char *v) {
   hd_scene *sc = c->sc;
   int other = k == K_LVEL ? K_LVELT : K_LVEL;
   const char *unit = k == K_LVEL ? "cpd values" : "times";
-  if (is_set(c->key_at[other]))
-    return FAIL_KEY(c, k,
-                    "cannot be used together with %s (one list of snapshots, in cpd or in "
-                    "time)",
-                    key_def[other].name);
+  if (key_set(c, si, other))
+    return FAIL_AT(c, si, k,
+                   "cannot be used together with %s (one list of snapshots, in cpd or in "
+                   "time)",
+                   keys[other].name);
   int n = 0;
   const char *s = v;
   while (*s) {
@@ -367,237 +620,303 @@ static int set_vel_at(ctx *c, int k, const char *v) {
     size_t len = strcspn(s, " \t");
     char t[64];
     double x;
-    if (len >= sizeof t) return FAIL_KEY(c, k, "not a number: '%.20s...'", s);
+    if (len >= sizeof t) return FAIL_AT(c, si, k, "not a number: '%.20s...'", s);
     memcpy(t, s, len);
     t[len] = '\0';
     s += len;
-    if (!parse_num(t, &x)) return FAIL_KEY(c, k, "'%s': %s", t, num_why(t));
-    if (x < 0) return FAIL_KEY(c, k, "'%s': %s must be >= 0", t, unit);
+    if (!parse_num(t, &x)) return FAIL_AT(c, si, k, "'%s': %s", t, num_why(t));
+    if (x < 0) return FAIL_AT(c, si, k, "'%s': %s must be >= 0", t, unit);
     if (n == HD_MAX_VEL_AT)
-      return FAIL_KEY(c, k,
-                      "more than %d values (snapshots for a movie or a trajectory: "
-                      "frames_every or frames_every_time)",
-                      HD_MAX_VEL_AT);
+      return FAIL_AT(c, si, k,
+                     "more than %d values (snapshots for a movie or a trajectory: "
+                     "frames_every or frames_every_time)",
+                     HD_MAX_VEL_AT);
     if (n > 0 && !(x > sc->velocities_at[n - 1]))
-      return FAIL_KEY(c, k, "'%s': values must be strictly ascending", t);
+      return FAIL_AT(c, si, k, "'%s': values must be strictly ascending", t);
     sc->velocities_at[n++] = x;
   }
-  if (n == 0) return FAIL_KEY(c, k, "missing value: list %s", unit);
+  if (n == 0) return FAIL_AT(c, si, k, "missing value: list %s", unit);
   sc->n_velocities_at = n;
   sc->velocities_in_time = k == K_LVELT;
   return HD_OK;
 }
 
-/* A snapshot that cannot be taken is refused at set-up: a time past stop_time, a cpd past
- * stop_cpd (a list in the other unit than the stop cannot be checked before the run; the run's
- * message says what it did not take). */
-static int check_vel_at(ctx *c) {
-  const hd_scene *sc = c->sc;
-  if (sc->n_velocities_at == 0) return HD_OK;
-  int k = sc->velocities_in_time ? K_LVELT : K_LVEL;
-  double last = sc->velocities_at[sc->n_velocities_at - 1];
-  double stop = sc->velocities_in_time ? sc->stop_time : sc->stop_cpd;
-  if (stop > 0 && last > stop)
-    return FAIL_KEY(c, k, "%.17g is past %s = %.17g: that snapshot would never be taken", last,
-                    sc->velocities_in_time ? "stop_time" : "stop_cpd", stop);
+static int check_rod_count(ctx *c, int si, int k) {
+  if (c->sc->n_rods % 2 != 0)
+    return FAIL_AT(c, si, k, "must be even: the rod lengths alternate round the ring");
   return HD_OK;
 }
 
-/* Parses the value of key k into the scene. */
-static int set_value(ctx *c, int k, const char *v) {
-  hd_scene *sc = c->sc;
-  double x;
-  int rc = HD_OK;
-  switch (k) {
-  case K_BOX:
-    return set_box(c, v);
-  case K_AREA:
-    if (!parse_num(v, &x)) return FAIL_KEY(c, k, "%s", num_why(v));
-    if (!(x > 0 && x < HD_MAX_AREA_FRACTION))
-      return FAIL_KEY(c, k, "must be in (0, %g)", HD_MAX_AREA_FRACTION);
-    sc->area_fraction = x;
-    return HD_OK;
-  case K_SEED:
-    return set_seed(c, v);
-  case K_DCOUNT:
-  case K_SCOUNT:
-    if ((rc = get_whole(c, k, v, 0, (double)HD_MAX_COUNT, &x))) return rc;
-    *(k == K_DCOUNT ? &sc->n_dimers : &sc->n_disks) = (long)x;
-    return HD_OK;
-  case K_DD:
-    return get_num(c, k, v, 'p', &sc->dimer_d);
-  case K_DA:
-    return get_num(c, k, v, 'n', &sc->dimer_a);
-  case K_DM:
-    return get_num(c, k, v, 'p', &sc->dimer_m);
-  case K_DALPHA:
-    return get_num(c, k, v, 'u', &sc->dimer_alpha);
-  case K_SSIGMA:
-    return get_num(c, k, v, 'p', &sc->disk_sigma);
-  case K_SMASS:
-    return get_num(c, k, v, 'p', &sc->disk_mass);
-  case K_SALPHA:
-    return get_num(c, k, v, 'u', &sc->disk_alpha);
-  case K_SALPHAD:
-    return get_num(c, k, v, 'u', &sc->disk_alpha_dimer);
-  case K_WSIDES:
-    return set_sides(c, v);
-  case K_WALPHA:
-    return get_num(c, k, v, 'u', &sc->wall_alpha);
-  case K_TEMP:
-    if (!parse_num(v, &x)) return FAIL_KEY(c, k, "%s", num_why(v));
-    if (x < 0) return FAIL_KEY(c, k, "must be > 0");
-    sc->temperature = x; /* 0 is refused later unless a state file gives the velocities */
-    return HD_OK;
-  case K_PLACE:
-    if (!strcmp(v, "random"))
-      sc->placement = HD_PLACE_RANDOM;
-    else if (!strcmp(v, "lattice"))
-      sc->placement = HD_PLACE_LATTICE;
-    else
-      return FAIL_KEY(c, k, "expected random or lattice");
-    return HD_OK;
-  case K_STATE:
-    if (!*v) return FAIL_KEY(c, k, "missing value: expected a CSV file name");
-    if (strlen(v) >= sizeof c->state_rel) return FAIL_KEY(c, k, "file name too long");
-    strcpy(c->state_rel, v);
-    return HD_OK;
-  case K_STIME:
-    return get_num(c, k, v, 'p', &sc->stop_time);
-  case K_SEVENTS:
-    if ((rc = get_whole(c, k, v, 1, 9007199254740992.0, &x))) return rc;
-    sc->stop_events = x;
-    return HD_OK;
-  case K_SCPD:
-    return get_num(c, k, v, 'p', &sc->stop_cpd);
-  case K_VERIFY:
-    return set_bool(c, k, v, &sc->verify);
-  case K_CKPT:
-    return get_num(c, k, v, 'p', &sc->checkpoint_every);
-  case K_LCOLL:
-    return set_collisions(c, v);
-  case K_LSAMPLES:
-    return get_num(c, k, v, 'n', &sc->samples_every);
-  case K_LVEL:
-    return set_vel_at(c, k, v);
-  case K_LFRAMES:
-    return get_num(c, k, v, 'n', &sc->frames_every);
-  case K_LFRAMEST:
-    return get_num(c, k, v, 'n', &sc->frames_every_time);
-  case K_LFRAMESMB:
-    return get_num(c, k, v, 'p', &sc->frames_max_mb);
-  case K_LVELT:
-    return set_vel_at(c, k, v);
-  case K_RCOUNT:
-    if ((rc = get_whole(c, k, v, 2, (double)HD_MAX_COUNT, &x))) return rc;
-    if (fmod(x, 2) != 0)
-      return FAIL_KEY(c, k, "must be even: the rod lengths alternate round the ring");
-    sc->n_rods = (long)x;
-    return HD_OK;
-  case K_RGAMMA:
-    if ((rc = get_num(c, k, v, 0, &x))) return rc;
-    if (!(x > 0 && x <= 1)) return FAIL_KEY(c, k, "must be in (0, 1]"); /* 0 and 1.2 alike */
-    sc->rod_gamma = x;
-    return HD_OK;
-  case K_RNMOD:
-    if ((rc = get_whole(c, k, v, 1, 1e9, &x))) return rc;
-    sc->rod_nmod = (long)x;
-    return HD_OK;
-  case K_RMODEL:
-    if (!strcmp(v, "stochastic"))
-      sc->rod_model = 0;
-    else if (!strcmp(v, "constant"))
-      sc->rod_model = 1;
-    else
-      return FAIL_KEY(c, k, "expected stochastic or constant");
-    return HD_OK;
-  case K_REPS:
-    return get_num(c, k, v, 'u', &sc->rod_eps);
-  case K_RDAMP:
-    return get_num(c, k, v, 'n', &sc->rod_damping);
-  case K_RTC:
-    return get_num(c, k, v, 'n', &sc->rod_tc);
-  case K_RTEMP:
-    return get_num(c, k, v, 'p', &sc->rod_temperature);
-  case K_RTABLE:
-    return set_bool(c, k, v, &sc->rod_table);
-  case K_RSTEP: {
-    int got = get_num(c, k, v, 'n', &sc->rod_eps_step);
-    /* 0 is the sampler's default; its grid needs ~(1 + 1/gamma)/step points, at most 5e7 / 64
-     * (engine/rods/eps.c), and 1e-300 overflowed the size check and crashed the run (SIGFPE) */
-    if (!got && sc->rod_eps_step != 0 && !(sc->rod_eps_step >= 1e-5 && sc->rod_eps_step <= 0.5))
-      return FAIL_KEY(c, k, "must be 0 (the default step) or in [1e-5, 0.5]");
-    return got;
-  }
-  case K_RBATHS:
-    if (!strcmp(v, "mean"))
-      sc->rod_unequal = 0;
-    else if (!strcmp(v, "unequal"))
-      sc->rod_unequal = 1;
-    else
-      return FAIL_KEY(c, k, "expected mean or unequal");
-    return HD_OK;
-  default:
-    return HD_OK;
-  }
+/* 0 is the sampler's default; its grid needs ~(1 + 1/gamma)/step points, at most 5e7 / 64
+ * (engine/rods/eps.c), and 1e-300 overflowed the size check and crashed the run (SIGFPE) */
+static int check_eps_step(ctx *c, int si, int k) {
+  double x = c->sc->rod_eps_step;
+  if (x != 0 && !(x >= 1e-5 && x <= 0.5))
+    return FAIL_AT(c, si, k, "must be 0 (the default step) or in [1e-5, 0.5]");
+  return HD_OK;
 }
+
+/* [species NAME] `d` and `m` (the short forms' disks). */
+static int set_sp_dm(ctx *c, int si, int k, const char *v) {
+  double x;
+  int rc = get_ranged(c, si, k, v, 0, &x);
+  if (rc) return rc;
+  *(k == K_PD ? &c->sp[si - N_SEC].d : &c->sp[si - N_SEC].m) = x;
+  return HD_OK;
+}
+
+/* A number token of a shape; else an error naming it. */
+static int shape_num(ctx *c, int si, int k, const char *tok, const char *what, double *x) {
+  if (!parse_num(tok, x)) return FAIL_AT(c, si, k, "%s '%s': %s", what, tok, num_why(tok));
+  return HD_OK;
+}
+
+/* `shape = disk | dimer A | linear N [S] | triangle [S] | bent ANGLE_DEG [S]` */
+static int set_shape(ctx *c, int si, int k, const char *v) {
+  static const char *const forms =
+      "expected disk, dimer A, linear N [S], triangle [S] or bent ANGLE [S]";
+  sp_parse *p = &c->sp[si - N_SEC];
+  char tok[4][64];
+  int n = split(v, tok, 3), rc;
+  if (n < 1) return FAIL_AT(c, si, k, "%s", forms);
+  int sh = SH_DISK;
+  while (sh < SH_EXPLICIT && strcmp(tok[0], shape_name[sh])) sh++;
+  if (sh == SH_EXPLICIT) return FAIL_AT(c, si, k, "%s", forms);
+  static const int lo[] = {0, 1, 2, 2, 1, 2}, hi[] = {0, 1, 2, 3, 2, 3};
+  if (n < lo[sh] || n > hi[sh]) return FAIL_AT(c, si, k, "%s", forms);
+  p->s = NAN;
+  double x;
+  if (sh == SH_DIMER) {
+    if ((rc = shape_num(c, si, k, tok[1], "A", &x))) return rc;
+    if (!(x > 0)) return FAIL_AT(c, si, k, "A must be > 0 (one disk: shape = disk)");
+    p->a = x;
+  }
+  if (sh == SH_LINEAR) {
+    if ((rc = shape_num(c, si, k, tok[1], "N", &x))) return rc;
+    if (x != floor(x) || x < 1 || x > HD_MAX_BODY_DISKS)
+      return FAIL_AT(c, si, k, "N must be a whole number in [1, %d]", HD_MAX_BODY_DISKS);
+    p->n = (int)x;
+  }
+  if (sh == SH_BENT) {
+    if ((rc = shape_num(c, si, k, tok[1], "ANGLE", &x))) return rc;
+    if (!(x > 0 && x <= 180)) return FAIL_AT(c, si, k, "ANGLE must be in (0, 180] degrees");
+    p->angle = x;
+  }
+  if ((sh == SH_LINEAR || sh == SH_BENT || sh == SH_TRIANGLE) && n == hi[sh]) {
+    if ((rc = shape_num(c, si, k, tok[n - 1], "S", &x))) return rc;
+    if (!(x > 0)) return FAIL_AT(c, si, k, "S must be > 0");
+    p->s = x;
+  }
+  p->shape = sh;
+  return HD_OK;
+}
+
+/* `disks = x y d m; x y d m; ...` */
+static int set_disks(ctx *c, int si, int k, const char *v) {
+  hd_scene_species *sp = &c->sc->named[si - N_SEC];
+  int n = 0;
+  const char *s = v;
+  while (*s) {
+    size_t len = strcspn(s, ";");
+    char grp[256], tok[5][64];
+    if (len >= sizeof grp) return FAIL_AT(c, si, k, "disk %d: too long", n + 1);
+    memcpy(grp, s, len);
+    grp[len] = '\0';
+    s += len + (s[len] == ';');
+    int nt = split(grp, tok, 4);
+    if (nt == 0) continue; /* an empty group: "a; ; b", or a ';' at the end */
+    if (n == HD_MAX_BODY_DISKS)
+      return FAIL_AT(c, si, k, "more than %d disks (HD_MAX_BODY_DISKS)", HD_MAX_BODY_DISKS);
+    double x[4];
+    static const char *const what[4] = {"x", "y", "d", "m"};
+    if (nt != 4)
+      return FAIL_AT(c, si, k, "disk %d: expected x y d m (four numbers, disks separated by ';')",
+                     n + 1);
+    for (int j = 0; j < 4; j++)
+      if (!parse_num(tok[j], &x[j]))
+        return FAIL_AT(c, si, k, "disk %d: %s '%s': %s", n + 1, what[j], tok[j], num_why(tok[j]));
+    for (int j = 2; j < 4; j++)
+      if (!(x[j] > 0)) return FAIL_AT(c, si, k, "disk %d: %s must be > 0", n + 1, what[j]);
+    sp->x[n] = x[0], sp->y[n] = x[1], sp->d[n] = x[2], sp->m[n] = x[3];
+    n++;
+  }
+  if (n == 0) return FAIL_AT(c, si, k, "missing value: expected x y d m; x y d m; ...");
+  sp->ndisk = n;
+  c->sp[si - N_SEC].shape = SH_EXPLICIT;
+  return HD_OK;
+}
+
+/* Whether s is a valid species name: [A-Za-z0-9_]{1,31}. */
+static int good_name(const char *s) {
+  size_t n = strlen(s);
+  if (n == 0 || n >= HD_SPECIES_NAME_MAX) return 0;
+  for (size_t i = 0; i < n; i++)
+    if (!isalnum((unsigned char)s[i]) && s[i] != '_') return 0;
+  return 1;
+}
+
+/* `alpha_OTHER` (k = K_PALPHAX): recorded here, its OTHER resolved when the scene is read. */
+static int set_alpha_other(ctx *c, int si, int k, const char *v) {
+  (void)k;
+  sp_parse *p = &c->sp[si - N_SEC];
+  sp_pair *q = &p->pair[p->npair - 1]; /* handle() made it the last */
+  char key[HD_SPECIES_NAME_MAX + 8];
+  snprintf(key, sizeof key, "alpha_%s", q->other);
+  double x;
+  if (!parse_num(v, &x)) return fail(c, HD_EINPUT, q->at, si, key, v, "%s", num_why(v));
+  if (!(x >= 0 && x <= 1)) return fail(c, HD_EINPUT, q->at, si, key, v, "must be in [0, 1]");
+  q->v = x;
+  return HD_OK;
+}
+
+/* ---- sections and keys ---------------------------------------------------------------------- */
 
 static int find_sec(const char *s) {
   for (int i = 0; i < N_SEC; i++)
-    if (!strcmp(s, sec_name[i])) return i;
+    if (i != S_SPECIES && !strcmp(s, sec_name[i])) return i;
+  return -1;
+}
+
+/* The NAME of a section "species NAME" (blanks between), or NULL when s is not one. */
+static const char *species_part(const char *s) {
+  if (strncmp(s, "species", 7) || (s[7] != ' ' && s[7] != '\t')) return NULL;
+  s += 7;
+  while (*s == ' ' || *s == '\t') s++;
+  return s;
+}
+
+/* The instance of named species `name`, or -1. */
+static int find_species(const ctx *c, const char *name) {
+  for (int j = 0; j < c->sc->n_named; j++)
+    if (!strcmp(c->sc->named[j].name, name)) return N_SEC + j;
   return -1;
 }
 
 static int unknown_section(ctx *c, const char *s) {
   char at[600];
   where(c, c->cur, at, sizeof at);
+  if (!strcmp(s, "species"))
+    return cfail(c, HD_EINPUT, "%s: [species]: a species section needs a name: [species NAME]", at);
   return cfail(c, HD_EINPUT,
-               "%s: [%.60s]: unknown section (known: system dimers disks walls init run log rods)",
+               "%s: [%.60s]: unknown section (known: system dimers disks species NAME walls init "
+               "run log rods)",
                at, s);
 }
 
-static void mark_section(ctx *c, int s) {
-  if (!c->present[s]) c->sec_at[s] = c->cur;
-  c->present[s] = 1;
+static void mark_section(ctx *c, int si) {
+  if (!c->present[si]) c->sec_at[si] = c->cur;
+  c->present[si] = 1;
+}
+
+/* The section instance of a [section] name (a new [species NAME] is created when `create`), or
+ * -1 with the error set. */
+static int section_index(ctx *c, const char *s, int create) {
+  int si = find_sec(s);
+  if (si >= 0) return si;
+  const char *name = species_part(s);
+  if (!name) return unknown_section(c, s), -1;
+  char at[600];
+  where(c, c->cur, at, sizeof at);
+  if (!good_name(name))
+    return cfail(c, HD_EINPUT,
+                 "%s: [species %.40s]: a species name is 1 to %d letters, digits or _", at, name,
+                 HD_SPECIES_NAME_MAX - 1),
+           -1;
+  if (!strcmp(name, "dimer") || !strcmp(name, "disk") || !strcmp(name, "dimers") ||
+      !strcmp(name, "disks"))
+    return cfail(c, HD_EINPUT,
+                 "%s: [species %s]: reserved name (the [dimers] and [disks] sections are those "
+                 "species)",
+                 at, name),
+           -1;
+  si = find_species(c, name);
+  if (si >= 0 || !create) return si;
+  hd_scene *sc = c->sc;
+  if (sc->n_named == HD_MAX_SPECIES - 2)
+    return cfail(c, HD_EINPUT,
+                 "%s: [species %s]: more than %d [species] sections (HD_MAX_SPECIES %d counts "
+                 "[dimers] and [disks])",
+                 at, name, HD_MAX_SPECIES - 2, HD_MAX_SPECIES),
+           -1;
+  si = N_SEC + sc->n_named;
+  hd_scene_species *sp = &sc->named[sc->n_named++];
+  memset(sp, 0, sizeof *sp);
+  strcpy(sp->name, name);
+  sp->line = c->cur.over ? 0 : c->cur.line;
+  for (int k = 0; k < N_KEY; k++)
+    if (keys[k].sec == S_SPECIES && keys[k].type == KT_REAL)
+      *(double *)field(c, si, k) = keys[k].def;
+  sp_parse *p = &c->sp[si - N_SEC];
+  memset(p, 0, sizeof *p);
+  p->d = keys[K_PD].def;
+  p->m = keys[K_PM].def;
+  p->s = NAN;
+  return si;
 }
 
 /* Handles `name = value` in section `section` at c->cur. */
 static int handle(ctx *c, const char *section, const char *name, const char *value) {
-  char at[600], v[96];
+  char at[600], v[96], label[64];
   if (!*section) {
     where(c, c->cur, at, sizeof at);
     shorten(value, v, sizeof v);
     return cfail(c, HD_EINPUT, "%s: %.60s = %s: key outside any [section]", at, name, v);
   }
-  int s = find_sec(section);
-  if (s < 0) return unknown_section(c, section);
+  int si = section_index(c, section, 0);
+  if (si < 0) return c->failed ? c->code : unknown_section(c, section);
+  int s = sec_of(si);
+  sec_label(c, si, label, sizeof label);
   int k = 0;
-  while (k < N_KEY && !(key_def[k].sec == s && !strcmp(key_def[k].name, name))) k++;
+  while (k < N_KEY && !(keys[k].sec == s && !strcmp(keys[k].name, name))) k++;
+  if (k == N_KEY && s == S_SPECIES && !strncmp(name, "alpha_", 6) && name[6]) k = K_PALPHAX;
   if (k == N_KEY) {
-    char known[200] = "";
+    char known[300] = "";
     for (int j = 0; j < N_KEY; j++)
-      if (key_def[j].sec == s) {
+      if (keys[j].sec == s) {
         strcat(known, " ");
-        strcat(known, key_def[j].name);
+        strcat(known, keys[j].name);
       }
     char nm[64];
     shorten(name, nm, sizeof nm);
-    return fail(c, HD_EINPUT, c->cur, s, nm, value, "unknown key (keys of [%s]:%s)", sec_name[s],
-                known);
+    return fail(c, HD_EINPUT, c->cur, si, nm, value, "unknown key (keys of [%s]:%s)",
+                s == S_SPECIES ? "species NAME" : sec_name[s], known);
   }
-  loc prev = c->key_at[k];
-  if (!c->cur.over && prev.line > 0)
-    return fail(c, HD_EINPUT, c->cur, s, name, value, "duplicate key (first set at line %ld)",
-                prev.line);
-  if (c->cur.over && prev.over > 0)
-    return fail(c, HD_EINPUT, c->cur, s, name, value, "duplicate key (also set by --set %s)",
-                c->over[prev.over - 1]);
-  c->key_at[k] = c->cur;
-  shorten(value, c->key_val[k], sizeof c->key_val[k]);
+  loc *prev = &c->key_at[si][k];
+  char *val = c->key_val[si][k];
+  if (k == K_PALPHAX) { /* one slot per OTHER */
+    sp_parse *p = &c->sp[si - N_SEC];
+    const char *other = name + 6;
+    if (!good_name(other))
+      return fail(c, HD_EINPUT, c->cur, si, name, value,
+                  "OTHER of alpha_OTHER must be a species name (letters, digits, _)");
+    int j = 0;
+    while (j < p->npair && strcmp(p->pair[j].other, other)) j++;
+    if (j == p->npair) {
+      if (p->npair == HD_MAX_SPECIES)
+        return fail(c, HD_EINPUT, c->cur, si, name, value, "more alpha_OTHER keys than species");
+      memset(&p->pair[j], 0, sizeof p->pair[j]);
+      strcpy(p->pair[j].other, other);
+      p->npair++;
+    } else if (j != p->npair - 1) { /* set_alpha_other reads the last: make it so */
+      sp_pair t = p->pair[j];
+      memmove(&p->pair[j], &p->pair[j + 1], (size_t)(p->npair - 1 - j) * sizeof t);
+      p->pair[p->npair - 1] = t;
+    }
+    prev = &p->pair[p->npair - 1].at;
+    val = p->pair[p->npair - 1].val;
+  }
+  if (!c->cur.over && prev->line > 0)
+    return fail(c, HD_EINPUT, c->cur, si, name, value, "duplicate key (first set at line %ld)",
+                prev->line);
+  if (c->cur.over && prev->over > 0)
+    return fail(c, HD_EINPUT, c->cur, si, name, value, "duplicate key (also set by --set %s)",
+                c->over[prev->over - 1]);
+  *prev = c->cur;
+  shorten(value, val, 96);
   /* a file's value that a --set replaces is not read: the override mends a bad line */
   for (int i = 0; !c->cur.over && i < c->n_over; i++)
-    if (hd_scene_override_sets(c->over[i], sec_name[s], key_def[k].name)) return HD_OK;
-  return set_value(c, k, value);
+    if (hd_scene_override_sets(c->over[i], label, name)) return HD_OK;
+  return set_value(c, si, k, value);
 }
 
 static int on_key(void *user, const char *section, const char *name, const char *value) {
@@ -625,9 +944,10 @@ static int section_line(ctx *c, const char *line) {
   if (len >= sizeof name) len = sizeof name - 1;
   memcpy(name, line + 1, len);
   name[len] = '\0';
-  int s = find_sec(name);
-  if (s < 0) return unknown_section(c, name);
-  mark_section(c, s);
+  int si = section_index(c, name, 1);
+  if (si < 0) return c->code;
+  mark_section(c, si);
+  c->cur_si = si;
   return HD_OK;
 }
 
@@ -659,6 +979,17 @@ static char *reader(char *str, int num, void *stream) {
   memcpy(str, s, len);
   str[len] = '\0';
   if (str[0] == '[' && section_line(c, str)) return NULL;
+  /* in `disks = ...` a blank before ';' would start a libinih comment and drop the disks after
+   * it without a word */
+  if (c->cur_si >= N_SEC && !strncmp(str, "disks", 5) && strchr(" \t=:", str[5]) &&
+      (strstr(str, " ;") || strstr(str, "\t;"))) {
+    char at[600];
+    where(c, c->cur, at, sizeof at);
+    cfail(c, HD_EINPUT,
+          "%s: [species %s] disks: a blank before ';' starts a comment: write x y d m; x y d m", at,
+          c->sc->named[c->cur_si - N_SEC].name);
+    return NULL;
+  }
   return str;
 }
 
@@ -666,6 +997,7 @@ static char *reader(char *str, int num, void *stream) {
 static int parse_text(ctx *c) {
   int saved = ini_max_line;
   ini_max_line = HD_SCENE_MAX_LINE + 3;
+  c->cur_si = -1;
   int r = ini_parse_stream(reader, c, on_key, c);
   ini_max_line = saved;
   if (c->failed) return c->code;
@@ -685,26 +1017,36 @@ static char *trim(char *s) {
 }
 
 /* Splits the override in buf ("SECTION.KEY=VALUE", changed in place) into its trimmed parts;
- * 0 if it has no '=' or no '.' before it. */
-static int split_override(char *buf, char **sec, char **key, char **val) {
+ * "species.NAME.KEY=VALUE" gives the section "species NAME", written to secbuf.  0 if it has no
+ * '=' or no '.' before it (or, for species, no second '.'). */
+static int split_override(char *buf, char *secbuf, size_t n, char **sec, char **key, char **val) {
   char *eq = strchr(buf, '=');
   char *dot = eq ? memchr(buf, '.', (size_t)(eq - buf)) : NULL;
   if (!eq || !dot) return 0;
   *dot = *eq = '\0';
   *sec = trim(buf), *key = trim(dot + 1), *val = trim(eq + 1);
+  if (!strcmp(*sec, "species")) {
+    char *dot2 = strchr(*key, '.');
+    if (!dot2) return 0;
+    *dot2 = '\0';
+    snprintf(secbuf, n, "species %s", trim(*key));
+    *sec = secbuf;
+    *key = trim(dot2 + 1);
+  }
   return 1;
 }
 
 int hd_scene_override_sets(const char *over, const char *section, const char *key) {
-  char buf[HD_SCENE_MAX_LINE + 1], *sec, *k, *val;
+  char buf[HD_SCENE_MAX_LINE + 1], secbuf[HD_SCENE_MAX_LINE + 16], *sec, *k, *val;
   if (strlen(over) > HD_SCENE_MAX_LINE) return 0;
   strcpy(buf, over);
-  return split_override(buf, &sec, &k, &val) && !strcmp(sec, section) && !strcmp(k, key);
+  return split_override(buf, secbuf, sizeof secbuf, &sec, &k, &val) && !strcmp(sec, section) &&
+         !strcmp(k, key);
 }
 
 /* Applies override i ("SECTION.KEY=VALUE"). */
 static int apply_override(ctx *c, int i) {
-  char buf[HD_SCENE_MAX_LINE + 1], at[600];
+  char buf[HD_SCENE_MAX_LINE + 1], secbuf[HD_SCENE_MAX_LINE + 16], at[600];
   c->cur.line = 0;
   c->cur.over = i + 1;
   where(c, c->cur, at, sizeof at);
@@ -713,34 +1055,45 @@ static int apply_override(ctx *c, int i) {
   }
   strcpy(buf, c->over[i]);
   char *sec, *key, *val;
-  if (!split_override(buf, &sec, &key, &val))
-    return cfail(c, HD_EINPUT, "%s: expected SECTION.KEY=VALUE", at);
-  int s = find_sec(sec);
-  if (s < 0) return unknown_section(c, sec);
-  mark_section(c, s);
+  if (!split_override(buf, secbuf, sizeof secbuf, &sec, &key, &val))
+    return cfail(c, HD_EINPUT, "%s: expected SECTION.KEY=VALUE (species.NAME.KEY=VALUE)", at);
+  int si = section_index(c, sec, 1);
+  if (si < 0) return c->code;
+  mark_section(c, si);
   return handle(c, sec, key, val);
 }
 
 /* ---- checks of the whole ------------------------------------------------------------------- */
 
-double hd_dimer_area(double d, double a) {
-  double r = d / 2, disk = M_PI * r * r;
-  if (a >= d) return 2 * disk;
-  /* lens of two circles of radius r at distance a < 2r */
-  double lens = 2 * r * r * acos(a / (2 * r)) - (a / 2) * sqrt(4 * r * r - a * a);
-  return 2 * disk - lens;
+/* A snapshot that cannot be taken is refused at set-up: a time past stop_time, a cpd past
+ * stop_cpd (a list in the other unit than the stop cannot be checked before the run; the run's
+ * message says what it did not take). */
+static int check_vel_at(ctx *c) {
+  const hd_scene *sc = c->sc;
+  if (sc->n_velocities_at == 0) return HD_OK;
+  int k = sc->velocities_in_time ? K_LVELT : K_LVEL;
+  double last = sc->velocities_at[sc->n_velocities_at - 1];
+  double stop = sc->velocities_in_time ? sc->stop_time : sc->stop_cpd;
+  if (stop > 0 && last > stop)
+    return FAIL_KEY(c, k, "%.17g is past %s = %.17g: that snapshot would never be taken", last,
+                    sc->velocities_in_time ? "stop_time" : "stop_cpd", stop);
+  return HD_OK;
 }
 
-double hd_scene_covered_area(const hd_scene *sc) {
-  return (double)sc->n_dimers * hd_dimer_area(sc->dimer_d, sc->dimer_a) +
-         (double)sc->n_disks * M_PI * sc->disk_sigma * sc->disk_sigma / 4;
+/* Body counts of the scene (dimers, disks and each named species) summed. */
+static long body_count(const hd_scene *sc) {
+  long n = sc->n_dimers + sc->n_disks;
+  for (int j = 0; j < sc->n_named; j++) n += sc->named[j].count;
+  return n;
 }
 
 /* Resolves, checks and counts the state file. */
 static int check_state(ctx *c) {
   hd_scene *sc = c->sc;
-  if (c->stored) { /* the run's bodies are in its checkpoint; the counts are in the text */
-    if (!is_set(c->key_at[K_DCOUNT]) && !is_set(c->key_at[K_SCOUNT]))
+  int any_count = key_set(c, S_DIMERS, K_DCOUNT) || key_set(c, S_DISKS, K_SCOUNT);
+  for (int j = 0; j < sc->n_named; j++) any_count |= key_set(c, N_SEC + j, K_PCOUNT);
+  if (c->mode != M_RUN) { /* the run's bodies are in its checkpoint; the counts are in the text */
+    if (c->mode == M_STORED && !any_count)
       return FAIL_KEY(c, K_STATE, "a stored scene gives the counts of its bodies");
     snprintf(sc->state_file, sizeof sc->state_file, "%s", c->state_rel);
     return HD_OK;
@@ -752,7 +1105,7 @@ static int check_state(ctx *c) {
     snprintf(joined, sizeof joined, "%s/%s", sc->dir, c->state_rel);
   char *real = realpath(joined, NULL);
   if (!real)
-    return fail(c, HD_EIO, c->key_at[K_STATE], S_INIT, "state", c->key_val[K_STATE],
+    return fail(c, HD_EIO, c->key_at[S_INIT][K_STATE], S_INIT, "state", c->key_val[S_INIT][K_STATE],
                 "cannot read state file '%s': %s", joined, strerror(errno));
   if (strlen(real) >= sizeof sc->state_file) {
     free(real);
@@ -776,60 +1129,68 @@ static int check_state(ctx *c) {
   strcpy(sc->state_file, real);
   free(real);
   hd_state_row *rows = NULL;
-  long n = 0, nd = 0, ns = 0;
-  int rc = hd_state_csv_read(sc->state_file, &rows, &n, c->err);
+  long n = 0, have[HD_MAX_SPECIES] = {0};
+  int rc = hd_state_csv_read_species(sc->state_file, sc, &rows, &n, c->err);
   if (rc) {
     c->failed = 1;
     c->code = rc;
     return rc;
   }
-  for (long i = 0; i < n; i++) *(rows[i].kind == HD_KIND_DIMER ? &nd : &ns) += 1;
+  for (long i = 0; i < n; i++) have[rows[i].species]++;
   free(rows);
-  static const int ck[2] = {K_DCOUNT, K_SCOUNT}, cs[2] = {S_DIMERS, S_DISKS};
-  long *cnt[2] = {&sc->n_dimers, &sc->n_disks}, have[2] = {nd, ns};
-  static const char *const kind[2] = {"dimer", "disk"};
-  for (int j = 0; j < 2; j++) {
-    if (is_set(c->key_at[ck[j]])) {
-      if (*cnt[j] != have[j])
-        return FAIL_KEY(c, ck[j], "the state file %s holds %ld %s rows", c->state_rel, have[j],
-                        kind[j]);
+  for (int j = 0; j < 2 + sc->n_named; j++) {
+    int si = j == 0 ? S_DIMERS : j == 1 ? S_DISKS : N_SEC + j - 2;
+    int k = j == 0 ? K_DCOUNT : j == 1 ? K_SCOUNT : K_PCOUNT;
+    long *cnt = j == 0 ? &sc->n_dimers : j == 1 ? &sc->n_disks : &sc->named[j - 2].count;
+    const char *kind = j == 0 ? "dimer" : j == 1 ? "disk" : sc->named[j - 2].name;
+    if (key_set(c, si, k)) {
+      if (*cnt != have[j])
+        return FAIL_AT(c, si, k, "the state file %s holds %ld %s rows", c->state_rel, have[j],
+                       kind);
     } else if (have[j] > 0) {
-      *cnt[j] = have[j];
-      c->present[cs[j]] = 1;
+      *cnt = have[j];
+      c->present[si] = 1;
     }
   }
   return HD_OK;
 }
 
-/* The box: given, or derived from area_fraction; then does everything fit. */
-static int check_box(ctx *c) {
-  hd_scene *sc = c->sc;
-  long nb = sc->n_dimers + sc->n_disks;
-  int kb = is_set(c->key_at[K_BOX]) ? K_BOX : K_AREA;
-  if (is_set(c->key_at[K_BOX]) && is_set(c->key_at[K_AREA])) {
-    int later = c->key_at[K_AREA].over > c->key_at[K_BOX].over ||
-                        (c->key_at[K_AREA].over == c->key_at[K_BOX].over &&
-                         c->key_at[K_AREA].line > c->key_at[K_BOX].line)
-                    ? K_AREA
-                    : K_BOX;
-    return FAIL_KEY(c, later, "give either box or area_fraction, not both");
-  }
-  if (nb == 0) {
-    if (is_set(c->key_at[K_AREA]))
-      return FAIL_KEY(c, K_AREA, "needs bodies: a [dimers] or [disks] count > 0");
-    return HD_OK;
-  }
-  if (!is_set(c->key_at[K_BOX]) && !is_set(c->key_at[K_AREA]))
-    return fail(c, HD_EINPUT, c->present[S_SYSTEM] ? c->sec_at[S_SYSTEM] : (loc){0, 0}, S_SYSTEM,
-                "box", NULL, "missing: give box = Lx Ly or area_fraction = eta");
-  sc->box_line = c->key_at[kb].over ? 0 : c->key_at[kb].line;
-  double area = hd_scene_covered_area(sc);
-  if (kb == K_AREA) sc->box_x = sc->box_y = sqrt(area / sc->area_fraction);
-  if (!isfinite(sc->box_x) || !isfinite(sc->box_y)) /* the bodies' area overflowed (d ~ 1e160) */
-    return FAIL_KEY(c, kb, "gives a box that is not a finite number (the bodies cover %.6g)", area);
+/* The largest body of the scene (the lattice's cell edge). */
+static double largest_body(const hd_scene *sc) {
   double ext = 0;
   if (sc->n_dimers > 0) ext = sc->dimer_a + sc->dimer_d;
   if (sc->n_disks > 0 && sc->disk_sigma > ext) ext = sc->disk_sigma;
+  for (int j = 0; j < sc->n_named; j++)
+    if (sc->named[j].count > 0) ext = fmax(ext, hd_species_extent(&sc->named[j]));
+  return ext;
+}
+
+/* The box: given, or derived from area_fraction; then (run is set) does everything fit. */
+static int check_box(ctx *c, int run) {
+  hd_scene *sc = c->sc;
+  long nb = body_count(sc);
+  int kb = key_set(c, S_SYSTEM, K_BOX) ? K_BOX : K_AREA;
+  if (key_set(c, S_SYSTEM, K_BOX) && key_set(c, S_SYSTEM, K_AREA)) {
+    loc a = c->key_at[S_SYSTEM][K_AREA], b = c->key_at[S_SYSTEM][K_BOX];
+    int later = a.over > b.over || (a.over == b.over && a.line > b.line) ? K_AREA : K_BOX;
+    return FAIL_KEY(c, later, "give either box or area_fraction, not both");
+  }
+  if (nb == 0) {
+    if (run && key_set(c, S_SYSTEM, K_AREA))
+      return FAIL_KEY(c, K_AREA, "needs bodies: a [dimers], [disks] or [species] count > 0");
+    return HD_OK;
+  }
+  if (!key_set(c, S_SYSTEM, K_BOX) && !key_set(c, S_SYSTEM, K_AREA))
+    return run ? fail(c, HD_EINPUT, c->present[S_SYSTEM] ? c->sec_at[S_SYSTEM] : (loc){0, 0},
+                      S_SYSTEM, "box", NULL, "missing: give box = Lx Ly or area_fraction = eta")
+               : HD_OK;
+  sc->box_line = c->key_at[S_SYSTEM][kb].over ? 0 : c->key_at[S_SYSTEM][kb].line;
+  double area = hd_scene_covered_area(sc);
+  if (kb == K_AREA) sc->box_x = sc->box_y = sqrt(area / sc->area_fraction);
+  if (!run) return HD_OK;
+  if (!isfinite(sc->box_x) || !isfinite(sc->box_y)) /* the bodies' area overflowed (d ~ 1e160) */
+    return FAIL_KEY(c, kb, "gives a box that is not a finite number (the bodies cover %.6g)", area);
+  double ext = largest_body(sc);
   double edge = fmin(sc->box_x, sc->box_y);
   if (edge < ext)
     return FAIL_KEY(c, kb, "box too small: edge %.6g is shorter than the largest body (%.6g)", edge,
@@ -858,10 +1219,139 @@ static int check_box(ctx *c) {
   return HD_OK;
 }
 
+/* Disks of one body touch or overlap when their centres are at most (d_i + d_j)/2 apart, up to
+ * this relative slack (the short forms' touching disks are computed with cos and sin). */
+#define HD_TOUCH_SLACK 1e-12
+
+/* The disks of named species j from its shape, then: are they one connected body. */
+static int build_species(ctx *c, int j) {
+  hd_scene_species *sp = &c->sc->named[j];
+  sp_parse *p = &c->sp[j];
+  int si = N_SEC + j;
+  int has_shape = key_set(c, si, K_PSHAPE), has_disks = key_set(c, si, K_PDISKS);
+  if (has_shape && has_disks) {
+    loc a = c->key_at[si][K_PSHAPE], b = c->key_at[si][K_PDISKS];
+    int later = a.over > b.over || (a.over == b.over && a.line > b.line) ? K_PSHAPE : K_PDISKS;
+    return FAIL_AT(c, si, later, "give either shape or disks, not both");
+  }
+  if (!has_shape && !has_disks)
+    return fail(c, HD_EINPUT, c->sec_at[si], si, "shape", NULL,
+                "missing: give shape = disk | dimer A | linear N [S] | triangle [S] | bent "
+                "ANGLE [S], or disks = x y d m; x y d m; ...");
+  if (has_disks) {
+    for (int k = K_PD; k <= K_PM; k++)
+      if (key_set(c, si, k))
+        return FAIL_AT(c, si, k, "not used with disks = ... (each disk gives its own d and m)");
+  } else {
+    double s = isnan(p->s) ? p->d : p->s, h = s / (2 * sqrt(3.0));
+    int n = p->shape == SH_DISK ? 1 : p->shape == SH_DIMER ? 2 : p->shape == SH_LINEAR ? p->n : 3;
+    sp->ndisk = n;
+    for (int i = 0; i < n; i++) {
+      double x = 0, y = 0;
+      switch (p->shape) {
+      case SH_DIMER:
+        x = i ? p->a / 2 : -p->a / 2;
+        break;
+      case SH_LINEAR:
+        x = (i - (n - 1) / 2.0) * s;
+        break;
+      case SH_TRIANGLE: /* side s, centroid at the origin */
+        x = i == 0 ? 0 : i == 1 ? -s / 2 : s / 2;
+        y = i == 0 ? 2 * h : -h;
+        break;
+      case SH_BENT: { /* the middle disk at the origin, the arms at +-ANGLE/2 from the x axis */
+        double half = p->angle * M_PI / 360;
+        x = i == 1 ? 0 : s * cos(half);
+        y = i == 1 ? 0 : i == 0 ? s * sin(half) : -s * sin(half);
+        break;
+      }
+      default:
+        break;
+      }
+      sp->x[i] = x, sp->y[i] = y, sp->d[i] = p->d, sp->m[i] = p->m;
+    }
+  }
+  /* connected: every disk reached from disk 0 through touching or overlapping pairs */
+  int seen[HD_MAX_BODY_DISKS] = {1}, stack[HD_MAX_BODY_DISKS] = {0}, top = 1;
+  while (top > 0) {
+    int a = stack[--top];
+    for (int b = 0; b < sp->ndisk; b++) {
+      double gap = hypot(sp->x[a] - sp->x[b], sp->y[a] - sp->y[b]);
+      if (!seen[b] && gap <= (sp->d[a] + sp->d[b]) / 2 * (1 + HD_TOUCH_SLACK)) {
+        seen[b] = 1;
+        stack[top++] = b;
+      }
+    }
+  }
+  for (int b = 0; b < sp->ndisk; b++)
+    if (!seen[b]) {
+      int k = has_disks ? K_PDISKS : K_PSHAPE;
+      return FAIL_AT(c, si, k,
+                     "disk %d at (%g, %g) is not connected to disk 1: the disks of a body must "
+                     "touch or overlap (centres at most (d_i + d_j)/2 apart)",
+                     b + 1, sp->x[b], sp->y[b]);
+    }
+  return HD_OK;
+}
+
+/* alpha_pair: each species' own alpha on the diagonal, the smaller of the two off it, then
+ * [disks] alpha_dimer and the alpha_OTHER keys. */
+static int fill_pairs(ctx *c) {
+  hd_scene *sc = c->sc;
+  double own[HD_MAX_SPECIES];
+  loc set_at[HD_MAX_SPECIES][HD_MAX_SPECIES];
+  int set_by[HD_MAX_SPECIES][HD_MAX_SPECIES];
+  memset(set_at, 0, sizeof set_at);
+  for (int i = 0; i < HD_MAX_SPECIES; i++)
+    own[i] = i == 0                ? sc->dimer_alpha
+             : i == 1              ? sc->disk_alpha
+             : i - 2 < sc->n_named ? sc->named[i - 2].alpha
+                                   : 1;
+  for (int i = 0; i < HD_MAX_SPECIES; i++)
+    for (int j = 0; j < HD_MAX_SPECIES; j++) sc->alpha_pair[i][j] = fmin(own[i], own[j]);
+  sc->alpha_pair[0][1] = sc->alpha_pair[1][0] = sc->disk_alpha_dimer;
+  for (int k = 0; k < sc->n_named; k++) {
+    sp_parse *p = &c->sp[k];
+    int si = N_SEC + k;
+    for (int q = 0; q < p->npair; q++) {
+      sp_pair *pr = &p->pair[q];
+      char key[HD_SPECIES_NAME_MAX + 8];
+      snprintf(key, sizeof key, "alpha_%s", pr->other);
+      int o = !strcmp(pr->other, "dimers") ? 0 : !strcmp(pr->other, "disks") ? 1 : -1;
+      if (o < 0 && find_species(c, pr->other) >= 0) o = find_species(c, pr->other) - N_SEC + 2;
+      if (o == 2 + k)
+        return fail(c, HD_EINPUT, pr->at, si, key, pr->val,
+                    "the species itself: its own restitution is `alpha`");
+      if (o < 0 || (o < 2 && !c->present[o == 0 ? S_DIMERS : S_DISKS])) {
+        char known[400] = "";
+        if (c->present[S_DIMERS]) strcat(known, " dimers");
+        if (c->present[S_DISKS]) strcat(known, " disks");
+        for (int j = 0; j < sc->n_named; j++)
+          if (j != k) strcat(known, " "), strcat(known, sc->named[j].name);
+        return fail(c, HD_EINPUT, pr->at, si, key, pr->val,
+                    "no [%s%s] section in the scene (other species:%s)", o < 0 ? "species " : "",
+                    pr->other, known[0] ? known : " none");
+      }
+      int i = 2 + k;
+      if (is_set(set_at[i][o])) {
+        char at[600];
+        where(c, set_at[i][o], at, sizeof at);
+        return fail(c, HD_EINPUT, pr->at, si, key, pr->val,
+                    "the pair is also set by [species %s] alpha_%s (%s)",
+                    sc->named[set_by[i][o]].name, sc->named[k].name, at);
+      }
+      set_at[i][o] = set_at[o][i] = pr->at;
+      set_by[i][o] = set_by[o][i] = k;
+      sc->alpha_pair[i][o] = sc->alpha_pair[o][i] = pr->v;
+    }
+  }
+  return HD_OK;
+}
+
 /* A [rods] scene: a ring of count rods, nothing 2D. */
 static int check_rods(ctx *c) {
   hd_scene *sc = c->sc;
-  if (!is_set(c->key_at[K_RCOUNT]))
+  if (!key_set(c, S_RODS, K_RCOUNT))
     return fail(c, HD_EINPUT, c->sec_at[S_RODS], S_RODS, "count", NULL,
                 "missing: required in [rods]");
   static const int other[4] = {S_DIMERS, S_DISKS, S_WALLS, S_INIT};
@@ -869,18 +1359,22 @@ static int check_rods(ctx *c) {
     if (c->present[other[j]])
       return fail(c, HD_EINPUT, c->sec_at[other[j]], other[j], NULL, NULL,
                   "cannot be combined with [rods] (the ring has its own count and temperature)");
-  if (is_set(c->key_at[K_BOX]))
+  for (int j = 0; j < sc->n_named; j++)
+    return fail(c, HD_EINPUT, c->sec_at[N_SEC + j], N_SEC + j, NULL, NULL,
+                "cannot be combined with [rods] (the ring has its own count and temperature)");
+  if (key_set(c, S_SYSTEM, K_BOX))
     return FAIL_KEY(c, K_BOX, "not used with [rods]: the ring length is the rod count");
-  if (is_set(c->key_at[K_AREA]))
+  if (key_set(c, S_SYSTEM, K_AREA))
     return FAIL_KEY(c, K_AREA, "not used with [rods]: the ring length is the rod count");
-  if (!is_set(c->key_at[K_REPS]))
+  if (!key_set(c, S_RODS, K_REPS))
     sc->rod_eps = sc->rod_gamma;
   else if (sc->rod_model != 1)
     return FAIL_KEY(c, K_REPS, "only with model = constant");
   if (sc->rod_table && sc->rod_unequal)
     return FAIL_KEY(c, K_RTABLE,
                     "the table is for equal bath temperatures: not with baths = unequal");
-  if (sc->rod_model != 1 && sc->rod_gamma < 1) { /* the sampler the ring builds (rods.c) */
+  if (c->mode != M_READ && sc->rod_model != 1 && sc->rod_gamma < 1) {
+    /* the sampler the ring builds (rods.c) */
     hd_eps_opts o;
     hd_rods_eps_opts(sc->rod_eps_step, &o);
     if (!hd_eps_grid_fits(sc->rod_gamma, &o))
@@ -889,6 +1383,7 @@ static int check_rods(ctx *c) {
                       "eps_step x %d points, at most 5e7): a larger gamma or eps_step",
                       o.step, o.adapt);
   }
+  if (c->mode == M_READ) return HD_OK;
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
                 "no stop condition: set stop_time, stop_events or stop_cpd");
@@ -904,7 +1399,7 @@ static int check_frames(ctx *c) {
     return FAIL_KEY(c, K_LFRAMEST,
                     "needs [run] stop_time (frames are taken at exact times up to it; by cpd: "
                     "frames_every)");
-  if (is_set(c->key_at[K_LFRAMESMB]) && !(sc->frames_every > 0 || sc->frames_every_time > 0))
+  if (key_set(c, S_LOG, K_LFRAMESMB) && !(sc->frames_every > 0 || sc->frames_every_time > 0))
     return FAIL_KEY(c, K_LFRAMESMB, "set without frames_every or frames_every_time");
   double nf = hd_scene_frames_estimate(sc);
   if (nf > 0) {
@@ -923,37 +1418,44 @@ static int check_frames(ctx *c) {
 
 static int check_all(ctx *c) {
   hd_scene *sc = c->sc;
-  int rc;
-  if (c->present[S_RODS]) return (rc = check_rods(c)) ? rc : check_frames(c);
-  if (!is_set(c->key_at[K_SALPHAD])) sc->disk_alpha_dimer = sc->disk_alpha;
-  if (is_set(c->key_at[K_STATE])) {
-    if (is_set(c->key_at[K_PLACE]))
+  int rc, run = c->mode != M_READ;
+  if (c->present[S_RODS]) return (rc = check_rods(c)) ? rc : run ? check_frames(c) : HD_OK;
+  if (!key_set(c, S_DISKS, K_SALPHAD)) sc->disk_alpha_dimer = sc->disk_alpha;
+  for (int j = 0; j < sc->n_named; j++)
+    if ((rc = build_species(c, j))) return rc;
+  if ((rc = fill_pairs(c))) return rc;
+  if (key_set(c, S_INIT, K_STATE)) {
+    if (key_set(c, S_INIT, K_PLACE))
       return FAIL_KEY(c, K_STATE,
                       "cannot be used together with placement (state gives every "
                       "body)");
     sc->placement = HD_PLACE_STATE;
     if ((rc = check_state(c))) return rc;
-  } else if (!(sc->temperature > 0)) {
+  } else if (run && !(sc->temperature > 0)) {
     return FAIL_KEY(c, K_TEMP, "must be > 0 (0 only with a state file)");
   }
+  if (!run) return check_box(c, 0);
   static const int req_sec[3] = {S_DIMERS, S_DISKS, S_WALLS};
   static const int req_key[3] = {K_DCOUNT, K_SCOUNT, K_WSIDES};
   for (int j = 0; j < 3; j++)
-    if (c->present[req_sec[j]] && !is_set(c->key_at[req_key[j]]) &&
+    if (c->present[req_sec[j]] && !key_set(c, req_sec[j], req_key[j]) &&
         !(req_sec[j] != S_WALLS && sc->placement == HD_PLACE_STATE))
-      return fail(c, HD_EINPUT, c->sec_at[req_sec[j]], req_sec[j], key_def[req_key[j]].name, NULL,
+      return fail(c, HD_EINPUT, c->sec_at[req_sec[j]], req_sec[j], keys[req_key[j]].name, NULL,
                   "missing: required in [%s]", sec_name[req_sec[j]]);
+  for (int j = 0; j < sc->n_named; j++)
+    if (!key_set(c, N_SEC + j, K_PCOUNT) && sc->placement != HD_PLACE_STATE)
+      return fail(c, HD_EINPUT, c->sec_at[N_SEC + j], N_SEC + j, "count", NULL,
+                  "missing: required in [species %s]", sc->named[j].name);
   if (sc->n_dimers > 0 && sc->dimer_a > 0 && sc->dimer_a < HD_MIN_BOND * sc->dimer_d)
     return FAIL_KEY(c, K_DA,
                     "must be 0 or at least %g d = %g: a shorter bond is lost in the round-off of "
                     "the positions (a = 0 is a dimer without lever arm, a disk of mass 2m)",
                     HD_MIN_BOND, HD_MIN_BOND * sc->dimer_d);
-  if ((rc = check_box(c))) return rc;
+  if ((rc = check_box(c, 1))) return rc;
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
                 "no stop condition: set stop_time, stop_events or stop_cpd");
-  if (sc->n_dimers + sc->n_disks == 1 && !(sc->stop_time > 0) &&
-      !(sc->walls && sc->stop_events > 0))
+  if (body_count(sc) == 1 && !(sc->stop_time > 0) && !(sc->walls && sc->stop_events > 0))
     /* it has no pair collision ever (cpd stays 0), and without walls no collision at all: the
      * run would go on for ever */
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
@@ -966,11 +1468,11 @@ static int check_all(ctx *c) {
 
 /* ---- canonical text ------------------------------------------------------------------------ */
 
-typedef struct sbuf {
+struct sbuf {
   char *s;
   size_t n, cap;
   int oom;
-} sbuf;
+};
 
 static __attribute__((format(printf, 2, 3))) void put(sbuf *b, const char *fmt, ...) {
   if (b->oom) return;
@@ -995,15 +1497,6 @@ static __attribute__((format(printf, 2, 3))) void put(sbuf *b, const char *fmt, 
   b->n += (size_t)need;
 }
 
-/* The shortest of %.15g, %.16g, %.17g that reads back as exactly x (so the text round-trips
- * bit for bit, and 0.95 stays "0.95" rather than "0.94999999999999996"). */
-static void shortest(double x, char *buf, size_t n) {
-  for (int prec = 15; prec <= 17; prec++) {
-    snprintf(buf, n, "%.*g", prec, x);
-    if (strtod(buf, NULL) == x) return;
-  }
-}
-
 /* "key = x\n" */
 static void put_kv(sbuf *b, const char *key, double x) {
   char v[40];
@@ -1011,92 +1504,187 @@ static void put_kv(sbuf *b, const char *key, double x) {
   put(b, "%s = %s\n", key, v);
 }
 
-static char *canonical_text(const ctx *c) {
-  const hd_scene *sc = c->sc;
-  sbuf b = {0};
+static int show_set(const ctx *c, int si) {
+  (void)si;
+  return key_set(c, S_SYSTEM, K_AREA);
+}
+static int show_box(const ctx *c, int si) {
+  (void)si;
+  return key_set(c, S_SYSTEM, K_BOX) && !key_set(c, S_SYSTEM, K_AREA);
+}
+static int show_not_state(const ctx *c, int si) {
+  (void)si;
+  return c->sc->placement != HD_PLACE_STATE;
+}
+static int show_state(const ctx *c, int si) {
+  return !show_not_state(c, si);
+}
+/* (always, in a scene to run: [walls] requires sides; not in one only read without them) */
+static int show_sides(const ctx *c, int si) {
+  (void)si;
+  return c->sc->walls != 0;
+}
+static int show_vel(const ctx *c, int si) {
+  (void)si;
+  return c->sc->n_velocities_at > 0 && !c->sc->velocities_in_time;
+}
+static int show_vel_time(const ctx *c, int si) {
+  (void)si;
+  return c->sc->n_velocities_at > 0 && c->sc->velocities_in_time;
+}
+/* only when asked for: the text of a run without frames is as before */
+static int show_frames(const ctx *c, int si) {
+  (void)si;
+  return c->sc->frames_every > 0 || c->sc->frames_every_time > 0;
+}
+static int show_rod_eps(const ctx *c, int si) {
+  (void)si;
+  return c->sc->rod_model == 1;
+}
+static int show_short_shape(const ctx *c, int si) {
+  return c->sp[si - N_SEC].shape != SH_EXPLICIT;
+}
+static int show_explicit(const ctx *c, int si) {
+  return !show_short_shape(c, si);
+}
+
+static void put_area(const ctx *c, int si, int k, sbuf *b) {
+  (void)si, (void)k;
   char v1[40], v2[40];
+  put_kv(b, "area_fraction", c->sc->area_fraction);
+  shortest(c->sc->box_x, v1, sizeof v1);
+  shortest(c->sc->box_y, v2, sizeof v2);
+  put(b, "; box = %s %s (from area_fraction)\n", v1, v2);
+}
+static void put_box(const ctx *c, int si, int k, sbuf *b) {
+  (void)si, (void)k;
+  char v1[40], v2[40];
+  shortest(c->sc->box_x, v1, sizeof v1);
+  shortest(c->sc->box_y, v2, sizeof v2);
+  put(b, "box = %s %s\n", v1, v2);
+}
+static void put_sides(const ctx *c, int si, int k, sbuf *b) {
+  (void)si, (void)k;
+  put(b, "sides =");
+  for (int j = 0; j < 4; j++)
+    if (c->sc->walls & (1u << j)) put(b, " %s", wall_name[j]);
+  put(b, "\n");
+}
+static void put_state(const ctx *c, int si, int k, sbuf *b) {
+  (void)si, (void)k;
+  put(b, "state = %s\n", c->sc->state_file);
+}
+static void put_collisions(const ctx *c, int si, int k, sbuf *b) {
+  (void)si, (void)k;
+  const hd_scene *sc = c->sc;
+  if (sc->log_collisions == HD_LOG_EVERY)
+    put(b, "collisions = every %ld\n", sc->log_every);
+  else
+    put(b, "collisions = %s\n", sc->log_collisions == HD_LOG_NONE ? "none" : "all");
+}
+static void put_vel(const ctx *c, int si, int k, sbuf *b) {
+  (void)si, (void)k;
+  const hd_scene *sc = c->sc;
+  char v[40];
+  put(b, "%s =", sc->velocities_in_time ? "velocities_at_time" : "velocities_at");
+  for (int i = 0; i < sc->n_velocities_at; i++) {
+    shortest(sc->velocities_at[i], v, sizeof v);
+    put(b, " %s", v);
+  }
+  put(b, "\n");
+}
+static void put_shape(const ctx *c, int si, int k, sbuf *b) {
+  (void)k;
+  const sp_parse *p = &c->sp[si - N_SEC];
+  char a[40], s[40];
+  shortest(isnan(p->s) ? p->d : p->s, s, sizeof s);
+  put(b, "shape = %s", shape_name[p->shape]);
+  if (p->shape == SH_DIMER) shortest(p->a, a, sizeof a), put(b, " %s", a);
+  if (p->shape == SH_LINEAR) put(b, " %d", p->n);
+  if (p->shape == SH_BENT) shortest(p->angle, a, sizeof a), put(b, " %s", a);
+  if (p->shape == SH_LINEAR || p->shape == SH_TRIANGLE || p->shape == SH_BENT) put(b, " %s", s);
+  put(b, "\n");
+}
+static void put_sp_dm(const ctx *c, int si, int k, sbuf *b) {
+  put_kv(b, keys[k].name, k == K_PD ? c->sp[si - N_SEC].d : c->sp[si - N_SEC].m);
+}
+static void put_disks(const ctx *c, int si, int k, sbuf *b) {
+  (void)k;
+  const hd_scene_species *sp = &c->sc->named[si - N_SEC];
+  put(b, "disks =");
+  for (int i = 0; i < sp->ndisk; i++) {
+    double v[4] = {sp->x[i], sp->y[i], sp->d[i], sp->m[i]};
+    for (int j = 0; j < 4; j++) {
+      char t[40];
+      shortest(v[j], t, sizeof t);
+      put(b, " %s", t);
+    }
+    if (i + 1 < sp->ndisk) put(b, ";"); /* no blank before ';': that would start a comment */
+  }
+  put(b, "\n");
+}
+/* alpha_OTHER of every pair with a species written before this one: each pair once */
+static void put_pairs(const ctx *c, int si, int k, sbuf *b) {
+  (void)k;
+  const hd_scene *sc = c->sc;
+  int i = 2 + si - N_SEC;
+  char key[HD_SPECIES_NAME_MAX + 8];
+  for (int o = 0; o < i; o++) {
+    if (o < 2 && !c->present[o == 0 ? S_DIMERS : S_DISKS]) continue;
+    snprintf(key, sizeof key, "alpha_%s",
+             o == 0   ? "dimers"
+             : o == 1 ? "disks"
+                      : sc->named[o - 2].name);
+    put_kv(b, key, sc->alpha_pair[i][o]);
+  }
+}
+
+/* Writes key k of section si as the canonical text has it. */
+static void put_key(const ctx *c, int si, int k, sbuf *b) {
+  const key_def *kd = &keys[k];
+  const void *p = field(c, si, k);
+  if (kd->show && !kd->show(c, si)) return;
+  if (kd->if_pos && !(*(const double *)p > 0)) return;
+  if (kd->put) {
+    kd->put(c, si, k, b);
+    return;
+  }
+  switch (kd->type) {
+  case KT_REAL:
+  case KT_WHOLE:
+    put_kv(b, kd->name, *(const double *)p);
+    break;
+  case KT_LONG:
+    put(b, "%s = %ld\n", kd->name, *(const long *)p);
+    break;
+  case KT_U64:
+    put(b, "%s = %llu\n", kd->name, *(const unsigned long long *)p);
+    break;
+  case KT_BOOL:
+  case KT_ENUM:
+    put(b, "%s = %s\n", kd->name, kd->names[*(const int *)p]);
+    break;
+  case KT_CUSTOM:
+    break;
+  }
+}
+
+static void put_section(const ctx *c, int si, sbuf *b) {
+  char label[64];
+  sec_label(c, si, label, sizeof label);
+  put(b, "[%s]\n", label);
+  for (int k = 0; k < N_KEY; k++)
+    if (keys[k].sec == sec_of(si)) put_key(c, si, k, b);
+}
+
+static char *canonical_text(const ctx *c) {
+  sbuf b = {0};
   put(&b, "%s", "");
-  if (c->present[S_SYSTEM]) {
-    put(&b, "[system]\n");
-    shortest(sc->box_x, v1, sizeof v1);
-    shortest(sc->box_y, v2, sizeof v2);
-    if (is_set(c->key_at[K_AREA])) {
-      put_kv(&b, "area_fraction", sc->area_fraction);
-      put(&b, "; box = %s %s (from area_fraction)\n", v1, v2);
-    } else if (is_set(c->key_at[K_BOX])) {
-      put(&b, "box = %s %s\n", v1, v2);
-    }
-    put(&b, "seed = %llu\n", sc->seed);
-  }
-  if (c->present[S_DIMERS]) {
-    put(&b, "[dimers]\ncount = %ld\n", sc->n_dimers);
-    put_kv(&b, "d", sc->dimer_d);
-    put_kv(&b, "a", sc->dimer_a);
-    put_kv(&b, "m", sc->dimer_m);
-    put_kv(&b, "alpha", sc->dimer_alpha);
-  }
-  if (c->present[S_DISKS]) {
-    put(&b, "[disks]\ncount = %ld\n", sc->n_disks);
-    put_kv(&b, "sigma", sc->disk_sigma);
-    put_kv(&b, "mass", sc->disk_mass);
-    put_kv(&b, "alpha", sc->disk_alpha);
-    put_kv(&b, "alpha_dimer", sc->disk_alpha_dimer);
-  }
-  if (c->present[S_WALLS]) {
-    put(&b, "[walls]\nsides =");
-    for (int j = 0; j < 4; j++)
-      if (sc->walls & (1u << j)) put(&b, " %s", wall_name[j]);
-    put(&b, "\n");
-    put_kv(&b, "alpha", sc->wall_alpha);
-  }
-  if (c->present[S_INIT]) {
-    put(&b, "[init]\n");
-    put_kv(&b, "temperature", sc->temperature);
-    if (sc->placement == HD_PLACE_STATE)
-      put(&b, "state = %s\n", sc->state_file);
-    else
-      put(&b, "placement = %s\n", sc->placement == HD_PLACE_LATTICE ? "lattice" : "random");
-  }
-  if (c->present[S_RUN]) {
-    put(&b, "[run]\n");
-    if (sc->stop_time > 0) put_kv(&b, "stop_time", sc->stop_time);
-    if (sc->stop_events > 0) put_kv(&b, "stop_events", sc->stop_events);
-    if (sc->stop_cpd > 0) put_kv(&b, "stop_cpd", sc->stop_cpd);
-    put(&b, "verify = %d\n", sc->verify);
-    put_kv(&b, "checkpoint_every", sc->checkpoint_every);
-  }
-  if (c->present[S_LOG]) {
-    put(&b, "[log]\n");
-    if (sc->log_collisions == HD_LOG_EVERY)
-      put(&b, "collisions = every %ld\n", sc->log_every);
-    else
-      put(&b, "collisions = %s\n", sc->log_collisions == HD_LOG_NONE ? "none" : "all");
-    put_kv(&b, "samples_every", sc->samples_every);
-    if (sc->n_velocities_at > 0) {
-      put(&b, "%s =", sc->velocities_in_time ? "velocities_at_time" : "velocities_at");
-      for (int i = 0; i < sc->n_velocities_at; i++) {
-        shortest(sc->velocities_at[i], v1, sizeof v1);
-        put(&b, " %s", v1);
-      }
-      put(&b, "\n");
-    }
-    /* only when asked for: the text of a run without frames is as before */
-    if (sc->frames_every > 0) put_kv(&b, "frames_every", sc->frames_every);
-    if (sc->frames_every_time > 0) put_kv(&b, "frames_every_time", sc->frames_every_time);
-    if (sc->frames_every > 0 || sc->frames_every_time > 0)
-      put_kv(&b, "frames_max_mb", sc->frames_max_mb);
-  }
-  if (c->present[S_RODS]) {
-    put(&b, "[rods]\ncount = %ld\n", sc->n_rods);
-    put_kv(&b, "gamma", sc->rod_gamma);
-    put(&b, "nmod = %ld\nmodel = %s\n", sc->rod_nmod, sc->rod_model ? "constant" : "stochastic");
-    if (sc->rod_model) put_kv(&b, "eps", sc->rod_eps);
-    put_kv(&b, "damping", sc->rod_damping);
-    put_kv(&b, "tc", sc->rod_tc);
-    put_kv(&b, "eps_step", sc->rod_eps_step);
-    put_kv(&b, "temperature", sc->rod_temperature);
-    put(&b, "table = %s\nbaths = %s\n", sc->rod_table ? "yes" : "no",
-        sc->rod_unequal ? "unequal" : "mean");
+  for (int s = 0; s < N_SEC; s++) {
+    if (s == S_SPECIES)
+      for (int j = 0; j < c->sc->n_named; j++) put_section(c, N_SEC + j, &b);
+    else if (c->present[s])
+      put_section(c, s, &b);
   }
   if (b.oom) {
     free(b.s);
@@ -1105,30 +1693,125 @@ static char *canonical_text(const ctx *c) {
   return b.s;
 }
 
+/* ---- docs/scene-keys.md -------------------------------------------------------------------- */
+
+/* The generated table of section s. */
+static void doc_table(int s, sbuf *b) {
+  put(b, "| key | default | range | meaning |\n|---|---|---|---|\n");
+  for (int k = 0; k < N_KEY; k++) {
+    const key_def *kd = &keys[k];
+    if (kd->sec != s) continue;
+    char def[80], range[160];
+    if (kd->doc_def)
+      snprintf(def, sizeof def, "%s", kd->doc_def);
+    else if (kd->type == KT_BOOL || kd->type == KT_ENUM)
+      snprintf(def, sizeof def, "`%s`", kd->names[(int)kd->def]);
+    else
+      shortest(kd->def, def, sizeof def);
+    if (kd->doc_range) {
+      snprintf(range, sizeof range, "%s", kd->doc_range);
+    } else if (kd->type == KT_BOOL) {
+      snprintf(range, sizeof range, "`1 0 true false yes no on off`");
+    } else if (kd->type == KT_ENUM) {
+      range[0] = '\0';
+      for (int j = 0; kd->names[j]; j++) {
+        size_t at = strlen(range);
+        snprintf(range + at, sizeof range - at, "%s`%s`", j ? " \\| " : "", kd->names[j]);
+      }
+    } else if (kd->type == KT_LONG || kd->type == KT_WHOLE) {
+      char lo[40], hi[40];
+      shortest(kd->lo, lo, sizeof lo);
+      shortest(kd->hi, hi, sizeof hi);
+      snprintf(range, sizeof range, "whole, %s … %s", lo, hi);
+    } else {
+      char why[120];
+      range_why(kd, why, sizeof why);
+      snprintf(range, sizeof range, "%s", why + strlen("must be "));
+      char *ge = strstr(range, ">=");
+      if (ge) memmove(ge + 3, ge + 2, strlen(ge + 2) + 1), memcpy(ge, "≥", 3);
+      if (!strncmp(range, "in ", 3)) memmove(range, range + 3, strlen(range + 3) + 1);
+    }
+    put(b, "| `%s` | %s | %s | %s |\n", kd->doc_key ? kd->doc_key : kd->name, def, range, kd->doc);
+  }
+}
+
+int hd_scene_keys_doc(const char *in, char **out, hd_error *err) {
+  static const char open_tag[] = "<!-- keys ", end_tag[] = "<!-- end keys -->";
+  sbuf b = {0};
+  put(&b, "%s", "");
+  const char *p = in;
+  long line = 0;
+  while (*p) {
+    const char *nl = strchr(p, '\n');
+    size_t len = nl ? (size_t)(nl - p) + 1 : strlen(p);
+    line++;
+    put(&b, "%.*s", (int)len, p);
+    if (!strncmp(p, open_tag, sizeof open_tag - 1)) {
+      char name[32] = "";
+      sscanf(p + sizeof open_tag - 1, "%31[a-z]", name);
+      int s = !strcmp(name, "species") ? S_SPECIES : find_sec(name);
+      if (s < 0) {
+        free(b.s);
+        return hd_error_set(err, HD_EINPUT, "line %ld: %s: no such section", line, name);
+      }
+      doc_table(s, &b);
+      p += len; /* skip the old table */
+      while (*p && strncmp(p, end_tag, sizeof end_tag - 1)) {
+        nl = strchr(p, '\n');
+        line++;
+        p = nl ? nl + 1 : p + strlen(p);
+      }
+      if (!*p) {
+        free(b.s);
+        return hd_error_set(err, HD_EINPUT, "line %ld: table of [%s] not closed by %s", line, name,
+                            end_tag);
+      }
+      continue;
+    }
+    p += len;
+  }
+  if (b.oom) {
+    free(b.s);
+    return hd_error_set(err, HD_ENOMEM, "out of memory");
+  }
+  *out = b.s;
+  return HD_OK;
+}
+
 /* ---- public -------------------------------------------------------------------------------- */
 
 void hd_scene_defaults(hd_scene *sc) {
   memset(sc, 0, sizeof *sc);
   strcpy(sc->dir, ".");
-  sc->seed = 1;
-  sc->dimer_d = sc->dimer_a = sc->dimer_m = sc->dimer_alpha = 1;
-  sc->disk_sigma = sc->disk_mass = sc->disk_alpha = sc->disk_alpha_dimer = 1;
-  sc->wall_alpha = 1;
-  sc->temperature = 1;
-  sc->placement = HD_PLACE_RANDOM;
-  sc->checkpoint_every = 60;
-  sc->log_collisions = HD_LOG_ALL;
-  sc->log_every = 1;
-  sc->frames_max_mb = HD_FRAMES_MAX_MB;
-  sc->rod_gamma = 0.8;
-  sc->rod_nmod = 1000;
-  sc->rod_eps = 0.8;
-  sc->rod_temperature = 1;
+  for (int k = 0; k < N_KEY; k++) {
+    const key_def *kd = &keys[k];
+    void *p = (char *)sc + kd->off;
+    if (kd->sec == S_SPECIES) continue; /* set when the section is made */
+    switch (kd->type) {
+    case KT_REAL:
+    case KT_WHOLE:
+      *(double *)p = kd->def;
+      break;
+    case KT_LONG:
+      *(long *)p = (long)kd->def;
+      break;
+    case KT_U64:
+      *(unsigned long long *)p = (unsigned long long)kd->def;
+      break;
+    case KT_BOOL:
+    case KT_ENUM:
+      *(int *)p = (int)kd->def;
+      break;
+    case KT_CUSTOM: /* zero bytes */
+      break;
+    }
+  }
+  sc->log_every = 1; /* the N of `collisions = every N`, 1 for all (not a key of its own) */
   sc->text = NULL;
 }
 
 long hd_scene_bodies(const hd_scene *sc) {
-  return sc->n_rods > 0 ? sc->n_rods : sc->n_dimers + sc->n_disks;
+  return sc->n_rods > 0 ? sc->n_rods : body_count(sc);
 }
 
 double hd_scene_frame_bytes(const hd_scene *sc) {
@@ -1149,6 +1832,14 @@ double hd_scene_frames_estimate(const hd_scene *sc) {
   return best < INFINITY ? best : -1;
 }
 
+double hd_scene_covered_area(const hd_scene *sc) {
+  double a = (double)sc->n_dimers * hd_dimer_area(sc->dimer_d, sc->dimer_a) +
+             (double)sc->n_disks * M_PI * sc->disk_sigma * sc->disk_sigma / 4;
+  for (int j = 0; j < sc->n_named; j++)
+    if (sc->named[j].count > 0) a += (double)sc->named[j].count * hd_species_area(&sc->named[j]);
+  return a;
+}
+
 void hd_scene_free(hd_scene *sc) {
   if (!sc) return;
   free(sc->text);
@@ -1157,10 +1848,10 @@ void hd_scene_free(hd_scene *sc) {
 
 /* Parses text (len bytes) into the already-defaulted *sc. */
 static int load_text(hd_scene *sc, const char *text, size_t len, const char *name,
-                     const char *const *over, int n_over, int stored, hd_error *err) {
+                     const char *const *over, int n_over, int mode, hd_error *err) {
   ctx *c = calloc(1, sizeof *c);
   if (!c) return hd_error_set(err, HD_ENOMEM, "%s: out of memory", name);
-  c->stored = stored;
+  c->mode = mode;
   c->sc = sc;
   c->name = name;
   c->over = over;
@@ -1187,13 +1878,19 @@ int hd_scene_load_string(hd_scene *sc, const char *text, const char *name, const
                          int n_over, hd_error *err) {
   hd_scene_defaults(sc);
   if (!name) name = "<string>";
-  return load_text(sc, text, strlen(text), name, over, n_over, 0, err);
+  return load_text(sc, text, strlen(text), name, over, n_over, M_RUN, err);
 }
 
 int hd_scene_load_stored(hd_scene *sc, const char *text, const char *name, hd_error *err) {
   hd_scene_defaults(sc);
   if (!name) name = "<string>";
-  return load_text(sc, text, strlen(text), name, NULL, 0, 1, err);
+  return load_text(sc, text, strlen(text), name, NULL, 0, M_STORED, err);
+}
+
+int hd_scene_read_stored(hd_scene *sc, const char *text, const char *name, hd_error *err) {
+  hd_scene_defaults(sc);
+  if (!name) name = "<string>";
+  return load_text(sc, text, strlen(text), name, NULL, 0, M_READ, err);
 }
 
 int hd_scene_load(hd_scene *sc, const char *path, const char *const *over, int n_over,
@@ -1261,8 +1958,10 @@ static void rstrip(char *s) {
     s[--n] = '\0';
 }
 
-/* Parses one data line (already right-stripped) into *r. */
-static int csv_row(char *line, const char *path, long lineno, hd_state_row *r, hd_error *err) {
+/* Parses one data line (already right-stripped) into *r; `kind` may name one of sc's species
+ * (sc NULL: dimer and disk only). */
+static int csv_row(char *line, const char *path, long lineno, const hd_scene *sc, hd_state_row *r,
+                   hd_error *err) {
   char *f[8];
   int nf = 0;
   char *p = line;
@@ -1278,13 +1977,26 @@ static int csv_row(char *line, const char *path, long lineno, hd_state_row *r, h
     return hd_error_set(err, HD_EINPUT, "%s:%ld: expected 7 columns (%s), found %d", path, lineno,
                         "kind,x,y,phi,vx,vy,omega", nf);
   char *kind = trim(f[0]);
+  int oriented = 0; /* phi and omega are read */
+  r->species = -1;
   if (!strcmp(kind, "dimer"))
-    r->kind = HD_KIND_DIMER;
+    r->kind = HD_KIND_DIMER, r->species = 0, oriented = 1;
   else if (!strcmp(kind, "disk"))
-    r->kind = HD_KIND_DISK;
-  else
-    return hd_error_set(err, HD_EINPUT, "%s:%ld: column 1 (kind): '%.40s' is not dimer or disk",
-                        path, lineno, kind);
+    r->kind = HD_KIND_DISK, r->species = 1;
+  for (int j = 0; sc && r->species < 0 && j < sc->n_named; j++)
+    if (!strcmp(kind, sc->named[j].name)) {
+      oriented = sc->named[j].ndisk >= 2;
+      r->kind = oriented ? HD_KIND_DIMER : HD_KIND_DISK;
+      r->species = 2 + j;
+    }
+  if (r->species < 0) {
+    char names[HD_MAX_SPECIES * (HD_SPECIES_NAME_MAX + 1)] = "";
+    for (int j = 0; sc && j < sc->n_named; j++)
+      strcat(names, " "), strcat(names, sc->named[j].name);
+    return hd_error_set(err, HD_EINPUT, "%s:%ld: column 1 (kind): '%.40s' is not dimer or disk%s%s",
+                        path, lineno, kind, names[0] ? ", nor a [species] of the scene:" : "",
+                        names);
+  }
   double v[7];
   for (int j = 1; j < 7; j++) {
     char *t = trim(f[j]);
@@ -1294,10 +2006,10 @@ static int csv_row(char *line, const char *path, long lineno, hd_state_row *r, h
   }
   r->x = v[1];
   r->y = v[2];
-  r->phi = r->kind == HD_KIND_DIMER ? v[3] : 0;
+  r->phi = oriented ? v[3] : 0;
   r->vx = v[4];
   r->vy = v[5];
-  r->omega = r->kind == HD_KIND_DIMER ? v[6] : 0;
+  r->omega = oriented ? v[6] : 0;
   r->line = lineno;
   return HD_OK;
 }
@@ -1316,6 +2028,11 @@ static long bounded_line(FILE *fp, char *line, long max) {
 }
 
 int hd_state_csv_read(const char *path, hd_state_row **rows, long *n, hd_error *err) {
+  return hd_state_csv_read_species(path, NULL, rows, n, err);
+}
+
+int hd_state_csv_read_species(const char *path, const hd_scene *sc, hd_state_row **rows, long *n,
+                              hd_error *err) {
   *rows = NULL;
   *n = 0;
   struct stat st;
@@ -1366,7 +2083,7 @@ int hd_state_csv_read(const char *path, hd_state_row **rows, long *n, hd_error *
       }
       out = nr;
     }
-    rc = csv_row(line, path, lineno, &out[nrow], err);
+    rc = csv_row(line, path, lineno, sc, &out[nrow], err);
     if (!rc) nrow++;
   }
   if (!rc && ferror(fp)) rc = hd_error_set(err, HD_EIO, "%s: read error", path);

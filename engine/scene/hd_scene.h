@@ -30,6 +30,24 @@
 #define HD_SCENE_MAX_BYTES (1L << 20) /* largest scene file (a scene is ~1 kB) */
 #define HD_STATE_MAX_LINE 4096        /* longest line of a state CSV, in bytes */
 
+#define HD_MAX_SPECIES 8    /* species in one scene, [dimers] and [disks] included */
+#define HD_MAX_BODY_DISKS 8 /* disks in one rigid body */
+#define HD_SPECIES_NAME_MAX 32
+
+/* One `[species NAME]` section: a rigid planar cluster of disks (issue 18, docs/scene-keys.md). */
+typedef struct hd_scene_species {
+  char name[HD_SPECIES_NAME_MAX]; /* NAME: [A-Za-z0-9_]{1,31}, unique; "dimer", "disk",
+                                   * "dimers", "disks" are reserved for the shorthand sections */
+  long count;                     /* `count` [0] */
+  int ndisk;                      /* disks per body, 1 .. HD_MAX_BODY_DISKS */
+  double x[HD_MAX_BODY_DISKS];    /* disk centres in the body frame, as given (any origin: the */
+  double y[HD_MAX_BODY_DISKS];    /*   engine moves the origin to the centre of mass) */
+  double d[HD_MAX_BODY_DISKS];    /* diameters, > 0 */
+  double m[HD_MAX_BODY_DISKS];    /* masses, > 0 */
+  double alpha;                   /* `alpha` [1]: restitution within the species */
+  long line;                      /* line of the section header in the scene (0 from --set) */
+} hd_scene_species;
+
 /* Where the initial state comes from ([init] placement / state). */
 typedef enum hd_placement {
   HD_PLACE_RANDOM = 0,  /* random non-overlapping placement (default) */
@@ -69,6 +87,14 @@ typedef struct hd_scene {
   double disk_mass;        /* `mass` [1] */
   double disk_alpha;       /* `alpha` [1]: disk-disk restitution */
   double disk_alpha_dimer; /* `alpha_dimer` [= alpha]: dimer-disk restitution */
+  /* [species NAME] sections, in the order they appear (engine species 2, 3, ...; [dimers] is
+   * species 0 and [disks] species 1 as now) */
+  int n_named;                                /* how many */
+  hd_scene_species named[HD_MAX_SPECIES - 2]; /* the sections */
+  double alpha_pair[HD_MAX_SPECIES]
+                   [HD_MAX_SPECIES]; /* restitution between engine species i != j
+                                      * (symmetric); filled by the loader, with
+                                      * the defaults applied (never NaN after load) */
   /* [walls] */
   unsigned walls;    /* `sides`: HD_WALL_* bits [0: fully periodic] */
   double wall_alpha; /* `alpha` [1] */
@@ -113,7 +139,8 @@ typedef struct hd_scene {
   char *text; /* malloc'd canonical INI of the effective scene (file + overrides), for runs.scene */
 } hd_scene;
 
-/* Fills *sc with the defaults (no bodies, no stop, text NULL). */
+/* Fills *sc with the defaults (no bodies, no stop, text NULL): the defaults of the key table
+ * (engine/scene/hd_scene.c, docs/scene-keys.md).  alpha_pair is filled by the loader, not here. */
 void hd_scene_defaults(hd_scene *sc);
 
 /* Reads scene file `path` (overwriting *sc, which must not hold a loaded scene: hd_scene_free
@@ -137,6 +164,18 @@ int hd_scene_load_string(hd_scene *sc, const char *text, const char *name, const
  * counts), so a run whose CSV was moved, edited or deleted still resumes. */
 int hd_scene_load_stored(hd_scene *sc, const char *text, const char *name, hd_error *err);
 
+/* As hd_scene_load_stored for the programs that only read a stored run (analysis, export): the
+ * same parser, keys, ranges, defaults and [species] geometry, and the box derived from
+ * area_fraction, but none of the checks of whether the run could start (a stop condition,
+ * required counts, bodies that fit the box, the frames' cap, the state file). */
+int hd_scene_read_stored(hd_scene *sc, const char *text, const char *name, hd_error *err);
+
+/* Regenerates the key tables of docs/scene-keys.md from the key table: `in` is the document,
+ * each table sits between a line `<!-- keys SECTION -->` and a line `<!-- end keys -->` and is
+ * replaced; the rest is copied.  *out is malloc'd (free()).  HD_EINPUT for an unknown SECTION
+ * or an unclosed table, HD_ENOMEM. */
+int hd_scene_keys_doc(const char *in, char **out, hd_error *err);
+
 /* Whether override `over` ("SECTION.KEY=VALUE", as hd_scene_load reads it) sets [section] key. */
 int hd_scene_override_sets(const char *over, const char *section, const char *key);
 
@@ -147,10 +186,26 @@ void hd_scene_free(hd_scene *sc);
  * disks when a >= d, minus their lens-shaped overlap when a < d; one disk when a = 0). */
 double hd_dimer_area(double d, double a);
 
-/* Total area of the scene's bodies (dimers and disks, overlaps within a dimer counted once). */
+/* Area of the union of n disks (centres x, y, diameters d): exact up to round-off for any
+ * overlaps (Green's theorem on the arcs of the union's boundary: each circle's arcs that no other
+ * disk covers, integrated in closed form), O(n^2 log n). */
+double hd_disks_area(int n, const double *x, const double *y, const double *d);
+
+/* Area one body of a named species covers: the union of its disks (hd_dimer_area for two equal
+ * disks, so that `shape = dimer A` covers what a [dimers] dimer does bit for bit; hd_disks_area
+ * otherwise). */
+double hd_species_area(const hd_scene_species *sp);
+
+/* Largest extent of one body of a named species: the diameter of its union of disks, max over
+ * pairs of disks of centre distance + (d_i + d_j)/2.  Its width in any direction is at most
+ * this, so a square cell of this edge holds the body in any orientation. */
+double hd_species_extent(const hd_scene_species *sp);
+
+/* Total area of the scene's bodies (dimers, disks and named species, overlaps within a body
+ * counted once). */
 double hd_scene_covered_area(const hd_scene *sc);
 
-/* Bodies of the scene: dimers + disks, or rods. */
+/* Bodies of the scene: dimers + disks + named species, or rods. */
 long hd_scene_bodies(const hd_scene *sc);
 
 /* Bytes one frame of the scene takes in the database (data and row). */
@@ -162,8 +217,10 @@ double hd_scene_frames_estimate(const hd_scene *sc);
 
 /* One body of an [init] state CSV. */
 typedef struct hd_state_row {
-  int kind;         /* HD_KIND_DISK or HD_KIND_DIMER (hd_body.h) */
-  double x, y, phi; /* phi ignored (0) for disks */
+  int kind;         /* HD_KIND_DISK or HD_KIND_DIMER (hd_body.h); a named species' body is
+                     * HD_KIND_DIMER when it has 2 or more disks (it has an orientation) */
+  int species;      /* engine species index: 0 dimer, 1 disk, 2 + k for named[k] */
+  double x, y, phi; /* phi ignored (0) for disks and one-disk species */
   double vx, vy, omega;
   long line; /* line number in the CSV, for messages */
 } hd_state_row;
@@ -173,5 +230,10 @@ typedef struct hd_state_row {
  * Bounded: HD_EINPUT for a path that is not a regular file (a FIFO, /dev/zero), a line longer
  * than HD_STATE_MAX_LINE or more rows than 2 HD_MAX_COUNT, before memory grows with them. */
 int hd_state_csv_read(const char *path, hd_state_row **rows, long *n, hd_error *err);
+
+/* As hd_state_csv_read, but `kind` may also be the name of one of sc's [species NAME] sections
+ * (sc NULL: dimer and disk only, as hd_state_csv_read). */
+int hd_state_csv_read_species(const char *path, const hd_scene *sc, hd_state_row **rows, long *n,
+                              hd_error *err);
 
 #endif

@@ -1,6 +1,7 @@
 /* libFuzzer harness: the scene parser (hd_scene_load_string) on arbitrary bytes.  An accepted
  * scene is freed; a refused one must leave one printable line in err.msg (no control byte:
- * hd_error_set escapes them) and no allocation.  Built and run by `make fuzz`. */
+ * hd_error_set escapes them) and no allocation.  The same for hd_scene_read_stored (the readers'
+ * loader).  Built and run by `make fuzz`. */
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -31,6 +32,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (!err.msg[0]) abort(); /* a refusal says why */
     for (const char *p = err.msg; *p; p++)
       if ((unsigned char)*p < 0x20 || *p == 0x7f) abort(); /* on one printable line */
+  }
+  /* the readers' loader (analysis, export): what it accepts reads back to the same text */
+  hd_scene sc3, sc4;
+  hd_error e3, e4;
+  if (hd_scene_read_stored(&sc3, text, "fuzz.ini", &e3) == HD_OK) {
+    if (hd_scene_read_stored(&sc4, sc3.text, "canonical", &e4) != HD_OK) abort();
+    if (strcmp(sc3.text, sc4.text)) abort();
+    hd_scene_free(&sc4);
+    hd_scene_free(&sc3);
+  } else {
+    if (!e3.msg[0]) abort();
   }
   free(text);
   return 0;
