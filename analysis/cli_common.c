@@ -4,41 +4,86 @@
 #include "hd_db.h"
 
 #include <errno.h>
-#include <getopt.h>
+#include <math.h>
+#include <stddef.h>
 #include <limits.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-static int parse_num(const char *cmd, const char *opt, const char *s, double lo, double *out) {
-  char *end;
-  errno = 0;
-  double v = strtod(s, &end);
-  if (end == s || *end || errno || !(v >= lo)) {
-    fprintf(stderr, "haff %s: %s '%s': expected a number >= %g\n", cmd, opt, s, lo);
-    return 2;
-  }
-  *out = v;
-  return 0;
-}
+/* The options of the analysis subcommands: one table, each subcommand accepting the sets
+ * (HD_OPT_*) of its spec's `allowed` (others: "does not apply here"). */
+const hd_optdef hd_cli_opts[] = {
+    {.name = "run", .kind = HD_ARG_INT, .off = offsetof(hd_cli_args, run), .size = sizeof(int64_t),
+     .ilo = 0, .ihi = INT64_MAX, .meta = "ID", .set = HD_OPT_RUN,
+     .help = "one run (any status); default: every done/collapsed/interrupted run"},
+    {.name = "all", .kind = HD_ARG_FLAG, .off = offsetof(hd_cli_args, all), .set = HD_OPT_ALL,
+     .help = "every finished run (the default)"},
+    {.name = "alpha-group", .kind = HD_ARG_FLAG, .off = offsetof(hd_cli_args, group),
+     .set = HD_OPT_GROUP, .help = "one line per (alpha, a/d) group"},
+    {.name = "md", .kind = HD_ARG_FLAG, .off = offsetof(hd_cli_args, md), .set = HD_OPT_MD,
+     .help = "a Markdown table instead of TSV"},
+    {.name = "keep-flagged", .kind = HD_ARG_FLAG, .off = offsetof(hd_cli_args, keep_flagged),
+     .set = HD_OPT_MD, .help = "keep the groups flagged inhomogeneous (left out by default)"},
+    {.name = "k-ci", .kind = HD_ARG_ENUM, .off = offsetof(hd_cli_args, kmode), .set = HD_OPT_KCI,
+     .choices = "ac|ols|runs", .meta = "ac|ols|runs",
+     .help = "ac [default]: runs combined by inverse-variance weights, each run's errors\n"
+             "widened by its residuals' autocorrelation time (docs/analysis.md);\n"
+             "ols: the same with plain OLS errors (the paper's test; too narrow);\n"
+             "runs: mean over runs, t interval with runs-1 dof (needs >= 2 runs)"},
+    {.name = "cpd-min-k", .kind = HD_ARG_DOUBLE, .off = offsetof(hd_cli_args, fit.cpd_min_k),
+     .lo = 0, .hi = INFINITY, .meta = "X", .set = HD_OPT_KCI,
+     .help = "skip the transient cpd < X [0]"},
+    {.name = "no-detect", .kind = HD_ARG_FLAG, .off = offsetof(hd_cli_args, fit.detect),
+     .flags = HD_OPTF_CLEAR, .set = HD_OPT_FIT,
+     .help = "fit the whole run, not only the homogeneous part"},
+    {.name = "thr", .kind = HD_ARG_DOUBLE, .off = offsetof(hd_cli_args, fit.homog.thr), .lo = 1e-6,
+     .hi = INFINITY, .meta = "X", .set = HD_OPT_FIT,
+     .help = "homogeneity: relative change of rate/sqrt(E) that ends it [0.1]"},
+    {.name = "min-coll", .kind = HD_ARG_DOUBLE, .off = offsetof(hd_cli_args, fit.homog.min_coll),
+     .lo = 1, .hi = INFINITY, .meta = "N", .set = HD_OPT_FIT,
+     .help = "homogeneity: pair collisions per window [2000]"},
+    {.name = "cpd-max", .kind = HD_ARG_DOUBLE, .off = offsetof(hd_cli_args, fit.cpd_max), .lo = 0,
+     .hi = INFINITY, .meta = "X", .set = HD_OPT_FIT,
+     .help = "fit only samples with cpd <= X (0: no limit, the default)"},
+    {.name = "cpd-skip", .kind = HD_ARG_DOUBLE, .off = offsetof(hd_cli_args, fit.hcs.cpd_skip),
+     .lo = 0, .hi = INFINITY, .meta = "X", .set = HD_OPT_FIT,
+     .help = "HCS window: leave out the initial transient cpd < X [5]"},
+    {.name = "s-end", .kind = HD_ARG_DOUBLE, .off = offsetof(hd_cli_args, fit.hcs.s_end),
+     .lo = 1e-6, .hi = INFINITY, .meta = "X", .set = HD_OPT_FIT,
+     .help = "HCS window: ends where a 5-cpd block's mean s_perp exceeds X [10]"},
+    {.name = "s-flag", .kind = HD_ARG_DOUBLE, .off = offsetof(hd_cli_args, fit.s_flag), .lo = 1e-6,
+     .hi = INFINITY, .meta = "X", .set = HD_OPT_FIT,
+     .help = "flag a group 'inhomogeneous' when its window's mean s_perp exceeds X [2.5]"},
+    {.name = "min-window", .kind = HD_ARG_DOUBLE, .off = offsetof(hd_cli_args, fit.min_window),
+     .lo = 0, .hi = INFINITY, .meta = "X", .set = HD_OPT_FIT,
+     .help = "... or when most of its runs left the HCS within X cpd [40]"},
+    {.name = "block", .kind = HD_ARG_INT, .off = offsetof(hd_cli_args, block), .size = sizeof(long),
+     .ilo = 1, .ihi = LONG_MAX, .meta = "N", .set = HD_OPT_BLOCK,
+     .help = "collisions per block [10000]"},
+    {.name = "fmean", .kind = HD_ARG_FLAG, .off = offsetof(hd_cli_args, fmean), .set = HD_OPT_BLOCK,
+     .help = "instead: one line 'run n f_mean f_err batches batch_size', <f> over\n"
+             "the run with a batch-means standard error (batches of N, >= 20 of them)"},
+    {.name = "stats", .kind = HD_ARG_FLAG, .off = offsetof(hd_cli_args, stats), .set = HD_OPT_STATS,
+     .help = "instead: one line per snapshot and variable (vx, vy, omega, v2d):\n"
+             "snap t cpd var n scale kurt a2 a2_err ks_d ks_p (docs/analysis.md)"},
+    {.name = "pool", .kind = HD_ARG_FLAG, .off = offsetof(hd_cli_args, pool), .set = HD_OPT_STATS,
+     .help = "one block instead: every snapshot of every finished run (or --run) of\n"
+             "the first run's species whose cpd is in the run's HCS window (haff-fit's\n"
+             "window; fit options apply), pooled; extra column n (values per component)"},
+    {.name = "bins", .kind = HD_ARG_INT, .off = offsetof(hd_cli_args, bins), .size = sizeof(int),
+     .ilo = 1, .ihi = 100000, .meta = "B", .set = HD_OPT_BINS,
+     .help = "histogram bins [angles: 36 on (-pi, pi]; veldist: 40]"},
+    {.name = "range", .kind = HD_ARG_DOUBLE, .off = offsetof(hd_cli_args, range), .lo = 1e-9,
+     .hi = INFINITY, .meta = "X", .set = HD_OPT_STATS, .help = "histogram on [-X, X] [5]"},
+    {.name = "label", .kind = HD_ARG_STRING, .off = offsetof(hd_cli_args, label), .meta = "L",
+     .set = HD_OPT_STATS, .help = "states label [velocities] (e.g. initial, final)"},
+    {.name = "o", .letter = 'o', .kind = HD_ARG_STRING, .off = offsetof(hd_cli_args, out),
+     .flags = HD_OPTF_SHORT, .meta = "FILE",
+     .help = "write to FILE instead of stdout (- is stdout)"},
+    {0}};
 
-/* An integer option in [lo, hi]: whole digits only (no fraction, exponent or inf, which a cast
- * would truncate or make undefined); 2 after one line on stderr. */
-static int parse_int(const char *cmd, const char *opt, const char *s, long long lo, long long hi,
-                     long long *out) {
-  char *end;
-  errno = 0;
-  long long v = strtoll(s, &end, 10);
-  if (end == s || *end || errno || v < lo || v > hi) {
-    fprintf(stderr, "haff %s: %s '%s': expected a whole number in [%lld, %lld]\n", cmd, opt, s, lo,
-            hi);
-    return 2;
-  }
-  *out = v;
-  return 0;
-}
-
-int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_cli_args *a) {
+int hd_cli_parse(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a) {
   memset(a, 0, sizeof *a);
   a->run = -1;
   a->fit = hd_fit_opts_defaults();
@@ -47,156 +92,12 @@ int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_
   a->label = "velocities";
   a->range = 5;
   a->kmode = HD_K_AC;
-  const char *cmd = argv[0];
-  static const struct option lo[] = {{"help", no_argument, 0, 'h'},
-                                     {"run", required_argument, 0, 'r'},
-                                     {"all", no_argument, 0, 'A'},
-                                     {"no-detect", no_argument, 0, 'N'},
-                                     {"thr", required_argument, 0, 'T'},
-                                     {"min-coll", required_argument, 0, 'C'},
-                                     {"cpd-max", required_argument, 0, 'X'},
-                                     {"cpd-min-k", required_argument, 0, 'K'},
-                                     {"md", no_argument, 0, 'M'},
-                                     {"alpha-group", no_argument, 0, 'G'},
-                                     {"block", required_argument, 0, 'b'},
-                                     {"fmean", no_argument, 0, 'F'},
-                                     {"bins", required_argument, 0, 'B'},
-                                     {"stats", no_argument, 0, 'S'},
-                                     {"label", required_argument, 0, 'L'},
-                                     {"range", required_argument, 0, 'R'},
-                                     {"k-ci", required_argument, 0, 'k'},
-                                     {"cpd-skip", required_argument, 0, 'P'},
-                                     {"s-end", required_argument, 0, 'E'},
-                                     {"s-flag", required_argument, 0, 'Q'},
-                                     {"min-window", required_argument, 0, 'W'},
-                                     {"keep-flagged", no_argument, 0, 'Y'},
-                                     {"pool", no_argument, 0, 'O'},
-                                     {0, 0, 0, 0}};
-  static const struct {
-    int c;
-    unsigned bit;
-  } need[] = {{'r', HD_OPT_RUN},   {'A', HD_OPT_ALL},   {'N', HD_OPT_FIT},   {'T', HD_OPT_FIT},
-              {'C', HD_OPT_FIT},   {'X', HD_OPT_FIT},   {'K', HD_OPT_KCI},   {'M', HD_OPT_MD},
-              {'G', HD_OPT_GROUP}, {'b', HD_OPT_BLOCK}, {'F', HD_OPT_BLOCK}, {'B', HD_OPT_BINS},
-              {'S', HD_OPT_STATS}, {'L', HD_OPT_STATS}, {'R', HD_OPT_STATS}, {'k', HD_OPT_KCI},
-              {'P', HD_OPT_FIT},   {'E', HD_OPT_FIT},   {'Q', HD_OPT_FIT},   {'W', HD_OPT_FIT},
-              {'Y', HD_OPT_MD},    {'O', HD_OPT_STATS}};
-  optind = 0; /* full re-initialisation: the subcommands may run more than once per process */
-  opterr = 0;
-  int c, li;
-  long long v;
-  while ((c = getopt_long(argc, argv, "ho:", lo, &li)) != -1) {
-    if (c == 'h') {
-      printf("%s", usage);
-      return -1;
-    }
-    if (c == '?') {
-      char buf[8];
-      fprintf(stderr, "haff %s: unknown option or missing value '%s' (see --help)\n", cmd,
-              hd_opt_culprit(argv, lo, buf, sizeof buf));
-      return 2;
-    }
-    for (size_t i = 0; i < sizeof need / sizeof need[0]; i++)
-      if (need[i].c == c && !(allowed & need[i].bit)) {
-        const char *name = "?";
-        for (const struct option *o = lo; o->name; o++)
-          if (o->val == c) name = o->name;
-        fprintf(stderr, "haff %s: option '--%s' does not apply here (see --help)\n", cmd, name);
-        return 2;
-      }
-    switch (c) {
-    case 'o':
-      a->out = optarg;
-      break;
-    case 'r':
-      if (parse_int(cmd, "--run", optarg, 0, INT64_MAX, &v)) return 2;
-      a->run = (int64_t)v;
-      break;
-    case 'A':
-      a->all = 1;
-      break;
-    case 'N':
-      a->fit.detect = 0;
-      break;
-    case 'T':
-      if (parse_num(cmd, "--thr", optarg, 1e-6, &a->fit.homog.thr)) return 2;
-      break;
-    case 'C':
-      if (parse_num(cmd, "--min-coll", optarg, 1, &a->fit.homog.min_coll)) return 2;
-      break;
-    case 'X':
-      if (parse_num(cmd, "--cpd-max", optarg, 0, &a->fit.cpd_max)) return 2;
-      break;
-    case 'P':
-      if (parse_num(cmd, "--cpd-skip", optarg, 0, &a->fit.hcs.cpd_skip)) return 2;
-      break;
-    case 'E':
-      if (parse_num(cmd, "--s-end", optarg, 1e-6, &a->fit.hcs.s_end)) return 2;
-      break;
-    case 'Q':
-      if (parse_num(cmd, "--s-flag", optarg, 1e-6, &a->fit.s_flag)) return 2;
-      break;
-    case 'W':
-      if (parse_num(cmd, "--min-window", optarg, 0, &a->fit.min_window)) return 2;
-      break;
-    case 'Y':
-      a->keep_flagged = 1;
-      break;
-    case 'O':
-      a->pool = 1;
-      break;
-    case 'K':
-      if (parse_num(cmd, "--cpd-min-k", optarg, 0, &a->fit.cpd_min_k)) return 2;
-      break;
-    case 'M':
-      a->md = 1;
-      break;
-    case 'G':
-      a->group = 1;
-      break;
-    case 'b':
-      if (parse_int(cmd, "--block", optarg, 1, LONG_MAX, &v)) return 2;
-      a->block = (long)v;
-      break;
-    case 'F':
-      a->fmean = 1;
-      break;
-    case 'B':
-      if (parse_int(cmd, "--bins", optarg, 1, 100000, &v)) return 2;
-      a->bins = (int)v;
-      break;
-    case 'S':
-      a->stats = 1;
-      break;
-    case 'L':
-      a->label = optarg;
-      break;
-    case 'R':
-      if (parse_num(cmd, "--range", optarg, 1e-9, &a->range)) return 2;
-      break;
-    case 'k':
-      if (!strcmp(optarg, "ac"))
-        a->kmode = HD_K_AC;
-      else if (!strcmp(optarg, "ols"))
-        a->kmode = HD_K_OLS;
-      else if (!strcmp(optarg, "runs"))
-        a->kmode = HD_K_RUNS;
-      else {
-        fprintf(stderr, "haff %s: --k-ci '%s': expected ac, ols or runs\n", cmd, optarg);
-        return 2;
-      }
-      break;
-    default:
-      return 2;
-    }
-  }
-  if (optind != argc - 1) {
-    fprintf(stderr, "haff %s: expected one database argument (see --help)\n", cmd);
-    return 2;
-  }
-  a->db = argv[optind];
+  hd_optres res;
+  int rc = hd_opt_parse(spec, argc, argv, a, &res);
+  if (rc) return rc;
+  a->db = res.pos[0];
   if (a->run >= 0 && a->all) {
-    fprintf(stderr, "haff %s: --run and --all exclude each other\n", cmd);
+    fprintf(stderr, "haff %s: --run and --all exclude each other\n", spec->cmd);
     return 2;
   }
   return 0;
@@ -323,9 +224,9 @@ void hd_cli_groups_free(sqlite3 *db, hd_run_fit *fits, hd_group *g, size_t ng) {
   free(fits), hd_groups_free(g, ng), sqlite3_close(db);
 }
 
-int hd_cli_one_run(int argc, char **argv, unsigned allowed, const char *usage, hd_cli_args *a,
-                   sqlite3 **db, hd_run_info *info) {
-  int rc = hd_cli_parse(argc, argv, allowed, usage, a);
+int hd_cli_one_run(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a, sqlite3 **db,
+                   hd_run_info *info) {
+  int rc = hd_cli_parse(spec, argc, argv, a);
   if (rc) return rc;
   if (a->run < 0) {
     fprintf(stderr, "haff %s: --run ID is required\n", argv[0]);

@@ -7,9 +7,10 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "hd_opt.h"
 #include "hd_runfit.h"
 
-/* Options an analysis subcommand may accept (bits for hd_cli_parse's `allowed`). */
+/* Options an analysis subcommand may accept (bits of hd_optspec.allowed, hd_optdef.set). */
 enum {
   HD_OPT_RUN = 1,     /* --run ID */
   HD_OPT_ALL = 2,     /* --all */
@@ -43,10 +44,14 @@ typedef struct hd_cli_args {
   hd_kmode kmode;    /* --k-ci [ac] */
 } hd_cli_args;
 
-/* Parses argv (argv[0] the subcommand) accepting the `allowed` options; usage is printed for
- * --help.  Returns 0 to go on, 2 after printing one line on stderr for bad usage, or -1 after
- * printing help (the caller returns 0). */
-int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_cli_args *a);
+/* The options of every analysis subcommand (a spec's `allowed` says which apply): the table
+ * of hd_opt_parse, with hd_cli_args as dest.  Each subcommand's hd_optspec points to it. */
+extern const hd_optdef hd_cli_opts[];
+
+/* Parses argv (argv[0] the subcommand) by spec (opts hd_cli_opts, one positional: the
+ * database) into *a, after setting its defaults.  Returns 0 to go on, 2 after printing one
+ * line on stderr for bad usage, or -1 after printing help (the caller returns 0). */
+int hd_cli_parse(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a);
 
 /* Opens a->out for writing (stdout when NULL or "-").  Returns NULL after printing the error. */
 FILE *hd_cli_out(const hd_cli_args *a);
@@ -77,8 +82,8 @@ void hd_cli_groups_free(sqlite3 *db, hd_run_fit *fits, hd_group *g, size_t ng);
 /* The start of a subcommand on one run: hd_cli_parse, then --run ID is required, the database
  * is opened and the run's info read into *info.  Returns as hd_cli_parse (-1 after --help), or
  * the exit code after printing one line; on 0 *db is open (the caller closes it). */
-int hd_cli_one_run(int argc, char **argv, unsigned allowed, const char *usage, hd_cli_args *a,
-                   sqlite3 **db, hd_run_info *info);
+int hd_cli_one_run(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a, sqlite3 **db,
+                   hd_run_info *info);
 
 /* Prints the error of a failed library call as "haff CMD: msg" and returns its exit code. */
 int hd_cli_fail(const char *cmd, const hd_error *err);

@@ -7,19 +7,6 @@
 #include "cli_common.h"
 #include "hd_ana_cli.h"
 
-#define FIT_OPTS_HELP                                                                              \
-  "  --run ID         one run (any status); default: every done/collapsed/interrupted run\n"       \
-  "  --no-detect      fit the whole run, not only the homogeneous part\n"                          \
-  "  --thr X          homogeneity: relative change of rate/sqrt(E) that ends it [0.1]\n"           \
-  "  --min-coll N     homogeneity: pair collisions per window [2000]\n"                            \
-  "  --cpd-max X      fit only samples with cpd <= X (0: no limit, the default)\n"                 \
-  "  --cpd-skip X     HCS window: leave out the initial transient cpd < X [5]\n"                   \
-  "  --s-end X        HCS window: ends where a 5-cpd block's mean s_perp exceeds X [10]\n"         \
-  "  --s-flag X       flag a group 'inhomogeneous' when its window's mean s_perp exceeds X "       \
-  "[2.5]\n"                                                                                        \
-  "  --min-window X   ... or when most of its runs left the HCS within X cpd [40]\n"               \
-  "  -o FILE          write to FILE instead of stdout (- is stdout)\n"
-
 /* Whether group g is in the papers' tables: one species in a periodic box, dimers (and disks
  * when with_disks: Table I's reference; Table II's K needs rotation). */
 static int in_table(const hd_group *g, int with_disks) {
@@ -70,7 +57,14 @@ static void one_run_note(const char *cmd, const hd_group *g, size_t m) {
 }
 
 int haff_fit_main(int argc, char **argv) {
-  static const char usage[] =
+  static const hd_optspec spec = {
+      .cmd = "haff-fit",
+      .opts = hd_cli_opts,
+      .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP,
+      .npos_min = 1,
+      .npos_max = 1,
+      .pos = "one database argument",
+      .head =
       "usage: haff haff-fit DB [--run ID | --all] [--alpha-group] [fit options] [-o FILE]\n"
       "Fits eq. (31) tau(t) = ln(1 + gamma nu0 t)/gamma, gamma = (1-alpha^2)/(2 D_e), to the\n"
       "HCS window of each run (tau = cpd counted from the window's start): after the initial\n"
@@ -87,11 +81,9 @@ int haff_fit_main(int argc, char **argv) {
       "used when the detection options are the defaults), 'computed' (found now: other options,\n"
       "or a file without it), 'whole' (--no-detect).  A run that cannot be fitted gets nan and a "
       "note;\n"
-      "exit 2 when none can.\n"
-      "  --all            every finished run (the default)\n"
-      "  --alpha-group    one line per (alpha, a/d) group\n" FIT_OPTS_HELP;
+      "exit 2 when none can.\n"};
   hd_cli_args a;
-  int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP, usage, &a);
+  int rc = hd_cli_parse(&spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   sqlite3 *db;
   hd_run_fit *fits;
@@ -164,7 +156,14 @@ int haff_fit_main(int argc, char **argv) {
 }
 
 int haff_table1_main(int argc, char **argv) {
-  static const char usage[] =
+  static const hd_optspec spec = {
+      .cmd = "table1",
+      .opts = hd_cli_opts,
+      .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD,
+      .npos_min = 1,
+      .npos_max = 1,
+      .pos = "one database argument",
+      .head =
       "usage: haff table1 DB [--md] [--keep-flagged] [fit options] [-o FILE]\n"
       "Table I: D_e and nu0_eff/nu0 (nu0: Enskog eq. 29 for disks of diameter d, the body mass "
       "and\n"
@@ -173,11 +172,9 @@ int haff_table1_main(int argc, char **argv) {
       "over the runs (nan when a group has one run).  a_over_d = 0: hard disks.\n"
       "Columns: alpha a_over_d D_e D_e_err ratio ratio_err runs D_e_sys cpd_start cpd_end flag\n"
       "(ratio = nu0_eff/nu0, as in haff-fit; D_e_sys the systematic error, cpd_* the mean HCS\n"
-      "window; groups flagged inhomogeneous are left out, with a note)\n"
-      "  --md             a Markdown table instead of TSV\n"
-      "  --keep-flagged   keep the groups flagged inhomogeneous\n" FIT_OPTS_HELP;
+      "window; groups flagged inhomogeneous are left out, with a note)\n"};
   hd_cli_args a;
-  int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD, usage, &a);
+  int rc = hd_cli_parse(&spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   sqlite3 *db;
   hd_run_fit *fits;
@@ -220,25 +217,23 @@ int haff_table1_main(int argc, char **argv) {
 }
 
 int haff_table2_main(int argc, char **argv) {
-  static const char usage[] =
+  static const hd_optspec spec = {
+      .cmd = "table2",
+      .opts = hd_cli_opts,
+      .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD | HD_OPT_KCI,
+      .npos_min = 1,
+      .npos_max = 1,
+      .pos = "one database argument",
+      .head =
       "usage: haff table2 DB [--md] [--keep-flagged] [--k-ci ac|ols|runs] [--cpd-min-k X] [fit "
       "options] [-o FILE]\n"
       "Table II: K = E_tr/E_rot fitted as a0 + a1 tau (tau = cpd) by least squares on the\n"
       "homogeneous part of each dimer run, with 99% Student-t intervals, per (alpha, a/d).\n"
       "Columns: alpha a_over_d a0 a0_lo a0_hi a1 a1_lo a1_hi a0_sys a1_sys\n"
       "(*_sys: systematic errors, from the fits on the window's two halves and the correlated\n"
-      "flow the state measures see; docs/analysis.md, \"Errors of K\")\n"
-      "  --k-ci ac        [default] runs combined by inverse-variance weights, each run's errors\n"
-      "                   widened by its residuals' autocorrelation time (docs/analysis.md)\n"
-      "  --k-ci ols       the same with plain OLS errors (the paper's test; too narrow)\n"
-      "  --k-ci runs      mean over runs, t interval with runs-1 dof (needs >= 2 runs)\n"
-      "  --cpd-min-k X    skip the transient cpd < X [0]\n"
-      "  --md             a Markdown table instead of TSV\n"
-      "  --keep-flagged   keep the groups flagged inhomogeneous (left out by "
-      "default)\n" FIT_OPTS_HELP;
+      "flow the state measures see; docs/analysis.md, \"Errors of K\")\n"};
   hd_cli_args a;
-  int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD | HD_OPT_KCI,
-                        usage, &a);
+  int rc = hd_cli_parse(&spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   sqlite3 *db;
   hd_run_fit *fits;

@@ -97,7 +97,14 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
 }
 
 int haff_veldist_main(int argc, char **argv) {
-  static const char usage[] =
+  static const hd_optspec spec = {
+      .cmd = "veldist",
+      .opts = hd_cli_opts,
+      .allowed = HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT,
+      .npos_min = 1,
+      .npos_max = 1,
+      .pos = "one database argument",
+      .head =
       "usage: haff veldist DB --run ID [--stats] [--bins B] [--range X] [--label L] [-o FILE]\n"
       "       haff veldist DB --pool [--run ID] [--bins B] [--range X] [--label L] [-o FILE]\n"
       "Fig. 6: histograms of the scaled velocities c = (v - <v>)/s of every snapshot (label\n"
@@ -105,22 +112,12 @@ int haff_veldist_main(int argc, char **argv) {
       "(vx, vy: sqrt(<|V-<V>|^2>/2); omega: sqrt(<omega^2>), not centred), so that a Maxwellian\n"
       "gives the standard normal.  One block per snapshot, two blank lines between, each headed\n"
       "by a line whose first field is its legend title 'cpd=X'.\n"
-      "Columns: snap cpd c p_vx p_vy p_omega gauss   (p_omega NaN for disks)\n"
-      "  --stats          instead: one line per snapshot and variable (vx, vy, omega, v2d):\n"
-      "                   snap t cpd var n scale kurt a2 a2_err ks_d ks_p (docs/analysis.md)\n"
-      "  --pool           one block instead: every snapshot of every finished run (or --run) of\n"
-      "                   the first run's species whose cpd is in the run's HCS window "
-      "(haff-fit's\n"
-      "                   window; fit options apply), pooled; extra column n (values per "
-      "component)\n"
-      "  --bins B         bins [40]     --range X   histogram on [-X, X] [5]\n"
-      "  --label L        states label [velocities] (e.g. initial, final)\n"
-      "  -o FILE          write to FILE instead of stdout (- is stdout)\n";
+      "Columns: snap cpd c p_vx p_vy p_omega gauss   (p_omega NaN for disks)\n"};
   hd_cli_args a;
   sqlite3 *db;
   hd_run_info ri;
   int rc =
-      hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT, usage, &a);
+      hd_cli_parse(&spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   if (a.pool) {
     if (a.stats) {
@@ -129,8 +126,7 @@ int haff_veldist_main(int argc, char **argv) {
     }
     return veldist_pool(&a, argv[0]);
   }
-  rc = hd_cli_one_run(argc, argv, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT, usage, &a,
-                      &db, &ri);
+  rc = hd_cli_one_run(&spec, argc, argv, &a, &db, &ri);
   if (rc) return rc < 0 ? 0 : rc;
   if (ri.species == HD_ANA_OTHER) {
     sqlite3_close(db);
