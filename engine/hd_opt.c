@@ -220,16 +220,16 @@ int hd_opt_parse(const hd_optspec *spec, int argc, char **argv, void *dest, hd_o
       return 2;
     }
     const hd_optdef *d = &spec->opts[k];
+    if (res->given[k] && (d->flags & HD_OPTF_ONCE)) {
+      fprintf(stderr, "haff %s: %s given twice: give one\n", spec->cmd, opt_name(d, nb, sizeof nb));
+      return 2;
+    }
+    if (store(spec, d, optarg, dest)) return 2; /* a bad value is named first */
     if (!applies(spec, d)) {
       fprintf(stderr, "haff %s: option '%s' does not apply here (see --help)\n", spec->cmd,
               opt_name(d, nb, sizeof nb));
       return 2;
     }
-    if (res->given[k] && (d->flags & HD_OPTF_ONCE)) {
-      fprintf(stderr, "haff %s: %s given twice: give one\n", spec->cmd, opt_name(d, nb, sizeof nb));
-      return 2;
-    }
-    if (store(spec, d, optarg, dest)) return 2;
     if (res->given[k] < 255) res->given[k]++;
   }
   res->pos = argv + optind;
