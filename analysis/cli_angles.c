@@ -5,28 +5,29 @@
 #include <stdlib.h>
 
 #include "cli_common.h"
-#include "hd_ana_cli.h"
+#include "haff.h"
+
+const hd_optspec haff_angles_spec = {
+    .cmd = "angles",
+    .opts = hd_cli_opts,
+    .allowed = HD_OPT_RUN | HD_OPT_BLOCK | HD_OPT_BINS,
+    .npos_min = 1,
+    .npos_max = 1,
+    .pos = "one database argument",
+    .head =
+    "usage: haff angles DB --run ID [--block N] [--bins B] [--fmean] [-o FILE]\n"
+    "Fig. 5: histogram of the contact angles theta (both bodies of every dimer-dimer\n"
+    "collision, in (-pi, pi]) per block of N logged collisions, normalised to unit area.\n"
+    "Columns: block first last theta density density_err   (first/last: collision numbers\n"
+    "among the logged dimer-dimer collisions, 1-based; blocks separated by two blank lines,\n"
+    "each headed by a line whose first field is its legend title; an incomplete last block\n"
+    "is dropped)\n"};
 
 int haff_angles_main(int argc, char **argv) {
-  static const hd_optspec spec = {
-      .cmd = "angles",
-      .opts = hd_cli_opts,
-      .allowed = HD_OPT_RUN | HD_OPT_BLOCK | HD_OPT_BINS,
-      .npos_min = 1,
-      .npos_max = 1,
-      .pos = "one database argument",
-      .head =
-      "usage: haff angles DB --run ID [--block N] [--bins B] [--fmean] [-o FILE]\n"
-      "Fig. 5: histogram of the contact angles theta (both bodies of every dimer-dimer\n"
-      "collision, in (-pi, pi]) per block of N logged collisions, normalised to unit area.\n"
-      "Columns: block first last theta density density_err   (first/last: collision numbers\n"
-      "among the logged dimer-dimer collisions, 1-based; blocks separated by two blank lines,\n"
-      "each headed by a line whose first field is its legend title; an incomplete last block\n"
-      "is dropped)\n"};
   hd_cli_args a;
   sqlite3 *db;
   hd_run_info ri;
-  int rc = hd_cli_one_run(&spec, argc, argv, &a, &db, &ri);
+  int rc = hd_cli_one_run(&haff_angles_spec, argc, argv, &a, &db, &ri);
   if (rc) return rc < 0 ? 0 : rc;
   int bins = a.bins ? a.bins : 36;
   hd_error err;

@@ -3,7 +3,7 @@
 #include <stdlib.h>
 
 #include "cli_common.h"
-#include "hd_ana_cli.h"
+#include "haff.h"
 
 /* Writes one block: the sample-by-sample mean over the runs idx[0..m-1] (truncated to the
  * shortest) with the Haff and eq. (31) curves of the mean fitted D_e and nu0. */
@@ -66,26 +66,27 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
   return rc;
 }
 
+const hd_optspec haff_energy_spec = {
+    .cmd = "energy",
+    .opts = hd_cli_opts,
+    .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT,
+    .npos_min = 1,
+    .npos_max = 1,
+    .pos = "one database argument",
+    .head =
+    "usage: haff energy DB [--run ID | --all] [fit options] [-o FILE]\n"
+    "Energy per body and collisions per particle against time, for Figs. 2 and 3: one block\n"
+    "per run (--run) or per (alpha, a/d) group averaged sample by sample (--all, default),\n"
+    "blocks separated by two blank lines, each headed by '# species alpha=.. a_over_d=.. ...'\n"
+    "and a header line whose first field is the block's legend title (column 1 holds t).\n"
+    "Columns: t cpd E E_over_E0 e_tr e_rot x=(1-alpha^2)cpd nu0t=nu0_eff*t\n"
+    "         haff_E_over_E0=(E_s/E0)/(1+gamma nu0 (t-t_s))^2 x_eq31=(1-alpha^2)(cpd_s+eq.(31) "
+    "at\n"
+    "         t-t_s) homog (1 if fitted); t_s, cpd_s, E_s: the HCS window's start (nu0: there)\n"};
+
 int haff_energy_main(int argc, char **argv) {
-  static const hd_optspec spec = {
-      .cmd = "energy",
-      .opts = hd_cli_opts,
-      .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT,
-      .npos_min = 1,
-      .npos_max = 1,
-      .pos = "one database argument",
-      .head =
-      "usage: haff energy DB [--run ID | --all] [fit options] [-o FILE]\n"
-      "Energy per body and collisions per particle against time, for Figs. 2 and 3: one block\n"
-      "per run (--run) or per (alpha, a/d) group averaged sample by sample (--all, default),\n"
-      "blocks separated by two blank lines, each headed by '# species alpha=.. a_over_d=.. ...'\n"
-      "and a header line whose first field is the block's legend title (column 1 holds t).\n"
-      "Columns: t cpd E E_over_E0 e_tr e_rot x=(1-alpha^2)cpd nu0t=nu0_eff*t\n"
-      "         haff_E_over_E0=(E_s/E0)/(1+gamma nu0 (t-t_s))^2 x_eq31=(1-alpha^2)(cpd_s+eq.(31) "
-      "at\n"
-      "         t-t_s) homog (1 if fitted); t_s, cpd_s, E_s: the HCS window's start (nu0: there)\n"};
   hd_cli_args a;
-  int rc = hd_cli_parse(&spec, argc, argv, &a);
+  int rc = hd_cli_parse(&haff_energy_spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   sqlite3 *db;
   hd_run_fit *fits;

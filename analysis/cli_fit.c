@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "cli_common.h"
-#include "hd_ana_cli.h"
+#include "haff.h"
 
 /* Whether group g is in the papers' tables: one species in a periodic box, dimers (and disks
  * when with_disks: Table I's reference; Table II's K needs rotation). */
@@ -56,34 +56,35 @@ static void one_run_note(const char *cmd, const hd_group *g, size_t m) {
             cmd, g->alpha, g->a_over_d);
 }
 
+const hd_optspec haff_fit_spec = {
+    .cmd = "haff-fit",
+    .opts = hd_cli_opts,
+    .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP,
+    .npos_min = 1,
+    .npos_max = 1,
+    .pos = "one database argument",
+    .head =
+    "usage: haff haff-fit DB [--run ID | --all] [--alpha-group] [fit options] [-o FILE]\n"
+    "Fits eq. (31) tau(t) = ln(1 + gamma nu0 t)/gamma, gamma = (1-alpha^2)/(2 D_e), to the\n"
+    "HCS window of each run (tau = cpd counted from the window's start): after the initial\n"
+    "transient (--cpd-skip), up to where the state measures (s_perp) or the collision rate\n"
+    "per sqrt(E) say the homogeneous cooling state ended; D_e_slope = -(1-alpha^2)/(slope of\n"
+    "ln E against cpd) on the same window needs no nu0.  Per group: D_e_sys, the systematic\n"
+    "error (window drift, estimator difference, correlated flow: docs/analysis.md), and flag\n"
+    "'inhomogeneous' for a box past the HCS's validity.  One line per run, or per group of runs "
+    "with\n"
+    "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m and density;\n"
+    "mean +- standard error over the runs; nan with one run).  Per run, *_fit_err are the\n"
+    "formal least-squares errors, which take the residuals of the cumulative cpd(t) as\n"
+    "independent: several times too small.  window: 'stored' (the run's runs.hcs_* window,\n"
+    "used when the detection options are the defaults), 'computed' (found now: other options,\n"
+    "or a file without it), 'whole' (--no-detect).  A run that cannot be fitted gets nan and a "
+    "note;\n"
+    "exit 2 when none can.\n"};
+
 int haff_fit_main(int argc, char **argv) {
-  static const hd_optspec spec = {
-      .cmd = "haff-fit",
-      .opts = hd_cli_opts,
-      .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP,
-      .npos_min = 1,
-      .npos_max = 1,
-      .pos = "one database argument",
-      .head =
-      "usage: haff haff-fit DB [--run ID | --all] [--alpha-group] [fit options] [-o FILE]\n"
-      "Fits eq. (31) tau(t) = ln(1 + gamma nu0 t)/gamma, gamma = (1-alpha^2)/(2 D_e), to the\n"
-      "HCS window of each run (tau = cpd counted from the window's start): after the initial\n"
-      "transient (--cpd-skip), up to where the state measures (s_perp) or the collision rate\n"
-      "per sqrt(E) say the homogeneous cooling state ended; D_e_slope = -(1-alpha^2)/(slope of\n"
-      "ln E against cpd) on the same window needs no nu0.  Per group: D_e_sys, the systematic\n"
-      "error (window drift, estimator difference, correlated flow: docs/analysis.md), and flag\n"
-      "'inhomogeneous' for a box past the HCS's validity.  One line per run, or per group of runs "
-      "with\n"
-      "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m and density;\n"
-      "mean +- standard error over the runs; nan with one run).  Per run, *_fit_err are the\n"
-      "formal least-squares errors, which take the residuals of the cumulative cpd(t) as\n"
-      "independent: several times too small.  window: 'stored' (the run's runs.hcs_* window,\n"
-      "used when the detection options are the defaults), 'computed' (found now: other options,\n"
-      "or a file without it), 'whole' (--no-detect).  A run that cannot be fitted gets nan and a "
-      "note;\n"
-      "exit 2 when none can.\n"};
   hd_cli_args a;
-  int rc = hd_cli_parse(&spec, argc, argv, &a);
+  int rc = hd_cli_parse(&haff_fit_spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   sqlite3 *db;
   hd_run_fit *fits;
@@ -155,26 +156,27 @@ int haff_fit_main(int argc, char **argv) {
   return crc;
 }
 
+const hd_optspec haff_table1_spec = {
+    .cmd = "table1",
+    .opts = hd_cli_opts,
+    .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD,
+    .npos_min = 1,
+    .npos_max = 1,
+    .pos = "one database argument",
+    .head =
+    "usage: haff table1 DB [--md] [--keep-flagged] [fit options] [-o FILE]\n"
+    "Table I: D_e and nu0_eff/nu0 (nu0: Enskog eq. 29 for disks of diameter d, the body mass "
+    "and\n"
+    "density, at the initial translational temperature) per (alpha, a/d), mean +- standard "
+    "error\n"
+    "over the runs (nan when a group has one run).  a_over_d = 0: hard disks.\n"
+    "Columns: alpha a_over_d D_e D_e_err ratio ratio_err runs D_e_sys cpd_start cpd_end flag\n"
+    "(ratio = nu0_eff/nu0, as in haff-fit; D_e_sys the systematic error, cpd_* the mean HCS\n"
+    "window; groups flagged inhomogeneous are left out, with a note)\n"};
+
 int haff_table1_main(int argc, char **argv) {
-  static const hd_optspec spec = {
-      .cmd = "table1",
-      .opts = hd_cli_opts,
-      .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD,
-      .npos_min = 1,
-      .npos_max = 1,
-      .pos = "one database argument",
-      .head =
-      "usage: haff table1 DB [--md] [--keep-flagged] [fit options] [-o FILE]\n"
-      "Table I: D_e and nu0_eff/nu0 (nu0: Enskog eq. 29 for disks of diameter d, the body mass "
-      "and\n"
-      "density, at the initial translational temperature) per (alpha, a/d), mean +- standard "
-      "error\n"
-      "over the runs (nan when a group has one run).  a_over_d = 0: hard disks.\n"
-      "Columns: alpha a_over_d D_e D_e_err ratio ratio_err runs D_e_sys cpd_start cpd_end flag\n"
-      "(ratio = nu0_eff/nu0, as in haff-fit; D_e_sys the systematic error, cpd_* the mean HCS\n"
-      "window; groups flagged inhomogeneous are left out, with a note)\n"};
   hd_cli_args a;
-  int rc = hd_cli_parse(&spec, argc, argv, &a);
+  int rc = hd_cli_parse(&haff_table1_spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   sqlite3 *db;
   hd_run_fit *fits;
@@ -216,24 +218,25 @@ int haff_table1_main(int argc, char **argv) {
   return hd_cli_close(out, &a);
 }
 
+const hd_optspec haff_table2_spec = {
+    .cmd = "table2",
+    .opts = hd_cli_opts,
+    .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD | HD_OPT_KCI,
+    .npos_min = 1,
+    .npos_max = 1,
+    .pos = "one database argument",
+    .head =
+    "usage: haff table2 DB [--md] [--keep-flagged] [--k-ci ac|ols|runs] [--cpd-min-k X] [fit "
+    "options] [-o FILE]\n"
+    "Table II: K = E_tr/E_rot fitted as a0 + a1 tau (tau = cpd) by least squares on the\n"
+    "homogeneous part of each dimer run, with 99% Student-t intervals, per (alpha, a/d).\n"
+    "Columns: alpha a_over_d a0 a0_lo a0_hi a1 a1_lo a1_hi a0_sys a1_sys\n"
+    "(*_sys: systematic errors, from the fits on the window's two halves and the correlated\n"
+    "flow the state measures see; docs/analysis.md, \"Errors of K\")\n"};
+
 int haff_table2_main(int argc, char **argv) {
-  static const hd_optspec spec = {
-      .cmd = "table2",
-      .opts = hd_cli_opts,
-      .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD | HD_OPT_KCI,
-      .npos_min = 1,
-      .npos_max = 1,
-      .pos = "one database argument",
-      .head =
-      "usage: haff table2 DB [--md] [--keep-flagged] [--k-ci ac|ols|runs] [--cpd-min-k X] [fit "
-      "options] [-o FILE]\n"
-      "Table II: K = E_tr/E_rot fitted as a0 + a1 tau (tau = cpd) by least squares on the\n"
-      "homogeneous part of each dimer run, with 99% Student-t intervals, per (alpha, a/d).\n"
-      "Columns: alpha a_over_d a0 a0_lo a0_hi a1 a1_lo a1_hi a0_sys a1_sys\n"
-      "(*_sys: systematic errors, from the fits on the window's two halves and the correlated\n"
-      "flow the state measures see; docs/analysis.md, \"Errors of K\")\n"};
   hd_cli_args a;
-  int rc = hd_cli_parse(&spec, argc, argv, &a);
+  int rc = hd_cli_parse(&haff_table2_spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   sqlite3 *db;
   hd_run_fit *fits;

@@ -5,22 +5,23 @@
 #include <string.h>
 
 #include "cli_rods.h"
-#include "hd_ana_cli.h"
+#include "haff.h"
+
+const hd_optspec haff_rods_clusters_spec = {.cmd = "rods-clusters",
+                                .opts = hd_rcli_opts,
+                                .allowed = HD_RCLI_RUN | HD_RCLI_GAP | HD_RCLI_MIN,
+                                .npos_min = 1,
+                                .npos_max = 1,
+                                .pos = "one database",
+                                .head =
+    "usage: haff rods-clusters DB [--run ID] [--gap G] [--min-size M]\n"
+    "Clusters per snapshot (maximal runs of rods closer than G [0.1] to their neighbour, at\n"
+    "least M [10] rods): columns t clusters largest in_clusters (fraction of rods in them).\n"};
 
 int haff_rods_clusters_main(int argc, char **argv) {
-  static const hd_optspec spec = {.cmd = "rods-clusters",
-                                  .opts = hd_rcli_opts,
-                                  .allowed = HD_RCLI_RUN | HD_RCLI_GAP | HD_RCLI_MIN,
-                                  .npos_min = 1,
-                                  .npos_max = 1,
-                                  .pos = "one database",
-                                  .head =
-      "usage: haff rods-clusters DB [--run ID] [--gap G] [--min-size M]\n"
-      "Clusters per snapshot (maximal runs of rods closer than G [0.1] to their neighbour, at\n"
-      "least M [10] rods): columns t clusters largest in_clusters (fraction of rods in them).\n"};
   ropts o;
   rrun r;
-  int rc = hd_rcli_start(&spec, argc, argv, 0, &o, &r);
+  int rc = hd_rcli_start(&haff_rods_clusters_spec, argc, argv, 0, &o, &r);
   if (rc) return rc < 0 ? 0 : rc;
   long N = r.sc.n_rods;
   double *ts;

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "hd_ana_cli.h"
+#include "haff.h"
 #include "hd_opt.h"
 #include "hd_sim.h"
 #include "rods.h"
@@ -57,21 +57,22 @@ static int parse_list(const char *cmd, const hd_optdef *d, const char *s, double
   return n;
 }
 
+const hd_optspec haff_rods_collapse_spec = {.cmd = "rods-collapse",
+                                .opts = collapse_opts,
+                                .npos_max = 0,
+                                .head =
+    "usage: haff rods-collapse [--n LIST] [--eps LIST] [--seeds K] [--cpd C] [--gamma G]\n"
+    "Scans the constant-eps ring for inelastic collapse: for every N in LIST [4,8,16,32,64,128]\n"
+    "and eps in LIST [0.3,0.5,0.7,0.8,0.9,0.95], K [4] rings (seeds 1..K) run to C [2000]\n"
+    "collisions per rod (C <= 1e10) or collapse.  Columns N eps collapsed runs frac n_my\n"
+    "(McNamara and Young's -ln(1-eps)/(1-eps)) my_predicts (1 if N > n_my)\n"
+    "median_cpd_at_collapse.\n"
+    "Masses alternate with ratio G [1: equal masses, as in McNamara and Young].\n"};
+
 int haff_rods_collapse_main(int argc, char **argv) {
-  static const hd_optspec spec = {.cmd = "rods-collapse",
-                                  .opts = collapse_opts,
-                                  .npos_max = 0,
-                                  .head =
-      "usage: haff rods-collapse [--n LIST] [--eps LIST] [--seeds K] [--cpd C] [--gamma G]\n"
-      "Scans the constant-eps ring for inelastic collapse: for every N in LIST [4,8,16,32,64,128]\n"
-      "and eps in LIST [0.3,0.5,0.7,0.8,0.9,0.95], K [4] rings (seeds 1..K) run to C [2000]\n"
-      "collisions per rod (C <= 1e10) or collapse.  Columns N eps collapsed runs frac n_my\n"
-      "(McNamara and Young's -ln(1-eps)/(1-eps)) my_predicts (1 if N > n_my)\n"
-      "median_cpd_at_collapse.\n"
-      "Masses alternate with ratio G [1: equal masses, as in McNamara and Young].\n"};
   copts o = {"4,8,16,32,64,128", "0.3,0.5,0.7,0.8,0.9,0.95", 4, 2000, 1};
   hd_optres res;
-  int rc = hd_opt_parse(&spec, argc, argv, &o, &res);
+  int rc = hd_opt_parse(&haff_rods_collapse_spec, argc, argv, &o, &res);
   if (rc) return rc < 0 ? 0 : rc;
   const char *nl = o.nl, *el = o.el;
   long seeds = o.seeds;

@@ -5,24 +5,25 @@
 #include <string.h>
 
 #include "cli_rods.h"
-#include "hd_ana_cli.h"
+#include "haff.h"
+
+const hd_optspec haff_rods_density_spec = {.cmd = "rods-density",
+                                .opts = hd_rcli_opts,
+                                .allowed = HD_RCLI_RUN | HD_RCLI_BINS | HD_RCLI_T,
+                                .npos_min = 1,
+                                .npos_max = 1,
+                                .pos = "one database",
+                                .head =
+    "usage: haff rods-density DB [--run ID] [--bins N] [--t T]\n"
+    "Figs. 3, 4, 6 data: the coarse-grained density rho (rods per bin over the mean, N bins\n"
+    "[100] on the ring) and the local kinetic energy per rod in each bin, for every snapshot\n"
+    "(or the one nearest --t).  Columns t bin x rho e_local; a blank line after each\n"
+    "snapshot (gnuplot pm3d).\n"};
 
 int haff_rods_density_main(int argc, char **argv) {
-  static const hd_optspec spec = {.cmd = "rods-density",
-                                  .opts = hd_rcli_opts,
-                                  .allowed = HD_RCLI_RUN | HD_RCLI_BINS | HD_RCLI_T,
-                                  .npos_min = 1,
-                                  .npos_max = 1,
-                                  .pos = "one database",
-                                  .head =
-      "usage: haff rods-density DB [--run ID] [--bins N] [--t T]\n"
-      "Figs. 3, 4, 6 data: the coarse-grained density rho (rods per bin over the mean, N bins\n"
-      "[100] on the ring) and the local kinetic energy per rod in each bin, for every snapshot\n"
-      "(or the one nearest --t).  Columns t bin x rho e_local; a blank line after each\n"
-      "snapshot (gnuplot pm3d).\n"};
   ropts o;
   rrun r;
-  int rc = hd_rcli_start(&spec, argc, argv, 100, &o, &r);
+  int rc = hd_rcli_start(&haff_rods_density_spec, argc, argv, 100, &o, &r);
   if (rc) return rc < 0 ? 0 : rc;
   long N = r.sc.n_rods;
   double *ts;

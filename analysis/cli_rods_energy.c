@@ -7,25 +7,26 @@
 #include "rods.h"
 
 #include "cli_rods.h"
-#include "hd_ana_cli.h"
+#include "haff.h"
+
+const hd_optspec haff_rods_energy_spec = {.cmd = "rods-energy",
+                                .opts = hd_rcli_opts,
+                                .allowed = HD_RCLI_RUN,
+                                .npos_min = 1,
+                                .npos_max = 1,
+                                .pos = "one database",
+                                .head =
+    "usage: haff rods-energy DB [--run ID]\n"
+    "Figs. 1, 2, 9-11 data: per sample of a rods run (newest by default) the columns\n"
+    "  t collisions cpd e_kin e_bath e_kin_over_e0 e_mode e_kin_stat coll_ideal coll_eq35\n"
+    "e_kin, e_bath per rod; e_mode = e_bath / nmod (energy per vibrational mode);\n"
+    "e_kin_stat = the equipartition value (docs/rods.md); coll_ideal and coll_eq35: the\n"
+    "stationary collision count rate*t from the 1D ideal gas and from the paper's eq. (35).\n"};
 
 int haff_rods_energy_main(int argc, char **argv) {
-  static const hd_optspec spec = {.cmd = "rods-energy",
-                                  .opts = hd_rcli_opts,
-                                  .allowed = HD_RCLI_RUN,
-                                  .npos_min = 1,
-                                  .npos_max = 1,
-                                  .pos = "one database",
-                                  .head =
-      "usage: haff rods-energy DB [--run ID]\n"
-      "Figs. 1, 2, 9-11 data: per sample of a rods run (newest by default) the columns\n"
-      "  t collisions cpd e_kin e_bath e_kin_over_e0 e_mode e_kin_stat coll_ideal coll_eq35\n"
-      "e_kin, e_bath per rod; e_mode = e_bath / nmod (energy per vibrational mode);\n"
-      "e_kin_stat = the equipartition value (docs/rods.md); coll_ideal and coll_eq35: the\n"
-      "stationary collision count rate*t from the 1D ideal gas and from the paper's eq. (35).\n"};
   ropts o;
   rrun r;
-  int rc = hd_rcli_start(&spec, argc, argv, 0, &o, &r);
+  int rc = hd_rcli_start(&haff_rods_energy_spec, argc, argv, 0, &o, &r);
   if (rc) return rc < 0 ? 0 : rc;
   const hd_scene *sc = &r.sc;
   long N = sc->n_rods, nmod = sc->rod_nmod;

@@ -5,23 +5,24 @@
 #include <string.h>
 
 #include "cli_rods.h"
-#include "hd_ana_cli.h"
+#include "haff.h"
+
+const hd_optspec haff_rods_phase_spec = {.cmd = "rods-phase",
+                                .opts = hd_rcli_opts,
+                                .allowed = HD_RCLI_RUN | HD_RCLI_T,
+                                .npos_min = 1,
+                                .npos_max = 1,
+                                .pos = "one database",
+                                .head =
+    "usage: haff rods-phase DB [--run ID] [--t T]\n"
+    "Fig. 5 data: phase space of the snapshot nearest --t (default the last): columns\n"
+    "body x v tb (bath temperature).\n"};
 
 int haff_rods_phase_main(int argc, char **argv) {
-  static const hd_optspec spec = {.cmd = "rods-phase",
-                                  .opts = hd_rcli_opts,
-                                  .allowed = HD_RCLI_RUN | HD_RCLI_T,
-                                  .npos_min = 1,
-                                  .npos_max = 1,
-                                  .pos = "one database",
-                                  .head =
-      "usage: haff rods-phase DB [--run ID] [--t T]\n"
-      "Fig. 5 data: phase space of the snapshot nearest --t (default the last): columns\n"
-      "body x v tb (bath temperature).\n"};
   ropts o;
   rrun r;
   rsnap s;
-  int rc = hd_rcli_start_at(&spec, argc, argv, 0, &o, &r, &s);
+  int rc = hd_rcli_start_at(&haff_rods_phase_spec, argc, argv, 0, &o, &r, &s);
   if (rc) return rc < 0 ? 0 : rc;
   printf("# t = %.10g\nbody\tx\tv\ttb\n", s.t);
   for (long i = 0; i < r.sc.n_rods; i++)

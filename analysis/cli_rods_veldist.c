@@ -5,26 +5,27 @@
 #include <string.h>
 
 #include "cli_rods.h"
-#include "hd_ana_cli.h"
+#include "haff.h"
+
+const hd_optspec haff_rods_veldist_spec = {.cmd = "rods-veldist",
+                                .opts = hd_rcli_opts,
+                                .allowed = HD_RCLI_RUN | HD_RCLI_T | HD_RCLI_BINS | HD_RCLI_GAP | HD_RCLI_X,
+                                .npos_min = 1,
+                                .npos_max = 1,
+                                .pos = "one database",
+                                .head =
+    "usage: haff rods-veldist DB [--run ID] [--t T] [--bins N] [--gap G] [--x X]\n"
+    "Fig. 7 data: histograms of w = sqrt(m_i) v_i (mass-scaled so that both species share one\n"
+    "Maxwellian) for all rods and for one cluster (the largest, or the one nearest --x) at the\n"
+    "snapshot nearest --t.  Clusters: maximal runs of rods whose neighbour distance is < G\n"
+    "[0.1 mean spacings].  Columns w p_all p_cluster gauss_all gauss_cluster (Gaussians with\n"
+    "the sample's mean and variance); header comments give the cluster and the moments.\n"};
 
 int haff_rods_veldist_main(int argc, char **argv) {
-  static const hd_optspec spec = {.cmd = "rods-veldist",
-                                  .opts = hd_rcli_opts,
-                                  .allowed = HD_RCLI_RUN | HD_RCLI_T | HD_RCLI_BINS | HD_RCLI_GAP | HD_RCLI_X,
-                                  .npos_min = 1,
-                                  .npos_max = 1,
-                                  .pos = "one database",
-                                  .head =
-      "usage: haff rods-veldist DB [--run ID] [--t T] [--bins N] [--gap G] [--x X]\n"
-      "Fig. 7 data: histograms of w = sqrt(m_i) v_i (mass-scaled so that both species share one\n"
-      "Maxwellian) for all rods and for one cluster (the largest, or the one nearest --x) at the\n"
-      "snapshot nearest --t.  Clusters: maximal runs of rods whose neighbour distance is < G\n"
-      "[0.1 mean spacings].  Columns w p_all p_cluster gauss_all gauss_cluster (Gaussians with\n"
-      "the sample's mean and variance); header comments give the cluster and the moments.\n"};
   ropts o;
   rrun r;
   rsnap s;
-  int rc = hd_rcli_start_at(&spec, argc, argv, 40, &o, &r, &s);
+  int rc = hd_rcli_start_at(&haff_rods_veldist_spec, argc, argv, 40, &o, &r, &s);
   if (rc) return rc < 0 ? 0 : rc;
   long N = r.sc.n_rods;
   rclusters cl;

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "cli_common.h"
-#include "hd_ana_cli.h"
+#include "haff.h"
 #include "hd_velstats.h"
 
 static void stat_line(FILE *out, size_t s, const hd_snapshot *sn, const char *var,
@@ -96,28 +96,29 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
   return rc;
 }
 
+const hd_optspec haff_veldist_spec = {
+    .cmd = "veldist",
+    .opts = hd_cli_opts,
+    .allowed = HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT,
+    .npos_min = 1,
+    .npos_max = 1,
+    .pos = "one database argument",
+    .head =
+    "usage: haff veldist DB --run ID [--stats] [--bins B] [--range X] [--label L] [-o FILE]\n"
+    "       haff veldist DB --pool [--run ID] [--bins B] [--range X] [--label L] [-o FILE]\n"
+    "Fig. 6: histograms of the scaled velocities c = (v - <v>)/s of every snapshot (label\n"
+    "'velocities', taken at [log] velocities_at), s the snapshot's own per-component rms\n"
+    "(vx, vy: sqrt(<|V-<V>|^2>/2); omega: sqrt(<omega^2>), not centred), so that a Maxwellian\n"
+    "gives the standard normal.  One block per snapshot, two blank lines between, each headed\n"
+    "by a line whose first field is its legend title 'cpd=X'.\n"
+    "Columns: snap cpd c p_vx p_vy p_omega gauss   (p_omega NaN for disks)\n"};
+
 int haff_veldist_main(int argc, char **argv) {
-  static const hd_optspec spec = {
-      .cmd = "veldist",
-      .opts = hd_cli_opts,
-      .allowed = HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT,
-      .npos_min = 1,
-      .npos_max = 1,
-      .pos = "one database argument",
-      .head =
-      "usage: haff veldist DB --run ID [--stats] [--bins B] [--range X] [--label L] [-o FILE]\n"
-      "       haff veldist DB --pool [--run ID] [--bins B] [--range X] [--label L] [-o FILE]\n"
-      "Fig. 6: histograms of the scaled velocities c = (v - <v>)/s of every snapshot (label\n"
-      "'velocities', taken at [log] velocities_at), s the snapshot's own per-component rms\n"
-      "(vx, vy: sqrt(<|V-<V>|^2>/2); omega: sqrt(<omega^2>), not centred), so that a Maxwellian\n"
-      "gives the standard normal.  One block per snapshot, two blank lines between, each headed\n"
-      "by a line whose first field is its legend title 'cpd=X'.\n"
-      "Columns: snap cpd c p_vx p_vy p_omega gauss   (p_omega NaN for disks)\n"};
   hd_cli_args a;
   sqlite3 *db;
   hd_run_info ri;
   int rc =
-      hd_cli_parse(&spec, argc, argv, &a);
+      hd_cli_parse(&haff_veldist_spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   if (a.pool) {
     if (a.stats) {
@@ -126,7 +127,7 @@ int haff_veldist_main(int argc, char **argv) {
     }
     return veldist_pool(&a, argv[0]);
   }
-  rc = hd_cli_one_run(&spec, argc, argv, &a, &db, &ri);
+  rc = hd_cli_one_run(&haff_veldist_spec, argc, argv, &a, &db, &ri);
   if (rc) return rc < 0 ? 0 : rc;
   if (ri.species == HD_ANA_OTHER) {
     sqlite3_close(db);

@@ -12,12 +12,12 @@
 #include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
-#include <getopt.h>
 #include <limits.h>
 #include <math.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <sqlite3.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -31,9 +31,9 @@
 #include "hd_db.h"
 #include "hd_error.h"
 #include "hd_merge.h"
+#include "hd_opt.h"
 #include "hd_scene.h"
 
-int haff_sweep_main(int argc, char **argv);
 
 static const char sweep_usage[] =
     "usage: haff sweep SWEEP.ini [-o DIR] [--jobs N] [--progress S] [--dry-run]\n"
@@ -1003,95 +1003,53 @@ static int run_task(const study *st, const char *todo, int chunk, double progres
 
 /* ------------------------------------------------------------------------------------------ */
 
+/* The options of haff sweep. */
+typedef struct sweep_args {
+  const char *out, *status_dir, *resume_dir, *merge_dir, *task_dir; /* -o, --status ... --task */
+  slurm_opts so;            /* --time, --partition, --account, --chunk */
+  int jobs, slurm, dry, quiet; /* --jobs, --slurm, --dry-run, --quiet */
+  double progress;          /* --progress S [60] */
+} sweep_args;
+
+static const hd_optdef sweep_opts[] = {
+    {.name = "o", .letter = 'o', .kind = HD_ARG_PATH, .off = offsetof(sweep_args, out),
+     .flags = HD_OPTF_SHORT, .meta = "DIR",
+     .help = "the study's folder [SWEEP's name without .ini, in the current folder]"},
+    HD_OPT_INT("jobs", 'j', sweep_args, jobs, 1, 4096, 0, "N", "points run at once, locally [1]"),
+    HD_OPT_FLAG("slurm", 0, sweep_args, slurm, "a Slurm job array and a merge job, submitted"),
+    HD_OPT_PATH("status", 0, sweep_args, status_dir, 0, "DIR", "lists each point's state"),
+    HD_OPT_PATH("resume", 0, sweep_args, resume_dir, 0, "DIR",
+                "resumes or reruns the points not done"),
+    HD_OPT_PATH("merge", 0, sweep_args, merge_dir, 0, "DIR", "merges the points into DIR/study.db"),
+    HD_OPT_PATH("task", 0, sweep_args, task_dir, 0, "DIR",
+                "DIR LIST: one Slurm task's points (the call in the array script)"),
+    HD_OPT_INT("chunk", 0, sweep_args, so.chunk, 1, 4096, 0, "C", "points per Slurm task [1]"),
+    HD_OPT_STR("time", 0, sweep_args, so.time, "T", "sbatch --time"),
+    HD_OPT_STR("partition", 0, sweep_args, so.partition, "P", "sbatch --partition"),
+    HD_OPT_STR("account", 0, sweep_args, so.account, "A", "sbatch --account"),
+    HD_OPT_DBL("progress", 0, sweep_args, progress, 0, 1e9, 0, "S",
+               "a progress line of each run every S seconds [60] (0: none)"),
+    HD_OPT_FLAG("dry-run", 0, sweep_args, dry, "prints the manifest of the points, runs nothing"),
+    HD_OPT_FLAG("quiet", 'q', sweep_args, quiet, "no progress, no closing lines"),
+    {0}};
+
+const hd_optspec haff_sweep_spec = {.cmd = "sweep",
+                                    .opts = sweep_opts,
+                                    .npos_min = 0,
+                                    .npos_max = 1,
+                                    .pos = "one sweep file",
+                                    .head = sweep_usage};
+
 int haff_sweep_main(int argc, char **argv) {
-  static const struct option opts[] = {{"jobs", required_argument, 0, 'j'},
-                                       {"slurm", no_argument, 0, 'S'},
-                                       {"status", required_argument, 0, 's'},
-                                       {"resume", required_argument, 0, 'r'},
-                                       {"merge", required_argument, 0, 'm'},
-                                       {"task", required_argument, 0, 't'},
-                                       {"chunk", required_argument, 0, 'c'},
-                                       {"time", required_argument, 0, 'T'},
-                                       {"partition", required_argument, 0, 'p'},
-                                       {"account", required_argument, 0, 'A'},
-                                       {"progress", required_argument, 0, 'P'},
-                                       {"dry-run", no_argument, 0, 'n'},
-                                       {"quiet", no_argument, 0, 'q'},
-                                       {"help", no_argument, 0, 'h'},
-                                       {0, 0, 0, 0}};
-  const char *out = NULL, *status_dir = NULL, *resume_dir = NULL, *merge_dir = NULL,
-             *task_dir = NULL;
-  slurm_opts so = {NULL, NULL, NULL, 1};
-  int jobs = 1, slurm = 0, dry = 0, quiet = 0, c;
-  double progress = 60;
-  optind = 1;
-  opterr = 0;
-  while ((c = getopt_long(argc, argv, "o:j:qh", opts, NULL)) != -1) {
-    char *end;
-    switch (c) {
-    case 'o':
-      out = optarg;
-      break;
-    case 'j':
-    case 'c': {
-      long v = strtol(optarg, &end, 10);
-      if (!*optarg || *end || v < 1 || v > 4096) {
-        fprintf(stderr, "haff sweep: --%s %s: not an integer in [1, 4096]\n",
-                c == 'j' ? "jobs" : "chunk", optarg);
-        return 2;
-      }
-      if (c == 'j')
-        jobs = (int)v;
-      else
-        so.chunk = (int)v;
-      break;
-    }
-    case 'S':
-      slurm = 1;
-      break;
-    case 's':
-      status_dir = optarg;
-      break;
-    case 'r':
-      resume_dir = optarg;
-      break;
-    case 'm':
-      merge_dir = optarg;
-      break;
-    case 't':
-      task_dir = optarg;
-      break;
-    case 'T':
-      so.time = optarg;
-      break;
-    case 'p':
-      so.partition = optarg;
-      break;
-    case 'A':
-      so.account = optarg;
-      break;
-    case 'P':
-      progress = strtod(optarg, &end);
-      if (!*optarg || *end || !(progress >= 0) || progress > 1e9) {
-        fprintf(stderr, "haff sweep: --progress %s: not a number of seconds in [0, 1e9]\n", optarg);
-        return 2;
-      }
-      break;
-    case 'n':
-      dry = 1;
-      break;
-    case 'q':
-      quiet = 1;
-      break;
-    case 'h':
-      fputs(sweep_usage, stdout);
-      return 0;
-    default:
-      fprintf(stderr, "haff sweep: unknown option or missing value '%s' (see haff sweep --help)\n",
-              argv[optind - 1]);
-      return 2;
-    }
-  }
+  sweep_args a = {.so = {NULL, NULL, NULL, 1}, .jobs = 1, .progress = 60};
+  hd_optres res;
+  int rc = hd_opt_parse(&haff_sweep_spec, argc, argv, &a, &res);
+  if (rc) return rc < 0 ? 0 : rc;
+  const char *out = a.out, *status_dir = a.status_dir, *resume_dir = a.resume_dir,
+             *merge_dir = a.merge_dir, *task_dir = a.task_dir;
+  slurm_opts so = a.so;
+  int jobs = a.jobs, slurm = a.slurm, dry = a.dry, quiet = a.quiet;
+  double progress = a.progress;
   int modes = !!status_dir + !!resume_dir + !!merge_dir + !!task_dir;
   if (modes > 1) {
     fprintf(stderr, "haff sweep: give one of --status, --resume, --merge, --task\n");
@@ -1110,11 +1068,10 @@ int haff_sweep_main(int argc, char **argv) {
   }
   study st;
   memset(&st, 0, sizeof st);
-  int rc;
   if (modes) {
-    if (optind != argc - (task_dir ? 1 : 0)) {
+    if (res.npos != (task_dir ? 1 : 0)) {
       fprintf(stderr, "haff sweep: unexpected argument '%s' (haff sweep --help)\n",
-              optind < argc ? argv[optind] : "");
+              res.npos ? res.pos[0] : "");
       return 2;
     }
     const char *dir = status_dir   ? status_dir
@@ -1127,14 +1084,14 @@ int haff_sweep_main(int argc, char **argv) {
     else if (merge_dir)
       rc = study_merge(&st, quiet);
     else if (task_dir)
-      rc = run_task(&st, argv[optind], so.chunk, progress, quiet);
+      rc = run_task(&st, res.pos[0], so.chunk, progress, quiet);
   } else {
-    if (optind != argc - 1) {
+    if (res.npos != 1) {
       fprintf(stderr, "haff sweep: expected one sweep file (haff sweep --help)\n");
       return 2;
     }
     sweep sw;
-    rc = sweep_read(&sw, argv[optind]);
+    rc = sweep_read(&sw, res.pos[0]);
     if (!rc) rc = make_points(&sw, &st.p, &st.n);
     if (!rc) snprintf(st.scene, sizeof st.scene, "%s", sw.scene);
     sweep_free(&sw);
@@ -1150,8 +1107,8 @@ int haff_sweep_main(int argc, char **argv) {
     if (out) {
       snprintf(dir, sizeof dir, "%s", out);
     } else {
-      const char *base = strrchr(argv[optind], '/');
-      snprintf(dir, sizeof dir, "%s", base ? base + 1 : argv[optind]);
+      const char *base = strrchr(res.pos[0], '/');
+      snprintf(dir, sizeof dir, "%s", base ? base + 1 : res.pos[0]);
       char *dot = strrchr(dir, '.');
       if (dot && dot != dir) *dot = '\0';
     }

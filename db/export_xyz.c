@@ -30,7 +30,7 @@
 #include "hd_db.h"
 #include "hd_scene.h"
 
-int haff_export_main(int argc, char **argv);
+#include "haff.h" /* haff_export_main */
 
 /* The geometry export needs, read from the run's scene text. */
 typedef struct xyz_geom {

@@ -162,7 +162,4 @@ int hd_eps_table_save(const hd_eps_table *t, sqlite3 *db, unsigned long seed, in
  * 1e-12).  Returns HD_OK, HD_EINPUT (no such table) or HD_EIO. */
 int hd_eps_table_load(hd_eps_table **out, sqlite3 *db, int64_t id, double gamma, hd_error *err);
 
-/* The `haff mc eps` program. */
-int hd_mc_eps_main(int argc, char **argv);
-
 #endif

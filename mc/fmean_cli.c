@@ -1,5 +1,4 @@
 /* `haff mc fmean`: <f> and D_e = D/<f> for an elongation a/d (see fmean.h, docs/mc-fmean.md). */
-#include <getopt.h>
 #include <gsl/gsl_math.h>
 #include <math.h>
 #include <stdio.h>
@@ -7,60 +6,69 @@
 #include <string.h>
 
 #include "fmean.h"
+#include "haff.h"
+#include "hd_opt.h"
 
-int hd_mc_fmean_main(int argc, char **argv);
+/* The options of `haff mc fmean`. */
+typedef struct fopts {
+  double a, d, dim, seconds; /* --a (NAN: not given), --d, --dim, --seconds (0: not given) */
+  long samples, seed;        /* --samples (0: not given), --seed */
+  int model;                 /* --model: an hd_fmean_model, or 3 for all */
+  int conv, fig4;            /* --convergence, --fig4-data */
+  const char *scan;          /* --scan A0:A1:STEP, NULL when not given */
+} fopts;
 
-static void fmean_usage(FILE *out) {
-  fprintf(out,
-          "usage: haff mc fmean --a A [--d D] [--model heuristic|exclusion|collision|all]\n"
-          "                     [--samples N | --seconds S] [--seed K] [--dim DIM]\n"
-          "       haff mc fmean --scan A0:A1:STEP [same options but --a]\n"
-          "       haff mc fmean --convergence [--a A [--d D]] [--seconds S] [--samples NMAX]\n"
-          "                     [--seed K]\n"
-          "       haff mc fmean --fig4-data --a A [--d D]\n"
-          "\n"
-          "Mean orientation factor <f> of dimer-dimer collisions (Costantini et al. 2005, eq. 36)\n"
-          "and the paper's effective dimension D_e = DIM/<f>, for elongation a/d = A/D.\n"
-          "  --a A          bond length a > 0 (in the units of --d; required unless --scan)\n"
-          "  --d D          disk diameter > 0 (default 1)\n"
-          "  --model M      heuristic (paper: independent uniform angles), exclusion (uniform\n"
-          "                 non-overlapping contacts), collision (contacts weighted by their\n"
-          "                 entry rate in an elastic gas at equipartition), all (default)\n"
-          "  --samples N    accepted samples per row, >= 2 (default 1e6); with --convergence:\n"
-          "                 the largest n of the sequence, >= 1e4 (default: what --seconds\n"
-          "                 allows)\n"
-          "  --seconds S    sample in batches for S seconds per row instead of N samples;\n"
-          "                 with --convergence: the total time budget (default 10)\n"
-          "  --seed K       gsl_rng_mt19937 seed (default 1)\n"
-          "  --dim DIM      D in D_e = D/<f> (default 2)\n"
-          "  --scan A0:A1:STEP  one row per a = A0, A0+STEP, ..., <= A1, per model (A0 > 0,\n"
-          "                 A1 >= A0, STEP > 0)\n"
-          "  --convergence  heuristic MC against quadrature at n = 1e3, 1e4, ...; columns\n"
-          "                 n f_mc f_stderr abs_err_vs_quadrature seconds reps rms_err, and a\n"
-          "                 '# slope' line: the fitted d log(err) / d log(n) (expect -1/2)\n"
-          "  --fig4-data    gnuplot data blocks of Fig. 4 (two dimers at contact, allowed range)\n"
-          "\n"
-          "Output (TSV, one header row): model a_over_d f_mean f_stderr D_e D_e_stderr samples\n"
-          "seconds f_quad f_quad_abserr acceptance fvn2 D_e_energy D_e_energy_stderr\n"
-          "(f_quad: heuristic by quadrature; fvn2 = <f v_n^2>_coll in T/m and D_e_energy =\n"
-          "6/fvn2 the energy-balance dimension, collision model only; nan where not defined).\n");
-}
+/* In the order of the mode checks' messages (hd_opt_refuse walks the table). */
+static const hd_optdef fmean_opts[] = {
+    HD_OPT_DBL("a", 0, fopts, a, 0, INFINITY, HD_OPTF_GT | HD_OPTF_FINITE, "A",
+               "bond length a > 0 (in the units of --d; required unless --scan)"),
+    HD_OPT_DBL("d", 0, fopts, d, 0, INFINITY, HD_OPTF_GT | HD_OPTF_FINITE, "D",
+               "disk diameter > 0 (default 1)"),
+    HD_OPT_ENUM("model", 0, fopts, model, "heuristic|exclusion|collision|all", "M",
+                "heuristic (paper: independent uniform angles), exclusion (uniform\n"
+                "non-overlapping contacts), collision (contacts weighted by their\n"
+                "entry rate in an elastic gas at equipartition), all (default)"),
+    HD_OPT_INT("samples", 0, fopts, samples, 2, 1000000000000000LL, HD_OPTF_EXP, "N",
+               "accepted samples per row, >= 2 (default 1e6); with --convergence:\n"
+               "the largest n of the sequence, >= 1e4 (default: what --seconds\n"
+               "allows)"),
+    HD_OPT_DBL("seconds", 0, fopts, seconds, 0, INFINITY, HD_OPTF_GT | HD_OPTF_FINITE, "S",
+               "sample in batches for S seconds per row instead of N samples;\n"
+               "with --convergence: the total time budget (default 10)"),
+    HD_OPT_INT("seed", 0, fopts, seed, 0, 4294967295LL, HD_OPTF_EXP, "K",
+               "gsl_rng_mt19937 seed (default 1)"),
+    HD_OPT_STR("scan", 0, fopts, scan, "A0:A1:STEP",
+               "one row per a = A0, A0+STEP, ..., <= A1, per model (A0 > 0,\n"
+               "A1 >= A0, STEP > 0)"),
+    HD_OPT_FLAG("convergence", 0, fopts, conv,
+                "heuristic MC against quadrature at n = 1e3, 1e4, ...; columns\n"
+                "n f_mc f_stderr abs_err_vs_quadrature seconds reps rms_err, and a\n"
+                "'# slope' line: the fitted d log(err) / d log(n) (expect -1/2)"),
+    HD_OPT_FLAG("fig4-data", 0, fopts, fig4,
+                "gnuplot data blocks of Fig. 4 (two dimers at contact, allowed range)"),
+    HD_OPT_DBL("dim", 0, fopts, dim, 0, INFINITY, HD_OPTF_GT | HD_OPTF_FINITE, "DIM",
+               "D in D_e = D/<f> (default 2)"),
+    {0}};
 
-/* Parses a finite double filling the whole string. */
-static int parse_double(const char *s, double *x) {
-  char *end;
-  if (!s || !*s) return 0;
-  *x = strtod(s, &end);
-  return *end == '\0' && isfinite(*x);
-}
-
-/* Parses a positive integer count, allowing forms like 1e8. */
-static int parse_count(const char *s, unsigned long *n) {
-  double x;
-  if (!parse_double(s, &x) || x < 1.0 || x > 1e15 || x != floor(x)) return 0;
-  *n = (unsigned long)x;
-  return 1;
-}
+const hd_optspec hd_mc_fmean_spec = {
+    .cmd = "mc fmean",
+    .opts = fmean_opts,
+    .npos_max = 0,
+    .head = "usage: haff mc fmean --a A [--d D] [--model heuristic|exclusion|collision|all]\n"
+            "                     [--samples N | --seconds S] [--seed K] [--dim DIM]\n"
+            "       haff mc fmean --scan A0:A1:STEP [same options but --a]\n"
+            "       haff mc fmean --convergence [--a A [--d D]] [--seconds S] [--samples NMAX]\n"
+            "                     [--seed K]\n"
+            "       haff mc fmean --fig4-data --a A [--d D]\n"
+            "\n"
+            "Mean orientation factor <f> of dimer-dimer collisions (Costantini et al. 2005, eq. "
+            "36)\n"
+            "and the paper's effective dimension D_e = DIM/<f>, for elongation a/d = A/D.\n",
+    .tail = "\n"
+            "Output (TSV, one header row): model a_over_d f_mean f_stderr D_e D_e_stderr samples\n"
+            "seconds f_quad f_quad_abserr acceptance fvn2 D_e_energy D_e_energy_stderr\n"
+            "(f_quad: heuristic by quadrature; fvn2 = <f v_n^2>_coll in T/m and D_e_energy =\n"
+            "6/fvn2 the energy-balance dimension, collision model only; nan where not defined).\n"};
 
 static void print_header(void) {
   printf("model\ta_over_d\tf_mean\tf_stderr\tD_e\tD_e_stderr\tsamples\tseconds\tf_quad\t"
@@ -104,165 +112,92 @@ static void print_fig4(double a) {
   printf("0\t0\t%.10g\t%.10g\n", nx, ny);
 }
 
-int hd_mc_fmean_main(int argc, char **argv) {
-  static const struct option longopts[] = {
-      {"a", required_argument, NULL, 'a'},       {"d", required_argument, NULL, 'd'},
-      {"model", required_argument, NULL, 'm'},   {"samples", required_argument, NULL, 'n'},
-      {"seconds", required_argument, NULL, 's'}, {"seed", required_argument, NULL, 'k'},
-      {"scan", required_argument, NULL, 'S'},    {"convergence", no_argument, NULL, 'c'},
-      {"fig4-data", no_argument, NULL, 'f'},     {"dim", required_argument, NULL, 'D'},
-      {"help", no_argument, NULL, 'h'},          {NULL, 0, NULL, 0}};
-  double a = NAN, d = 1.0, seconds = 0.0, dim = 2.0, scan[3] = {0, 0, 0};
-  unsigned long samples = 0, seed = 1;
-  int have_scan = 0, conv = 0, fig4 = 0, all = 1;
-  hd_fmean_model model = HD_FMEAN_HEURISTIC;
-  optind = 0;
-  opterr = 0;
-  int c, li = -1;
-  unsigned given = 0; /* bit k: option longopts[k] was given */
-  while ((c = getopt_long(argc, argv, "h", longopts, &li)) != -1) {
-    for (unsigned k = 0; longopts[k].name; k++)
-      if (longopts[k].val == c) given |= 1u << k;
-    switch (c) {
-    case 'a':
-      if (!parse_double(optarg, &a) || !(a > 0.0)) goto bad_value;
-      break;
-    case 'd':
-      if (!parse_double(optarg, &d) || !(d > 0.0)) goto bad_value;
-      break;
-    case 'D':
-      if (!parse_double(optarg, &dim) || !(dim > 0.0)) goto bad_value;
-      break;
-    case 'm':
-      if (!strcmp(optarg, "all")) {
-        all = 1;
-      } else if (hd_fmean_model_parse(optarg, &model) == HD_OK) {
-        all = 0;
-      } else {
-        goto bad_value;
-      }
-      break;
-    case 'n':
-      if (!parse_count(optarg, &samples) || samples < 2) goto bad_value;
-      break;
-    case 's':
-      if (!parse_double(optarg, &seconds) || !(seconds > 0.0)) goto bad_value;
-      break;
-    case 'k': {
-      double x;
-      if (!parse_double(optarg, &x) || x < 0.0 || x > 4294967295.0 || x != floor(x)) goto bad_value;
-      seed = (unsigned long)x;
-      break;
-    }
-    case 'S':
-      if (sscanf(optarg, "%lf:%lf:%lf", &scan[0], &scan[1], &scan[2]) != 3 || !(scan[0] > 0.0) ||
-          !(scan[1] >= scan[0]) || !(scan[2] > 0.0) || !isfinite(scan[1]))
-        goto bad_value;
-      have_scan = 1;
-      break;
-    case 'c':
-      conv = 1;
-      break;
-    case 'f':
-      fig4 = 1;
-      break;
-    case 'h':
-      fmean_usage(stdout);
-      return 0;
-    case '?':
-    default: {
-      char buf[8];
-      fprintf(stderr, "haff mc fmean: unknown option or missing value in '%s' (see --help)\n",
-              hd_opt_culprit(argv, longopts, buf, sizeof buf));
-    }
-      return 2;
-    }
-  }
-  if (optind < argc) {
-    fprintf(stderr, "haff mc fmean: unexpected argument '%s'\n", argv[optind]);
-    return 2;
-  }
-  if (samples && seconds > 0.0 && !conv) {
+/* The options the mode does not read, each refused (an ignored option is an error), and the
+ * pairs that need each other.  Returns 0 or 2 after one line. */
+static int fmean_check(const hd_optres *res, const fopts *o) {
+  if (o->samples && o->seconds > 0.0 && !o->conv) {
     fprintf(stderr, "haff mc fmean: give --samples or --seconds, not both\n");
     return 2;
   }
-  /* each mode takes only the options it reads: one that would be ignored is an error */
-  static const struct {
-    int mode;            /* the mode's option ('c', 'f', 'S') */
-    const char *refused; /* options it does not read */
-  } modes[] = {{'c', "m S f D"}, {'f', "m n s k S c D"}, {'S', "a f c"}};
-  for (size_t q = 0; q < sizeof modes / sizeof modes[0]; q++) {
-    unsigned mk = 0;
-    for (unsigned k = 0; longopts[k].name; k++)
-      if (longopts[k].val == modes[q].mode) mk = k;
-    if (!(given & (1u << mk))) continue;
-    for (unsigned k = 0; longopts[k].name; k++)
-      if ((given & (1u << k)) && k != mk && strchr(modes[q].refused, longopts[k].val)) {
-        fprintf(stderr, "haff mc fmean: --%s does not apply with --%s (see --help)\n",
-                longopts[k].name, longopts[mk].name);
-        return 2;
-      }
-  }
-  if (conv && isnan(a) && (given & 2u)) { /* --d alone: a/d would silently be 1 */
+  if (hd_opt_refuse(&hd_mc_fmean_spec, res, "convergence", "model scan fig4-data dim",
+                    "with --convergence") ||
+      hd_opt_refuse(&hd_mc_fmean_spec, res, "fig4-data", "model samples seconds seed scan convergence dim",
+                    "with --fig4-data") ||
+      hd_opt_refuse(&hd_mc_fmean_spec, res, "scan", "a fig4-data convergence", "with --scan"))
+    return 2;
+  if (o->conv && isnan(o->a) && res->given[hd_opt_index(&hd_mc_fmean_spec, "d")]) {
+    /* --d alone: a/d would silently be 1 */
     fprintf(stderr, "haff mc fmean: --convergence with --d needs --a\n");
     return 2;
   }
-  if (conv && samples > 0 && samples < 10000) { /* it printed no row and a slope of nan */
+  if (o->conv && o->samples > 0 && o->samples < 10000) { /* it printed no row, a slope of nan */
     fprintf(stderr,
             "haff mc fmean: --convergence --samples %lu: the sequence n = 1e3, 1e4, ... "
             "needs n >= 1e4 for the two rows of a slope\n",
-            (unsigned long)samples);
+            (unsigned long)o->samples);
+    return 2;
+  }
+  return 0;
+}
+
+/* --convergence: the heuristic MC against quadrature; the exit code. */
+static int fmean_convergence(const fopts *o) {
+  hd_error err;
+  double ad = isnan(o->a) ? 1.0 : o->a / o->d, seconds = o->seconds;
+  unsigned long seed = (unsigned long)o->seed, samples = (unsigned long)o->samples;
+  hd_fmean_conv_row rows[32];
+  size_t nr;
+  double slope, slope_err;
+  int st = hd_fmean_convergence(ad, seed, seconds > 0.0 ? seconds : 10.0, samples, rows, 32, &nr,
+                                &slope, &slope_err, &err);
+  if (st) {
+    fprintf(stderr, "haff mc fmean: %s\n", err.msg);
+    return hd_exit_code(st);
+  }
+  if (nr < 2) {
+    fprintf(stderr,
+            "haff mc fmean: --convergence: %zu row%s in %g s, a slope needs 2 (more "
+            "--seconds)\n",
+            nr, nr == 1 ? "" : "s", seconds > 0.0 ? seconds : 10.0);
+    return 1;
+  }
+  double fq, fq_err;
+  hd_fmean_quadrature(ad, &fq, &fq_err);
+  printf("# heuristic model, a/d = %.10g, quadrature <f> = %.15g (abserr %.2g)\n", ad, fq,
+         fq_err);
+  printf("n\tf_mc\tf_stderr\tabs_err_vs_quadrature\tseconds\treps\trms_err\n");
+  for (size_t i = 0; i < nr; i++)
+    printf("%lu\t%.12g\t%.4g\t%.4g\t%.4f\t%lu\t%.4g\n", rows[i].n, rows[i].f_mc, rows[i].f_stderr,
+           rows[i].abs_err, rows[i].seconds, rows[i].reps, rows[i].rms_err);
+  printf("# slope of log(rms_err) vs log(n) (gsl_fit_wlinear): %.4f +- %.4f (1/sqrt(N) law: "
+         "-0.5)\n",
+         slope, slope_err);
+  return 0;
+}
+
+/* The rows of <f>: one a (--a) or a scan, per model; the exit code. */
+static int fmean_rows(const fopts *fo) {
+  double a = fo->a, d = fo->d, seconds = fo->seconds, scan[3] = {0, 0, 0};
+  int have_scan = fo->scan != NULL, all = fo->model == 3;
+  hd_fmean_model model = all ? HD_FMEAN_HEURISTIC : (hd_fmean_model)fo->model;
+  if (have_scan &&
+      (sscanf(fo->scan, "%lf:%lf:%lf", &scan[0], &scan[1], &scan[2]) != 3 || !(scan[0] > 0.0) ||
+       !(scan[1] >= scan[0]) || !(scan[2] > 0.0) || !isfinite(scan[1]))) {
+    fprintf(stderr,
+            "haff mc fmean: --scan '%s': expected A0:A1:STEP with A0 > 0, A1 >= A0, STEP > 0\n",
+            fo->scan);
     return 2;
   }
   hd_error err;
-  if (conv) {
-    double ad = isnan(a) ? 1.0 : a / d;
-    hd_fmean_conv_row rows[32];
-    size_t nr;
-    double slope, slope_err;
-    int st = hd_fmean_convergence(ad, seed, seconds > 0.0 ? seconds : 10.0, samples, rows, 32, &nr,
-                                  &slope, &slope_err, &err);
-    if (st) {
-      fprintf(stderr, "haff mc fmean: %s\n", err.msg);
-      return hd_exit_code(st);
-    }
-    if (nr < 2) {
-      fprintf(stderr,
-              "haff mc fmean: --convergence: %zu row%s in %g s, a slope needs 2 (more "
-              "--seconds)\n",
-              nr, nr == 1 ? "" : "s", seconds > 0.0 ? seconds : 10.0);
-      return 1;
-    }
-    double fq, fq_err;
-    hd_fmean_quadrature(ad, &fq, &fq_err);
-    printf("# heuristic model, a/d = %.10g, quadrature <f> = %.15g (abserr %.2g)\n", ad, fq,
-           fq_err);
-    printf("n\tf_mc\tf_stderr\tabs_err_vs_quadrature\tseconds\treps\trms_err\n");
-    for (size_t i = 0; i < nr; i++)
-      printf("%lu\t%.12g\t%.4g\t%.4g\t%.4f\t%lu\t%.4g\n", rows[i].n, rows[i].f_mc, rows[i].f_stderr,
-             rows[i].abs_err, rows[i].seconds, rows[i].reps, rows[i].rms_err);
-    printf("# slope of log(rms_err) vs log(n) (gsl_fit_wlinear): %.4f +- %.4f (1/sqrt(N) law: "
-           "-0.5)\n",
-           slope, slope_err);
-    return 0;
-  }
-  if (!have_scan && isnan(a)) {
-    fprintf(stderr, "haff mc fmean: --a A is required (or --scan A0:A1:STEP)\n");
-    return 2;
-  }
-  if (fig4) {
-    print_fig4(a / d);
-    return 0;
-  }
   hd_fmean_opts o;
   hd_fmean_opts_default(&o);
-  o.dim = dim;
-  o.seed = seed;
+  o.dim = fo->dim;
+  o.seed = (unsigned long)fo->seed;
   if (seconds > 0.0) {
     o.samples = 0;
     o.seconds = seconds;
-  } else if (samples) {
-    o.samples = samples;
+  } else if (fo->samples) {
+    o.samples = (unsigned long)fo->samples;
   }
   long n_a = 1;
   if (have_scan) {
@@ -291,9 +226,22 @@ int hd_mc_fmean_main(int argc, char **argv) {
     }
   }
   return 0;
+}
 
-bad_value:
-  fprintf(stderr, "haff mc fmean: bad value '%s' for --%s (see --help)\n", optarg,
-          li >= 0 ? longopts[li].name : "?");
-  return 2;
+int hd_mc_fmean_main(int argc, char **argv) {
+  fopts o = {.a = NAN, .d = 1.0, .dim = 2.0, .seed = 1, .model = 3};
+  hd_optres res;
+  int rc = hd_opt_parse(&hd_mc_fmean_spec, argc, argv, &o, &res);
+  if (rc) return rc < 0 ? 0 : rc;
+  if ((rc = fmean_check(&res, &o))) return rc;
+  if (o.conv) return fmean_convergence(&o);
+  if (!o.scan && isnan(o.a)) {
+    fprintf(stderr, "haff mc fmean: --a A is required (or --scan A0:A1:STEP)\n");
+    return 2;
+  }
+  if (o.fig4) {
+    print_fig4(o.a / o.d);
+    return 0;
+  }
+  return fmean_rows(&o);
 }

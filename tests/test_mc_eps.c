@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "eps.h"
+#include "haff.h" /* hd_mc_eps_main */
 
 static int sanitize(void) {
   const char *s = getenv("HAFF_SANITIZE");
