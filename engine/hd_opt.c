@@ -208,7 +208,7 @@ int hd_opt_parse(const hd_optspec *spec, int argc, char **argv, void *dest, hd_o
       k = optopt >= VAL0 ? optopt - VAL0 : -1;
       for (int j = 0; k < 0 && j < n; j++)
         if (spec->opts[j].letter == optopt) k = j;
-      fprintf(stderr, "haff %s: %s: missing value (see haff %s --help)\n", spec->cmd,
+      fprintf(stderr, "haff %s: option '%s' needs a value (see haff %s --help)\n", spec->cmd,
               k >= 0 ? opt_name(&spec->opts[k], nb, sizeof nb) : "?", spec->cmd);
       return 2;
     }
