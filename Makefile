@@ -112,6 +112,13 @@ $(BUILD)/tests/%: tests/%.c $(LIB) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -Itests -o $@ $< $(LIB) $(LDLIBS) $(TESTLIBS)
 
+# test_cli_tables checks the table of subcommands (cli/haff_commands.c) and every subcommand's
+# option table: it links the CLI's objects, all but the one with main().
+CLI_CMD_OBJ := $(filter-out $(BUILD)/cli/haff.o,$(CLI_OBJ))
+$(BUILD)/tests/test_cli_tables: tests/test_cli_tables.c $(CLI_CMD_OBJ) $(LIB) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Itests -o $@ $< $(CLI_CMD_OBJ) $(LIB) $(LDLIBS) $(TESTLIBS)
+
 # --- tests ---------------------------------------------------------------------------------
 # Each test program is a cmocka group; tests/run-tests sums their results into one line
 # "N passed, N failed" and exits non-zero on any failure.  The ASan+UBSan build of the same
