@@ -17,8 +17,7 @@ typedef struct haff_command {
   int (*main)(int argc, char **argv); /* entry point, argv[0] == name; NULL for a group, whose
                                        * programs are the entries naming it as their group */
   const char *summary;                /* one line for `haff --help` (`haff GROUP --help`) */
-  const hd_optspec *spec;             /* its options and help; NULL for a group and for
-                                       * export, whose first argument is a format */
+  const hd_optspec *spec;             /* its options and help; NULL for a group */
 } haff_command;
 
 /* Every subcommand, in the order of `haff --help`; ends with an entry whose name is NULL. */
@@ -36,8 +35,9 @@ int haff_merge_main(int argc, char **argv);
 int haff_sweep_main(int argc, char **argv);
 int haff_movie_main(int argc, char **argv);
 extern const hd_optspec haff_merge_spec, haff_sweep_spec, haff_movie_spec;
-/* db/export_xyz.c: haff export xyz DB */
+/* db/export_xyz.c: haff export xyz DB (its spec's options follow the format word) */
 int haff_export_main(int argc, char **argv);
+extern const hd_optspec haff_export_spec;
 /* mc/fmean_cli.c, mc/eps_cli.c: haff mc fmean, haff mc eps */
 int hd_mc_fmean_main(int argc, char **argv);
 int hd_mc_eps_main(int argc, char **argv);

@@ -14,7 +14,7 @@ const haff_command haff_commands[] = {
     {"eps", "mc", hd_mc_eps_main,
      "sample or tabulate p_beta(eps), the rods' stochastic restitution", &hd_mc_eps_spec},
     {"export", NULL, haff_export_main, "export xyz DB: extended XYZ snapshots for OVITO and VMD",
-     NULL},
+     &haff_export_spec},
     {"merge", NULL, haff_merge_main, "merge OUT IN...: the runs of many databases into one",
      &haff_merge_spec},
     {"sweep", NULL, haff_sweep_main, "a study: a grid of runs, locally (--jobs) or on Slurm, merged",

@@ -17,7 +17,8 @@
  * Lx, Ly come from runs.box_x/box_y (hd_db_run_box), else from the scene's [system] box; the
  * shapes and masses from [dimers] d, a, m and [disks] sigma, mass (default 1), walls from
  * [walls] sides.  Frames (table frames) take their body kinds from the run's 'initial' states. */
-#include <getopt.h>
+#include <limits.h>
+#include <stddef.h>
 #include <ini.h>
 #include <math.h>
 #include <sqlite3.h>
@@ -31,6 +32,7 @@
 #include "hd_scene.h"
 
 #include "haff.h" /* haff_export_main */
+#include "hd_opt.h"
 
 /* The geometry export needs, read from the run's scene text. */
 typedef struct xyz_geom {
@@ -64,18 +66,6 @@ static int geom_handler(void *user, const char *section, const char *name, const
     if (!strcmp(name, "gamma")) g->rod_gamma = strtod(value, NULL);
   }
   return 1; /* other keys are not ours to judge */
-}
-
-static void usage(FILE *out) {
-  fprintf(out,
-          "usage: haff export xyz DB [--run ID]\n"
-          "       [--label initial|final|checkpoint|velocities|frames|all] [-o FILE]\n"
-          "Writes the stored states and frames of a run as extended XYZ (OVITO, ASE): one frame\n"
-          "per (label, time), one line per disk (a dimer gives two, species N; single disks Ar;\n"
-          "rods C) with position, velocity, mass, momentum, radius, body, phi and omega.\n"
-          "  --run ID     the run [the newest run in DB]\n"
-          "  --label L    which states; frames: the [log] frames_every* frames [all]\n"
-          "  -o FILE      output file [stdout; - is stdout]\n");
 }
 
 /* Writes x in the shortest %g form that reads back as x (15 to 17 digits). */
@@ -332,68 +322,52 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
   return code;
 }
 
+/* The options of haff export xyz. */
+typedef struct export_args {
+  long long run;       /* --run ID, 0: the newest run */
+  int label;           /* --label: an index of labels[] */
+  const char *outpath; /* -o FILE, NULL: stdout */
+} export_args;
+
+static const char *const labels[] = {"initial", "final",  "checkpoint",
+                                     "velocities", "frames", "all"};
+
+static const hd_optdef export_opts[] = {
+    HD_OPT_INT("run", 0, export_args, run, 1, LLONG_MAX, 0, "ID", "the run [the newest run in DB]"),
+    HD_OPT_ENUM("label", 0, export_args, label, "initial|final|checkpoint|velocities|frames|all",
+                "L", "which states; frames: the [log] frames_every* frames [all]"),
+    HD_OPT_STR("output", 'o', export_args, outpath, "FILE", "output file [stdout; - is stdout]"),
+    {0}};
+
+const hd_optspec haff_export_spec = {
+    .cmd = "export",
+    .opts = export_opts,
+    .npos_min = 1,
+    .npos_max = 1,
+    .pos = "one DB",
+    .head = "usage: haff export xyz DB [--run ID]\n"
+            "       [--label initial|final|checkpoint|velocities|frames|all] [-o FILE]\n"
+            "Writes the stored states and frames of a run as extended XYZ (OVITO, ASE): one frame\n"
+            "per (label, time), one line per disk (a dimer gives two, species N; single disks Ar;\n"
+            "rods C) with position, velocity, mass, momentum, radius, body, phi and omega.\n"};
+
 int haff_export_main(int argc, char **argv) {
   if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
     int help = argc >= 2;
-    usage(help ? stdout : stderr);
+    hd_opt_help(&haff_export_spec, help ? stdout : stderr);
     return help ? 0 : 2;
   }
   if (strcmp(argv[1], "xyz")) {
     fprintf(stderr, "haff export: unknown format '%s' (only xyz)\n", argv[1]);
     return 2;
   }
-  static const struct option opts[] = {{"run", required_argument, NULL, 'r'},
-                                       {"label", required_argument, NULL, 'l'},
-                                       {"output", required_argument, NULL, 'o'},
-                                       {"help", no_argument, NULL, 'h'},
-                                       {NULL, 0, NULL, 0}};
-  long long run = 0;
-  const char *label = "all", *outpath = NULL;
-  int c;
-  optind = 0; /* GNU: full re-initialisation, so the function may be called more than once;
-                 parsing argv + 1 ("xyz" as the program name) */
-  opterr = 0;
-  while ((c = getopt_long(argc - 1, argv + 1, "o:h", opts, NULL)) != -1) {
-    switch (c) {
-    case 'r': {
-      char *end;
-      run = strtoll(optarg, &end, 10);
-      if (*end || run <= 0) {
-        fprintf(stderr, "haff export: --run %s: must be a positive run id\n", optarg);
-        return 2;
-      }
-      break;
-    }
-    case 'l':
-      label = optarg;
-      if (strcmp(label, "initial") && strcmp(label, "final") && strcmp(label, "checkpoint") &&
-          strcmp(label, "velocities") && strcmp(label, "frames") && strcmp(label, "all")) {
-        fprintf(stderr,
-                "haff export: --label %s: must be initial, final, checkpoint, "
-                "velocities, frames or all\n",
-                label);
-        return 2;
-      }
-      break;
-    case 'o':
-      outpath = optarg;
-      break;
-    case 'h':
-      usage(stdout);
-      return 0;
-    default: {
-      char buf[8];
-      fprintf(stderr, "haff export: bad option '%s' (haff export --help)\n",
-              hd_opt_culprit(argv + 1, opts, buf, sizeof buf));
-    }
-      return 2;
-    }
-  }
-  if (optind + 1 != argc - 1) {
-    fprintf(stderr, "haff export xyz: give exactly one DB (haff export --help)\n");
-    return 2;
-  }
-  const char *path = argv[optind + 1];
+  export_args a = {.label = 5};
+  hd_optres res; /* argv + 1: "xyz" as the program's name */
+  int prc = hd_opt_parse(&haff_export_spec, argc - 1, argv + 1, &a, &res);
+  if (prc) return prc < 0 ? 0 : prc;
+  long long run = a.run;
+  const char *label = labels[a.label], *outpath = a.outpath;
+  const char *path = res.pos[0];
   if (access(path, F_OK) != 0) {
     fprintf(stderr, "haff export: %s: no such database file\n", path);
     return 2;
