@@ -250,3 +250,52 @@ const char *hd_cli_window_name(int window) {
          : window == HD_WINDOW_COMPUTED ? "computed"
                                         : "whole";
 }
+
+/* Whether group g is in the papers' tables: one species in a periodic box, dimers (and disks
+ * when with_disks: Table I's reference; Table II's K needs rotation). */
+int hd_cli_in_table(const hd_group *g, int with_disks) {
+  return !g->walls && (g->species == HD_ANA_DIMERS || (with_disks && g->species == HD_ANA_DISKS));
+}
+
+/* How many of the groups g[0..ng) are in the table; says on stderr which are left out for not
+ * being the papers' case (a mixture, walls) and where they are fitted. */
+size_t hd_cli_table_groups(const char *cmd, const hd_group *g, size_t ng, int with_disks) {
+  size_t in = 0;
+  for (size_t j = 0; j < ng; j++) {
+    if (hd_cli_in_table(&g[j], with_disks))
+      in++;
+    else if (g[j].species != HD_ANA_DISKS || g[j].walls) /* not the disks table2 has no use for */
+      fprintf(stderr,
+              "haff %s: note: left out %zu run%s of %s (alpha %g a/d %g): the table is for one "
+              "species in a periodic box; haff-fit --alpha-group fits them\n",
+              cmd, g[j].n, g[j].n == 1 ? "" : "s", hd_ana_species_name(g[j].species, g[j].walls),
+              g[j].alpha, g[j].a_over_d);
+  }
+  return in;
+}
+
+/* Whether a table leaves group g out for being flagged inhomogeneous (not with keep); says so on
+ * stderr, and that a group without state measures could not be checked. */
+int hd_cli_flagged_out(const char *cmd, const hd_group *g, const hd_group_fit *q, int keep) {
+  if (!q->measured)
+    fprintf(stderr,
+            "haff %s: note: alpha %g a/d %g: no state measures in its samples (logged before "
+            "schema 2): its homogeneity is not checked and D_e_sys has no box term\n",
+            cmd, g->alpha, g->a_over_d);
+  if (!q->flagged || keep) return 0;
+  fprintf(stderr,
+          "haff %s: note: left out alpha %g a/d %g N %ld: inhomogeneous (window mean s_perp %.3g, "
+          "%zu of %zu runs left the HCS early); --keep-flagged keeps it\n",
+          cmd, g->alpha, g->a_over_d, g->nbodies, q->s_perp, q->ended, q->m);
+  return 1;
+}
+
+/* Says on stderr why a group fitted from one run has no error (hd_ensemble_mean). */
+void hd_cli_one_run_note(const char *cmd, const hd_group *g, size_t m) {
+  if (m == 1)
+    fprintf(stderr,
+            "haff %s: note: alpha %g a/d %g: one fitted run, so its errors are nan (an ensemble "
+            "error needs >= 2 runs; the fit's formal error, haff-fit's *_fit_err, is several times "
+            "smaller than the scatter between runs)\n",
+            cmd, g->alpha, g->a_over_d);
+}

@@ -85,6 +85,21 @@ void hd_cli_groups_free(sqlite3 *db, hd_run_fit *fits, hd_group *g, size_t ng);
 int hd_cli_one_run(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a, sqlite3 **db,
                    hd_run_info *info);
 
+/* Whether group g is in the papers' tables: one species in a periodic box, dimers (and disks
+ * when with_disks: Table I's reference; Table II's K needs rotation). */
+int hd_cli_in_table(const hd_group *g, int with_disks);
+
+/* How many of the groups g[0..ng) are in the table; says on stderr which are left out for not
+ * being the papers' case (a mixture, walls) and where they are fitted. */
+size_t hd_cli_table_groups(const char *cmd, const hd_group *g, size_t ng, int with_disks);
+
+/* Whether a table leaves group g out for being flagged inhomogeneous (not with keep); says so on
+ * stderr, and that a group without state measures could not be checked. */
+int hd_cli_flagged_out(const char *cmd, const hd_group *g, const hd_group_fit *q, int keep);
+
+/* Says on stderr why a group fitted from one run has no error (hd_ensemble_mean). */
+void hd_cli_one_run_note(const char *cmd, const hd_group *g, size_t m);
+
 /* Prints the error of a failed library call as "haff CMD: msg" and returns its exit code. */
 int hd_cli_fail(const char *cmd, const hd_error *err);
 
