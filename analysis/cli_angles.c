@@ -15,13 +15,13 @@ const hd_optspec haff_angles_spec = {
     .npos_max = 1,
     .pos = "one database argument",
     .head =
-    "usage: haff angles DB --run ID [--block N] [--bins B] [--fmean] [-o FILE]\n"
-    "Fig. 5: histogram of the contact angles theta (both bodies of every dimer-dimer\n"
-    "collision, in (-pi, pi]) per block of N logged collisions, normalised to unit area.\n"
-    "Columns: block first last theta density density_err   (first/last: collision numbers\n"
-    "among the logged dimer-dimer collisions, 1-based; blocks separated by two blank lines,\n"
-    "each headed by a line whose first field is its legend title; an incomplete last block\n"
-    "is dropped)\n"};
+        "usage: haff angles DB --run ID [--block N] [--bins B] [--fmean] [-o FILE]\n"
+        "Fig. 5: histogram of the contact angles theta (both bodies of every dimer-dimer\n"
+        "collision, in (-pi, pi]) per block of N logged collisions, normalised to unit area.\n"
+        "Columns: block first last theta density density_err   (first/last: collision numbers\n"
+        "among the logged dimer-dimer collisions, 1-based; blocks separated by two blank lines,\n"
+        "each headed by a line whose first field is its legend title; an incomplete last block\n"
+        "is dropped)\n"};
 
 int haff_angles_main(int argc, char **argv) {
   hd_cli_args a;

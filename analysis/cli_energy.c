@@ -74,15 +74,16 @@ const hd_optspec haff_energy_spec = {
     .npos_max = 1,
     .pos = "one database argument",
     .head =
-    "usage: haff energy DB [--run ID | --all] [fit options] [-o FILE]\n"
-    "Energy per body and collisions per particle against time, for Figs. 2 and 3: one block\n"
-    "per run (--run) or per (alpha, a/d) group averaged sample by sample (--all, default),\n"
-    "blocks separated by two blank lines, each headed by '# species alpha=.. a_over_d=.. ...'\n"
-    "and a header line whose first field is the block's legend title (column 1 holds t).\n"
-    "Columns: t cpd E E_over_E0 e_tr e_rot x=(1-alpha^2)cpd nu0t=nu0_eff*t\n"
-    "         haff_E_over_E0=(E_s/E0)/(1+gamma nu0 (t-t_s))^2 x_eq31=(1-alpha^2)(cpd_s+eq.(31) "
-    "at\n"
-    "         t-t_s) homog (1 if fitted); t_s, cpd_s, E_s: the HCS window's start (nu0: there)\n"};
+        "usage: haff energy DB [--run ID | --all] [fit options] [-o FILE]\n"
+        "Energy per body and collisions per particle against time, for Figs. 2 and 3: one block\n"
+        "per run (--run) or per (alpha, a/d) group averaged sample by sample (--all, default),\n"
+        "blocks separated by two blank lines, each headed by '# species alpha=.. a_over_d=.. ...'\n"
+        "and a header line whose first field is the block's legend title (column 1 holds t).\n"
+        "Columns: t cpd E E_over_E0 e_tr e_rot x=(1-alpha^2)cpd nu0t=nu0_eff*t\n"
+        "         haff_E_over_E0=(E_s/E0)/(1+gamma nu0 (t-t_s))^2 x_eq31=(1-alpha^2)(cpd_s+eq.(31) "
+        "at\n"
+        "         t-t_s) homog (1 if fitted); t_s, cpd_s, E_s: the HCS window's start (nu0: "
+        "there)\n"};
 
 int haff_energy_main(int argc, char **argv) {
   hd_cli_args a;

@@ -14,23 +14,24 @@ const hd_optspec haff_fit_spec = {
     .npos_max = 1,
     .pos = "one database argument",
     .head =
-    "usage: haff haff-fit DB [--run ID | --all] [--alpha-group] [fit options] [-o FILE]\n"
-    "Fits eq. (31) tau(t) = ln(1 + gamma nu0 t)/gamma, gamma = (1-alpha^2)/(2 D_e), to the\n"
-    "HCS window of each run (tau = cpd counted from the window's start): after the initial\n"
-    "transient (--cpd-skip), up to where the state measures (s_perp) or the collision rate\n"
-    "per sqrt(E) say the homogeneous cooling state ended; D_e_slope = -(1-alpha^2)/(slope of\n"
-    "ln E against cpd) on the same window needs no nu0.  Per group: D_e_sys, the systematic\n"
-    "error (window drift, estimator difference, correlated flow: docs/analysis.md), and flag\n"
-    "'inhomogeneous' for a box past the HCS's validity.  One line per run, or per group of runs "
-    "with\n"
-    "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m and density;\n"
-    "mean +- standard error over the runs; nan with one run).  Per run, *_fit_err are the\n"
-    "formal least-squares errors, which take the residuals of the cumulative cpd(t) as\n"
-    "independent: several times too small.  window: 'stored' (the run's runs.hcs_* window,\n"
-    "used when the detection options are the defaults), 'computed' (found now: other options,\n"
-    "or a file without it), 'whole' (--no-detect).  A run that cannot be fitted gets nan and a "
-    "note;\n"
-    "exit 2 when none can.\n"};
+        "usage: haff haff-fit DB [--run ID | --all] [--alpha-group] [fit options] [-o FILE]\n"
+        "Fits eq. (31) tau(t) = ln(1 + gamma nu0 t)/gamma, gamma = (1-alpha^2)/(2 D_e), to the\n"
+        "HCS window of each run (tau = cpd counted from the window's start): after the initial\n"
+        "transient (--cpd-skip), up to where the state measures (s_perp) or the collision rate\n"
+        "per sqrt(E) say the homogeneous cooling state ended; D_e_slope = -(1-alpha^2)/(slope of\n"
+        "ln E against cpd) on the same window needs no nu0.  Per group: D_e_sys, the systematic\n"
+        "error (window drift, estimator difference, correlated flow: docs/analysis.md), and flag\n"
+        "'inhomogeneous' for a box past the HCS's validity.  One line per run, or per group of "
+        "runs "
+        "with\n"
+        "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m and density;\n"
+        "mean +- standard error over the runs; nan with one run).  Per run, *_fit_err are the\n"
+        "formal least-squares errors, which take the residuals of the cumulative cpd(t) as\n"
+        "independent: several times too small.  window: 'stored' (the run's runs.hcs_* window,\n"
+        "used when the detection options are the defaults), 'computed' (found now: other options,\n"
+        "or a file without it), 'whole' (--no-detect).  A run that cannot be fitted gets nan and a "
+        "note;\n"
+        "exit 2 when none can.\n"};
 
 int haff_fit_main(int argc, char **argv) {
   hd_cli_args a;
@@ -105,4 +106,3 @@ int haff_fit_main(int argc, char **argv) {
   }
   return crc;
 }
-

@@ -23,13 +23,13 @@ typedef struct ropts {
 
 /* The options each rods subcommand reads (bits of hd_optspec.allowed); another is refused. */
 enum {
-  HD_RCLI_RUN = 1,    /* --run ID */
-  HD_RCLI_BINS = 2,   /* --bins N */
-  HD_RCLI_T = 4,      /* --t T */
-  HD_RCLI_GAP = 8,    /* --gap G */
-  HD_RCLI_MIN = 16,   /* --min-size M */
-  HD_RCLI_X = 32,     /* --x X */
-  HD_RCLI_RANGE = 64  /* --range X */
+  HD_RCLI_RUN = 1,   /* --run ID */
+  HD_RCLI_BINS = 2,  /* --bins N */
+  HD_RCLI_T = 4,     /* --t T */
+  HD_RCLI_GAP = 8,   /* --gap G */
+  HD_RCLI_MIN = 16,  /* --min-size M */
+  HD_RCLI_X = 32,    /* --x X */
+  HD_RCLI_RANGE = 64 /* --range X */
 };
 
 /* The options of the rods subcommands that read a database (dest: ropts). */

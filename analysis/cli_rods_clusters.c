@@ -7,16 +7,17 @@
 #include "cli_rods.h"
 #include "haff.h"
 
-const hd_optspec haff_rods_clusters_spec = {.cmd = "rods-clusters",
-                                .opts = hd_rcli_opts,
-                                .allowed = HD_RCLI_RUN | HD_RCLI_GAP | HD_RCLI_MIN,
-                                .npos_min = 1,
-                                .npos_max = 1,
-                                .pos = "one database",
-                                .head =
-    "usage: haff rods-clusters DB [--run ID] [--gap G] [--min-size M]\n"
-    "Clusters per snapshot (maximal runs of rods closer than G [0.1] to their neighbour, at\n"
-    "least M [10] rods): columns t clusters largest in_clusters (fraction of rods in them).\n"};
+const hd_optspec haff_rods_clusters_spec = {
+    .cmd = "rods-clusters",
+    .opts = hd_rcli_opts,
+    .allowed = HD_RCLI_RUN | HD_RCLI_GAP | HD_RCLI_MIN,
+    .npos_min = 1,
+    .npos_max = 1,
+    .pos = "one database",
+    .head =
+        "usage: haff rods-clusters DB [--run ID] [--gap G] [--min-size M]\n"
+        "Clusters per snapshot (maximal runs of rods closer than G [0.1] to their neighbour, at\n"
+        "least M [10] rods): columns t clusters largest in_clusters (fraction of rods in them).\n"};
 
 int haff_rods_clusters_main(int argc, char **argv) {
   ropts o;

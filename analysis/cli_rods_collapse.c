@@ -33,8 +33,8 @@ static const hd_optdef collapse_opts[] = {
     {0}};
 
 /* One item of --n and of --eps (the one number parser reads each). */
-static const hd_optdef n_item = {.name = "n", .kind = HD_ARG_INT, .ilo = 2, .ihi = 100000000,
-                                 .flags = HD_OPTF_EXP};
+static const hd_optdef n_item = {
+    .name = "n", .kind = HD_ARG_INT, .ilo = 2, .ihi = 100000000, .flags = HD_OPTF_EXP};
 static const hd_optdef eps_item = {
     .name = "eps", .kind = HD_ARG_DOUBLE, .lo = 0, .hi = 1, .flags = HD_OPTF_LT | HD_OPTF_FINITE};
 
@@ -57,17 +57,18 @@ static int parse_list(const char *cmd, const hd_optdef *d, const char *s, double
   return n;
 }
 
-const hd_optspec haff_rods_collapse_spec = {.cmd = "rods-collapse",
-                                .opts = collapse_opts,
-                                .npos_max = 0,
-                                .head =
-    "usage: haff rods-collapse [--n LIST] [--eps LIST] [--seeds K] [--cpd C] [--gamma G]\n"
-    "Scans the constant-eps ring for inelastic collapse: for every N in LIST [4,8,16,32,64,128]\n"
-    "and eps in LIST [0.3,0.5,0.7,0.8,0.9,0.95], K [4] rings (seeds 1..K) run to C [2000]\n"
-    "collisions per rod (C <= 1e10) or collapse.  Columns N eps collapsed runs frac n_my\n"
-    "(McNamara and Young's -ln(1-eps)/(1-eps)) my_predicts (1 if N > n_my)\n"
-    "median_cpd_at_collapse.\n"
-    "Masses alternate with ratio G [1: equal masses, as in McNamara and Young].\n"};
+const hd_optspec haff_rods_collapse_spec = {
+    .cmd = "rods-collapse",
+    .opts = collapse_opts,
+    .npos_max = 0,
+    .head = "usage: haff rods-collapse [--n LIST] [--eps LIST] [--seeds K] [--cpd C] [--gamma G]\n"
+            "Scans the constant-eps ring for inelastic collapse: for every N in LIST "
+            "[4,8,16,32,64,128]\n"
+            "and eps in LIST [0.3,0.5,0.7,0.8,0.9,0.95], K [4] rings (seeds 1..K) run to C [2000]\n"
+            "collisions per rod (C <= 1e10) or collapse.  Columns N eps collapsed runs frac n_my\n"
+            "(McNamara and Young's -ln(1-eps)/(1-eps)) my_predicts (1 if N > n_my)\n"
+            "median_cpd_at_collapse.\n"
+            "Masses alternate with ratio G [1: equal masses, as in McNamara and Young].\n"};
 
 int haff_rods_collapse_main(int argc, char **argv) {
   copts o = {"4,8,16,32,64,128", "0.3,0.5,0.7,0.8,0.9,0.95", 4, 2000, 1};

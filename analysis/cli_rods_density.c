@@ -7,18 +7,19 @@
 #include "cli_rods.h"
 #include "haff.h"
 
-const hd_optspec haff_rods_density_spec = {.cmd = "rods-density",
-                                .opts = hd_rcli_opts,
-                                .allowed = HD_RCLI_RUN | HD_RCLI_BINS | HD_RCLI_T,
-                                .npos_min = 1,
-                                .npos_max = 1,
-                                .pos = "one database",
-                                .head =
-    "usage: haff rods-density DB [--run ID] [--bins N] [--t T]\n"
-    "Figs. 3, 4, 6 data: the coarse-grained density rho (rods per bin over the mean, N bins\n"
-    "[100] on the ring) and the local kinetic energy per rod in each bin, for every snapshot\n"
-    "(or the one nearest --t).  Columns t bin x rho e_local; a blank line after each\n"
-    "snapshot (gnuplot pm3d).\n"};
+const hd_optspec haff_rods_density_spec = {
+    .cmd = "rods-density",
+    .opts = hd_rcli_opts,
+    .allowed = HD_RCLI_RUN | HD_RCLI_BINS | HD_RCLI_T,
+    .npos_min = 1,
+    .npos_max = 1,
+    .pos = "one database",
+    .head =
+        "usage: haff rods-density DB [--run ID] [--bins N] [--t T]\n"
+        "Figs. 3, 4, 6 data: the coarse-grained density rho (rods per bin over the mean, N bins\n"
+        "[100] on the ring) and the local kinetic energy per rod in each bin, for every snapshot\n"
+        "(or the one nearest --t).  Columns t bin x rho e_local; a blank line after each\n"
+        "snapshot (gnuplot pm3d).\n"};
 
 int haff_rods_density_main(int argc, char **argv) {
   ropts o;

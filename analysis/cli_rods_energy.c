@@ -9,19 +9,20 @@
 #include "cli_rods.h"
 #include "haff.h"
 
-const hd_optspec haff_rods_energy_spec = {.cmd = "rods-energy",
-                                .opts = hd_rcli_opts,
-                                .allowed = HD_RCLI_RUN,
-                                .npos_min = 1,
-                                .npos_max = 1,
-                                .pos = "one database",
-                                .head =
-    "usage: haff rods-energy DB [--run ID]\n"
-    "Figs. 1, 2, 9-11 data: per sample of a rods run (newest by default) the columns\n"
-    "  t collisions cpd e_kin e_bath e_kin_over_e0 e_mode e_kin_stat coll_ideal coll_eq35\n"
-    "e_kin, e_bath per rod; e_mode = e_bath / nmod (energy per vibrational mode);\n"
-    "e_kin_stat = the equipartition value (docs/rods.md); coll_ideal and coll_eq35: the\n"
-    "stationary collision count rate*t from the 1D ideal gas and from the paper's eq. (35).\n"};
+const hd_optspec haff_rods_energy_spec = {
+    .cmd = "rods-energy",
+    .opts = hd_rcli_opts,
+    .allowed = HD_RCLI_RUN,
+    .npos_min = 1,
+    .npos_max = 1,
+    .pos = "one database",
+    .head =
+        "usage: haff rods-energy DB [--run ID]\n"
+        "Figs. 1, 2, 9-11 data: per sample of a rods run (newest by default) the columns\n"
+        "  t collisions cpd e_kin e_bath e_kin_over_e0 e_mode e_kin_stat coll_ideal coll_eq35\n"
+        "e_kin, e_bath per rod; e_mode = e_bath / nmod (energy per vibrational mode);\n"
+        "e_kin_stat = the equipartition value (docs/rods.md); coll_ideal and coll_eq35: the\n"
+        "stationary collision count rate*t from the 1D ideal gas and from the paper's eq. (35).\n"};
 
 int haff_rods_energy_main(int argc, char **argv) {
   ropts o;

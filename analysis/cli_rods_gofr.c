@@ -7,17 +7,19 @@
 #include "cli_rods.h"
 #include "haff.h"
 
-const hd_optspec haff_rods_gofr_spec = {.cmd = "rods-gofr",
-                                .opts = hd_rcli_opts,
-                                .allowed = HD_RCLI_RUN | HD_RCLI_T | HD_RCLI_BINS | HD_RCLI_RANGE,
-                                .npos_min = 1,
-                                .npos_max = 1,
-                                .pos = "one database",
-                                .head =
-    "usage: haff rods-gofr DB [--run ID] [--t T] [--bins N] [--range X]\n"
-    "Fig. 8 data: g(x) = 1/(N-1) sum_{i!=j} delta(x - |x_i - x_j|) (ring distance), normalised\n"
-    "so that uniformly placed rods give 1, on N bins [200] of [0, X] [50], at the snapshot\n"
-    "nearest --t.  Columns x g.\n"};
+const hd_optspec haff_rods_gofr_spec = {
+    .cmd = "rods-gofr",
+    .opts = hd_rcli_opts,
+    .allowed = HD_RCLI_RUN | HD_RCLI_T | HD_RCLI_BINS | HD_RCLI_RANGE,
+    .npos_min = 1,
+    .npos_max = 1,
+    .pos = "one database",
+    .head =
+        "usage: haff rods-gofr DB [--run ID] [--t T] [--bins N] [--range X]\n"
+        "Fig. 8 data: g(x) = 1/(N-1) sum_{i!=j} delta(x - |x_i - x_j|) (ring distance), "
+        "normalised\n"
+        "so that uniformly placed rods give 1, on N bins [200] of [0, X] [50], at the snapshot\n"
+        "nearest --t.  Columns x g.\n"};
 
 int haff_rods_gofr_main(int argc, char **argv) {
   ropts o;

@@ -7,19 +7,21 @@
 #include "cli_rods.h"
 #include "haff.h"
 
-const hd_optspec haff_rods_veldist_spec = {.cmd = "rods-veldist",
-                                .opts = hd_rcli_opts,
-                                .allowed = HD_RCLI_RUN | HD_RCLI_T | HD_RCLI_BINS | HD_RCLI_GAP | HD_RCLI_X,
-                                .npos_min = 1,
-                                .npos_max = 1,
-                                .pos = "one database",
-                                .head =
-    "usage: haff rods-veldist DB [--run ID] [--t T] [--bins N] [--gap G] [--x X]\n"
-    "Fig. 7 data: histograms of w = sqrt(m_i) v_i (mass-scaled so that both species share one\n"
-    "Maxwellian) for all rods and for one cluster (the largest, or the one nearest --x) at the\n"
-    "snapshot nearest --t.  Clusters: maximal runs of rods whose neighbour distance is < G\n"
-    "[0.1 mean spacings].  Columns w p_all p_cluster gauss_all gauss_cluster (Gaussians with\n"
-    "the sample's mean and variance); header comments give the cluster and the moments.\n"};
+const hd_optspec haff_rods_veldist_spec = {
+    .cmd = "rods-veldist",
+    .opts = hd_rcli_opts,
+    .allowed = HD_RCLI_RUN | HD_RCLI_T | HD_RCLI_BINS | HD_RCLI_GAP | HD_RCLI_X,
+    .npos_min = 1,
+    .npos_max = 1,
+    .pos = "one database",
+    .head =
+        "usage: haff rods-veldist DB [--run ID] [--t T] [--bins N] [--gap G] [--x X]\n"
+        "Fig. 7 data: histograms of w = sqrt(m_i) v_i (mass-scaled so that both species share one\n"
+        "Maxwellian) for all rods and for one cluster (the largest, or the one nearest --x) at "
+        "the\n"
+        "snapshot nearest --t.  Clusters: maximal runs of rods whose neighbour distance is < G\n"
+        "[0.1 mean spacings].  Columns w p_all p_cluster gauss_all gauss_cluster (Gaussians with\n"
+        "the sample's mean and variance); header comments give the cluster and the moments.\n"};
 
 int haff_rods_veldist_main(int argc, char **argv) {
   ropts o;
@@ -49,7 +51,8 @@ int haff_rods_veldist_main(int argc, char **argv) {
   double *w = malloc((size_t)N * sizeof *w);
   double *ha = calloc((size_t)o.bins, sizeof *ha), *hc = calloc((size_t)o.bins, sizeof *hc);
   if (!w || !ha || !hc) {
-    free(w), free(ha), free(hc), hd_rcli_clusters_free(&cl), hd_rcli_snap_free(&s), hd_rcli_close(&r);
+    free(w), free(ha), free(hc), hd_rcli_clusters_free(&cl), hd_rcli_snap_free(&s),
+        hd_rcli_close(&r);
     return hd_rcli_oom(argv[0]);
   }
   double ma = 0, sa = 0, mc = 0, scl = 0, lo = INFINITY, hi = -INFINITY;

@@ -14,15 +14,15 @@ const hd_optspec haff_table1_spec = {
     .npos_max = 1,
     .pos = "one database argument",
     .head =
-    "usage: haff table1 DB [--md] [--keep-flagged] [fit options] [-o FILE]\n"
-    "Table I: D_e and nu0_eff/nu0 (nu0: Enskog eq. 29 for disks of diameter d, the body mass "
-    "and\n"
-    "density, at the initial translational temperature) per (alpha, a/d), mean +- standard "
-    "error\n"
-    "over the runs (nan when a group has one run).  a_over_d = 0: hard disks.\n"
-    "Columns: alpha a_over_d D_e D_e_err ratio ratio_err runs D_e_sys cpd_start cpd_end flag\n"
-    "(ratio = nu0_eff/nu0, as in haff-fit; D_e_sys the systematic error, cpd_* the mean HCS\n"
-    "window; groups flagged inhomogeneous are left out, with a note)\n"};
+        "usage: haff table1 DB [--md] [--keep-flagged] [fit options] [-o FILE]\n"
+        "Table I: D_e and nu0_eff/nu0 (nu0: Enskog eq. 29 for disks of diameter d, the body mass "
+        "and\n"
+        "density, at the initial translational temperature) per (alpha, a/d), mean +- standard "
+        "error\n"
+        "over the runs (nan when a group has one run).  a_over_d = 0: hard disks.\n"
+        "Columns: alpha a_over_d D_e D_e_err ratio ratio_err runs D_e_sys cpd_start cpd_end flag\n"
+        "(ratio = nu0_eff/nu0, as in haff-fit; D_e_sys the systematic error, cpd_* the mean HCS\n"
+        "window; groups flagged inhomogeneous are left out, with a note)\n"};
 
 int haff_table1_main(int argc, char **argv) {
   hd_cli_args a;
@@ -67,4 +67,3 @@ int haff_table1_main(int argc, char **argv) {
   hd_cli_groups_free(db, fits, g, ng);
   return hd_cli_close(out, &a);
 }
-

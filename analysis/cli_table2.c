@@ -14,13 +14,13 @@ const hd_optspec haff_table2_spec = {
     .npos_max = 1,
     .pos = "one database argument",
     .head =
-    "usage: haff table2 DB [--md] [--keep-flagged] [--k-ci ac|ols|runs] [--cpd-min-k X] [fit "
-    "options] [-o FILE]\n"
-    "Table II: K = E_tr/E_rot fitted as a0 + a1 tau (tau = cpd) by least squares on the\n"
-    "homogeneous part of each dimer run, with 99% Student-t intervals, per (alpha, a/d).\n"
-    "Columns: alpha a_over_d a0 a0_lo a0_hi a1 a1_lo a1_hi a0_sys a1_sys\n"
-    "(*_sys: systematic errors, from the fits on the window's two halves and the correlated\n"
-    "flow the state measures see; docs/analysis.md, \"Errors of K\")\n"};
+        "usage: haff table2 DB [--md] [--keep-flagged] [--k-ci ac|ols|runs] [--cpd-min-k X] [fit "
+        "options] [-o FILE]\n"
+        "Table II: K = E_tr/E_rot fitted as a0 + a1 tau (tau = cpd) by least squares on the\n"
+        "homogeneous part of each dimer run, with 99% Student-t intervals, per (alpha, a/d).\n"
+        "Columns: alpha a_over_d a0 a0_lo a0_hi a1 a1_lo a1_hi a0_sys a1_sys\n"
+        "(*_sys: systematic errors, from the fits on the window's two halves and the correlated\n"
+        "flow the state measures see; docs/analysis.md, \"Errors of K\")\n"};
 
 int haff_table2_main(int argc, char **argv) {
   hd_cli_args a;

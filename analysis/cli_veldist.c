@@ -104,21 +104,20 @@ const hd_optspec haff_veldist_spec = {
     .npos_max = 1,
     .pos = "one database argument",
     .head =
-    "usage: haff veldist DB --run ID [--stats] [--bins B] [--range X] [--label L] [-o FILE]\n"
-    "       haff veldist DB --pool [--run ID] [--bins B] [--range X] [--label L] [-o FILE]\n"
-    "Fig. 6: histograms of the scaled velocities c = (v - <v>)/s of every snapshot (label\n"
-    "'velocities', taken at [log] velocities_at), s the snapshot's own per-component rms\n"
-    "(vx, vy: sqrt(<|V-<V>|^2>/2); omega: sqrt(<omega^2>), not centred), so that a Maxwellian\n"
-    "gives the standard normal.  One block per snapshot, two blank lines between, each headed\n"
-    "by a line whose first field is its legend title 'cpd=X'.\n"
-    "Columns: snap cpd c p_vx p_vy p_omega gauss   (p_omega NaN for disks)\n"};
+        "usage: haff veldist DB --run ID [--stats] [--bins B] [--range X] [--label L] [-o FILE]\n"
+        "       haff veldist DB --pool [--run ID] [--bins B] [--range X] [--label L] [-o FILE]\n"
+        "Fig. 6: histograms of the scaled velocities c = (v - <v>)/s of every snapshot (label\n"
+        "'velocities', taken at [log] velocities_at), s the snapshot's own per-component rms\n"
+        "(vx, vy: sqrt(<|V-<V>|^2>/2); omega: sqrt(<omega^2>), not centred), so that a Maxwellian\n"
+        "gives the standard normal.  One block per snapshot, two blank lines between, each headed\n"
+        "by a line whose first field is its legend title 'cpd=X'.\n"
+        "Columns: snap cpd c p_vx p_vy p_omega gauss   (p_omega NaN for disks)\n"};
 
 int haff_veldist_main(int argc, char **argv) {
   hd_cli_args a;
   sqlite3 *db;
   hd_run_info ri;
-  int rc =
-      hd_cli_parse(&haff_veldist_spec, argc, argv, &a);
+  int rc = hd_cli_parse(&haff_veldist_spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   if (a.pool) {
     if (a.stats) {

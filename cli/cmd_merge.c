@@ -23,13 +23,15 @@ const hd_optspec haff_merge_spec = {
     .npos_max = -1,
     .pos = "OUT.db and at least one IN.db",
     .head =
-    "usage: haff merge OUT.db IN.db... [--quiet]\n"
-    "  Appends every run of the IN databases to OUT (created if missing), with new run ids;\n"
-    "  their collisions, samples, states, checkpoints and provenance follow them, and the\n"
-    "  provenance table records each run's source file and id, host and Slurm job and task.\n"
-    "  Refused (exit 2, OUT untouched): a file given twice, a file that is not a haff database\n"
-    "  or fails PRAGMA integrity_check, OUT being written by a run, a run (same scene, seed and\n"
-    "  version) already in OUT.  Atomic: OUT is replaced only once the merge is whole.\n"};
+        "usage: haff merge OUT.db IN.db... [--quiet]\n"
+        "  Appends every run of the IN databases to OUT (created if missing), with new run ids;\n"
+        "  their collisions, samples, states, checkpoints and provenance follow them, and the\n"
+        "  provenance table records each run's source file and id, host and Slurm job and task.\n"
+        "  Refused (exit 2, OUT untouched): a file given twice, a file that is not a haff "
+        "database\n"
+        "  or fails PRAGMA integrity_check, OUT being written by a run, a run (same scene, seed "
+        "and\n"
+        "  version) already in OUT.  Atomic: OUT is replaced only once the merge is whole.\n"};
 
 int haff_merge_main(int argc, char **argv) {
   merge_args a = {0};
@@ -45,7 +47,7 @@ int haff_merge_main(int argc, char **argv) {
     return hd_exit_code(rc);
   }
   if (!a.quiet)
-    fprintf(stderr, "haff merge: %lld runs from %d files into %s\n", (long long)runs,
-            res.npos - 1, res.pos[0]);
+    fprintf(stderr, "haff merge: %lld runs from %d files into %s\n", (long long)runs, res.npos - 1,
+            res.pos[0]);
   return 0;
 }

@@ -29,22 +29,52 @@ typedef struct run_args {
 
 enum { FOR_RUN = 1, FOR_RESUME = 2 };
 static const hd_optdef run_opts[] = {
-    {.name = "o", .letter = 'o', .kind = HD_ARG_PATH, .off = offsetof(run_args, db),
-     .flags = HD_OPTF_SHORT | HD_OPTF_NOT_STDOUT, .meta = "DB", .set = FOR_RUN,
+    {.name = "o",
+     .letter = 'o',
+     .kind = HD_ARG_PATH,
+     .off = offsetof(run_args, db),
+     .flags = HD_OPTF_SHORT | HD_OPTF_NOT_STDOUT,
+     .meta = "DB",
+     .set = FOR_RUN,
      .help = "the database [SCENE's name with .db, in the current folder]"},
-    {.name = "set", .kind = HD_ARG_LIST, .off = offsetof(run_args, sets),
-     .meta = "SECTION.KEY=VALUE", .set = FOR_RUN, .help = "overrides a scene key (repeatable)"},
-    {.name = "seed", .kind = HD_ARG_STRING, .off = offsetof(run_args, seed), .flags = HD_OPTF_ONCE,
-     .meta = "N", .set = FOR_RUN, .help = "overrides [system] seed"},
-    {.name = "run", .kind = HD_ARG_INT, .off = offsetof(run_args, run), .size = sizeof(long long),
-     .ilo = 1, .ihi = LLONG_MAX, .meta = "ID", .set = FOR_RESUME,
+    {.name = "set",
+     .kind = HD_ARG_LIST,
+     .off = offsetof(run_args, sets),
+     .meta = "SECTION.KEY=VALUE",
+     .set = FOR_RUN,
+     .help = "overrides a scene key (repeatable)"},
+    {.name = "seed",
+     .kind = HD_ARG_STRING,
+     .off = offsetof(run_args, seed),
+     .flags = HD_OPTF_ONCE,
+     .meta = "N",
+     .set = FOR_RUN,
+     .help = "overrides [system] seed"},
+    {.name = "run",
+     .kind = HD_ARG_INT,
+     .off = offsetof(run_args, run),
+     .size = sizeof(long long),
+     .ilo = 1,
+     .ihi = LLONG_MAX,
+     .meta = "ID",
+     .set = FOR_RESUME,
      .help = "the run [the newest resumable run]"},
-    {.name = "all", .kind = HD_ARG_FLAG, .off = offsetof(run_args, all), .set = FOR_RESUME,
+    {.name = "all",
+     .kind = HD_ARG_FLAG,
+     .off = offsetof(run_args, all),
+     .set = FOR_RESUME,
      .help = "every resumable run, oldest first"},
-    {.name = "quiet", .letter = 'q', .kind = HD_ARG_FLAG, .off = offsetof(run_args, quiet),
+    {.name = "quiet",
+     .letter = 'q',
+     .kind = HD_ARG_FLAG,
+     .off = offsetof(run_args, quiet),
      .help = "no progress, no closing line"},
-    {.name = "progress", .kind = HD_ARG_DOUBLE, .off = offsetof(run_args, progress), .lo = 0,
-     .hi = 1e9, .meta = "SECONDS",
+    {.name = "progress",
+     .kind = HD_ARG_DOUBLE,
+     .off = offsetof(run_args, progress),
+     .lo = 0,
+     .hi = 1e9,
+     .meta = "SECONDS",
      .help = "a progress line every SECONDS when stderr is not a terminal [60] (0: none)"},
     {0}};
 
@@ -56,14 +86,16 @@ const hd_optspec haff_run_spec = {
     .npos_max = 1,
     .pos = "one scene file",
     .head =
-    "usage: haff run SCENE [-o DB] [--set SECTION.KEY=VALUE]... [--seed N] [--quiet]\n"
-    "                [--progress SECONDS]\n"
-    "  Runs the scene file SCENE and appends one run to DB (default: SCENE's name with .db,\n"
-    "  in the current folder).  --set overrides a scene key; --seed overrides [system] seed.\n"
-    "  Exit status: 0 done, 1 failed run (collapse, interrupted, database), 2 bad usage/input.\n"
-    "  SIGINT/SIGTERM: the run is checkpointed, marked 'interrupted'; continue with haff resume.\n"
-    "  Progress: redrawn on a terminal; when stderr is not one (a batch log), one line every\n"
-    "  --progress SECONDS [60] (0: none).  runs.events and runs.cpd follow the run.\n"};
+        "usage: haff run SCENE [-o DB] [--set SECTION.KEY=VALUE]... [--seed N] [--quiet]\n"
+        "                [--progress SECONDS]\n"
+        "  Runs the scene file SCENE and appends one run to DB (default: SCENE's name with .db,\n"
+        "  in the current folder).  --set overrides a scene key; --seed overrides [system] seed.\n"
+        "  Exit status: 0 done, 1 failed run (collapse, interrupted, database), 2 bad "
+        "usage/input.\n"
+        "  SIGINT/SIGTERM: the run is checkpointed, marked 'interrupted'; continue with haff "
+        "resume.\n"
+        "  Progress: redrawn on a terminal; when stderr is not one (a batch log), one line every\n"
+        "  --progress SECONDS [60] (0: none).  runs.events and runs.cpd follow the run.\n"};
 
 /* DB name from the scene path: dir/name.ini -> name.db */
 static void default_db(const char *scene, char *out, size_t n) {
@@ -214,11 +246,12 @@ const hd_optspec haff_resume_spec = {
     .npos_max = 1,
     .pos = "one database",
     .head =
-    "usage: haff resume DB [--run ID | --all] [--quiet] [--progress SECONDS]\n"
-    "  Continues an interrupted, killed or failed (disk full) run from its last checkpoint;\n"
-    "  the result is the same as that of an uninterrupted run.  Without --run: the newest\n"
-    "  resumable run; --all: every resumable run of DB in turn, oldest first (one that another\n"
-    "  process is running is left to it; a signal stops the whole series).\n"};
+        "usage: haff resume DB [--run ID | --all] [--quiet] [--progress SECONDS]\n"
+        "  Continues an interrupted, killed or failed (disk full) run from its last checkpoint;\n"
+        "  the result is the same as that of an uninterrupted run.  Without --run: the newest\n"
+        "  resumable run; --all: every resumable run of DB in turn, oldest first (one that "
+        "another\n"
+        "  process is running is left to it; a signal stops the whole series).\n"};
 
 /* Resumes run want (0: the newest resumable) of db; says how it ended.  Returns the status
  * (HD_EINTR: stopped by a signal). */

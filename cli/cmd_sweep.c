@@ -34,7 +34,6 @@
 #include "hd_opt.h"
 #include "hd_scene.h"
 
-
 static const char sweep_usage[] =
     "usage: haff sweep SWEEP.ini [-o DIR] [--jobs N] [--progress S] [--dry-run]\n"
     "       haff sweep SWEEP.ini --slurm [-o DIR] [--chunk C] [--time T] [--partition P]\n"
@@ -1006,14 +1005,18 @@ static int run_task(const study *st, const char *todo, int chunk, double progres
 /* The options of haff sweep. */
 typedef struct sweep_args {
   const char *out, *status_dir, *resume_dir, *merge_dir, *task_dir; /* -o, --status ... --task */
-  slurm_opts so;            /* --time, --partition, --account, --chunk */
+  slurm_opts so;               /* --time, --partition, --account, --chunk */
   int jobs, slurm, dry, quiet; /* --jobs, --slurm, --dry-run, --quiet */
-  double progress;          /* --progress S [60] */
+  double progress;             /* --progress S [60] */
 } sweep_args;
 
 static const hd_optdef sweep_opts[] = {
-    {.name = "o", .letter = 'o', .kind = HD_ARG_PATH, .off = offsetof(sweep_args, out),
-     .flags = HD_OPTF_SHORT, .meta = "DIR",
+    {.name = "o",
+     .letter = 'o',
+     .kind = HD_ARG_PATH,
+     .off = offsetof(sweep_args, out),
+     .flags = HD_OPTF_SHORT,
+     .meta = "DIR",
      .help = "the study's folder [SWEEP's name without .ini, in the current folder]"},
     HD_OPT_INT("jobs", 'j', sweep_args, jobs, 1, 4096, 0, "N", "points run at once, locally [1]"),
     HD_OPT_FLAG("slurm", 0, sweep_args, slurm, "a Slurm job array and a merge job, submitted"),

@@ -71,8 +71,8 @@ int main(int argc, char **argv) {
   }
   for (const haff_command *c = haff_commands; c->name; c++)
     if (!c->group && !strcmp(argv[1], c->name))
-      return stdout_flushed(c->name,
-                            c->main ? c->main(argc - 1, argv + 1) : group_main(c, argc - 1, argv + 1));
+      return stdout_flushed(c->name, c->main ? c->main(argc - 1, argv + 1)
+                                             : group_main(c, argc - 1, argv + 1));
   fprintf(stderr, "haff: unknown command '%s' (haff --help lists them)\n", argv[1]);
   return 2;
 }

@@ -329,7 +329,7 @@ typedef struct export_args {
   const char *outpath; /* -o FILE, NULL: stdout */
 } export_args;
 
-static const char *const labels[] = {"initial", "final",  "checkpoint",
+static const char *const labels[] = {"initial",    "final",  "checkpoint",
                                      "velocities", "frames", "all"};
 
 static const hd_optdef export_opts[] = {

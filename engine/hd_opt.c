@@ -69,8 +69,9 @@ int hd_opt_number(const char *cmd, const hd_optdef *d, const char *s, double *x,
   double v = strtod(s, &end);
   int ok = end != s && !*end && errno == 0 && !isnan(v);
   if (ok && (d->flags & HD_OPTF_FINITE)) ok = isfinite(v);
-  if (ok) ok = (d->flags & HD_OPTF_GT ? v > d->lo : v >= d->lo) &&
-               (d->flags & HD_OPTF_LT ? v < d->hi : v <= d->hi);
+  if (ok)
+    ok = (d->flags & HD_OPTF_GT ? v > d->lo : v >= d->lo) &&
+         (d->flags & HD_OPTF_LT ? v < d->hi : v <= d->hi);
   if (!ok) return expected(cmd, d, s, what);
   *x = v;
   return 0;
@@ -271,8 +272,8 @@ void hd_opt_help(const hd_optspec *spec, FILE *out) {
   if (spec->tail) fputs(spec->tail, out);
 }
 
-int hd_opt_refuse(const hd_optspec *spec, const hd_optres *res, const char *opt,
-                  const char *others, const char *why) {
+int hd_opt_refuse(const hd_optspec *spec, const hd_optres *res, const char *opt, const char *others,
+                  const char *why) {
   if (opt) {
     int m = hd_opt_index(spec, opt);
     if (m < 0 || !res->given[m]) return 0;

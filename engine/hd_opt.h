@@ -24,11 +24,11 @@ typedef enum hd_arg {
 
 /* Rules of a value (bits of hd_optdef.flags). */
 enum {
-  HD_OPTF_GT = 1,         /* DOUBLE: > lo, not >= lo */
-  HD_OPTF_LT = 2,         /* DOUBLE: < hi, not <= hi */
-  HD_OPTF_FINITE = 4,     /* DOUBLE: inf refused (nan always is) */
-  HD_OPTF_EXP = 8,        /* INT: whole numbers written as 1e6 accepted too (exact below 2^53) */
-  HD_OPTF_CLEAR = 16,     /* FLAG: stores 0 (a --no-X flag) */
+  HD_OPTF_GT = 1,          /* DOUBLE: > lo, not >= lo */
+  HD_OPTF_LT = 2,          /* DOUBLE: < hi, not <= hi */
+  HD_OPTF_FINITE = 4,      /* DOUBLE: inf refused (nan always is) */
+  HD_OPTF_EXP = 8,         /* INT: whole numbers written as 1e6 accepted too (exact below 2^53) */
+  HD_OPTF_CLEAR = 16,      /* FLAG: stores 0 (a --no-X flag) */
   HD_OPTF_NOT_STDOUT = 32, /* PATH: "-" refused (a database is a file, not a stream) */
   HD_OPTF_SHORT = 64,      /* only the short form (-o): name is its name in messages and help */
   HD_OPTF_ONCE = 128       /* given twice is an error ("--seed given twice: give one") */
@@ -43,14 +43,14 @@ typedef struct hd_optlist {
 
 /* One option of a subcommand.  A table ends with an entry whose name is NULL. */
 typedef struct hd_optdef {
-  const char *name;   /* long name without "--", e.g. "cpd-skip" */
-  char letter;        /* short form ('o' for -o), 0 for none */
-  hd_arg kind;        /* what the value is */
-  size_t off;         /* where it is stored: offset in the caller's struct (dest of parse) */
-  size_t size;        /* HD_ARG_INT: sizeof the field (int, long or long long) */
-  double lo, hi;      /* HD_ARG_DOUBLE: the range (inclusive unless HD_OPTF_GT/LT) */
-  long long ilo, ihi; /* HD_ARG_INT: the range, inclusive */
-  unsigned flags;     /* HD_OPTF_* */
+  const char *name;    /* long name without "--", e.g. "cpd-skip" */
+  char letter;         /* short form ('o' for -o), 0 for none */
+  hd_arg kind;         /* what the value is */
+  size_t off;          /* where it is stored: offset in the caller's struct (dest of parse) */
+  size_t size;         /* HD_ARG_INT: sizeof the field (int, long or long long) */
+  double lo, hi;       /* HD_ARG_DOUBLE: the range (inclusive unless HD_OPTF_GT/LT) */
+  long long ilo, ihi;  /* HD_ARG_INT: the range, inclusive */
+  unsigned flags;      /* HD_OPTF_* */
   const char *choices; /* HD_ARG_ENUM: the words, '|'-separated */
   const char *meta;    /* the value's name in the help ("ID", "X"); NULL for a flag */
   const char *help;    /* the help line(s), '\n' between lines; NULL: not listed in --help */
@@ -102,24 +102,35 @@ int hd_opt_index(const hd_optspec *spec, const char *name);
 /* If option `opt` was given, refuses each option of the space-separated names `others` that
  * was given too: prints "haff CMD: --X does not apply WHY (see --help)" and returns 2; else 0.
  * opt NULL: refuses the others unconditionally (why then says when). */
-int hd_opt_refuse(const hd_optspec *spec, const hd_optres *res, const char *opt,
-                  const char *others, const char *why);
+int hd_opt_refuse(const hd_optspec *spec, const hd_optres *res, const char *opt, const char *others,
+                  const char *why);
 
 /* Table entries, for readability: T the struct of dest, F its field. */
-#define HD_OPT_FLAG(N, L, T, F, H) {.name = N, .letter = L, .kind = HD_ARG_FLAG, .off = offsetof(T, F), .help = H}
+#define HD_OPT_FLAG(N, L, T, F, H)                                                                 \
+  { .name = N, .letter = L, .kind = HD_ARG_FLAG, .off = offsetof(T, F), .help = H }
 #define HD_OPT_INT(N, L, T, F, LO, HI, FL, M, H)                                                   \
-  {.name = N, .letter = L, .kind = HD_ARG_INT, .off = offsetof(T, F), .size = sizeof(((T *)0)->F),  \
-   .ilo = LO, .ihi = HI, .flags = FL, .meta = M, .help = H}
+  {                                                                                                \
+    .name = N, .letter = L, .kind = HD_ARG_INT, .off = offsetof(T, F),                             \
+    .size = sizeof(((T *)0)->F), .ilo = LO, .ihi = HI, .flags = FL, .meta = M, .help = H           \
+  }
 #define HD_OPT_DBL(N, L, T, F, LO, HI, FL, M, H)                                                   \
-  {.name = N, .letter = L, .kind = HD_ARG_DOUBLE, .off = offsetof(T, F), .lo = LO, .hi = HI,        \
-   .flags = FL, .meta = M, .help = H}
-#define HD_OPT_STR(N, L, T, F, M, H) {.name = N, .letter = L, .kind = HD_ARG_STRING, .off = offsetof(T, F), .meta = M, .help = H}
+  {                                                                                                \
+    .name = N, .letter = L, .kind = HD_ARG_DOUBLE, .off = offsetof(T, F), .lo = LO, .hi = HI,      \
+    .flags = FL, .meta = M, .help = H                                                              \
+  }
+#define HD_OPT_STR(N, L, T, F, M, H)                                                               \
+  { .name = N, .letter = L, .kind = HD_ARG_STRING, .off = offsetof(T, F), .meta = M, .help = H }
 #define HD_OPT_PATH(N, L, T, F, FL, M, H)                                                          \
-  {.name = N, .letter = L, .kind = HD_ARG_PATH, .off = offsetof(T, F), .flags = FL, .meta = M,      \
-   .help = H}
+  {                                                                                                \
+    .name = N, .letter = L, .kind = HD_ARG_PATH, .off = offsetof(T, F), .flags = FL, .meta = M,    \
+    .help = H                                                                                      \
+  }
 #define HD_OPT_ENUM(N, L, T, F, C, M, H)                                                           \
-  {.name = N, .letter = L, .kind = HD_ARG_ENUM, .off = offsetof(T, F), .choices = C, .meta = M,     \
-   .help = H}
-#define HD_OPT_LIST(N, L, T, F, M, H) {.name = N, .letter = L, .kind = HD_ARG_LIST, .off = offsetof(T, F), .meta = M, .help = H}
+  {                                                                                                \
+    .name = N, .letter = L, .kind = HD_ARG_ENUM, .off = offsetof(T, F), .choices = C, .meta = M,   \
+    .help = H                                                                                      \
+  }
+#define HD_OPT_LIST(N, L, T, F, M, H)                                                              \
+  { .name = N, .letter = L, .kind = HD_ARG_LIST, .off = offsetof(T, F), .meta = M, .help = H }
 
 #endif

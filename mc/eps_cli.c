@@ -27,7 +27,8 @@ typedef struct eopts {
   HD_OPT_DBL(N, 0, eopts, F, -INFINITY, INFINITY, 0, M, H) /* nan refused, inf allowed */
 static const hd_optdef eps_opts[] = {
     NUM("gamma", gamma, "G", "length ratio l1/l2 > 0 (required)"),
-    NUM("beta", beta, "B", "E_tr/T_B, T_B the mean bath temperature (paper's rule) [1]; inf = cold"),
+    NUM("beta", beta, "B",
+        "E_tr/T_B, T_B the mean bath temperature (paper's rule) [1]; inf = cold"),
     NUM("beta2", beta2, "B2", "unequal baths: B = E_tr/T_B(rod 1), B2 = E_tr/T_B(rod 2)"),
     HD_OPT_INT("samples", 0, eopts, n, 1, LONG_MAX, 0, "N",
                "samples [10000] (per beta node with --tabulate [2000])"),
@@ -249,18 +250,28 @@ static int eps_check(const hd_optres *res, const eopts *e) {
     fprintf(stderr, "haff mc eps: --gamma is required (see --help)\n");
     return 2;
   }
-  if (e->tab) return hd_opt_refuse(&hd_mc_eps_spec, res, NULL, "beta beta2 dump convergence",
-                                   "with --tabulate");
+  if (e->tab)
+    return hd_opt_refuse(&hd_mc_eps_spec, res, NULL, "beta beta2 dump convergence",
+                         "with --tabulate");
   if (e->conv)
-    return hd_opt_refuse(&hd_mc_eps_spec, res, NULL, "dump adapt richardson db beta-min beta-max nbeta nu",
+    return hd_opt_refuse(&hd_mc_eps_spec, res, NULL,
+                         "dump adapt richardson db beta-min beta-max nbeta nu",
                          "with --convergence");
   return hd_opt_refuse(&hd_mc_eps_spec, res, NULL, "db beta-min beta-max nbeta nu",
                        "without --tabulate");
 }
 
 int hd_mc_eps_main(int argc, char **argv) {
-  eopts e = {.gamma = NAN, .beta = 1, .beta2 = NAN, .bmin = 1e-3, .bmax = 1e3, .n = -1,
-             .seed = 1, .adapt = -1, .nbeta = 25, .nu = 129};
+  eopts e = {.gamma = NAN,
+             .beta = 1,
+             .beta2 = NAN,
+             .bmin = 1e-3,
+             .bmax = 1e3,
+             .n = -1,
+             .seed = 1,
+             .adapt = -1,
+             .nbeta = 25,
+             .nu = 129};
   hd_eps_opts_default(&e.o);
   hd_optres res;
   int rc = hd_opt_parse(&hd_mc_eps_spec, argc, argv, &e, &res);

@@ -121,8 +121,8 @@ static int fmean_check(const hd_optres *res, const fopts *o) {
   }
   if (hd_opt_refuse(&hd_mc_fmean_spec, res, "convergence", "model scan fig4-data dim",
                     "with --convergence") ||
-      hd_opt_refuse(&hd_mc_fmean_spec, res, "fig4-data", "model samples seconds seed scan convergence dim",
-                    "with --fig4-data") ||
+      hd_opt_refuse(&hd_mc_fmean_spec, res, "fig4-data",
+                    "model samples seconds seed scan convergence dim", "with --fig4-data") ||
       hd_opt_refuse(&hd_mc_fmean_spec, res, "scan", "a fig4-data convergence", "with --scan"))
     return 2;
   if (o->conv && isnan(o->a) && res->given[hd_opt_index(&hd_mc_fmean_spec, "d")]) {
@@ -163,8 +163,7 @@ static int fmean_convergence(const fopts *o) {
   }
   double fq, fq_err;
   hd_fmean_quadrature(ad, &fq, &fq_err);
-  printf("# heuristic model, a/d = %.10g, quadrature <f> = %.15g (abserr %.2g)\n", ad, fq,
-         fq_err);
+  printf("# heuristic model, a/d = %.10g, quadrature <f> = %.15g (abserr %.2g)\n", ad, fq, fq_err);
   printf("n\tf_mc\tf_stderr\tabs_err_vs_quadrature\tseconds\treps\trms_err\n");
   for (size_t i = 0; i < nr; i++)
     printf("%lu\t%.12g\t%.4g\t%.4g\t%.4f\t%lu\t%.4g\n", rows[i].n, rows[i].f_mc, rows[i].f_stderr,

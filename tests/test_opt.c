@@ -41,8 +41,12 @@ static const hd_optdef topts[] = {
     HD_OPT_STR("name", 'n', targs, name, "S", "any text"),
     HD_OPT_PATH("db", 0, targs, db, HD_OPTF_NOT_STDOUT, "DB", "a database"),
     HD_OPT_LIST("set", 0, targs, sets, "K=V", "repeatable"),
-    {.name = "seed", .kind = HD_ARG_STRING, .off = offsetof(targs, seed), .flags = HD_OPTF_ONCE,
-     .meta = "N", .help = "once only"},
+    {.name = "seed",
+     .kind = HD_ARG_STRING,
+     .off = offsetof(targs, seed),
+     .flags = HD_OPTF_ONCE,
+     .meta = "N",
+     .help = "once only"},
     {.name = "bare", .kind = HD_ARG_FLAG, .off = offsetof(targs, bare), .set = 2, .help = NULL},
     {0}};
 
@@ -86,7 +90,9 @@ static int run_spec(const hd_optspec *spec, targs *a, const char *const *args) {
   return rc;
 }
 
-static int run(targs *a, const char *const *args) { return run_spec(&tspec, a, args); }
+static int run(targs *a, const char *const *args) {
+  return run_spec(&tspec, a, args);
+}
 
 /* rc 2 and one line on stderr holding want. */
 static void refused(const char *const *args, const char *want) {
@@ -99,9 +105,10 @@ static void refused(const char *const *args, const char *want) {
 static void values_are_stored(void **state) {
   (void)state;
   targs a;
-  const char *args[] = {"f.txt", "--count", "5", "--big=1e6", "--id", "9223372036854775807",
-                        "-r", "0.25", "--any", "-inf", "--unit", "0", "--mode", "c",
-                        "-n", "x y", "--db", "a.db", "-q", NULL};
+  const char *args[] = {"f.txt",  "--count", "5",     "--big=1e6", "--id",   "9223372036854775807",
+                        "-r",     "0.25",    "--any", "-inf",      "--unit", "0",
+                        "--mode", "c",       "-n",    "x y",       "--db",   "a.db",
+                        "-q",     NULL};
   assert_int_equal(run(&a, args), 0);
   assert_string_equal(err_text, "");
   assert_int_equal(a.count, 5);
@@ -150,7 +157,8 @@ static void bad_numbers_name_option_value_and_rule(void **state) {
   refused(a7, "--any '1e400'");
   const char *a8[] = {"f", "--big", "1.5", NULL};
   refused(a8, "--big '1.5': expected a whole number >= 0");
-  const char *a9[] = {"f", "--big", "1e300", NULL}; /* whole, but past what a double holds exactly */
+  const char *a9[] = {"f", "--big", "1e300",
+                      NULL}; /* whole, but past what a double holds exactly */
   refused(a9, "--big '1e300'");
   const char *a10[] = {"f", "--id", "99999999999999999999", NULL};
   refused(a10, "--id '99999999999999999999': expected a whole number >= 1");
@@ -279,7 +287,8 @@ static void help_comes_from_the_table(void **state) {
   assert_non_null(strstr(out_text, "\nthe end\n"));
   assert_non_null(strstr(out_text, "  -q, --quiet      say less\n"));
   assert_non_null(strstr(out_text, "  -c, --count N    a count in [1, 100]\n"));
-  assert_non_null(strstr(out_text, "  -r, --ratio X    a ratio > 0\n                   second line\n"));
+  assert_non_null(
+      strstr(out_text, "  -r, --ratio X    a ratio > 0\n                   second line\n"));
   for (const hd_optdef *d = topts; d->name; d++) {
     char want[64];
     snprintf(want, sizeof want, "--%s", d->name);
