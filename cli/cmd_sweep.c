@@ -1043,6 +1043,65 @@ const hd_optspec haff_sweep_spec = {.cmd = "sweep",
                                     .pos = "one sweep file",
                                     .head = sweep_usage};
 
+/* Runs the points of st that are not done (locally, jobs at a time, or as a Slurm array with
+ * so) and merges them; a study done and merged is left as it is.  Returns the exit code. */
+static int sweep_unfinished(study *st, int slurm, const slurm_opts *so, int jobs, double progress,
+                            int quiet) {
+  int rc = 0;
+  int *list = malloc((size_t)st->n * sizeof *list);
+  int m = list ? unfinished(st, list, 0) : 0;
+  char out_db[PATH_MAX + 32];
+  snprintf(out_db, sizeof out_db, "%s/study.db", st->dir);
+  if (!list) {
+    rc = 1;
+  } else if (m == 0 && access(out_db, F_OK) == 0) {
+    if (!quiet)
+      fprintf(stderr, "haff sweep: %s: every point is done and merged: nothing to do\n", st->dir);
+  } else if (slurm) {
+    if (m == 0) { /* done, not merged: a merge job alone would do; merge here */
+      rc = study_merge(st, quiet);
+    } else {
+      rc = slurm_submit(st, list, m, so, progress, quiet);
+    }
+  } else {
+    if (!quiet && m)
+      fprintf(stderr, "haff sweep: %s: %d of %d points to run, %d at a time\n", st->dir, m, st->n,
+              jobs);
+    rc = run_points(st, list, m, jobs, progress, quiet);
+    if (!rc)
+      rc = study_merge(st, quiet);
+    else
+      fprintf(stderr,
+              "haff sweep: not every point is done: haff sweep --status %s, then "
+              "--resume %s\n",
+              st->dir, st->dir);
+  }
+  free(list);
+  return rc;
+}
+
+/* The checks between sweep's options; *modes: how many of --status, --resume, --merge, --task.
+ * Returns 0 or 2 after one line. */
+static int sweep_check(const sweep_args *a, int *modes) {
+  *modes = !!a->status_dir + !!a->resume_dir + !!a->merge_dir + !!a->task_dir;
+  if (*modes > 1) {
+    fprintf(stderr, "haff sweep: give one of --status, --resume, --merge, --task\n");
+    return 2;
+  }
+  const char *given[3] = {a->so.time, a->so.partition, a->so.account};
+  for (int k = 0; k < 3; k++)
+    if (given[k] && (!*given[k] || strpbrk(given[k], "\n\t'\"\\ ;$`"))) {
+      fprintf(stderr, "haff sweep: '%s': not a Slurm option value (empty, blanks or quotes)\n",
+              given[k]);
+      return 2;
+    }
+  if (!a->slurm && (a->so.time || a->so.partition || a->so.account)) {
+    fprintf(stderr, "haff sweep: --time, --partition and --account go with --slurm\n");
+    return 2;
+  }
+  return 0;
+}
+
 int haff_sweep_main(int argc, char **argv) {
   sweep_args a = {.so = {NULL, NULL, NULL, 1}, .jobs = 1, .progress = 60};
   hd_optres res;
@@ -1053,22 +1112,8 @@ int haff_sweep_main(int argc, char **argv) {
   slurm_opts so = a.so;
   int jobs = a.jobs, slurm = a.slurm, dry = a.dry, quiet = a.quiet;
   double progress = a.progress;
-  int modes = !!status_dir + !!resume_dir + !!merge_dir + !!task_dir;
-  if (modes > 1) {
-    fprintf(stderr, "haff sweep: give one of --status, --resume, --merge, --task\n");
-    return 2;
-  }
-  const char *given[3] = {so.time, so.partition, so.account};
-  for (int k = 0; k < 3; k++)
-    if (given[k] && (!*given[k] || strpbrk(given[k], "\n\t'\"\\ ;$`"))) {
-      fprintf(stderr, "haff sweep: '%s': not a Slurm option value (empty, blanks or quotes)\n",
-              given[k]);
-      return 2;
-    }
-  if (!slurm && (so.time || so.partition || so.account)) {
-    fprintf(stderr, "haff sweep: --time, --partition and --account go with --slurm\n");
-    return 2;
-  }
+  int modes;
+  if ((rc = sweep_check(&a, &modes))) return rc;
   study st;
   memset(&st, 0, sizeof st);
   if (modes) {
@@ -1118,37 +1163,7 @@ int haff_sweep_main(int argc, char **argv) {
     rc = study_create(&st, dir);
     if (!rc) resume_dir = dir; /* then as --resume: what is not done yet */
   }
-  if (!rc && resume_dir) {
-    int *list = malloc((size_t)st.n * sizeof *list);
-    int m = list ? unfinished(&st, list, 0) : 0;
-    char out_db[PATH_MAX + 32];
-    snprintf(out_db, sizeof out_db, "%s/study.db", st.dir);
-    if (!list) {
-      rc = 1;
-    } else if (m == 0 && access(out_db, F_OK) == 0) {
-      if (!quiet)
-        fprintf(stderr, "haff sweep: %s: every point is done and merged: nothing to do\n", st.dir);
-    } else if (slurm) {
-      if (m == 0) { /* done, not merged: a merge job alone would do; merge here */
-        rc = study_merge(&st, quiet);
-      } else {
-        rc = slurm_submit(&st, list, m, &so, progress, quiet);
-      }
-    } else {
-      if (!quiet && m)
-        fprintf(stderr, "haff sweep: %s: %d of %d points to run, %d at a time\n", st.dir, m, st.n,
-                jobs);
-      rc = run_points(&st, list, m, jobs, progress, quiet);
-      if (!rc)
-        rc = study_merge(&st, quiet);
-      else
-        fprintf(stderr,
-                "haff sweep: not every point is done: haff sweep --status %s, then "
-                "--resume %s\n",
-                st.dir, st.dir);
-    }
-    free(list);
-  }
+  if (!rc && resume_dir) rc = sweep_unfinished(&st, slurm, &so, jobs, progress, quiet);
   study_free(&st);
   return rc;
 }

@@ -173,18 +173,20 @@ int hd_opt_index(const hd_optspec *spec, const char *name) {
   return -1;
 }
 
-int hd_opt_parse(const hd_optspec *spec, int argc, char **argv, void *dest, hd_optres *res) {
-  struct option lo[MAX_OPTS + 2];
-  char shorts[3 * MAX_OPTS + 4] = ":h"; /* ':' first: a missing value is told from unknown */
-  size_t ns = 2;
+/* getopt_long's tables from spec: lo (the long options, val VAL0 + index, and help) and
+ * shorts (":h" and the letters).  Returns the number of options, or -1 after one line when the
+ * table has more than MAX_OPTS. */
+static int getopt_tables(const hd_optspec *spec, struct option *lo, char *shorts) {
+  size_t ns = 0;
   int n = 0, nl = 0;
-  memset(res, 0, sizeof *res);
+  shorts[ns++] = ':'; /* first: a missing value is told from an unknown option */
+  shorts[ns++] = 'h';
   for (; spec->opts[n].name; n++) {
     const hd_optdef *d = &spec->opts[n];
     int has_arg = d->kind == HD_ARG_FLAG ? no_argument : required_argument;
     if (n == MAX_OPTS) {
       fprintf(stderr, "haff %s: more than %d options in its table\n", spec->cmd, MAX_OPTS);
-      return 2;
+      return -1;
     }
     if (!(d->flags & HD_OPTF_SHORT)) lo[nl++] = (struct option){d->name, has_arg, NULL, VAL0 + n};
     if (d->letter) {
@@ -195,6 +197,15 @@ int hd_opt_parse(const hd_optspec *spec, int argc, char **argv, void *dest, hd_o
   shorts[ns] = '\0';
   lo[nl++] = (struct option){"help", no_argument, NULL, 'h'};
   lo[nl] = (struct option){NULL, 0, NULL, 0};
+  return n;
+}
+
+int hd_opt_parse(const hd_optspec *spec, int argc, char **argv, void *dest, hd_optres *res) {
+  struct option lo[MAX_OPTS + 2];
+  char shorts[3 * MAX_OPTS + 4];
+  memset(res, 0, sizeof *res);
+  int n = getopt_tables(spec, lo, shorts);
+  if (n < 0) return 2;
   optind = 0; /* full re-initialisation: a subcommand may run more than once per process */
   opterr = 0; /* our one line, not getopt's as well */
   int c;

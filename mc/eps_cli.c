@@ -243,6 +243,48 @@ static int tabulate(hd_eps_sampler *s, const char *dbpath, double bmin, double b
   return 0;
 }
 
+/* Draws n samples of eps with s at (beta, beta2), writes them to dump (a file, "-" for stdout,
+ * or NULL), and prints the summary row.  Returns the exit code. */
+static int sample(hd_eps_sampler *s, double gamma, double beta, double beta2, long n,
+                  const char *dump, gsl_rng *rng) {
+  double *x = malloc(sizeof(double) * (size_t)n);
+  if (!x) {
+    fprintf(stderr, "haff mc eps: out of memory\n");
+    return 1;
+  }
+  int rc = 0;
+  double t0 = seconds_now();
+  for (long i = 0; i < n; i++) x[i] = hd_eps_sample2(s, beta, beta2, rng);
+  double sec = seconds_now() - t0;
+  /* --dump -: the samples are the stream on stdout, and the summary goes to stderr */
+  int dump_stdout = dump && !strcmp(dump, "-");
+  FILE *summary = dump_stdout ? stderr : stdout;
+  if (dump) {
+    FILE *f = dump_stdout ? stdout : fopen(dump, "w");
+    if (!f) {
+      fprintf(stderr, "haff mc eps: cannot write %s\n", dump);
+      rc = 1;
+    } else {
+      for (long i = 0; i < n; i++) fprintf(f, "%.10g\n", x[i]);
+      if (dump_stdout ? fflush(f) != 0 || ferror(f) : fclose(f) != 0) {
+        fprintf(stderr, "haff mc eps: error writing %s\n", dump);
+        rc = 1;
+      }
+    }
+  }
+  double mean, se, sd;
+  moments(x, n, &mean, &se, &sd);
+  fprintf(summary, "gamma\tbeta\teps_mean\teps_stderr\teps_sd\tsamples\tseconds\n");
+  fprintf(summary, "%g\t%g\t%.6f\t%.6f\t%.6f\t%ld\t%.3f\n", gamma, beta, mean, se, sd, n, sec);
+  hd_eps_stats st;
+  hd_eps_sampler_stats(s, &st);
+  if (st.truncated || st.clamped)
+    fprintf(stderr, "haff mc eps: %ld collisions cut at max_tau, %ld Richardson values clamped\n",
+            st.truncated, st.clamped);
+  free(x);
+  return rc;
+}
+
 /* The checks between options: --gamma required, the options the mode does not read refused
  * (--tabulate --beta 5 ran with no word of the beta).  Returns 0 or 2 after one line. */
 static int eps_check(const hd_optres *res, const eopts *e) {
@@ -314,43 +356,7 @@ int hd_mc_eps_main(int argc, char **argv) {
     gsl_rng_free(rng);
     return rc;
   }
-  double *x = malloc(sizeof(double) * (size_t)n);
-  if (!x) {
-    fprintf(stderr, "haff mc eps: out of memory\n");
-    hd_eps_sampler_free(s);
-    gsl_rng_free(rng);
-    return 1;
-  }
-  double t0 = seconds_now();
-  for (long i = 0; i < n; i++) x[i] = hd_eps_sample2(s, beta, beta2, rng);
-  double sec = seconds_now() - t0;
-  rc = 0;
-  /* --dump -: the samples are the stream on stdout, and the summary goes to stderr */
-  int dump_stdout = dump && !strcmp(dump, "-");
-  FILE *summary = dump_stdout ? stderr : stdout;
-  if (dump) {
-    FILE *f = dump_stdout ? stdout : fopen(dump, "w");
-    if (!f) {
-      fprintf(stderr, "haff mc eps: cannot write %s\n", dump);
-      rc = 1;
-    } else {
-      for (long i = 0; i < n; i++) fprintf(f, "%.10g\n", x[i]);
-      if (dump_stdout ? fflush(f) != 0 || ferror(f) : fclose(f) != 0) {
-        fprintf(stderr, "haff mc eps: error writing %s\n", dump);
-        rc = 1;
-      }
-    }
-  }
-  double mean, se, sd;
-  moments(x, n, &mean, &se, &sd);
-  fprintf(summary, "gamma\tbeta\teps_mean\teps_stderr\teps_sd\tsamples\tseconds\n");
-  fprintf(summary, "%g\t%g\t%.6f\t%.6f\t%.6f\t%ld\t%.3f\n", gamma, beta, mean, se, sd, n, sec);
-  hd_eps_stats st;
-  hd_eps_sampler_stats(s, &st);
-  if (st.truncated || st.clamped)
-    fprintf(stderr, "haff mc eps: %ld collisions cut at max_tau, %ld Richardson values clamped\n",
-            st.truncated, st.clamped);
-  free(x);
+  rc = sample(s, gamma, beta, beta2, n, dump, rng);
   hd_eps_sampler_free(s);
   gsl_rng_free(rng);
   return rc;
