@@ -8,12 +8,8 @@
 #include "haff.h"
 
 const hd_optspec haff_angles_spec = {
-    .cmd = "angles",
-    .opts = hd_cli_opts,
-    .allowed = HD_OPT_RUN | HD_OPT_BLOCK | HD_OPT_BINS,
-    .npos_min = 1,
-    .npos_max = 1,
-    .pos = "one database argument",
+    HD_OPT_SPEC("angles", hd_cli_opts, HD_OPT_RUN | HD_OPT_BLOCK | HD_OPT_BINS, 1, 1,
+                "one database argument"),
     .head =
         "usage: haff angles DB --run ID [--block N] [--bins B] [--fmean] [-o FILE]\n"
         "Fig. 5: histogram of the contact angles theta (both bodies of every dimer-dimer\n"

@@ -67,12 +67,8 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
 }
 
 const hd_optspec haff_energy_spec = {
-    .cmd = "energy",
-    .opts = hd_cli_opts,
-    .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT,
-    .npos_min = 1,
-    .npos_max = 1,
-    .pos = "one database argument",
+    HD_OPT_SPEC("energy", hd_cli_opts, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT, 1, 1,
+                "one database argument"),
     .head =
         "usage: haff energy DB [--run ID | --all] [fit options] [-o FILE]\n"
         "Energy per body and collisions per particle against time, for Figs. 2 and 3: one block\n"

@@ -58,9 +58,7 @@ static int parse_list(const char *cmd, const hd_optdef *d, const char *s, double
 }
 
 const hd_optspec haff_rods_collapse_spec = {
-    .cmd = "rods-collapse",
-    .opts = collapse_opts,
-    .npos_max = 0,
+    HD_OPT_SPEC("rods-collapse", collapse_opts, 0, 0, 0, NULL),
     .head = "usage: haff rods-collapse [--n LIST] [--eps LIST] [--seeds K] [--cpd C] [--gamma G]\n"
             "Scans the constant-eps ring for inelastic collapse: for every N in LIST "
             "[4,8,16,32,64,128]\n"

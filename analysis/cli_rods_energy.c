@@ -10,12 +10,7 @@
 #include "haff.h"
 
 const hd_optspec haff_rods_energy_spec = {
-    .cmd = "rods-energy",
-    .opts = hd_rcli_opts,
-    .allowed = HD_RCLI_RUN,
-    .npos_min = 1,
-    .npos_max = 1,
-    .pos = "one database",
+    HD_OPT_SPEC("rods-energy", hd_rcli_opts, HD_RCLI_RUN, 1, 1, "one database"),
     .head =
         "usage: haff rods-energy DB [--run ID]\n"
         "Figs. 1, 2, 9-11 data: per sample of a rods run (newest by default) the columns\n"

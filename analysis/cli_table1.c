@@ -7,12 +7,8 @@
 #include "haff.h"
 
 const hd_optspec haff_table1_spec = {
-    .cmd = "table1",
-    .opts = hd_cli_opts,
-    .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD,
-    .npos_min = 1,
-    .npos_max = 1,
-    .pos = "one database argument",
+    HD_OPT_SPEC("table1", hd_cli_opts, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD, 1, 1,
+                "one database argument"),
     .head =
         "usage: haff table1 DB [--md] [--keep-flagged] [fit options] [-o FILE]\n"
         "Table I: D_e and nu0_eff/nu0 (nu0: Enskog eq. 29 for disks of diameter d, the body mass "

@@ -7,12 +7,9 @@
 #include "haff.h"
 
 const hd_optspec haff_table2_spec = {
-    .cmd = "table2",
-    .opts = hd_cli_opts,
-    .allowed = HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD | HD_OPT_KCI,
-    .npos_min = 1,
-    .npos_max = 1,
-    .pos = "one database argument",
+    HD_OPT_SPEC("table2", hd_cli_opts,
+                HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD | HD_OPT_KCI, 1, 1,
+                "one database argument"),
     .head =
         "usage: haff table2 DB [--md] [--keep-flagged] [--k-ci ac|ols|runs] [--cpd-min-k X] [fit "
         "options] [-o FILE]\n"

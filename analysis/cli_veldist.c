@@ -97,12 +97,8 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
 }
 
 const hd_optspec haff_veldist_spec = {
-    .cmd = "veldist",
-    .opts = hd_cli_opts,
-    .allowed = HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT,
-    .npos_min = 1,
-    .npos_max = 1,
-    .pos = "one database argument",
+    HD_OPT_SPEC("veldist", hd_cli_opts, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT, 1, 1,
+                "one database argument"),
     .head =
         "usage: haff veldist DB --run ID [--stats] [--bins B] [--range X] [--label L] [-o FILE]\n"
         "       haff veldist DB --pool [--run ID] [--bins B] [--range X] [--label L] [-o FILE]\n"

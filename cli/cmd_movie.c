@@ -274,11 +274,7 @@ static const hd_optdef movie_opts[] = {
     {0}};
 
 const hd_optspec haff_movie_spec = {
-    .cmd = "movie",
-    .opts = movie_opts,
-    .npos_min = 1,
-    .npos_max = 1,
-    .pos = "one DB",
+    HD_OPT_SPEC("movie", movie_opts, 0, 1, 1, "one DB"),
     .head = "usage: haff movie DB [--run ID] -o FILE.mp4|FILE.gif [--color speed|density]\n"
             "                  [--fps N] [--size PX]\n"
             "Draws the frames of a run ([log] frames_every or frames_every_time) as a movie: each\n"

@@ -79,12 +79,7 @@ static const hd_optdef run_opts[] = {
     {0}};
 
 const hd_optspec haff_run_spec = {
-    .cmd = "run",
-    .opts = run_opts,
-    .allowed = FOR_RUN,
-    .npos_min = 1,
-    .npos_max = 1,
-    .pos = "one scene file",
+    HD_OPT_SPEC("run", run_opts, FOR_RUN, 1, 1, "one scene file"),
     .head =
         "usage: haff run SCENE [-o DB] [--set SECTION.KEY=VALUE]... [--seed N] [--quiet]\n"
         "                [--progress SECONDS]\n"
@@ -239,12 +234,7 @@ int haff_run_main(int argc, char **argv) {
 }
 
 const hd_optspec haff_resume_spec = {
-    .cmd = "resume",
-    .opts = run_opts,
-    .allowed = FOR_RESUME,
-    .npos_min = 1,
-    .npos_max = 1,
-    .pos = "one database",
+    HD_OPT_SPEC("resume", run_opts, FOR_RESUME, 1, 1, "one database"),
     .head =
         "usage: haff resume DB [--run ID | --all] [--quiet] [--progress SECONDS]\n"
         "  Continues an interrupted, killed or failed (disk full) run from its last checkpoint;\n"

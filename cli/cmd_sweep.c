@@ -1036,11 +1036,7 @@ static const hd_optdef sweep_opts[] = {
     HD_OPT_FLAG("quiet", 'q', sweep_args, quiet, "no progress, no closing lines"),
     {0}};
 
-const hd_optspec haff_sweep_spec = {.cmd = "sweep",
-                                    .opts = sweep_opts,
-                                    .npos_min = 0,
-                                    .npos_max = 1,
-                                    .pos = "one sweep file",
+const hd_optspec haff_sweep_spec = {HD_OPT_SPEC("sweep", sweep_opts, 0, 0, 1, "one sweep file"),
                                     .head = sweep_usage};
 
 /* Runs the points of st that are not done (locally, jobs at a time, or as a Slurm array with

@@ -340,11 +340,7 @@ static const hd_optdef export_opts[] = {
     {0}};
 
 const hd_optspec haff_export_spec = {
-    .cmd = "export",
-    .opts = export_opts,
-    .npos_min = 1,
-    .npos_max = 1,
-    .pos = "one DB",
+    HD_OPT_SPEC("export", export_opts, 0, 1, 1, "one DB"),
     .head = "usage: haff export xyz DB [--run ID]\n"
             "       [--label initial|final|checkpoint|velocities|frames|all] [-o FILE]\n"
             "Writes the stored states and frames of a run as extended XYZ (OVITO, ASE): one frame\n"

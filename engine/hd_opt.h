@@ -105,6 +105,10 @@ int hd_opt_index(const hd_optspec *spec, const char *name);
 int hd_opt_refuse(const hd_optspec *spec, const hd_optres *res, const char *opt, const char *others,
                   const char *why);
 
+/* The first fields of an hd_optspec, in one line: cmd, opts, allowed, npos_min, npos_max, pos. */
+#define HD_OPT_SPEC(CMD, OPTS, ALLOWED, NMIN, NMAX, POS)                                           \
+  .cmd = CMD, .opts = OPTS, .allowed = ALLOWED, .npos_min = NMIN, .npos_max = NMAX, .pos = POS
+
 /* Table entries, for readability: T the struct of dest, F its field. */
 #define HD_OPT_FLAG(N, L, T, F, H)                                                                 \
   { .name = N, .letter = L, .kind = HD_ARG_FLAG, .off = offsetof(T, F), .help = H }

@@ -56,9 +56,7 @@ static const hd_optdef eps_opts[] = {
 #undef NUM
 
 const hd_optspec hd_mc_eps_spec = {
-    .cmd = "mc eps",
-    .opts = eps_opts,
-    .npos_max = 0,
+    HD_OPT_SPEC("mc eps", eps_opts, 0, 0, 0, NULL),
     .head = "usage: haff mc eps --gamma G [--beta B] [--beta2 B2] [--samples N] [--seed K]\n"
             "                   [--step H] [--adapt A] [--richardson] [--dump FILE]\n"
             "       haff mc eps --gamma G [--beta B] --convergence [--samples N] [--step H]\n"

@@ -51,9 +51,7 @@ static const hd_optdef fmean_opts[] = {
     {0}};
 
 const hd_optspec hd_mc_fmean_spec = {
-    .cmd = "mc fmean",
-    .opts = fmean_opts,
-    .npos_max = 0,
+    HD_OPT_SPEC("mc fmean", fmean_opts, 0, 0, 0, NULL),
     .head = "usage: haff mc fmean --a A [--d D] [--model heuristic|exclusion|collision|all]\n"
             "                     [--samples N | --seconds S] [--seed K] [--dim DIM]\n"
             "       haff mc fmean --scan A0:A1:STEP [same options but --a]\n"
