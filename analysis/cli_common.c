@@ -293,17 +293,36 @@ int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit 
   return 0;
 }
 
-int hd_cli_groups(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits, size_t *n,
-                  hd_group **g, size_t *ng) {
-  int rc = hd_cli_fits(a, cmd, db, fits, n);
+int hd_cli_groups(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a, hd_cli_set *s) {
+  memset(s, 0, sizeof *s);
+  int rc = hd_cli_parse(spec, argc, argv, a);
+  if (rc) return rc;
+  const char *cmd = spec->cmd;
+  rc = hd_cli_fits(a, cmd, &s->db, &s->fits, &s->n);
   if (rc) return rc;
   hd_error err;
-  if (hd_group_runs(*fits, *n, g, ng, &err)) {
-    free(*fits), *fits = NULL;
-    sqlite3_close(*db), *db = NULL;
+  if (hd_group_runs(s->fits, s->n, &s->g, &s->ng, &err)) {
+    free(s->fits), s->fits = NULL;
+    sqlite3_close(s->db), s->db = NULL;
     return hd_cli_fail(cmd, &err);
   }
-  hd_cli_groups_warn(cmd, *g, *ng);
+  hd_cli_groups_warn(cmd, s->g, s->ng);
+  return 0;
+}
+
+int hd_cli_table_start(const hd_optspec *spec, int argc, char **argv, int with_disks,
+                       const char *none, hd_cli_args *a, hd_cli_set *s, FILE **out) {
+  int rc = hd_cli_groups(spec, argc, argv, a, s);
+  if (rc) return rc;
+  if (hd_cli_table_groups(spec->cmd, s->g, s->ng, with_disks) == 0) { /* bad input */
+    fprintf(stderr, "haff %s: %s\n", spec->cmd, none);
+    hd_cli_groups_free(s);
+    return 2;
+  }
+  if (!(*out = hd_cli_out(a))) {
+    hd_cli_groups_free(s);
+    return 1;
+  }
   return 0;
 }
 
@@ -320,8 +339,9 @@ void hd_cli_groups_warn(const char *cmd, const hd_group *g, size_t ng) {
       }
 }
 
-void hd_cli_groups_free(sqlite3 *db, hd_run_fit *fits, hd_group *g, size_t ng) {
-  free(fits), hd_groups_free(g, ng), sqlite3_close(db);
+void hd_cli_groups_free(hd_cli_set *s) {
+  free(s->fits), hd_groups_free(s->g, s->ng), sqlite3_close(s->db);
+  memset(s, 0, sizeof *s);
 }
 
 int hd_cli_one_run(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a, sqlite3 **db,

@@ -67,17 +67,32 @@ int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit 
 /* "stored", "computed" or "whole" for hd_run_fit.window (HD_WINDOW_*). */
 const char *hd_cli_window_name(int window);
 
-/* hd_cli_fits, then the fits grouped into ensembles (hd_group_runs; warns on stderr when two
- * share an (alpha, a/d) label).  Returns as
- * hd_cli_fits (nothing left open on failure); on 0 free with hd_cli_groups_free. */
-int hd_cli_groups(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits, size_t *n,
-                  hd_group **g, size_t *ng);
+/* The runs an analysis of groups works on (hd_cli_groups). */
+typedef struct hd_cli_set {
+  sqlite3 *db;      /* the database, open */
+  hd_run_fit *fits; /* the fitted runs (hd_cli_fits), n of them */
+  size_t n;
+  hd_group *g; /* the fits grouped into ensembles (hd_group_runs), ng of them */
+  size_t ng;
+} hd_cli_set;
+
+/* hd_cli_parse by spec, hd_cli_fits, then the fits grouped into ensembles (hd_group_runs; warns
+ * on stderr when two share an (alpha, a/d) label) into *s.  Returns as hd_cli_parse (-1 after
+ * --help) or hd_cli_fits (nothing left open on failure); on 0 free with hd_cli_groups_free. */
+int hd_cli_groups(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a, hd_cli_set *s);
+
+/* The start of table1 and table2: hd_cli_groups, then the groups of the papers' case
+ * (hd_cli_table_groups: none is bad input, "haff CMD: none" on stderr, exit 2), then the
+ * output opened (hd_cli_out).  Returns as hd_cli_groups; on 0 *out is open and s holds the
+ * groups (the caller frees both). */
+int hd_cli_table_start(const hd_optspec *spec, int argc, char **argv, int with_disks,
+                       const char *none, hd_cli_args *a, hd_cli_set *s, FILE **out);
 
 /* Prints a warning on stderr for each group whose (alpha, a/d) label an earlier group has. */
 void hd_cli_groups_warn(const char *cmd, const hd_group *g, size_t ng);
 
 /* Frees what hd_cli_groups returned and closes the database. */
-void hd_cli_groups_free(sqlite3 *db, hd_run_fit *fits, hd_group *g, size_t ng);
+void hd_cli_groups_free(hd_cli_set *s);
 
 /* The start of a subcommand on one run: hd_cli_parse, then --run ID is required, the database
  * is opened and the run's info read into *info.  Returns as hd_cli_parse (-1 after --help), or

@@ -83,19 +83,16 @@ const hd_optspec haff_energy_spec = {
 
 int haff_energy_main(int argc, char **argv) {
   hd_cli_args a;
-  int rc = hd_cli_parse(&haff_energy_spec, argc, argv, &a);
+  hd_cli_set s;
+  int rc = hd_cli_groups(&haff_energy_spec, argc, argv, &a, &s);
   if (rc) return rc < 0 ? 0 : rc;
-  sqlite3 *db;
-  hd_run_fit *fits;
-  hd_group *g;
-  size_t n, ng;
-  if ((rc = hd_cli_groups(&a, argv[0], &db, &fits, &n, &g, &ng))) return rc;
   hd_error err;
   FILE *out = hd_cli_out(&a);
   rc = out ? 0 : 1;
-  for (size_t j = 0; out && j < ng && !rc; j++)
-    if (write_block(out, db, fits, g[j].idx, g[j].n, j == 0, &err)) rc = hd_cli_fail(argv[0], &err);
-  hd_cli_groups_free(db, fits, g, ng);
+  for (size_t j = 0; out && j < s.ng && !rc; j++)
+    if (write_block(out, s.db, s.fits, s.g[j].idx, s.g[j].n, j == 0, &err))
+      rc = hd_cli_fail(argv[0], &err);
+  hd_cli_groups_free(&s);
   if (out) {
     int c = hd_cli_close(out, &a);
     if (!rc) rc = c;

@@ -22,44 +22,32 @@ const hd_optspec haff_table1_spec = {
 
 int haff_table1_main(int argc, char **argv) {
   hd_cli_args a;
-  int rc = hd_cli_parse(&haff_table1_spec, argc, argv, &a);
+  hd_cli_set s;
+  FILE *out;
+  int rc = hd_cli_table_start(&haff_table1_spec, argc, argv, 1,
+                              "no run of one species in a periodic box to tabulate", &a, &s, &out);
   if (rc) return rc < 0 ? 0 : rc;
-  sqlite3 *db;
-  hd_run_fit *fits;
-  hd_group *g;
-  size_t n, ng;
-  if ((rc = hd_cli_groups(&a, argv[0], &db, &fits, &n, &g, &ng))) return rc;
-  if (hd_cli_table_groups(argv[0], g, ng, 1) == 0) { /* nothing to tabulate is bad input */
-    fprintf(stderr, "haff %s: no run of one species in a periodic box to tabulate\n", argv[0]);
-    hd_cli_groups_free(db, fits, g, ng);
-    return 2;
-  }
-  FILE *out = hd_cli_out(&a);
-  if (!out) {
-    hd_cli_groups_free(db, fits, g, ng);
-    return 1;
-  }
   if (a.md)
     fprintf(out, "| α | a/d | D_e | ±stat | ±sys | ν0_eff/ν0 | ±Δ | runs | cpd window | flag |\n"
                  "|---|---|---|---|---|---|---|---|---|---|\n");
   else
     fprintf(out, "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\tD_e_sys\tcpd_start\t"
                  "cpd_end\tflag\n");
-  for (size_t j = 0; j < ng; j++) {
-    if (!hd_cli_in_table(&g[j], 1)) continue;
+  for (size_t j = 0; j < s.ng; j++) {
+    if (!hd_cli_in_table(&s.g[j], 1)) continue;
     hd_group_fit q;
-    hd_group_fit_do(fits, &g[j], &a.fit, &q);
-    if (hd_cli_flagged_out(argv[0], &g[j], &q, a.keep_flagged)) continue;
-    hd_cli_one_run_note(argv[0], &g[j], q.m);
+    hd_group_fit_do(s.fits, &s.g[j], &a.fit, &q);
+    if (hd_cli_flagged_out(argv[0], &s.g[j], &q, a.keep_flagged)) continue;
+    hd_cli_one_run_note(argv[0], &s.g[j], q.m);
     if (a.md)
       fprintf(out, "| %g | %g | %.4f | %.2g | %.2g | %.4f | %.2g | %zu | %.0f–%.0f | %s |\n",
-              g[j].alpha, g[j].a_over_d, q.D_e, q.D_e_err, q.D_e_sys, q.ratio, q.ratio_err, q.m,
+              s.g[j].alpha, s.g[j].a_over_d, q.D_e, q.D_e_err, q.D_e_sys, q.ratio, q.ratio_err, q.m,
               q.cpd_start, q.cpd_end, q.flagged ? "inhomogeneous" : "");
     else
-      fprintf(out, "%g\t%g\t%.6g\t%.3g\t%.6g\t%.3g\t%zu\t%.3g\t%.4g\t%.4g\t%s\n", g[j].alpha,
-              g[j].a_over_d, q.D_e, q.D_e_err, q.ratio, q.ratio_err, q.m, q.D_e_sys, q.cpd_start,
+      fprintf(out, "%g\t%g\t%.6g\t%.3g\t%.6g\t%.3g\t%zu\t%.3g\t%.4g\t%.4g\t%s\n", s.g[j].alpha,
+              s.g[j].a_over_d, q.D_e, q.D_e_err, q.ratio, q.ratio_err, q.m, q.D_e_sys, q.cpd_start,
               q.cpd_end, q.flagged ? "inhomogeneous" : "");
   }
-  hd_cli_groups_free(db, fits, g, ng);
+  hd_cli_groups_free(&s);
   return hd_cli_close(out, &a);
 }

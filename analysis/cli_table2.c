@@ -21,27 +21,13 @@ const hd_optspec haff_table2_spec = {
 
 int haff_table2_main(int argc, char **argv) {
   hd_cli_args a;
-  int rc = hd_cli_parse(&haff_table2_spec, argc, argv, &a);
+  hd_cli_set s;
+  FILE *out;
+  int rc = hd_cli_table_start(
+      &haff_table2_spec, argc, argv, 0,
+      "no dimer run to fit (K = E_tr/E_rot needs rotation; dimers alone in a periodic box)", &a, &s,
+      &out);
   if (rc) return rc < 0 ? 0 : rc;
-  sqlite3 *db;
-  hd_run_fit *fits;
-  hd_group *g;
-  size_t n, ng;
-  if ((rc = hd_cli_groups(&a, argv[0], &db, &fits, &n, &g, &ng))) return rc;
-  if (hd_cli_table_groups(argv[0], g, ng, 0) ==
-      0) { /* K = E_tr/E_rot: a file without dimers is bad input */
-    fprintf(stderr,
-            "haff %s: no dimer run to fit (K = E_tr/E_rot needs rotation; dimers alone in a "
-            "periodic box)\n",
-            argv[0]);
-    hd_cli_groups_free(db, fits, g, ng);
-    return 2;
-  }
-  FILE *out = hd_cli_out(&a);
-  if (!out) {
-    hd_cli_groups_free(db, fits, g, ng);
-    return 1;
-  }
   if (a.md)
     fprintf(out, "| α | a/d | a0 | 99%% CI a0 | ±sys | a1 | 99%% CI a1 | ±sys |\n"
                  "|---|---|---|---|---|---|---|---|\n");
@@ -49,29 +35,30 @@ int haff_table2_main(int argc, char **argv) {
     fprintf(out, "alpha\ta_over_d\ta0\ta0_lo\ta0_hi\ta1\ta1_lo\ta1_hi\ta0_sys\ta1_sys\n");
   int bad = 0;
   hd_error err;
-  for (size_t j = 0; j < ng; j++) {
-    if (!hd_cli_in_table(&g[j], 0)) continue;
+  for (size_t j = 0; j < s.ng; j++) {
+    if (!hd_cli_in_table(&s.g[j], 0)) continue;
     hd_group_fit q;
-    hd_group_fit_do(fits, &g[j], &a.fit, &q);
-    if (hd_cli_flagged_out(argv[0], &g[j], &q, a.keep_flagged)) continue;
+    hd_group_fit_do(s.fits, &s.g[j], &a.fit, &q);
+    if (hd_cli_flagged_out(argv[0], &s.g[j], &q, a.keep_flagged)) continue;
     double r[6];
-    if (hd_combine_k(fits, g[j].idx, g[j].n, a.kmode, a.fit.level, r, &err)) {
-      fprintf(stderr, "haff %s: alpha %g a/d %g: %s\n", argv[0], g[j].alpha, g[j].a_over_d,
+    if (hd_combine_k(s.fits, s.g[j].idx, s.g[j].n, a.kmode, a.fit.level, r, &err)) {
+      fprintf(stderr, "haff %s: alpha %g a/d %g: %s\n", argv[0], s.g[j].alpha, s.g[j].a_over_d,
               err.msg);
       bad = 2;
       continue;
     }
     hd_k_sys ks;
     double a01[2] = {r[0], r[3]};
-    hd_k_sys_do(fits, g[j].idx, g[j].n, a01, q.flow_excess, &ks);
+    hd_k_sys_do(s.fits, s.g[j].idx, s.g[j].n, a01, q.flow_excess, &ks);
     if (a.md)
       fprintf(out, "| %g | %g | %.4f | [%.4f, %.4f] | %.2g | %.3e | [%.3e, %.3e] | %.2g |\n",
-              g[j].alpha, g[j].a_over_d, r[0], r[1], r[2], ks.sys[0], r[3], r[4], r[5], ks.sys[1]);
+              s.g[j].alpha, s.g[j].a_over_d, r[0], r[1], r[2], ks.sys[0], r[3], r[4], r[5],
+              ks.sys[1]);
     else
-      fprintf(out, "%g\t%g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.3g\t%.3g\n", g[j].alpha,
-              g[j].a_over_d, r[0], r[1], r[2], r[3], r[4], r[5], ks.sys[0], ks.sys[1]);
+      fprintf(out, "%g\t%g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.3g\t%.3g\n", s.g[j].alpha,
+              s.g[j].a_over_d, r[0], r[1], r[2], r[3], r[4], r[5], ks.sys[0], ks.sys[1]);
   }
-  hd_cli_groups_free(db, fits, g, ng);
+  hd_cli_groups_free(&s);
   rc = hd_cli_close(out, &a);
   return rc ? rc : bad;
 }
