@@ -82,8 +82,8 @@ typedef struct hd_optres {
  * given twice: the last one counts (res->given says how often).  -h and --help print the help
  * (hd_opt_help) on stdout.  Returns 0 to go on, -1 after printing the help (the caller returns
  * 0), or 2 after one line on stderr naming the option, the value and why (bad number, out of
- * range, unknown option, missing value, an option that does not apply to this subcommand, a
- * wrong count of positional arguments). */
+ * range, unknown option, missing value, an option that does not apply to this subcommand
+ * (said after its value is checked), a wrong count of positional arguments). */
 int hd_opt_parse(const hd_optspec *spec, int argc, char **argv, void *dest, hd_optres *res);
 
 /* The one number parser: reads s as the value of option d by its range and rules, into *x

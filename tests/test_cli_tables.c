@@ -78,6 +78,15 @@ static void tables_are_well_formed(void **state) {
           fail_msg("haff %s: -%c twice", w, o[i].letter);
       }
       if (o[i].letter == 'h') fail_msg("haff %s: -h is --help", w);
+      /* where the value goes: an int or a 64-bit field, an enum's words */
+      if (o[i].kind == HD_ARG_INT && o[i].size != sizeof(int) && o[i].size != sizeof(long long))
+        fail_msg("haff %s: --%s: size %zu", w, o[i].name, o[i].size);
+      if (o[i].kind == HD_ARG_INT && !(o[i].ilo <= o[i].ihi))
+        fail_msg("--%s: empty range", o[i].name);
+      if (o[i].kind == HD_ARG_DOUBLE && !(o[i].lo <= o[i].hi))
+        fail_msg("--%s: empty range", o[i].name);
+      if ((o[i].kind == HD_ARG_ENUM) != (o[i].choices != NULL))
+        fail_msg("haff %s: --%s: choices", w, o[i].name);
     }
   }
   assert_true(ncmd >= 22);
