@@ -52,7 +52,7 @@ LAYER_sim       := engine/sim
 LAYER_store     := db
 LAYER_run       := engine/run
 LAYER_programs  := analysis mc
-LAYER_tools     := cli
+LAYER_tools     := cli cli/analysis cli/mc
 SRC_DIRS := $(foreach l,$(LAYERS),$(LAYER_$(l)))
 LIB_DIRS := $(filter-out $(LAYER_tools),$(SRC_DIRS))
 ALL_INC  := $(addprefix -I,$(SRC_DIRS))
@@ -67,7 +67,7 @@ LIB_SRC := $(wildcard $(addsuffix /*.c,$(LIB_DIRS)))
 SRC_ROOTS := $(sort $(foreach d,$(SRC_DIRS),$(firstword $(subst /, ,$(d)))))
 STRAY_SRC := $(filter-out $(addsuffix /%,$(SRC_DIRS)),$(wildcard $(foreach r,$(SRC_ROOTS),$(r)/*.[ch] $(r)/*/*.[ch])))
 $(if $(STRAY_SRC),$(warning not in a layer folder (LAYERS), not built: $(STRAY_SRC)))
-CLI_SRC := $(wildcard cli/*.c)
+CLI_SRC := $(wildcard $(addsuffix /*.c,$(LAYER_tools)))
 TEST_SRC:= $(wildcard tests/test_*.c)
 LIB_OBJ := $(LIB_SRC:%.c=$(BUILD)/%.o) $(BUILD)/gen/schema_sql.o
 CLI_OBJ := $(CLI_SRC:%.c=$(BUILD)/%.o)
@@ -138,9 +138,13 @@ $(BUILD)/haff.1: bin/haff cli/haff-man.sh
 	@mkdir -p $(@D)
 	cli/haff-man.sh bin/haff > $@.tmp && mv $@.tmp $@
 
-$(BUILD)/tests/%: tests/%.c $(LIB) | $(DEPS_STAMP)
+# Every test links the library and the subcommands (all the CLI's objects but the one with
+# main()): tests call subcommands' mains (haff_fit_main, ...) and test_cli_tables checks the
+# table of subcommands (cli/haff_commands.c) and every option table.
+CLI_CMD_OBJ := $(filter-out $(BUILD)/cli/haff.o,$(CLI_OBJ))
+$(BUILD)/tests/%: tests/%.c $(CLI_CMD_OBJ) $(LIB) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) $(ALL_INC) -Itests -o $@ $< $(LIB) $(LDLIBS) $(TESTLIBS)
+	$(CC) $(CFLAGS) $(ALL_INC) -Itests -o $@ $< $(CLI_CMD_OBJ) $(LIB) $(LDLIBS) $(TESTLIBS)
 
 # --- tests ---------------------------------------------------------------------------------
 # Each test program is a cmocka group; tests/run-tests sums their results into one line

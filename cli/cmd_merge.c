@@ -1,58 +1,49 @@
 /* `haff merge OUT.db IN.db...`: db/hd_merge.h does the work. */
-#include <getopt.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "haff.h"
 #include "hd_merge.h"
+#include "hd_opt.h"
 
-int haff_merge_main(int argc, char **argv);
+/* The options of haff merge. */
+typedef struct merge_args {
+  int quiet; /* --quiet, -q */
+} merge_args;
 
-static const char merge_usage[] =
-    "usage: haff merge OUT.db IN.db... [--quiet]\n"
-    "  Appends every run of the IN databases to OUT (created if missing), with new run ids;\n"
-    "  their collisions, samples, states, checkpoints and provenance follow them, and the\n"
-    "  provenance table records each run's source file and id, host and Slurm job and task.\n"
-    "  Refused (exit 2, OUT untouched): a file given twice, a file that is not a haff database\n"
-    "  or fails PRAGMA integrity_check, OUT being written by a run, a run (same scene, seed and\n"
-    "  version) already in OUT.  Atomic: OUT is replaced only once the merge is whole.\n";
+static const hd_optdef merge_opts[] = {
+    HD_OPT_FLAG("quiet", 'q', merge_args, quiet, "no closing line"), {0}};
+
+const hd_optspec haff_merge_spec = {
+    HD_OPT_SPEC("merge", merge_opts, 0, 2, -1, "OUT.db and at least one IN.db"),
+    .head =
+        "usage: haff merge OUT.db IN.db... [--quiet]\n"
+        "  Appends every run of the IN databases to OUT (created if missing), with new run ids;\n"
+        "  their collisions, samples, states, checkpoints and provenance follow them, and the\n"
+        "  provenance table records each run's source file and id, host and Slurm job and task.\n"
+        "  Refused (exit 2, OUT untouched): a file given twice, a file that is not a haff "
+        "database\n"
+        "  or fails PRAGMA integrity_check, OUT being written by a run, a run (same scene, seed "
+        "and\n"
+        "  version) already in OUT.  Atomic: OUT is replaced only once the merge is whole.\n"};
 
 int haff_merge_main(int argc, char **argv) {
-  static const struct option opts[] = {
-      {"quiet", no_argument, 0, 'q'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
-  int quiet = 0, c;
-  optind = 1;
-  opterr = 0;
-  while ((c = getopt_long(argc, argv, "qh", opts, NULL)) != -1) {
-    switch (c) {
-    case 'q':
-      quiet = 1;
-      break;
-    case 'h':
-      fputs(merge_usage, stdout);
-      return 0;
-    default:
-      fprintf(stderr, "haff merge: unknown option '%s' (see haff merge --help)\n",
-              argv[optind - 1]);
-      return 2;
-    }
-  }
-  if (argc - optind < 2) {
-    fprintf(stderr, "haff merge: expected OUT.db and at least one IN.db (haff merge --help)\n");
-    return 2;
-  }
+  merge_args a = {0};
+  hd_optres res;
+  int rc = hd_opt_parse(&haff_merge_spec, argc, argv, &a, &res);
+  if (rc) return rc < 0 ? 0 : rc;
   hd_error err;
   hd_error_clear(&err);
   int64_t runs = 0;
-  int rc = hd_db_merge(argv[optind], (const char *const *)argv + optind + 1, argc - optind - 1,
-                       &runs, &err);
+  rc = hd_db_merge(res.pos[0], (const char *const *)res.pos + 1, res.npos - 1, &runs, &err);
   if (rc) {
     fprintf(stderr, "haff merge: %s\n", err.msg);
     return hd_exit_code(rc);
   }
-  if (!quiet)
-    fprintf(stderr, "haff merge: %lld runs from %d files into %s\n", (long long)runs,
-            argc - optind - 1, argv[optind]);
+  if (!a.quiet)
+    fprintf(stderr, "haff merge: %lld runs from %d files into %s\n", (long long)runs, res.npos - 1,
+            res.pos[0]);
   return 0;
 }

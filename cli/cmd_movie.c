@@ -11,7 +11,6 @@
  *            frame's mean count in such a disc, on [0, 3].
  * Positions are wrapped into the box (a disk over an edge is cut there, not drawn twice). */
 #include <errno.h>
-#include <getopt.h>
 #include <math.h>
 #include <sqlite3.h>
 #include <stdio.h>
@@ -24,24 +23,8 @@
 #include "hd_body.h"
 #include "hd_db.h"
 #include "hd_framedb.h"
+#include "hd_opt.h"
 #include "hd_scene.h"
-
-int haff_movie_main(int argc, char **argv);
-
-static void usage(FILE *out) {
-  fprintf(out,
-          "usage: haff movie DB [--run ID] -o FILE.mp4|FILE.gif [--color speed|density]\n"
-          "                  [--fps N] [--size PX]\n"
-          "Draws the frames of a run ([log] frames_every or frames_every_time) as a movie: each\n"
-          "disk as its disk, coloured by its body's speed over the frame's rms speed, or by the\n"
-          "local density (bodies within 5 diameters over the frame's mean), on [0, 3]; box,\n"
-          "time and cpd shown.  gnuplot draws, ffmpeg encodes (H.264 for .mp4, GIF for .gif).\n"
-          "  --run ID       the run [the newest run in DB]\n"
-          "  -o FILE        the movie; its extension chooses the format\n"
-          "  --color C      speed or density [speed]\n"
-          "  --fps N        frames per second [10]\n"
-          "  --size PX      width of the longer side in pixels, even [720]\n");
-}
 
 /* Runs argv (a program and its arguments) with stdout to /dev/null; its exit status, or -1. */
 static int run_prog(char *const argv[]) {
@@ -264,69 +247,37 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
   return code;
 }
 
+/* The options of haff movie, into the movie. */
+static const hd_optdef movie_opts[] = {
+    HD_OPT_INT("run", 0, movie, run, 1, INT64_MAX, 0, "ID", "the run [the newest run in DB]"),
+    HD_OPT_STR("output", 'o', movie, outpath, "FILE",
+               "the movie; its extension chooses the format (.mp4 or .gif)"),
+    HD_OPT_ENUM("color", 0, movie, density, "speed|density", "C", "speed or density [speed]"),
+    HD_OPT_INT("fps", 0, movie, fps, 1, 120, 0, "N", "frames per second [10]"),
+    HD_OPT_INT("size", 0, movie, size, 100, 4000, 0, "PX",
+               "width of the longer side in pixels, even [720]"),
+    {0}};
+
+const hd_optspec haff_movie_spec = {
+    HD_OPT_SPEC("movie", movie_opts, 0, 1, 1, "one DB"),
+    .head = "usage: haff movie DB [--run ID] -o FILE.mp4|FILE.gif [--color speed|density]\n"
+            "                  [--fps N] [--size PX]\n"
+            "Draws the frames of a run ([log] frames_every or frames_every_time) as a movie: each\n"
+            "disk as its disk, coloured by its body's speed over the frame's rms speed, or by the\n"
+            "local density (bodies within 5 diameters over the frame's mean), on [0, 3]; box,\n"
+            "time and cpd shown.  gnuplot draws, ffmpeg encodes (H.264 for .mp4, GIF for .gif).\n"};
+
 int haff_movie_main(int argc, char **argv) {
-  static const struct option opts[] = {{"run", required_argument, NULL, 'r'},
-                                       {"output", required_argument, NULL, 'o'},
-                                       {"color", required_argument, NULL, 'c'},
-                                       {"fps", required_argument, NULL, 'f'},
-                                       {"size", required_argument, NULL, 's'},
-                                       {"help", no_argument, NULL, 'h'},
-                                       {NULL, 0, NULL, 0}};
   movie m = {.fps = 10, .size = 720};
-  int c;
-  optind = 0;
-  opterr = 0;
-  while ((c = getopt_long(argc, argv, "o:h", opts, NULL)) != -1) {
-    char *end = NULL;
-    long v = optarg ? strtol(optarg, &end, 10) : 0;
-    int num_ok = optarg && *optarg && !*end;
-    switch (c) {
-    case 'r':
-      if (!num_ok || v <= 0) {
-        fprintf(stderr, "haff movie: --run %s: must be a positive run id\n", optarg);
-        return 2;
-      }
-      m.run = v;
-      break;
-    case 'o':
-      m.outpath = optarg;
-      break;
-    case 'c':
-      if (strcmp(optarg, "speed") && strcmp(optarg, "density")) {
-        fprintf(stderr, "haff movie: --color %s: must be speed or density\n", optarg);
-        return 2;
-      }
-      m.density = !strcmp(optarg, "density");
-      break;
-    case 'f':
-      if (!num_ok || v < 1 || v > 120) {
-        fprintf(stderr, "haff movie: --fps %s: must be a whole number in [1, 120]\n", optarg);
-        return 2;
-      }
-      m.fps = (int)v;
-      break;
-    case 's':
-      if (!num_ok || v < 100 || v > 4000 || v % 2) {
-        fprintf(stderr, "haff movie: --size %s: must be an even number of pixels in [100, 4000]\n",
-                optarg);
-        return 2;
-      }
-      m.size = (int)v;
-      break;
-    case 'h':
-      usage(stdout);
-      return 0;
-    default:
-      fprintf(stderr, "haff movie: bad option '%s' (haff movie --help)\n",
-              argv[optind - 1] ? argv[optind - 1] : "?");
-      return 2;
-    }
-  }
-  if (optind + 1 != argc) {
-    fprintf(stderr, "haff movie: give exactly one DB (haff movie --help)\n");
+  hd_optres res;
+  int rc = hd_opt_parse(&haff_movie_spec, argc, argv, &m, &res);
+  if (rc) return rc < 0 ? 0 : rc;
+  if (m.size % 2) {
+    fprintf(stderr, "haff movie: --size %d: must be an even number of pixels in [100, 4000]\n",
+            m.size);
     return 2;
   }
-  m.dbpath = argv[optind];
+  m.dbpath = res.pos[0];
   size_t len = m.outpath ? strlen(m.outpath) : 0;
   if (len > 4 && !strcmp(m.outpath + len - 4, ".gif"))
     m.gif = 1;

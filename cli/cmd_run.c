@@ -1,31 +1,96 @@
 /* `haff run` and `haff resume`. */
 #include <ctype.h>
 #include <errno.h>
-#include <getopt.h>
 #include <limits.h>
+#include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "haff.h"
 #include "hd_db.h"
+#include "hd_opt.h"
 #include "hd_run.h"
 #include "hd_scene.h"
 
-int haff_run_main(int argc, char **argv);
-int haff_resume_main(int argc, char **argv);
-
 #define MAX_SET 256
 
-static const char run_usage[] =
-    "usage: haff run SCENE [-o DB] [--set SECTION.KEY=VALUE]... [--seed N] [--quiet]\n"
-    "                [--progress SECONDS]\n"
-    "  Runs the scene file SCENE and appends one run to DB (default: SCENE's name with .db,\n"
-    "  in the current folder).  --set overrides a scene key; --seed overrides [system] seed.\n"
-    "  Exit status: 0 done, 1 failed run (collapse, interrupted, database), 2 bad usage/input.\n"
-    "  SIGINT/SIGTERM: the run is checkpointed, marked 'interrupted'; continue with haff resume.\n"
-    "  Progress: redrawn on a terminal; when stderr is not one (a batch log), one line every\n"
-    "  --progress SECONDS [60] (0: none).  runs.events and runs.cpd follow the run.\n";
+/* The options of haff run and haff resume (one table: .set says which reads it). */
+typedef struct run_args {
+  const char *db;             /* haff run -o DB, NULL: from the scene's name */
+  const char *seed;           /* --seed N (read below: any unsigned 64-bit number), or NULL */
+  const char *set_v[MAX_SET]; /* the --set overrides */
+  hd_optlist sets;            /* over set_v */
+  long long run;              /* haff resume --run ID, 0: the newest resumable */
+  int all, quiet;             /* --all (resume), --quiet */
+  double progress;            /* --progress SECONDS, NAN when not given */
+} run_args;
+
+enum { FOR_RUN = 1, FOR_RESUME = 2 };
+static const hd_optdef run_opts[] = {
+    {.name = "o",
+     .letter = 'o',
+     .kind = HD_ARG_PATH,
+     .off = offsetof(run_args, db),
+     .flags = HD_OPTF_SHORT | HD_OPTF_NOT_STDOUT,
+     .meta = "DB",
+     .set = FOR_RUN,
+     .help = "the database [SCENE's name with .db, in the current folder]"},
+    {.name = "set",
+     .kind = HD_ARG_LIST,
+     .off = offsetof(run_args, sets),
+     .meta = "SECTION.KEY=VALUE",
+     .set = FOR_RUN,
+     .help = "overrides a scene key (repeatable)"},
+    {.name = "seed",
+     .kind = HD_ARG_STRING,
+     .off = offsetof(run_args, seed),
+     .flags = HD_OPTF_ONCE,
+     .meta = "N",
+     .set = FOR_RUN,
+     .help = "overrides [system] seed"},
+    {.name = "run",
+     .kind = HD_ARG_INT,
+     .off = offsetof(run_args, run),
+     .size = sizeof(long long),
+     .ilo = 1,
+     .ihi = LLONG_MAX,
+     .meta = "ID",
+     .set = FOR_RESUME,
+     .help = "the run [the newest resumable run]"},
+    {.name = "all",
+     .kind = HD_ARG_FLAG,
+     .off = offsetof(run_args, all),
+     .set = FOR_RESUME,
+     .help = "every resumable run, oldest first"},
+    {.name = "quiet",
+     .letter = 'q',
+     .kind = HD_ARG_FLAG,
+     .off = offsetof(run_args, quiet),
+     .help = "no progress, no closing line"},
+    {.name = "progress",
+     .kind = HD_ARG_DOUBLE,
+     .off = offsetof(run_args, progress),
+     .lo = 0,
+     .hi = 1e9,
+     .meta = "SECONDS",
+     .help = "a progress line every SECONDS when stderr is not a terminal [60] (0: none)"},
+    {0}};
+
+const hd_optspec haff_run_spec = {
+    HD_OPT_SPEC("run", run_opts, FOR_RUN, 1, 1, "one scene file"),
+    .head =
+        "usage: haff run SCENE [-o DB] [--set SECTION.KEY=VALUE]... [--seed N] [--quiet]\n"
+        "                [--progress SECONDS]\n"
+        "  Runs the scene file SCENE and appends one run to DB (default: SCENE's name with .db,\n"
+        "  in the current folder).  --set overrides a scene key; --seed overrides [system] seed.\n"
+        "  Exit status: 0 done, 1 failed run (collapse, interrupted, database), 2 bad "
+        "usage/input.\n"
+        "  SIGINT/SIGTERM: the run is checkpointed, marked 'interrupted'; continue with haff "
+        "resume.\n"
+        "  Progress: redrawn on a terminal; when stderr is not one (a batch log), one line every\n"
+        "  --progress SECONDS [60] (0: none).  runs.events and runs.cpd follow the run.\n"};
 
 /* DB name from the scene path: dir/name.ini -> name.db */
 static void default_db(const char *scene, char *out, size_t n) {
@@ -65,8 +130,6 @@ static void say_interrupted(const char *cmd, const char *msg, const char *db, in
   fprintf(stderr, "%s --run %lld)\n", plain ? "" : "'", (long long)run);
 }
 
-/* --progress SECONDS: *every gets the seconds (0 from the user means none: -1); 0 ok, else 2
- * with the message said. */
 /* Runs scene sc as a new run of db (sc != NULL), or resumes run want of db (sc NULL; want 0:
  * the newest resumable), and says on stderr how it ended, as "haff CMD: ...": the interruption
  * with how to go on, the error, a note, or "done" unless quiet.  *run gets the run's id.
@@ -97,91 +160,46 @@ static int drive_run(const char *cmd, const hd_scene *sc, int64_t want, const ch
   return HD_OK;
 }
 
-static int parse_progress(const char *cmd, const char *arg, double *every) {
+/* Parses argv by spec into *a (its defaults set here).  Returns as hd_opt_parse; *every gets
+ * --progress for hd_run_opts (0 not given, -1 none). */
+static int run_parse(const hd_optspec *spec, int argc, char **argv, run_args *a, hd_optres *res,
+                     double *every) {
+  memset(a, 0, sizeof *a);
+  a->sets = (hd_optlist){a->set_v, 0, MAX_SET};
+  a->progress = NAN;
+  int rc = hd_opt_parse(spec, argc, argv, a, res);
+  *every = isnan(a->progress) ? 0 : a->progress == 0 ? -1.0 : a->progress;
+  return rc;
+}
+
+/* --seed N into *seed: any unsigned 64-bit number (strtoull, which alone would take " -1").
+ * 0, or 2 after one line. */
+static int parse_seed(const char *arg, unsigned long long *seed) {
   char *end;
   errno = 0;
-  double v = strtod(arg, &end);
-  if (!*arg || *end || errno || !(v >= 0) || v > 1e9) {
-    fprintf(stderr, "haff %s: --progress %s: not a number of seconds in [0, 1e9]\n", cmd, arg);
+  *seed = strtoull(arg, &end, 10);
+  if (!isdigit((unsigned char)arg[0]) || *end) {
+    fprintf(stderr, "haff run: --seed %s: not a non-negative integer\n", arg);
     return 2;
   }
-  *every = v == 0 ? -1.0 : v;
+  if (errno == ERANGE) {
+    fprintf(stderr, "haff run: --seed %s: too large (max %llu)\n", arg, ULLONG_MAX);
+    return 2;
+  }
   return 0;
 }
 
-/* One line for an option getopt refused (opterr = 0): the argument at fault and where help is. */
-static int bad_option(const char *cmd, char **argv, const struct option *opts) {
-  char buf[8];
-  fprintf(stderr, "haff %s: unknown option or missing value '%s' (see haff %s --help)\n", cmd,
-          hd_opt_culprit(argv, opts, buf, sizeof buf), cmd);
-  return 2;
-}
-
 int haff_run_main(int argc, char **argv) {
-  static const struct option opts[] = {
-      {"set", required_argument, 0, 's'}, {"seed", required_argument, 0, 'S'},
-      {"quiet", no_argument, 0, 'q'},     {"progress", required_argument, 0, 'P'},
-      {"help", no_argument, 0, 'h'},      {0, 0, 0, 0}};
-  const char *db = NULL, *sets[MAX_SET];
-  int nset = 0, quiet = 0, have_seed = 0, c;
+  run_args a;
+  hd_optres res;
+  double every;
+  int rc = run_parse(&haff_run_spec, argc, argv, &a, &res, &every);
+  if (rc) return rc < 0 ? 0 : rc;
   unsigned long long seed = 0;
-  double every = 0;
-  optind = 1;
-  opterr = 0; /* bad_option says it in one line */
-  while ((c = getopt_long(argc, argv, "o:qh", opts, NULL)) != -1) {
-    switch (c) {
-    case 'o':
-      if (!strcmp(optarg, "-")) { /* a database is a file SQLite writes in place, not a stream */
-        fprintf(stderr, "haff run: -o -: a database cannot be written to stdout; give a file "
-                        "name\n");
-        return 2;
-      }
-      db = optarg;
-      break;
-    case 's':
-      if (nset == MAX_SET) {
-        fprintf(stderr, "haff run: more than %d --set options\n", MAX_SET);
-        return 2;
-      }
-      sets[nset++] = optarg;
-      break;
-    case 'S': {
-      char *end;
-      if (have_seed) { /* as --set system.seed twice is: the first would be silently lost */
-        fprintf(stderr, "haff run: --seed given twice: give one\n");
-        return 2;
-      }
-      errno = 0;
-      seed = strtoull(optarg, &end, 10);
-      if (!isdigit((unsigned char)optarg[0]) || *end) { /* strtoull takes " -1" */
-        fprintf(stderr, "haff run: --seed %s: not a non-negative integer\n", optarg);
-        return 2;
-      }
-      if (errno == ERANGE) {
-        fprintf(stderr, "haff run: --seed %s: too large (max %llu)\n", optarg, ULLONG_MAX);
-        return 2;
-      }
-      have_seed = 1;
-      break;
-    }
-    case 'q':
-      quiet = 1;
-      break;
-    case 'P':
-      if (parse_progress("run", optarg, &every)) return 2;
-      break;
-    case 'h':
-      fputs(run_usage, stdout);
-      return 0;
-    default:
-      return bad_option("run", argv, opts);
-    }
-  }
-  if (optind != argc - 1) {
-    fprintf(stderr, "haff run: expected one scene file (haff run --help)\n");
-    return 2;
-  }
-  const char *scene = argv[optind];
+  int have_seed = a.seed != NULL, quiet = a.quiet, nset = a.sets.n;
+  if (have_seed && parse_seed(a.seed, &seed)) return 2;
+  const char *db = a.db, **sets = a.set_v;
+  const char *scene = res.pos[0];
   char seedset[64];
   for (int k = 0; have_seed && k < nset; k++)
     if (hd_scene_override_sets(sets[k], "system", "seed")) {
@@ -204,7 +222,7 @@ int haff_run_main(int argc, char **argv) {
   hd_error err;
   hd_error_clear(&err);
   hd_scene sc;
-  int rc = hd_scene_load(&sc, scene, sets, nset, &err);
+  rc = hd_scene_load(&sc, scene, sets, nset, &err);
   if (rc) { /* a scene that cannot be read is bad input too */
     fprintf(stderr, "haff run: %s\n", err.msg);
     return 2;
@@ -215,12 +233,15 @@ int haff_run_main(int argc, char **argv) {
   return hd_exit_code(rc);
 }
 
-static const char resume_usage[] =
-    "usage: haff resume DB [--run ID | --all] [--quiet] [--progress SECONDS]\n"
-    "  Continues an interrupted, killed or failed (disk full) run from its last checkpoint;\n"
-    "  the result is the same as that of an uninterrupted run.  Without --run: the newest\n"
-    "  resumable run; --all: every resumable run of DB in turn, oldest first (one that another\n"
-    "  process is running is left to it; a signal stops the whole series).\n";
+const hd_optspec haff_resume_spec = {
+    HD_OPT_SPEC("resume", run_opts, FOR_RESUME, 1, 1, "one database"),
+    .head =
+        "usage: haff resume DB [--run ID | --all] [--quiet] [--progress SECONDS]\n"
+        "  Continues an interrupted, killed or failed (disk full) run from its last checkpoint;\n"
+        "  the result is the same as that of an uninterrupted run.  Without --run: the newest\n"
+        "  resumable run; --all: every resumable run of DB in turn, oldest first (one that "
+        "another\n"
+        "  process is running is left to it; a signal stops the whole series).\n"};
 
 /* Resumes run want (0: the newest resumable) of db; says how it ended.  Returns the status
  * (HD_EINTR: stopped by a signal). */
@@ -245,47 +266,14 @@ static int list_resumable(const char *db, int64_t **ids, size_t *n) {
 }
 
 int haff_resume_main(int argc, char **argv) {
-  static const struct option opts[] = {
-      {"run", required_argument, 0, 'r'}, {"all", no_argument, 0, 'a'},
-      {"quiet", no_argument, 0, 'q'},     {"progress", required_argument, 0, 'P'},
-      {"help", no_argument, 0, 'h'},      {0, 0, 0, 0}};
-  long long want = 0;
-  int quiet = 0, all = 0, c;
-  double every = 0;
-  optind = 1;
-  opterr = 0;
-  while ((c = getopt_long(argc, argv, "qh", opts, NULL)) != -1) {
-    switch (c) {
-    case 'r': {
-      char *end;
-      want = strtoll(optarg, &end, 10);
-      if (!*optarg || *end || want <= 0) {
-        fprintf(stderr, "haff resume: --run %s: not a run id\n", optarg);
-        return 2;
-      }
-      break;
-    }
-    case 'a':
-      all = 1;
-      break;
-    case 'q':
-      quiet = 1;
-      break;
-    case 'P':
-      if (parse_progress("resume", optarg, &every)) return 2;
-      break;
-    case 'h':
-      fputs(resume_usage, stdout);
-      return 0;
-    default:
-      return bad_option("resume", argv, opts);
-    }
-  }
-  if (optind != argc - 1) {
-    fprintf(stderr, "haff resume: expected one database (haff resume --help)\n");
-    return 2;
-  }
-  const char *db = argv[optind];
+  run_args a;
+  hd_optres res;
+  double every;
+  int rc = run_parse(&haff_resume_spec, argc, argv, &a, &res, &every);
+  if (rc) return rc < 0 ? 0 : rc;
+  long long want = a.run;
+  int quiet = a.quiet, all = a.all;
+  const char *db = res.pos[0];
   if (all && want) {
     fprintf(stderr, "haff resume: --all and --run: give one\n");
     return 2;
@@ -293,7 +281,7 @@ int haff_resume_main(int argc, char **argv) {
   if (!all) return hd_exit_code(resume_one(db, want, quiet, every));
   int64_t *ids;
   size_t n;
-  int rc = list_resumable(db, &ids, &n);
+  rc = list_resumable(db, &ids, &n);
   if (rc) return hd_exit_code(rc);
   if (n == 0 && !quiet) fprintf(stderr, "haff resume: %s: no run to resume\n", db);
   int worst = 0;

@@ -12,12 +12,12 @@
 #include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
-#include <getopt.h>
 #include <limits.h>
 #include <math.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <sqlite3.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -31,9 +31,8 @@
 #include "hd_db.h"
 #include "hd_error.h"
 #include "hd_merge.h"
+#include "hd_opt.h"
 #include "hd_scene.h"
-
-int haff_sweep_main(int argc, char **argv);
 
 static const char sweep_usage[] =
     "usage: haff sweep SWEEP.ini [-o DIR] [--jobs N] [--progress S] [--dry-run]\n"
@@ -442,7 +441,8 @@ static char *manifest_text(const study *st) {
                           st->scene);
   for (int k = 0; k < st->n; k++) {
     char db[PATH_MAX + 64];
-    snprintf(db, sizeof db, "points/p%0*d.db", width(st->n), k);
+    /* width() is at most 9; the check tells gcc -O1 -fsanitize (the ASan build) so */
+    if (snprintf(db, sizeof db, "points/p%0*d.db", width(st->n), k) >= (int)sizeof db) continue;
     len += (size_t)snprintf(t + len, cap - len, "%d\t%s\t%s\n", k, db, st->p[k].sets);
   }
   return t;
@@ -981,118 +981,120 @@ static int run_task(const study *st, const char *todo, int chunk, double progres
 
 /* ------------------------------------------------------------------------------------------ */
 
-int haff_sweep_main(int argc, char **argv) {
-  static const struct option opts[] = {{"jobs", required_argument, 0, 'j'},
-                                       {"slurm", no_argument, 0, 'S'},
-                                       {"status", required_argument, 0, 's'},
-                                       {"resume", required_argument, 0, 'r'},
-                                       {"merge", required_argument, 0, 'm'},
-                                       {"task", required_argument, 0, 't'},
-                                       {"chunk", required_argument, 0, 'c'},
-                                       {"time", required_argument, 0, 'T'},
-                                       {"partition", required_argument, 0, 'p'},
-                                       {"account", required_argument, 0, 'A'},
-                                       {"progress", required_argument, 0, 'P'},
-                                       {"dry-run", no_argument, 0, 'n'},
-                                       {"quiet", no_argument, 0, 'q'},
-                                       {"help", no_argument, 0, 'h'},
-                                       {0, 0, 0, 0}};
-  const char *out = NULL, *status_dir = NULL, *resume_dir = NULL, *merge_dir = NULL,
-             *task_dir = NULL;
-  slurm_opts so = {NULL, NULL, NULL, 1};
-  int jobs = 1, slurm = 0, dry = 0, quiet = 0, c;
-  double progress = 60;
-  optind = 1;
-  opterr = 0;
-  while ((c = getopt_long(argc, argv, "o:j:qh", opts, NULL)) != -1) {
-    char *end;
-    switch (c) {
-    case 'o':
-      out = optarg;
-      break;
-    case 'j':
-    case 'c': {
-      long v = strtol(optarg, &end, 10);
-      if (!*optarg || *end || v < 1 || v > 4096) {
-        fprintf(stderr, "haff sweep: --%s %s: not an integer in [1, 4096]\n",
-                c == 'j' ? "jobs" : "chunk", optarg);
-        return 2;
-      }
-      if (c == 'j')
-        jobs = (int)v;
-      else
-        so.chunk = (int)v;
-      break;
+/* The options of haff sweep. */
+typedef struct sweep_args {
+  const char *out, *status_dir, *resume_dir, *merge_dir, *task_dir; /* -o, --status ... --task */
+  slurm_opts so;               /* --time, --partition, --account, --chunk */
+  int jobs, slurm, dry, quiet; /* --jobs, --slurm, --dry-run, --quiet */
+  double progress;             /* --progress S [60] */
+} sweep_args;
+
+static const hd_optdef sweep_opts[] = {
+    {.name = "o",
+     .letter = 'o',
+     .kind = HD_ARG_PATH,
+     .off = offsetof(sweep_args, out),
+     .flags = HD_OPTF_SHORT,
+     .meta = "DIR",
+     .help = "the study's folder [SWEEP's name without .ini, in the current folder]"},
+    HD_OPT_INT("jobs", 'j', sweep_args, jobs, 1, 4096, 0, "N", "points run at once, locally [1]"),
+    HD_OPT_FLAG("slurm", 0, sweep_args, slurm, "a Slurm job array and a merge job, submitted"),
+    HD_OPT_PATH("status", 0, sweep_args, status_dir, 0, "DIR", "lists each point's state"),
+    HD_OPT_PATH("resume", 0, sweep_args, resume_dir, 0, "DIR",
+                "resumes or reruns the points not done"),
+    HD_OPT_PATH("merge", 0, sweep_args, merge_dir, 0, "DIR", "merges the points into DIR/study.db"),
+    HD_OPT_PATH("task", 0, sweep_args, task_dir, 0, "DIR",
+                "DIR LIST: one Slurm task's points (the call in the array script)"),
+    HD_OPT_INT("chunk", 0, sweep_args, so.chunk, 1, 4096, 0, "C", "points per Slurm task [1]"),
+    HD_OPT_STR("time", 0, sweep_args, so.time, "T", "sbatch --time"),
+    HD_OPT_STR("partition", 0, sweep_args, so.partition, "P", "sbatch --partition"),
+    HD_OPT_STR("account", 0, sweep_args, so.account, "A", "sbatch --account"),
+    HD_OPT_DBL("progress", 0, sweep_args, progress, 0, 1e9, 0, "S",
+               "a progress line of each run every S seconds [60] (0: none)"),
+    HD_OPT_FLAG("dry-run", 0, sweep_args, dry, "prints the manifest of the points, runs nothing"),
+    HD_OPT_FLAG("quiet", 'q', sweep_args, quiet, "no progress, no closing lines"),
+    {0}};
+
+const hd_optspec haff_sweep_spec = {HD_OPT_SPEC("sweep", sweep_opts, 0, 0, 1, "one sweep file"),
+                                    .head = sweep_usage};
+
+/* Runs the points of st that are not done (locally, jobs at a time, or as a Slurm array with
+ * so) and merges them; a study done and merged is left as it is.  Returns the exit code. */
+static int sweep_unfinished(study *st, int slurm, const slurm_opts *so, int jobs, double progress,
+                            int quiet) {
+  int rc = 0;
+  int *list = malloc((size_t)st->n * sizeof *list);
+  int m = list ? unfinished(st, list, 0) : 0;
+  char out_db[PATH_MAX + 32];
+  snprintf(out_db, sizeof out_db, "%s/study.db", st->dir);
+  if (!list) {
+    rc = 1;
+  } else if (m == 0 && access(out_db, F_OK) == 0) {
+    if (!quiet)
+      fprintf(stderr, "haff sweep: %s: every point is done and merged: nothing to do\n", st->dir);
+  } else if (slurm) {
+    if (m == 0) { /* done, not merged: a merge job alone would do; merge here */
+      rc = study_merge(st, quiet);
+    } else {
+      rc = slurm_submit(st, list, m, so, progress, quiet);
     }
-    case 'S':
-      slurm = 1;
-      break;
-    case 's':
-      status_dir = optarg;
-      break;
-    case 'r':
-      resume_dir = optarg;
-      break;
-    case 'm':
-      merge_dir = optarg;
-      break;
-    case 't':
-      task_dir = optarg;
-      break;
-    case 'T':
-      so.time = optarg;
-      break;
-    case 'p':
-      so.partition = optarg;
-      break;
-    case 'A':
-      so.account = optarg;
-      break;
-    case 'P':
-      progress = strtod(optarg, &end);
-      if (!*optarg || *end || !(progress >= 0) || progress > 1e9) {
-        fprintf(stderr, "haff sweep: --progress %s: not a number of seconds in [0, 1e9]\n", optarg);
-        return 2;
-      }
-      break;
-    case 'n':
-      dry = 1;
-      break;
-    case 'q':
-      quiet = 1;
-      break;
-    case 'h':
-      fputs(sweep_usage, stdout);
-      return 0;
-    default:
-      fprintf(stderr, "haff sweep: unknown option or missing value '%s' (see haff sweep --help)\n",
-              argv[optind - 1]);
-      return 2;
-    }
+  } else {
+    if (!quiet && m)
+      fprintf(stderr, "haff sweep: %s: %d of %d points to run, %d at a time\n", st->dir, m, st->n,
+              jobs);
+    rc = run_points(st, list, m, jobs, progress, quiet);
+    if (!rc)
+      rc = study_merge(st, quiet);
+    else
+      fprintf(stderr,
+              "haff sweep: not every point is done: haff sweep --status %s, then "
+              "--resume %s\n",
+              st->dir, st->dir);
   }
-  int modes = !!status_dir + !!resume_dir + !!merge_dir + !!task_dir;
-  if (modes > 1) {
+  free(list);
+  return rc;
+}
+
+/* The checks between sweep's options; *modes: how many of --status, --resume, --merge, --task.
+ * Returns 0 or 2 after one line. */
+static int sweep_check(const sweep_args *a, int *modes) {
+  *modes = !!a->status_dir + !!a->resume_dir + !!a->merge_dir + !!a->task_dir;
+  if (*modes > 1) {
     fprintf(stderr, "haff sweep: give one of --status, --resume, --merge, --task\n");
     return 2;
   }
-  const char *given[3] = {so.time, so.partition, so.account};
+  const char *given[3] = {a->so.time, a->so.partition, a->so.account};
   for (int k = 0; k < 3; k++)
     if (given[k] && (!*given[k] || strpbrk(given[k], "\n\t'\"\\ ;$`"))) {
       fprintf(stderr, "haff sweep: '%s': not a Slurm option value (empty, blanks or quotes)\n",
               given[k]);
       return 2;
     }
-  if (!slurm && (so.time || so.partition || so.account)) {
+  if (!a->slurm && (a->so.time || a->so.partition || a->so.account)) {
     fprintf(stderr, "haff sweep: --time, --partition and --account go with --slurm\n");
     return 2;
   }
+  return 0;
+}
+
+int haff_sweep_main(int argc, char **argv) {
+  sweep_args a = {.so = {NULL, NULL, NULL, 1}, .jobs = 1, .progress = 60};
+  hd_optres res;
+  int rc = hd_opt_parse(&haff_sweep_spec, argc, argv, &a, &res);
+  if (rc) return rc < 0 ? 0 : rc;
+  const char *out = a.out, *status_dir = a.status_dir, *resume_dir = a.resume_dir,
+             *merge_dir = a.merge_dir, *task_dir = a.task_dir;
+  slurm_opts so = a.so;
+  int jobs = a.jobs, slurm = a.slurm, dry = a.dry, quiet = a.quiet;
+  double progress = a.progress;
+  int modes;
+  if ((rc = sweep_check(&a, &modes))) return rc;
   study st;
   memset(&st, 0, sizeof st);
-  int rc;
   if (modes) {
-    if (optind != argc - (task_dir ? 1 : 0)) {
+    if (res.npos != (task_dir ? 1 : 0)) {
       fprintf(stderr, "haff sweep: unexpected argument '%s' (haff sweep --help)\n",
-              optind < argc ? argv[optind] : "");
+              res.npos ? res.pos[0] : "");
       return 2;
     }
     const char *dir = status_dir   ? status_dir
@@ -1105,14 +1107,14 @@ int haff_sweep_main(int argc, char **argv) {
     else if (merge_dir)
       rc = study_merge(&st, quiet);
     else if (task_dir)
-      rc = run_task(&st, argv[optind], so.chunk, progress, quiet);
+      rc = run_task(&st, res.pos[0], so.chunk, progress, quiet);
   } else {
-    if (optind != argc - 1) {
+    if (res.npos != 1) {
       fprintf(stderr, "haff sweep: expected one sweep file (haff sweep --help)\n");
       return 2;
     }
     sweep sw;
-    rc = sweep_read(&sw, argv[optind]);
+    rc = sweep_read(&sw, res.pos[0]);
     if (!rc) rc = make_points(&sw, &st.p, &st.n);
     if (!rc) snprintf(st.scene, sizeof st.scene, "%s", sw.scene);
     sweep_free(&sw);
@@ -1128,45 +1130,15 @@ int haff_sweep_main(int argc, char **argv) {
     if (out) {
       snprintf(dir, sizeof dir, "%s", out);
     } else {
-      const char *base = strrchr(argv[optind], '/');
-      snprintf(dir, sizeof dir, "%s", base ? base + 1 : argv[optind]);
+      const char *base = strrchr(res.pos[0], '/');
+      snprintf(dir, sizeof dir, "%s", base ? base + 1 : res.pos[0]);
       char *dot = strrchr(dir, '.');
       if (dot && dot != dir) *dot = '\0';
     }
     rc = study_create(&st, dir);
     if (!rc) resume_dir = dir; /* then as --resume: what is not done yet */
   }
-  if (!rc && resume_dir) {
-    int *list = malloc((size_t)st.n * sizeof *list);
-    int m = list ? unfinished(&st, list, 0) : 0;
-    char out_db[PATH_MAX + 32];
-    snprintf(out_db, sizeof out_db, "%s/study.db", st.dir);
-    if (!list) {
-      rc = 1;
-    } else if (m == 0 && access(out_db, F_OK) == 0) {
-      if (!quiet)
-        fprintf(stderr, "haff sweep: %s: every point is done and merged: nothing to do\n", st.dir);
-    } else if (slurm) {
-      if (m == 0) { /* done, not merged: a merge job alone would do; merge here */
-        rc = study_merge(&st, quiet);
-      } else {
-        rc = slurm_submit(&st, list, m, &so, progress, quiet);
-      }
-    } else {
-      if (!quiet && m)
-        fprintf(stderr, "haff sweep: %s: %d of %d points to run, %d at a time\n", st.dir, m, st.n,
-                jobs);
-      rc = run_points(&st, list, m, jobs, progress, quiet);
-      if (!rc)
-        rc = study_merge(&st, quiet);
-      else
-        fprintf(stderr,
-                "haff sweep: not every point is done: haff sweep --status %s, then "
-                "--resume %s\n",
-                st.dir, st.dir);
-    }
-    free(list);
-  }
+  if (!rc && resume_dir) rc = sweep_unfinished(&st, slurm, &so, jobs, progress, quiet);
   study_free(&st);
   return rc;
 }

@@ -1,20 +1,66 @@
-/* haff command-line front end: the table of subcommands.  Each subcommand is a function
- * int NAME_main(int argc, char **argv) with argv[0] the subcommand's name; it returns the
- * process exit code (0 ok, 1 failed run, 2 bad usage or input) and never calls exit(). */
+/* haff command-line front end: the one table of subcommands (haff_commands, cli/haff_commands.c)
+ * and every subcommand's entry point and option spec, declared here only.  Each subcommand is a
+ * function int NAME_main(int argc, char **argv) with argv[0] the subcommand's name; it returns
+ * the process exit code (0 ok, 1 failed run, 2 bad usage or input) and never calls exit().  Its
+ * options are a table (hd_opt.h) in its hd_optspec, from which its --help, the man page and the
+ * bash completion come. */
 #ifndef HAFF_CLI_H
 #define HAFF_CLI_H
 
-/* One subcommand of bin/haff. */
+#include "hd_opt.h"
+
+/* One subcommand of bin/haff, or a group of them (`haff mc PROGRAM`). */
 typedef struct haff_command {
-  const char *name;                   /* as typed: "run", "mc", "haff-fit", ... */
-  int (*main)(int argc, char **argv); /* entry point, argv[0] == name */
-  const char *summary;                /* one line for `haff --help` */
+  const char *name;                   /* as typed: "run", "haff-fit", "mc", "fmean" */
+  const char *group;                  /* NULL: a command of haff; else the group it belongs to
+                                       * ("mc": typed `haff mc fmean`) */
+  int (*main)(int argc, char **argv); /* entry point, argv[0] == name; NULL for a group, whose
+                                       * programs are the entries naming it as their group */
+  const char *summary;                /* one line for `haff --help` (`haff GROUP --help`) */
+  const hd_optspec *spec;             /* its options and help; NULL for a group */
 } haff_command;
+
+/* Every subcommand, in the order of `haff --help`; ends with an entry whose name is NULL. */
+extern const haff_command haff_commands[];
 
 /* The version string stored in runs.version. */
 #define HAFF_VERSION "0.1.0"
 
-/* True if argv holds -h or --help (anywhere after argv[0]). */
-int haff_wants_help(int argc, char **argv);
+/* cli/cmd_run.c: haff run SCENE, haff resume DB */
+int haff_run_main(int argc, char **argv);
+int haff_resume_main(int argc, char **argv);
+extern const hd_optspec haff_run_spec, haff_resume_spec;
+/* cli/cmd_merge.c, cli/cmd_sweep.c, cli/cmd_movie.c */
+int haff_merge_main(int argc, char **argv);
+int haff_sweep_main(int argc, char **argv);
+int haff_movie_main(int argc, char **argv);
+extern const hd_optspec haff_merge_spec, haff_sweep_spec, haff_movie_spec;
+/* cli/cmd_export.c: haff export xyz DB (its spec's options follow the format word) */
+int haff_export_main(int argc, char **argv);
+extern const hd_optspec haff_export_spec;
+/* cli/mc/fmean_cli.c, cli/mc/eps_cli.c: haff mc fmean, haff mc eps */
+int hd_mc_fmean_main(int argc, char **argv);
+int hd_mc_eps_main(int argc, char **argv);
+extern const hd_optspec hd_mc_fmean_spec, hd_mc_eps_spec;
+/* cli/analysis/cli_*.c (docs/analysis.md); each returns 0 ok, 1 failure (database unreadable,
+ * write error), 2 bad usage or input */
+int haff_fit_main(int argc, char **argv);     /* haff haff-fit DB: eq. (31) per run / group */
+int haff_table1_main(int argc, char **argv);  /* haff table1 DB: Table I */
+int haff_table2_main(int argc, char **argv);  /* haff table2 DB: Table II */
+int haff_energy_main(int argc, char **argv);  /* haff energy DB: Figs. 2 and 3 data */
+int haff_angles_main(int argc, char **argv);  /* haff angles DB: Fig. 5 data, <f> */
+int haff_veldist_main(int argc, char **argv); /* haff veldist DB: Fig. 6 data, shape stats */
+extern const hd_optspec haff_fit_spec, haff_table1_spec, haff_table2_spec, haff_energy_spec,
+    haff_angles_spec, haff_veldist_spec;
+/* cli/analysis/cli_rods_*.c (docs/rods.md) */
+int haff_rods_energy_main(int argc, char **argv);   /* rods Figs. 1, 2, 9-11 data */
+int haff_rods_density_main(int argc, char **argv);  /* rods Figs. 3, 4, 6 data */
+int haff_rods_phase_main(int argc, char **argv);    /* rods Fig. 5 data: phase space */
+int haff_rods_gofr_main(int argc, char **argv);     /* rods Fig. 8 data: g(x) */
+int haff_rods_veldist_main(int argc, char **argv);  /* rods Fig. 7 data: cluster velocities */
+int haff_rods_clusters_main(int argc, char **argv); /* rods clusters per snapshot */
+int haff_rods_collapse_main(int argc, char **argv); /* rods (N, eps) collapse scan */
+extern const hd_optspec haff_rods_energy_spec, haff_rods_density_spec, haff_rods_phase_spec,
+    haff_rods_gofr_spec, haff_rods_veldist_spec, haff_rods_clusters_spec, haff_rods_collapse_spec;
 
 #endif

@@ -1,4 +1,4 @@
-/* `haff export xyz DB [--run ID] [--label L] [-o FILE]`: extended XYZ of the states and frames
+/* The extended XYZ writer of `haff export xyz` (cli/cmd_export.c): the states and frames
  * tables, as OVITO and ASE (ase.io.read(..., index=':')) read it.
  *
  * One frame per (label, t) of the run, in time order (at equal t: initial, frames, velocities,
@@ -19,7 +19,8 @@
  * mass, walls from [walls] sides: the run's stored scene read by the engine's loader
  * (hd_scene_read_stored), with its defaults.  Frames (table frames) take their body kinds from the
  * run's 'initial' states. */
-#include <getopt.h>
+#include <limits.h>
+#include <stddef.h>
 #include <math.h>
 #include <sqlite3.h>
 #include <stdio.h>
@@ -27,11 +28,11 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "export_xyz.h"
 #include "hd_body.h"
 #include "hd_db.h"
 #include "hd_scene.h"
 
-int haff_export_main(int argc, char **argv);
 
 /* The geometry export needs, read from the run's scene text. */
 typedef struct xyz_geom {
@@ -58,18 +59,6 @@ static int geom_of_scene(const char *text, xyz_geom *g, hd_error *err) {
   g->rods = sc.n_rods > 0;
   g->rod_gamma = sc.rod_gamma;
   return HD_OK;
-}
-
-static void usage(FILE *out) {
-  fprintf(out,
-          "usage: haff export xyz DB [--run ID]\n"
-          "       [--label initial|final|checkpoint|velocities|frames|all] [-o FILE]\n"
-          "Writes the stored states and frames of a run as extended XYZ (OVITO, ASE): one frame\n"
-          "per (label, time), one line per disk (a dimer gives two, species N; single disks Ar;\n"
-          "rods C) with position, velocity, mass, momentum, radius, body, phi and omega.\n"
-          "  --run ID     the run [the newest run in DB]\n"
-          "  --label L    which states; frames: the [log] frames_every* frames [all]\n"
-          "  -o FILE      output file [stdout; - is stdout]\n");
 }
 
 /* Writes x in the shortest %g form that reads back as x (15 to 17 digits). */
@@ -327,81 +316,8 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
   return code;
 }
 
-int haff_export_main(int argc, char **argv) {
-  if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
-    int help = argc >= 2;
-    usage(help ? stdout : stderr);
-    return help ? 0 : 2;
-  }
-  if (strcmp(argv[1], "xyz")) {
-    fprintf(stderr, "haff export: unknown format '%s' (only xyz)\n", argv[1]);
-    return 2;
-  }
-  static const struct option opts[] = {{"run", required_argument, NULL, 'r'},
-                                       {"label", required_argument, NULL, 'l'},
-                                       {"output", required_argument, NULL, 'o'},
-                                       {"help", no_argument, NULL, 'h'},
-                                       {NULL, 0, NULL, 0}};
-  long long run = 0;
-  const char *label = "all", *outpath = NULL;
-  int c;
-  optind = 0; /* GNU: full re-initialisation, so the function may be called more than once;
-                 parsing argv + 1 ("xyz" as the program name) */
-  opterr = 0;
-  while ((c = getopt_long(argc - 1, argv + 1, "o:h", opts, NULL)) != -1) {
-    switch (c) {
-    case 'r': {
-      char *end;
-      run = strtoll(optarg, &end, 10);
-      if (*end || run <= 0) {
-        fprintf(stderr, "haff export: --run %s: must be a positive run id\n", optarg);
-        return 2;
-      }
-      break;
-    }
-    case 'l':
-      label = optarg;
-      if (strcmp(label, "initial") && strcmp(label, "final") && strcmp(label, "checkpoint") &&
-          strcmp(label, "velocities") && strcmp(label, "frames") && strcmp(label, "all")) {
-        fprintf(stderr,
-                "haff export: --label %s: must be initial, final, checkpoint, "
-                "velocities, frames or all\n",
-                label);
-        return 2;
-      }
-      break;
-    case 'o':
-      outpath = optarg;
-      break;
-    case 'h':
-      usage(stdout);
-      return 0;
-    default: {
-      char buf[8];
-      fprintf(stderr, "haff export: bad option '%s' (haff export --help)\n",
-              hd_opt_culprit(argv + 1, opts, buf, sizeof buf));
-    }
-      return 2;
-    }
-  }
-  if (optind + 1 != argc - 1) {
-    fprintf(stderr, "haff export xyz: give exactly one DB (haff export --help)\n");
-    return 2;
-  }
-  const char *path = argv[optind + 1];
-  if (access(path, F_OK) != 0) {
-    fprintf(stderr, "haff export: %s: no such database file\n", path);
-    return 2;
-  }
-  hd_db *db = NULL;
-  hd_error err;
-  hd_error_clear(&err);
-  int orc = hd_db_open_readonly(&db, path, &err);
-  if (orc) {
-    fprintf(stderr, "haff export: %s\n", err.msg);
-    return orc == HD_EINPUT ? 2 : 1; /* not an SQLite file is bad input */
-  }
-  int64_t r = (int64_t)run;
+int hd_xyz_export(hd_db *db, int64_t run, const char *label, const char *outpath) {
+  int64_t r = run;
   xyz_geom g;
   int code = read_run(db, &r, &g);
   FILE *out = stdout;
@@ -419,6 +335,5 @@ int haff_export_main(int argc, char **argv) {
     fprintf(stderr, "haff export: stdout: write error: %m\n");
     code = 1;
   }
-  hd_db_close(db, NULL);
   return code;
 }

@@ -95,7 +95,7 @@ void hd_ana_close(sqlite3 *db);
 /* The status (hd_db_status_of) of the last failure on db: HD_EINPUT for a damaged file. */
 int hd_ana_status(sqlite3 *db);
 
-/* ---- the rod paper's analyses (analysis/rods_cli.c) ---- */
+/* ---- the rod paper's analyses (cli/analysis/cli_rods*.c) ---- */
 
 /* The rods run to analyse: want >= 0 gives that run, want < 0 the newest run whose scene has a
  * [rods] section; *id, and its scene text in *scene (malloc'd, free(); NULL when none).  HD_OK;

@@ -22,7 +22,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "hd_ana_cli.h"
+#include "haff.h"
 #include "hd_anadb.h"
 #include "hd_runfit.h"
 #include "hd_enskog.h"

@@ -344,17 +344,19 @@ static void bad_input(void **state) {
   bad_usage("mc fmean --convergence --d 2", "--convergence with --d needs --a");
   /* ints given past their range were cast (4294967312 -> 16, accepted); a long past its own
    * range was LONG_MAX */
-  bad_usage("mc eps --gamma 0.8 --adapt 4294967312", "bad value '4294967312' for --adapt");
+  bad_usage("mc eps --gamma 0.8 --adapt 4294967312",
+            "--adapt '4294967312': expected a whole number in [1, 2147483647]");
   bad_usage("mc eps --gamma 0.8 --tabulate --db x.db --nbeta 4294967321",
-            "bad value '4294967321' for --nbeta");
-  bad_usage("mc eps --gamma 0.8 --samples 99999999999999999999", "for --samples");
+            "--nbeta '4294967321': expected a whole number in");
+  bad_usage("mc eps --gamma 0.8 --samples 99999999999999999999", "--samples '9999");
   /* K = E_tr/E_rot of a file without dimers: it printed a header only, exit 0 */
   bad_usage("table2 ref.db", "no dimer run to fit");
   /* options a mode does not read were ignored without a word */
   bad_usage("mc eps --gamma 0.8 --tabulate --db x.db --beta 5", "--beta does not apply with");
   bad_usage("mc eps --gamma 0.8 --nbeta 5", "--nbeta does not apply without --tabulate");
   bad_usage("mc eps --gamma 0.8 --convergence --adapt 4", "--adapt does not apply with");
-  bad_usage("mc eps --gamma 0.8 --adapt -4", "bad value '-4' for --adapt"); /* -1 meant unset */
+  bad_usage("mc eps --gamma 0.8 --adapt -4",
+            "--adapt '-4': expected a whole number in [1,"); /* -1 meant unset */
   /* a convergence sequence too short for a slope printed no row and a slope of nan, exit 0 */
   bad_usage("mc fmean --convergence --samples 100", "needs n >= 1e4");
   bad_usage("mc fmean --scan 1:2:1 --a 1", "--a does not apply with --scan");

@@ -307,7 +307,7 @@ static void movie_of_frames(void **state) {
          haff, root))
     fail_msg("%s", out());
   bad("movie m.db -o x.avi", "-o x.avi: give the movie's file, ending in .mp4 or .gif");
-  bad("movie m.db -o x.mp4 --color mass", "--color mass: must be speed or density");
+  bad("movie m.db -o x.mp4 --color mass", "--color 'mass': expected speed or density");
   bad("movie m.db -o x.mp4 --run 7", "there is no such run");
   assert_int_equal(sh("test ! -e x.mp4 && test ! -e x.avi"), 0);
 }

@@ -13,7 +13,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "hd_ana_cli.h"
+#include "haff.h"
 #include "hd_anadb.h"
 #include "hd_db.h"
 #include "hd_homog.h"

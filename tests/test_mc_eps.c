@@ -14,6 +14,7 @@
 
 #include "eps.h"
 #include "hd_epsdb.h"
+#include "haff.h" /* hd_mc_eps_main */
 
 static int sanitize(void) {
   const char *s = getenv("HAFF_SANITIZE");

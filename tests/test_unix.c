@@ -42,19 +42,21 @@ static char *slurp(const char *name) {
   return s;
 }
 
-/* The names of the dispatcher table commands[] of cli/haff.c, read from the source: each
- * entry starts a line with {"NAME",.  Returns how many (at most max). */
+/* The names of haff's own commands in the table haff_commands of cli/haff_commands.c, read from
+ * the source: each entry starts with {"NAME", and a command of haff (not a program of a group
+ * such as mc) has NULL as its group, {"NAME", NULL,.  Returns how many (at most max). */
 static int dispatcher_names(char names[][32], int max) {
   char p[4200];
-  snprintf(p, sizeof p, "%s/cli/haff.c", root);
+  snprintf(p, sizeof p, "%s/cli/haff_commands.c", root);
   char *src = slurp(p);
-  char *t = strstr(src, "commands[] = {");
+  char *t = strstr(src, "haff_commands[] = {");
   assert_non_null(t);
   char *end = strstr(t, "};");
   int n = 0;
   for (char *s = strstr(t, "{\""); s && s < end && n < max; s = strstr(s + 1, "{\"")) {
     size_t k = strcspn(s + 2, "\"");
     assert_true(k < 32);
+    if (strncmp(s + 2 + k, "\", NULL,", 7)) continue; /* a program of a group */
     memcpy(names[n], s + 2, k);
     names[n++][k] = 0;
   }

@@ -5,26 +5,25 @@
 #include <stdlib.h>
 
 #include "cli_common.h"
-#include "hd_ana_cli.h"
+#include "haff.h"
+
+const hd_optspec haff_angles_spec = {
+    HD_OPT_SPEC("angles", hd_cli_opts, HD_OPT_RUN | HD_OPT_BLOCK | HD_OPT_BINS, 1, 1,
+                "one database argument"),
+    .head =
+        "usage: haff angles DB --run ID [--block N] [--bins B] [--fmean] [-o FILE]\n"
+        "Fig. 5: histogram of the contact angles theta (both bodies of every dimer-dimer\n"
+        "collision, in (-pi, pi]) per block of N logged collisions, normalised to unit area.\n"
+        "Columns: block first last theta density density_err   (first/last: collision numbers\n"
+        "among the logged dimer-dimer collisions, 1-based; blocks separated by two blank lines,\n"
+        "each headed by a line whose first field is its legend title; an incomplete last block\n"
+        "is dropped)\n"};
 
 int haff_angles_main(int argc, char **argv) {
-  static const char usage[] =
-      "usage: haff angles DB --run ID [--block N] [--bins B] [--fmean] [-o FILE]\n"
-      "Fig. 5: histogram of the contact angles theta (both bodies of every dimer-dimer\n"
-      "collision, in (-pi, pi]) per block of N logged collisions, normalised to unit area.\n"
-      "Columns: block first last theta density density_err   (first/last: collision numbers\n"
-      "among the logged dimer-dimer collisions, 1-based; blocks separated by two blank lines,\n"
-      "each headed by a line whose first field is its legend title; an incomplete last block\n"
-      "is dropped)\n"
-      "  --block N        collisions per block [10000]\n"
-      "  --bins B         histogram bins on (-pi, pi] [36]\n"
-      "  --fmean          instead: one line 'run n f_mean f_err batches batch_size', <f> over\n"
-      "                   the run with a batch-means standard error (batches of N, >= 20 of them)\n"
-      "  -o FILE          write to FILE instead of stdout (- is stdout)\n";
   hd_cli_args a;
   sqlite3 *db;
   hd_run_info ri;
-  int rc = hd_cli_one_run(argc, argv, HD_OPT_RUN | HD_OPT_BLOCK | HD_OPT_BINS, usage, &a, &db, &ri);
+  int rc = hd_cli_one_run(&haff_angles_spec, argc, argv, &a, &db, &ri);
   if (rc) return rc < 0 ? 0 : rc;
   int bins = a.bins ? a.bins : 36;
   hd_error err;

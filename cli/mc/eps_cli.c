@@ -1,6 +1,5 @@
 /* `haff mc eps`: sample, study the convergence of, or tabulate p_beta(eps) (engine/rods/eps.h). */
 #include <errno.h>
-#include <getopt.h>
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_sort.h>
 #include <limits.h>
@@ -11,65 +10,67 @@
 #include <time.h>
 
 #include "eps.h"
+#include "haff.h"
 #include "hd_db.h"
 #include "hd_epsdb.h"
+#include "hd_opt.h"
 
-static void usage(FILE *out) {
-  fprintf(
-      out,
-      "usage: haff mc eps --gamma G [--beta B] [--beta2 B2] [--samples N] [--seed K]\n"
-      "                   [--step H] [--adapt A] [--richardson] [--dump FILE]\n"
-      "       haff mc eps --gamma G [--beta B] --convergence [--samples N] [--step H]\n"
-      "       haff mc eps --gamma G --tabulate --db DB [--beta-min B0] [--beta-max B1]\n"
-      "                   [--nbeta K] [--nu M] [--samples N] [--step H]\n\n"
-      "Samples the rods' stochastic coefficient of restitution eps (Aspelmeier et al. 1998,\n"
-      "eqs. 13-14, hard-core limit) for length ratio G = l1/l2 and beta = E_tr/T_B.\n"
-      "Prints TSV: gamma beta eps_mean eps_stderr eps_sd samples seconds.\n\n"
-      "  --gamma G       length ratio l1/l2 > 0 (required)\n"
-      "  --beta B        E_tr/T_B, T_B the mean bath temperature (paper's rule) [1]; inf = cold\n"
-      "  --beta2 B2      unequal baths: B = E_tr/T_B(rod 1), B2 = E_tr/T_B(rod 2)\n"
-      "  --samples N     samples [10000] (per beta node with --tabulate [2000])\n"
-      "  --seed K        RNG seed (mt19937) [1]\n"
-      "  --step H        grid step in tau at beta >= 1 [0.01]\n"
-      "  --adapt A       step reduced down to H/A at beta < 1 (power of 2) [16]\n"
-      "  --richardson    per-path Richardson extrapolation (4x finer grid)\n"
-      "  --dump FILE     write the samples, one per line (-: to stdout, the summary to stderr)\n"
-      "  --convergence   bias against the step: TSV of mean eps at steps H..H/64 on coupled\n"
-      "                  paths, and the detailed-balance yardsticks <beta(eps^2-1)> and\n"
-      "                  <ln eps> with beta ~ Exp(1) (both 0 exactly)\n"
-      "  --tabulate      build inverse-CDF tables on a log beta grid and store them in --db;\n"
-      "                  prints the table's KS distance and mean error against direct sampling\n"
-      "  --beta-min B0, --beta-max B1, --nbeta K, --nu M   table grid [1e-3, 1e3, 25, 129]\n");
-}
+/* The options of `haff mc eps`. */
+typedef struct eopts {
+  double gamma, beta, beta2, bmin, bmax; /* --gamma (NAN: not given), --beta, --beta2 (NAN: B) */
+  long n, seed, adapt, nbeta, nu;        /* --samples (-1: the mode's default), --adapt (-1) */
+  int conv, tab;                         /* --convergence, --tabulate */
+  const char *dump, *dbpath;             /* --dump FILE, --db DB */
+  hd_eps_opts o;                         /* --step, --richardson */
+} eopts;
+
+#define NUM(N, F, M, H)                                                                            \
+  HD_OPT_DBL(N, 0, eopts, F, -INFINITY, INFINITY, 0, M, H) /* nan refused, inf allowed */
+static const hd_optdef eps_opts[] = {
+    NUM("gamma", gamma, "G", "length ratio l1/l2 > 0 (required)"),
+    NUM("beta", beta, "B",
+        "E_tr/T_B, T_B the mean bath temperature (paper's rule) [1]; inf = cold"),
+    NUM("beta2", beta2, "B2", "unequal baths: B = E_tr/T_B(rod 1), B2 = E_tr/T_B(rod 2)"),
+    HD_OPT_INT("samples", 0, eopts, n, 1, LONG_MAX, 0, "N",
+               "samples [10000] (per beta node with --tabulate [2000])"),
+    HD_OPT_INT("seed", 0, eopts, seed, 0, LONG_MAX, 0, "K", "RNG seed (mt19937) [1]"),
+    NUM("step", o.step, "H", "grid step in tau at beta >= 1 [0.01]"),
+    HD_OPT_INT("adapt", 0, eopts, adapt, 1, INT_MAX, 0, "A",
+               "step reduced down to H/A at beta < 1 (power of 2) [16]"),
+    HD_OPT_FLAG("richardson", 0, eopts, o.richardson,
+                "per-path Richardson extrapolation (4x finer grid)"),
+    HD_OPT_STR("dump", 0, eopts, dump, "FILE",
+               "write the samples, one per line (-: to stdout, the summary to stderr)"),
+    HD_OPT_FLAG("convergence", 0, eopts, conv,
+                "bias against the step: TSV of mean eps at steps H..H/64 on coupled\n"
+                "paths, and the detailed-balance yardsticks <beta(eps^2-1)> and\n"
+                "<ln eps> with beta ~ Exp(1) (both 0 exactly)"),
+    HD_OPT_FLAG("tabulate", 0, eopts, tab,
+                "build inverse-CDF tables on a log beta grid and store them in --db;\n"
+                "prints the table's KS distance and mean error against direct sampling"),
+    HD_OPT_PATH("db", 0, eopts, dbpath, HD_OPTF_NOT_STDOUT, "DB", "the database of --tabulate"),
+    NUM("beta-min", bmin, "B0", "table grid: smallest beta [1e-3]"),
+    NUM("beta-max", bmax, "B1", "table grid: largest beta [1e3]"),
+    HD_OPT_INT("nbeta", 0, eopts, nbeta, INT_MIN, INT_MAX, 0, "K", "table grid: beta nodes [25]"),
+    HD_OPT_INT("nu", 0, eopts, nu, INT_MIN, INT_MAX, 0, "M", "table grid: entries per table [129]"),
+    {0}};
+#undef NUM
+
+const hd_optspec hd_mc_eps_spec = {
+    HD_OPT_SPEC("mc eps", eps_opts, 0, 0, 0, NULL),
+    .head = "usage: haff mc eps --gamma G [--beta B] [--beta2 B2] [--samples N] [--seed K]\n"
+            "                   [--step H] [--adapt A] [--richardson] [--dump FILE]\n"
+            "       haff mc eps --gamma G [--beta B] --convergence [--samples N] [--step H]\n"
+            "       haff mc eps --gamma G --tabulate --db DB [--beta-min B0] [--beta-max B1]\n"
+            "                   [--nbeta K] [--nu M] [--samples N] [--step H]\n\n"
+            "Samples the rods' stochastic coefficient of restitution eps (Aspelmeier et al. 1998,\n"
+            "eqs. 13-14, hard-core limit) for length ratio G = l1/l2 and beta = E_tr/T_B.\n"
+            "Prints TSV: gamma beta eps_mean eps_stderr eps_sd samples seconds.\n\n"};
 
 static double seconds_now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int parse_d(const char *s, double *out) {
-  char *end;
-  if (!strcmp(s, "inf")) {
-    *out = INFINITY;
-    return 1;
-  }
-  *out = strtod(s, &end);
-  return *s && !*end && !isnan(*out);
-}
-
-/* A whole number that fits a long (out of range is an error, not LONG_MAX). */
-static int parse_l(const char *s, long *out) {
-  char *end;
-  errno = 0;
-  *out = strtol(s, &end, 10);
-  return *s && !*end && errno != ERANGE;
-}
-
-/* A whole number that fits an int: --adapt, --nbeta and --nu are ints, and 4294967312 cast to
- * one was 16 (accepted); their own ranges are checked where they are used. */
-static int parse_int(const char *s, long *out) {
-  return parse_l(s, out) && *out >= INT_MIN && *out <= INT_MAX;
 }
 
 /* Mean, stderr, sd of x[0..n). */
@@ -241,162 +242,19 @@ static int tabulate(hd_eps_sampler *s, const char *dbpath, double bmin, double b
   return 0;
 }
 
-int hd_mc_eps_main(int argc, char **argv) {
-  static const struct option opts[] = {
-      {"gamma", required_argument, 0, 'g'},    {"beta", required_argument, 0, 'b'},
-      {"beta2", required_argument, 0, 'B'},    {"samples", required_argument, 0, 'n'},
-      {"seed", required_argument, 0, 's'},     {"step", required_argument, 0, 'h'},
-      {"adapt", required_argument, 0, 'a'},    {"richardson", no_argument, 0, 'r'},
-      {"dump", required_argument, 0, 'd'},     {"convergence", no_argument, 0, 'c'},
-      {"tabulate", no_argument, 0, 't'},       {"db", required_argument, 0, 'D'},
-      {"beta-min", required_argument, 0, 'm'}, {"beta-max", required_argument, 0, 'M'},
-      {"nbeta", required_argument, 0, 'K'},    {"nu", required_argument, 0, 'U'},
-      {"help", no_argument, 0, '?' + 256},     {0, 0, 0, 0}};
-  double gamma = NAN, beta = 1, beta2 = NAN, bmin = 1e-3, bmax = 1e3;
-  long n = -1, seed = 1, nbeta = 25, nu = 129, adapt = -1;
-  int conv = 0, tab = 0;
-  const char *dump = NULL, *dbpath = NULL;
-  hd_eps_opts o;
-  hd_eps_opts_default(&o);
-  optind = 1;
-  opterr = 0;
-  int c, li = 0;
-  unsigned given = 0; /* bit k: opts[k] was given (every option is long: li says which) */
-  while ((c = getopt_long(argc, argv, "", opts, &li)) != -1) {
-    if (c != '?' && c != ':') given |= 1u << li;
-    int ok = 1;
-    switch (c) {
-    case 'g':
-      ok = parse_d(optarg, &gamma);
-      break;
-    case 'b':
-      ok = parse_d(optarg, &beta);
-      break;
-    case 'B':
-      ok = parse_d(optarg, &beta2);
-      break;
-    case 'n':
-      ok = parse_l(optarg, &n) && n >= 1;
-      break;
-    case 's':
-      ok = parse_l(optarg, &seed) && seed >= 0;
-      break;
-    case 'h':
-      ok = parse_d(optarg, &o.step);
-      break;
-    case 'a':
-      ok = parse_int(optarg, &adapt) && adapt >= 1; /* -1 is "not given" */
-      break;
-    case 'r':
-      o.richardson = 1;
-      break;
-    case 'd':
-      dump = optarg;
-      break;
-    case 'c':
-      conv = 1;
-      break;
-    case 't':
-      tab = 1;
-      break;
-    case 'D':
-      dbpath = optarg;
-      break;
-    case 'm':
-      ok = parse_d(optarg, &bmin);
-      break;
-    case 'M':
-      ok = parse_d(optarg, &bmax);
-      break;
-    case 'K':
-      ok = parse_int(optarg, &nbeta);
-      break;
-    case 'U':
-      ok = parse_int(optarg, &nu);
-      break;
-    case '?' + 256:
-      usage(stdout);
-      return 0;
-    default: {
-      char buf[8];
-      fprintf(stderr, "haff mc eps: unknown or incomplete option '%s' (see --help)\n",
-              hd_opt_culprit(argv, opts, buf, sizeof buf));
-    }
-      return 2;
-    }
-    if (!ok) {
-      fprintf(stderr, "haff mc eps: bad value '%s' for --%s\n", optarg, opts[li].name);
-      return 2;
-    }
-  }
-  if (optind < argc) {
-    fprintf(stderr, "haff mc eps: unexpected argument '%s'\n", argv[optind]);
-    return 2;
-  }
-  if (isnan(gamma)) {
-    fprintf(stderr, "haff mc eps: --gamma is required (see --help)\n");
-    return 2;
-  }
-  /* an option the mode does not read is refused, not ignored (--tabulate --beta 5 ran with
-   * no word of the beta) */
-  const char *refused = tab ? "bBdc" : conv ? "darDmMKU" : "DmMKU";
-  for (int k = 0; opts[k].name; k++)
-    if ((given >> k & 1u) && strchr(refused, opts[k].val)) {
-      fprintf(stderr, "haff mc eps: --%s does not apply %s (see --help)\n", opts[k].name,
-              tab    ? "with --tabulate"
-              : conv ? "with --convergence"
-                     : "without --tabulate");
-      return 2;
-    }
-  if (isnan(beta2)) beta2 = beta;
-  if (!(beta > 0) || !(beta2 > 0)) {
-    fprintf(stderr, "haff mc eps: --beta and --beta2 must be > 0\n");
-    return 2;
-  }
-  if (tab && !dbpath) {
-    fprintf(stderr, "haff mc eps: --tabulate needs --db DB\n");
-    return 2;
-  }
-  if (dbpath && !strcmp(dbpath, "-")) { /* as haff run -o -: a database is not a stream */
-    fprintf(stderr, "haff mc eps: --db -: a database cannot be written to stdout; give a file "
-                    "name\n");
-    return 2;
-  }
-  if (adapt >= 0) o.adapt = (int)adapt;
-  if (n < 0) n = tab ? 2000 : 10000;
-  gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-  if (!rng) return 1;
-  gsl_rng_set(rng, (unsigned long)seed);
-  int rc;
-  if (conv) {
-    rc = convergence(gamma, beta, beta2, n, o.step, rng);
-    gsl_rng_free(rng);
-    return rc;
-  }
-  hd_eps_sampler *s;
-  hd_error err;
-  if (hd_eps_sampler_alloc(&s, gamma, &o, &err)) {
-    fprintf(stderr, "haff mc eps: %s\n", err.msg);
-    gsl_rng_free(rng);
-    return hd_exit_code(err.code);
-  }
-  if (tab) {
-    rc = tabulate(s, dbpath, bmin, bmax, (int)nbeta, (int)nu, n, (unsigned long)seed, rng);
-    hd_eps_sampler_free(s);
-    gsl_rng_free(rng);
-    return rc;
-  }
+/* Draws n samples of eps with s at (beta, beta2), writes them to dump (a file, "-" for stdout,
+ * or NULL), and prints the summary row.  Returns the exit code. */
+static int sample(hd_eps_sampler *s, double gamma, double beta, double beta2, long n,
+                  const char *dump, gsl_rng *rng) {
   double *x = malloc(sizeof(double) * (size_t)n);
   if (!x) {
     fprintf(stderr, "haff mc eps: out of memory\n");
-    hd_eps_sampler_free(s);
-    gsl_rng_free(rng);
     return 1;
   }
+  int rc = 0;
   double t0 = seconds_now();
   for (long i = 0; i < n; i++) x[i] = hd_eps_sample2(s, beta, beta2, rng);
   double sec = seconds_now() - t0;
-  rc = 0;
   /* --dump -: the samples are the stream on stdout, and the summary goes to stderr */
   int dump_stdout = dump && !strcmp(dump, "-");
   FILE *summary = dump_stdout ? stderr : stdout;
@@ -423,6 +281,81 @@ int hd_mc_eps_main(int argc, char **argv) {
     fprintf(stderr, "haff mc eps: %ld collisions cut at max_tau, %ld Richardson values clamped\n",
             st.truncated, st.clamped);
   free(x);
+  return rc;
+}
+
+/* The checks between options: --gamma required, the options the mode does not read refused
+ * (--tabulate --beta 5 ran with no word of the beta).  Returns 0 or 2 after one line. */
+static int eps_check(const hd_optres *res, const eopts *e) {
+  if (isnan(e->gamma)) {
+    fprintf(stderr, "haff mc eps: --gamma is required (see --help)\n");
+    return 2;
+  }
+  if (e->tab)
+    return hd_opt_refuse(&hd_mc_eps_spec, res, NULL, "beta beta2 dump convergence",
+                         "with --tabulate");
+  if (e->conv)
+    return hd_opt_refuse(&hd_mc_eps_spec, res, NULL,
+                         "dump adapt richardson db beta-min beta-max nbeta nu",
+                         "with --convergence");
+  return hd_opt_refuse(&hd_mc_eps_spec, res, NULL, "db beta-min beta-max nbeta nu",
+                       "without --tabulate");
+}
+
+int hd_mc_eps_main(int argc, char **argv) {
+  eopts e = {.gamma = NAN,
+             .beta = 1,
+             .beta2 = NAN,
+             .bmin = 1e-3,
+             .bmax = 1e3,
+             .n = -1,
+             .seed = 1,
+             .adapt = -1,
+             .nbeta = 25,
+             .nu = 129};
+  hd_eps_opts_default(&e.o);
+  hd_optres res;
+  int rc = hd_opt_parse(&hd_mc_eps_spec, argc, argv, &e, &res);
+  if (rc) return rc < 0 ? 0 : rc;
+  if ((rc = eps_check(&res, &e))) return rc;
+  double gamma = e.gamma, beta = e.beta, beta2 = e.beta2, bmin = e.bmin, bmax = e.bmax;
+  long n = e.n, seed = e.seed, nbeta = e.nbeta, nu = e.nu, adapt = e.adapt;
+  int conv = e.conv, tab = e.tab;
+  const char *dump = e.dump, *dbpath = e.dbpath;
+  hd_eps_opts o = e.o;
+  if (isnan(beta2)) beta2 = beta;
+  if (!(beta > 0) || !(beta2 > 0)) {
+    fprintf(stderr, "haff mc eps: --beta and --beta2 must be > 0\n");
+    return 2;
+  }
+  if (tab && !dbpath) {
+    fprintf(stderr, "haff mc eps: --tabulate needs --db DB\n");
+    return 2;
+  }
+  if (adapt >= 0) o.adapt = (int)adapt;
+  if (n < 0) n = tab ? 2000 : 10000;
+  gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+  if (!rng) return 1;
+  gsl_rng_set(rng, (unsigned long)seed);
+  if (conv) {
+    rc = convergence(gamma, beta, beta2, n, o.step, rng);
+    gsl_rng_free(rng);
+    return rc;
+  }
+  hd_eps_sampler *s;
+  hd_error err;
+  if (hd_eps_sampler_alloc(&s, gamma, &o, &err)) {
+    fprintf(stderr, "haff mc eps: %s\n", err.msg);
+    gsl_rng_free(rng);
+    return hd_exit_code(err.code);
+  }
+  if (tab) {
+    rc = tabulate(s, dbpath, bmin, bmax, (int)nbeta, (int)nu, n, (unsigned long)seed, rng);
+    hd_eps_sampler_free(s);
+    gsl_rng_free(rng);
+    return rc;
+  }
+  rc = sample(s, gamma, beta, beta2, n, dump, rng);
   hd_eps_sampler_free(s);
   gsl_rng_free(rng);
   return rc;

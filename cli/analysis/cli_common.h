@@ -7,9 +7,10 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "hd_opt.h"
 #include "hd_runfit.h"
 
-/* Options an analysis subcommand may accept (bits for hd_cli_parse's `allowed`). */
+/* Options an analysis subcommand may accept (bits of hd_optspec.allowed, hd_optdef.set). */
 enum {
   HD_OPT_RUN = 1,     /* --run ID */
   HD_OPT_ALL = 2,     /* --all */
@@ -43,10 +44,14 @@ typedef struct hd_cli_args {
   hd_kmode kmode;    /* --k-ci [ac] */
 } hd_cli_args;
 
-/* Parses argv (argv[0] the subcommand) accepting the `allowed` options; usage is printed for
- * --help.  Returns 0 to go on, 2 after printing one line on stderr for bad usage, or -1 after
- * printing help (the caller returns 0). */
-int hd_cli_parse(int argc, char **argv, unsigned allowed, const char *usage, hd_cli_args *a);
+/* The options of every analysis subcommand (a spec's `allowed` says which apply): the table
+ * of hd_opt_parse, with hd_cli_args as dest.  Each subcommand's hd_optspec points to it. */
+extern const hd_optdef hd_cli_opts[];
+
+/* Parses argv (argv[0] the subcommand) by spec (opts hd_cli_opts, one positional: the
+ * database) into *a, after setting its defaults.  Returns 0 to go on, 2 after printing one
+ * line on stderr for bad usage, or -1 after printing help (the caller returns 0). */
+int hd_cli_parse(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a);
 
 /* Opens a->out for writing (stdout when NULL or "-").  Returns NULL after printing the error. */
 FILE *hd_cli_out(const hd_cli_args *a);
@@ -62,23 +67,53 @@ int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit 
 /* "stored", "computed" or "whole" for hd_run_fit.window (HD_WINDOW_*). */
 const char *hd_cli_window_name(int window);
 
-/* hd_cli_fits, then the fits grouped into ensembles (hd_group_runs; warns on stderr when two
- * share an (alpha, a/d) label).  Returns as
- * hd_cli_fits (nothing left open on failure); on 0 free with hd_cli_groups_free. */
-int hd_cli_groups(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits, size_t *n,
-                  hd_group **g, size_t *ng);
+/* The runs an analysis of groups works on (hd_cli_groups). */
+typedef struct hd_cli_set {
+  sqlite3 *db;      /* the database, open */
+  hd_run_fit *fits; /* the fitted runs (hd_cli_fits), n of them */
+  size_t n;
+  hd_group *g; /* the fits grouped into ensembles (hd_group_runs), ng of them */
+  size_t ng;
+} hd_cli_set;
+
+/* hd_cli_parse by spec, hd_cli_fits, then the fits grouped into ensembles (hd_group_runs; warns
+ * on stderr when two share an (alpha, a/d) label) into *s.  Returns as hd_cli_parse (-1 after
+ * --help) or hd_cli_fits (nothing left open on failure); on 0 free with hd_cli_groups_free. */
+int hd_cli_groups(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a, hd_cli_set *s);
+
+/* The start of table1 and table2: hd_cli_groups, then the groups of the papers' case
+ * (hd_cli_table_groups: none is bad input, "haff CMD: none" on stderr, exit 2), then the
+ * output opened (hd_cli_out).  Returns as hd_cli_groups; on 0 *out is open and s holds the
+ * groups (the caller frees both). */
+int hd_cli_table_start(const hd_optspec *spec, int argc, char **argv, int with_disks,
+                       const char *none, hd_cli_args *a, hd_cli_set *s, FILE **out);
 
 /* Prints a warning on stderr for each group whose (alpha, a/d) label an earlier group has. */
 void hd_cli_groups_warn(const char *cmd, const hd_group *g, size_t ng);
 
 /* Frees what hd_cli_groups returned and closes the database. */
-void hd_cli_groups_free(sqlite3 *db, hd_run_fit *fits, hd_group *g, size_t ng);
+void hd_cli_groups_free(hd_cli_set *s);
 
 /* The start of a subcommand on one run: hd_cli_parse, then --run ID is required, the database
  * is opened and the run's info read into *info.  Returns as hd_cli_parse (-1 after --help), or
  * the exit code after printing one line; on 0 *db is open (the caller closes it). */
-int hd_cli_one_run(int argc, char **argv, unsigned allowed, const char *usage, hd_cli_args *a,
-                   sqlite3 **db, hd_run_info *info);
+int hd_cli_one_run(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a, sqlite3 **db,
+                   hd_run_info *info);
+
+/* Whether group g is in the papers' tables: one species in a periodic box, dimers (and disks
+ * when with_disks: Table I's reference; Table II's K needs rotation). */
+int hd_cli_in_table(const hd_group *g, int with_disks);
+
+/* How many of the groups g[0..ng) are in the table; says on stderr which are left out for not
+ * being the papers' case (a mixture, walls) and where they are fitted. */
+size_t hd_cli_table_groups(const char *cmd, const hd_group *g, size_t ng, int with_disks);
+
+/* Whether a table leaves group g out for being flagged inhomogeneous (not with keep); says so on
+ * stderr, and that a group without state measures could not be checked. */
+int hd_cli_flagged_out(const char *cmd, const hd_group *g, const hd_group_fit *q, int keep);
+
+/* Says on stderr why a group fitted from one run has no error (hd_ensemble_mean). */
+void hd_cli_one_run_note(const char *cmd, const hd_group *g, size_t m);
 
 /* Prints the error of a failed library call as "haff CMD: msg" and returns its exit code. */
 int hd_cli_fail(const char *cmd, const hd_error *err);

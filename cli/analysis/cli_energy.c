@@ -3,7 +3,7 @@
 #include <stdlib.h>
 
 #include "cli_common.h"
-#include "hd_ana_cli.h"
+#include "haff.h"
 
 /* Writes one block: the sample-by-sample mean over the runs idx[0..m-1] (truncated to the
  * shortest) with the Haff and eq. (31) curves of the mean fitted D_e and nu0. */
@@ -66,34 +66,33 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
   return rc;
 }
 
+const hd_optspec haff_energy_spec = {
+    HD_OPT_SPEC("energy", hd_cli_opts, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT, 1, 1,
+                "one database argument"),
+    .head =
+        "usage: haff energy DB [--run ID | --all] [fit options] [-o FILE]\n"
+        "Energy per body and collisions per particle against time, for Figs. 2 and 3: one block\n"
+        "per run (--run) or per (alpha, a/d) group averaged sample by sample (--all, default),\n"
+        "blocks separated by two blank lines, each headed by '# species alpha=.. a_over_d=.. ...'\n"
+        "and a header line whose first field is the block's legend title (column 1 holds t).\n"
+        "Columns: t cpd E E_over_E0 e_tr e_rot x=(1-alpha^2)cpd nu0t=nu0_eff*t\n"
+        "         haff_E_over_E0=(E_s/E0)/(1+gamma nu0 (t-t_s))^2 x_eq31=(1-alpha^2)(cpd_s+eq.(31) "
+        "at\n"
+        "         t-t_s) homog (1 if fitted); t_s, cpd_s, E_s: the HCS window's start (nu0: "
+        "there)\n"};
+
 int haff_energy_main(int argc, char **argv) {
-  static const char usage[] =
-      "usage: haff energy DB [--run ID | --all] [fit options] [-o FILE]\n"
-      "Energy per body and collisions per particle against time, for Figs. 2 and 3: one block\n"
-      "per run (--run) or per (alpha, a/d) group averaged sample by sample (--all, default),\n"
-      "blocks separated by two blank lines, each headed by '# species alpha=.. a_over_d=.. ...'\n"
-      "and a header line whose first field is the block's legend title (column 1 holds t).\n"
-      "Columns: t cpd E E_over_E0 e_tr e_rot x=(1-alpha^2)cpd nu0t=nu0_eff*t\n"
-      "         haff_E_over_E0=(E_s/E0)/(1+gamma nu0 (t-t_s))^2 x_eq31=(1-alpha^2)(cpd_s+eq.(31) "
-      "at\n"
-      "         t-t_s) homog (1 if fitted); t_s, cpd_s, E_s: the HCS window's start (nu0: there)\n"
-      "  --no-detect, --thr X, --min-coll N, --cpd-max X, --cpd-skip X, --s-end X: as for\n"
-      "                   haff-fit (the fitted part, the HCS window)\n"
-      "  -o FILE          write to FILE instead of stdout (- is stdout)\n";
   hd_cli_args a;
-  int rc = hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT, usage, &a);
+  hd_cli_set s;
+  int rc = hd_cli_groups(&haff_energy_spec, argc, argv, &a, &s);
   if (rc) return rc < 0 ? 0 : rc;
-  sqlite3 *db;
-  hd_run_fit *fits;
-  hd_group *g;
-  size_t n, ng;
-  if ((rc = hd_cli_groups(&a, argv[0], &db, &fits, &n, &g, &ng))) return rc;
   hd_error err;
   FILE *out = hd_cli_out(&a);
   rc = out ? 0 : 1;
-  for (size_t j = 0; out && j < ng && !rc; j++)
-    if (write_block(out, db, fits, g[j].idx, g[j].n, j == 0, &err)) rc = hd_cli_fail(argv[0], &err);
-  hd_cli_groups_free(db, fits, g, ng);
+  for (size_t j = 0; out && j < s.ng && !rc; j++)
+    if (write_block(out, s.db, s.fits, s.g[j].idx, s.g[j].n, j == 0, &err))
+      rc = hd_cli_fail(argv[0], &err);
+  hd_cli_groups_free(&s);
   if (out) {
     int c = hd_cli_close(out, &a);
     if (!rc) rc = c;

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "cli_common.h"
-#include "hd_ana_cli.h"
+#include "haff.h"
 #include "hd_velstats.h"
 
 static void stat_line(FILE *out, size_t s, const hd_snapshot *sn, const char *var,
@@ -96,31 +96,24 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
   return rc;
 }
 
+const hd_optspec haff_veldist_spec = {
+    HD_OPT_SPEC("veldist", hd_cli_opts, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT, 1, 1,
+                "one database argument"),
+    .head =
+        "usage: haff veldist DB --run ID [--stats] [--bins B] [--range X] [--label L] [-o FILE]\n"
+        "       haff veldist DB --pool [--run ID] [--bins B] [--range X] [--label L] [-o FILE]\n"
+        "Fig. 6: histograms of the scaled velocities c = (v - <v>)/s of every snapshot (label\n"
+        "'velocities', taken at [log] velocities_at), s the snapshot's own per-component rms\n"
+        "(vx, vy: sqrt(<|V-<V>|^2>/2); omega: sqrt(<omega^2>), not centred), so that a Maxwellian\n"
+        "gives the standard normal.  One block per snapshot, two blank lines between, each headed\n"
+        "by a line whose first field is its legend title 'cpd=X'.\n"
+        "Columns: snap cpd c p_vx p_vy p_omega gauss   (p_omega NaN for disks)\n"};
+
 int haff_veldist_main(int argc, char **argv) {
-  static const char usage[] =
-      "usage: haff veldist DB --run ID [--stats] [--bins B] [--range X] [--label L] [-o FILE]\n"
-      "       haff veldist DB --pool [--run ID] [--bins B] [--range X] [--label L] [-o FILE]\n"
-      "Fig. 6: histograms of the scaled velocities c = (v - <v>)/s of every snapshot (label\n"
-      "'velocities', taken at [log] velocities_at), s the snapshot's own per-component rms\n"
-      "(vx, vy: sqrt(<|V-<V>|^2>/2); omega: sqrt(<omega^2>), not centred), so that a Maxwellian\n"
-      "gives the standard normal.  One block per snapshot, two blank lines between, each headed\n"
-      "by a line whose first field is its legend title 'cpd=X'.\n"
-      "Columns: snap cpd c p_vx p_vy p_omega gauss   (p_omega NaN for disks)\n"
-      "  --stats          instead: one line per snapshot and variable (vx, vy, omega, v2d):\n"
-      "                   snap t cpd var n scale kurt a2 a2_err ks_d ks_p (docs/analysis.md)\n"
-      "  --pool           one block instead: every snapshot of every finished run (or --run) of\n"
-      "                   the first run's species whose cpd is in the run's HCS window "
-      "(haff-fit's\n"
-      "                   window; fit options apply), pooled; extra column n (values per "
-      "component)\n"
-      "  --bins B         bins [40]     --range X   histogram on [-X, X] [5]\n"
-      "  --label L        states label [velocities] (e.g. initial, final)\n"
-      "  -o FILE          write to FILE instead of stdout (- is stdout)\n";
   hd_cli_args a;
   sqlite3 *db;
   hd_run_info ri;
-  int rc =
-      hd_cli_parse(argc, argv, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT, usage, &a);
+  int rc = hd_cli_parse(&haff_veldist_spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   if (a.pool) {
     if (a.stats) {
@@ -129,8 +122,7 @@ int haff_veldist_main(int argc, char **argv) {
     }
     return veldist_pool(&a, argv[0]);
   }
-  rc = hd_cli_one_run(argc, argv, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT, usage, &a,
-                      &db, &ri);
+  rc = hd_cli_one_run(&haff_veldist_spec, argc, argv, &a, &db, &ri);
   if (rc) return rc < 0 ? 0 : rc;
   if (ri.species == HD_ANA_OTHER) {
     hd_ana_close(db);

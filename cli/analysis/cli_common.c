@@ -1,0 +1,421 @@
+/* cli_common: option parsing and shared plumbing of the analysis subcommands. */
+#include "cli_common.h"
+
+#include "hd_db.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stddef.h>
+#include <limits.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The options of the analysis subcommands: one table, each subcommand accepting the sets
+ * (HD_OPT_*) of its spec's `allowed` (others: "does not apply here"). */
+const hd_optdef hd_cli_opts[] = {
+    {.name = "run",
+     .kind = HD_ARG_INT,
+     .off = offsetof(hd_cli_args, run),
+     .size = sizeof(int64_t),
+     .ilo = 0,
+     .ihi = INT64_MAX,
+     .meta = "ID",
+     .set = HD_OPT_RUN,
+     .help = "one run (any status); default: every done/collapsed/interrupted run"},
+    {.name = "all",
+     .kind = HD_ARG_FLAG,
+     .off = offsetof(hd_cli_args, all),
+     .set = HD_OPT_ALL,
+     .help = "every finished run (the default)"},
+    {.name = "alpha-group",
+     .kind = HD_ARG_FLAG,
+     .off = offsetof(hd_cli_args, group),
+     .set = HD_OPT_GROUP,
+     .help = "one line per (alpha, a/d) group"},
+    {.name = "md",
+     .kind = HD_ARG_FLAG,
+     .off = offsetof(hd_cli_args, md),
+     .set = HD_OPT_MD,
+     .help = "a Markdown table instead of TSV"},
+    {.name = "keep-flagged",
+     .kind = HD_ARG_FLAG,
+     .off = offsetof(hd_cli_args, keep_flagged),
+     .set = HD_OPT_MD,
+     .help = "keep the groups flagged inhomogeneous (left out by default)"},
+    {.name = "k-ci",
+     .kind = HD_ARG_ENUM,
+     .off = offsetof(hd_cli_args, kmode),
+     .set = HD_OPT_KCI,
+     .choices = "ac|ols|runs",
+     .meta = "ac|ols|runs",
+     .help = "ac [default]: runs combined by inverse-variance weights, each run's errors\n"
+             "widened by its residuals' autocorrelation time (docs/analysis.md);\n"
+             "ols: the same with plain OLS errors (the paper's test; too narrow);\n"
+             "runs: mean over runs, t interval with runs-1 dof (needs >= 2 runs)"},
+    {.name = "cpd-min-k",
+     .kind = HD_ARG_DOUBLE,
+     .off = offsetof(hd_cli_args, fit.cpd_min_k),
+     .lo = 0,
+     .hi = INFINITY,
+     .meta = "X",
+     .set = HD_OPT_KCI,
+     .help = "skip the transient cpd < X [0]"},
+    {.name = "no-detect",
+     .kind = HD_ARG_FLAG,
+     .off = offsetof(hd_cli_args, fit.detect),
+     .flags = HD_OPTF_CLEAR,
+     .set = HD_OPT_FIT,
+     .help = "fit the whole run, not only the homogeneous part"},
+    {.name = "thr",
+     .kind = HD_ARG_DOUBLE,
+     .off = offsetof(hd_cli_args, fit.homog.thr),
+     .lo = 1e-6,
+     .hi = INFINITY,
+     .meta = "X",
+     .set = HD_OPT_FIT,
+     .help = "homogeneity: relative change of rate/sqrt(E) that ends it [0.1]"},
+    {.name = "min-coll",
+     .kind = HD_ARG_DOUBLE,
+     .off = offsetof(hd_cli_args, fit.homog.min_coll),
+     .lo = 1,
+     .hi = INFINITY,
+     .meta = "N",
+     .set = HD_OPT_FIT,
+     .help = "homogeneity: pair collisions per window [2000]"},
+    {.name = "cpd-max",
+     .kind = HD_ARG_DOUBLE,
+     .off = offsetof(hd_cli_args, fit.cpd_max),
+     .lo = 0,
+     .hi = INFINITY,
+     .meta = "X",
+     .set = HD_OPT_FIT,
+     .help = "fit only samples with cpd <= X (0: no limit, the default)"},
+    {.name = "cpd-skip",
+     .kind = HD_ARG_DOUBLE,
+     .off = offsetof(hd_cli_args, fit.hcs.cpd_skip),
+     .lo = 0,
+     .hi = INFINITY,
+     .meta = "X",
+     .set = HD_OPT_FIT,
+     .help = "HCS window: leave out the initial transient cpd < X [5]"},
+    {.name = "s-end",
+     .kind = HD_ARG_DOUBLE,
+     .off = offsetof(hd_cli_args, fit.hcs.s_end),
+     .lo = 1e-6,
+     .hi = INFINITY,
+     .meta = "X",
+     .set = HD_OPT_FIT,
+     .help = "HCS window: ends where a 5-cpd block's mean s_perp exceeds X [10]"},
+    {.name = "s-flag",
+     .kind = HD_ARG_DOUBLE,
+     .off = offsetof(hd_cli_args, fit.s_flag),
+     .lo = 1e-6,
+     .hi = INFINITY,
+     .meta = "X",
+     .set = HD_OPT_FIT,
+     .help = "flag a group 'inhomogeneous' when its window's mean s_perp exceeds X [2.5]"},
+    {.name = "min-window",
+     .kind = HD_ARG_DOUBLE,
+     .off = offsetof(hd_cli_args, fit.min_window),
+     .lo = 0,
+     .hi = INFINITY,
+     .meta = "X",
+     .set = HD_OPT_FIT,
+     .help = "... or when most of its runs left the HCS within X cpd [40]"},
+    {.name = "block",
+     .kind = HD_ARG_INT,
+     .off = offsetof(hd_cli_args, block),
+     .size = sizeof(long),
+     .ilo = 1,
+     .ihi = LONG_MAX,
+     .meta = "N",
+     .set = HD_OPT_BLOCK,
+     .help = "collisions per block [10000]"},
+    {.name = "fmean",
+     .kind = HD_ARG_FLAG,
+     .off = offsetof(hd_cli_args, fmean),
+     .set = HD_OPT_BLOCK,
+     .help = "instead: one line 'run n f_mean f_err batches batch_size', <f> over\n"
+             "the run with a batch-means standard error (batches of N, >= 20 of them)"},
+    {.name = "stats",
+     .kind = HD_ARG_FLAG,
+     .off = offsetof(hd_cli_args, stats),
+     .set = HD_OPT_STATS,
+     .help = "instead: one line per snapshot and variable (vx, vy, omega, v2d):\n"
+             "snap t cpd var n scale kurt a2 a2_err ks_d ks_p (docs/analysis.md)"},
+    {.name = "pool",
+     .kind = HD_ARG_FLAG,
+     .off = offsetof(hd_cli_args, pool),
+     .set = HD_OPT_STATS,
+     .help = "one block instead: every snapshot of every finished run (or --run) of\n"
+             "the first run's species whose cpd is in the run's HCS window (haff-fit's\n"
+             "window; fit options apply), pooled; extra column n (values per component)"},
+    {.name = "bins",
+     .kind = HD_ARG_INT,
+     .off = offsetof(hd_cli_args, bins),
+     .size = sizeof(int),
+     .ilo = 1,
+     .ihi = 100000,
+     .meta = "B",
+     .set = HD_OPT_BINS,
+     .help = "histogram bins [angles: 36 on (-pi, pi]; veldist: 40]"},
+    {.name = "range",
+     .kind = HD_ARG_DOUBLE,
+     .off = offsetof(hd_cli_args, range),
+     .lo = 1e-9,
+     .hi = INFINITY,
+     .meta = "X",
+     .set = HD_OPT_STATS,
+     .help = "histogram on [-X, X] [5]"},
+    {.name = "label",
+     .kind = HD_ARG_STRING,
+     .off = offsetof(hd_cli_args, label),
+     .meta = "L",
+     .set = HD_OPT_STATS,
+     .help = "states label [velocities] (e.g. initial, final)"},
+    {.name = "o",
+     .letter = 'o',
+     .kind = HD_ARG_STRING,
+     .off = offsetof(hd_cli_args, out),
+     .flags = HD_OPTF_SHORT,
+     .meta = "FILE",
+     .help = "write to FILE instead of stdout (- is stdout)"},
+    {0}};
+
+int hd_cli_parse(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a) {
+  memset(a, 0, sizeof *a);
+  a->run = -1;
+  a->fit = hd_fit_opts_defaults();
+  a->block = 10000;
+  a->bins = 0;
+  a->label = "velocities";
+  a->range = 5;
+  a->kmode = HD_K_AC;
+  hd_optres res;
+  int rc = hd_opt_parse(spec, argc, argv, a, &res);
+  if (rc) return rc;
+  a->db = res.pos[0];
+  if (a->run >= 0 && a->all) {
+    fprintf(stderr, "haff %s: --run and --all exclude each other\n", spec->cmd);
+    return 2;
+  }
+  return 0;
+}
+
+FILE *hd_cli_out(const hd_cli_args *a) {
+  if (!a->out || !strcmp(a->out, "-")) return stdout; /* -o -: the stream to stdout */
+  FILE *f = fopen(a->out, "w");
+  if (!f) fprintf(stderr, "haff: %s: cannot write: %s\n", a->out, strerror(errno));
+  return f;
+}
+
+int hd_cli_close(FILE *f, const hd_cli_args *a) {
+  int bad = ferror(f);
+  if (f != stdout)
+    bad |= fclose(f);
+  else
+    bad |= fflush(f);
+  if (bad) {
+    fprintf(stderr, "haff: %s: write error\n", a->out && strcmp(a->out, "-") ? a->out : "stdout");
+    return 1;
+  }
+  return 0;
+}
+
+int hd_cli_fail(const char *cmd, const hd_error *err) {
+  fprintf(stderr, "haff %s: %s\n", cmd, err->msg);
+  return hd_exit_code(err->code);
+}
+
+int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits, size_t *n) {
+  hd_error err;
+  hd_error_clear(&err);
+  *fits = NULL, *n = 0;
+  if (hd_ana_open(db, a->db, &err)) return hd_cli_fail(cmd, &err);
+  hd_run_info *runs;
+  size_t nr;
+  if (hd_ana_runs(*db, a->run, &runs, &nr, &err)) {
+    hd_ana_close(*db), *db = NULL;
+    return hd_cli_fail(cmd, &err);
+  }
+  if (nr == 0) {
+    free(runs);
+    hd_ana_close(*db), *db = NULL;
+    fprintf(stderr, "haff %s: %s: no finished runs\n", cmd, a->db);
+    return 2;
+  }
+  *fits = calloc(nr, sizeof **fits);
+  if (!*fits) {
+    free(runs);
+    hd_ana_close(*db), *db = NULL;
+    fprintf(stderr, "haff %s: out of memory\n", cmd);
+    return 1;
+  }
+  size_t m = 0;
+  for (size_t i = 0; i < nr; i++) {
+    if (runs[i].species == HD_ANA_OTHER) continue;
+    int rc = hd_run_fit_do(*db, &runs[i], &a->fit, &(*fits)[m], &err);
+    /* skip short runs in an ensemble, say so; not a damaged database (SQLite's "malformed",
+     * bad input too, for the whole file) */
+    if (rc == HD_EINPUT && a->run < 0 && hd_ana_status(*db) != HD_EINPUT) {
+      fprintf(stderr, "haff %s: skipping: %s\n", cmd, err.msg);
+      continue;
+    }
+    if (rc) {
+      free(runs), free(*fits), *fits = NULL;
+      hd_ana_close(*db), *db = NULL;
+      return hd_cli_fail(cmd, &err);
+    }
+    if ((*fits)[m].why[0])
+      fprintf(stderr, "haff %s: run %lld: %s\n", cmd, (long long)runs[i].id, (*fits)[m].why);
+    m++;
+  }
+  free(runs);
+  *n = m;
+  size_t cnt[3] = {0, 0, 0};
+  for (size_t i = 0; i < m; i++) cnt[(*fits)[i].window]++;
+  if (m && a->fit.detect)
+    fprintf(
+        stderr,
+        "haff %s: note: HCS windows: %zu stored with the runs (runs.hcs_*), %zu computed now%s\n",
+        cmd, cnt[HD_WINDOW_STORED], cnt[HD_WINDOW_COMPUTED],
+        cnt[HD_WINDOW_COMPUTED] == 0 ? ""
+        : hd_hcs_opts_default(&a->fit.homog, &a->fit.hcs)
+            ? " (no stored window: a file from before, or a run that has not ended)"
+            : " (detection options other than the defaults)");
+  if (m == 0) {
+    free(*fits), *fits = NULL;
+    hd_ana_close(*db), *db = NULL;
+    fprintf(stderr, "haff %s: no run with dimers or disks and enough samples\n", cmd);
+    return 2;
+  }
+  return 0;
+}
+
+int hd_cli_groups(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a, hd_cli_set *s) {
+  memset(s, 0, sizeof *s);
+  int rc = hd_cli_parse(spec, argc, argv, a);
+  if (rc) return rc;
+  const char *cmd = spec->cmd;
+  rc = hd_cli_fits(a, cmd, &s->db, &s->fits, &s->n);
+  if (rc) return rc;
+  hd_error err;
+  if (hd_group_runs(s->fits, s->n, &s->g, &s->ng, &err)) {
+    free(s->fits), s->fits = NULL;
+    hd_ana_close(s->db), s->db = NULL;
+    return hd_cli_fail(cmd, &err);
+  }
+  hd_cli_groups_warn(cmd, s->g, s->ng);
+  return 0;
+}
+
+int hd_cli_table_start(const hd_optspec *spec, int argc, char **argv, int with_disks,
+                       const char *none, hd_cli_args *a, hd_cli_set *s, FILE **out) {
+  int rc = hd_cli_groups(spec, argc, argv, a, s);
+  if (rc) return rc;
+  if (hd_cli_table_groups(spec->cmd, s->g, s->ng, with_disks) == 0) { /* bad input */
+    fprintf(stderr, "haff %s: %s\n", spec->cmd, none);
+    hd_cli_groups_free(s);
+    return 2;
+  }
+  if (!(*out = hd_cli_out(a))) {
+    hd_cli_groups_free(s);
+    return 1;
+  }
+  return 0;
+}
+
+void hd_cli_groups_warn(const char *cmd, const hd_group *g, size_t ng) {
+  for (size_t j = 0; j < ng; j++)
+    for (size_t k = 0; k < j; k++)
+      if (hd_group_same_label(&g[j], &g[k])) {
+        fprintf(stderr,
+                "haff %s: warning: runs with alpha %g a/d %g differ in N, density, d or m (N %ld "
+                "n %.6g and N %ld n %.6g): kept apart, as rows with the same alpha and a/d\n",
+                cmd, g[j].alpha, g[j].a_over_d, g[k].nbodies, g[k].density, g[j].nbodies,
+                g[j].density);
+        break;
+      }
+}
+
+void hd_cli_groups_free(hd_cli_set *s) {
+  free(s->fits), hd_groups_free(s->g, s->ng), hd_ana_close(s->db);
+  memset(s, 0, sizeof *s);
+}
+
+int hd_cli_one_run(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a, sqlite3 **db,
+                   hd_run_info *info) {
+  int rc = hd_cli_parse(spec, argc, argv, a);
+  if (rc) return rc;
+  if (a->run < 0) {
+    fprintf(stderr, "haff %s: --run ID is required\n", argv[0]);
+    return 2;
+  }
+  hd_error err;
+  if (hd_ana_open(db, a->db, &err)) return hd_cli_fail(argv[0], &err);
+  hd_run_info *ri;
+  size_t nr;
+  if (hd_ana_runs(*db, a->run, &ri, &nr, &err)) {
+    hd_ana_close(*db), *db = NULL;
+    return hd_cli_fail(argv[0], &err);
+  }
+  *info = ri[0];
+  free(ri);
+  return 0;
+}
+
+const char *hd_cli_window_name(int window) {
+  return window == HD_WINDOW_STORED     ? "stored"
+         : window == HD_WINDOW_COMPUTED ? "computed"
+                                        : "whole";
+}
+
+/* Whether group g is in the papers' tables: one species in a periodic box, dimers (and disks
+ * when with_disks: Table I's reference; Table II's K needs rotation). */
+int hd_cli_in_table(const hd_group *g, int with_disks) {
+  return !g->walls && (g->species == HD_ANA_DIMERS || (with_disks && g->species == HD_ANA_DISKS));
+}
+
+/* How many of the groups g[0..ng) are in the table; says on stderr which are left out for not
+ * being the papers' case (a mixture, walls) and where they are fitted. */
+size_t hd_cli_table_groups(const char *cmd, const hd_group *g, size_t ng, int with_disks) {
+  size_t in = 0;
+  for (size_t j = 0; j < ng; j++) {
+    if (hd_cli_in_table(&g[j], with_disks))
+      in++;
+    else if (g[j].species != HD_ANA_DISKS || g[j].walls) /* not the disks table2 has no use for */
+      fprintf(stderr,
+              "haff %s: note: left out %zu run%s of %s (alpha %g a/d %g): the table is for one "
+              "species in a periodic box; haff-fit --alpha-group fits them\n",
+              cmd, g[j].n, g[j].n == 1 ? "" : "s", hd_ana_species_name(g[j].species, g[j].walls),
+              g[j].alpha, g[j].a_over_d);
+  }
+  return in;
+}
+
+/* Whether a table leaves group g out for being flagged inhomogeneous (not with keep); says so on
+ * stderr, and that a group without state measures could not be checked. */
+int hd_cli_flagged_out(const char *cmd, const hd_group *g, const hd_group_fit *q, int keep) {
+  if (!q->measured)
+    fprintf(stderr,
+            "haff %s: note: alpha %g a/d %g: no state measures in its samples (logged before "
+            "schema 2): its homogeneity is not checked and D_e_sys has no box term\n",
+            cmd, g->alpha, g->a_over_d);
+  if (!q->flagged || keep) return 0;
+  fprintf(stderr,
+          "haff %s: note: left out alpha %g a/d %g N %ld: inhomogeneous (window mean s_perp %.3g, "
+          "%zu of %zu runs left the HCS early); --keep-flagged keeps it\n",
+          cmd, g->alpha, g->a_over_d, g->nbodies, q->s_perp, q->ended, q->m);
+  return 1;
+}
+
+/* Says on stderr why a group fitted from one run has no error (hd_ensemble_mean). */
+void hd_cli_one_run_note(const char *cmd, const hd_group *g, size_t m) {
+  if (m == 1)
+    fprintf(stderr,
+            "haff %s: note: alpha %g a/d %g: one fitted run, so its errors are nan (an ensemble "
+            "error needs >= 2 runs; the fit's formal error, haff-fit's *_fit_err, is several times "
+            "smaller than the scatter between runs)\n",
+            cmd, g->alpha, g->a_over_d);
+}

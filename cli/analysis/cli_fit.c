@@ -1,0 +1,104 @@
+/* `haff haff-fit`: the fit of eq. (31) per run, or per group of runs with equal (alpha, a/d). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_common.h"
+#include "haff.h"
+
+const hd_optspec haff_fit_spec = {
+    HD_OPT_SPEC("haff-fit", hd_cli_opts, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP, 1, 1,
+                "one database argument"),
+    .head =
+        "usage: haff haff-fit DB [--run ID | --all] [--alpha-group] [fit options] [-o FILE]\n"
+        "Fits eq. (31) tau(t) = ln(1 + gamma nu0 t)/gamma, gamma = (1-alpha^2)/(2 D_e), to the\n"
+        "HCS window of each run (tau = cpd counted from the window's start): after the initial\n"
+        "transient (--cpd-skip), up to where the state measures (s_perp) or the collision rate\n"
+        "per sqrt(E) say the homogeneous cooling state ended; D_e_slope = -(1-alpha^2)/(slope of\n"
+        "ln E against cpd) on the same window needs no nu0.  Per group: D_e_sys, the systematic\n"
+        "error (window drift, estimator difference, correlated flow: docs/analysis.md), and flag\n"
+        "'inhomogeneous' for a box past the HCS's validity.  One line per run, or per group of "
+        "runs "
+        "with\n"
+        "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m and density;\n"
+        "mean +- standard error over the runs; nan with one run).  Per run, *_fit_err are the\n"
+        "formal least-squares errors, which take the residuals of the cumulative cpd(t) as\n"
+        "independent: several times too small.  window: 'stored' (the run's runs.hcs_* window,\n"
+        "used when the detection options are the defaults), 'computed' (found now: other options,\n"
+        "or a file without it), 'whole' (--no-detect).  A run that cannot be fitted gets nan and a "
+        "note;\n"
+        "exit 2 when none can.\n"};
+
+int haff_fit_main(int argc, char **argv) {
+  hd_cli_args a;
+  int rc = hd_cli_parse(&haff_fit_spec, argc, argv, &a);
+  if (rc) return rc < 0 ? 0 : rc;
+  sqlite3 *db;
+  hd_run_fit *fits;
+  size_t n;
+  if ((rc = hd_cli_fits(&a, argv[0], &db, &fits, &n))) return rc;
+  FILE *out = hd_cli_out(&a);
+  if (!out) {
+    free(fits), hd_ana_close(db);
+    return 1;
+  }
+  if (!a.group) {
+    /* *_fit_err: the least-squares errors, formal (docs/analysis.md): the residuals of the
+     * cumulative count cpd(t) are not independent, and runs scatter 10-25 times more */
+    fprintf(out, "run\tspecies\talpha\ta_over_d\tn_used\tdetected\tt_end\tcpd_end\tD_e\t"
+                 "D_e_fit_err\tnu0_eff\tnu0_eff_fit_err\tnu0_enskog\tratio\tratio_fit_err\t"
+                 "chi2_dof\tcpd_start\tD_e_slope\tD_e_slope_err\ts_perp\tflow_excess\t"
+                 "hcs_ended\twindow\n");
+    for (size_t i = 0; i < n; i++) {
+      const hd_run_fit *f = &fits[i];
+      double nan = NAN;
+      const hd_haff_fit *h = &f->haff;
+      fprintf(
+          out,
+          "%lld\t%s\t%g\t%g\t%zu\t%d\t%.6g\t%.6g\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.6g\t%.3g\t%.3g\t"
+          "%.6g\t%.6g\t%.3g\t%.4g\t%.4g\t%d\t%s\n",
+          (long long)f->info.id, hd_ana_species_name(f->info.species, f->info.walls), f->info.alpha,
+          f->info.a_over_d, f->n_used, f->homog.detected, f->t_end, f->cpd_end,
+          f->haff_ok ? h->D_e : nan, f->haff_ok ? h->D_e_err : nan, f->haff_ok ? h->nu0 : nan,
+          f->haff_ok ? h->nu0_err : nan, f->nu0_enskog, f->ratio, f->ratio_err,
+          f->haff_ok ? h->chi2 / (double)h->dof : nan, f->cpd_start, f->D_e_slope, f->D_e_slope_err,
+          f->hcs.have ? f->hcs.s_perp : nan, f->hcs.have ? f->hcs.flow_excess : nan, f->hcs.ended,
+          hd_cli_window_name(f->window));
+    }
+  } else {
+    hd_group *g;
+    size_t ng;
+    hd_error err;
+    if (hd_group_runs(fits, n, &g, &ng, &err)) {
+      free(fits), hd_ana_close(db), hd_cli_close(out, &a);
+      return hd_cli_fail(argv[0], &err);
+    }
+    hd_cli_groups_warn(argv[0], g, ng);
+    fprintf(out, "alpha\ta_over_d\tspecies\truns\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\tratio\t"
+                 "ratio_err\tn\tcpd_start\tcpd_end\tD_e_slope\tD_e_slope_err\tD_e_sys\t"
+                 "sys_window\tsys_estimator\tsys_box\ts_perp\tflag\n");
+    for (size_t j = 0; j < ng; j++) {
+      hd_group_fit q;
+      hd_group_fit_do(fits, &g[j], &a.fit, &q);
+      hd_cli_one_run_note(argv[0], &g[j], q.m);
+      fprintf(out,
+              "%g\t%g\t%s\t%zu\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.3g\t%ld\t%.4g\t%.4g\t%.6g\t%.3g\t"
+              "%.3g\t%.3g\t%.3g\t%.3g\t%.4g\t%s\n",
+              g[j].alpha, g[j].a_over_d, hd_ana_species_name(g[j].species, g[j].walls), q.m, q.D_e,
+              q.D_e_err, q.nu0, q.nu0_err, q.ratio, q.ratio_err, g[j].nbodies, q.cpd_start,
+              q.cpd_end, q.D_e_slope, q.D_e_slope_err, q.D_e_sys, q.sys_window, q.sys_est,
+              q.sys_box, q.s_perp, q.flagged ? "inhomogeneous" : "");
+    }
+    hd_groups_free(g, ng);
+  }
+  size_t fitted = 0; /* a script reading a row of nan should see a failure */
+  for (size_t i = 0; i < n; i++) fitted += fits[i].haff_ok != 0;
+  free(fits);
+  hd_ana_close(db);
+  int crc = hd_cli_close(out, &a);
+  if (!crc && fitted == 0) {
+    fprintf(stderr, "haff %s: no run could be fitted (why: above)\n", argv[0]);
+    return 2;
+  }
+  return crc;
+}
