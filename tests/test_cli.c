@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "test_cli_util.h"
+#include "test_util.h"
 
 static char root[4096]; /* the source tree (the tests run from it): db/schema.sql */
 
@@ -70,13 +71,7 @@ static const char scene[] =
 
 static int setup(void **state) {
   (void)state;
-  if (getenv("HAFF_SANITIZE") && getenv("HAFF_SANITIZE")[0] == '1') {
-    /* these tests drive bin/haff, which is not the sanitized build: nothing to add here */
-    haff = NULL;
-    return 0;
-  }
-  haff = getenv("HAFF_BIN");
-  if (!haff) haff = "bin/haff";
+  if (!test_cli_find_haff()) return 0; /* these tests drive bin/haff, not sanitized */
   assert_non_null(getcwd(root, sizeof root));
   assert_int_equal(test_cli_mkdtemp("cli"), 0);
   write_file("s.ini", scene);
@@ -888,27 +883,10 @@ static void eps_table_waits_for_a_run(void **state) {
 }
 
 /* Flips bit `bit` of the checkpoint of database db in dir. */
-static void flip_checkpoint_bit(const char *db, long bit) {
+static void flip_bit(const char *db, long bit) {
   char p[300];
   snprintf(p, sizeof p, "%s/%s", dir, db);
-  sqlite3 *h;
-  assert_int_equal(sqlite3_open(p, &h), SQLITE_OK);
-  sqlite3_stmt *st;
-  assert_int_equal(sqlite3_prepare_v2(h, "SELECT blob FROM checkpoints", -1, &st, 0), SQLITE_OK);
-  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
-  int n = sqlite3_column_bytes(st, 0);
-  unsigned char *b = malloc((size_t)n);
-  assert_non_null(b);
-  memcpy(b, sqlite3_column_blob(st, 0), (size_t)n);
-  sqlite3_finalize(st);
-  b[bit / 8 % n] ^= (unsigned char)(1u << bit % 8);
-  assert_int_equal(sqlite3_prepare_v2(h, "UPDATE checkpoints SET blob = ?1", -1, &st, 0),
-                   SQLITE_OK);
-  sqlite3_bind_blob(st, 1, b, n, SQLITE_TRANSIENT);
-  assert_int_equal(sqlite3_step(st), SQLITE_DONE);
-  sqlite3_finalize(st);
-  sqlite3_close(h);
-  free(b);
+  assert_int_equal(test_flip_checkpoint_bit(p, bit), 0);
 }
 
 /* A damaged checkpoint: resume exits 2 with one line saying so (a flipped bit crashed it or
@@ -917,14 +895,14 @@ static void damaged_checkpoint_exit_2(void **state) {
   (void)state;
   if (!haff) skip();
   assert_int_equal(run_and_signal("dmg.db", SIGINT, 300), 1);
-  flip_checkpoint_bit("dmg.db", 8 * 40 + 3); /* in the engine's header */
+  flip_bit("dmg.db", 8 * 40 + 3); /* in the engine's header */
   char e[2048];
   assert_int_equal(sh("%s resume dmg.db --quiet", haff), 2);
   read_err(e, sizeof e);
   assert_non_null(strstr(e, "dmg.db: the checkpoint of run 1 is damaged"));
   assert_int_equal(sh("test $(wc -l < err.txt) = 1"), 0);
   assert_int_equal(q1("dmg.db", "SELECT status = 'interrupted' FROM runs"), 1);
-  flip_checkpoint_bit("dmg.db", 8 * 40 + 3); /* mended: it resumes to the very same run */
+  flip_bit("dmg.db", 8 * 40 + 3); /* mended: it resumes to the very same run */
   assert_int_equal(sh("%s resume dmg.db --quiet", haff), 0);
   same_as_reference("dmg.db");
 }

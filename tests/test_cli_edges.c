@@ -45,12 +45,7 @@ static const char rods_scene[] = "[rods]\ncount = 50\n[run]\nstop_time = 10\n[lo
 
 static int setup(void **state) {
   (void)state;
-  if (getenv("HAFF_SANITIZE") && getenv("HAFF_SANITIZE")[0] == '1') {
-    haff = NULL; /* these tests drive bin/haff, which is not the sanitized build */
-    return 0;
-  }
-  haff = getenv("HAFF_BIN");
-  if (!haff) haff = "bin/haff";
+  if (!test_cli_find_haff()) return 0; /* these tests drive bin/haff, not sanitized */
   char abs[4096];
   if (haff[0] != '/' && realpath(haff, abs)) haff = strdup(abs);
   assert_int_equal(test_cli_mkdtemp("edges"), 0);

@@ -72,6 +72,19 @@ static inline int test_cli_mkdtemp(const char *name) {
   return 0;
 }
 
+/* Sets haff for the tests that drive it: HAFF_BIN, else bin/haff; NULL in the sanitized build
+ * (HAFF_SANITIZE=1), which bin/haff is not.  Returns whether haff is set (the setup goes on). */
+static inline int test_cli_find_haff(void) {
+  const char *san = getenv("HAFF_SANITIZE");
+  if (san && san[0] == '1') {
+    haff = NULL;
+    return 0;
+  }
+  haff = getenv("HAFF_BIN");
+  if (!haff) haff = "bin/haff";
+  return 1;
+}
+
 /* Removes dir and all it holds; 0, or -1 when rm fails. */
 static inline int test_cli_rmdir(void) {
   char cmd[300];

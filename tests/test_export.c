@@ -379,12 +379,7 @@ static void frames_in_process(void **state) {
 
 static int setup(void **state) {
   (void)state;
-  if (getenv("HAFF_SANITIZE") && getenv("HAFF_SANITIZE")[0] == '1') {
-    haff = NULL; /* these tests drive bin/haff, which is not the sanitized build */
-    return 0;
-  }
-  haff = getenv("HAFF_BIN");
-  if (!haff) haff = "bin/haff";
+  if (!test_cli_find_haff()) return 0; /* these tests drive bin/haff, not sanitized */
   assert_non_null(getcwd(root, sizeof root));
   assert_int_equal(test_cli_mkdtemp("export"), 0);
   return 0;

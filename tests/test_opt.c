@@ -139,49 +139,46 @@ static void values_are_stored(void **state) {
   assert_int_equal(a.mode, 1);
 }
 
+/* Refuses "f OPT VALUE" for each case (exit 2, one line on stderr holding want). */
+typedef struct {
+  const char *opt, *value, *want;
+} refusal;
+
+static void refused_all(const refusal *cases, size_t n) {
+  for (size_t k = 0; k < n; k++) {
+    const char *args[] = {"f", cases[k].opt, cases[k].value, NULL};
+    refused(args, cases[k].want);
+  }
+}
+
 static void bad_numbers_name_option_value_and_rule(void **state) {
   (void)state;
-  const char *a1[] = {"f", "--count", "x", NULL};
-  refused(a1, "haff test: --count 'x': expected a whole number in [1, 100]");
-  const char *a2[] = {"f", "--count", "2.5", NULL};
-  refused(a2, "--count '2.5': expected a whole number in [1, 100]");
-  const char *a3[] = {"f", "--count", "1e1", NULL}; /* no HD_OPTF_EXP: digits only */
-  refused(a3, "--count '1e1'");
-  const char *a4[] = {"f", "--count", "", NULL};
-  refused(a4, "--count '': expected");
-  const char *a5[] = {"f", "--ratio", "abc", NULL};
-  refused(a5, "haff test: --ratio 'abc': expected a finite number > 0");
-  const char *a6[] = {"f", "--any", "nan", NULL};
-  refused(a6, "--any 'nan': expected a number");
-  const char *a7[] = {"f", "--any", "1e400", NULL}; /* overflow (ERANGE) */
-  refused(a7, "--any '1e400'");
-  const char *a8[] = {"f", "--big", "1.5", NULL};
-  refused(a8, "--big '1.5': expected a whole number >= 0");
-  const char *a9[] = {"f", "--big", "1e300",
-                      NULL}; /* whole, but past what a double holds exactly */
-  refused(a9, "--big '1e300'");
-  const char *a10[] = {"f", "--id", "99999999999999999999", NULL};
-  refused(a10, "--id '99999999999999999999': expected a whole number >= 1");
-  const char *a11[] = {"f", "--mode", "d", NULL};
-  refused(a11, "haff test: --mode 'd': expected a, b or c");
+  static const refusal cases[] = {
+      {"--count", "x", "haff test: --count 'x': expected a whole number in [1, 100]"},
+      {"--count", "2.5", "--count '2.5': expected a whole number in [1, 100]"},
+      {"--count", "1e1", "--count '1e1'"}, /* no HD_OPTF_EXP: digits only */
+      {"--count", "", "--count '': expected"},
+      {"--ratio", "abc", "haff test: --ratio 'abc': expected a finite number > 0"},
+      {"--any", "nan", "--any 'nan': expected a number"},
+      {"--any", "1e400", "--any '1e400'"}, /* overflow (ERANGE) */
+      {"--big", "1.5", "--big '1.5': expected a whole number >= 0"},
+      {"--big", "1e300", "--big '1e300'"}, /* whole, but past what a double holds exactly */
+      {"--id", "99999999999999999999", "--id '99999999999999999999': expected a whole number >= 1"},
+      {"--mode", "d", "haff test: --mode 'd': expected a, b or c"}};
+  refused_all(cases, sizeof cases / sizeof cases[0]);
 }
 
 static void out_of_range_is_refused_at_both_ends(void **state) {
   (void)state;
-  const char *a1[] = {"f", "--count", "0", NULL};
-  refused(a1, "--count '0': expected a whole number in [1, 100]");
-  const char *a2[] = {"f", "--count", "101", NULL};
-  refused(a2, "--count '101'");
-  const char *a3[] = {"f", "--count", "4294967297", NULL}; /* past an int: not cast to 1 */
-  refused(a3, "--count '4294967297'");
-  const char *a4[] = {"f", "--ratio", "0", NULL}; /* > 0: 0 itself is out */
-  refused(a4, "--ratio '0': expected a finite number > 0");
-  const char *a5[] = {"f", "--ratio", "inf", NULL};
-  refused(a5, "--ratio 'inf'");
-  const char *a6[] = {"f", "--unit", "1", NULL};
-  refused(a6, "--unit '1': expected a number in [0, 1)");
-  const char *a7[] = {"f", "--unit", "-1e-300", NULL};
-  refused(a7, "--unit '-1e-300'");
+  static const refusal cases[] = {
+      {"--count", "0", "--count '0': expected a whole number in [1, 100]"},
+      {"--count", "101", "--count '101'"},
+      {"--count", "4294967297", "--count '4294967297'"}, /* past an int: not cast to 1 */
+      {"--ratio", "0", "--ratio '0': expected a finite number > 0"}, /* > 0: 0 itself is out */
+      {"--ratio", "inf", "--ratio 'inf'"},
+      {"--unit", "1", "--unit '1': expected a number in [0, 1)"},
+      {"--unit", "-1e-300", "--unit '-1e-300'"}};
+  refused_all(cases, sizeof cases / sizeof cases[0]);
   targs a;
   const char *edge[] = {"f", "--count", "100", "--unit", "0.9999999999999999", NULL};
   assert_int_equal(run(&a, edge), 0);

@@ -23,6 +23,7 @@
 #include "hd_model.h"
 #include "hd_run.h"
 #include "hd_scene.h"
+#include "test_util.h"
 
 /* ---------------------------------------------------------------------------------------- */
 /* helpers */
@@ -106,23 +107,20 @@ static void copy_file(const char *from, const char *to) {
 
 /* Database name holds the same run as ref.db: collisions, samples, states, status done. */
 static void same_as_reference(const char *name) {
-  assert_int_equal(q1(name, "SELECT count(*) FROM collisions"),
-                   q1(name, "SELECT count(*) FROM ref.collisions"));
-  assert_int_equal(q1(name, "SELECT count(*) FROM (SELECT seq,t,kind,i,j,f,de,vn,eps FROM "
-                            "collisions EXCEPT SELECT seq,t,kind,i,j,f,de,vn,eps FROM "
-                            "ref.collisions)"),
-                   0);
-  assert_int_equal(q1(name, "SELECT count(*) FROM samples"),
-                   q1(name, "SELECT count(*) FROM ref.samples"));
-  assert_int_equal(q1(name, "SELECT count(*) FROM (SELECT t,cpd,e_tr,e_rot FROM samples "
-                            "EXCEPT SELECT t,cpd,e_tr,e_rot FROM ref.samples)"),
-                   0);
-  assert_int_equal(q1(name, "SELECT count(*) FROM states"),
-                   q1(name, "SELECT count(*) FROM ref.states"));
-  assert_int_equal(q1(name, "SELECT count(*) FROM (SELECT label,t,body,x,y,phi,vx,vy,omega FROM "
-                            "states EXCEPT SELECT label,t,body,x,y,phi,vx,vy,omega FROM "
-                            "ref.states)"),
-                   0);
+  static const struct {
+    const char *table, *cols; /* the columns that must match row for row */
+  } same[] = {{"collisions", "seq,t,kind,i,j,f,de,vn,eps"},
+              {"samples", "t,cpd,e_tr,e_rot"},
+              {"states", "label,t,body,x,y,phi,vx,vy,omega"}};
+  for (size_t k = 0; k < sizeof same / sizeof same[0]; k++) {
+    char sql[400], ref[400];
+    snprintf(sql, sizeof sql, "SELECT count(*) FROM %s", same[k].table);
+    snprintf(ref, sizeof ref, "SELECT count(*) FROM ref.%s", same[k].table);
+    assert_int_equal(q1(name, sql), q1(name, ref));
+    snprintf(sql, sizeof sql, "SELECT count(*) FROM (SELECT %s FROM %s EXCEPT SELECT %s FROM ref.%s)",
+             same[k].cols, same[k].table, same[k].cols, same[k].table);
+    assert_int_equal(q1(name, sql), 0);
+  }
   assert_int_equal(q1(name, "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
 }
 
@@ -163,29 +161,6 @@ static void kept_checkpoint(const char *scene) {
   assert_int_equal(q1("kept.db", "SELECT count(*) FROM checkpoints WHERE seq = 2048"), 1);
 }
 
-/* Flips bit `bit` of the checkpoint of database name. */
-static void flip_bit(const char *name, long long bit) {
-  sqlite3 *h = NULL;
-  assert_int_equal(sqlite3_open_v2(path_of(name), &h, SQLITE_OPEN_READWRITE, NULL), SQLITE_OK);
-  sqlite3_stmt *st = NULL;
-  assert_int_equal(sqlite3_prepare_v2(h, "SELECT blob FROM checkpoints", -1, &st, NULL), SQLITE_OK);
-  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
-  int n = sqlite3_column_bytes(st, 0);
-  unsigned char *b = malloc((size_t)n);
-  assert_non_null(b);
-  memcpy(b, sqlite3_column_blob(st, 0), (size_t)n);
-  sqlite3_finalize(st);
-  assert_true(bit / 8 < n);
-  b[bit / 8] ^= (unsigned char)(1u << (bit % 8));
-  assert_int_equal(sqlite3_prepare_v2(h, "UPDATE checkpoints SET blob = ?1", -1, &st, NULL),
-                   SQLITE_OK);
-  sqlite3_bind_blob(st, 1, b, n, SQLITE_TRANSIENT);
-  assert_int_equal(sqlite3_step(st), SQLITE_DONE);
-  sqlite3_finalize(st);
-  sqlite3_close(h);
-  free(b);
-}
-
 /* One bit flipped at `flips` places of the kept checkpoint (the first 256 bits, the runner's
  * counters and the model's header, one by one in steps of 7; the rest at random, fixed seed):
  * each resume either refuses with one line saying the checkpoint is damaged (HD_EINPUT, as
@@ -201,7 +176,7 @@ static void flip_bits(const char *scene, int flips) {
   for (int k = 0; k < flips; k++) {
     long long bit = k < 37 ? 7 * k : (long long)gsl_rng_uniform_int(rng, (unsigned long)nbits);
     copy_file("kept.db", "f.db");
-    flip_bit("f.db", bit);
+    assert_int_equal(test_flip_checkpoint_bit(path_of("f.db"), bit), 0);
     hd_error err;
     int rc = resume("f.db", &err);
     if (rc == HD_OK) {

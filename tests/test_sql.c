@@ -82,12 +82,7 @@ static const char mix_ini[] =
  * 10 a mixture. */
 static int setup(void **state) {
   (void)state;
-  if (getenv("HAFF_SANITIZE") && getenv("HAFF_SANITIZE")[0] == '1') {
-    haff = NULL; /* these tests drive bin/haff, which is not the sanitized build */
-    return 0;
-  }
-  haff = getenv("HAFF_BIN");
-  if (!haff) haff = "bin/haff";
+  if (!test_cli_find_haff()) return 0; /* these tests drive bin/haff, not sanitized */
   if (!getcwd(root, sizeof root)) return -1;
   if (test_cli_mkdtemp("sql")) return -1;
   write_file("base.ini", base_ini);

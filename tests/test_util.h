@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sqlite3.h>
+
 #include "hd_scene.h"
 
 /* 1 when running in the ASan+UBSan build. */
@@ -39,6 +41,35 @@ static inline void test_disk_scene(hd_scene *sc, long n, double eta, double alph
   sc->placement = HD_PLACE_RANDOM; /* a melted lattice where random addition jams */
   sc->log_collisions = HD_LOG_NONE;
   sc->log_every = 1;
+}
+
+/* Flips bit `bit` of the (first) checkpoint blob of the database at path, as a damaged file
+ * would have it.  0, or -1 when the database, its checkpoint or that bit is missing or the
+ * write fails. */
+static inline int test_flip_checkpoint_bit(const char *path, long long bit) {
+  sqlite3 *h = NULL;
+  sqlite3_stmt *st = NULL;
+  unsigned char *b = NULL;
+  int rc = -1;
+  if (sqlite3_open_v2(path, &h, SQLITE_OPEN_READWRITE, NULL) != SQLITE_OK ||
+      sqlite3_prepare_v2(h, "SELECT blob FROM checkpoints", -1, &st, NULL) != SQLITE_OK ||
+      sqlite3_step(st) != SQLITE_ROW)
+    goto done;
+  int n = sqlite3_column_bytes(st, 0);
+  if (bit < 0 || bit / 8 >= n || !(b = malloc((size_t)n))) goto done;
+  memcpy(b, sqlite3_column_blob(st, 0), (size_t)n);
+  sqlite3_finalize(st);
+  st = NULL;
+  b[bit / 8] ^= (unsigned char)(1u << (bit % 8));
+  if (sqlite3_prepare_v2(h, "UPDATE checkpoints SET blob = ?1", -1, &st, NULL) == SQLITE_OK &&
+      sqlite3_bind_blob(st, 1, b, n, SQLITE_TRANSIENT) == SQLITE_OK &&
+      sqlite3_step(st) == SQLITE_DONE)
+    rc = 0;
+done:
+  sqlite3_finalize(st);
+  sqlite3_close(h);
+  free(b);
+  return rc;
 }
 
 #endif
