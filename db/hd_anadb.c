@@ -56,6 +56,32 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
   return HD_OK;
 }
 
+/* Sets *err from the database's last error, as "reading WHAT: message"; returns its status. */
+static int read_fail(sqlite3 *db, const char *what, hd_error *err) {
+  return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading %s: %s", what,
+                      sqlite3_errmsg(db));
+}
+
+/* Prepares sql into *st with run bound to ?1; on failure read_fail(what). */
+static int prepare_run(sqlite3 *db, const char *sql, int64_t run, const char *what,
+                       sqlite3_stmt **st, hd_error *err) {
+  if (sqlite3_prepare_v2(db, sql, -1, st, NULL) != SQLITE_OK) return read_fail(db, what, err);
+  sqlite3_bind_int64(*st, 1, run);
+  return HD_OK;
+}
+
+/* Grows the ncol columns *cols[c] to cap doubles each; those grown before a failure keep
+ * their new size.  HD_OK, or HD_ENOMEM set as "reading WHAT: out of memory". */
+static int grow_cols(double **const *cols, int ncol, size_t cap, const char *what,
+                     hd_error *err) {
+  for (int c = 0; c < ncol; c++) {
+    double *p = realloc(*cols[c], cap * sizeof *p);
+    if (!p) return hd_error_set(err, HD_ENOMEM, "reading %s: out of memory", what);
+    *cols[c] = p;
+  }
+  return HD_OK;
+}
+
 int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_error *err) {
   *runs = NULL, *n = 0;
   /* the stored HCS window, in files that have its columns (NULL otherwise) */
@@ -68,9 +94,7 @@ int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_err
            hcs ? "hcs_cpd_start, hcs_cpd_end, hcs_end, hcs_s_perp, hcs_flow_excess"
                : "NULL, NULL, NULL, NULL, NULL",
            want >= 0 ? "id = ?1" : "status IN ('done','collapsed','interrupted') ORDER BY id");
-  if (sqlite3_prepare_v2(db, q, -1, &st, NULL) != SQLITE_OK)
-    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading runs: %s",
-                        sqlite3_errmsg(db));
+  if (sqlite3_prepare_v2(db, q, -1, &st, NULL) != SQLITE_OK) return read_fail(db, "runs", err);
   if (want >= 0) sqlite3_bind_int64(st, 1, want);
   size_t cap = 0;
   int rc = HD_OK, s;
@@ -120,9 +144,7 @@ int hd_ana_runs(sqlite3 *db, int64_t want, hd_run_info **runs, size_t *n, hd_err
     }
     (*n)++;
   }
-  if (rc == HD_OK && s != SQLITE_DONE)
-    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading runs: %s",
-                      sqlite3_errmsg(db));
+  if (rc == HD_OK && s != SQLITE_DONE) rc = read_fail(db, "runs", err);
   sqlite3_finalize(st);
   if (rc == HD_OK && want >= 0 && *n == 0)
     rc = hd_error_set(err, HD_EINPUT, "no run with id %lld", (long long)want);
@@ -142,30 +164,21 @@ int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err) {
   /* a file of schema < 2 has no state measures: they read as NULL */
   int v2 = sqlite3_prepare_v2(db, "SELECT s_perp FROM samples LIMIT 0", -1, &st, NULL) == SQLITE_OK;
   sqlite3_finalize(st);
-  if (sqlite3_prepare_v2(db,
-                         v2 ? "SELECT t, collisions, cpd, e_tr, e_rot, s_perp, flow_frac, "
-                              "flow_chaos FROM samples WHERE run = ?1 ORDER BY t, collisions"
-                            : "SELECT t, collisions, cpd, e_tr, e_rot, NULL, NULL, NULL FROM "
-                              "samples WHERE run = ?1 ORDER BY t, collisions",
-                         -1, &st, NULL) != SQLITE_OK)
-    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading samples: %s",
-                        sqlite3_errmsg(db));
-  sqlite3_bind_int64(st, 1, run);
+  int rc = prepare_run(db,
+                       v2 ? "SELECT t, collisions, cpd, e_tr, e_rot, s_perp, flow_frac, "
+                            "flow_chaos FROM samples WHERE run = ?1 ORDER BY t, collisions"
+                          : "SELECT t, collisions, cpd, e_tr, e_rot, NULL, NULL, NULL FROM "
+                            "samples WHERE run = ?1 ORDER BY t, collisions",
+                       run, "samples", &st, err);
+  if (rc) return rc;
   size_t cap = 0;
-  int rc = HD_OK, r;
+  int r;
   while ((r = sqlite3_step(st)) == SQLITE_ROW) {
     if (s->n == cap) {
       cap = cap ? 2 * cap : 256;
-      double **cols[8] = {&s->t,     &s->coll,   &s->cpd,       &s->e_tr,
-                          &s->e_rot, &s->s_perp, &s->flow_frac, &s->flow_chaos};
-      for (int c = 0; c < 8 && rc == HD_OK; c++) {
-        double *p = realloc(*cols[c], cap * sizeof *p);
-        if (!p)
-          rc = hd_error_set(err, HD_ENOMEM, "reading samples: out of memory");
-        else
-          *cols[c] = p;
-      }
-      if (rc) break;
+      double **const cols[8] = {&s->t,     &s->coll,   &s->cpd,       &s->e_tr,
+                                &s->e_rot, &s->s_perp, &s->flow_frac, &s->flow_chaos};
+      if ((rc = grow_cols(cols, 8, cap, "samples", err))) break;
     }
     s->t[s->n] = sqlite3_column_double(st, 0);
     s->coll[s->n] = sqlite3_column_double(st, 1);
@@ -178,9 +191,7 @@ int hd_ana_samples(sqlite3 *db, int64_t run, hd_series *s, hd_error *err) {
           sqlite3_column_type(st, 5 + c) == SQLITE_NULL ? NAN : sqlite3_column_double(st, 5 + c);
     s->n++;
   }
-  if (rc == HD_OK && r != SQLITE_DONE)
-    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading samples: %s",
-                      sqlite3_errmsg(db));
+  if (rc == HD_OK && r != SQLITE_DONE) rc = read_fail(db, "samples", err);
   sqlite3_finalize(st);
   if (rc) hd_series_free(s);
   return rc;
@@ -196,18 +207,16 @@ int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *ki
                      hd_snapshot **snaps, size_t *n, hd_error *err) {
   *snaps = NULL, *n = 0;
   sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(db,
-                         "SELECT t, cpd, vx, vy, omega FROM states WHERE run = ?1 AND "
-                         "label = ?2 AND kind = ?3 ORDER BY t, body",
-                         -1, &st, NULL) != SQLITE_OK)
-    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading states: %s",
-                        sqlite3_errmsg(db));
-  sqlite3_bind_int64(st, 1, run);
+  int rc = prepare_run(db,
+                       "SELECT t, cpd, vx, vy, omega FROM states WHERE run = ?1 AND "
+                       "label = ?2 AND kind = ?3 ORDER BY t, body",
+                       run, "states", &st, err);
+  if (rc) return rc;
   sqlite3_bind_text(st, 2, label, -1, SQLITE_STATIC);
   sqlite3_bind_text(st, 3, kind, -1, SQLITE_STATIC);
   size_t cap = 0, bcap = 0;
   hd_snapshot *cur = NULL;
-  int rc = HD_OK, r;
+  int r;
   while ((r = sqlite3_step(st)) == SQLITE_ROW) {
     double t = sqlite3_column_double(st, 0);
     if (!cur || t != cur->t) {
@@ -228,25 +237,15 @@ int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *ki
     }
     if (cur->n == bcap) {
       bcap = bcap ? 2 * bcap : 1024;
-      double *a = realloc(cur->vx, bcap * sizeof *a);
-      if (a) cur->vx = a;
-      double *b = a ? realloc(cur->vy, bcap * sizeof *b) : NULL;
-      if (b) cur->vy = b;
-      double *c = b ? realloc(cur->omega, bcap * sizeof *c) : NULL;
-      if (c) cur->omega = c;
-      if (!c) {
-        rc = hd_error_set(err, HD_ENOMEM, "reading states: out of memory");
-        break;
-      }
+      double **const cols[3] = {&cur->vx, &cur->vy, &cur->omega};
+      if ((rc = grow_cols(cols, 3, bcap, "states", err))) break;
     }
     cur->vx[cur->n] = sqlite3_column_double(st, 2);
     cur->vy[cur->n] = sqlite3_column_double(st, 3);
     cur->omega[cur->n] = sqlite3_column_double(st, 4);
     cur->n++;
   }
-  if (rc == HD_OK && r != SQLITE_DONE)
-    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading states: %s",
-                      sqlite3_errmsg(db));
+  if (rc == HD_OK && r != SQLITE_DONE) rc = read_fail(db, "states", err);
   sqlite3_finalize(st);
   if (rc) hd_snapshots_free(*snaps, *n), *snaps = NULL, *n = 0;
   return rc;
@@ -256,38 +255,26 @@ int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **th
                          size_t *n, hd_error *err) {
   *theta_i = *theta_j = *f = NULL, *n = 0;
   sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(db,
-                         "SELECT theta_i, theta_j, f FROM collisions WHERE run = ?1 AND "
-                         "kind = 'dimer-dimer' AND theta_i IS NOT NULL AND theta_j IS NOT NULL "
-                         "ORDER BY seq",
-                         -1, &st, NULL) != SQLITE_OK)
-    return hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading collisions: %s",
-                        sqlite3_errmsg(db));
-  sqlite3_bind_int64(st, 1, run);
+  int rc = prepare_run(db,
+                       "SELECT theta_i, theta_j, f FROM collisions WHERE run = ?1 AND "
+                       "kind = 'dimer-dimer' AND theta_i IS NOT NULL AND theta_j IS NOT NULL "
+                       "ORDER BY seq",
+                       run, "collisions", &st, err);
+  if (rc) return rc;
   size_t cap = 0;
-  int rc = HD_OK, r;
+  int r;
   while ((r = sqlite3_step(st)) == SQLITE_ROW) {
     if (*n == cap) {
       cap = cap ? 2 * cap : 4096;
-      double *a = realloc(*theta_i, cap * sizeof *a);
-      if (a) *theta_i = a;
-      double *b = a ? realloc(*theta_j, cap * sizeof *b) : NULL;
-      if (b) *theta_j = b;
-      double *c = b ? realloc(*f, cap * sizeof *c) : NULL;
-      if (c) *f = c;
-      if (!c) {
-        rc = hd_error_set(err, HD_ENOMEM, "reading collisions: out of memory");
-        break;
-      }
+      double **const cols[3] = {theta_i, theta_j, f};
+      if ((rc = grow_cols(cols, 3, cap, "collisions", err))) break;
     }
     (*theta_i)[*n] = sqlite3_column_double(st, 0);
     (*theta_j)[*n] = sqlite3_column_double(st, 1);
     (*f)[*n] = sqlite3_column_type(st, 2) == SQLITE_NULL ? NAN : sqlite3_column_double(st, 2);
     (*n)++;
   }
-  if (rc == HD_OK && r != SQLITE_DONE)
-    rc = hd_error_set(err, hd_db_status_of(sqlite3_errcode(db)), "reading collisions: %s",
-                      sqlite3_errmsg(db));
+  if (rc == HD_OK && r != SQLITE_DONE) rc = read_fail(db, "collisions", err);
   sqlite3_finalize(st);
   if (rc) free(*theta_i), free(*theta_j), free(*f), *theta_i = *theta_j = *f = NULL, *n = 0;
   return rc;
