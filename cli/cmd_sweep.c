@@ -565,23 +565,6 @@ static int study_create(study *st, const char *dir) {
 enum { P_MISSING, P_DONE, P_RUNNING, P_INTERRUPTED, P_FAILED };
 static const char *const state_name[] = {"missing", "done", "running", "interrupted", "failed"};
 
-/* Whether a process holds the lock of run `run` in db.lock (engine/run/hd_run.c run_lock). */
-static int run_locked(const char *db, long long run) {
-  char lk[PATH_MAX + 256];
-  snprintf(lk, sizeof lk, "%s.lock", db);
-  int fd = open(lk, O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return 0;
-  struct flock fl;
-  memset(&fl, 0, sizeof fl);
-  fl.l_type = F_RDLCK;
-  fl.l_whence = SEEK_SET;
-  fl.l_start = (off_t)run;
-  fl.l_len = 1;
-  int held = fcntl(fd, F_GETLK, &fl) == 0 && fl.l_type != F_UNLCK;
-  close(fd);
-  return held;
-}
-
 /* The state of point k; status gets the run's status text ("" when none), *resumable whether
  * it has a checkpoint. */
 static int point_state(const study *st, int k, char *status, size_t size, int *resumable) {
@@ -596,7 +579,7 @@ static int point_state(const study *st, int k, char *status, size_t size, int *r
   if (run == 0) return P_MISSING;
   if (!strcmp(status, "done") || !strcmp(status, "collapsed")) return P_DONE;
   if (!strcmp(status, "running"))
-    return run_locked(db, run) ? P_RUNNING : P_INTERRUPTED; /* killed */
+    return hd_merge_lock_held(db, run) ? P_RUNNING : P_INTERRUPTED; /* killed */
   if (!strcmp(status, "interrupted")) return P_INTERRUPTED;
   return P_FAILED;
 }

@@ -20,6 +20,13 @@ static int sql_fail(sqlite3 *h, const char *path, const char *what, hd_error *er
   return hd_error_set(err, HD_EIO, "%s: %s: %s", path, what, sqlite3_errmsg(h));
 }
 
+/* Prepares sql on h into *st; HD_OK, or sql_fail(path, what). */
+static int prepare(sqlite3 *h, const char *sql, sqlite3_stmt **st, const char *path,
+                   const char *what, hd_error *err) {
+  if (sqlite3_prepare_v2(h, sql, -1, st, NULL) == SQLITE_OK) return HD_OK;
+  return sql_fail(h, path, what, err);
+}
+
 /* Checks that path is a haff database that passes PRAGMA integrity_check. */
 static int check_input(const char *path, hd_error *err) {
   sqlite3 *h;
@@ -43,19 +50,19 @@ static int check_input(const char *path, hd_error *err) {
   return rc;
 }
 
-/* Whether a process holds a lock in path.lock (a run writing to path: engine/run/hd_run.c). */
-static int being_written(const char *path) {
-  char lk[PATH_MAX + 8];
+int hd_merge_lock_held(const char *path, long long run) {
+  char lk[PATH_MAX + 256];
   snprintf(lk, sizeof lk, "%s.lock", path);
   int fd = open(lk, O_RDONLY | O_CLOEXEC);
   if (fd < 0) return 0;
   struct flock fl;
-  memset(&fl, 0, sizeof fl);
-  fl.l_type = F_RDLCK; /* a write lock of anyone on any byte conflicts with it */
+  memset(&fl, 0, sizeof fl); /* l_start = l_len = 0: the whole file */
+  fl.l_type = F_RDLCK; /* a write lock of anyone on the bytes asked conflicts with it */
   fl.l_whence = SEEK_SET;
-  int busy = fcntl(fd, F_GETLK, &fl) == 0 && fl.l_type != F_UNLCK;
+  if (run >= 0) fl.l_start = (off_t)run, fl.l_len = 1;
+  int held = fcntl(fd, F_GETLK, &fl) == 0 && fl.l_type != F_UNLCK;
   close(fd);
-  return busy;
+  return held;
 }
 
 /* One statement with no result rows, path for the message. */
@@ -119,12 +126,12 @@ static int copy_table(sqlite3 *h, const char *tmp, const char *t, const char *ke
   sqlite3_stmt *st;
   int rc = HD_OK;
   /* the table in OUT, made as the input has it when missing (a user's table) */
-  if (sqlite3_prepare_v2(h,
-                         "SELECT (SELECT count(*) FROM main.sqlite_schema WHERE type = 'table' "
-                         "AND name = ?1), (SELECT sql FROM s.sqlite_schema WHERE type = 'table' "
-                         "AND name = ?1)",
-                         -1, &st, NULL) != SQLITE_OK)
-    return sql_fail(h, tmp, "read the schema", err);
+  if ((rc = prepare(h,
+                    "SELECT (SELECT count(*) FROM main.sqlite_schema WHERE type = 'table' "
+                    "AND name = ?1), (SELECT sql FROM s.sqlite_schema WHERE type = 'table' "
+                    "AND name = ?1)",
+                    &st, tmp, "read the schema", err)))
+    return rc;
   sqlite3_bind_text(st, 1, t, -1, SQLITE_STATIC);
   if (sqlite3_step(st) == SQLITE_ROW && sqlite3_column_int(st, 0) == 0) {
     const char *def = (const char *)sqlite3_column_text(st, 1);
@@ -132,11 +139,11 @@ static int copy_table(sqlite3 *h, const char *tmp, const char *t, const char *ke
   }
   sqlite3_finalize(st);
   if (rc) return rc;
-  if (sqlite3_prepare_v2(h,
-                         "SELECT m.name FROM pragma_table_info(?1, 'main') m JOIN "
-                         "pragma_table_info(?1, 's') i ON i.name = m.name ORDER BY m.cid",
-                         -1, &st, NULL) != SQLITE_OK)
-    return sql_fail(h, tmp, "read the columns", err);
+  if ((rc = prepare(h,
+                    "SELECT m.name FROM pragma_table_info(?1, 'main') m JOIN "
+                    "pragma_table_info(?1, 's') i ON i.name = m.name ORDER BY m.cid",
+                    &st, tmp, "read the columns", err)))
+    return rc;
   sqlite3_bind_text(st, 1, t, -1, SQLITE_STATIC);
   sbuf cols = {0}, exprs = {0};
   int bad = 0, first = 1;
@@ -171,12 +178,12 @@ static int merge_one(sqlite3 *h, const char *tmp, const char *path, const char *
   sqlite3_stmt *st;
   int rc = HD_OK;
   /* a run already present: the same scene text, seed and version */
-  if (sqlite3_prepare_v2(h,
-                         "SELECT s.id, m.id, s.seed FROM s.runs s JOIN main.runs m ON "
-                         "m.scene = s.scene AND m.seed = s.seed AND m.version = s.version "
-                         "ORDER BY s.id LIMIT 1",
-                         -1, &st, NULL) != SQLITE_OK)
-    return sql_fail(h, shown, "compare runs", err);
+  if ((rc = prepare(h,
+                    "SELECT s.id, m.id, s.seed FROM s.runs s JOIN main.runs m ON "
+                    "m.scene = s.scene AND m.seed = s.seed AND m.version = s.version "
+                    "ORDER BY s.id LIMIT 1",
+                    &st, shown, "compare runs", err)))
+    return rc;
   if (sqlite3_step(st) == SQLITE_ROW)
     rc = hd_error_set(err, HD_EINPUT,
                       "%s: run %lld (seed %lld) is already in %s as run %lld (the same scene, "
@@ -192,13 +199,13 @@ static int merge_one(sqlite3 *h, const char *tmp, const char *path, const char *
   if (!rc) rc = copy_table(h, tmp, "runs", "id", err);
   if (!rc) *runs += sqlite3_changes(h);
   /* every table of the input with a run column, but provenance (below) */
-  if (!rc && sqlite3_prepare_v2(h,
-                                "SELECT name FROM s.sqlite_schema t WHERE type = 'table' AND name "
-                                "NOT IN ('runs', 'provenance') AND name NOT LIKE 'sqlite_%' AND "
-                                "EXISTS (SELECT 1 FROM pragma_table_info(t.name, 's') WHERE "
-                                "name = 'run') ORDER BY name",
-                                -1, &st, NULL) != SQLITE_OK)
-    rc = sql_fail(h, shown, "list tables", err);
+  if (!rc)
+    rc = prepare(h,
+                 "SELECT name FROM s.sqlite_schema t WHERE type = 'table' AND name "
+                 "NOT IN ('runs', 'provenance') AND name NOT LIKE 'sqlite_%' AND "
+                 "EXISTS (SELECT 1 FROM pragma_table_info(t.name, 's') WHERE "
+                 "name = 'run') ORDER BY name",
+                 &st, shown, "list tables", err);
   if (!rc) {
     char **names = NULL;
     int n = 0;
@@ -307,7 +314,7 @@ int hd_db_merge(const char *out, const char *const *in, int n_in, int64_t *runs,
   }
   free(ids);
   for (int k = 0; k < n_in && !rc; k++) rc = check_input(in[k], err);
-  if (!rc && out_exists && being_written(out))
+  if (!rc && out_exists && hd_merge_lock_held(out, -1))
     rc = hd_error_set(err, HD_EINPUT,
                       "%s: a run is writing to it (%s.lock is held): merge when it has ended", out,
                       out);
