@@ -223,6 +223,41 @@ int hd_rcli_start_at(const hd_optspec *spec, int argc, char **argv, int bins, ro
   return 0;
 }
 
+int hd_rcli_main_at(const hd_optspec *spec, int argc, char **argv, int bins, hd_rcli_at_fn *fn) {
+  ropts o;
+  rrun r;
+  rsnap s;
+  int rc = hd_rcli_start_at(spec, argc, argv, bins, &o, &r, &s);
+  if (rc) return rc < 0 ? 0 : rc;
+  rc = fn(argv[0], &o, &r, &s);
+  hd_rcli_snap_free(&s);
+  hd_rcli_close(&r);
+  return rc;
+}
+
+int hd_rcli_main_series(const hd_optspec *spec, int argc, char **argv, int bins,
+                        hd_rcli_series_fn *fn) {
+  ropts o;
+  rrun r;
+  int rc = hd_rcli_start(spec, argc, argv, bins, &o, &r);
+  if (rc) return rc < 0 ? 0 : rc;
+  double *ts;
+  long nt = hd_rcli_snap_times(&r, &ts);
+  if (!isnan(o.t)) {
+    double t;
+    if (hd_rcli_pick_time(argv[0], &r, &o, &t)) { /* it says why */
+      free(ts);
+      hd_rcli_close(&r);
+      return 1;
+    }
+    ts[0] = t, nt = 1;
+  }
+  rc = fn(argv[0], &o, &r, ts, nt);
+  free(ts);
+  hd_rcli_close(&r);
+  return rc;
+}
+
 void hd_rcli_clusters_free(rclusters *cl) {
   free(cl->order), free(cl->start), free(cl->size);
   cl->order = cl->start = cl->size = NULL;

@@ -63,6 +63,24 @@ int hd_rcli_start(const hd_optspec *spec, int argc, char **argv, int bins, ropts
 int hd_rcli_start_at(const hd_optspec *spec, int argc, char **argv, int bins, ropts *o, rrun *r,
                      rsnap *s);
 
+/* The work of a subcommand on one snapshot s of run r (rods-phase, -gofr, -veldist): prints
+ * its table, returns the exit code (saying why on stderr when not 0). */
+typedef int hd_rcli_at_fn(const char *cmd, const ropts *o, const rrun *r, const rsnap *s);
+
+/* The main of such a subcommand: hd_rcli_start_at, fn, then the snapshot freed and the run
+ * closed.  Returns the exit code (0 after --help). */
+int hd_rcli_main_at(const hd_optspec *spec, int argc, char **argv, int bins, hd_rcli_at_fn *fn);
+
+/* The work of a subcommand on snapshots of run r (rods-density, -clusters): ts[0..nt) their
+ * times, ascending.  Prints its table, returns the exit code as hd_rcli_at_fn. */
+typedef int hd_rcli_series_fn(const char *cmd, const ropts *o, rrun *r, const double *ts,
+                              long nt);
+
+/* The main of such a subcommand: hd_rcli_start, the snapshot times (only the one nearest --t
+ * when given), fn, then the times freed and the run closed.  Returns as hd_rcli_main_at. */
+int hd_rcli_main_series(const hd_optspec *spec, int argc, char **argv, int bins,
+                        hd_rcli_series_fn *fn);
+
 /* Closes what hd_rcli_start opened; returns 0, the exit code of a command that got this far. */
 int hd_rcli_close(rrun *r);
 

@@ -17,52 +17,42 @@ const hd_optspec haff_rods_density_spec = {
         "(or the one nearest --t).  Columns t bin x rho e_local; a blank line after each\n"
         "snapshot (gnuplot pm3d).\n"};
 
-int haff_rods_density_main(int argc, char **argv) {
-  ropts o;
-  rrun r;
-  int rc = hd_rcli_start(&haff_rods_density_spec, argc, argv, 100, &o, &r);
-  if (rc) return rc < 0 ? 0 : rc;
-  long N = r.sc.n_rods;
-  double *ts;
-  long nt = hd_rcli_snap_times(&r, &ts);
-  if (!isnan(o.t)) {
-    double t;
-    if (hd_rcli_pick_time(argv[0], &r, &o, &t)) { /* it says why */
-      free(ts);
-      hd_rcli_close(&r);
-      return 1;
-    }
-    ts[0] = t, nt = 1;
-  }
-  long *cnt = calloc((size_t)o.bins, sizeof *cnt);
-  double *ek = calloc((size_t)o.bins, sizeof *ek);
+/* The density and local energy of each snapshot (hd_rcli_series_fn). */
+static int density(const char *cmd, const ropts *o, rrun *r, const double *ts, long nt) {
+  long N = r->sc.n_rods;
+  long *cnt = calloc((size_t)o->bins, sizeof *cnt);
+  double *ek = calloc((size_t)o->bins, sizeof *ek);
   if (!cnt || !ek) {
-    free(cnt), free(ek), free(ts), hd_rcli_close(&r);
-    return hd_rcli_oom(argv[0]);
+    free(cnt), free(ek);
+    return hd_rcli_oom(cmd);
   }
   printf("t\tbin\tx\trho\te_local\n");
   for (long k = 0; k < nt; k++) {
     rsnap s;
-    if (hd_rcli_snapshot(argv[0], &r, ts[k], &s)) {
-      free(cnt), free(ek), free(ts), hd_rcli_close(&r);
+    if (hd_rcli_snapshot(cmd, r, ts[k], &s)) {
+      free(cnt), free(ek);
       return 1;
     }
-    memset(cnt, 0, (size_t)o.bins * sizeof *cnt);
-    memset(ek, 0, (size_t)o.bins * sizeof *ek);
+    memset(cnt, 0, (size_t)o->bins * sizeof *cnt);
+    memset(ek, 0, (size_t)o->bins * sizeof *ek);
     for (long i = 0; i < N; i++) {
-      long b = (long)(s.x[i] / (double)N * o.bins);
-      if (b >= o.bins) b = o.bins - 1;
+      long b = (long)(s.x[i] / (double)N * o->bins);
+      if (b >= o->bins) b = o->bins - 1;
       if (b < 0) b = 0;
       cnt[b]++;
-      ek[b] += 0.5 * hd_rcli_mass(&r.sc, i) * s.v[i] * s.v[i];
+      ek[b] += 0.5 * hd_rcli_mass(&r->sc, i) * s.v[i] * s.v[i];
     }
-    double mean = (double)N / o.bins;
-    for (int b = 0; b < o.bins; b++)
-      printf("%.10g\t%d\t%.6g\t%.6g\t%.6g\n", ts[k], b, (b + 0.5) * (double)N / o.bins,
+    double mean = (double)N / o->bins;
+    for (int b = 0; b < o->bins; b++)
+      printf("%.10g\t%d\t%.6g\t%.6g\t%.6g\n", ts[k], b, (b + 0.5) * (double)N / o->bins,
              (double)cnt[b] / mean, cnt[b] ? ek[b] / (double)cnt[b] : NAN);
     printf("\n");
     hd_rcli_snap_free(&s);
   }
-  free(cnt), free(ek), free(ts);
-  return hd_rcli_close(&r);
+  free(cnt), free(ek);
+  return 0;
+}
+
+int haff_rods_density_main(int argc, char **argv) {
+  return hd_rcli_main_series(&haff_rods_density_spec, argc, argv, 100, density);
 }

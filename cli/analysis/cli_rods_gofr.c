@@ -17,30 +17,27 @@ const hd_optspec haff_rods_gofr_spec = {
         "so that uniformly placed rods give 1, on N bins [200] of [0, X] [50], at the snapshot\n"
         "nearest --t.  Columns x g.\n"};
 
-int haff_rods_gofr_main(int argc, char **argv) {
-  ropts o;
-  rrun r;
-  rsnap s;
-  int rc = hd_rcli_start_at(&haff_rods_gofr_spec, argc, argv, 200, &o, &r, &s);
-  if (rc) return rc < 0 ? 0 : rc;
-  const double *x = s.x;
-  long N = r.sc.n_rods;
-  double L = (double)N, dx = o.range / o.bins;
-  double *h = calloc((size_t)o.bins, sizeof *h);
-  if (!h) {
-    hd_rcli_snap_free(&s), hd_rcli_close(&r);
-    return hd_rcli_oom(argv[0]);
-  }
+/* The table of one snapshot (hd_rcli_at_fn). */
+static int gofr(const char *cmd, const ropts *o, const rrun *r, const rsnap *s) {
+  const double *x = s->x;
+  long N = r->sc.n_rods;
+  double L = (double)N, dx = o->range / o->bins;
+  double *h = calloc((size_t)o->bins, sizeof *h);
+  if (!h) return hd_rcli_oom(cmd);
   for (long i = 0; i < N; i++)
     for (long j = i + 1; j < N; j++) {
       double d = fabs(x[i] - x[j]);
       if (d > L / 2) d = L - d;
       double q = d / dx; /* compared as a double: a tiny --range makes it past a long */
-      if (q < o.bins) h[(long)q] += 2;
+      if (q < o->bins) h[(long)q] += 2;
     }
-  printf("# t = %.10g\nx\tg\n", s.t);
-  for (int b = 0; b < o.bins; b++) /* uniform: N (N-1) 2 dx / L ordered pairs per bin */
+  printf("# t = %.10g\nx\tg\n", s->t);
+  for (int b = 0; b < o->bins; b++) /* uniform: N (N-1) 2 dx / L ordered pairs per bin */
     printf("%.6g\t%.6g\n", (b + 0.5) * dx, h[b] / ((double)N * (double)(N - 1) * 2 * dx / L));
-  free(h), hd_rcli_snap_free(&s);
-  return hd_rcli_close(&r);
+  free(h);
+  return 0;
+}
+
+int haff_rods_gofr_main(int argc, char **argv) {
+  return hd_rcli_main_at(&haff_rods_gofr_spec, argc, argv, 200, gofr);
 }

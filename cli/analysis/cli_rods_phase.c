@@ -13,15 +13,15 @@ const hd_optspec haff_rods_phase_spec = {
             "Fig. 5 data: phase space of the snapshot nearest --t (default the last): columns\n"
             "body x v tb (bath temperature).\n"};
 
+/* The table of one snapshot (hd_rcli_at_fn). */
+static int phase(const char *cmd, const ropts *o, const rrun *r, const rsnap *s) {
+  (void)cmd, (void)o; /* it prints the whole snapshot and cannot fail */
+  printf("# t = %.10g\nbody\tx\tv\ttb\n", s->t);
+  for (long i = 0; i < r->sc.n_rods; i++)
+    printf("%ld\t%.8g\t%.8g\t%.6g\n", i, s->x[i], s->v[i], s->tb[i]);
+  return 0;
+}
+
 int haff_rods_phase_main(int argc, char **argv) {
-  ropts o;
-  rrun r;
-  rsnap s;
-  int rc = hd_rcli_start_at(&haff_rods_phase_spec, argc, argv, 0, &o, &r, &s);
-  if (rc) return rc < 0 ? 0 : rc;
-  printf("# t = %.10g\nbody\tx\tv\ttb\n", s.t);
-  for (long i = 0; i < r.sc.n_rods; i++)
-    printf("%ld\t%.8g\t%.8g\t%.6g\n", i, s.x[i], s.v[i], s.tb[i]);
-  hd_rcli_snap_free(&s);
-  return hd_rcli_close(&r);
+  return hd_rcli_main_at(&haff_rods_phase_spec, argc, argv, 0, phase);
 }
