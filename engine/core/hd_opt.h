@@ -109,32 +109,39 @@ int hd_opt_refuse(const hd_optspec *spec, const hd_optres *res, const char *opt,
 #define HD_OPT_SPEC(CMD, OPTS, ALLOWED, NMIN, NMAX, POS)                                           \
   .cmd = CMD, .opts = OPTS, .allowed = ALLOWED, .npos_min = NMIN, .npos_max = NMAX, .pos = POS
 
-/* Table entries, for readability: T the struct of dest, F its field. */
-#define HD_OPT_FLAG(N, L, T, F, H)                                                                 \
-  { .name = N, .letter = L, .kind = HD_ARG_FLAG, .off = offsetof(T, F), .help = H }
-#define HD_OPT_INT(N, L, T, F, LO, HI, FL, M, H)                                                   \
+/* Table entries, for readability: T the struct of dest, F its field; the last arguments are
+ * the help text H and, after it, any more designators of the entry (e.g. .set = X). */
+#define HD_OPT_FLAG(N, L, T, F, ...)                                                               \
+  { .name = N, .letter = L, .kind = HD_ARG_FLAG, .off = offsetof(T, F), .help = __VA_ARGS__ }
+#define HD_OPT_INT(N, L, T, F, LO, HI, FL, M, ...)                                                 \
   {                                                                                                \
     .name = N, .letter = L, .kind = HD_ARG_INT, .off = offsetof(T, F),                             \
-    .size = sizeof(((T *)0)->F), .ilo = LO, .ihi = HI, .flags = FL, .meta = M, .help = H           \
+    .size = sizeof(((T *)0)->F), .ilo = LO, .ihi = HI, .flags = FL, .meta = M, .help = __VA_ARGS__ \
   }
-#define HD_OPT_DBL(N, L, T, F, LO, HI, FL, M, H)                                                   \
+#define HD_OPT_DBL(N, L, T, F, LO, HI, FL, M, ...)                                                 \
   {                                                                                                \
     .name = N, .letter = L, .kind = HD_ARG_DOUBLE, .off = offsetof(T, F), .lo = LO, .hi = HI,      \
-    .flags = FL, .meta = M, .help = H                                                              \
+    .flags = FL, .meta = M, .help = __VA_ARGS__                                                    \
   }
-#define HD_OPT_STR(N, L, T, F, M, H)                                                               \
-  { .name = N, .letter = L, .kind = HD_ARG_STRING, .off = offsetof(T, F), .meta = M, .help = H }
-#define HD_OPT_PATH(N, L, T, F, FL, M, H)                                                          \
+#define HD_OPT_STR(N, L, T, F, M, ...)                                                             \
+  {                                                                                                \
+    .name = N, .letter = L, .kind = HD_ARG_STRING, .off = offsetof(T, F), .meta = M,               \
+    .help = __VA_ARGS__                                                                            \
+  }
+#define HD_OPT_PATH(N, L, T, F, FL, M, ...)                                                        \
   {                                                                                                \
     .name = N, .letter = L, .kind = HD_ARG_PATH, .off = offsetof(T, F), .flags = FL, .meta = M,    \
-    .help = H                                                                                      \
+    .help = __VA_ARGS__                                                                            \
   }
-#define HD_OPT_ENUM(N, L, T, F, C, M, H)                                                           \
+#define HD_OPT_ENUM(N, L, T, F, C, M, ...)                                                         \
   {                                                                                                \
     .name = N, .letter = L, .kind = HD_ARG_ENUM, .off = offsetof(T, F), .choices = C, .meta = M,   \
-    .help = H                                                                                      \
+    .help = __VA_ARGS__                                                                            \
   }
-#define HD_OPT_LIST(N, L, T, F, M, H)                                                              \
-  { .name = N, .letter = L, .kind = HD_ARG_LIST, .off = offsetof(T, F), .meta = M, .help = H }
+#define HD_OPT_LIST(N, L, T, F, M, ...)                                                            \
+  {                                                                                                \
+    .name = N, .letter = L, .kind = HD_ARG_LIST, .off = offsetof(T, F), .meta = M,                 \
+    .help = __VA_ARGS__                                                                            \
+  }
 
 #endif
