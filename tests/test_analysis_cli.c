@@ -177,6 +177,15 @@ static int run_cmd(int (*m)(int, char **), const char *name, char **args, int na
   return m(argc, argv);
 }
 
+/* Runs subcommand m (name) on the test database with -o DIR/file (its path in out) and checks
+ * that it exits 0. */
+static void run_on_db(int (*m)(int, char **), const char *name, const char *file, char *out,
+                      size_t n) {
+  char *args[] = {dbpath};
+  snprintf(out, n, "%s/%s", dir, file);
+  assert_int_equal(run_cmd(m, name, args, 1, out), 0);
+}
+
 /* Reads the data rows (not '#', not empty, numeric first field) of a TSV into rows[][cols]. */
 static int read_rows(const char *path, double rows[][16], int maxrows, int skip_header) {
   FILE *f = fopen(path, "r");
@@ -217,9 +226,8 @@ static double rows[4000][16];
  * end of homogeneity within cpd 58..75 (the rate deviation reaches 10% at cpd 64). */
 static void haff_fit_runs(void **state) {
   (void)state;
-  char out[400], *args[] = {dbpath};
-  snprintf(out, sizeof out, "%s/fit.tsv", dir);
-  assert_int_equal(run_cmd(haff_fit_main, "haff-fit", args, 1, out), 0);
+  char out[400];
+  run_on_db(haff_fit_main, "haff-fit", "fit.tsv", out, sizeof out);
   int n = read_rows(out, rows, 100, 1);
   assert_int_equal(n, 5); /* the failed run 6 is left out */
   for (int i = 0; i < n; i++) {
@@ -258,9 +266,8 @@ static void haff_fit_runs(void **state) {
  * errors + 0.02 of 3 and the ratio likewise of 1.25; disks D_e 2. */
 static void table1(void **state) {
   (void)state;
-  char out[400], *args[] = {dbpath};
-  snprintf(out, sizeof out, "%s/t1.tsv", dir);
-  assert_int_equal(run_cmd(haff_table1_main, "table1", args, 1, out), 0);
+  char out[400];
+  run_on_db(haff_table1_main, "table1", "t1.tsv", out, sizeof out);
   FILE *f = fopen(out, "r");
   char head[256];
   assert_non_null(fgets(head, sizeof head, f));
@@ -298,9 +305,8 @@ static void table1(void **state) {
  * intervals widened by 1.5: probability < 1e-4); no disk row. */
 static void table2(void **state) {
   (void)state;
-  char out[400], *args[] = {dbpath};
-  snprintf(out, sizeof out, "%s/t2.tsv", dir);
-  assert_int_equal(run_cmd(haff_table2_main, "table2", args, 1, out), 0);
+  char out[400];
+  run_on_db(haff_table2_main, "table2", "t2.tsv", out, sizeof out);
   int n = read_rows(out, rows, 10, 1);
   assert_int_equal(n, 2);
   for (int i = 0; i < n; i++) {
@@ -321,9 +327,8 @@ static void table2(void **state) {
  * with the fitted parameters within 5% (energy noise is only through K and the fit). */
 static void energy(void **state) {
   (void)state;
-  char out[400], *args[] = {dbpath};
-  snprintf(out, sizeof out, "%s/energy.tsv", dir);
-  assert_int_equal(run_cmd(haff_energy_main, "energy", args, 1, out), 0);
+  char out[400];
+  run_on_db(haff_energy_main, "energy", "energy.tsv", out, sizeof out);
   int n = read_rows(out, rows, 4000, 0);
   assert_int_equal(n, 3 * 201);
   int homog = 0, late = 0;

@@ -46,11 +46,7 @@ static int teardown(void **state) {
 
 /* dir/name, in one of four rotating buffers. */
 static const char *path_of(const char *name) {
-  static char buf[4][400];
-  static int k;
-  k = (k + 1) % 4;
-  snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
-  return buf[k];
+  return test_path_in(dir, name);
 }
 
 /* Runs sql on database name (ref.db attached as ref when it exists); the first column of the

@@ -23,6 +23,7 @@
 #include "hd_body.h"
 #include "hd_scene.h"
 #include "hd_sim.h"
+#include "test_util.h"
 
 static char tmpdir[] = "/tmp/haff-test-scene-XXXXXX";
 
@@ -34,11 +35,7 @@ static void write_file(const char *path, const char *text) {
 }
 
 static const char *tmp_path(const char *name) {
-  static char buf[4][512];
-  static int i;
-  i = (i + 1) % 4;
-  snprintf(buf[i], sizeof buf[i], "%s/%s", tmpdir, name);
-  return buf[i];
+  return test_path_in(tmpdir, name);
 }
 
 /* Asserts that msg contains every non-NULL needle (prints msg on failure). */

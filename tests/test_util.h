@@ -4,6 +4,7 @@
 #define HD_TEST_UTIL_H
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -41,6 +42,15 @@ static inline void test_disk_scene(hd_scene *sc, long n, double eta, double alph
   sc->placement = HD_PLACE_RANDOM; /* a melted lattice where random addition jams */
   sc->log_collisions = HD_LOG_NONE;
   sc->log_every = 1;
+}
+
+/* folder/name, in one of four rotating buffers (so that a call may take two or three). */
+static inline const char *test_path_in(const char *folder, const char *name) {
+  static char buf[4][512];
+  static int k;
+  k = (k + 1) % 4;
+  snprintf(buf[k], sizeof buf[k], "%s/%s", folder, name);
+  return buf[k];
 }
 
 /* Flips bit `bit` of the (first) checkpoint blob of the database at path, as a damaged file
