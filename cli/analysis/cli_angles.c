@@ -8,8 +8,7 @@
 #include "haff.h"
 
 const hd_optspec haff_angles_spec = {
-    HD_OPT_SPEC("angles", hd_cli_opts, HD_OPT_RUN | HD_OPT_BLOCK | HD_OPT_BINS, 1, 1,
-                "one database argument"),
+    HD_CLI_SPEC("angles", HD_OPT_RUN | HD_OPT_BLOCK | HD_OPT_BINS),
     .head =
         "usage: haff angles DB --run ID [--block N] [--bins B] [--fmean] [-o FILE]\n"
         "Fig. 5: histogram of the contact angles theta (both bodies of every dimer-dimer\n"

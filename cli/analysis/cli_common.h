@@ -48,6 +48,11 @@ typedef struct hd_cli_args {
  * of hd_opt_parse, with hd_cli_args as dest.  Each subcommand's hd_optspec points to it. */
 extern const hd_optdef hd_cli_opts[];
 
+/* The first fields of an analysis subcommand's hd_optspec: its name CMD, the options it reads
+ * (ALLOWED, of hd_cli_opts) and its one positional argument, the database. */
+#define HD_CLI_SPEC(CMD, ALLOWED)                                                                  \
+  HD_OPT_SPEC(CMD, hd_cli_opts, ALLOWED, 1, 1, "one database argument")
+
 /* Parses argv (argv[0] the subcommand) by spec (opts hd_cli_opts, one positional: the
  * database) into *a, after setting its defaults.  Returns 0 to go on, 2 after printing one
  * line on stderr for bad usage, or -1 after printing help (the caller returns 0). */

@@ -67,8 +67,7 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
 }
 
 const hd_optspec haff_energy_spec = {
-    HD_OPT_SPEC("energy", hd_cli_opts, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT, 1, 1,
-                "one database argument"),
+    HD_CLI_SPEC("energy", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT),
     .head =
         "usage: haff energy DB [--run ID | --all] [fit options] [-o FILE]\n"
         "Energy per body and collisions per particle against time, for Figs. 2 and 3: one block\n"

@@ -7,8 +7,7 @@
 #include "haff.h"
 
 const hd_optspec haff_fit_spec = {
-    HD_OPT_SPEC("haff-fit", hd_cli_opts, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP, 1, 1,
-                "one database argument"),
+    HD_CLI_SPEC("haff-fit", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP),
     .head =
         "usage: haff haff-fit DB [--run ID | --all] [--alpha-group] [fit options] [-o FILE]\n"
         "Fits eq. (31) tau(t) = ln(1 + gamma nu0 t)/gamma, gamma = (1-alpha^2)/(2 D_e), to the\n"

@@ -35,6 +35,10 @@ enum {
 /* The options of the rods subcommands that read a database (dest: ropts). */
 extern const hd_optdef hd_rcli_opts[];
 
+/* The first fields of the hd_optspec of a rods subcommand that reads a database: its name CMD,
+ * the options it reads (ALLOWED, of hd_rcli_opts) and its one positional argument. */
+#define HD_RCLI_SPEC(CMD, ALLOWED) HD_OPT_SPEC(CMD, hd_rcli_opts, ALLOWED, 1, 1, "one database")
+
 /* The run: its id and its scene (a [rods] scene). */
 typedef struct rrun {
   sqlite3 *db;
@@ -73,8 +77,7 @@ int hd_rcli_main_at(const hd_optspec *spec, int argc, char **argv, int bins, hd_
 
 /* The work of a subcommand on snapshots of run r (rods-density, -clusters): ts[0..nt) their
  * times, ascending.  Prints its table, returns the exit code as hd_rcli_at_fn. */
-typedef int hd_rcli_series_fn(const char *cmd, const ropts *o, rrun *r, const double *ts,
-                              long nt);
+typedef int hd_rcli_series_fn(const char *cmd, const ropts *o, rrun *r, const double *ts, long nt);
 
 /* The main of such a subcommand: hd_rcli_start, the snapshot times (only the one nearest --t
  * when given), fn, then the times freed and the run closed.  Returns as hd_rcli_main_at. */

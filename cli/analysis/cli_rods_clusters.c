@@ -8,8 +8,7 @@
 #include "haff.h"
 
 const hd_optspec haff_rods_clusters_spec = {
-    HD_OPT_SPEC("rods-clusters", hd_rcli_opts, HD_RCLI_RUN | HD_RCLI_GAP | HD_RCLI_MIN, 1, 1,
-                "one database"),
+    HD_RCLI_SPEC("rods-clusters", HD_RCLI_RUN | HD_RCLI_GAP | HD_RCLI_MIN),
     .head =
         "usage: haff rods-clusters DB [--run ID] [--gap G] [--min-size M]\n"
         "Clusters per snapshot (maximal runs of rods closer than G [0.1] to their neighbour, at\n"

@@ -8,8 +8,7 @@
 #include "haff.h"
 
 const hd_optspec haff_rods_density_spec = {
-    HD_OPT_SPEC("rods-density", hd_rcli_opts, HD_RCLI_RUN | HD_RCLI_BINS | HD_RCLI_T, 1, 1,
-                "one database"),
+    HD_RCLI_SPEC("rods-density", HD_RCLI_RUN | HD_RCLI_BINS | HD_RCLI_T),
     .head =
         "usage: haff rods-density DB [--run ID] [--bins N] [--t T]\n"
         "Figs. 3, 4, 6 data: the coarse-grained density rho (rods per bin over the mean, N bins\n"

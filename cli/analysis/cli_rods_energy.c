@@ -11,7 +11,7 @@
 #include "haff.h"
 
 const hd_optspec haff_rods_energy_spec = {
-    HD_OPT_SPEC("rods-energy", hd_rcli_opts, HD_RCLI_RUN, 1, 1, "one database"),
+    HD_RCLI_SPEC("rods-energy", HD_RCLI_RUN),
     .head =
         "usage: haff rods-energy DB [--run ID]\n"
         "Figs. 1, 2, 9-11 data: per sample of a rods run (newest by default) the columns\n"

@@ -8,8 +8,7 @@
 #include "haff.h"
 
 const hd_optspec haff_rods_gofr_spec = {
-    HD_OPT_SPEC("rods-gofr", hd_rcli_opts, HD_RCLI_RUN | HD_RCLI_T | HD_RCLI_BINS | HD_RCLI_RANGE,
-                1, 1, "one database"),
+    HD_RCLI_SPEC("rods-gofr", HD_RCLI_RUN | HD_RCLI_T | HD_RCLI_BINS | HD_RCLI_RANGE),
     .head =
         "usage: haff rods-gofr DB [--run ID] [--t T] [--bins N] [--range X]\n"
         "Fig. 8 data: g(x) = 1/(N-1) sum_{i!=j} delta(x - |x_i - x_j|) (ring distance), "

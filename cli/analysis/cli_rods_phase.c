@@ -8,7 +8,7 @@
 #include "haff.h"
 
 const hd_optspec haff_rods_phase_spec = {
-    HD_OPT_SPEC("rods-phase", hd_rcli_opts, HD_RCLI_RUN | HD_RCLI_T, 1, 1, "one database"),
+    HD_RCLI_SPEC("rods-phase", HD_RCLI_RUN | HD_RCLI_T),
     .head = "usage: haff rods-phase DB [--run ID] [--t T]\n"
             "Fig. 5 data: phase space of the snapshot nearest --t (default the last): columns\n"
             "body x v tb (bath temperature).\n"};

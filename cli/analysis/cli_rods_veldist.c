@@ -8,9 +8,7 @@
 #include "haff.h"
 
 const hd_optspec haff_rods_veldist_spec = {
-    HD_OPT_SPEC("rods-veldist", hd_rcli_opts,
-                HD_RCLI_RUN | HD_RCLI_T | HD_RCLI_BINS | HD_RCLI_GAP | HD_RCLI_X, 1, 1,
-                "one database"),
+    HD_RCLI_SPEC("rods-veldist", HD_RCLI_RUN | HD_RCLI_T | HD_RCLI_BINS | HD_RCLI_GAP | HD_RCLI_X),
     .head =
         "usage: haff rods-veldist DB [--run ID] [--t T] [--bins N] [--gap G] [--x X]\n"
         "Fig. 7 data: histograms of w = sqrt(m_i) v_i (mass-scaled so that both species share one\n"

@@ -7,8 +7,7 @@
 #include "haff.h"
 
 const hd_optspec haff_table1_spec = {
-    HD_OPT_SPEC("table1", hd_cli_opts, HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD, 1, 1,
-                "one database argument"),
+    HD_CLI_SPEC("table1", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD),
     .head =
         "usage: haff table1 DB [--md] [--keep-flagged] [fit options] [-o FILE]\n"
         "Table I: D_e and nu0_eff/nu0 (nu0: Enskog eq. 29 for disks of diameter d, the body mass "

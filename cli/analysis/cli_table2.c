@@ -7,9 +7,7 @@
 #include "haff.h"
 
 const hd_optspec haff_table2_spec = {
-    HD_OPT_SPEC("table2", hd_cli_opts,
-                HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD | HD_OPT_KCI, 1, 1,
-                "one database argument"),
+    HD_CLI_SPEC("table2", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD | HD_OPT_KCI),
     .head =
         "usage: haff table2 DB [--md] [--keep-flagged] [--k-ci ac|ols|runs] [--cpd-min-k X] [fit "
         "options] [-o FILE]\n"

@@ -97,8 +97,7 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
 }
 
 const hd_optspec haff_veldist_spec = {
-    HD_OPT_SPEC("veldist", hd_cli_opts, HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT, 1, 1,
-                "one database argument"),
+    HD_CLI_SPEC("veldist", HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT),
     .head =
         "usage: haff veldist DB --run ID [--stats] [--bins B] [--range X] [--label L] [-o FILE]\n"
         "       haff veldist DB --pool [--run ID] [--bins B] [--range X] [--label L] [-o FILE]\n"
