@@ -28,16 +28,8 @@ static void read_err(char *buf, size_t n) {
 
 /* One integer from an SQL query on a database in dir (ATTACHing b.db as b when present). */
 static long long q1(const char *db, const char *sql) {
-  char p[300];
-  snprintf(p, sizeof p, "%s/%s", dir, db);
   sqlite3 *h;
-  assert_int_equal(sqlite3_open(p, &h), SQLITE_OK);
-  char att[400];
-  snprintf(att, sizeof att, "ATTACH '%s/ref.db' AS ref", dir);
-  sqlite3_exec(h, att, 0, 0, 0);
-  sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(h, sql, -1, &st, 0) != SQLITE_OK)
-    fail_msg("%s: %s", sql, sqlite3_errmsg(h));
+  sqlite3_stmt *st = test_cli_query(db, sql, &h);
   long long v = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int64(st, 0) : -1;
   sqlite3_finalize(st);
   sqlite3_close(h);

@@ -4,6 +4,7 @@
 #ifndef HD_TEST_CLI_UTIL_H
 #define HD_TEST_CLI_UTIL_H
 
+#include <sqlite3.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -83,6 +84,22 @@ static inline int test_cli_find_haff(void) {
   haff = getenv("HAFF_BIN");
   if (!haff) haff = "bin/haff";
   return 1;
+}
+
+/* Opens database db in dir (*h, with dir/ref.db ATTACHed as ref) and prepares sql on it; fails
+ * the test when sql does not compile.  The caller steps the statement, finalizes it and closes
+ * *h. */
+static inline sqlite3_stmt *test_cli_query(const char *db, const char *sql, sqlite3 **h) {
+  char p[300];
+  snprintf(p, sizeof p, "%s/%s", dir, db);
+  assert_int_equal(sqlite3_open(p, h), SQLITE_OK);
+  char att[400];
+  snprintf(att, sizeof att, "ATTACH '%s/ref.db' AS ref", dir);
+  sqlite3_exec(*h, att, 0, 0, 0);
+  sqlite3_stmt *st;
+  if (sqlite3_prepare_v2(*h, sql, -1, &st, 0) != SQLITE_OK)
+    fail_msg("%s: %s", sql, sqlite3_errmsg(*h));
+  return st;
 }
 
 /* Removes dir and all it holds; 0, or -1 when rm fails. */
