@@ -72,8 +72,7 @@ static int prepare_run(sqlite3 *db, const char *sql, int64_t run, const char *wh
 
 /* Grows the ncol columns *cols[c] to cap doubles each; those grown before a failure keep
  * their new size.  HD_OK, or HD_ENOMEM set as "reading WHAT: out of memory". */
-static int grow_cols(double **const *cols, int ncol, size_t cap, const char *what,
-                     hd_error *err) {
+static int grow_cols(double **const *cols, int ncol, size_t cap, const char *what, hd_error *err) {
   for (int c = 0; c < ncol; c++) {
     double *p = realloc(*cols[c], cap * sizeof *p);
     if (!p) return hd_error_set(err, HD_ENOMEM, "reading %s: out of memory", what);

@@ -57,7 +57,7 @@ int hd_merge_lock_held(const char *path, long long run) {
   if (fd < 0) return 0;
   struct flock fl;
   memset(&fl, 0, sizeof fl); /* l_start = l_len = 0: the whole file */
-  fl.l_type = F_RDLCK; /* a write lock of anyone on the bytes asked conflicts with it */
+  fl.l_type = F_RDLCK;       /* a write lock of anyone on the bytes asked conflicts with it */
   fl.l_whence = SEEK_SET;
   if (run >= 0) fl.l_start = (off_t)run, fl.l_len = 1;
   int held = fcntl(fd, F_GETLK, &fl) == 0 && fl.l_type != F_UNLCK;

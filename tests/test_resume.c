@@ -113,8 +113,9 @@ static void same_as_reference(const char *name) {
     snprintf(sql, sizeof sql, "SELECT count(*) FROM %s", same[k].table);
     snprintf(ref, sizeof ref, "SELECT count(*) FROM ref.%s", same[k].table);
     assert_int_equal(q1(name, sql), q1(name, ref));
-    snprintf(sql, sizeof sql, "SELECT count(*) FROM (SELECT %s FROM %s EXCEPT SELECT %s FROM ref.%s)",
-             same[k].cols, same[k].table, same[k].cols, same[k].table);
+    snprintf(sql, sizeof sql,
+             "SELECT count(*) FROM (SELECT %s FROM %s EXCEPT SELECT %s FROM ref.%s)", same[k].cols,
+             same[k].table, same[k].cols, same[k].table);
     assert_int_equal(q1(name, sql), 0);
   }
   assert_int_equal(q1(name, "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
