@@ -344,17 +344,19 @@ int hd_rods_next(hd_rods *r, double t_stop, hd_rods_event *ev, hd_error *err) {
       tiny = r->tiny_low >= HD_RODS_TINY_LOW;
     }
   }
-  if (tiny || r->stall >= HD_RODS_STALL) {
+  int stalled = r->stall >= HD_RODS_STALL + (int64_t)n * n; /* safety net (rods.h) */
+  if (tiny || stalled) {
     long c0 = a, c1 = b;
     char why[200];
+    /* every collision at one time is tiny: the arc of the last HD_RODS_TINY_RUN of them */
+    if (r->tiny_run >= HD_RODS_TINY_RUN) cluster(r, &c0, &c1);
     if (tiny) {
-      cluster(r, &c0, &c1);
       snprintf(why, sizeof why,
                "%lld collisions less than 1e-12 t after the previous one within %.3g, the "
                "largest relative energy of %d of them down from %.3g to %.3g",
                (long long)r->tiny_run, tk - r->tiny_t0, HD_RODS_TINY_RUN, r->tiny_e0, r->tiny_eblk);
     } else {
-      snprintf(why, sizeof why, "100000 successive collisions at the same time");
+      snprintf(why, sizeof why, "%lld successive collisions at the same time", (long long)r->stall);
     }
     long size = (c1 - c0 + n) % n + 1;
     return hd_error_set(err, HD_ECOLLAPSE,

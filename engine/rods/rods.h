@@ -58,10 +58,17 @@ typedef struct hd_rods_params {
  * not end it: a small ring's other gaps go on colliding at ordinary spacings); its tiny
  * collisions are taken in blocks of HD_RODS_TINY_RUN.  When the largest E_tr of
  * HD_RODS_TINY_LOW successive blocks has fallen below HD_RODS_TINY_FALL times that of the
- * episode's first block, the run ends with HD_ECOLLAPSE.  So do HD_RODS_STALL consecutive
- * collisions at one and the same time (a pile-up at one instant, in any model).  The cluster
- * reported is the shortest arc of rods holding the pairs of the last HD_RODS_TINY_RUN tiny
- * collisions.
+ * episode's first block, the run ends with HD_ECOLLAPSE.  A pile-up at one instant (collisions
+ * at one and the same double time, e.g. three rods in contact at constant eps = 0.1) is tiny
+ * and cold, and is stopped by that rule within a few hundred collisions.  Collisions at one
+ * double time are not a collapse by themselves: a cluster of K rods whose spacings are below
+ * the clock's resolution (ulp(t) = 7e-12 at t = 4e4) is resolved at one instant, and while its
+ * baths are warm this takes up to ~K^2 collisions (each pair collision at eps ~ 1 undoes about
+ * one inversion of the velocity order) and ends.  A safety net only against a loop that makes
+ * no progress: HD_RODS_STALL + N^2 consecutive collisions at one time also end the run
+ * (HD_ECOLLAPSE; 1e8 for N = 1e4, ~1 min).  It was HD_RODS_STALL alone, and stopped the
+ * paper's damped ring at t = 43929.6 (docs/rods.md).  The cluster reported is the shortest arc
+ * of rods holding the pairs of the last HD_RODS_TINY_RUN tiny collisions.
  * Why energies and not the spacings (docs/rods.md): below 1e-12 t the spacing of two
  * collisions is within ~1e4 ulp of t, and the former test (a fall of the spacing by 1e6 over 64
  * tiny collisions) could only pass at 0, i.e. at two collisions rounded to the same double.  A

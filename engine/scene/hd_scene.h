@@ -131,7 +131,9 @@ typedef struct hd_scene {
   double rod_damping;     /* `damping` [0]: nu, bath temperatures decay as exp(-nu t) */
   double rod_tc;          /* `tc` [0 = off]: TC model, eps = 1 if a rod collided within tc */
   double rod_temperature; /* `temperature` [1]: initial <m v^2> (sets the units: 1) */
-  int rod_table;          /* `table` [no]: draw eps from a tabulated p_beta (eps_table.c) */
+  int rod_table;          /* `table` [yes for the stochastic model with mean baths and
+                           * gamma < 1, else no]: draw eps from the balanced tabulated p_beta
+                           * (eps_table.c; docs/rods.md), no: the direct sampler */
   double rod_eps_step;    /* `eps_step` [0 = the sampler's 0.01]: grid step of the direct eps
                            * sampler; its sqrt(step) bias lowers the stationary E_kin by ~3 % at
                            * 0.01, ~1 % at 0.0025 (docs/rods.md) */
