@@ -749,7 +749,10 @@ static void scene_keys_doc_current(void **state) {
 
 /* The canonical text of every scene in scenes/ and of tests/data/scenes/good.ini is what the
  * binary of main at b0b522c wrote before the keys moved into one table
- * (tests/data/scenes/canonical-b0b522c.txt, made by that binary): runs.scene keeps its form. */
+ * (tests/data/scenes/canonical-b0b522c.txt, made by that binary): runs.scene keeps its form.
+ * One documented edit: rods-50.ini and rods-damped50.ini no longer set `table`, whose default
+ * became yes (issue 16), and no longer set eps_step = 0.0025: in that file their `table = no`
+ * reads `table = yes` and their eps_step 0. */
 static void canonical_text_as_before(void **state) {
   (void)state;
   char *all = slurp("tests/data/scenes/canonical-b0b522c.txt");
