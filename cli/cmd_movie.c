@@ -242,7 +242,8 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
       code = 1;
       break;
     }
-    hd_shape dimer = {HD_KIND_DIMER, m->sc.dimer_d, m->sc.dimer_a, m->sc.dimer_m};
+    hd_shape dimer;
+    hd_shape_dimer(&dimer, m->sc.dimer_d, m->sc.dimer_a, m->sc.dimer_m);
     for (long i = 0; i < n; i++) {
       hd_kin k = {x[i], y[i], vx[i], vy[i], phi[i], 0};
       int dimer_body = m->kinds[i] == HD_KIND_DIMER;

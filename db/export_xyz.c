@@ -298,14 +298,17 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
   int s = sqlite3_step(st), code = 0;
   if (s == SQLITE_ROW) {
     *run = sqlite3_column_int64(st, 0);
-    *g = (xyz_geom){NAN, NAN, {HD_KIND_DIMER, 1.0, 1.0, 1.0}, {HD_KIND_DISK, 1.0, 0.0, 1.0}, 0, 0,
-                    0.8, 0};
+    *g = (xyz_geom){NAN, NAN, {0}, {0}, 0, 0, 0.8, 0};
+    hd_shape_dimer(&g->dimer, 1.0, 1.0, 1.0);
+    hd_shape_disk(&g->disk, 1.0, 1.0);
     const char *scene = (const char *)sqlite3_column_text(st, 1);
     if (scene && ini_parse_string(scene, geom_handler, g) < 0) {
       fprintf(stderr, "haff export: %s: run %lld: cannot parse its scene\n", hd_db_path(db),
               (long long)*run);
       code = 1;
     }
+    hd_shape_dimer(&g->dimer, g->dimer.d, g->dimer.a, g->dimer.m); /* the engine's shapes */
+    hd_shape_disk(&g->disk, g->disk.d, g->disk.m);
     if (sqlite3_column_type(st, 2) != SQLITE_NULL && sqlite3_column_type(st, 3) != SQLITE_NULL) {
       g->lx = sqlite3_column_double(st, 2);
       g->ly = sqlite3_column_double(st, 3);

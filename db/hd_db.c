@@ -81,7 +81,8 @@ static void writer_stop(hd_db *db);
 #define HD_DB_GROUP 32  /* collisions per multi-row INSERT */
 
 static const char *const coll_kind_names[] = {"dimer-dimer", "dimer-disk", "disk-disk",
-                                              "dimer-wall",  "disk-wall",  "rod-rod"};
+                                              "dimer-wall",  "disk-wall",  "rod-rod",
+                                              "body-body",   "body-wall"};
 
 const char *hd_coll_kind_name(hd_coll_kind k) {
   if ((int)k < 0 || (size_t)k >= sizeof coll_kind_names / sizeof coll_kind_names[0]) return "?";
@@ -96,6 +97,8 @@ const char *hd_db_kind_name(int kind) {
     return "dimer";
   case HD_DB_KIND_ROD:
     return "rod";
+  case HD_DB_KIND_BODY:
+    return "body";
   default:
     return NULL;
   }

@@ -29,7 +29,10 @@ typedef enum hd_coll_kind {
   HD_CK_DISK_DISK = 2,   /* "disk-disk" */
   HD_CK_DIMER_WALL = 3,  /* "dimer-wall" (j = -1 - wall index) */
   HD_CK_DISK_WALL = 4,   /* "disk-wall" */
-  HD_CK_ROD_ROD = 5      /* "rod-rod" */
+  HD_CK_ROD_ROD = 5,     /* "rod-rod" */
+  HD_CK_BODY_BODY = 6,   /* "body-body": a pair with a body of a named species (i of the lower
+                          * species index) */
+  HD_CK_BODY_WALL = 7    /* "body-wall": a body of a named species against a wall */
 } hd_coll_kind;
 
 /* The text of a collision kind. */
@@ -66,17 +69,19 @@ typedef struct hd_sample_row {
 /* Body kinds in hd_state_rec.kind, stored as states.kind text: HD_KIND_DISK = 0 'disk',
  * HD_KIND_DIMER = 1 'dimer' (hd_body.h) and 2 'rod' (rod runs). */
 #define HD_DB_KIND_ROD 2
+/* A body of a named species (`[species NAME]`), stored as 'body'. */
+#define HD_DB_KIND_BODY 3
 
 /* One row of `states`. */
 typedef struct hd_state_rec {
   double t;
   int64_t body;
-  int kind; /* HD_KIND_DISK 0, HD_KIND_DIMER 1, HD_DB_KIND_ROD 2 */
+  int kind; /* HD_KIND_DISK 0, HD_KIND_DIMER 1, HD_DB_KIND_ROD 2, HD_DB_KIND_BODY 3 */
   double x, y, phi, vx, vy, omega;
   double cpd; /* collisions per particle at t (states.cpd); NaN is stored as NULL */
 } hd_state_rec;
 
-/* The text of a body kind ("disk", "dimer", "rod"), or NULL for an unknown kind. */
+/* The text of a body kind ("disk", "dimer", "rod", "body"), or NULL for an unknown kind. */
 const char *hd_db_kind_name(int kind);
 
 /* The status for an SQLite result code (primary or extended) of a failed call: HD_EINPUT for a

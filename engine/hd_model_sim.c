@@ -54,9 +54,11 @@ static int64_t m_events(const void *m) {
 }
 static double m_temperature(const void *m) {
   const hd_sim *s = m;
-  /* 2 translational degrees of freedom per body, 1 rotational per dimer with a lever arm (a
-   * dimer of a = 0 has no moment of inertia and no rotational energy) */
-  double dof = 2.0 * s->n + (s->shape[HD_SP_DIMER].a > 0 ? s->n_species[HD_SP_DIMER] : 0);
+  /* 2 translational degrees of freedom per body, 1 rotational per body with a moment of inertia
+   * (a dimer of a = 0 has none and no rotational energy) */
+  double dof = 2.0 * s->n;
+  for (int sp = 0; sp < s->nsp; sp++)
+    if (hd_shape_inertia(&s->shape[sp]) > 0) dof += s->n_species[sp];
   return 2.0 * s->c.e_kin / dof;
 }
 
@@ -85,13 +87,19 @@ static void m_sample(const void *m, hd_sample_row *row) {
                          q.s_par};
 }
 
+/* states.kind of body i: HD_KIND_DIMER, HD_KIND_DISK, or HD_DB_KIND_BODY for a named species. */
+static int body_kind(const hd_sim *s, int32_t i) {
+  int sp = s->b[i].species;
+  return sp == HD_SP_DIMER ? HD_KIND_DIMER : sp == HD_SP_DISK ? HD_KIND_DISK : HD_DB_KIND_BODY;
+}
+
 static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label, hd_error *err) {
   const hd_sim *s = m;
   for (int32_t i = 0; i < s->n; i++) {
     hd_kin k;
     hd_sim_body_now(s, i, &k);
     hd_state_rec rec = {
-        hd_sim_time(s), s->id[i],     s->shape[s->b[i].species].kind, k.x, k.y, k.phi, k.vx, k.vy,
+        hd_sim_time(s), s->id[i],     body_kind(s, i), k.x, k.y, k.phi, k.vx, k.vy,
         k.omega,        hd_sim_cpd(s)};
     int rc = hd_db_log_state(db, run, label, &rec, err);
     if (rc) return rc;
@@ -106,7 +114,7 @@ static int m_states(const void *m, hd_state_rec *out, hd_error *err) {
     hd_kin k;
     hd_sim_body_now(s, i, &k);
     out[i] = (hd_state_rec){
-        hd_sim_time(s), s->id[i],     s->shape[s->b[i].species].kind, k.x, k.y, k.phi, k.vx, k.vy,
+        hd_sim_time(s), s->id[i],     body_kind(s, i), k.x, k.y, k.phi, k.vx, k.vy,
         k.omega,        hd_sim_cpd(s)};
   }
   return HD_OK;

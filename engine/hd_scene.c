@@ -1298,6 +1298,7 @@ static int csv_row(char *line, const char *path, long lineno, hd_state_row *r, h
   r->vx = v[4];
   r->vy = v[5];
   r->omega = r->kind == HD_KIND_DIMER ? v[6] : 0;
+  r->species = r->kind == HD_KIND_DIMER ? 0 : 1;
   r->line = lineno;
   return HD_OK;
 }

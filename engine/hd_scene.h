@@ -30,6 +30,24 @@
 #define HD_SCENE_MAX_BYTES (1L << 20) /* largest scene file (a scene is ~1 kB) */
 #define HD_STATE_MAX_LINE 4096        /* longest line of a state CSV, in bytes */
 
+#define HD_MAX_SPECIES 8     /* species in one scene, [dimers] and [disks] included */
+#define HD_MAX_BODY_DISKS 8  /* disks in one rigid body */
+#define HD_SPECIES_NAME_MAX 32
+
+/* One `[species NAME]` section: a rigid planar cluster of disks (issue 18, docs/scene-keys.md). */
+typedef struct hd_scene_species {
+  char name[HD_SPECIES_NAME_MAX]; /* NAME: [A-Za-z0-9_]{1,31}, unique; "dimer", "disk",
+                                   * "dimers", "disks" are reserved for the shorthand sections */
+  long count;                     /* `count` [0] */
+  int ndisk;                      /* disks per body, 1 .. HD_MAX_BODY_DISKS */
+  double x[HD_MAX_BODY_DISKS];    /* disk centres in the body frame, as given (any origin: the */
+  double y[HD_MAX_BODY_DISKS];    /*   engine moves the origin to the centre of mass) */
+  double d[HD_MAX_BODY_DISKS];    /* diameters, > 0 */
+  double m[HD_MAX_BODY_DISKS];    /* masses, > 0 */
+  double alpha;                   /* `alpha` [1]: restitution within the species */
+  long line;                      /* line of the section header in the scene (0 from --set) */
+} hd_scene_species;
+
 /* Where the initial state comes from ([init] placement / state). */
 typedef enum hd_placement {
   HD_PLACE_RANDOM = 0,  /* random non-overlapping placement (default) */
@@ -69,6 +87,13 @@ typedef struct hd_scene {
   double disk_mass;        /* `mass` [1] */
   double disk_alpha;       /* `alpha` [1]: disk-disk restitution */
   double disk_alpha_dimer; /* `alpha_dimer` [= alpha]: dimer-disk restitution */
+  /* [species NAME] sections, in the order they appear (engine species 2, 3, ...; [dimers] is
+   * species 0 and [disks] species 1 as now) */
+  int n_named;                                /* how many */
+  hd_scene_species named[HD_MAX_SPECIES - 2]; /* the sections */
+  double alpha_pair[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* restitution between engine species i != j
+                                                      * (symmetric); filled by the loader, with
+                                                      * the defaults applied (never NaN after load) */
   /* [walls] */
   unsigned walls;    /* `sides`: HD_WALL_* bits [0: fully periodic] */
   double wall_alpha; /* `alpha` [1] */
@@ -163,6 +188,7 @@ double hd_scene_frames_estimate(const hd_scene *sc);
 /* One body of an [init] state CSV. */
 typedef struct hd_state_row {
   int kind;         /* HD_KIND_DISK or HD_KIND_DIMER (hd_body.h) */
+  int species;      /* engine species index: 0 dimer, 1 disk, 2 + k for named[k] */
   double x, y, phi; /* phi ignored (0) for disks */
   double vx, vy, omega;
   long line; /* line number in the CSV, for messages */

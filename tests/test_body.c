@@ -36,17 +36,19 @@ static double unif(gsl_rng *r, double lo, double hi) {
 }
 
 static hd_shape dimer(double d, double a, double m) {
-  hd_shape s = {HD_KIND_DIMER, d, a, m};
+  hd_shape s;
+  hd_shape_dimer(&s, d, a, m);
   return s;
 }
 
 static hd_shape disk(double d, double m) {
-  hd_shape s = {HD_KIND_DISK, d, 0.0, m};
+  hd_shape s;
+  hd_shape_disk(&s, d, m);
   return s;
 }
 
 static int ndisks(const hd_shape *s) {
-  return s->kind == HD_KIND_DIMER ? 2 : 1;
+  return s->tag == HD_SHAPE_DIMER ? 2 : 1;
 }
 
 /* ---- independent kinematics (not using hd_body) ------------------------------------------ */
@@ -55,7 +57,7 @@ static int ndisks(const hd_shape *s) {
 static void ref_pos(const hd_kin *b, const hd_shape *s, int k, double t, double *x, double *y) {
   *x = b->x + b->vx * t;
   *y = b->y + b->vy * t;
-  if (s->kind == HD_KIND_DIMER) {
+  if (s->tag == HD_SHAPE_DIMER) {
     double g = (k ? 0.5 : -0.5) * s->a, ang = b->phi + b->omega * t;
     *x += g * cos(ang);
     *y += g * sin(ang);
@@ -65,7 +67,7 @@ static void ref_pos(const hd_kin *b, const hd_shape *s, int k, double t, double 
 static void ref_vel(const hd_kin *b, const hd_shape *s, int k, double *vx, double *vy) {
   *vx = b->vx;
   *vy = b->vy;
-  if (s->kind == HD_KIND_DIMER) {
+  if (s->tag == HD_SHAPE_DIMER) {
     double g = (k ? 0.5 : -0.5) * s->a * b->omega;
     *vx -= g * sin(b->phi);
     *vy += g * cos(b->phi);
@@ -287,8 +289,8 @@ static void random_contact(gsl_rng *r, const hd_shape *sa, const hd_shape *sb, d
                 gsl_ran_gaussian(r, 1),
                 unif(r, -M_PI, M_PI),
                 gsl_ran_gaussian(r, wsc)};
-    if (sa->kind == HD_KIND_DISK) a.phi = a.omega = 0.0;
-    if (sb->kind == HD_KIND_DISK) b.phi = b.omega = 0.0;
+    if (sa->tag == HD_SHAPE_DISK) a.phi = a.omega = 0.0;
+    if (sb->tag == HD_SHAPE_DISK) b.phi = b.omega = 0.0;
     int i = (int)gsl_rng_uniform_int(r, (unsigned long)ndisks(sa));
     int j = (int)gsl_rng_uniform_int(r, (unsigned long)ndisks(sb));
     double ang = unif(r, -M_PI, M_PI), pax, pay, obx, oby;
@@ -331,9 +333,9 @@ static double vscale(const hd_kin *k, const hd_shape *s) {
 
 /* Angular momentum about (px, py). */
 static double ang_mom(const hd_kin *k, const hd_shape *s, double px, double py) {
-  double M = s->kind == HD_KIND_DIMER ? 2 * s->m : s->m, I = 0.5 * s->m * s->a * s->a;
+  double M = s->tag == HD_SHAPE_DIMER ? 2 * s->m : s->m, I = 0.5 * s->m * s->a * s->a;
   return M * ((k->x - px) * k->vy - (k->y - py) * k->vx) +
-         (s->kind == HD_KIND_DIMER ? I * k->omega : 0.0);
+         (s->tag == HD_SHAPE_DIMER ? I * k->omega : 0.0);
 }
 
 /* The paper's energy change of a pair collision (eq. 19, 20, 23), from its own vectors. */
@@ -349,13 +351,13 @@ static double paper_de(const hd_kin *A, const hd_shape *sa, const hd_kin *B, con
   double r13x = r1x - r3x, r13y = r1y - r3y, r12x = r1x - r2x, r12y = r1y - r2y;
   double r34x = r3x - r4x, r34y = r3y - r4y, d2 = r13x * r13x + r13y * r13y;
   double g = (v3x - v1x) * r13x + (v3y - v1y) * r13y, l = 1.0 - alpha * alpha;
-  if (sa->kind == HD_KIND_DIMER && sb->kind == HD_KIND_DIMER) { /* eq. 19 (equal m, a) */
+  if (sa->tag == HD_SHAPE_DIMER && sb->tag == HD_SHAPE_DIMER) { /* eq. 19 (equal m, a) */
     if (sa->a != sb->a || sa->m != sb->m) return NAN;           /* not in the paper */
     double a2 = sa->a * sa->a, x = r13x * r12x + r13y * r12y, y = r13x * r34x + r13y * r34y;
     return -sa->m * l / (4 * d2) * g * g / (1 - (x * x + y * y) / (4 * a2 * d2));
   }
-  if (sa->kind == HD_KIND_DIMER || sb->kind == HD_KIND_DIMER) { /* eq. 23, C^2 = d2 */
-    const hd_shape *sd = sa->kind == HD_KIND_DIMER ? sa : sb, *sk = sd == sa ? sb : sa;
+  if (sa->tag == HD_SHAPE_DIMER || sb->tag == HD_SHAPE_DIMER) { /* eq. 23, C^2 = d2 */
+    const hd_shape *sd = sa->tag == HD_SHAPE_DIMER ? sa : sb, *sk = sd == sa ? sb : sa;
     double x = sd == sa ? -(r13x * r12x + r13y * r12y) : (r13x * r34x + r13y * r34y);
     return -sd->m * l / (2 * d2) * g * g / (1 + sd->m / sk->m - x * x / (2 * sd->a * sd->a * d2));
   }
@@ -378,7 +380,7 @@ static double ref_vn(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const
 /* Outward axis angle test: cos and sin of theta against e.n, e x n from the disk positions. */
 static void check_theta(const hd_kin *k, const hd_shape *s, int kk, double nx, double ny, double th,
                         double D) {
-  if (s->kind != HD_KIND_DIMER) {
+  if (s->tag != HD_SHAPE_DIMER) {
     assert_true(isnan(th));
     return;
   }
@@ -443,17 +445,17 @@ static void check_pair_collision(gsl_rng *r, const hd_shape *sa, const hd_shape 
   check_theta(&A, sa, ka, nx, ny, in.theta_i, D);
   check_theta(&B, sb, kb, -nx, -ny, in.theta_j, D);
   double f;
-  if (sa->kind == HD_KIND_DIMER && sb->kind == HD_KIND_DIMER) {
+  if (sa->tag == HD_SHAPE_DIMER && sb->tag == HD_SHAPE_DIMER) {
     /* eq. 36 for equal disk masses; in general mu/m_A = 1/((1 + s_i^2)/2 + (1 + s_j^2) m_A/(2 m_B))
      */
     double ci = cos(in.theta_i), cj = cos(in.theta_j), si = sin(in.theta_i), sj = sin(in.theta_j);
     f = 1.0 / (2.0 - (ci * ci + cj * cj) / 2.0); /* eq. 36 */
     assert_true(fabs(2.0 / (2.0 + si * si + sj * sj) - f) <= 1e-14);
     if (sa->m != sb->m) f = 1.0 / ((1 + si * si) / 2 + (1 + sj * sj) * sa->m / (2 * sb->m));
-  } else if (sa->kind == HD_KIND_DIMER) {
+  } else if (sa->tag == HD_SHAPE_DIMER) {
     double c = cos(in.theta_i);
     f = 1.0 / (1.0 + sa->m / Mb - c * c / 2);
-  } else if (sb->kind == HD_KIND_DIMER) {
+  } else if (sb->tag == HD_SHAPE_DIMER) {
     double c = cos(in.theta_j);
     f = 1.0 / (1.0 + sb->m / Ma - c * c / 2);
   } else {
@@ -504,7 +506,7 @@ static void collide_tiny_bond(void **state) {
     const hd_shape *sa = &dm, *sb = k % 2 ? &dk : &dm;
     /* a contact of disk ka of A with disk kb of B along a random direction (random_contact
      * would refuse it: the other disk of a tiny dimer touches too) */
-    int ka = k % 4 < 2, kb = sb->kind == HD_KIND_DIMER && k % 3 == 0;
+    int ka = k % 4 < 2, kb = sb->tag == HD_SHAPE_DIMER && k % 3 == 0;
     hd_kin A = {0,
                 0,
                 gsl_ran_gaussian(r, 1),
@@ -517,7 +519,7 @@ static void collide_tiny_bond(void **state) {
                 gsl_ran_gaussian(r, 1),
                 unif(r, -M_PI, M_PI),
                 gsl_ran_gaussian(r, 1)};
-    if (sb->kind == HD_KIND_DISK) B.phi = B.omega = 0.0;
+    if (sb->tag == HD_SHAPE_DISK) B.phi = B.omega = 0.0;
     double ang = unif(r, -M_PI, M_PI), D = 0.5 * (sa->d + sb->d), pax, pay, obx, oby;
     ref_pos(&A, sa, ka, 0.0, &pax, &pay);
     ref_pos(&B, sb, kb, 0.0, &obx, &oby);
@@ -581,7 +583,7 @@ static void collide_walls(void **state) {
                     gsl_ran_gaussian(r, 1),
                     unif(r, -M_PI, M_PI),
                     gsl_ran_gaussian(r, a < 0.01 ? 1e3 : 2.0)};
-        if (s.kind == HD_KIND_DISK) A.phi = A.omega = 0;
+        if (s.tag == HD_SHAPE_DISK) A.phi = A.omega = 0;
         int ka = (int)gsl_rng_uniform_int(r, (unsigned long)ndisks(&s));
         /* put disk ka on the wall and keep the other one inside */
         double x, y, o = unif(r, -10, 10);
@@ -591,7 +593,7 @@ static void collide_walls(void **state) {
           A.y += want - y, A.x += o;
         else
           A.x += want - x, A.y += o;
-        if (s.kind == HD_KIND_DIMER) {
+        if (s.tag == HD_SHAPE_DIMER) {
           ref_pos(&A, &s, 1 - ka, 0, &x, &y);
           if (w.normal * ((w.axis ? y : x) - want) < 0) continue;
         }
@@ -624,7 +626,7 @@ static void collide_walls(void **state) {
         assert_true(fabs(v1n1 + al * v1n) <= 1e-12 * vs);
         assert_true(fabs(in.vn - v1n) <= 1e-12 * vs);
         double E0 = ref_ke(&A, &s), E1 = ref_ke(&A1, &s), de;
-        if (s.kind == HD_KIND_DIMER) {
+        if (s.tag == HD_SHAPE_DIMER) {
           /* r12 from the disk positions of A moved to the origin (no round-off of |x| ~ 20
            * against a = 1e-3) */
           double c1x, c1y, c2x, c2y, c;
@@ -648,7 +650,7 @@ static void collide_walls(void **state) {
         double ha = 0.5 * s.a;
         assert_true(fabs(A1.vx - A2.vx) <= 1e-12 * vs && fabs(A1.vy - A2.vy) <= 1e-12 * vs);
         assert_true(ha * fabs(A1.omega - A2.omega) <= 1e-12 * vs);
-        if (s.kind == HD_KIND_DIMER) {
+        if (s.tag == HD_SHAPE_DIMER) {
           double nx = w.axis ? 0 : -w.normal, ny = w.axis ? -w.normal : 0;
           check_theta(&A, &s, ka, nx, ny, in.theta_i, 1e300);
         }
@@ -726,8 +728,8 @@ static void random_approach(gsl_rng *r, const hd_shape *sa, const hd_shape *sb, 
                 -sin(ang) + 0.5 * gsl_ran_gaussian(r, 1),
                 unif(r, -M_PI, M_PI),
                 wb * gsl_ran_gaussian(r, 1)};
-  if (sa->kind == HD_KIND_DISK) A->phi = A->omega = 0;
-  if (sb->kind == HD_KIND_DISK) B->phi = B->omega = 0;
+  if (sa->tag == HD_SHAPE_DISK) A->phi = A->omega = 0;
+  if (sb->tag == HD_SHAPE_DISK) B->phi = B->omega = 0;
 }
 
 typedef struct pclass {
@@ -1096,7 +1098,7 @@ static void predict_walls(void **state) {
                   gsl_ran_gaussian(r, 1),
                   unif(r, -M_PI, M_PI),
                   ws[iw] * gsl_ran_gaussian(r, 1)};
-      if (s.kind == HD_KIND_DISK) A.phi = A.omega = 0;
+      if (s.tag == HD_SHAPE_DISK) A.phi = A.omega = 0;
       double gap = unif(r, 0.01, iw == 2 ? 0.3 : 1.5) + hd_shape_radius(&s);
       if (w.axis)
         A.y = w.pos + w.normal * gap;
