@@ -48,7 +48,25 @@ static hd_shape disk(double d, double m) {
 }
 
 static int ndisks(const hd_shape *s) {
-  return s->tag == HD_SHAPE_DIMER ? 2 : 1;
+  return s->n;
+}
+
+/* The same shape for the general code (HD_SHAPE_CLUSTER): its disks as given. */
+static hd_shape general(const hd_shape *s) {
+  hd_shape g;
+  double x[HD_MAX_BODY_DISKS], y[HD_MAX_BODY_DISKS];
+  for (int k = 0; k < s->n; k++) x[k] = s->ox[k], y[k] = s->oy[k];
+  assert_int_equal(hd_shape_cluster(&g, s->n, x, y, s->dk, s->mk, 0), 0);
+  assert_int_equal(g.tag, HD_SHAPE_CLUSTER);
+  return g;
+}
+
+/* A cluster of n disks at (x, y) with diameters d, masses m, tagged by hd_shape_cluster. */
+static hd_shape cluster(int n, const double *x, const double *y, const double *d,
+                        const double *m) {
+  hd_shape g;
+  assert_int_equal(hd_shape_cluster(&g, n, x, y, d, m, 1), 0);
+  return g;
 }
 
 /* ---- independent kinematics (not using hd_body) ------------------------------------------ */
@@ -61,6 +79,10 @@ static void ref_pos(const hd_kin *b, const hd_shape *s, int k, double t, double 
     double g = (k ? 0.5 : -0.5) * s->a, ang = b->phi + b->omega * t;
     *x += g * cos(ang);
     *y += g * sin(ang);
+  } else if (s->tag == HD_SHAPE_CLUSTER) { /* the offset turned by the angle */
+    double ang = b->phi + b->omega * t;
+    *x += s->ox[k] * cos(ang) - s->oy[k] * sin(ang);
+    *y += s->ox[k] * sin(ang) + s->oy[k] * cos(ang);
   }
 }
 
@@ -71,6 +93,10 @@ static void ref_vel(const hd_kin *b, const hd_shape *s, int k, double *vx, doubl
     double g = (k ? 0.5 : -0.5) * s->a * b->omega;
     *vx -= g * sin(b->phi);
     *vy += g * cos(b->phi);
+  } else if (s->tag == HD_SHAPE_CLUSTER) { /* omega x the turned offset */
+    double c = cos(b->phi), sn = sin(b->phi);
+    *vx -= b->omega * (s->ox[k] * sn + s->oy[k] * c);
+    *vy += b->omega * (s->ox[k] * c - s->oy[k] * sn);
   }
 }
 
@@ -80,7 +106,7 @@ static double ref_ke(const hd_kin *b, const hd_shape *s) {
   for (int k = 0; k < ndisks(s); k++) {
     double vx, vy;
     ref_vel(b, s, k, &vx, &vy);
-    e += 0.5 * s->m * (vx * vx + vy * vy);
+    e += 0.5 * s->mk[k] * (vx * vx + vy * vy);
   }
   return e;
 }
@@ -91,7 +117,7 @@ static double ref_gap_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B,
   double xa, ya, xb, yb;
   ref_pos(A, sa, i, t, &xa, &ya);
   ref_pos(B, sb, j, t, &xb, &yb);
-  return hypot(xb - xa, yb - ya) - 0.5 * (sa->d + sb->d);
+  return hypot(xb - xa, yb - ya) - 0.5 * (sa->dk[i] + sb->dk[j]);
 }
 
 /* The brute-force gap function: pairs or a wall, with an optional ignored pair. */
@@ -109,7 +135,7 @@ static double bf_gap(double t, void *par) {
     for (int i = 0; i < ndisks(f->sa); i++) {
       double x, y;
       ref_pos(f->A, f->sa, i, t, &x, &y);
-      double v = f->w->normal * ((f->w->axis ? y : x) - f->w->pos) - 0.5 * f->sa->d;
+      double v = f->w->normal * ((f->w->axis ? y : x) - f->w->pos) - 0.5 * f->sa->dk[i];
       if (v < g) g = v;
     }
     return g;
@@ -279,7 +305,6 @@ static void free_flight(void **state) {
  * approaching contact points.  wsc: scale of the angular velocities. */
 static void random_contact(gsl_rng *r, const hd_shape *sa, const hd_shape *sb, double wsc,
                            hd_kin *A, hd_kin *B, int *ka, int *kb) {
-  double D = 0.5 * (sa->d + sb->d);
   for (;;) {
     hd_kin a = {unif(r, -5, 5),         unif(r, -5, 5),       gsl_ran_gaussian(r, 1),
                 gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI), gsl_ran_gaussian(r, wsc)};
@@ -293,6 +318,7 @@ static void random_contact(gsl_rng *r, const hd_shape *sa, const hd_shape *sb, d
     if (sb->tag == HD_SHAPE_DISK) b.phi = b.omega = 0.0;
     int i = (int)gsl_rng_uniform_int(r, (unsigned long)ndisks(sa));
     int j = (int)gsl_rng_uniform_int(r, (unsigned long)ndisks(sb));
+    double D = 0.5 * (sa->dk[i] + sb->dk[j]);
     double ang = unif(r, -M_PI, M_PI), pax, pay, obx, oby;
     ref_pos(&a, sa, i, 0.0, &pax, &pay);
     ref_pos(&b, sb, j, 0.0, &obx, &oby); /* offset of B's disk from B's centre (b at 0) */
@@ -331,11 +357,16 @@ static double vscale(const hd_kin *k, const hd_shape *s) {
   return m;
 }
 
-/* Angular momentum about (px, py). */
+/* Angular momentum about (px, py): the sum over the disks (point masses at their centres). */
 static double ang_mom(const hd_kin *k, const hd_shape *s, double px, double py) {
-  double M = s->tag == HD_SHAPE_DIMER ? 2 * s->m : s->m, I = 0.5 * s->m * s->a * s->a;
-  return M * ((k->x - px) * k->vy - (k->y - py) * k->vx) +
-         (s->tag == HD_SHAPE_DIMER ? I * k->omega : 0.0);
+  double L = 0.0;
+  for (int i = 0; i < ndisks(s); i++) {
+    double x, y, vx, vy;
+    ref_pos(k, s, i, 0.0, &x, &y);
+    ref_vel(k, s, i, &vx, &vy);
+    L += s->mk[i] * ((x - px) * vy - (y - py) * vx);
+  }
+  return L;
 }
 
 /* The paper's energy change of a pair collision (eq. 19, 20, 23), from its own vectors. */
@@ -1145,6 +1176,259 @@ static void predict_walls(void **state) {
   gsl_rng_free(r);
 }
 
+
+/* ---- general clusters --------------------------------------------------------------------- */
+
+/* The cluster shapes of the tests: trimers of unit disks (linear, bent at 120 degrees at the
+ * middle disk, triangular) and an asymmetric dimer (d 1 and 0.5, m 1 and 0.3, 0.8 apart). */
+static hd_shape trimer_linear(void) {
+  const double x[] = {0, 1, 2}, y[] = {0, 0, 0}, d[] = {1, 1, 1}, m[] = {1, 1, 1};
+  return cluster(3, x, y, d, m);
+}
+static hd_shape trimer_bent(void) {
+  const double x[] = {1, 0, cos(2 * M_PI / 3)}, y[] = {0, 0, sin(2 * M_PI / 3)};
+  const double d[] = {1, 1, 1}, m[] = {1, 1, 1};
+  return cluster(3, x, y, d, m);
+}
+static hd_shape trimer_triangle(void) {
+  const double x[] = {0, 1, 0.5}, y[] = {0, 0, sqrt(3) / 2}, d[] = {1, 1, 1}, m[] = {1, 1, 1};
+  return cluster(3, x, y, d, m);
+}
+static hd_shape dimer_asym(void) {
+  const double x[] = {0, 0.8}, y[] = {0, 0}, d[] = {1, 0.5}, m[] = {1, 0.3};
+  return cluster(2, x, y, d, m);
+}
+
+static void cluster_shapes(void **state) {
+  (void)state;
+  hd_shape l = trimer_linear(), b = trimer_bent(), t = trimer_triangle(), a = dimer_asym();
+  assert_int_equal(l.tag, HD_SHAPE_CLUSTER);
+  assert_int_equal(a.tag, HD_SHAPE_CLUSTER);
+  /* by definition: total mass, centre of mass at the origin, I = sum m |o|^2 */
+  assert_true(l.mass == 3.0 && fabs(l.inertia - 2.0) <= 1e-15 && fabs(l.radius - 1.5) <= 1e-15);
+  assert_true(fabs(t.inertia - 1.0) <= 1e-15);          /* 3 (1/sqrt 3)^2 */
+  assert_true(fabs(t.radius - (1 / sqrt(3) + 0.5)) <= 1e-15);
+  double cx = 0, cy = 0;
+  for (int k = 0; k < 3; k++) cx += b.ox[k], cy += b.oy[k];
+  assert_true(fabs(cx) <= 1e-15 && fabs(cy) <= 1e-15);
+  /* asymmetric dimer: centre of mass 0.8 * 0.3 / 1.3 from disk 0 */
+  assert_true(fabs(a.ox[0] + 0.24 / 1.3) <= 1e-15 && fabs(a.mass - 1.3) <= 1e-15);
+  assert_true(fabs(a.inertia - 0.8 * 0.8 * 0.3 / 1.3) <= 1e-15); /* reduced mass x a^2 */
+  /* the fast tags: a disk, an equal dimer on the x axis (any origin) */
+  const double x1[] = {3.0}, y1[] = {-2.0}, d1[] = {1.3}, m1[] = {2.0};
+  hd_shape k = cluster(1, x1, y1, d1, m1);
+  assert_int_equal(k.tag, HD_SHAPE_DISK);
+  assert_true(k.d == 1.3 && k.m == 2.0 && k.mass == 2.0 && k.inertia == 0.0);
+  const double x2[] = {0.0, 1.5}, y2[] = {0, 0}, d2[] = {1, 1}, m2[] = {1, 1};
+  hd_shape e = cluster(2, x2, y2, d2, m2), ref = dimer(1, 1.5, 1);
+  assert_int_equal(e.tag, HD_SHAPE_DIMER);
+  assert_true(e.a == 1.5 && e.inertia == ref.inertia && e.radius == ref.radius);
+  /* out of range */
+  const double d0[] = {0.0}, mn[] = {-1.0};
+  assert_int_equal(hd_shape_cluster(&e, 1, x1, y1, d0, m1, 1), -1);
+  assert_int_equal(hd_shape_cluster(&e, 1, x1, y1, d1, mn, 1), -1);
+  assert_int_equal(hd_shape_cluster(&e, 0, x1, y1, d1, m1, 1), -1);
+  assert_int_equal(hd_shape_cluster(&e, HD_MAX_BODY_DISKS + 1, x1, y1, d1, m1, 1), -1);
+}
+
+/* Same double, or both NaN. */
+static int same_or_nan(double a, double b, double tol) {
+  return (isnan(a) && isnan(b)) || fabs(a - b) <= tol;
+}
+
+/* The general code (HD_SHAPE_CLUSTER) against the paper's formulas (eq. 13-26, the fast paths)
+ * for disks and equal dimers: the same collisions (velocities, angles, f, dE, vn) to 1e-12 of
+ * their scale, with walls too, and the same contacts predicted (same disks, times to 1e-12
+ * relative: both polish the root to round-off; a search stopped at a grazing gap <= 1e-12 d
+ * could differ more, which these random approaches do not meet).  Fixed seed. */
+static void general_matches_paper(void **state) {
+  (void)state;
+  gsl_rng *r = rng_new(91);
+  const hd_shape sh[][2] = {{dimer(1, 1, 1), dimer(1, 1, 1)},   {dimer(1, 2, 1), dimer(1, 0.5, 1)},
+                            {dimer(1, 1, 1), disk(1.3, 0.7)},   {disk(0.8, 2), dimer(1, 1.5, 1)},
+                            {disk(1.3, 2), disk(0.6, 0.5)},     {dimer(1, 0.3, 2), dimer(1, 3, 2)}};
+  const double alphas[] = {0.0, 0.6, 1.0};
+  int n = sanitize() ? 50 : 400;
+  double worst_v = 0, worst_t = 0;
+  for (size_t c = 0; c < sizeof sh / sizeof sh[0]; c++) {
+    const hd_shape *sa = &sh[c][0], *sb = &sh[c][1];
+    hd_shape ga = general(sa), gb = general(sb);
+    for (int k = 0; k < n; k++) {
+      hd_kin A, B;
+      int ka, kb;
+      double alpha = alphas[k % 3];
+      random_contact(r, sa, sb, 2.0, &A, &B, &ka, &kb);
+      hd_kin A1 = A, B1 = B, A2 = A, B2 = B;
+      hd_collision_info i1, i2;
+      hd_collide_pair(&A1, sa, &B1, sb, ka, kb, alpha, &i1);
+      hd_collide_pair(&A2, &ga, &B2, &gb, ka, kb, alpha, &i2);
+      double vs = 1.0 + vscale(&A, sa) + vscale(&B, sb), tol = 1e-12 * vs;
+      double dv = fmax(fmax(fabs(A1.vx - A2.vx), fabs(A1.vy - A2.vy)),
+                       fmax(fabs(B1.vx - B2.vx), fabs(B1.vy - B2.vy)));
+      dv = fmax(dv, fmax(sa->rmax * fabs(A1.omega - A2.omega), sb->rmax * fabs(B1.omega - B2.omega)));
+      worst_v = fmax(worst_v, dv / vs);
+      assert_true(dv <= tol);
+      assert_true(same_or_nan(i1.theta_i, i2.theta_i, 1e-12));
+      assert_true(same_or_nan(i1.theta_j, i2.theta_j, 1e-12));
+      assert_true(fabs(i1.f - i2.f) <= 1e-12 * i1.f && fabs(i1.vn - i2.vn) <= tol);
+      assert_true(fabs(i1.de - i2.de) <= 1e-12 * (hd_kin_energy(&A, sa) + hd_kin_energy(&B, sb)));
+      /* prediction from an approach */
+      random_approach(r, sa, sb, k % 2 ? 2.0 : 0.0, 2.0, 0.01, 1.5, &A, &B);
+      hd_contact c1, c2;
+      int g1 = hd_predict_pair(&A, sa, &B, sb, 3.0, &c1), g2 = hd_predict_pair(&A, &ga, &B, &gb, 3.0, &c2);
+      assert_int_equal(g1, g2);
+      if (g1) {
+        worst_t = fmax(worst_t, fabs(c1.t - c2.t) / (1.0 + c1.t));
+        assert_true(fabs(c1.t - c2.t) <= 1e-12 * (1.0 + c1.t));
+        assert_true(c1.ka == c2.ka && c1.kb == c2.kb);
+      }
+      /* walls: A's disk ka against a wall through its contact point */
+      hd_wall w = {k % 2, 0.0, (k / 2) % 2 ? 1.0 : -1.0};
+      hd_kin W = {0, 0, gsl_ran_gaussian(r, 1), gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI),
+                  sa->n > 1 ? gsl_ran_gaussian(r, 2.0) : 0.0};
+      if (sa->n == 1) W.phi = 0;
+      double gap = unif(r, 0.01, 1.5) + hd_shape_radius(sa);
+      *(w.axis ? &W.y : &W.x) = w.normal * gap;
+      *(w.axis ? &W.vy : &W.vx) = -w.normal * fabs(w.axis ? W.vy : W.vx);
+      g1 = hd_predict_wall(&W, sa, &w, 3.0, &c1);
+      g2 = hd_predict_wall(&W, &ga, &w, 3.0, &c2);
+      assert_int_equal(g1, g2);
+      if (!g1) continue;
+      worst_t = fmax(worst_t, fabs(c1.t - c2.t) / (1.0 + c1.t));
+      assert_true(fabs(c1.t - c2.t) <= 1e-12 * (1.0 + c1.t) && c1.ka == c2.ka);
+      hd_kin_advance(&W, c1.t);
+      hd_kin W1 = W, W2 = W;
+      hd_collide_wall(&W1, sa, c1.ka, &w, alpha, &i1);
+      hd_collide_wall(&W2, &ga, c1.ka, &w, alpha, &i2);
+      vs = 1.0 + vscale(&W, sa);
+      assert_true(fabs(W1.vx - W2.vx) <= 1e-12 * vs && fabs(W1.vy - W2.vy) <= 1e-12 * vs);
+      assert_true(sa->rmax * fabs(W1.omega - W2.omega) <= 1e-12 * vs);
+      assert_true(same_or_nan(i1.theta_i, i2.theta_i, 1e-12) && fabs(i1.f - i2.f) <= 1e-12);
+      assert_true(fabs(i1.de - i2.de) <= 1e-12 * hd_kin_energy(&W, sa));
+    }
+  }
+  printf("# general vs paper: largest velocity difference %.3g of the speed scale, contact time "
+         "%.3g\n", worst_v, worst_t);
+  gsl_rng_free(r);
+}
+
+/* One random collision of two clusters checked against the conservation laws and the rigid-body
+ * rule written independently: momentum and angular momentum (sum over the disks), restitution of
+ * the contact points' normal velocity, energy change = info.de = -(1 - alpha^2) mu vn^2 / 2 with
+ * 1/mu = sum 1/M + (rho x n)^2 / I (rho from the disk positions, I = sum m |o|^2 from them), the
+ * contact angle from the centre of mass to the contacting disk, and f = mu / m_ref. */
+static void check_cluster_collision(gsl_rng *r, const hd_shape *sa, const hd_shape *sb,
+                                    double alpha) {
+  hd_kin A, B;
+  int ka, kb;
+  random_contact(r, sa, sb, 2.0, &A, &B, &ka, &kb);
+  hd_kin A1 = A, B1 = B;
+  hd_collision_info in;
+  hd_collide_pair(&A1, sa, &B1, sb, ka, kb, alpha, &in);
+  double Ma = hd_shape_mass(sa), Mb = hd_shape_mass(sb);
+  double vs = fmax(fmax(vscale(&A, sa), vscale(&B, sb)), fmax(vscale(&A1, sa), vscale(&B1, sb)));
+  double ps = (Ma + Mb) * vs;
+  assert_true(fabs(Ma * (A1.vx - A.vx) + Mb * (B1.vx - B.vx)) <= 1e-13 * ps);
+  assert_true(fabs(Ma * (A1.vy - A.vy) + Mb * (B1.vy - B.vy)) <= 1e-13 * ps);
+  double px = unif(r, -20, 20), py = unif(r, -20, 20);
+  double L0 = ang_mom(&A, sa, px, py) + ang_mom(&B, sb, px, py);
+  double L1 = ang_mom(&A1, sa, px, py) + ang_mom(&B1, sb, px, py);
+  assert_true(fabs(L1 - L0) <= 1e-13 * ps * 40);
+  double vn0 = ref_vn(&A, sa, &B, sb, ka, kb), vn1 = ref_vn(&A1, sa, &B1, sb, ka, kb);
+  assert_true(vn0 < 0 && fabs(in.vn - vn0) <= 1e-12 * vs);
+  assert_true(fabs(vn1 + alpha * vn0) <= 1e-12 * vs);
+  /* mu from the disk positions */
+  double ax, ay, bx, by, inv = 1.0 / Ma + 1.0 / Mb, rho[2][2];
+  ref_pos(&A, sa, ka, 0, &ax, &ay);
+  ref_pos(&B, sb, kb, 0, &bx, &by);
+  double D = hypot(bx - ax, by - ay), nx = (bx - ax) / D, ny = (by - ay) / D;
+  const hd_shape *sh[2] = {sa, sb};
+  const hd_kin *kk[2] = {&A, &B};
+  for (int s = 0; s < 2; s++) {
+    double I = 0.0, cx = s ? bx : ax, cy = s ? by : ay;
+    for (int q = 0; q < ndisks(sh[s]); q++) {
+      double x, y;
+      ref_pos(kk[s], sh[s], q, 0, &x, &y);
+      I += sh[s]->mk[q] * ((x - kk[s]->x) * (x - kk[s]->x) + (y - kk[s]->y) * (y - kk[s]->y));
+    }
+    rho[s][0] = cx - kk[s]->x;
+    rho[s][1] = cy - kk[s]->y;
+    double cr = rho[s][0] * ny - rho[s][1] * nx;
+    if (I > 0) inv += cr * cr / I;
+  }
+  double mu = 1.0 / inv, de = -0.5 * (1 - alpha * alpha) * mu * vn0 * vn0;
+  double E0 = ref_ke(&A, sa) + ref_ke(&B, sb), E1 = ref_ke(&A1, sa) + ref_ke(&B1, sb);
+  assert_true(fabs((E1 - E0) - in.de) <= 1e-12 * E0);
+  assert_true(fabs(de - in.de) <= 1e-12 * (E0 + fabs(de)));
+  if (alpha == 1.0) assert_true(fabs(E1 - E0) <= 1e-13 * E0);
+  /* contact angles: from the outward axis (centre of mass -> contacting disk) to the normal */
+  for (int s = 0; s < 2; s++) {
+    double th = s ? in.theta_j : in.theta_i, rr = hypot(rho[s][0], rho[s][1]);
+    double mx = s ? -nx : nx, my = s ? -ny : ny;
+    if (rr < 1e-12) {
+      assert_true(isnan(th));
+      continue;
+    }
+    assert_true(fabs(cos(th) - (rho[s][0] * mx + rho[s][1] * my) / rr) <= 1e-11);
+    assert_true(fabs(sin(th) - (rho[s][0] * my - rho[s][1] * mx) / rr) <= 1e-11);
+  }
+  double mref = sa->n > 1 ? sa->mk[ka] : sb->n > 1 ? sb->mk[kb] : sa->mk[ka];
+  assert_true(fabs(in.f - mu / mref) <= 1e-12 * in.f);
+}
+
+static void collide_clusters(void **state) {
+  (void)state;
+  gsl_rng *r = rng_new(93);
+  const hd_shape sh[] = {trimer_linear(), trimer_bent(), trimer_triangle(), dimer_asym(),
+                         dimer(1, 1, 1), disk(1.3, 0.7)};
+  const double alphas[] = {0.0, 0.5, 0.9, 1.0};
+  int n = sanitize() ? 20 : 150;
+  for (size_t a = 0; a < 4; a++)
+    for (size_t b = 0; b < sizeof sh / sizeof sh[0]; b++)
+      for (int k = 0; k < n; k++) {
+        check_cluster_collision(r, &sh[a], &sh[b], alphas[k % 4]);
+        check_cluster_collision(r, &sh[b], &sh[a], alphas[k % 4]);
+      }
+  gsl_rng_free(r);
+}
+
+/* Contact prediction of clusters against the brute force (compare_pair: same contact or none,
+ * times to 1e-9), with the just-collided pair predicted again, as predict_pairs does for
+ * dimers. */
+static void predict_clusters(void **state) {
+  (void)state;
+  const pclass cl[] = {
+      {"linear-linear", trimer_linear(), trimer_linear(), 2, 2, 1.5, 3, 100000},
+      {"bent-triangle", trimer_bent(), trimer_triangle(), 2, 3, 1.5, 3, 100000},
+      {"asym fast", dimer_asym(), dimer_asym(), 1e2, 1, 0.3, 0.5, 200000},
+      {"triangle-disk", trimer_triangle(), disk(0.6, 0.5), 3, 0, 1.5, 3, 100000},
+      {"dimer-linear", dimer(1, 1, 1), trimer_linear(), 2, 2, 1.5, 3, 100000},
+      {"linear still", trimer_linear(), trimer_bent(), 0, 0, 1.5, 3, 30000},
+  };
+  gsl_rng *r = rng_new(95);
+  int ncase = sanitize() ? 4 : 30;
+  for (size_t k = 0; k < sizeof cl / sizeof cl[0]; k++) {
+    int hits = 0;
+    for (int n = 0; n < ncase; n++) {
+      hd_kin A, B;
+      random_approach(r, &cl[k].sa, &cl[k].sb, cl[k].wa, cl[k].wb, 0.01, cl[k].gmax, &A, &B);
+      int ns = sanitize() ? cl[k].nsamp / 10 : cl[k].nsamp;
+      hd_contact c;
+      if (!compare_pair(&A, &cl[k].sa, &B, &cl[k].sb, cl[k].tmax, ns, -1)) continue;
+      hits++;
+      assert_true(hd_predict_pair(&A, &cl[k].sa, &B, &cl[k].sb, cl[k].tmax, &c));
+      hd_kin a = A, b = B;
+      hd_kin_advance(&a, c.t);
+      hd_kin_advance(&b, c.t);
+      hd_collide_pair(&a, &cl[k].sa, &b, &cl[k].sb, c.ka, c.kb, 0.9, NULL);
+      compare_pair(&a, &cl[k].sa, &b, &cl[k].sb, cl[k].tmax, ns, c.ka * ndisks(&cl[k].sb) + c.kb);
+    }
+    printf("# %s: %d of %d approaches touch\n", cl[k].name, hits, ncase);
+    if (!sanitize()) assert_true(hits >= ncase / 5);
+  }
+  gsl_rng_free(r);
+}
+
 /* Closed form for disks: exact values for a head-on approach, the t = 0 rules. */
 static void predict_disks_closed_form(void **state) {
   (void)state;
@@ -1215,6 +1499,10 @@ int main(void) {
       cmocka_unit_test(predict_near_parallel),
       cmocka_unit_test(predict_grazing),
       cmocka_unit_test(predict_walls),
+      cmocka_unit_test(cluster_shapes),
+      cmocka_unit_test(general_matches_paper),
+      cmocka_unit_test(collide_clusters),
+      cmocka_unit_test(predict_clusters),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
