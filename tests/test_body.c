@@ -69,6 +69,11 @@ static hd_shape cluster(int n, const double *x, const double *y, const double *d
   return g;
 }
 
+static hd_shape trimer_linear(void);
+static hd_shape trimer_bent(void);
+static hd_shape trimer_triangle(void);
+static hd_shape dimer_asym(void);
+
 /* ---- independent kinematics (not using hd_body) ------------------------------------------ */
 
 /* Centre of disk k of a body at time t of free flight from state b. */
@@ -1120,6 +1125,8 @@ static void predict_walls(void **state) {
   for (int iw = 0; iw < 3; iw++)
     for (int n = 0; n < ncase; n++) {
       hd_shape s = n % 5 == 4 ? disk(1.2, 1.0) : dimer(1, n % 3 == 0 ? 1e-3 : 1.0 + n % 3, 1);
+      if (n % 7 >= 4) /* general clusters */
+        s = n % 7 == 4 ? trimer_linear() : n % 7 == 5 ? trimer_triangle() : dimer_asym();
       hd_wall w = {n % 2, unif(r, -2, 2), (n / 2) % 2 ? 1.0 : -1.0};
       double tmax = iw == 2 ? 0.3 : 3.0;
       int ns = (iw == 2 ? 100000 : 30000) / (sanitize() ? 10 : 1);
@@ -1160,14 +1167,14 @@ static void predict_walls(void **state) {
         hd_kin_advance(&a2, tb);
         double x, y;
         hd_kin_disk_pos(&a1, &s, c.ka, &x, &y);
-        assert_true(fabs(ww.normal * ((ww.axis ? y : x) - ww.pos) - 0.5 * s.d) <= 1e-8);
+        assert_true(fabs(ww.normal * ((ww.axis ? y : x) - ww.pos) - 0.5 * s.dk[c.ka]) <= 1e-8);
         hd_contact c0; /* at the contact, approaching: contact now (t = 0 up to round-off) */
         assert_true(hd_predict_wall(&a2, &s, &ww, tmax, &c0) && c0.t <= 1e-9 && c0.ka == c.ka);
         hd_collide_wall(&a1, &s, c.ka, &ww, 0.9, NULL);
         hd_collide_wall(&a2, &s, c.ka, &ww, 0.9, NULL);
         double vs = 1.0 + vscale(&A, &s);
         assert_true(fabs(a1.vx - a2.vx) <= 1e-8 * vs && fabs(a1.vy - a2.vy) <= 1e-8 * vs);
-        assert_true(0.5 * s.a * fabs(a1.omega - a2.omega) <= 1e-8 * vs);
+        assert_true(s.rmax * fabs(a1.omega - a2.omega) <= 1e-8 * vs);
         /* just collided: no t = 0 contact with the wall again */
         hd_contact c2;
         if (hd_predict_wall(&a1, &s, &ww, tmax, &c2)) assert_true(c2.t > 1e-9);
