@@ -17,7 +17,7 @@
  * the views params and run_summary (db/README.md lists them).  A file opened for writing
  * (hd_db_open, hd_db_open_existing) is brought up to it; the change is additive, so files of
  * every version stay readable.  A writer refuses a file of a newer version. */
-#define HD_DB_SCHEMA_VERSION 2
+#define HD_DB_SCHEMA_VERSION 3
 
 typedef struct hd_db hd_db;
 typedef struct sqlite3 sqlite3; /* the same typedef as <sqlite3.h> (C11 allows the repeat) */
@@ -80,6 +80,24 @@ typedef struct hd_state_rec {
   double x, y, phi, vx, vy, omega;
   double cpd; /* collisions per particle at t (states.cpd); NaN is stored as NULL */
 } hd_state_rec;
+
+/* One row of `species` (schema version 3). */
+typedef struct hd_species_rec {
+  int idx;           /* engine species index */
+  const char *name;  /* "dimer", "disk" or the section's NAME */
+  const char *disks; /* "x y d m; ..." (schema.sql) */
+  int64_t count;     /* bodies */
+  double mass;       /* total mass of a body */
+  double inertia;    /* its moment of inertia about the centre of mass */
+} hd_species_rec;
+
+/* One row of `sample_species` (schema version 3). */
+typedef struct hd_species_sample {
+  double t;     /* the samples row's t */
+  int species;  /* species.idx */
+  double e_tr;  /* translational energy per body of the species */
+  double e_rot; /* rotational energy per body of the species */
+} hd_species_sample;
 
 /* The text of a body kind ("disk", "dimer", "rod", "body"), or NULL for an unknown kind. */
 const char *hd_db_kind_name(int kind);
@@ -186,6 +204,10 @@ int hd_db_build_indexes(hd_db *db, hd_error *err);
 /* Buffered inserts into the open batch (a batch is opened on demand). */
 int hd_db_log_collision(hd_db *db, int64_t run, const hd_collision_row *r, hd_error *err);
 int hd_db_log_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *err);
+/* A sample_species row (buffered like the samples). */
+int hd_db_log_species_sample(hd_db *db, int64_t run, const hd_species_sample *r, hd_error *err);
+/* A species row of run (after the rows logged before it, in the open batch). */
+int hd_db_log_species(hd_db *db, int64_t run, const hd_species_rec *r, hd_error *err);
 /* `label`: 'initial', 'final', 'checkpoint', 'velocities' (snapshots at [log] velocities_at). */
 int hd_db_log_state(hd_db *db, int64_t run, const char *label, const hd_state_rec *r,
                     hd_error *err);

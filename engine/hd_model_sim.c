@@ -1,5 +1,8 @@
 /* The 2D engine (hd_sim: disks and dimers) seen through hd_model_ops. */
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "hd_model.h"
 #include "hd_sim.h"
@@ -120,6 +123,51 @@ static int m_states(const void *m, hd_state_rec *out, hd_error *err) {
   return HD_OK;
 }
 
+/* Appends x to buf (size bytes, NUL-terminated) in the shortest %g form that reads back as x. */
+static void put_exact(char *buf, size_t size, double x) {
+  char b[40];
+  for (int prec = 15; prec <= 17; prec++) {
+    snprintf(b, sizeof b, "%.*g", prec, x);
+    if (strtod(b, NULL) == x) break;
+  }
+  size_t n = strlen(buf);
+  snprintf(buf + n, size > n ? size - n : 0, "%s", b);
+}
+
+static int m_log_species(const void *m, hd_db *db, int64_t run, hd_error *err) {
+  const hd_sim *s = m;
+  for (int sp = 0; sp < s->nsp; sp++) {
+    if (s->n_species[sp] == 0) continue;
+    const hd_shape *sh = &s->shape[sp];
+    char disks[HD_MAX_BODY_DISKS * 4 * 26 + 16] = "";
+    for (int k = 0; k < sh->n; k++) {
+      const double v[4] = {sh->ox[k], sh->oy[k], sh->dk[k], sh->mk[k]};
+      for (int c = 0; c < 4; c++) {
+        put_exact(disks, sizeof disks, v[c]);
+        strncat(disks, c < 3 ? " " : k + 1 < sh->n ? "; " : "", sizeof disks - strlen(disks) - 1);
+      }
+    }
+    hd_species_rec rec = {sp,          s->sp_name[sp],           disks, s->n_species[sp],
+                          sh->mass, hd_shape_inertia(sh)};
+    int rc = hd_db_log_species(db, run, &rec, err);
+    if (rc) return rc;
+  }
+  return HD_OK;
+}
+
+static int m_log_species_sample(const void *m, hd_db *db, int64_t run, hd_error *err) {
+  const hd_sim *s = m;
+  for (int sp = 0; sp < s->nsp; sp++) {
+    if (s->n_species[sp] == 0) continue;
+    double et, er;
+    hd_sim_energy(s, sp, &et, &er);
+    hd_species_sample row = {hd_sim_time(s), sp, et / s->n_species[sp], er / s->n_species[sp]};
+    int rc = hd_db_log_species_sample(db, run, &row, err);
+    if (rc) return rc;
+  }
+  return HD_OK;
+}
+
 static void m_box(const void *m, double *lx, double *ly) {
   *lx = ((const hd_sim *)m)->lx;
   *ly = ((const hd_sim *)m)->ly;
@@ -127,7 +175,8 @@ static void m_box(const void *m, double *lx, double *ly) {
 
 const hd_model_ops hd_model_bodies2d = {
     "bodies2d", m_alloc,  m_alloc_restore, m_free,   m_next,       m_checkpoint, m_time,
-    m_cpd,      m_events, m_temperature,   m_sample, m_log_states, m_box,        m_states};
+    m_cpd,      m_events, m_temperature,   m_sample, m_log_states, m_box,        m_states,
+    m_log_species, m_log_species_sample};
 
 const hd_model_ops *hd_model_for_scene(const hd_scene *sc) {
   return sc->n_rods > 0 ? &hd_model_rods : &hd_model_bodies2d;

@@ -5,7 +5,8 @@
  * per body, and the Haff law's D_e = 3 in the limit alpha -> 1; a mixture of named species with
  * dimers and disks (body order, alpha per pair, equipartition across species); a scene without
  * named species keeps the disk and dimer fast paths; a checkpoint with named species resumes
- * bit for bit. */
+ * bit for bit; a run with named species stores its species table, per-species samples, 'body'
+ * states and body-body / body-wall collisions. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -16,6 +17,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sqlite3.h>
+#include <unistd.h>
+
+#include "hd_run.h"
 #include "hd_sim_internal.h"
 #include "test_util.h"
 
@@ -307,10 +312,82 @@ static void checkpoint_resume(void **state) {
   hd_sim_free(a);
 }
 
+/* One integer from a query on h. */
+static long long q_int(sqlite3 *h, const char *sql) {
+  sqlite3_stmt *st;
+  assert_int_equal(sqlite3_prepare_v2(h, sql, -1, &st, NULL), SQLITE_OK);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  long long v = sqlite3_column_int64(st, 0);
+  sqlite3_finalize(st);
+  return v;
+}
+
+/* A run (hd_run_new) of 20 dimers, 10 disks and 15 bent trimers between walls, 10 cpd: the
+ * species table has the three species with their counts, masses, inertias and disks (the
+ * trimer: 2 - 3 |centre of mass|^2 = 5/3); every samples row has one sample_species row per
+ * species, whose energies add up to the samples row's; trimers are stored as kind 'body', their
+ * collisions as body-body and body-wall, with the touching disk in 0 .. 2. */
+static void run_stores_species(void **state) {
+  (void)state;
+  char db[] = "/tmp/haff-cluster-XXXXXX";
+  int fd = mkstemp(db);
+  assert_true(fd >= 0);
+  close(fd);
+  unlink(db);
+  hd_scene sc;
+  hd_error err;
+  const char *text = "[system]\nbox = 30 30\nseed = 3\n[dimers]\ncount = 20\nalpha = 0.9\n"
+                     "[disks]\ncount = 10\n[walls]\nsides = left right bottom top\n[run]\n"
+                     "stop_cpd = 10\n[log]\nsamples_every = 1\n";
+  assert_int_equal(hd_scene_load_string(&sc, text, "s.ini", NULL, 0, &err), HD_OK);
+  int n;
+  double x[3], y[3], d[3], m[3], area;
+  shape_of(1, &n, x, y, d, m, &area);
+  add_species(&sc, "bent", n, x, y, d, m, 15, 0.9);
+  hd_run_opts o = {.db_path = db, .quiet = 1, .version = "test"};
+  int64_t run = 0;
+  if (hd_run_new(&sc, &o, &run, &err) != HD_OK) fail_msg("%s", err.msg);
+  hd_scene_free(&sc);
+  sqlite3 *h;
+  assert_int_equal(sqlite3_open(db, &h), SQLITE_OK);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM species"), 3);
+  assert_int_equal(q_int(h, "SELECT count FROM species WHERE idx = 2 AND name = 'bent'"), 15);
+  assert_int_equal(q_int(h, "SELECT mass = 3 AND abs(inertia - 5 / 3.0) < 1e-12 FROM species WHERE "
+                            "idx = 2"),
+                   1);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM species WHERE idx = 0 AND name = 'dimer' AND "
+                            "disks = '-0.5 0 1 1; 0.5 0 1 1' AND inertia = 0.5"),
+                   1);
+  long long ns = q_int(h, "SELECT count(*) FROM samples");
+  assert_true(ns >= 10);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM sample_species"), 3 * ns);
+  /* per body energies weighted by the counts add up to the total per body */
+  assert_int_equal(q_int(h, "SELECT count(*) FROM samples AS s WHERE abs((SELECT sum(p.e_tr * "
+                            "c.count) FROM sample_species AS p JOIN species AS c ON c.run = p.run "
+                            "AND c.idx = p.species WHERE p.run = s.run AND p.t = s.t) / 45.0 - "
+                            "s.e_tr) > 1e-12 * s.e_tr"),
+                   0);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM states WHERE label = 'initial' AND kind = 'body' "
+                            "AND body >= 30"),
+                   15);
+  assert_true(q_int(h, "SELECT count(*) FROM collisions WHERE kind = 'body-body'") > 0);
+  assert_true(q_int(h, "SELECT count(*) FROM collisions WHERE kind = 'body-wall'") > 0);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM collisions WHERE kind LIKE 'body-%' AND i >= 30 AND "
+                            "(j BETWEEN 0 AND 29 OR disk_i NOT BETWEEN 0 AND 2)"),
+                   0);
+  sqlite3_close(h);
+  unlink(db);
+  char side[400];
+  snprintf(side, sizeof side, "%s-wal", db), unlink(side);
+  snprintf(side, sizeof side, "%s-shm", db), unlink(side);
+  snprintf(side, sizeof side, "%s.lock", db), unlink(side);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(fast_paths),
       cmocka_unit_test(checkpoint_resume),
+      cmocka_unit_test(run_stores_species),
       cmocka_unit_test(mixture_species),
       cmocka_unit_test(elastic_clusters),
   };
