@@ -1550,3 +1550,37 @@ int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene
   sqlite3_finalize(st);
   return rc;
 }
+
+int hd_db_read_species(sqlite3 *h, int64_t run, hd_shape *shape, int64_t *count, int max, int *n,
+                       hd_error *err) {
+  *n = 0;
+  if (sqlite3_table_column_metadata(h, "main", "species", "disks", NULL, NULL, NULL, NULL, NULL) !=
+      SQLITE_OK)
+    return HD_OK; /* a file from before schema version 3 */
+  sqlite3_stmt *st = NULL;
+  if (sqlite3_prepare_v2(h, "SELECT idx, disks, count FROM species WHERE run = ?1 ORDER BY idx",
+                         -1, &st, NULL) != SQLITE_OK)
+    return hd_error_set(err, HD_EIO, "read species: %s", sqlite3_errmsg(h));
+  sqlite3_bind_int64(st, 1, run);
+  int s, rc = HD_OK;
+  while (!rc && (s = sqlite3_step(st)) == SQLITE_ROW) {
+    int idx = sqlite3_column_int(st, 0), k = 0;
+    const char *p = (const char *)sqlite3_column_text(st, 1);
+    double x[HD_MAX_BODY_DISKS], y[HD_MAX_BODY_DISKS], d[HD_MAX_BODY_DISKS], m[HD_MAX_BODY_DISKS];
+    while (p && *p && k < HD_MAX_BODY_DISKS) {
+      int used = 0;
+      if (sscanf(p, " %lf %lf %lf %lf%n", &x[k], &y[k], &d[k], &m[k], &used) != 4) break;
+      k++;
+      p += used;
+      while (*p == ' ' || *p == ';') p++;
+    }
+    if (*n == max || (p && *p) || hd_shape_cluster(&shape[*n], k, x, y, d, m, 1))
+      rc = hd_error_set(err, HD_EINPUT, "run %lld: species %d: its disks are not a shape",
+                        (long long)run, idx);
+    else
+      count[(*n)++] = sqlite3_column_int64(st, 2);
+  }
+  if (!rc && s != SQLITE_DONE) rc = hd_error_set(err, HD_EIO, "read species: %s", sqlite3_errmsg(h));
+  sqlite3_finalize(st);
+  return rc;
+}

@@ -10,6 +10,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "hd_body.h"
 #include "hd_error.h"
 
 /* The schema version, stored in the file as PRAGMA user_version: 0 for the files made before it
@@ -264,5 +265,13 @@ int hd_db_exec(hd_db *db, const char *sql, hd_error *err);
 
 /* The SQLite handle, for analysis code that reads with its own statements.  Owned by db. */
 sqlite3 *hd_db_handle(hd_db *db);
+
+/* The species of a run (idx order, the order of the bodies' numbers) as the engine's shapes
+ * (hd_shape_cluster of the stored disks), with their counts, from the species table of the
+ * database open on h: at most max of them into shape[], count[]; *n their number, 0 for a run
+ * or file without a species table (before schema version 3).  HD_OK, or HD_EINPUT for a row
+ * that is not a shape (its message names the run and idx), HD_EIO. */
+int hd_db_read_species(sqlite3 *h, int64_t run, hd_shape *shape, int64_t *count, int max, int *n,
+                       hd_error *err);
 
 #endif

@@ -326,7 +326,8 @@ static long long q_int(sqlite3 *h, const char *sql) {
  * species table has the three species with their counts, masses, inertias and disks (the
  * trimer: 2 - 3 |centre of mass|^2 = 5/3); every samples row has one sample_species row per
  * species, whose energies add up to the samples row's; trimers are stored as kind 'body', their
- * collisions as body-body and body-wall, with the touching disk in 0 .. 2. */
+ * collisions as body-body and body-wall, with the touching disk in 0 .. 2; `haff export xyz`
+ * writes every disk of every trimer (at the engine's positions: the bent shape's distances). */
 static void run_stores_species(void **state) {
   (void)state;
   char db[] = "/tmp/haff-cluster-XXXXXX";
@@ -376,6 +377,35 @@ static void run_stores_species(void **state) {
                             "(j BETWEEN 0 AND 29 OR disk_i NOT BETWEEN 0 AND 2)"),
                    0);
   sqlite3_close(h);
+  /* the export writes each trimer's disks where the engine has them: 1 from the middle disk */
+  const char *bin = getenv("HAFF_BIN");
+  if (bin) {
+    char cmd[1200], xyz[300];
+    snprintf(xyz, sizeof xyz, "%s.xyz", db);
+    snprintf(cmd, sizeof cmd, "'%s' export xyz '%s' --label initial -o '%s'", bin, db, xyz);
+    assert_int_equal(system(cmd), 0);
+    FILE *f = fopen(xyz, "r");
+    assert_non_null(f);
+    char line[1024];
+    assert_non_null(fgets(line, sizeof line, f));
+    assert_int_equal(atol(line), 20 * 2 + 10 + 15 * 3);
+    assert_non_null(fgets(line, sizeof line, f));
+    int no = 0;
+    double p[3][2];
+    while (fgets(line, sizeof line, f)) {
+      char sp[8];
+      double px, py;
+      if (sscanf(line, "%7s %lf %lf", sp, &px, &py) != 3 || strcmp(sp, "O")) continue;
+      p[no % 3][0] = px, p[no % 3][1] = py;
+      if (++no % 3 == 0) /* disks 0, 1, 2 of one trimer: 1, 1 and sqrt 3 apart */
+        assert_true(fabs(hypot(p[0][0] - p[1][0], p[0][1] - p[1][1]) - 1) < 1e-12 &&
+                    fabs(hypot(p[2][0] - p[1][0], p[2][1] - p[1][1]) - 1) < 1e-12 &&
+                    fabs(hypot(p[2][0] - p[0][0], p[2][1] - p[0][1]) - sqrt(3)) < 1e-12);
+    }
+    fclose(f);
+    assert_int_equal(no, 45);
+    unlink(xyz);
+  }
   unlink(db);
   char side[400];
   snprintf(side, sizeof side, "%s-wal", db), unlink(side);
