@@ -18,6 +18,8 @@ static void fmean_usage(FILE *out) {
           "       haff mc fmean --convergence [--a A [--d D]] [--seconds S] [--samples NMAX]\n"
           "                     [--seed K]\n"
           "       haff mc fmean --fig4-data --a A [--d D]\n"
+          "       haff mc fmean --disks 'X Y D M; X Y D M; ...' [--model M] [--samples N |\n"
+          "                     --seconds S] [--seed K] [--dim DIM]\n"
           "\n"
           "Mean orientation factor <f> of dimer-dimer collisions (Costantini et al. 2005, eq. 36)\n"
           "and the paper's effective dimension D_e = DIM/<f>, for elongation a/d = A/D.\n"
@@ -39,6 +41,10 @@ static void fmean_usage(FILE *out) {
           "                 n f_mc f_stderr abs_err_vs_quadrature seconds reps rms_err, and a\n"
           "                 '# slope' line: the fitted d log(err) / d log(n) (expect -1/2)\n"
           "  --fig4-data    gnuplot data blocks of Fig. 4 (two dimers at contact, allowed range)\n"
+          "  --disks SPEC   two bodies of any rigid shape instead of dimers: 1 to 8 disks, each\n"
+          "                 'x y d m' (centre in the body frame, diameter, mass), separated by\n"
+          "                 ';'; f = mu_eff / m_ref as the engine logs it (docs/contract.md);\n"
+          "                 a_over_d is then nan\n"
           "\n"
           "Output (TSV, one header row): model a_over_d f_mean f_stderr D_e D_e_stderr samples\n"
           "seconds f_quad f_quad_abserr acceptance fvn2 D_e_energy D_e_energy_stderr\n"
@@ -111,10 +117,12 @@ int hd_mc_fmean_main(int argc, char **argv) {
       {"seconds", required_argument, NULL, 's'}, {"seed", required_argument, NULL, 'k'},
       {"scan", required_argument, NULL, 'S'},    {"convergence", no_argument, NULL, 'c'},
       {"fig4-data", no_argument, NULL, 'f'},     {"dim", required_argument, NULL, 'D'},
-      {"help", no_argument, NULL, 'h'},          {NULL, 0, NULL, 0}};
+      {"disks", required_argument, NULL, 'B'},   {"help", no_argument, NULL, 'h'},
+      {NULL, 0, NULL, 0}};
   double a = NAN, d = 1.0, seconds = 0.0, dim = 2.0, scan[3] = {0, 0, 0};
   unsigned long samples = 0, seed = 1;
-  int have_scan = 0, conv = 0, fig4 = 0, all = 1;
+  int have_scan = 0, conv = 0, fig4 = 0, all = 1, have_shape = 0;
+  hd_shape shape;
   hd_fmean_model model = HD_FMEAN_HEURISTIC;
   optind = 0;
   opterr = 0;
@@ -163,6 +171,22 @@ int hd_mc_fmean_main(int argc, char **argv) {
     case 'c':
       conv = 1;
       break;
+    case 'B': { /* x y d m; x y d m; ... */
+      double x[HD_MAX_BODY_DISKS], y[HD_MAX_BODY_DISKS], dd[HD_MAX_BODY_DISKS],
+          mm[HD_MAX_BODY_DISKS];
+      int k = 0, used = 0;
+      const char *p = optarg;
+      while (*p && k < HD_MAX_BODY_DISKS &&
+             sscanf(p, " %lf %lf %lf %lf %n", &x[k], &y[k], &dd[k], &mm[k], &used) == 4) {
+        k++;
+        p += used;
+        if (*p == ';') p++;
+      }
+      while (*p == ' ') p++;
+      if (*p || hd_shape_cluster(&shape, k, x, y, dd, mm, 0)) goto bad_value;
+      have_shape = 1;
+      break;
+    }
     case 'f':
       fig4 = 1;
       break;
@@ -190,7 +214,7 @@ int hd_mc_fmean_main(int argc, char **argv) {
   static const struct {
     int mode;            /* the mode's option ('c', 'f', 'S') */
     const char *refused; /* options it does not read */
-  } modes[] = {{'c', "m S f D"}, {'f', "m n s k S c D"}, {'S', "a f c"}};
+  } modes[] = {{'c', "m S f D"}, {'f', "m n s k S c D"}, {'S', "a f c"}, {'B', "a d S c f"}};
   for (size_t q = 0; q < sizeof modes / sizeof modes[0]; q++) {
     unsigned mk = 0;
     for (unsigned k = 0; longopts[k].name; k++)
@@ -246,7 +270,7 @@ int hd_mc_fmean_main(int argc, char **argv) {
            slope, slope_err);
     return 0;
   }
-  if (!have_scan && isnan(a)) {
+  if (!have_scan && !have_shape && isnan(a)) {
     fprintf(stderr, "haff mc fmean: --a A is required (or --scan A0:A1:STEP)\n");
     return 2;
   }
@@ -280,7 +304,8 @@ int hd_mc_fmean_main(int argc, char **argv) {
       if (!all && m != (int)model) continue;
       hd_fmean_result r;
       o.model = (hd_fmean_model)m;
-      o.a_over_d = ai / d;
+      o.a_over_d = have_shape ? NAN : ai / d;
+      o.shape = have_shape ? &shape : NULL;
       int st = hd_fmean_run(&o, &r, &err);
       if (st) {
         fprintf(stderr, "haff mc fmean: %s\n", err.msg);
