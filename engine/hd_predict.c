@@ -185,8 +185,9 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
   hd_body *bi = &s->b[i];
   const double now = s->c.t;
   const hd_shape *si = &s->shape[bi->species];
-  double rad[HD_MAX_SPECIES];
-  for (int sp = 0; sp < s->nsp; sp++) rad[sp] = hd_shape_radius(&s->shape[sp]) * (1.0 + 1e-9);
+  const double *rad = s->reach; /* enclosing radii, widened */
+  const double rad_i = rad[bi->species];
+  const int i_disk = si->tag == HD_SHAPE_DISK; /* (locals: the stores below may alias s) */
   hd_cand cs[HD_MAX_CAND];
   int nc = 0, ord[HD_MAX_CAND];
   double sca[2]; /* sin and cos of i's orientation, shared by its searches */
@@ -194,12 +195,12 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
   HD_FOR_NEIGHBOURS(s, bi->cell, {
     if (j == i || j == skip) continue;
     const hd_body *bj = &s->b[j];
-    if (si->tag == HD_SHAPE_DISK && s->shape[bj->species].tag == HD_SHAPE_DISK) {
+    if (i_disk && s->shape[bj->species].tag == HD_SHAPE_DISK) {
       predict_disk_pair(s, bi, j, sx, sy, (sx > 0) - (sx < 0), (sy > 0) - (sy < 0),
                         disk_contact(s, bi, bj), best);
       continue;
     }
-    double dtj = now - bj->t, R = rad[bi->species] + rad[bj->species];
+    double dtj = now - bj->t, R = rad_i + rad[bj->species];
     double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x,
            ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
     /* the circles' first meeting, without branches on the data (they would be mispredicted):

@@ -116,6 +116,8 @@ typedef struct hd_sim {
   hd_shape shape[HD_MAX_SPECIES];         /* shapes by species (HD_SHAPE_* tag derived) */
   char sp_name[HD_MAX_SPECIES][HD_SPECIES_NAME_MAX]; /* species names: "dimer", "disk", NAME */
   double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES];      /* pair restitution by species */
+  double reach[HD_MAX_SPECIES]; /* enclosing radius of each species widened by 1e-9 (the
+                                 * neighbour filter of hd_predict.c) */
   double wall_alpha;                      /* body-wall restitution */
   double lx, ly;                          /* box */
   unsigned walls;                         /* HD_WALL_* bits */
