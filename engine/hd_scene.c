@@ -1128,7 +1128,9 @@ void hd_scene_defaults(hd_scene *sc) {
 }
 
 long hd_scene_bodies(const hd_scene *sc) {
-  return sc->n_rods > 0 ? sc->n_rods : sc->n_dimers + sc->n_disks;
+  long n = sc->n_dimers + sc->n_disks;
+  for (int k = 0; k < sc->n_named; k++) n += sc->named[k].count; /* [species NAME] */
+  return sc->n_rods > 0 ? sc->n_rods : n;
 }
 
 double hd_scene_frame_bytes(const hd_scene *sc) {

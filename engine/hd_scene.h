@@ -175,7 +175,7 @@ double hd_dimer_area(double d, double a);
 /* Total area of the scene's bodies (dimers and disks, overlaps within a dimer counted once). */
 double hd_scene_covered_area(const hd_scene *sc);
 
-/* Bodies of the scene: dimers + disks, or rods. */
+/* Bodies of the scene: dimers + disks + the [species NAME] sections' counts, or rods. */
 long hd_scene_bodies(const hd_scene *sc);
 
 /* Bytes one frame of the scene takes in the database (data and row). */

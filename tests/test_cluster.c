@@ -322,11 +322,13 @@ static long long q_int(sqlite3 *h, const char *sql) {
   return v;
 }
 
-/* A run (hd_run_new) of 20 dimers, 10 disks and 15 bent trimers between walls, 10 cpd: the
+/* A run (hd_run_new, verification on) of 20 dimers, 10 disks and 15 bent trimers between walls,
+ * 10 cpd: the
  * species table has the three species with their counts, masses, inertias and disks (the
  * trimer: 2 - 3 |centre of mass|^2 = 5/3); every samples row has one sample_species row per
  * species, whose energies add up to the samples row's; trimers are stored as kind 'body', their
- * collisions as body-body and body-wall, with the touching disk in 0 .. 2; `haff export xyz`
+ * collisions as body-body and body-wall, with the touching disk in 0 .. 2; its frames hold every
+ * body (45); `haff export xyz`
  * writes every disk of every trimer (at the engine's positions: the bent shape's distances). */
 static void run_stores_species(void **state) {
   (void)state;
@@ -339,7 +341,7 @@ static void run_stores_species(void **state) {
   hd_error err;
   const char *text = "[system]\nbox = 30 30\nseed = 3\n[dimers]\ncount = 20\nalpha = 0.9\n"
                      "[disks]\ncount = 10\n[walls]\nsides = left right bottom top\n[run]\n"
-                     "stop_cpd = 10\n[log]\nsamples_every = 1\n";
+                     "stop_cpd = 10\nverify = 1\n[log]\nsamples_every = 1\nframes_every = 5\n";
   assert_int_equal(hd_scene_load_string(&sc, text, "s.ini", NULL, 0, &err), HD_OK);
   int n;
   double x[3], y[3], d[3], m[3], area;
@@ -371,6 +373,7 @@ static void run_stores_species(void **state) {
   assert_int_equal(q_int(h, "SELECT count(*) FROM states WHERE label = 'initial' AND kind = 'body' "
                             "AND body >= 30"),
                    15);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM frames WHERE n = 45"), 3); /* cpd 0, 5, 10 */
   assert_true(q_int(h, "SELECT count(*) FROM collisions WHERE kind = 'body-body'") > 0);
   assert_true(q_int(h, "SELECT count(*) FROM collisions WHERE kind = 'body-wall'") > 0);
   assert_int_equal(q_int(h, "SELECT count(*) FROM collisions WHERE kind LIKE 'body-%' AND i >= 30 AND "
