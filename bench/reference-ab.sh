@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # bench/reference-ab.sh OLD_BIN NEW_BIN: the four reference runs (pure disks, pure dimers, a
 # disk-dimer mixture, dimers between walls) made by two builds of haff, compared bit for bit:
-# every collision row (time, kind, bodies, disks, angles, f, dE, vn: all as IEEE doubles, hex)
-# and the final state of every body.  Prints one line per run, "identical" or the first
-# difference, and exits 1 if any run differs.  Small runs (~10 s in all); REF_CPD scales them.
+# every collision row (time, kind, bodies, disks, angles, f, dE, vn: all as IEEE doubles,
+# %!.17g) and the final state of every body.  Then a run of OLD_BIN interrupted (SIGINT after
+# 2 s) is resumed from its checkpoint by each build: both continuations must be identical (a
+# checkpoint of the older build resumes in the newer one).  Prints one line per check,
+# "identical" or the first difference, and exits 1 if any differs.  Small runs (~30 s in all);
+# REF_CPD scales the four runs.
 set -euo pipefail
 [ $# -eq 2 ] || { echo "usage: $0 OLD_BIN NEW_BIN" >&2; exit 2; }
 old=$1 new=$2
@@ -49,4 +52,23 @@ for name in disks dimers mixture walls; do
     diff "$tmp/$name-old.db.final" "$tmp/$name-new.db.final" | head -4 || true
   fi
 done
+# a checkpoint of OLD_BIN resumed by both builds
+printf '[system]\narea_fraction = 0.2\nseed = 15\n[dimers]\ncount = 2000\nalpha = 0.95\n[disks]\ncount = 500\n[run]\nstop_cpd = 1500\ncheckpoint_every = 1\n' >"$tmp/ck.ini"
+timeout -s INT 2 "$old" run "$tmp/ck.ini" -o "$tmp/ck-old.db" --quiet >/dev/null 2>&1 || true
+if [ "$(sqlite3 "$tmp/ck-old.db" "SELECT status FROM runs")" != interrupted ]; then
+  echo "checkpoint: the run of OLD_BIN was not interrupted (too fast a machine?): not checked"
+else
+  cp "$tmp/ck-old.db" "$tmp/ck-new.db"
+  "$old" resume "$tmp/ck-old.db" --quiet >/dev/null
+  "$new" resume "$tmp/ck-new.db" --quiet >/dev/null
+  for side in old new; do dump "$tmp/ck-$side.db"; done
+  if cmp -s "$tmp/ck-old.db.coll" "$tmp/ck-new.db.coll" &&
+     cmp -s "$tmp/ck-old.db.final" "$tmp/ck-new.db.final"; then
+    echo "checkpoint of OLD_BIN resumed by each: identical ($(wc -l <"$tmp/ck-old.db.coll") collisions)"
+  else
+    bad=1
+    echo "checkpoint of OLD_BIN resumed by each: DIFFERENT"
+    diff "$tmp/ck-old.db.coll" "$tmp/ck-new.db.coll" | head -4 || true
+  fi
+fi
 exit $bad
