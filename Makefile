@@ -223,8 +223,13 @@ $(MEMLAT_BIN): bench/memlat.c | $(DEPS_STAMP)
 bench: bin/haff $(BENCH_BIN) $(MEMLAT_BIN)
 	@BENCH_BIN=$(BENCH_BIN) MEMLAT_BIN=$(MEMLAT_BIN) bench/run.sh
 
-plots: bin/haff
-	@$(MAKE) --no-print-directory -f plots/plots.mk
+SHAPES_BIN := $(BUILD)/plots/shapes
+$(SHAPES_BIN): plots/shapes.c $(LIB) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS)
+
+plots: bin/haff $(SHAPES_BIN)
+	@$(MAKE) --no-print-directory -f plots/plots.mk SHAPES_BIN=$(SHAPES_BIN)
 
 format:
 	clang-format -i $(LIB_SRC) $(CLI_SRC) $(TEST_SRC) $(wildcard */*.h */*/*.h)

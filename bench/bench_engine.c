@@ -1,5 +1,6 @@
 /* Benchmark of the engine: collisions per second against N, area fraction and logging.
- * usage: bench_engine KIND N ETA LOG [COLLISIONS]   KIND disk|dimer, LOG 0|1 (every collision
+ * usage: bench_engine KIND N ETA LOG [COLLISIONS]   KIND disk|dimer|trimer (a linear trimer of
+ * touching unit disks, a named species: the general cluster code), LOG 0|1 (every collision
  * to an SQLite file in $TMPDIR).  Prints one TSV line:
  * kind n eta log collisions seconds coll_per_s events_per_s stale_fraction */
 #include <math.h>
@@ -16,14 +17,14 @@
 
 int main(int argc, char **argv) {
   if (argc < 5) {
-    fprintf(stderr, "usage: bench_engine disk|dimer N ETA LOG [COLLISIONS]\n");
+    fprintf(stderr, "usage: bench_engine disk|dimer|trimer N ETA LOG [COLLISIONS]\n");
     return 2;
   }
-  if (strcmp(argv[1], "dimer") && strcmp(argv[1], "disk")) {
-    fprintf(stderr, "bench_engine: KIND = '%s': want disk or dimer\n", argv[1]);
+  if (strcmp(argv[1], "dimer") && strcmp(argv[1], "disk") && strcmp(argv[1], "trimer")) {
+    fprintf(stderr, "bench_engine: KIND = '%s': want disk, dimer or trimer\n", argv[1]);
     return 2;
   }
-  int dimer = !strcmp(argv[1], "dimer");
+  int dimer = !strcmp(argv[1], "dimer"), trimer = !strcmp(argv[1], "trimer");
   long n, logl, ncoll;
   double eta;
   if (bench_arg_long("bench_engine", "N", argv[2], 2, 100000000, &n) ||
@@ -41,11 +42,20 @@ int main(int argc, char **argv) {
   sc.dimer_alpha = sc.disk_alpha = sc.disk_alpha_dimer = sc.wall_alpha = 1.0;
   /* area of one body (a = d: two touching disks, pi / 2; a lens was once wrongly removed
    * here, which made the dimer rows 1.64 times denser than their label) */
-  double area = dimer ? hd_dimer_area(1.0, 1.0) : M_PI / 4;
-  if (dimer)
+  double area = dimer ? hd_dimer_area(1.0, 1.0) : trimer ? 3 * M_PI / 4 : M_PI / 4;
+  if (dimer) {
     sc.n_dimers = n;
-  else
+  } else if (trimer) {
+    hd_scene_species *sp = &sc.named[sc.n_named++];
+    snprintf(sp->name, sizeof sp->name, "trimer");
+    sp->count = n;
+    sp->ndisk = 3;
+    for (int k = 0; k < 3; k++) sp->x[k] = k, sp->y[k] = 0, sp->d[k] = sp->m[k] = 1;
+    sp->alpha = 1.0;
+    for (int j = 0; j < 2; j++) sc.alpha_pair[2][j] = sc.alpha_pair[j][2] = 1.0;
+  } else {
     sc.n_disks = n;
+  }
   sc.box_x = sc.box_y = sqrt((double)n * area / eta);
   sc.seed = 1;
   sc.temperature = 1.0;
@@ -87,7 +97,7 @@ int main(int argc, char **argv) {
   }
   if (db && hd_db_commit(db, &err)) return 1;
   double dt = bench_now() - t0;
-  printf("%s\t%ld\t%.2f\t%d\t%ld\t%.3f\t%.4g\t%.4g\t%.3f\n", dimer ? "dimer" : "disk", n, eta, log,
+  printf("%s\t%ld\t%.2f\t%d\t%ld\t%.3f\t%.4g\t%.4g\t%.3f\n", argv[1], n, eta, log,
          ncoll, dt, (double)ncoll / dt, (double)(s->c.events - e0) / dt,
          (double)s->c.stale / (double)(s->c.events - e0));
   if (db) {

@@ -36,6 +36,10 @@ for kind in disk dimer; do
     run $kind $n $eta $log
   done; done; done
 done
+# linear trimers (a named species: the general cluster code), unlogged, up to N = 1e5
+for eta in 0.15 0.30; do for n in $ns; do
+  [ "$n" -le 100000 ] && run trimer $n $eta 0
+done; done
 # the memory the engine waits on at large N: latency of one random load against the buffer's
 # size, and the cost per line with 16 loads in flight (what prefetching can at best reach)
 lat=$(mktemp)

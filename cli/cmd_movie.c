@@ -98,7 +98,19 @@ typedef struct movie {
   hd_scene sc;
   int *kinds; /* body kinds, from the initial states */
   long n;     /* bodies */
+  hd_shape dimer, disk; /* the scene's [dimers] and [disks], as the engine has them */
+  int nsp;              /* species of the run's species table (schema version 3), 0 if none */
+  hd_shape sp[HD_MAX_SPECIES];       /* their shapes (hd_db_read_species) */
+  int64_t first[HD_MAX_SPECIES + 1]; /* bodies first[s] .. first[s + 1] - 1 are of species s */
 } movie;
+
+/* The shape of body i (not a rod): its species' in the run's species table, or for a run without
+ * one the scene's [dimers] or [disks] by its stored kind. */
+static const hd_shape *body_shape(const movie *m, long i) {
+  for (int s = 0; s < m->nsp; s++)
+    if (i >= m->first[s] && i < m->first[s + 1]) return &m->sp[s];
+  return m->kinds[i] == HD_KIND_DIMER ? &m->dimer : &m->disk;
+}
 
 /* Reads the run, its box and scene and its bodies' kinds.  0 or an exit code (said). */
 static int read_run(sqlite3 *h, movie *m) {
@@ -134,6 +146,15 @@ static int read_run(sqlite3 *h, movie *m) {
     fprintf(stderr, "haff movie: %s: read states: %s\n", m->dbpath, err.msg);
     return 1;
   }
+  hd_shape_dimer(&m->dimer, m->sc.dimer_d, m->sc.dimer_a, m->sc.dimer_m);
+  hd_shape_disk(&m->disk, m->sc.disk_sigma, m->sc.disk_mass);
+  int64_t count[HD_MAX_SPECIES];
+  if (hd_db_read_species(h, m->run, m->sp, count, HD_MAX_SPECIES, &m->nsp, &err)) {
+    fprintf(stderr, "haff movie: %s: %s\n", m->dbpath, err.msg);
+    return 1;
+  }
+  m->first[0] = 0;
+  for (int k = 0; k < m->nsp; k++) m->first[k + 1] = m->first[k] + count[k];
   return 0;
 }
 
@@ -210,14 +231,12 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
       code = 1;
       break;
     }
-    hd_shape dimer = {HD_KIND_DIMER, m->sc.dimer_d, m->sc.dimer_a, m->sc.dimer_m};
     for (long i = 0; i < n; i++) {
       hd_kin k = {x[i], y[i], vx[i], vy[i], phi[i], 0};
-      int dimer_body = m->kinds[i] == HD_KIND_DIMER;
-      double r = 0.5 * (dimer_body ? m->sc.dimer_d : m->sc.n_rods > 0 ? 0.5 : m->sc.disk_sigma);
-      for (int j = 0; j < (dimer_body ? 2 : 1); j++) {
-        double px = x[i], py = y[i];
-        if (dimer_body) hd_kin_disk_pos(&k, &dimer, j, &px, &py);
+      const hd_shape *sh = m->sc.n_rods > 0 ? NULL : body_shape(m, i);
+      for (int j = 0; j < (sh ? sh->n : 1); j++) {
+        double px = x[i], py = y[i], r = sh ? 0.5 * sh->dk[j] : 0.25;
+        if (sh) hd_kin_disk_pos(&k, sh, j, &px, &py); /* the engine's disk positions */
         px -= m->lx * floor(px / m->lx);
         py -= m->ly * floor(py / m->ly);
         fprintf(dat, "%.9g %.9g %.6g %.5g\n", px, py, r, val[i]);

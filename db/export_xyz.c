@@ -42,7 +42,32 @@ typedef struct xyz_geom {
   int wall_x, wall_y; /* [walls] close x (left right), y (bottom top) */
   double rod_gamma;   /* [rods] gamma (masses 1 + gamma, 1 + 1/gamma alternate) */
   int rods;           /* a rods run */
+  int nsp;            /* species of the run's species table (schema version 3), 0 if none */
+  hd_shape sp[HD_MAX_SPECIES]; /* their shapes: the engine's (hd_db_read_species) */
+  int64_t first[HD_MAX_SPECIES + 1]; /* bodies first[s] .. first[s + 1] - 1 are of species s */
 } xyz_geom;
+
+/* The shape of body `body` of kind `kind` (not a rod): its species' in the run's species table,
+ * or for a run without one the scene's [dimers] or [disks]. */
+static const hd_shape *body_shape(const xyz_geom *g, long long body, int kind) {
+  for (int s = 0; s < g->nsp; s++)
+    if (body >= g->first[s] && body < g->first[s + 1]) return &g->sp[s];
+  return kind == HD_KIND_DIMER ? &g->dimer : &g->disk;
+}
+
+/* Disks of body `body` of kind `kind`. */
+static int body_disks(const xyz_geom *g, long long body, int kind) {
+  return kind == HD_DB_KIND_ROD ? 1 : body_shape(g, body, kind)->n;
+}
+
+/* The body kind of a states.kind text. */
+static int kind_of(const char *kind) {
+  return !kind                    ? HD_KIND_DISK
+         : !strcmp(kind, "dimer") ? HD_KIND_DIMER
+         : !strcmp(kind, "rod")   ? HD_DB_KIND_ROD
+         : !strcmp(kind, "body")  ? HD_DB_KIND_BODY
+                                  : HD_KIND_DISK;
+}
 
 /* The geometry of a run's stored scene, read by the engine's own loader (hd_scene_read_stored:
  * the same keys and defaults as the run had).  HD_OK or its error. */
@@ -52,8 +77,8 @@ static int geom_of_scene(const char *text, xyz_geom *g, hd_error *err) {
   if (rc) return rc;
   hd_scene_free(&sc);
   if (sc.box_x > 0 && sc.box_y > 0) g->lx = sc.box_x, g->ly = sc.box_y;
-  g->dimer = (hd_shape){HD_KIND_DIMER, sc.dimer_d, sc.dimer_a, sc.dimer_m};
-  g->disk = (hd_shape){HD_KIND_DISK, sc.disk_sigma, 0.0, sc.disk_mass};
+  hd_shape_dimer(&g->dimer, sc.dimer_d, sc.dimer_a, sc.dimer_m);
+  hd_shape_disk(&g->disk, sc.disk_sigma, sc.disk_mass);
   g->wall_x = (sc.walls & (HD_WALL_LEFT | HD_WALL_RIGHT)) != 0;
   g->wall_y = (sc.walls & (HD_WALL_BOTTOM | HD_WALL_TOP)) != 0;
   g->rods = sc.n_rods > 0;
@@ -73,17 +98,18 @@ static void put_num(FILE *out, double x) {
 
 /* Writes the lines of one body (its disks). */
 static void put_body(FILE *out, const xyz_geom *g, long long body, int kind, const hd_kin *k) {
-  const hd_shape *sh = kind == HD_KIND_DIMER ? &g->dimer : &g->disk;
-  const char *species = kind == HD_KIND_DIMER ? "N" : kind == HD_DB_KIND_ROD ? "C" : "Ar";
-  double m = sh->m, r = 0.5 * sh->d;
-  if (kind == HD_DB_KIND_ROD) {
-    m = body % 2 ? 1 + 1 / g->rod_gamma : 1 + g->rod_gamma; /* engine/rods/rods.c */
-    r = 0.5;
-  }
-  int disks = kind == HD_KIND_DIMER ? 2 : 1;
+  const hd_shape *sh = body_shape(g, body, kind);
+  const char *species = kind == HD_KIND_DIMER    ? "N"
+                        : kind == HD_DB_KIND_ROD  ? "C"
+                        : kind == HD_DB_KIND_BODY ? "O"
+                                                  : "Ar";
+  int disks = body_disks(g, body, kind), turns = kind != HD_DB_KIND_ROD && sh->n > 1;
   for (int j = 0; j < disks; j++) {
-    double x = k->x, y = k->y, vx = k->vx, vy = k->vy;
-    if (kind == HD_KIND_DIMER) {
+    double x = k->x, y = k->y, vx = k->vx, vy = k->vy, m = 0, r = 0.5;
+    if (kind == HD_DB_KIND_ROD) {
+      m = body % 2 ? 1 + 1 / g->rod_gamma : 1 + g->rod_gamma; /* engine/rods.c */
+    } else { /* the engine's disk positions and velocities */
+      m = sh->mk[j], r = 0.5 * sh->dk[j];
       hd_kin_disk_pos(k, sh, j, &x, &y);
       hd_kin_disk_vel(k, sh, j, &vx, &vy);
     }
@@ -94,9 +120,9 @@ static void put_body(FILE *out, const xyz_geom *g, long long body, int kind, con
       put_num(out, v[c]);
     }
     fprintf(out, " %lld ", body);
-    put_num(out, kind == HD_KIND_DIMER ? k->phi : 0);
+    put_num(out, turns ? k->phi : 0);
     fputc(' ', out);
-    put_num(out, kind == HD_KIND_DIMER ? k->omega : 0);
+    put_num(out, turns ? k->omega : 0);
     fputc('\n', out);
   }
 }
@@ -128,9 +154,7 @@ static int read_kinds(hd_db *db, int64_t run, int **kinds, long *n) {
       if (!k2) break;
       *kinds = k2;
     }
-    (*kinds)[(*n)++] = kind && !strcmp(kind, "dimer") ? HD_KIND_DIMER
-                       : kind && !strcmp(kind, "rod") ? HD_DB_KIND_ROD
-                                                      : HD_KIND_DISK;
+    (*kinds)[(*n)++] = kind_of(kind);
   }
   sqlite3_finalize(st);
   if (s != SQLITE_DONE) {
@@ -150,7 +174,7 @@ static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geo
   /* states: one frame per (label, t); frames rows: one each (src 1), when the file has the
    * table (a database written before it has none, and is opened read-only: no schema added) */
 #define STATES_FRAMES                                                                              \
-  "SELECT label AS lab, t, max(cpd) AS cpd, sum(CASE kind WHEN 'dimer' THEN 2 ELSE 1 END) AS n, "  \
+  "SELECT label AS lab, t, max(cpd) AS cpd, count(*) AS n, "                                        \
   "0 AS src, 0 AS id FROM states WHERE run = ?1 AND (?2 = 'all' OR label = ?2) GROUP BY label, t"
 #define ORDER_FRAMES                                                                               \
   " ORDER BY t, CASE lab WHEN 'initial' THEN 0 WHEN 'frames' THEN 1 WHEN 'velocities' THEN 2 "     \
@@ -198,8 +222,18 @@ static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geo
       }
       data = sqlite3_column_blob(blob, 1);
       long long disks = 0;
-      for (long i = 0; i < nkinds; i++) disks += kinds[i] == HD_KIND_DIMER ? 2 : 1;
+      for (long i = 0; i < nkinds; i++) disks += body_disks(g, i, kinds[i]);
       nb = disks;
+    } else { /* the disks of the states at (lab, t) */
+      sqlite3_reset(bodies);
+      sqlite3_bind_int64(bodies, 1, run);
+      sqlite3_bind_text(bodies, 2, lab, -1, SQLITE_TRANSIENT);
+      sqlite3_bind_double(bodies, 3, t);
+      nb = 0;
+      while ((b = sqlite3_step(bodies)) == SQLITE_ROW)
+        nb += body_disks(g, sqlite3_column_int64(bodies, 0),
+                         kind_of((const char *)sqlite3_column_text(bodies, 1)));
+      if (b != SQLITE_DONE) break;
     }
     fprintf(out, "%lld\n", nb);
     fprintf(out,
@@ -228,10 +262,7 @@ static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geo
       sqlite3_bind_text(bodies, 2, lab, -1, SQLITE_TRANSIENT);
       sqlite3_bind_double(bodies, 3, t);
       while ((b = sqlite3_step(bodies)) == SQLITE_ROW) {
-        const char *kind = (const char *)sqlite3_column_text(bodies, 1);
-        int kd = kind && !strcmp(kind, "dimer") ? HD_KIND_DIMER
-                 : kind && !strcmp(kind, "rod") ? HD_DB_KIND_ROD
-                                                : HD_KIND_DISK;
+        int kd = kind_of((const char *)sqlite3_column_text(bodies, 1));
         hd_kin k = {sqlite3_column_double(bodies, 2), sqlite3_column_double(bodies, 3),
                     sqlite3_column_double(bodies, 5), sqlite3_column_double(bodies, 6),
                     sqlite3_column_double(bodies, 4), sqlite3_column_double(bodies, 7)};
@@ -281,8 +312,11 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
   int s = sqlite3_step(st), code = 0;
   if (s == SQLITE_ROW) {
     *run = sqlite3_column_int64(st, 0);
-    *g = (xyz_geom){NAN, NAN, {HD_KIND_DIMER, 1.0, 1.0, 1.0}, {HD_KIND_DISK, 1.0, 0.0, 1.0}, 0, 0,
-                    0.8, 0};
+    memset(g, 0, sizeof *g);
+    g->lx = g->ly = NAN;
+    g->rod_gamma = 0.8;
+    hd_shape_dimer(&g->dimer, 1.0, 1.0, 1.0);
+    hd_shape_disk(&g->disk, 1.0, 1.0);
     const char *scene = (const char *)sqlite3_column_text(st, 1);
     hd_error err;
     hd_error_clear(&err);
@@ -290,6 +324,16 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
       fprintf(stderr, "haff export: %s: run %lld: %s\n", hd_db_path(db), (long long)*run, err.msg);
       code = 1;
     }
+    hd_shape_dimer(&g->dimer, g->dimer.d, g->dimer.a, g->dimer.m); /* the engine's shapes */
+    hd_shape_disk(&g->disk, g->disk.d, g->disk.m);
+    int64_t count[HD_MAX_SPECIES];
+    hd_error e;
+    if (!code && hd_db_read_species(h, *run, g->sp, count, HD_MAX_SPECIES, &g->nsp, &e)) {
+      fprintf(stderr, "haff export: %s: %s\n", hd_db_path(db), e.msg);
+      code = 1;
+    }
+    g->first[0] = 0;
+    for (int k = 0; k < g->nsp; k++) g->first[k + 1] = g->first[k] + count[k];
     if (sqlite3_column_type(st, 2) != SQLITE_NULL && sqlite3_column_type(st, 3) != SQLITE_NULL) {
       g->lx = sqlite3_column_double(st, 2);
       g->ly = sqlite3_column_double(st, 3);

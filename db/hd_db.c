@@ -40,6 +40,7 @@ struct hd_db {
   sqlite3_stmt *ins_run;     /* INSERT INTO runs */
   sqlite3_stmt *ins_coll;    /* INSERT INTO collisions */
   sqlite3_stmt *ins_sample;  /* INSERT INTO samples */
+  sqlite3_stmt *ins_spsample; /* INSERT INTO sample_species */
   sqlite3_stmt *ins_state;   /* INSERT INTO states */
   sqlite3_stmt *ins_ckpt;    /* INSERT INTO checkpoints */
   sqlite3_stmt *del_ckpt;    /* DELETE older checkpoints of a run */
@@ -64,16 +65,17 @@ struct hd_db {
 
 /* A row waiting for the writer thread. */
 typedef struct rec {
-  int type; /* REC_COLLISION, REC_SAMPLE, REC_STATE */
+  int type; /* REC_COLLISION, REC_SAMPLE, REC_STATE, REC_SPECIES_SAMPLE */
   int64_t run;
   const char *label; /* states: a string literal ('initial', ...) */
   union {
     hd_collision_row c;
     hd_sample_row s;
     hd_state_rec st;
+    hd_species_sample sp;
   } u;
 } rec;
-enum { REC_COLLISION, REC_SAMPLE, REC_STATE };
+enum { REC_COLLISION, REC_SAMPLE, REC_STATE, REC_SPECIES_SAMPLE };
 
 static int drain(hd_db *db, hd_error *err);
 static void writer_stop(hd_db *db);
@@ -81,7 +83,8 @@ static void writer_stop(hd_db *db);
 #define HD_DB_GROUP 32  /* collisions per multi-row INSERT */
 
 static const char *const coll_kind_names[] = {"dimer-dimer", "dimer-disk", "disk-disk",
-                                              "dimer-wall",  "disk-wall",  "rod-rod"};
+                                              "dimer-wall",  "disk-wall",  "rod-rod",
+                                              "body-body",   "body-wall"};
 
 const char *hd_coll_kind_name(hd_coll_kind k) {
   if ((int)k < 0 || (size_t)k >= sizeof coll_kind_names / sizeof coll_kind_names[0]) return "?";
@@ -96,6 +99,8 @@ const char *hd_db_kind_name(int kind) {
     return "dimer";
   case HD_DB_KIND_ROD:
     return "rod";
+  case HD_DB_KIND_BODY:
+    return "body";
   default:
     return NULL;
   }
@@ -174,7 +179,8 @@ static int prepare_group(hd_db *db, sqlite3_stmt **st, const char *cols, int nco
 
 static void finalize_all(hd_db *db) {
   sqlite3_stmt **sts[] = {&db->ins_run,  &db->ins_coll, &db->ins_sample, &db->ins_state,
-                          &db->ins_ckpt, &db->del_ckpt, &db->ins_coll_k, &db->ins_coll2_k};
+                          &db->ins_ckpt, &db->del_ckpt, &db->ins_coll_k, &db->ins_coll2_k,
+                          &db->ins_spsample};
   for (size_t k = 0; k < sizeof sts / sizeof sts[0]; k++) {
     sqlite3_finalize(*sts[k]);
     *sts[k] = NULL;
@@ -464,6 +470,11 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
                  "e_rot_dimer, e_tr_disk, flow_frac, flow_chaos, count_var, s_rho, s_perp, "
                  "s_par) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, "
                  "?15)",
+                 err);
+  if (!rc)
+    rc = prepare(db, &db->ins_spsample,
+                 "INSERT INTO sample_species (run, t, species, e_tr, e_rot) VALUES (?1, ?2, ?3, "
+                 "?4, ?5)",
                  err);
   if (!rc)
     rc = prepare(db, &db->ins_state,
@@ -796,6 +807,19 @@ static int put_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *
   return batch_step(db, st, err, "insert sample");
 }
 
+static int put_species_sample(hd_db *db, int64_t run, const hd_species_sample *r,
+                              hd_error *err) {
+  int rc = batch_begin(db, err);
+  if (rc) return rc;
+  sqlite3_stmt *st = db->ins_spsample;
+  sqlite3_bind_int64(st, 1, run);
+  bind_real(st, 2, r->t);
+  sqlite3_bind_int(st, 3, r->species);
+  bind_real(st, 4, r->e_tr);
+  bind_real(st, 5, r->e_rot);
+  return batch_step(db, st, err, "insert species sample");
+}
+
 static int put_state(hd_db *db, int64_t run, const char *label, const hd_state_rec *r,
                      hd_error *err) {
   int rc = batch_begin(db, err);
@@ -844,6 +868,8 @@ static int write_rows(hd_db *db, const rec *r, int n, hd_error *err) {
       rc = put_collision(db, r[k].run, &r[k].u.c, err);
     else if (r[k].type == REC_SAMPLE)
       rc = put_sample(db, r[k].run, &r[k].u.s, err);
+    else if (r[k].type == REC_SPECIES_SAMPLE)
+      rc = put_species_sample(db, r[k].run, &r[k].u.sp, err);
     else
       rc = put_state(db, r[k].run, r[k].label, &r[k].u.st, err);
     k++;
@@ -970,6 +996,41 @@ int hd_db_log_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *e
   q->run = run;
   q->u.s = *r;
   return HD_OK;
+}
+
+int hd_db_log_species_sample(hd_db *db, int64_t run, const hd_species_sample *r, hd_error *err) {
+  int rc = check_db(db, err);
+  if (rc) return rc;
+  rec *q = slot(db, err, &rc);
+  if (!q) return rc;
+  q->type = REC_SPECIES_SAMPLE;
+  q->run = run;
+  q->u.sp = *r;
+  return HD_OK;
+}
+
+int hd_db_log_species(hd_db *db, int64_t run, const hd_species_rec *r, hd_error *err) {
+  int rc = check_db(db, err);
+  if (rc) return rc;
+  /* after the rows logged before it, in the open batch (a few rows per run: no writer ring) */
+  if ((rc = drain(db, err)) || (rc = batch_begin(db, err))) return rc;
+  sqlite3_stmt *st = NULL;
+  if (sqlite3_prepare_v2(db->db,
+                         "INSERT INTO species (run, idx, name, disks, count, mass, inertia) "
+                         "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)",
+                         -1, &st, NULL) != SQLITE_OK)
+    return batch_fail(db, NULL, err, "insert species");
+  sqlite3_bind_int64(st, 1, run);
+  sqlite3_bind_int(st, 2, r->idx);
+  sqlite3_bind_text(st, 3, r->name, -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(st, 4, r->disks, -1, SQLITE_TRANSIENT);
+  sqlite3_bind_int64(st, 5, r->count);
+  bind_real(st, 6, r->mass);
+  bind_real(st, 7, r->inertia);
+  rc = sqlite3_step(st) == SQLITE_DONE ? HD_OK : batch_fail(db, st, err, "insert species");
+  sqlite3_finalize(st);
+  if (!rc && ++db->pending >= db->batch_rows) rc = hd_db_commit_now(db, err);
+  return rc;
 }
 
 /* Labels of states rows: the rows keep a pointer, so they must be these literals. */
@@ -1519,5 +1580,39 @@ int hd_db_newest_run(const char *path, int64_t *run, char *status, size_t size, 
     rc = hd_error_set(err, HD_EIO, "%s: read runs: %s", path, sqlite3_errmsg(h));
   }
   sqlite3_close(h);
+  return rc;
+}
+
+int hd_db_read_species(sqlite3 *h, int64_t run, hd_shape *shape, int64_t *count, int max, int *n,
+                       hd_error *err) {
+  *n = 0;
+  if (sqlite3_table_column_metadata(h, "main", "species", "disks", NULL, NULL, NULL, NULL, NULL) !=
+      SQLITE_OK)
+    return HD_OK; /* a file from before schema version 3 */
+  sqlite3_stmt *st = NULL;
+  if (sqlite3_prepare_v2(h, "SELECT idx, disks, count FROM species WHERE run = ?1 ORDER BY idx",
+                         -1, &st, NULL) != SQLITE_OK)
+    return hd_error_set(err, HD_EIO, "read species: %s", sqlite3_errmsg(h));
+  sqlite3_bind_int64(st, 1, run);
+  int s, rc = HD_OK;
+  while (!rc && (s = sqlite3_step(st)) == SQLITE_ROW) {
+    int idx = sqlite3_column_int(st, 0), k = 0;
+    const char *p = (const char *)sqlite3_column_text(st, 1);
+    double x[HD_MAX_BODY_DISKS], y[HD_MAX_BODY_DISKS], d[HD_MAX_BODY_DISKS], m[HD_MAX_BODY_DISKS];
+    while (p && *p && k < HD_MAX_BODY_DISKS) {
+      int used = 0;
+      if (sscanf(p, " %lf %lf %lf %lf%n", &x[k], &y[k], &d[k], &m[k], &used) != 4) break;
+      k++;
+      p += used;
+      while (*p == ' ' || *p == ';') p++;
+    }
+    if (*n == max || (p && *p) || hd_shape_cluster(&shape[*n], k, x, y, d, m, 1))
+      rc = hd_error_set(err, HD_EINPUT, "run %lld: species %d: its disks are not a shape",
+                        (long long)run, idx);
+    else
+      count[(*n)++] = sqlite3_column_int64(st, 2);
+  }
+  if (!rc && s != SQLITE_DONE) rc = hd_error_set(err, HD_EIO, "read species: %s", sqlite3_errmsg(h));
+  sqlite3_finalize(st);
   return rc;
 }

@@ -10,6 +10,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "hd_body.h"
 #include "hd_error.h"
 
 /* The schema version, stored in the file as PRAGMA user_version: 0 for the files made before it
@@ -17,7 +18,7 @@
  * the views params and run_summary (db/README.md lists them).  A file opened for writing
  * (hd_db_open, hd_db_open_existing) is brought up to it; the change is additive, so files of
  * every version stay readable.  A writer refuses a file of a newer version. */
-#define HD_DB_SCHEMA_VERSION 2
+#define HD_DB_SCHEMA_VERSION 3
 
 typedef struct hd_db hd_db;
 typedef struct sqlite3 sqlite3; /* the same typedef as <sqlite3.h> (C11 allows the repeat) */
@@ -29,7 +30,10 @@ typedef enum hd_coll_kind {
   HD_CK_DISK_DISK = 2,   /* "disk-disk" */
   HD_CK_DIMER_WALL = 3,  /* "dimer-wall" (j = -1 - wall index) */
   HD_CK_DISK_WALL = 4,   /* "disk-wall" */
-  HD_CK_ROD_ROD = 5      /* "rod-rod" */
+  HD_CK_ROD_ROD = 5,     /* "rod-rod" */
+  HD_CK_BODY_BODY = 6,   /* "body-body": a pair with a body of a named species (i of the lower
+                          * species index) */
+  HD_CK_BODY_WALL = 7    /* "body-wall": a body of a named species against a wall */
 } hd_coll_kind;
 
 /* The text of a collision kind. */
@@ -66,17 +70,37 @@ typedef struct hd_sample_row {
 /* Body kinds in hd_state_rec.kind, stored as states.kind text: HD_KIND_DISK = 0 'disk',
  * HD_KIND_DIMER = 1 'dimer' (hd_body.h) and 2 'rod' (rod runs). */
 #define HD_DB_KIND_ROD 2
+/* A body of a named species (`[species NAME]`), stored as 'body'. */
+#define HD_DB_KIND_BODY 3
 
 /* One row of `states`. */
 typedef struct hd_state_rec {
   double t;
   int64_t body;
-  int kind; /* HD_KIND_DISK 0, HD_KIND_DIMER 1, HD_DB_KIND_ROD 2 */
+  int kind; /* HD_KIND_DISK 0, HD_KIND_DIMER 1, HD_DB_KIND_ROD 2, HD_DB_KIND_BODY 3 */
   double x, y, phi, vx, vy, omega;
   double cpd; /* collisions per particle at t (states.cpd); NaN is stored as NULL */
 } hd_state_rec;
 
-/* The text of a body kind ("disk", "dimer", "rod"), or NULL for an unknown kind. */
+/* One row of `species` (schema version 3). */
+typedef struct hd_species_rec {
+  int idx;           /* engine species index */
+  const char *name;  /* "dimer", "disk" or the section's NAME */
+  const char *disks; /* "x y d m; ..." (schema.sql) */
+  int64_t count;     /* bodies */
+  double mass;       /* total mass of a body */
+  double inertia;    /* its moment of inertia about the centre of mass */
+} hd_species_rec;
+
+/* One row of `sample_species` (schema version 3). */
+typedef struct hd_species_sample {
+  double t;     /* the samples row's t */
+  int species;  /* species.idx */
+  double e_tr;  /* translational energy per body of the species */
+  double e_rot; /* rotational energy per body of the species */
+} hd_species_sample;
+
+/* The text of a body kind ("disk", "dimer", "rod", "body"), or NULL for an unknown kind. */
 const char *hd_db_kind_name(int kind);
 
 /* The status for an SQLite result code (primary or extended) of a failed call: HD_EINPUT for a
@@ -185,6 +209,10 @@ int hd_db_build_indexes(hd_db *db, hd_error *err);
 /* Buffered inserts into the open batch (a batch is opened on demand). */
 int hd_db_log_collision(hd_db *db, int64_t run, const hd_collision_row *r, hd_error *err);
 int hd_db_log_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *err);
+/* A sample_species row (buffered like the samples). */
+int hd_db_log_species_sample(hd_db *db, int64_t run, const hd_species_sample *r, hd_error *err);
+/* A species row of run (after the rows logged before it, in the open batch). */
+int hd_db_log_species(hd_db *db, int64_t run, const hd_species_rec *r, hd_error *err);
 /* `label`: 'initial', 'final', 'checkpoint', 'velocities' (snapshots at [log] velocities_at). */
 int hd_db_log_state(hd_db *db, int64_t run, const char *label, const hd_state_rec *r,
                     hd_error *err);
@@ -248,5 +276,13 @@ sqlite3 *hd_db_handle(hd_db *db);
  * the status of hd_db_open_read, or HD_EIO when the runs cannot be read. */
 int hd_db_newest_run(const char *path, int64_t *run, char *status, size_t size, int *resumable,
                      hd_error *err);
+
+/* The species of a run (idx order, the order of the bodies' numbers) as the engine's shapes
+ * (hd_shape_cluster of the stored disks), with their counts, from the species table of the
+ * database open on h: at most max of them into shape[], count[]; *n their number, 0 for a run
+ * or file without a species table (before schema version 3).  HD_OK, or HD_EINPUT for a row
+ * that is not a shape (its message names the run and idx), HD_EIO. */
+int hd_db_read_species(sqlite3 *h, int64_t run, hd_shape *shape, int64_t *count, int max, int *n,
+                       hd_error *err);
 
 #endif

@@ -10,6 +10,9 @@
 --      one transaction (hd_db.c, schema_apply: ALTER TABLE ... ADD COLUMN for the columns of
 --      added_columns[], old rows NULL; the rest IF NOT EXISTS); readers take a missing column
 --      as NULL.
+--   3  adds the species and sample_species tables (issue 18: species of any shape, named in
+--      the scene), and the collision kinds body-body, body-wall and the states kind body.
+--      New tables only: a file of version 0 or 2 is brought to 3 by creating them.
 PRAGMA journal_mode = WAL;
 
 -- One row per run.  status: running, done, interrupted, collapsed, failed.
@@ -57,8 +60,13 @@ CREATE TABLE IF NOT EXISTS provenance (
 );
 
 -- One row per logged collision.  kind: dimer-dimer, dimer-disk, disk-disk, dimer-wall,
--- disk-wall, rod-rod.  Bodies are 0-based indices; j < 0 is a wall (-1 left, -2 right,
--- -3 bottom, -4 top).  theta_* follow DESIGN.md (NULL for disks and walls).
+-- disk-wall, rod-rod; body-body and body-wall (schema version 3) when a body of a named
+-- species takes part (i is the body of the lower species index; a body's species follows
+-- from its number: dimers, disks, then each species of the species table in idx order).
+-- Bodies are 0-based indices; j < 0 is a wall (-1 left, -2 right,
+-- -3 bottom, -4 top).  theta_* follow DESIGN.md (NULL for disks and walls; for a cluster, the
+-- angle from its centre of mass -> contacting disk axis to the normal, NULL for a disk at the
+-- centre of mass).  disk_i, disk_j: the touching disks (0 .. disks - 1).
 -- f: orientation factor mu_eff/m (eq. 36 for dimer-dimer, 1/2 for equal disks).
 -- de: kinetic energy after minus before.  vn: normal relative velocity before (< 0).
 -- Rod runs fill eps, e_tr, tb_i, tb_j and leave the 2D columns NULL.
@@ -103,6 +111,35 @@ CREATE TABLE IF NOT EXISTS samples (
   s_par      REAL   -- longitudinal momentum structure factor there (uncorrelated: 1)
 );
 
+-- The species of a 2D run (schema version 3), one row per species that has bodies: idx is the
+-- engine's species index ([dimers] 0, [disks] 1, each [species NAME] section 2, 3, ... in
+-- scene order), name 'dimer', 'disk' or NAME; disks: the body's disks as "x y d m" separated
+-- by "; " (centre in the body frame relative to the centre of mass, diameter, mass; numbers
+-- that read back exactly); mass and inertia: the body's total mass and moment of inertia about
+-- its centre of mass (the disks as point masses: I = sum m |x|^2).
+CREATE TABLE IF NOT EXISTS species (
+  run     INTEGER NOT NULL REFERENCES runs(id),
+  idx     INTEGER NOT NULL,
+  name    TEXT NOT NULL,
+  disks   TEXT NOT NULL,
+  count   INTEGER NOT NULL,
+  mass    REAL NOT NULL,
+  inertia REAL NOT NULL
+);
+CREATE INDEX IF NOT EXISTS species_run ON species(run, idx);
+
+-- Energies per body of each species with every sample (schema version 3): one row per
+-- species that has bodies, at the samples row's t (the per-species columns of samples stay
+-- filled for dimer-disk mixtures as before).
+CREATE TABLE IF NOT EXISTS sample_species (
+  run     INTEGER NOT NULL REFERENCES runs(id),
+  t       REAL NOT NULL,
+  species INTEGER NOT NULL,  -- species.idx
+  e_tr    REAL NOT NULL,     -- translational kinetic energy per body of the species
+  e_rot   REAL NOT NULL      -- rotational kinetic energy per body of the species
+);
+CREATE INDEX IF NOT EXISTS sample_species_run ON sample_species(run, t);
+
 -- Body states: label 'initial', 'final', 'checkpoint', 'velocities' (at [log] velocities_at).
 -- 'checkpoint' is where an interrupted or collapsed run stopped; `haff resume` removes it.
 CREATE TABLE IF NOT EXISTS states (
@@ -111,7 +148,7 @@ CREATE TABLE IF NOT EXISTS states (
   t     REAL NOT NULL,
   cpd   REAL,
   body  INTEGER NOT NULL,
-  kind  TEXT NOT NULL,        -- 'dimer', 'disk' or 'rod'
+  kind  TEXT NOT NULL,        -- 'dimer', 'disk', 'rod' or 'body' (a named species: version 3)
   x REAL, y REAL, phi REAL, vx REAL, vy REAL, omega REAL
 );
 

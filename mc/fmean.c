@@ -12,6 +12,7 @@
 #include <time.h>
 
 #include "fmean_stats.h"
+#include "hd_body_impulse.h"
 
 /* Samples per batch: statistics are taken per batch with gsl_stats and merged exactly. */
 #define BATCH 4096
@@ -133,6 +134,40 @@ int hd_fmean_sample_contact(gsl_rng *rng, double a_over_d, int no_partner_partne
   return 1;
 }
 
+int hd_fmean_sample_shape(gsl_rng *rng, const hd_shape *sh, int all, hd_kin *A, hd_kin *B,
+                          int *ka, int *kb) {
+  int n = sh->n, i = 0, j = 0;
+  double wsum = 0.0; /* touching pair (i, j) with probability D_ij / sum */
+  for (int p = 0; p < n; p++)
+    for (int q = 0; q < n; q++) wsum += 0.5 * (sh->dk[p] + sh->dk[q]);
+  double u = wsum * gsl_rng_uniform(rng), acc = 0.0;
+  for (int p = 0; p < n * n; p++) {
+    i = p / n, j = p % n;
+    acc += 0.5 * (sh->dk[i] + sh->dk[j]);
+    if (u < acc) break;
+  }
+  double psi = 2.0 * M_PI * gsl_rng_uniform(rng) - M_PI;  /* contact normal A_i -> B_j */
+  double phib = 2.0 * M_PI * gsl_rng_uniform(rng) - M_PI; /* B's orientation */
+  double D = 0.5 * (sh->dk[i] + sh->dk[j]), cb = cos(phib), sb = sin(phib);
+  double bjx = sh->ox[i] + D * cos(psi), bjy = sh->oy[i] + D * sin(psi); /* B_j's centre */
+  *A = (hd_kin){0, 0, 0, 0, 0, 0};
+  *B = (hd_kin){bjx - (sh->ox[j] * cb - sh->oy[j] * sb), bjy - (sh->ox[j] * sb + sh->oy[j] * cb),
+                0, 0, phib, 0};
+  *ka = i;
+  *kb = j;
+  for (int p = 0; p < n; p++) {
+    double ax, ay;
+    hd_kin_disk_pos(A, sh, p, &ax, &ay);
+    for (int q = 0; q < n; q++) {
+      if ((p == i && q == j) || (!all && p != i && q != j)) continue;
+      double bx, by, Dq = 0.5 * (sh->dk[p] + sh->dk[q]);
+      hd_kin_disk_pos(B, sh, q, &bx, &by);
+      if ((bx - ax) * (bx - ax) + (by - ay) * (by - ay) < Dq * Dq) return 0;
+    }
+  }
+  return 1;
+}
+
 /* ---- Monte Carlo -------------------------------------------------------------------------- */
 
 static double now_seconds(void) {
@@ -148,6 +183,7 @@ typedef struct mc_state {
   double a;         /* a/d */
   double theta_max; /* heuristic range */
   int no_pp;        /* no partner-partner rejection */
+  const hd_shape *sh; /* NULL, or the shape of both bodies (hd_fmean_opts.shape) */
   unsigned long tried;
   double fb[BATCH], wb[BATCH], yb[BATCH], zb[BATCH]; /* batch: f, w, w f, w f v_n^2 */
 } mc_state;
@@ -157,6 +193,43 @@ typedef struct mc_state {
 static size_t fill_batch(mc_state *s, size_t n) {
   size_t k = 0;
   unsigned long misses = 0;
+  if (s->sh) { /* any shape: the engine's f, mu and vn of each contact configuration */
+    const hd_shape *sh = s->sh;
+    const double sv = sqrt(1.0 / sh->mass), sw = sh->inertia > 0 ? sqrt(1.0 / sh->inertia) : 0;
+    while (k < n) {
+      hd_kin A, B;
+      int ka, kb;
+      s->tried++;
+      if (!hd_fmean_sample_shape(s->rng, sh, s->model != HD_FMEAN_HEURISTIC, &A, &B, &ka, &kb)) {
+        if (++misses > 100 * n + 1000) break;
+        continue;
+      }
+      misses = 0;
+      if (s->model == HD_FMEAN_COLLISION) { /* equipartition at T = 1 */
+        A.vx = gsl_ran_gaussian_ziggurat(s->rng, sv), A.vy = gsl_ran_gaussian_ziggurat(s->rng, sv);
+        B.vx = gsl_ran_gaussian_ziggurat(s->rng, sv), B.vy = gsl_ran_gaussian_ziggurat(s->rng, sv);
+        A.omega = sw > 0 ? gsl_ran_gaussian_ziggurat(s->rng, sw) : 0.0;
+        B.omega = sw > 0 ? gsl_ran_gaussian_ziggurat(s->rng, sw) : 0.0;
+      }
+      hd_collision_info in;
+      hd_pair_info(&A, sh, &B, sh, ka, kb, 1.0, &in);
+      s->fb[k] = in.f;
+      if (s->model == HD_FMEAN_COLLISION) {
+        hd_side a, b;
+        double nx, ny;
+        hd_side_of(&A, sh, ka, &a);
+        hd_side_of(&B, sh, kb, &b);
+        hd_pair_normal(&A, &a, &B, &b, &nx, &ny);
+        double mu = 1.0 / (hd_side_inv_mass(&a, nx, ny) + hd_side_inv_mass(&b, nx, ny));
+        double w = in.vn < 0.0 ? -in.vn : 0.0;
+        s->wb[k] = w;
+        s->yb[k] = w * in.f;
+        s->zb[k] = w * mu * in.vn * in.vn;
+      }
+      k++;
+    }
+    return k;
+  }
   if (s->model == HD_FMEAN_HEURISTIC) {
     /* The paper's model: both angles independent and uniform on [-theta_max, theta_max]. */
     const double tm2 = 2.0 * s->theta_max, tm = s->theta_max;
@@ -217,7 +290,7 @@ static void result_nan(hd_fmean_result *res) {
 int hd_fmean_run(const hd_fmean_opts *o, hd_fmean_result *res, hd_error *err) {
   hd_error_clear(err);
   result_nan(res);
-  if (!(o->a_over_d > 0.0) || !isfinite(o->a_over_d))
+  if (!o->shape && (!(o->a_over_d > 0.0) || !isfinite(o->a_over_d)))
     return hd_error_set(err, HD_EINPUT, "a/d must be a positive number (got %g)", o->a_over_d);
   if (!(o->dim > 0.0) || !isfinite(o->dim))
     return hd_error_set(err, HD_EINPUT, "dimension D must be positive (got %g)", o->dim);
@@ -240,6 +313,7 @@ int hd_fmean_run(const hd_fmean_opts *o, hd_fmean_result *res, hd_error *err) {
   s->a = o->a_over_d;
   s->theta_max = hd_fmean_theta_max(o->a_over_d);
   s->no_pp = o->no_partner_partner;
+  s->sh = o->shape;
   s->tried = 0;
 
   hd_fmean_moments mf, mr; /* mf: f (plain); mr: (w, w f, w f v_n^2) for the ratio estimators */
@@ -281,8 +355,9 @@ int hd_fmean_run(const hd_fmean_opts *o, hd_fmean_result *res, hd_error *err) {
     if (!(mr.mean[0] > 0.0)) return hd_error_set(err, HD_EPHYS, "no approaching contact sampled");
     hd_fmean_moments_ratio(&mr, 1, 0, &res->f_mean, &res->f_stderr);
     hd_fmean_moments_ratio(&mr, 2, 0, &res->fvn2, &res->fvn2_stderr);
-    /* E = T_tr + T_rot/2 = 3T/2 per dimer at equipartition; see docs/mc-fmean.md. */
-    const double e_per_dimer = 1.5;
+    /* E = T_tr + T_rot/2 = 3T/2 per dimer at equipartition (a shape without a moment of
+     * inertia: T); see docs/mc-fmean.md. */
+    const double e_per_dimer = o->shape && !(o->shape->inertia > 0) ? 1.0 : 1.5;
     res->d_e_energy = 4.0 * e_per_dimer / res->fvn2;
     res->d_e_energy_stderr = 4.0 * e_per_dimer * res->fvn2_stderr / (res->fvn2 * res->fvn2);
   } else {
@@ -291,7 +366,7 @@ int hd_fmean_run(const hd_fmean_opts *o, hd_fmean_result *res, hd_error *err) {
   }
   res->d_e = o->dim / res->f_mean;
   res->d_e_stderr = o->dim * res->f_stderr / (res->f_mean * res->f_mean);
-  if (o->model == HD_FMEAN_HEURISTIC) {
+  if (o->model == HD_FMEAN_HEURISTIC && !o->shape) {
     int st = hd_fmean_quadrature(o->a_over_d, &res->f_quad, &res->f_quad_abserr);
     if (st) return hd_error_set(err, st, "quadrature failed at a/d = %g", o->a_over_d);
   }

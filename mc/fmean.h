@@ -19,6 +19,7 @@
 #include <gsl/gsl_rng.h>
 #include <stddef.h>
 
+#include "hd_body.h"
 #include "hd_error.h"
 
 /* The contact-angle model. */
@@ -39,6 +40,11 @@ typedef struct hd_fmean_opts {
   int no_partner_partner; /* exclusion/collision only: if nonzero, do not reject overlaps of
                              A's partner disk with B's partner disk (a test switch: the model
                              then factorises into the heuristic one) */
+  const hd_shape *shape;  /* NULL: two dimers of a_over_d (the paper's case, above).  Else two
+                             bodies of this shape (any rigid cluster, hd_body.h), the contacts
+                             drawn by hd_fmean_sample_shape and f, mu and vn taken from the
+                             engine's own rule (hd_pair_info, hd_side_inv_mass); a_over_d is
+                             then ignored and the heuristic model has no quadrature */
 } hd_fmean_opts;
 
 /* The result of one estimate.  Fields that do not apply to the model are NaN. */
@@ -54,10 +60,12 @@ typedef struct hd_fmean_result {
   double f_quad;         /* heuristic: <f> by GSL quadrature; NaN for the other models */
   double f_quad_abserr;  /* heuristic: the quadrature's error estimate; NaN otherwise */
   double fvn2;           /* collision: <f v_n^2>_coll in units T/m (exactly 2 for a Maxwellian
-                            at equipartition, see docs); NaN otherwise */
+                            at equipartition, see docs); with a shape: <mu_eff v_n^2>_coll in
+                            units of T (2 for any shape); NaN otherwise */
   double fvn2_stderr;    /* its delta-method standard error; NaN otherwise */
   double d_e_energy;     /* collision: the consistent effective dimension 4 E / (m <f v_n^2>_coll)
-                            with E = 3T/2 per dimer (exactly 3); NaN otherwise */
+                            with E = 3T/2 per dimer (exactly 3); with a shape 4 E / <mu v_n^2>,
+                            E = T (2 + [I > 0]) / 2 per body; NaN otherwise */
   double d_e_energy_stderr; /* its standard error; NaN otherwise */
 } hd_fmean_result;
 
@@ -102,6 +110,16 @@ int hd_fmean_quadrature(double a_over_d, double *f, double *abserr);
  * NULL it receives {normal angle, B's axis angle}. */
 int hd_fmean_sample_contact(gsl_rng *rng, double a_over_d, int no_partner_partner, double *th_a,
                             double *th_b, double cfg[2]);
+
+/* Draws one contact configuration of two bodies of shape sh, uniform over the configurations
+ * in contact (the measure of the contact manifold: touching disks (i, j) with weight their
+ * contact distance D_ij, contact normal and B's orientation uniform; A at the origin with
+ * phi = 0, by rotational symmetry), into *A, *B (positions and orientations; velocities 0) and
+ * the touching disks *ka, *kb.  Returns 1 if it is accepted: for exclusion (all = 1) no other
+ * disk pair overlaps; for the heuristic (all = 0) only the touching disks are checked against
+ * the other body's other disks (for a dimer: the paper's independent angles), 0 if rejected. */
+int hd_fmean_sample_shape(gsl_rng *rng, const hd_shape *sh, int all, hd_kin *A, hd_kin *B,
+                          int *ka, int *kb);
 
 /* Runs one Monte Carlo estimate with opts and fills *res.  Returns HD_OK, or HD_EINPUT
  * (with err set) for invalid options, HD_ENOMEM if the RNG cannot be allocated, HD_EPHYS if

@@ -9,7 +9,9 @@
 #   make plots PAPER=1         larger ensembles and longer runs
 #   make plots ETA=0.1         another area fraction (runs go to their own folder)
 #   make -f plots/plots.mk plots-clean   removes $(OUT)
-# Also included: plots/fmean.mk (fig4, fmean) and plots/rods.mk (the rod paper's figures).
+# Also included: plots/fmean.mk (fig4, fmean), plots/rods.mk (the rod paper's figures) and
+# plots/shapes.mk (cooling and <f> of rigid clusters of disks; build/plots/shapes, built by the
+# top Makefile's `plots`).
 .SUFFIXES:
 .DELETE_ON_ERROR:
 SHELL   := /bin/bash
@@ -93,9 +95,10 @@ TABLES  := $(OUT)/table1.tsv $(OUT)/table1.md $(OUT)/table2.tsv $(OUT)/table2.md
            $(OUT)/fmean_vs_engine.tsv
 .PHONY: plots plots-clean
 plots: $(foreach f,$(PAPER_FIGS),$(OUT)/$(f).png $(OUT)/$(f).svg) $(TABLES) $(OUT)/README.md \
-       fmean-plots rods-plots
+       fmean-plots rods-plots shapes-plots
 
 include plots/fmean.mk
+include plots/shapes.mk
 include plots/rods.mk
 
 # stop_cpd for alpha $(1): (1 - alpha^2) cpd = XMAX, ELASTIC_CPD at alpha = 1

@@ -36,18 +36,43 @@ static double unif(gsl_rng *r, double lo, double hi) {
 }
 
 static hd_shape dimer(double d, double a, double m) {
-  hd_shape s = {HD_KIND_DIMER, d, a, m};
+  hd_shape s;
+  hd_shape_dimer(&s, d, a, m);
   return s;
 }
 
 static hd_shape disk(double d, double m) {
-  hd_shape s = {HD_KIND_DISK, d, 0.0, m};
+  hd_shape s;
+  hd_shape_disk(&s, d, m);
   return s;
 }
 
 static int ndisks(const hd_shape *s) {
-  return s->kind == HD_KIND_DIMER ? 2 : 1;
+  return s->n;
 }
+
+/* The same shape for the general code (HD_SHAPE_CLUSTER): its disks as given. */
+static hd_shape general(const hd_shape *s) {
+  hd_shape g;
+  double x[HD_MAX_BODY_DISKS], y[HD_MAX_BODY_DISKS];
+  for (int k = 0; k < s->n; k++) x[k] = s->ox[k], y[k] = s->oy[k];
+  assert_int_equal(hd_shape_cluster(&g, s->n, x, y, s->dk, s->mk, 0), 0);
+  assert_int_equal(g.tag, HD_SHAPE_CLUSTER);
+  return g;
+}
+
+/* A cluster of n disks at (x, y) with diameters d, masses m, tagged by hd_shape_cluster. */
+static hd_shape cluster(int n, const double *x, const double *y, const double *d,
+                        const double *m) {
+  hd_shape g;
+  assert_int_equal(hd_shape_cluster(&g, n, x, y, d, m, 1), 0);
+  return g;
+}
+
+static hd_shape trimer_linear(void);
+static hd_shape trimer_bent(void);
+static hd_shape trimer_triangle(void);
+static hd_shape dimer_asym(void);
 
 /* ---- independent kinematics (not using hd_body) ------------------------------------------ */
 
@@ -55,20 +80,28 @@ static int ndisks(const hd_shape *s) {
 static void ref_pos(const hd_kin *b, const hd_shape *s, int k, double t, double *x, double *y) {
   *x = b->x + b->vx * t;
   *y = b->y + b->vy * t;
-  if (s->kind == HD_KIND_DIMER) {
+  if (s->tag == HD_SHAPE_DIMER) {
     double g = (k ? 0.5 : -0.5) * s->a, ang = b->phi + b->omega * t;
     *x += g * cos(ang);
     *y += g * sin(ang);
+  } else if (s->tag == HD_SHAPE_CLUSTER) { /* the offset turned by the angle */
+    double ang = b->phi + b->omega * t;
+    *x += s->ox[k] * cos(ang) - s->oy[k] * sin(ang);
+    *y += s->ox[k] * sin(ang) + s->oy[k] * cos(ang);
   }
 }
 
 static void ref_vel(const hd_kin *b, const hd_shape *s, int k, double *vx, double *vy) {
   *vx = b->vx;
   *vy = b->vy;
-  if (s->kind == HD_KIND_DIMER) {
+  if (s->tag == HD_SHAPE_DIMER) {
     double g = (k ? 0.5 : -0.5) * s->a * b->omega;
     *vx -= g * sin(b->phi);
     *vy += g * cos(b->phi);
+  } else if (s->tag == HD_SHAPE_CLUSTER) { /* omega x the turned offset */
+    double c = cos(b->phi), sn = sin(b->phi);
+    *vx -= b->omega * (s->ox[k] * sn + s->oy[k] * c);
+    *vy += b->omega * (s->ox[k] * c - s->oy[k] * sn);
   }
 }
 
@@ -78,7 +111,7 @@ static double ref_ke(const hd_kin *b, const hd_shape *s) {
   for (int k = 0; k < ndisks(s); k++) {
     double vx, vy;
     ref_vel(b, s, k, &vx, &vy);
-    e += 0.5 * s->m * (vx * vx + vy * vy);
+    e += 0.5 * s->mk[k] * (vx * vx + vy * vy);
   }
   return e;
 }
@@ -89,7 +122,7 @@ static double ref_gap_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B,
   double xa, ya, xb, yb;
   ref_pos(A, sa, i, t, &xa, &ya);
   ref_pos(B, sb, j, t, &xb, &yb);
-  return hypot(xb - xa, yb - ya) - 0.5 * (sa->d + sb->d);
+  return hypot(xb - xa, yb - ya) - 0.5 * (sa->dk[i] + sb->dk[j]);
 }
 
 /* The brute-force gap function: pairs or a wall, with an optional ignored pair. */
@@ -107,7 +140,7 @@ static double bf_gap(double t, void *par) {
     for (int i = 0; i < ndisks(f->sa); i++) {
       double x, y;
       ref_pos(f->A, f->sa, i, t, &x, &y);
-      double v = f->w->normal * ((f->w->axis ? y : x) - f->w->pos) - 0.5 * f->sa->d;
+      double v = f->w->normal * ((f->w->axis ? y : x) - f->w->pos) - 0.5 * f->sa->dk[i];
       if (v < g) g = v;
     }
     return g;
@@ -277,7 +310,6 @@ static void free_flight(void **state) {
  * approaching contact points.  wsc: scale of the angular velocities. */
 static void random_contact(gsl_rng *r, const hd_shape *sa, const hd_shape *sb, double wsc,
                            hd_kin *A, hd_kin *B, int *ka, int *kb) {
-  double D = 0.5 * (sa->d + sb->d);
   for (;;) {
     hd_kin a = {unif(r, -5, 5),         unif(r, -5, 5),       gsl_ran_gaussian(r, 1),
                 gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI), gsl_ran_gaussian(r, wsc)};
@@ -287,10 +319,11 @@ static void random_contact(gsl_rng *r, const hd_shape *sa, const hd_shape *sb, d
                 gsl_ran_gaussian(r, 1),
                 unif(r, -M_PI, M_PI),
                 gsl_ran_gaussian(r, wsc)};
-    if (sa->kind == HD_KIND_DISK) a.phi = a.omega = 0.0;
-    if (sb->kind == HD_KIND_DISK) b.phi = b.omega = 0.0;
+    if (sa->tag == HD_SHAPE_DISK) a.phi = a.omega = 0.0;
+    if (sb->tag == HD_SHAPE_DISK) b.phi = b.omega = 0.0;
     int i = (int)gsl_rng_uniform_int(r, (unsigned long)ndisks(sa));
     int j = (int)gsl_rng_uniform_int(r, (unsigned long)ndisks(sb));
+    double D = 0.5 * (sa->dk[i] + sb->dk[j]);
     double ang = unif(r, -M_PI, M_PI), pax, pay, obx, oby;
     ref_pos(&a, sa, i, 0.0, &pax, &pay);
     ref_pos(&b, sb, j, 0.0, &obx, &oby); /* offset of B's disk from B's centre (b at 0) */
@@ -329,11 +362,16 @@ static double vscale(const hd_kin *k, const hd_shape *s) {
   return m;
 }
 
-/* Angular momentum about (px, py). */
+/* Angular momentum about (px, py): the sum over the disks (point masses at their centres). */
 static double ang_mom(const hd_kin *k, const hd_shape *s, double px, double py) {
-  double M = s->kind == HD_KIND_DIMER ? 2 * s->m : s->m, I = 0.5 * s->m * s->a * s->a;
-  return M * ((k->x - px) * k->vy - (k->y - py) * k->vx) +
-         (s->kind == HD_KIND_DIMER ? I * k->omega : 0.0);
+  double L = 0.0;
+  for (int i = 0; i < ndisks(s); i++) {
+    double x, y, vx, vy;
+    ref_pos(k, s, i, 0.0, &x, &y);
+    ref_vel(k, s, i, &vx, &vy);
+    L += s->mk[i] * ((x - px) * vy - (y - py) * vx);
+  }
+  return L;
 }
 
 /* The paper's energy change of a pair collision (eq. 19, 20, 23), from its own vectors. */
@@ -349,13 +387,13 @@ static double paper_de(const hd_kin *A, const hd_shape *sa, const hd_kin *B, con
   double r13x = r1x - r3x, r13y = r1y - r3y, r12x = r1x - r2x, r12y = r1y - r2y;
   double r34x = r3x - r4x, r34y = r3y - r4y, d2 = r13x * r13x + r13y * r13y;
   double g = (v3x - v1x) * r13x + (v3y - v1y) * r13y, l = 1.0 - alpha * alpha;
-  if (sa->kind == HD_KIND_DIMER && sb->kind == HD_KIND_DIMER) { /* eq. 19 (equal m, a) */
+  if (sa->tag == HD_SHAPE_DIMER && sb->tag == HD_SHAPE_DIMER) { /* eq. 19 (equal m, a) */
     if (sa->a != sb->a || sa->m != sb->m) return NAN;           /* not in the paper */
     double a2 = sa->a * sa->a, x = r13x * r12x + r13y * r12y, y = r13x * r34x + r13y * r34y;
     return -sa->m * l / (4 * d2) * g * g / (1 - (x * x + y * y) / (4 * a2 * d2));
   }
-  if (sa->kind == HD_KIND_DIMER || sb->kind == HD_KIND_DIMER) { /* eq. 23, C^2 = d2 */
-    const hd_shape *sd = sa->kind == HD_KIND_DIMER ? sa : sb, *sk = sd == sa ? sb : sa;
+  if (sa->tag == HD_SHAPE_DIMER || sb->tag == HD_SHAPE_DIMER) { /* eq. 23, C^2 = d2 */
+    const hd_shape *sd = sa->tag == HD_SHAPE_DIMER ? sa : sb, *sk = sd == sa ? sb : sa;
     double x = sd == sa ? -(r13x * r12x + r13y * r12y) : (r13x * r34x + r13y * r34y);
     return -sd->m * l / (2 * d2) * g * g / (1 + sd->m / sk->m - x * x / (2 * sd->a * sd->a * d2));
   }
@@ -378,7 +416,7 @@ static double ref_vn(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const
 /* Outward axis angle test: cos and sin of theta against e.n, e x n from the disk positions. */
 static void check_theta(const hd_kin *k, const hd_shape *s, int kk, double nx, double ny, double th,
                         double D) {
-  if (s->kind != HD_KIND_DIMER) {
+  if (s->tag != HD_SHAPE_DIMER) {
     assert_true(isnan(th));
     return;
   }
@@ -443,17 +481,17 @@ static void check_pair_collision(gsl_rng *r, const hd_shape *sa, const hd_shape 
   check_theta(&A, sa, ka, nx, ny, in.theta_i, D);
   check_theta(&B, sb, kb, -nx, -ny, in.theta_j, D);
   double f;
-  if (sa->kind == HD_KIND_DIMER && sb->kind == HD_KIND_DIMER) {
+  if (sa->tag == HD_SHAPE_DIMER && sb->tag == HD_SHAPE_DIMER) {
     /* eq. 36 for equal disk masses; in general mu/m_A = 1/((1 + s_i^2)/2 + (1 + s_j^2) m_A/(2 m_B))
      */
     double ci = cos(in.theta_i), cj = cos(in.theta_j), si = sin(in.theta_i), sj = sin(in.theta_j);
     f = 1.0 / (2.0 - (ci * ci + cj * cj) / 2.0); /* eq. 36 */
     assert_true(fabs(2.0 / (2.0 + si * si + sj * sj) - f) <= 1e-14);
     if (sa->m != sb->m) f = 1.0 / ((1 + si * si) / 2 + (1 + sj * sj) * sa->m / (2 * sb->m));
-  } else if (sa->kind == HD_KIND_DIMER) {
+  } else if (sa->tag == HD_SHAPE_DIMER) {
     double c = cos(in.theta_i);
     f = 1.0 / (1.0 + sa->m / Mb - c * c / 2);
-  } else if (sb->kind == HD_KIND_DIMER) {
+  } else if (sb->tag == HD_SHAPE_DIMER) {
     double c = cos(in.theta_j);
     f = 1.0 / (1.0 + sb->m / Ma - c * c / 2);
   } else {
@@ -504,7 +542,7 @@ static void collide_tiny_bond(void **state) {
     const hd_shape *sa = &dm, *sb = k % 2 ? &dk : &dm;
     /* a contact of disk ka of A with disk kb of B along a random direction (random_contact
      * would refuse it: the other disk of a tiny dimer touches too) */
-    int ka = k % 4 < 2, kb = sb->kind == HD_KIND_DIMER && k % 3 == 0;
+    int ka = k % 4 < 2, kb = sb->tag == HD_SHAPE_DIMER && k % 3 == 0;
     hd_kin A = {0,
                 0,
                 gsl_ran_gaussian(r, 1),
@@ -517,7 +555,7 @@ static void collide_tiny_bond(void **state) {
                 gsl_ran_gaussian(r, 1),
                 unif(r, -M_PI, M_PI),
                 gsl_ran_gaussian(r, 1)};
-    if (sb->kind == HD_KIND_DISK) B.phi = B.omega = 0.0;
+    if (sb->tag == HD_SHAPE_DISK) B.phi = B.omega = 0.0;
     double ang = unif(r, -M_PI, M_PI), D = 0.5 * (sa->d + sb->d), pax, pay, obx, oby;
     ref_pos(&A, sa, ka, 0.0, &pax, &pay);
     ref_pos(&B, sb, kb, 0.0, &obx, &oby);
@@ -581,7 +619,7 @@ static void collide_walls(void **state) {
                     gsl_ran_gaussian(r, 1),
                     unif(r, -M_PI, M_PI),
                     gsl_ran_gaussian(r, a < 0.01 ? 1e3 : 2.0)};
-        if (s.kind == HD_KIND_DISK) A.phi = A.omega = 0;
+        if (s.tag == HD_SHAPE_DISK) A.phi = A.omega = 0;
         int ka = (int)gsl_rng_uniform_int(r, (unsigned long)ndisks(&s));
         /* put disk ka on the wall and keep the other one inside */
         double x, y, o = unif(r, -10, 10);
@@ -591,7 +629,7 @@ static void collide_walls(void **state) {
           A.y += want - y, A.x += o;
         else
           A.x += want - x, A.y += o;
-        if (s.kind == HD_KIND_DIMER) {
+        if (s.tag == HD_SHAPE_DIMER) {
           ref_pos(&A, &s, 1 - ka, 0, &x, &y);
           if (w.normal * ((w.axis ? y : x) - want) < 0) continue;
         }
@@ -624,7 +662,7 @@ static void collide_walls(void **state) {
         assert_true(fabs(v1n1 + al * v1n) <= 1e-12 * vs);
         assert_true(fabs(in.vn - v1n) <= 1e-12 * vs);
         double E0 = ref_ke(&A, &s), E1 = ref_ke(&A1, &s), de;
-        if (s.kind == HD_KIND_DIMER) {
+        if (s.tag == HD_SHAPE_DIMER) {
           /* r12 from the disk positions of A moved to the origin (no round-off of |x| ~ 20
            * against a = 1e-3) */
           double c1x, c1y, c2x, c2y, c;
@@ -648,7 +686,7 @@ static void collide_walls(void **state) {
         double ha = 0.5 * s.a;
         assert_true(fabs(A1.vx - A2.vx) <= 1e-12 * vs && fabs(A1.vy - A2.vy) <= 1e-12 * vs);
         assert_true(ha * fabs(A1.omega - A2.omega) <= 1e-12 * vs);
-        if (s.kind == HD_KIND_DIMER) {
+        if (s.tag == HD_SHAPE_DIMER) {
           double nx = w.axis ? 0 : -w.normal, ny = w.axis ? -w.normal : 0;
           check_theta(&A, &s, ka, nx, ny, in.theta_i, 1e300);
         }
@@ -726,8 +764,8 @@ static void random_approach(gsl_rng *r, const hd_shape *sa, const hd_shape *sb, 
                 -sin(ang) + 0.5 * gsl_ran_gaussian(r, 1),
                 unif(r, -M_PI, M_PI),
                 wb * gsl_ran_gaussian(r, 1)};
-  if (sa->kind == HD_KIND_DISK) A->phi = A->omega = 0;
-  if (sb->kind == HD_KIND_DISK) B->phi = B->omega = 0;
+  if (sa->tag == HD_SHAPE_DISK) A->phi = A->omega = 0;
+  if (sb->tag == HD_SHAPE_DISK) B->phi = B->omega = 0;
 }
 
 typedef struct pclass {
@@ -1087,6 +1125,8 @@ static void predict_walls(void **state) {
   for (int iw = 0; iw < 3; iw++)
     for (int n = 0; n < ncase; n++) {
       hd_shape s = n % 5 == 4 ? disk(1.2, 1.0) : dimer(1, n % 3 == 0 ? 1e-3 : 1.0 + n % 3, 1);
+      if (n % 7 >= 4) /* general clusters */
+        s = n % 7 == 4 ? trimer_linear() : n % 7 == 5 ? trimer_triangle() : dimer_asym();
       hd_wall w = {n % 2, unif(r, -2, 2), (n / 2) % 2 ? 1.0 : -1.0};
       double tmax = iw == 2 ? 0.3 : 3.0;
       int ns = (iw == 2 ? 100000 : 30000) / (sanitize() ? 10 : 1);
@@ -1096,7 +1136,7 @@ static void predict_walls(void **state) {
                   gsl_ran_gaussian(r, 1),
                   unif(r, -M_PI, M_PI),
                   ws[iw] * gsl_ran_gaussian(r, 1)};
-      if (s.kind == HD_KIND_DISK) A.phi = A.omega = 0;
+      if (s.tag == HD_SHAPE_DISK) A.phi = A.omega = 0;
       double gap = unif(r, 0.01, iw == 2 ? 0.3 : 1.5) + hd_shape_radius(&s);
       if (w.axis)
         A.y = w.pos + w.normal * gap;
@@ -1127,19 +1167,272 @@ static void predict_walls(void **state) {
         hd_kin_advance(&a2, tb);
         double x, y;
         hd_kin_disk_pos(&a1, &s, c.ka, &x, &y);
-        assert_true(fabs(ww.normal * ((ww.axis ? y : x) - ww.pos) - 0.5 * s.d) <= 1e-8);
+        assert_true(fabs(ww.normal * ((ww.axis ? y : x) - ww.pos) - 0.5 * s.dk[c.ka]) <= 1e-8);
         hd_contact c0; /* at the contact, approaching: contact now (t = 0 up to round-off) */
         assert_true(hd_predict_wall(&a2, &s, &ww, tmax, &c0) && c0.t <= 1e-9 && c0.ka == c.ka);
         hd_collide_wall(&a1, &s, c.ka, &ww, 0.9, NULL);
         hd_collide_wall(&a2, &s, c.ka, &ww, 0.9, NULL);
         double vs = 1.0 + vscale(&A, &s);
         assert_true(fabs(a1.vx - a2.vx) <= 1e-8 * vs && fabs(a1.vy - a2.vy) <= 1e-8 * vs);
-        assert_true(0.5 * s.a * fabs(a1.omega - a2.omega) <= 1e-8 * vs);
+        assert_true(s.rmax * fabs(a1.omega - a2.omega) <= 1e-8 * vs);
         /* just collided: no t = 0 contact with the wall again */
         hd_contact c2;
         if (hd_predict_wall(&a1, &s, &ww, tmax, &c2)) assert_true(c2.t > 1e-9);
       }
     }
+  gsl_rng_free(r);
+}
+
+
+/* ---- general clusters --------------------------------------------------------------------- */
+
+/* The cluster shapes of the tests: trimers of unit disks (linear, bent at 120 degrees at the
+ * middle disk, triangular) and an asymmetric dimer (d 1 and 0.5, m 1 and 0.3, 0.8 apart). */
+static hd_shape trimer_linear(void) {
+  const double x[] = {0, 1, 2}, y[] = {0, 0, 0}, d[] = {1, 1, 1}, m[] = {1, 1, 1};
+  return cluster(3, x, y, d, m);
+}
+static hd_shape trimer_bent(void) {
+  const double x[] = {1, 0, cos(2 * M_PI / 3)}, y[] = {0, 0, sin(2 * M_PI / 3)};
+  const double d[] = {1, 1, 1}, m[] = {1, 1, 1};
+  return cluster(3, x, y, d, m);
+}
+static hd_shape trimer_triangle(void) {
+  const double x[] = {0, 1, 0.5}, y[] = {0, 0, sqrt(3) / 2}, d[] = {1, 1, 1}, m[] = {1, 1, 1};
+  return cluster(3, x, y, d, m);
+}
+static hd_shape dimer_asym(void) {
+  const double x[] = {0, 0.8}, y[] = {0, 0}, d[] = {1, 0.5}, m[] = {1, 0.3};
+  return cluster(2, x, y, d, m);
+}
+
+static void cluster_shapes(void **state) {
+  (void)state;
+  hd_shape l = trimer_linear(), b = trimer_bent(), t = trimer_triangle(), a = dimer_asym();
+  assert_int_equal(l.tag, HD_SHAPE_CLUSTER);
+  assert_int_equal(a.tag, HD_SHAPE_CLUSTER);
+  /* by definition: total mass, centre of mass at the origin, I = sum m |o|^2 */
+  assert_true(l.mass == 3.0 && fabs(l.inertia - 2.0) <= 1e-15 && fabs(l.radius - 1.5) <= 1e-15);
+  assert_true(fabs(t.inertia - 1.0) <= 1e-15);          /* 3 (1/sqrt 3)^2 */
+  assert_true(fabs(t.radius - (1 / sqrt(3) + 0.5)) <= 1e-15);
+  double cx = 0, cy = 0;
+  for (int k = 0; k < 3; k++) cx += b.ox[k], cy += b.oy[k];
+  assert_true(fabs(cx) <= 1e-15 && fabs(cy) <= 1e-15);
+  /* asymmetric dimer: centre of mass 0.8 * 0.3 / 1.3 from disk 0 */
+  assert_true(fabs(a.ox[0] + 0.24 / 1.3) <= 1e-15 && fabs(a.mass - 1.3) <= 1e-15);
+  assert_true(fabs(a.inertia - 0.8 * 0.8 * 0.3 / 1.3) <= 1e-15); /* reduced mass x a^2 */
+  /* the fast tags: a disk, an equal dimer on the x axis (any origin) */
+  const double x1[] = {3.0}, y1[] = {-2.0}, d1[] = {1.3}, m1[] = {2.0};
+  hd_shape k = cluster(1, x1, y1, d1, m1);
+  assert_int_equal(k.tag, HD_SHAPE_DISK);
+  assert_true(k.d == 1.3 && k.m == 2.0 && k.mass == 2.0 && k.inertia == 0.0);
+  const double x2[] = {0.0, 1.5}, y2[] = {0, 0}, d2[] = {1, 1}, m2[] = {1, 1};
+  hd_shape e = cluster(2, x2, y2, d2, m2), ref = dimer(1, 1.5, 1);
+  assert_int_equal(e.tag, HD_SHAPE_DIMER);
+  assert_true(e.a == 1.5 && e.inertia == ref.inertia && e.radius == ref.radius);
+  /* out of range */
+  const double d0[] = {0.0}, mn[] = {-1.0};
+  assert_int_equal(hd_shape_cluster(&e, 1, x1, y1, d0, m1, 1), -1);
+  assert_int_equal(hd_shape_cluster(&e, 1, x1, y1, d1, mn, 1), -1);
+  assert_int_equal(hd_shape_cluster(&e, 0, x1, y1, d1, m1, 1), -1);
+  assert_int_equal(hd_shape_cluster(&e, HD_MAX_BODY_DISKS + 1, x1, y1, d1, m1, 1), -1);
+}
+
+/* Same double, or both NaN. */
+static int same_or_nan(double a, double b, double tol) {
+  return (isnan(a) && isnan(b)) || fabs(a - b) <= tol;
+}
+
+/* The general code (HD_SHAPE_CLUSTER) against the paper's formulas (eq. 13-26, the fast paths)
+ * for disks and equal dimers: the same collisions (velocities, angles, f, dE, vn) to 1e-12 of
+ * their scale, with walls too, and the same contacts predicted (same disks, times to 1e-12
+ * relative: both polish the root to round-off; a search stopped at a grazing gap <= 1e-12 d
+ * could differ more, which these random approaches do not meet).  Fixed seed. */
+static void general_matches_paper(void **state) {
+  (void)state;
+  gsl_rng *r = rng_new(91);
+  const hd_shape sh[][2] = {{dimer(1, 1, 1), dimer(1, 1, 1)},   {dimer(1, 2, 1), dimer(1, 0.5, 1)},
+                            {dimer(1, 1, 1), disk(1.3, 0.7)},   {disk(0.8, 2), dimer(1, 1.5, 1)},
+                            {disk(1.3, 2), disk(0.6, 0.5)},     {dimer(1, 0.3, 2), dimer(1, 3, 2)}};
+  const double alphas[] = {0.0, 0.6, 1.0};
+  int n = sanitize() ? 50 : 400;
+  double worst_v = 0, worst_t = 0;
+  for (size_t c = 0; c < sizeof sh / sizeof sh[0]; c++) {
+    const hd_shape *sa = &sh[c][0], *sb = &sh[c][1];
+    hd_shape ga = general(sa), gb = general(sb);
+    for (int k = 0; k < n; k++) {
+      hd_kin A, B;
+      int ka, kb;
+      double alpha = alphas[k % 3];
+      random_contact(r, sa, sb, 2.0, &A, &B, &ka, &kb);
+      hd_kin A1 = A, B1 = B, A2 = A, B2 = B;
+      hd_collision_info i1, i2;
+      hd_collide_pair(&A1, sa, &B1, sb, ka, kb, alpha, &i1);
+      hd_collide_pair(&A2, &ga, &B2, &gb, ka, kb, alpha, &i2);
+      double vs = 1.0 + vscale(&A, sa) + vscale(&B, sb), tol = 1e-12 * vs;
+      double dv = fmax(fmax(fabs(A1.vx - A2.vx), fabs(A1.vy - A2.vy)),
+                       fmax(fabs(B1.vx - B2.vx), fabs(B1.vy - B2.vy)));
+      dv = fmax(dv, fmax(sa->rmax * fabs(A1.omega - A2.omega), sb->rmax * fabs(B1.omega - B2.omega)));
+      worst_v = fmax(worst_v, dv / vs);
+      assert_true(dv <= tol);
+      assert_true(same_or_nan(i1.theta_i, i2.theta_i, 1e-12));
+      assert_true(same_or_nan(i1.theta_j, i2.theta_j, 1e-12));
+      assert_true(fabs(i1.f - i2.f) <= 1e-12 * i1.f && fabs(i1.vn - i2.vn) <= tol);
+      assert_true(fabs(i1.de - i2.de) <= 1e-12 * (hd_kin_energy(&A, sa) + hd_kin_energy(&B, sb)));
+      /* prediction from an approach */
+      random_approach(r, sa, sb, k % 2 ? 2.0 : 0.0, 2.0, 0.01, 1.5, &A, &B);
+      hd_contact c1, c2;
+      int g1 = hd_predict_pair(&A, sa, &B, sb, 3.0, &c1), g2 = hd_predict_pair(&A, &ga, &B, &gb, 3.0, &c2);
+      assert_int_equal(g1, g2);
+      if (g1) {
+        worst_t = fmax(worst_t, fabs(c1.t - c2.t) / (1.0 + c1.t));
+        assert_true(fabs(c1.t - c2.t) <= 1e-12 * (1.0 + c1.t));
+        assert_true(c1.ka == c2.ka && c1.kb == c2.kb);
+      }
+      /* walls: A's disk ka against a wall through its contact point */
+      hd_wall w = {k % 2, 0.0, (k / 2) % 2 ? 1.0 : -1.0};
+      hd_kin W = {0, 0, gsl_ran_gaussian(r, 1), gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI),
+                  sa->n > 1 ? gsl_ran_gaussian(r, 2.0) : 0.0};
+      if (sa->n == 1) W.phi = 0;
+      double gap = unif(r, 0.01, 1.5) + hd_shape_radius(sa);
+      *(w.axis ? &W.y : &W.x) = w.normal * gap;
+      *(w.axis ? &W.vy : &W.vx) = -w.normal * fabs(w.axis ? W.vy : W.vx);
+      g1 = hd_predict_wall(&W, sa, &w, 3.0, &c1);
+      g2 = hd_predict_wall(&W, &ga, &w, 3.0, &c2);
+      assert_int_equal(g1, g2);
+      if (!g1) continue;
+      worst_t = fmax(worst_t, fabs(c1.t - c2.t) / (1.0 + c1.t));
+      assert_true(fabs(c1.t - c2.t) <= 1e-12 * (1.0 + c1.t) && c1.ka == c2.ka);
+      hd_kin_advance(&W, c1.t);
+      hd_kin W1 = W, W2 = W;
+      hd_collide_wall(&W1, sa, c1.ka, &w, alpha, &i1);
+      hd_collide_wall(&W2, &ga, c1.ka, &w, alpha, &i2);
+      vs = 1.0 + vscale(&W, sa);
+      assert_true(fabs(W1.vx - W2.vx) <= 1e-12 * vs && fabs(W1.vy - W2.vy) <= 1e-12 * vs);
+      assert_true(sa->rmax * fabs(W1.omega - W2.omega) <= 1e-12 * vs);
+      assert_true(same_or_nan(i1.theta_i, i2.theta_i, 1e-12) && fabs(i1.f - i2.f) <= 1e-12);
+      assert_true(fabs(i1.de - i2.de) <= 1e-12 * hd_kin_energy(&W, sa));
+    }
+  }
+  printf("# general vs paper: largest velocity difference %.3g of the speed scale, contact time "
+         "%.3g\n", worst_v, worst_t);
+  gsl_rng_free(r);
+}
+
+/* One random collision of two clusters checked against the conservation laws and the rigid-body
+ * rule written independently: momentum and angular momentum (sum over the disks), restitution of
+ * the contact points' normal velocity, energy change = info.de = -(1 - alpha^2) mu vn^2 / 2 with
+ * 1/mu = sum 1/M + (rho x n)^2 / I (rho from the disk positions, I = sum m |o|^2 from them), the
+ * contact angle from the centre of mass to the contacting disk, and f = mu / m_ref. */
+static void check_cluster_collision(gsl_rng *r, const hd_shape *sa, const hd_shape *sb,
+                                    double alpha) {
+  hd_kin A, B;
+  int ka, kb;
+  random_contact(r, sa, sb, 2.0, &A, &B, &ka, &kb);
+  hd_kin A1 = A, B1 = B;
+  hd_collision_info in;
+  hd_collide_pair(&A1, sa, &B1, sb, ka, kb, alpha, &in);
+  double Ma = hd_shape_mass(sa), Mb = hd_shape_mass(sb);
+  double vs = fmax(fmax(vscale(&A, sa), vscale(&B, sb)), fmax(vscale(&A1, sa), vscale(&B1, sb)));
+  double ps = (Ma + Mb) * vs;
+  assert_true(fabs(Ma * (A1.vx - A.vx) + Mb * (B1.vx - B.vx)) <= 1e-13 * ps);
+  assert_true(fabs(Ma * (A1.vy - A.vy) + Mb * (B1.vy - B.vy)) <= 1e-13 * ps);
+  double px = unif(r, -20, 20), py = unif(r, -20, 20);
+  double L0 = ang_mom(&A, sa, px, py) + ang_mom(&B, sb, px, py);
+  double L1 = ang_mom(&A1, sa, px, py) + ang_mom(&B1, sb, px, py);
+  assert_true(fabs(L1 - L0) <= 1e-13 * ps * 40);
+  double vn0 = ref_vn(&A, sa, &B, sb, ka, kb), vn1 = ref_vn(&A1, sa, &B1, sb, ka, kb);
+  assert_true(vn0 < 0 && fabs(in.vn - vn0) <= 1e-12 * vs);
+  assert_true(fabs(vn1 + alpha * vn0) <= 1e-12 * vs);
+  /* mu from the disk positions */
+  double ax, ay, bx, by, inv = 1.0 / Ma + 1.0 / Mb, rho[2][2];
+  ref_pos(&A, sa, ka, 0, &ax, &ay);
+  ref_pos(&B, sb, kb, 0, &bx, &by);
+  double D = hypot(bx - ax, by - ay), nx = (bx - ax) / D, ny = (by - ay) / D;
+  const hd_shape *sh[2] = {sa, sb};
+  const hd_kin *kk[2] = {&A, &B};
+  for (int s = 0; s < 2; s++) {
+    double I = 0.0, cx = s ? bx : ax, cy = s ? by : ay;
+    for (int q = 0; q < ndisks(sh[s]); q++) {
+      double x, y;
+      ref_pos(kk[s], sh[s], q, 0, &x, &y);
+      I += sh[s]->mk[q] * ((x - kk[s]->x) * (x - kk[s]->x) + (y - kk[s]->y) * (y - kk[s]->y));
+    }
+    rho[s][0] = cx - kk[s]->x;
+    rho[s][1] = cy - kk[s]->y;
+    double cr = rho[s][0] * ny - rho[s][1] * nx;
+    if (I > 0) inv += cr * cr / I;
+  }
+  double mu = 1.0 / inv, de = -0.5 * (1 - alpha * alpha) * mu * vn0 * vn0;
+  double E0 = ref_ke(&A, sa) + ref_ke(&B, sb), E1 = ref_ke(&A1, sa) + ref_ke(&B1, sb);
+  assert_true(fabs((E1 - E0) - in.de) <= 1e-12 * E0);
+  assert_true(fabs(de - in.de) <= 1e-12 * (E0 + fabs(de)));
+  if (alpha == 1.0) assert_true(fabs(E1 - E0) <= 1e-13 * E0);
+  /* contact angles: from the outward axis (centre of mass -> contacting disk) to the normal */
+  for (int s = 0; s < 2; s++) {
+    double th = s ? in.theta_j : in.theta_i, rr = hypot(rho[s][0], rho[s][1]);
+    double mx = s ? -nx : nx, my = s ? -ny : ny;
+    if (rr < 1e-12) {
+      assert_true(isnan(th));
+      continue;
+    }
+    assert_true(fabs(cos(th) - (rho[s][0] * mx + rho[s][1] * my) / rr) <= 1e-11);
+    assert_true(fabs(sin(th) - (rho[s][0] * my - rho[s][1] * mx) / rr) <= 1e-11);
+  }
+  double mref = sa->n > 1 ? sa->mk[ka] : sb->n > 1 ? sb->mk[kb] : sa->mk[ka];
+  assert_true(fabs(in.f - mu / mref) <= 1e-12 * in.f);
+}
+
+static void collide_clusters(void **state) {
+  (void)state;
+  gsl_rng *r = rng_new(93);
+  const hd_shape sh[] = {trimer_linear(), trimer_bent(), trimer_triangle(), dimer_asym(),
+                         dimer(1, 1, 1), disk(1.3, 0.7)};
+  const double alphas[] = {0.0, 0.5, 0.9, 1.0};
+  int n = sanitize() ? 20 : 150;
+  for (size_t a = 0; a < 4; a++)
+    for (size_t b = 0; b < sizeof sh / sizeof sh[0]; b++)
+      for (int k = 0; k < n; k++) {
+        check_cluster_collision(r, &sh[a], &sh[b], alphas[k % 4]);
+        check_cluster_collision(r, &sh[b], &sh[a], alphas[k % 4]);
+      }
+  gsl_rng_free(r);
+}
+
+/* Contact prediction of clusters against the brute force (compare_pair: same contact or none,
+ * times to 1e-9), with the just-collided pair predicted again, as predict_pairs does for
+ * dimers. */
+static void predict_clusters(void **state) {
+  (void)state;
+  const pclass cl[] = {
+      {"linear-linear", trimer_linear(), trimer_linear(), 2, 2, 1.5, 3, 100000},
+      {"bent-triangle", trimer_bent(), trimer_triangle(), 2, 3, 1.5, 3, 100000},
+      {"asym fast", dimer_asym(), dimer_asym(), 1e2, 1, 0.3, 0.5, 200000},
+      {"triangle-disk", trimer_triangle(), disk(0.6, 0.5), 3, 0, 1.5, 3, 100000},
+      {"dimer-linear", dimer(1, 1, 1), trimer_linear(), 2, 2, 1.5, 3, 100000},
+      {"linear still", trimer_linear(), trimer_bent(), 0, 0, 1.5, 3, 30000},
+  };
+  gsl_rng *r = rng_new(95);
+  int ncase = sanitize() ? 4 : 30;
+  for (size_t k = 0; k < sizeof cl / sizeof cl[0]; k++) {
+    int hits = 0;
+    for (int n = 0; n < ncase; n++) {
+      hd_kin A, B;
+      random_approach(r, &cl[k].sa, &cl[k].sb, cl[k].wa, cl[k].wb, 0.01, cl[k].gmax, &A, &B);
+      int ns = sanitize() ? cl[k].nsamp / 10 : cl[k].nsamp;
+      hd_contact c;
+      if (!compare_pair(&A, &cl[k].sa, &B, &cl[k].sb, cl[k].tmax, ns, -1)) continue;
+      hits++;
+      assert_true(hd_predict_pair(&A, &cl[k].sa, &B, &cl[k].sb, cl[k].tmax, &c));
+      hd_kin a = A, b = B;
+      hd_kin_advance(&a, c.t);
+      hd_kin_advance(&b, c.t);
+      hd_collide_pair(&a, &cl[k].sa, &b, &cl[k].sb, c.ka, c.kb, 0.9, NULL);
+      compare_pair(&a, &cl[k].sa, &b, &cl[k].sb, cl[k].tmax, ns, c.ka * ndisks(&cl[k].sb) + c.kb);
+    }
+    printf("# %s: %d of %d approaches touch\n", cl[k].name, hits, ncase);
+    if (!sanitize()) assert_true(hits >= ncase / 5);
+  }
   gsl_rng_free(r);
 }
 
@@ -1213,6 +1506,10 @@ int main(void) {
       cmocka_unit_test(predict_near_parallel),
       cmocka_unit_test(predict_grazing),
       cmocka_unit_test(predict_walls),
+      cmocka_unit_test(cluster_shapes),
+      cmocka_unit_test(general_matches_paper),
+      cmocka_unit_test(collide_clusters),
+      cmocka_unit_test(predict_clusters),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

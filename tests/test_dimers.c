@@ -70,7 +70,8 @@ static void resting_spinners(void **state) {
   assert_true(s->c.events >= 2 * 45 && s->c.events <= 2 * 50);
   hd_sim_free(s);
   const double drift[2][6] = {{5, 5, 0, 0, 0, 3.0}, {6.9, 5, 0, 0, M_PI / 2, 3.0 + 1e-4}};
-  hd_shape sh = {HD_KIND_DIMER, 1, 1, 1};
+  hd_shape sh;
+  hd_shape_dimer(&sh, 1, 1, 1);
   hd_kin A = {5, 5, 0, 0, 0, 3.0}, B = {6.9, 5, 0, 0, M_PI / 2, 3.0 + 1e-4};
   hd_contact c;
   assert_int_equal(hd_predict_pair(&A, &sh, &B, &sh, INFINITY, &c), 1);
@@ -333,7 +334,7 @@ static void walls_keep_inside(void **state) {
         hd_kin kk;
         hd_sim_body_now(s, ids[q], &kk);
         const hd_shape *sh = &s->shape[s->b[ids[q]].species];
-        for (int dsk = 0; dsk < (sh->kind == HD_KIND_DIMER ? 2 : 1); dsk++) {
+        for (int dsk = 0; dsk < (sh->tag == HD_SHAPE_DIMER ? 2 : 1); dsk++) {
           double x, y;
           hd_kin_disk_pos(&kk, sh, dsk, &x, &y);
           double r = 0.5 * sh->d * (1 - 1e-9);
@@ -352,7 +353,7 @@ static void walls_keep_inside(void **state) {
     hd_kin kk;
     hd_sim_body_now(s, i, &kk);
     const hd_shape *sh = &s->shape[s->b[i].species];
-    for (int dsk = 0; dsk < (sh->kind == HD_KIND_DIMER ? 2 : 1); dsk++) {
+    for (int dsk = 0; dsk < (sh->tag == HD_SHAPE_DIMER ? 2 : 1); dsk++) {
       double x, y;
       hd_kin_disk_pos(&kk, sh, dsk, &x, &y);
       double r = 0.5 * sh->d * (1 - 1e-9);

@@ -99,7 +99,8 @@ static void group_errors(void **state) {
 }
 
 /* A file written before schema version 2 (samples without the state measures) is read with NaN
- * measures, and opening it for writing adds the columns (old rows NULL) and sets user_version. */
+ * measures, and opening it for writing adds the columns (old rows NULL), the tables of later
+ * versions (species, sample_species) and sets user_version. */
 static void schema_upgrade(void **state) {
   (void)state;
   char path[400];
@@ -134,6 +135,15 @@ static void schema_upgrade(void **state) {
   assert_int_equal(sqlite3_open(path, &h), SQLITE_OK);
   sqlite3_stmt *st;
   assert_int_equal(sqlite3_prepare_v2(h, "PRAGMA user_version", -1, &st, NULL), SQLITE_OK);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  assert_int_equal(sqlite3_column_int(st, 0), HD_DB_SCHEMA_VERSION);
+  sqlite3_finalize(st);
+  /* version 3's tables (issue 18) */
+  assert_int_equal(sqlite3_prepare_v2(h,
+                                      "SELECT count(*) FROM sqlite_schema WHERE type = 'table' "
+                                      "AND name IN ('species', 'sample_species')",
+                                      -1, &st, NULL),
+                   SQLITE_OK);
   assert_int_equal(sqlite3_step(st), SQLITE_ROW);
   assert_int_equal(sqlite3_column_int(st, 0), 2);
   sqlite3_finalize(st);

@@ -354,6 +354,68 @@ static void collision_energy_balance(void **state) {
   }
 }
 
+/* ---- any shape ------------------------------------------------------------------------------ */
+
+/* The shapes of the tests: the dimer of a = d as a general cluster, and trimers. */
+static hd_shape shape_of(int which) {
+  hd_shape sh;
+  double x[3] = {0, 1, 2}, y[3] = {0, 0, 0}, d[3] = {1, 1, 1}, m[3] = {1, 1, 1};
+  if (which == 1) x[2] = 0.5, y[2] = sqrt(3) / 2; /* triangle */
+  if (which == 2) x[0] = 1, x[1] = 0, x[2] = cos(2 * M_PI / 3), y[2] = sin(2 * M_PI / 3); /* bent */
+  assert_int_equal(hd_shape_cluster(&sh, which == 3 ? 2 : 3, x, y, d, m, 0), 0);
+  return sh;
+}
+
+/* The shape path (contacts drawn by hd_fmean_sample_shape, f, mu and vn from the engine's rule)
+ * for the dimer of a = d reproduces the dimer path of each model (eq. 36, its own geometry)
+ * within 4 combined standard errors (independent streams); its heuristic <f> is the
+ * quadrature's.  For trimers (linear, triangle, bent) the collision model's <mu vn^2> is 2T
+ * and D_e = 4E/<mu vn^2> = 3 within 4 standard errors (equipartition, any shape), and the
+ * exclusion model rejects some configurations that the heuristic one keeps. */
+static void shape_models(void **state) {
+  (void)state;
+  hd_shape dimer = shape_of(3);
+  for (int m = HD_FMEAN_HEURISTIC; m <= HD_FMEAN_COLLISION; m++) {
+    hd_fmean_opts o;
+    hd_fmean_result r1, r2;
+    hd_error err;
+    hd_fmean_opts_default(&o);
+    o.model = (hd_fmean_model)m;
+    o.samples = scaled(400000);
+    o.seed = 400 + (unsigned long)m;
+    assert_int_equal(hd_fmean_run(&o, &r1, &err), HD_OK);
+    o.shape = &dimer;
+    o.seed = 500 + (unsigned long)m;
+    assert_int_equal(hd_fmean_run(&o, &r2, &err), HD_OK);
+    printf("# %s: dimer path <f> %.5f +- %.5f, shape path %.5f +- %.5f\n",
+           hd_fmean_model_name(o.model), r1.f_mean, r1.f_stderr, r2.f_mean, r2.f_stderr);
+    assert_true(fabs(r1.f_mean - r2.f_mean) < 4.0 * hypot(r1.f_stderr, r2.f_stderr));
+    if (m == HD_FMEAN_HEURISTIC) assert_true(fabs(r2.f_mean - r1.f_quad) < 4.0 * r2.f_stderr);
+  }
+  for (int w = 0; w < 3; w++) {
+    hd_shape sh = shape_of(w);
+    hd_fmean_opts o;
+    hd_fmean_result r, h;
+    hd_error err;
+    hd_fmean_opts_default(&o);
+    o.shape = &sh;
+    o.model = HD_FMEAN_COLLISION;
+    o.samples = scaled(400000);
+    o.seed = 600 + (unsigned long)w;
+    assert_int_equal(hd_fmean_run(&o, &r, &err), HD_OK);
+    o.model = HD_FMEAN_HEURISTIC;
+    assert_int_equal(hd_fmean_run(&o, &h, &err), HD_OK);
+    printf("# trimer %d: collision <f> %.5f, <mu vn^2> %.4f +- %.4f, D_e %.4f +- %.4f; "
+           "heuristic <f> %.5f, acceptance %.3f vs %.3f\n",
+           w, r.f_mean, r.fvn2, r.fvn2_stderr, r.d_e_energy, r.d_e_energy_stderr, h.f_mean,
+           (double)r.samples / (double)r.tried, (double)h.samples / (double)h.tried);
+    assert_true(fabs(r.fvn2 - 2.0) < 4.0 * r.fvn2_stderr);
+    assert_true(fabs(r.d_e_energy - 3.0) < 4.0 * r.d_e_energy_stderr);
+    assert_true((double)r.samples / (double)r.tried < (double)h.samples / (double)h.tried);
+    assert_true(isnan(h.f_quad));
+  }
+}
+
 /* ---- statistics helper, convergence, input errors ------------------------------------------ */
 
 /* Batch-merged moments equal gsl_stats on the whole array (deterministic: 1e-12 relative). */
@@ -441,6 +503,7 @@ int main(void) {
       cmocka_unit_test(exclusion_differs_from_heuristic),
       cmocka_unit_test(collision_vs_rao_blackwell),
       cmocka_unit_test(collision_energy_balance),
+      cmocka_unit_test(shape_models),
       cmocka_unit_test(moments_merge_exact),
       cmocka_unit_test(convergence_slope),
       cmocka_unit_test(bad_input),

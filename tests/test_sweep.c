@@ -202,7 +202,7 @@ static void merge_runs_and_refusals(void **state) {
   assert_int_equal(q1("out.db", "SELECT count(*) FROM provenance WHERE run = 3 AND source_run = "
                                 "2 AND source LIKE '%/m2.db' AND host IS NOT NULL"),
                    1);
-  assert_int_equal(q1("out.db", "PRAGMA user_version"), 2);
+  assert_int_equal(q1("out.db", "PRAGMA user_version"), HD_DB_SCHEMA_VERSION);
   /* refusals: exit 2, one line naming the file, OUT as it was */
   char e[2048];
   assert_int_equal(sh("%s merge out.db m2.db", haff), 2);
@@ -273,12 +273,14 @@ static void merge_killed_leaves_out(void **state) {
 }
 
 /* A database of schema version 0 (before runs.cpd and provenance) is read and merged (its runs
- * get a provenance row naming it) and, when a run is added to it, brought to version 2. */
+ * get a provenance row naming it) and, when a run is added to it, brought to this version (its
+ * species table made). */
 static void old_schema_reads_and_upgrades(void **state) {
   (void)state;
   if (!haff) skip();
   assert_int_equal(sh("%s run short.ini -o old.db --quiet && sqlite3 old.db 'ALTER TABLE runs "
-                      "DROP COLUMN cpd; DROP TABLE provenance; PRAGMA user_version = 0'",
+                      "DROP COLUMN cpd; DROP TABLE provenance; DROP TABLE species; DROP TABLE sample_species; "
+                      "PRAGMA user_version = 0'",
                       haff),
                    0);
   assert_int_equal(q1("old.db", "SELECT count(*) FROM pragma_table_info('runs') WHERE name = "
@@ -290,8 +292,9 @@ static void old_schema_reads_and_upgrades(void **state) {
                                     "LIKE '%/old.db' AND host IS NULL"),
                    1);
   assert_int_equal(sh("%s run short.ini -o old.db --seed 9 --quiet", haff), 0);
-  assert_int_equal(q1("old.db", "PRAGMA user_version"), 2);
+  assert_int_equal(q1("old.db", "PRAGMA user_version"), HD_DB_SCHEMA_VERSION);
   assert_int_equal(q1("old.db", "SELECT count(*) FROM runs WHERE cpd >= 20"), 1);
+  assert_true(q1("old.db", "SELECT count(*) FROM species WHERE run = 2") >= 1); /* version 3 */
 }
 
 /* hd_db_merge from the library (so that the sanitized build runs it too): runs written with

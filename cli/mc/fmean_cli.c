@@ -7,6 +7,7 @@
 
 #include "fmean.h"
 #include "haff.h"
+#include "hd_body.h"
 #include "hd_opt.h"
 
 /* The options of `haff mc fmean`. */
@@ -16,6 +17,7 @@ typedef struct fopts {
   int model;                 /* --model: an hd_fmean_model, or 3 for all */
   int conv, fig4;            /* --convergence, --fig4-data */
   const char *scan;          /* --scan A0:A1:STEP, NULL when not given */
+  const char *disks;         /* --disks 'x y d m; ...', NULL when not given */
 } fopts;
 
 /* In the order of the mode checks' messages (hd_opt_refuse walks the table). */
@@ -48,6 +50,11 @@ static const hd_optdef fmean_opts[] = {
                 "gnuplot data blocks of Fig. 4 (two dimers at contact, allowed range)"),
     HD_OPT_DBL("dim", 0, fopts, dim, 0, INFINITY, HD_OPTF_GT | HD_OPTF_FINITE, "DIM",
                "D in D_e = D/<f> (default 2)"),
+    HD_OPT_STR("disks", 0, fopts, disks, "SPEC",
+               "two bodies of any rigid shape instead of dimers: 1 to 8 disks, each\n"
+               "'x y d m' (centre in the body frame, diameter, mass), separated by\n"
+               "';'; f = mu_eff / m_ref as the engine logs it (docs/contract.md);\n"
+               "a_over_d is then nan"),
     {0}};
 
 const hd_optspec hd_mc_fmean_spec = {
@@ -58,6 +65,8 @@ const hd_optspec hd_mc_fmean_spec = {
             "       haff mc fmean --convergence [--a A [--d D]] [--seconds S] [--samples NMAX]\n"
             "                     [--seed K]\n"
             "       haff mc fmean --fig4-data --a A [--d D]\n"
+            "       haff mc fmean --disks 'X Y D M; X Y D M; ...' [--model M] [--samples N |\n"
+            "                     --seconds S] [--seed K] [--dim DIM]\n"
             "\n"
             "Mean orientation factor <f> of dimer-dimer collisions (Costantini et al. 2005, eq. "
             "36)\n"
@@ -121,7 +130,9 @@ static int fmean_check(const hd_optres *res, const fopts *o) {
                     "with --convergence") ||
       hd_opt_refuse(&hd_mc_fmean_spec, res, "fig4-data",
                     "model samples seconds seed scan convergence dim", "with --fig4-data") ||
-      hd_opt_refuse(&hd_mc_fmean_spec, res, "scan", "a fig4-data convergence", "with --scan"))
+      hd_opt_refuse(&hd_mc_fmean_spec, res, "scan", "a fig4-data convergence", "with --scan") ||
+      hd_opt_refuse(&hd_mc_fmean_spec, res, "disks", "a d scan convergence fig4-data",
+                    "with --disks"))
     return 2;
   if (o->conv && isnan(o->a) && res->given[hd_opt_index(&hd_mc_fmean_spec, "d")]) {
     /* --d alone: a/d would silently be 1 */
@@ -172,7 +183,29 @@ static int fmean_convergence(const fopts *o) {
   return 0;
 }
 
-/* The rows of <f>: one a (--a) or a scan, per model; the exit code. */
+/* The body of --disks ('x y d m; x y d m; ...') into *shape.  Returns 0, or 2 after one line. */
+static int fmean_shape(const char *spec, hd_shape *shape) {
+  double x[HD_MAX_BODY_DISKS], y[HD_MAX_BODY_DISKS], dd[HD_MAX_BODY_DISKS], mm[HD_MAX_BODY_DISKS];
+  int k = 0, used = 0;
+  const char *p = spec;
+  while (*p && k < HD_MAX_BODY_DISKS &&
+         sscanf(p, " %lf %lf %lf %lf %n", &x[k], &y[k], &dd[k], &mm[k], &used) == 4) {
+    k++;
+    p += used;
+    if (*p == ';') p++;
+  }
+  while (*p == ' ') p++;
+  if (*p || hd_shape_cluster(shape, k, x, y, dd, mm, 0)) {
+    fprintf(stderr,
+            "haff mc fmean: --disks '%s': expected 1 to %d disks 'x y d m' separated by ';' "
+            "(d, m > 0)\n",
+            spec, HD_MAX_BODY_DISKS);
+    return 2;
+  }
+  return 0;
+}
+
+/* The rows of <f>: one a (--a), a scan, or one shape (--disks), per model; the exit code. */
 static int fmean_rows(const fopts *fo) {
   double a = fo->a, d = fo->d, seconds = fo->seconds, scan[3] = {0, 0, 0};
   int have_scan = fo->scan != NULL, all = fo->model == 3;
@@ -185,6 +218,8 @@ static int fmean_rows(const fopts *fo) {
             fo->scan);
     return 2;
   }
+  hd_shape shape;
+  if (fo->disks && fmean_shape(fo->disks, &shape)) return 2;
   hd_error err;
   hd_fmean_opts o;
   hd_fmean_opts_default(&o);
@@ -212,7 +247,8 @@ static int fmean_rows(const fopts *fo) {
       if (!all && m != (int)model) continue;
       hd_fmean_result r;
       o.model = (hd_fmean_model)m;
-      o.a_over_d = ai / d;
+      o.a_over_d = fo->disks ? NAN : ai / d;
+      o.shape = fo->disks ? &shape : NULL;
       int st = hd_fmean_run(&o, &r, &err);
       if (st) {
         fprintf(stderr, "haff mc fmean: %s\n", err.msg);
@@ -232,7 +268,7 @@ int hd_mc_fmean_main(int argc, char **argv) {
   if (rc) return rc < 0 ? 0 : rc;
   if ((rc = fmean_check(&res, &o))) return rc;
   if (o.conv) return fmean_convergence(&o);
-  if (!o.scan && isnan(o.a)) {
+  if (!o.scan && !o.disks && isnan(o.a)) {
     fprintf(stderr, "haff mc fmean: --a A is required (or --scan A0:A1:STEP)\n");
     return 2;
   }

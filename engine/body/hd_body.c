@@ -94,16 +94,86 @@
 #define VTOL HD_DISK_VTOL
 #define HD_CA_MAXIT 100000000L
 
+void hd_shape_disk(hd_shape *s, double d, double m) {
+  *s = (hd_shape){0};
+  s->tag = HD_SHAPE_DISK;
+  s->n = 1;
+  s->d = s->dk[0] = d;
+  s->m = s->mk[0] = m;
+  s->mass = m;
+  s->inertia = 0.0;
+  s->radius = 0.5 * d;
+  s->rmax = 0.0;
+}
+
+void hd_shape_dimer(hd_shape *s, double d, double a, double m) {
+  *s = (hd_shape){0};
+  s->tag = HD_SHAPE_DIMER;
+  s->n = 2;
+  s->d = s->dk[0] = s->dk[1] = d;
+  s->a = a;
+  s->m = s->mk[0] = s->mk[1] = m;
+  s->ox[0] = -0.5 * a;
+  s->ox[1] = 0.5 * a;
+  s->mass = 2.0 * m;
+  s->inertia = 0.5 * m * a * a;
+  s->radius = 0.5 * (a + d);
+  s->rmax = 0.5 * a;
+}
+
+int hd_shape_cluster(hd_shape *s, int n, const double *x, const double *y, const double *d,
+                     const double *m, int fast) {
+  if (n < 1 || n > HD_MAX_BODY_DISKS) return -1;
+  double M = 0.0, cx = 0.0, cy = 0.0;
+  for (int k = 0; k < n; k++) {
+    if (!(d[k] > 0.0 && d[k] < INFINITY && m[k] > 0.0 && m[k] < INFINITY) || !isfinite(x[k]) ||
+        !isfinite(y[k]))
+      return -1;
+    M += m[k];
+    cx += m[k] * x[k];
+    cy += m[k] * y[k];
+  }
+  cx /= M;
+  cy /= M;
+  hd_shape c = {0};
+  c.tag = HD_SHAPE_CLUSTER;
+  c.n = n;
+  c.mass = M;
+  c.m = m[0];
+  for (int k = 0; k < n; k++) {
+    c.ox[k] = x[k] - cx;
+    c.oy[k] = y[k] - cy;
+    c.dk[k] = d[k];
+    c.mk[k] = m[k];
+    double r = hypot(c.ox[k], c.oy[k]);
+    c.inertia += m[k] * r * r;
+    c.rmax = fmax(c.rmax, r);
+    c.radius = fmax(c.radius, r + 0.5 * d[k]);
+    c.d = fmax(c.d, d[k]);
+  }
+  if (n == 1 && fast) {
+    hd_shape_disk(s, d[0], m[0]);
+    return 0;
+  }
+  if (n == 2 && fast && d[0] == d[1] && m[0] == m[1] && c.oy[0] == 0.0 && c.oy[1] == 0.0 &&
+      c.ox[0] == -c.ox[1] && c.ox[0] <= 0.0) {
+    hd_shape_dimer(s, d[0], c.ox[1] - c.ox[0], m[0]);
+    return 0;
+  }
+  *s = c;
+  return 0;
+}
+
 double hd_shape_mass(const hd_shape *s) {
-  return s->kind == HD_KIND_DIMER ? 2.0 * s->m : s->m;
+  return s->mass;
 }
 
 double hd_shape_inertia(const hd_shape *s) {
-  return s->kind == HD_KIND_DIMER ? 0.5 * s->m * s->a * s->a : 0.0;
+  return s->inertia;
 }
 
 double hd_shape_radius(const hd_shape *s) {
-  return s->kind == HD_KIND_DIMER ? 0.5 * (s->a + s->d) : 0.5 * s->d;
+  return s->radius;
 }
 
 void hd_kin_advance(hd_kin *k, double dt) {
@@ -122,7 +192,7 @@ void hd_kin_advance(hd_kin *k, double dt) {
 
 /* Half bond length of a shape (0 for a disk body). */
 static double half_a(const hd_shape *s) {
-  return s->kind == HD_KIND_DIMER ? 0.5 * s->a : 0.0;
+  return s->tag == HD_SHAPE_DIMER ? 0.5 * s->a : 0.0;
 }
 
 /* Sign of disk `which` along the axis: -1 for disk 0, +1 for disk 1. */
@@ -131,6 +201,13 @@ static double disk_sign(int which) {
 }
 
 void hd_kin_disk_pos(const hd_kin *k, const hd_shape *s, int which, double *px, double *py) {
+  if (s->tag == HD_SHAPE_CLUSTER) {
+    double sn, cs, ox = s->ox[which], oy = s->oy[which];
+    sincos(k->phi, &sn, &cs);
+    *px = k->x + (ox * cs - oy * sn);
+    *py = k->y + (ox * sn + oy * cs);
+    return;
+  }
   double h = half_a(s) * disk_sign(which);
   if (h == 0.0) {
     *px = k->x;
@@ -144,6 +221,13 @@ void hd_kin_disk_pos(const hd_kin *k, const hd_shape *s, int which, double *px, 
 }
 
 void hd_kin_disk_vel(const hd_kin *k, const hd_shape *s, int which, double *vx, double *vy) {
+  if (s->tag == HD_SHAPE_CLUSTER) {
+    double sn, cs, ox = s->ox[which], oy = s->oy[which];
+    sincos(k->phi, &sn, &cs);
+    *vx = k->vx - k->omega * (ox * sn + oy * cs);
+    *vy = k->vy + k->omega * (ox * cs - oy * sn);
+    return;
+  }
   double h = half_a(s) * disk_sign(which) * k->omega;
   if (h == 0.0) {
     *vx = k->vx;
@@ -158,7 +242,7 @@ void hd_kin_disk_vel(const hd_kin *k, const hd_shape *s, int which, double *vx, 
 
 double hd_kin_energy(const hd_kin *k, const hd_shape *s) {
   double e = 0.5 * hd_shape_mass(s) * (k->vx * k->vx + k->vy * k->vy);
-  if (s->kind == HD_KIND_DIMER) e += 0.5 * hd_shape_inertia(s) * k->omega * k->omega;
+  if (s->tag != HD_SHAPE_DISK) e += 0.5 * hd_shape_inertia(s) * k->omega * k->omega;
   return e;
 }
 
@@ -220,12 +304,57 @@ static inline void ca_sincos(double x, double *sp, double *cp) {
   *cp = cg * (c * even + s * odd);
 }
 
+/* ca_eval_sc for general clusters: disk k of a body is at R + Rot(phi) o_k and moves at
+ * V + omega x (Rot(phi) o_k); each pair has its own contact distance (d_i + d_j) / 2.  A wall:
+ * the gap of disk k is the centre's gap (c->dx + c->dvx t) plus the disk's offset along the
+ * inward normal, minus its radius. */
+static void ca_eval_general(const hd_ca_geom *c, double t, double sa, double ca, double *h,
+                            double *g, double *r) {
+  const hd_shape *A = c->sha, *B = c->shb;
+  if (c->wall) {
+    double gc = c->dx + c->dvx * t;
+    for (int i = 0; i < c->na; i++) {
+      double ox = A->ox[i], oy = A->oy[i];
+      double px = ox * ca - oy * sa, py = ox * sa + oy * ca; /* turned offset */
+      double along = c->wsin ? py : px, rate = c->wsin ? px : -py;
+      h[i] = gc + c->wn * along - 0.5 * A->dk[i];
+      g[i] = c->dvx + c->wn * c->wa * rate;
+      r[i] = 1.0;
+    }
+    return;
+  }
+  double sb, cb;
+  ca_sincos(c->pb + c->wb * t, &sb, &cb);
+  double rx0 = c->dx + c->dvx * t, ry0 = c->dy + c->dvy * t;
+  double bx[HD_MAX_BODY_DISKS], by[HD_MAX_BODY_DISKS];
+  for (int j = 0; j < c->nb; j++) {
+    bx[j] = B->ox[j] * cb - B->oy[j] * sb;
+    by[j] = B->ox[j] * sb + B->oy[j] * cb;
+  }
+  for (int i = 0; i < c->na; i++) {
+    double ax = A->ox[i] * ca - A->oy[i] * sa, ay = A->ox[i] * sa + A->oy[i] * ca;
+    for (int j = 0; j < c->nb; j++) {
+      double rx = rx0 + bx[j] - ax, ry = ry0 + by[j] - ay;
+      double vx = c->dvx - c->wb * by[j] + c->wa * ay, vy = c->dvy + c->wb * bx[j] - c->wa * ax;
+      double rr = sqrt(rx * rx + ry * ry);
+      int p = i * c->nb + j;
+      h[p] = rr - 0.5 * (A->dk[i] + B->dk[j]);
+      g[p] = rx * vx + ry * vy;
+      r[p] = rr;
+    }
+  }
+}
+
 /* Gaps h[p] of every pair at time t (sa, ca: sin and cos of A's orientation then), and their rates
  * h'[p] = g[p] / r[p] (ca_rate): for a body pair r is the distance of the disk centres and g =
  * r.r', for a wall r = 1 and g = h'.  The division is left to the few pairs that need h' itself
  * (safe_step does without). */
 static inline void ca_eval_sc(const hd_ca_geom *c, double t, double sa, double ca, double *h,
                               double *g, double *r) {
+  if (c->sha) {
+    ca_eval_general(c, t, sa, ca, h, g, r);
+    return;
+  }
   if (c->wall) {
     double gc = c->dx + c->dvx * t;
     for (int i = 0; i < c->na; i++) {
@@ -325,7 +454,6 @@ static void ca_init(hd_ca *s, double t0, double tend) {
   s->t = t0;
   s->tend = tend;
   s->ign = 0;
-  s->have = 0;
   s->fresh = 1;
   s->it = 0;
   s->sc0 = 0;
@@ -339,8 +467,9 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
   const int np = c->na * c->nb;
   const double D = c->D, hc = TOL_C * D, h0 = TOL_0 * D, hsep = TOL_SEP * D;
   const double vtol = VTOL * c->L + HD_DISK_VROUND * c->vs;
-  double *h = s->h, *g = s->g_, *r = s->r, t = s->t;
-  unsigned ign = s->ign;
+  double h[HD_CA_MAXP], g[HD_CA_MAXP], r[HD_CA_MAXP], t = s->t;
+  int have = 0; /* h, g, r hold the state at t (from the t = 0 check) */
+  uint64_t ign = s->ign;
   if (s->fresh) {
     s->fresh = 0;
     if (t == 0.0) {
@@ -352,7 +481,7 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
       for (int p = 0; p < np; p++) {
         if (!(h[p] <= h0)) continue;
         if (!(ca_rate(g[p], r[p]) < -vtol)) {
-          ign |= 1u << p; /* in contact, not approaching: just collided */
+          ign |= (uint64_t)1 << p; /* in contact, not approaching: just collided */
         } else if (h[p] <= hc) {
           if (best < 0 || h[p] < h[best]) best = p; /* in contact and approaching: now */
         } /* approaching from a gap above TOL_C D: an ordinary pair for the search, which finds
@@ -363,16 +492,15 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
         *pout = best;
         return 1;
       }
-      s->have = 1;
+      have = 1;
     }
   }
   if (++s->it > HD_CA_MAXIT) return 0;
-  if (!s->have) ca_eval(c, t, h, g, r);
-  s->have = 0;
+  if (!have) ca_eval(c, t, h, g, r);
   double step = HUGE_VAL;
-  unsigned cand = 0, far = 0; /* far: pairs with h > hc, not ignored: the safe step */
+  uint64_t cand = 0, far = 0; /* far: pairs with h > hc, not ignored: the safe step */
   for (int p = 0; p < np; p++) {
-    unsigned bit = 1u << p;
+    uint64_t bit = (uint64_t)1 << p;
     if (h[p] != h[p] || g[p] != g[p]) return 0; /* NaN state */
     if (!(ign & bit) && h[p] > hc) {
       far |= bit;
@@ -407,7 +535,7 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
     }
   }
   s->ign = ign;
-  for (int p = 0; p < np; p++) { /* no branch on the data: the 4 steps overlap in the CPU */
+  for (int p = 0; p < np; p++) { /* no branch on the data: the steps overlap in the CPU */
     double st = safe_step(h[p], g[p], r[p], c->L, c->K);
     if ((far >> p) & 1u) step = st < step ? st : step;
   }
@@ -416,12 +544,12 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
     double tbest = HUGE_VAL;
     int pbest = -1;
     for (int p = 0; p < np; p++) {
-      if (!(cand & (1u << p))) continue;
+      if (!((cand >> p) & 1u)) continue;
       double tp = t, hp = h[p], hdp = ca_rate(g[p], r[p]);
       for (int k = 0; k < 3 && hp > 0.0; k++) {
         double t1 = tp + hp / (-hdp);
         if (!(t1 < t + step) || !(t1 <= tmax)) break;
-        double h1[4], g1[4], r1[4];
+        double h1[HD_CA_MAXP], g1[HD_CA_MAXP], r1[HD_CA_MAXP];
         ca_eval(c, t1, h1, g1, r1);
         double hd1 = ca_rate(g1[p], r1[p]);
         if (!(fabs(h1[p]) < hp) || !(hd1 < 0.0)) break;
@@ -480,12 +608,91 @@ void hd_ca_sincos(double x, double *s, double *c) {
   ca_sincos(x, s, c);
 }
 
-int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
-                double tmax, const double *sca, hd_contact *c) {
+/* hd_ca_begin for a pair with a general cluster: the same steps over na x nb disk pairs. */
+static int ca_begin_general(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B,
+                            const hd_shape *sb, double tmax, const double *sca, hd_contact *c) {
   hd_ca_geom *x = &ca->g;
   x->wall = 0;
-  x->na = sa->kind == HD_KIND_DIMER ? 2 : 1;
-  x->nb = sb->kind == HD_KIND_DIMER ? 2 : 1;
+  x->sha = sa;
+  x->shb = sb;
+  x->na = sa->n;
+  x->nb = sb->n;
+  x->dx = B->x - A->x;
+  x->dy = B->y - A->y;
+  x->dvx = B->vx - A->vx;
+  x->dvy = B->vy - A->vy;
+  x->ha = sa->rmax;
+  x->hb = sb->rmax;
+  x->pa = sa->rmax > 0.0 ? A->phi : 0.0;
+  x->wa = sa->rmax > 0.0 ? A->omega : 0.0;
+  x->pb = sb->rmax > 0.0 ? B->phi : 0.0;
+  x->wb = sb->rmax > 0.0 ? B->omega : 0.0;
+  x->wsin = 0.0;
+  x->wn = 0.0;
+  double dmin = HUGE_VAL, dmax = 0.0;
+  for (int i = 0; i < x->na; i++)
+    for (int j = 0; j < x->nb; j++) {
+      double D = 0.5 * (sa->dk[i] + sb->dk[j]);
+      dmin = D < dmin ? D : dmin;
+      dmax = D > dmax ? D : dmax;
+    }
+  x->D = dmin;
+  x->vs = fabs(A->vx) + fabs(A->vy) + fabs(B->vx) + fabs(B->vy) + fabs(x->wa) * x->ha +
+          fabs(x->wb) * x->hb;
+  if (!(tmax >= 0.0)) return 0;
+
+  if (x->wa * x->ha == 0.0 && x->wb * x->hb == 0.0) {
+    /* no rotation: closed form for every disk pair, earliest wins */
+    double sa_, ca_, sb_, cb_;
+    sincos(x->pa, &sa_, &ca_);
+    sincos(x->pb, &sb_, &cb_);
+    double best = HUGE_VAL;
+    int found = 0;
+    for (int i = 0; i < x->na; i++) {
+      double ax = sa->ox[i] * ca_ - sa->oy[i] * sa_, ay = sa->ox[i] * sa_ + sa->oy[i] * ca_;
+      for (int j = 0; j < x->nb; j++) {
+        double bx = sb->ox[j] * cb_ - sb->oy[j] * sb_, by = sb->ox[j] * sb_ + sb->oy[j] * cb_, tc;
+        double rx = x->dx + bx - ax, ry = x->dy + by - ay;
+        if (hd_predict_disks(rx, ry, x->dvx, x->dvy, 0.5 * (sa->dk[i] + sb->dk[j]), x->vs, tmax,
+                             &tc) &&
+            tc < best) {
+          best = tc;
+          c->ka = i;
+          c->kb = j;
+          found = 1;
+        }
+      }
+    }
+    if (found) c->t = best;
+    return found;
+  }
+
+  /* pre-filter: the enclosing circles must meet */
+  double t_in, t_out;
+  double R = sa->radius + sb->radius + 2.0 * TOL_SEP * dmax;
+  if (!circle_window(x->dx, x->dy, x->dvx, x->dvy, R, &t_in, &t_out)) return 0;
+  if (t_in > tmax) return 0;
+  x->L = sqrt(x->dvx * x->dvx + x->dvy * x->dvy) + fabs(x->wa) * x->ha + fabs(x->wb) * x->hb;
+  x->K = x->wa * x->wa * x->ha + x->wb * x->wb * x->hb;
+  x->K2u = 2.0 * x->L * x->L / x->D + x->K;
+  ca_init(ca, t_in, t_out);
+  if (sca && sa->rmax > 0.0) {
+    ca->sc0 = 1;
+    ca->sa0 = sca[0];
+    ca->ca0 = sca[1];
+  }
+  return 2;
+}
+
+int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
+                double tmax, const double *sca, hd_contact *c) {
+  if (sa->tag == HD_SHAPE_CLUSTER || sb->tag == HD_SHAPE_CLUSTER)
+    return ca_begin_general(ca, A, sa, B, sb, tmax, sca, c);
+  hd_ca_geom *x = &ca->g;
+  x->wall = 0;
+  x->sha = x->shb = NULL;
+  x->na = sa->n;
+  x->nb = sb->n;
   x->dx = B->x - A->x;
   x->dy = B->y - A->y;
   x->dvx = B->vx - A->vx;
@@ -563,12 +770,83 @@ int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const 
   return r;
 }
 
+/* hd_predict_wall for a general cluster. */
+static int predict_wall_general(const hd_kin *A, const hd_shape *sa, const hd_wall *w,
+                                double tmax, hd_contact *c) {
+  hd_ca ca;
+  hd_ca_geom x = {0};
+  x.wall = 1;
+  x.sha = sa;
+  x.na = sa->n;
+  x.nb = 1;
+  double yc = w->axis ? A->y : A->x, vy = w->axis ? A->vy : A->vx;
+  x.dx = w->normal * (yc - w->pos); /* gap of the centre of mass */
+  x.dvx = w->normal * vy;
+  x.ha = sa->rmax;
+  x.pa = sa->rmax > 0.0 ? A->phi : 0.0;
+  x.wa = sa->rmax > 0.0 ? A->omega : 0.0;
+  x.wsin = w->axis ? 1.0 : 0.0;
+  x.wn = w->normal;
+  double dmin = HUGE_VAL;
+  for (int i = 0; i < sa->n; i++) dmin = sa->dk[i] < dmin ? sa->dk[i] : dmin;
+  x.D = dmin;
+  if (!(tmax >= 0.0)) return 0;
+  x.L = fabs(x.dvx) + fabs(x.wa) * x.ha;
+  x.K = x.wa * x.wa * x.ha;
+  x.K2u = x.K;
+  x.vs = fabs(A->vx) + fabs(A->vy) + fabs(x.wa) * x.ha;
+  const double vtol = VTOL * x.L + HD_DISK_VROUND * x.vs;
+
+  if (x.wa * x.ha == 0.0) {
+    double h[HD_MAX_BODY_DISKS], hd[HD_MAX_BODY_DISKS], r[HD_MAX_BODY_DISKS], best = HUGE_VAL;
+    int found = 0;
+    ca_eval(&x, 0.0, h, hd, r);
+    for (int i = 0; i < x.na; i++) {
+      double tc;
+      if (!(hd[i] < -vtol)) continue;
+      tc = h[i] <= TOL_C * x.D ? 0.0 : h[i] / (-hd[i]);
+      if (tc <= tmax && tc < best) {
+        best = tc;
+        c->ka = i;
+        found = 1;
+      }
+    }
+    if (found) {
+      c->t = best;
+      c->kb = 0;
+    }
+    return found;
+  }
+
+  /* pre-filter: the enclosing circle must reach the wall; window where
+   * G(t) = centre gap - radius + rate t <= hsep */
+  double hsep = TOL_SEP * x.D, G0 = x.dx - sa->radius - hsep, t_in = 0.0, t_out = HUGE_VAL;
+  if (G0 > 0.0) {
+    if (!(x.dvx < 0.0)) return 0;
+    t_in = G0 / (-x.dvx);
+  } else if (x.dvx > 0.0) {
+    t_out = -G0 / x.dvx;
+  }
+  if (t_in > tmax) return 0;
+  double tc;
+  int p;
+  ca.g = x;
+  ca_init(&ca, t_in, t_out);
+  if (!ca_solve(&ca, tmax, &tc, &p)) return 0;
+  c->t = tc;
+  c->ka = p;
+  c->kb = 0;
+  return 1;
+}
+
 int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, double tmax,
                     hd_contact *c) {
+  if (sa->tag == HD_SHAPE_CLUSTER) return predict_wall_general(A, sa, w, tmax, c);
   hd_ca ca;
   hd_ca_geom x;
   x.wall = 1;
-  x.na = sa->kind == HD_KIND_DIMER ? 2 : 1;
+  x.sha = x.shb = NULL;
+  x.na = sa->n;
   x.nb = 1;
   double yc = w->axis ? A->y : A->x, vy = w->axis ? A->vy : A->vx;
   x.dx = w->normal * (yc - w->pos) - 0.5 * sa->d; /* gap of a disk at the centre */

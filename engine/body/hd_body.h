@@ -1,36 +1,81 @@
-/* hd_body: rigid bodies (hard disks and dimers) in 2D — shapes, exact free flight, earliest
- * contact and the collision rules.  Pure functions of the states they are given: no global
- * state, no allocation.  Conventions are those of DESIGN.md:
- *   - a dimer is two disks of diameter d and mass m at R +- (a/2)(cos phi, sin phi); disk 0 at -,
- *     disk 1 at +; total mass 2m; moment of inertia I = m a^2 / 2; omega counter-clockwise > 0;
- *   - a disk body has one disk (index 0) of diameter d and mass m at R; phi, omega unused (0).
+/* hd_body: rigid bodies in 2D — shapes, exact free flight, earliest contact and the collision
+ * rules.  Pure functions of the states they are given: no global state, no allocation.
+ * Conventions are those of DESIGN.md and docs/contract.md:
+ *   - a body is a rigid planar cluster of n >= 1 disks (each its own diameter and mass) at fixed
+ *     offsets (ox, oy) from its centre of mass in the body frame; the body frame is turned by
+ *     phi (counter-clockwise), so disk k is at R + Rot(phi) (ox_k, oy_k); omega > 0 is
+ *     counter-clockwise.  The disks are point masses at their centres for the moment of inertia,
+ *     I = sum m_k |o_k|^2 (the paper's dimer: I = m a^2 / 2);
+ *   - a dimer is the case of two equal disks at (-+a/2, 0): disk 0 at R - (a/2)(cos phi, sin phi),
+ *     disk 1 at +; total mass 2m;
+ *   - a disk body has one disk (index 0) at R; phi, omega unused (0).
  *   - contact angle theta of a body in (-pi, pi]: signed angle from the body's outward axis at its
- *     contacting disk (unit vector from the partner disk to the contacting disk) to the contact
- *     normal (from its contacting disk to the other body's contacting disk).  Head-on is 0.
+ *     contacting disk (unit vector from the centre of mass to that disk; for a dimer, from the
+ *     partner disk to the contacting disk) to the contact normal (from its contacting disk to the
+ *     other body's contacting disk).  Head-on is 0.  NaN when the contacting disk sits at the
+ *     centre of mass (a disk body, the middle disk of a symmetric trimer).
  */
 #ifndef HD_BODY_H
 #define HD_BODY_H
 
-/* The kind of a body. */
+#include <stdint.h>
+
+#define HD_MAX_BODY_DISKS 8 /* disks in one rigid body (the same as hd_scene.h's) */
+
+/* The kind of a body in a state file row (hd_state_row.kind) and in the states table: what the
+ * shorthand sections [dimers] and [disks] make.  The engine does not switch on it: a species is
+ * an hd_shape (below). */
 typedef enum hd_kind {
   HD_KIND_DISK = 0, /* one hard disk */
   HD_KIND_DIMER = 1 /* two hard disks on a rigid bond */
 } hd_kind;
 
+/* The fast path a shape takes, derived from its disks by the constructors below: the paper's
+ * formulas and the closed forms for disks and equal dimers, the general rigid-body code for
+ * everything else (which gives the same results to round-off: tests/test_body.c). */
+typedef enum hd_shape_tag {
+  HD_SHAPE_DISK = 0,   /* one disk */
+  HD_SHAPE_DIMER = 1,  /* two equal disks (same d, m) at (-+a/2, 0) in the body frame */
+  HD_SHAPE_CLUSTER = 2 /* any other cluster: the general code */
+} hd_shape_tag;
+
 /* The shape and mass of a body species. */
 typedef struct hd_shape {
-  hd_kind kind; /* disk or dimer */
-  double d;     /* diameter of each disk, > 0 (sigma for a disk body) */
-  double a;     /* dimer bond length, centre to centre, >= 0 (0 for a disk body) */
-  double m;     /* mass of each disk, > 0 (a dimer weighs 2m) */
+  hd_shape_tag tag; /* the fast path (derived) */
+  int n;            /* disks, 1 .. HD_MAX_BODY_DISKS */
+  double d;         /* DISK, DIMER: diameter of each disk; CLUSTER: the largest diameter */
+  double a;         /* DIMER: bond length, centre to centre, >= 0; else 0 */
+  double m;         /* DISK, DIMER: mass of each disk (a dimer weighs 2m); CLUSTER: disk 0's */
+  double ox[HD_MAX_BODY_DISKS], oy[HD_MAX_BODY_DISKS]; /* disk centres minus the centre of
+                                                        * mass, body frame */
+  double dk[HD_MAX_BODY_DISKS], mk[HD_MAX_BODY_DISKS]; /* diameters and masses of the disks */
+  double mass;    /* total mass */
+  double inertia; /* moment of inertia about the centre of mass, sum m_k |o_k|^2 */
+  double radius;  /* smallest circle about the centre of mass that holds the body,
+                   * max |o_k| + d_k / 2 */
+  double rmax;    /* largest distance of a disk centre from the centre of mass, max |o_k| */
 } hd_shape;
+
+/* A disk body of diameter d and mass m. */
+void hd_shape_disk(hd_shape *s, double d, double m);
+/* The paper's dimer: two disks of diameter d and mass m, centres a apart (a >= 0). */
+void hd_shape_dimer(hd_shape *s, double d, double a, double m);
+/* A cluster of n disks (1 .. HD_MAX_BODY_DISKS) at (x[k], y[k]) with diameters d[k] > 0 and
+ * masses m[k] > 0, in a frame of any origin: the origin is moved to the centre of mass (the body
+ * frame's axes stay).  fast = 1 gives the disk or dimer tag to a shape that is one (one disk; two
+ * equal disks on the x axis symmetric about the centre of mass), fast = 0 the general code in every
+ * case (the tests compare the two).  Returns 0, or -1 for n or a diameter or mass out of range
+ * (*s is then unchanged). */
+int hd_shape_cluster(hd_shape *s, int n, const double *x, const double *y, const double *d,
+                     const double *m, int fast);
 
 /* The kinematic state of a body at some time origin. */
 typedef struct hd_kin {
   double x, y;   /* centre of mass */
   double vx, vy; /* centre-of-mass velocity */
-  double phi; /* orientation of the axis disk0 -> disk1 (dimers; 0 for disks), kept in (-pi, pi] */
-  double omega; /* signed angular velocity (dimers; 0 for disks) */
+  double phi;   /* orientation of the body frame (a dimer: of the axis disk 0 -> disk 1; 0 for a
+                 * disk body), kept in (-pi, pi] */
+  double omega; /* signed angular velocity (0 for a disk body) */
 } hd_kin;
 
 /* A hard wall: the line {axis coordinate == pos}; bodies live on the side `normal` points to. */
@@ -43,17 +88,18 @@ typedef struct hd_wall {
 /* The earliest contact found by a prediction. */
 typedef struct hd_contact {
   double t; /* time of contact, measured from the common time origin of the states */
-  int ka;   /* the disk of body A that touches (0 or 1; 0 for a disk body) */
-  int kb;   /* the disk of body B that touches (0 or 1; 0 for a disk or a wall) */
+  int ka;   /* the disk of body A that touches (0 .. n - 1; 0 for a disk body) */
+  int kb;   /* the disk of body B that touches (0 .. n - 1; 0 for a disk or a wall) */
 } hd_contact;
 
 /* What a collision did, for the log. */
 typedef struct hd_collision_info {
   double theta_i; /* contact angle of body A (DESIGN.md); NaN for a disk body */
   double theta_j; /* contact angle of body B; NaN for a disk body or a wall */
-  double f;       /* orientation factor mu_eff / m_ref: eq. 36 for dimer-dimer; m_ref is the disk
-                   * mass m of the dimer (of A if both are dimers), or A's mass for disk-disk and
-                   * disk-wall (see hd_body_collide.c) */
+  double f;       /* orientation factor mu_eff / m_ref: eq. 36 for dimer-dimer; m_ref is the mass
+                   * of the contacting disk of the first body of the pair that has more than one
+                   * disk (A if both or neither have; a dimer's m, a disk body's mass: see
+                   * hd_body_impulse.c) */
   double de;      /* kinetic energy of the pair after minus before (<= 0 for alpha <= 1), computed
                    * as -(1 - alpha^2) mu_eff vn^2 / 2 (no cancellation); 0 if not approaching */
   double vn;      /* normal relative velocity of the contact points before (< 0: approaching) */
@@ -63,14 +109,15 @@ typedef struct hd_collision_info {
 double hd_shape_mass(const hd_shape *s);
 /* Moment of inertia about the centre of mass (m a^2 / 2 for a dimer, 0 for a disk body). */
 double hd_shape_inertia(const hd_shape *s);
-/* Radius of the smallest circle about the centre of mass that holds the body: (a + d) / 2. */
+/* Radius of the smallest circle about the centre of mass that holds the body ((a + d) / 2 for a
+ * dimer). */
 double hd_shape_radius(const hd_shape *s);
 
 /* Exact free flight of k over dt (any sign): translation, and rotation with phi wrapped to
  * (-pi, pi].  No division by omega; omega = 0 and |omega| large are exact. */
 void hd_kin_advance(hd_kin *k, double dt);
 
-/* Centre of disk `which` (0 or 1) of a body in state k (at k's time origin). */
+/* Centre of disk `which` (0 .. n - 1) of a body in state k (at k's time origin). */
 void hd_kin_disk_pos(const hd_kin *k, const hd_shape *s, int which, double *px, double *py);
 
 /* Velocity of the centre of disk `which` of a body in state k. */
@@ -87,19 +134,26 @@ double hd_kin_energy(const hd_kin *k, const hd_shape *s);
 int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
                     double tmax, hd_contact *c);
 
-/* The moving geometry of a conservative-advancement search (hd_body.c): up to four "pairs", the
- * disk pairs of two bodies or the disks of one body against a wall, from a common time origin.
+/* Disk pairs a contact search handles: every disk of one body against every disk of the other. */
+#define HD_CA_MAXP (HD_MAX_BODY_DISKS * HD_MAX_BODY_DISKS)
+
+/* The moving geometry of a conservative-advancement search (hd_body.c): the "pairs", the disk
+ * pairs of two bodies or the disks of one body against a wall, from a common time origin.
  * Filled and read by hd_body.c only; public so that a caller can hold an hd_ca. */
 typedef struct hd_ca_geom {
   int wall;              /* 0: body pair, 1: body against a wall */
   int na, nb;            /* disks of A and B (nb = 1 for a wall) */
+  const hd_shape *sha;   /* general code: A's shape (its offsets, diameters); NULL: the disk and
+                          * dimer fast path, with ha, hb and D */
+  const hd_shape *shb;   /* general code: B's shape (NULL for a wall) */
   double dx, dy;         /* pair: R_B - R_A at t = 0; wall: (gap of A's centre, unused) */
   double dvx, dvy;       /* pair: V_B - V_A; wall: (rate of the centre's gap, unused) */
-  double ha, hb;         /* half bond lengths */
+  double ha, hb;         /* half bond lengths (general code: rmax of each shape) */
   double pa, wa, pb, wb; /* orientations and angular velocities */
   double wsin;           /* wall: the axis coordinate of the offset is sin (1) or cos (0) */
   double wn;             /* wall: inward normal sign */
-  double D;              /* contact distance (pair) or disk diameter (wall) */
+  double D;              /* contact distance (pair) or disk diameter (wall); general code: the
+                          * smallest of the pairs', the scale of the tolerances */
   double L, K, K2u;      /* bounds on |h'|, the lower bound on h'' (-K), an upper bound on h'' */
   double vs;             /* size of the disks' own velocities, |V| + |w| a/2 of each body: their
                           * round-off widens the margin of "approaching" (HD_DISK_VROUND) */
@@ -113,9 +167,7 @@ typedef struct hd_ca {
   double t;                 /* no contact of the pair before t (from the common time origin) */
   hd_ca_geom g;             /* the geometry */
   double tend;              /* the search ends after tend (the enclosing circles part for good) */
-  double h[4], g_[4], r[4]; /* at t, if have: gaps, r.r' and |r| (h' = g_ / r) per pair */
-  unsigned ign;             /* disk pairs ignored as just collided (bit p for pair p) */
-  int have;                 /* h, hd hold the state at t */
+  uint64_t ign;             /* disk pairs ignored as just collided (bit p for pair p) */
   int fresh;                /* the t = 0 contact checks are still to be made */
   long it;                  /* steps taken (guard against misuse, see hd_body.c) */
   int sc0;                  /* sa0, ca0 hold sin and cos of A's orientation at t = 0 */
@@ -153,14 +205,16 @@ int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, doubl
                     hd_contact *c);
 
 /* Collision of A (disk ka) and B (disk kb), in contact now: applies the paper's rule for the
- * pair's kinds (disk-disk; dimer-disk eq. 21-22; dimer-dimer eq. 13 and 18) with restitution
+ * pair's kinds (disk-disk; dimer-disk eq. 21-22; dimer-dimer eq. 13 and 18), or for a pair with
+ * a general cluster the rigid-body impulse rule (hd_body_impulse.h), with restitution
  * alpha in [0, 1] along the contact normal, updating the velocities and angular velocities of A
  * and B.  A pair whose contact points are not approaching (vn >= 0) is left unchanged.  Dimers
  * need a > 0 (a = 0 exactly moves as a disk of mass 2m).  Fills *info if not NULL.  Returns 0. */
 int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
                     double alpha, hd_collision_info *info);
 
-/* Collision of disk ka of A with wall w (eq. 24-25 for a dimer), restitution alpha; left unchanged
+/* Collision of disk ka of A with wall w (eq. 24-25 for a dimer, the rigid-body impulse rule for a
+ * general cluster), restitution alpha; left unchanged
  * if the disk is not moving towards the wall.  Fills *info if not NULL.  Returns 0. */
 int hd_collide_wall(hd_kin *A, const hd_shape *sa, int ka, const hd_wall *w, double alpha,
                     hd_collision_info *info);

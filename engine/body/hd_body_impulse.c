@@ -12,8 +12,26 @@
 
 void hd_side_of(const hd_kin *k, const hd_shape *s, int which, hd_side *o) {
   o->mass = hd_shape_mass(s);
+  o->inertia = hd_shape_inertia(s);
+  o->gen = 0;
+  if (s->tag == HD_SHAPE_CLUSTER) {
+    double sn, cs, bx = s->ox[which], by = s->oy[which];
+    sincos(k->phi, &sn, &cs);
+    o->m = s->mk[which];
+    o->ox = bx * cs - by * sn;
+    o->oy = bx * sn + by * cs;
+    double r = hypot(o->ox, o->oy);
+    o->ex = r > 0.0 ? o->ox / r : 0.0;
+    o->ey = r > 0.0 ? o->oy / r : 0.0;
+    o->vx = k->vx - k->omega * o->oy;
+    o->vy = k->vy + k->omega * o->ox;
+    o->a = 0.0;
+    o->rot = o->inertia > 0.0;
+    o->gen = 1;
+    return;
+  }
   o->m = s->m;
-  if (s->kind != HD_KIND_DIMER) {
+  if (s->tag != HD_SHAPE_DIMER) {
     o->ex = o->ey = o->ox = o->oy = 0.0;
     o->vx = k->vx;
     o->vy = k->vy;
@@ -35,7 +53,10 @@ void hd_side_of(const hd_kin *k, const hd_shape *s, int which, hd_side *o) {
 
 double hd_side_inv_mass(const hd_side *o, double nx, double ny) {
   double w = 1.0 / o->mass;
-  if (o->rot) {
+  if (o->rot && o->gen) {
+    double x = o->ox * ny - o->oy * nx; /* rho x n */
+    w += x * x / o->inertia;
+  } else if (o->rot) {
     double x = o->ex * ny - o->ey * nx;
     w += x * x / (2.0 * o->m);
   }
@@ -56,11 +77,12 @@ void hd_pair_normal(const hd_kin *A, const hd_side *sa, const hd_kin *B, const h
   *ny = ry / r;
 }
 
-/* m_ref of a pair (see the head of this file). */
-static double pair_mref(const hd_shape *sa, const hd_shape *sb) {
-  if (sa->kind == HD_KIND_DIMER) return sa->m;
-  if (sb->kind == HD_KIND_DIMER) return sb->m;
-  return sa->m;
+/* m_ref of a pair (see the head of this file): the contacting disk's mass of the first body
+ * with more than one disk (A's if both or neither have). */
+static double pair_mref(const hd_shape *sa, int ka, const hd_shape *sb, int kb) {
+  if (sa->n > 1) return sa->mk[ka];
+  if (sb->n > 1) return sb->mk[kb];
+  return sa->mk[ka];
 }
 
 /* Energy change -(1 - alpha^2) mu vn^2 / 2 of an approaching contact (0 otherwise). */
@@ -79,7 +101,7 @@ void hd_pair_info(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd
   info->vn = (b.vx - a.vx) * nx + (b.vy - a.vy) * ny;
   info->theta_i = hd_side_theta(&a, nx, ny);
   info->theta_j = hd_side_theta(&b, -nx, -ny);
-  info->f = 1.0 / (inv_mu * pair_mref(sa, sb));
+  info->f = 1.0 / (inv_mu * pair_mref(sa, ka, sb, kb));
   info->de = loss(alpha, info->vn, inv_mu);
 }
 
@@ -99,7 +121,7 @@ void hd_wall_info(const hd_kin *A, const hd_shape *sa, int ka, const hd_wall *w,
   info->vn = -(a.vx * nx + a.vy * ny);
   info->theta_i = hd_side_theta(&a, nx, ny);
   info->theta_j = NAN;
-  info->f = 1.0 / (inv_mu * sa->m);
+  info->f = 1.0 / (inv_mu * sa->mk[ka]);
   info->de = loss(alpha, info->vn, inv_mu);
 }
 
@@ -107,7 +129,10 @@ void hd_wall_info(const hd_kin *A, const hd_shape *sa, int ka, const hd_wall *w,
 static void apply(hd_kin *k, const hd_side *o, double px, double py) {
   k->vx += px / o->mass;
   k->vy += py / o->mass;
-  if (o->rot) k->omega += (o->ex * py - o->ey * px) / (o->m * o->a); /* (rho x P) / I */
+  if (o->rot && o->gen)
+    k->omega += (o->ox * py - o->oy * px) / o->inertia; /* (rho x P) / I */
+  else if (o->rot)
+    k->omega += (o->ex * py - o->ey * px) / (o->m * o->a); /* (rho x P) / I for a dimer */
 }
 
 int hd_impulse_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,

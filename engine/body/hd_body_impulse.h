@@ -10,7 +10,8 @@
  *   dE = -(1 - alpha^2) mu_eff vn^2 / 2.
  * For a dimer (rho x n)^2 / I = (e x n)^2 / (2 m) with e the unit axis: independent of a, so that
  * mu_eff / m = 2 / (2 + sin^2 th_i + sin^2 th_j) for every a > 0 (a dimer of a = 0 exactly has no
- * lever arm and is treated as a disk of mass 2m).  A wall has infinite mass. */
+ * lever arm and is treated as a disk of mass 2m).  A wall has infinite mass.  A general cluster
+ * uses the same rule with rho its contacting disk's offset and I its moment of inertia. */
 #ifndef HD_BODY_IMPULSE_H
 #define HD_BODY_IMPULSE_H
 
@@ -18,14 +19,18 @@
 
 /* One body's side of a contact. */
 typedef struct hd_side {
-  double ex, ey; /* outward axis at the contacting disk (unit, partner disk -> contacting disk);
-                  * 0 for a disk body */
-  double ox, oy; /* contacting disk centre minus centre of mass: (a/2) e */
-  double vx, vy; /* velocity of the contacting disk centre */
-  double m;      /* disk mass (m of a dimer, the mass of a disk body) */
-  double mass;   /* total mass */
-  double a;      /* bond length, 0 for a disk body */
-  int rot;       /* 1 for a dimer with a > 0 (it turns under an impulse) */
+  double ex, ey;   /* outward axis at the contacting disk (unit, centre of mass -> contacting
+                    * disk; for a dimer partner disk -> contacting disk); 0 when the disk is at
+                    * the centre of mass (a disk body) */
+  double ox, oy;   /* contacting disk centre minus centre of mass ((a/2) e for a dimer) */
+  double vx, vy;   /* velocity of the contacting disk centre */
+  double m;        /* mass of the contacting disk (m of a dimer, the mass of a disk body) */
+  double mass;     /* total mass */
+  double a;        /* bond length of a dimer, else 0 */
+  double inertia;  /* moment of inertia about the centre of mass */
+  int rot;         /* 1 for a body that turns under an impulse (a dimer with a > 0, a cluster
+                    * with inertia > 0) */
+  int gen;         /* 1: a general cluster (the rotational terms use ox, oy and inertia) */
 } hd_side;
 
 /* Fills the side of disk `which` of body k of shape s. */

@@ -37,6 +37,10 @@ typedef struct hd_model_ops {
   /* One record per body at the current time into out[0 .. bodies-1] (any order; rec.body says
    * which), for a frame; HD_OK or HD_ENOMEM. */
   int (*states)(const void *m, hd_state_rec *out, hd_error *err);
+  /* NULL, or: writes the species table of run (db/schema.sql, table species) at its start. */
+  int (*log_species)(const void *m, hd_db *db, int64_t run, hd_error *err);
+  /* NULL, or: writes the sample_species rows that go with a samples row at the current time. */
+  int (*log_species_sample)(const void *m, hd_db *db, int64_t run, hd_error *err);
 } hd_model_ops;
 
 /* The model that runs scene sc. */

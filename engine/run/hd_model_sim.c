@@ -1,5 +1,8 @@
 /* The 2D engine (hd_sim: disks and dimers) seen through hd_model_ops. */
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "hd_model.h"
 #include "hd_sim.h"
@@ -54,9 +57,11 @@ static int64_t m_events(const void *m) {
 }
 static double m_temperature(const void *m) {
   const hd_sim *s = m;
-  /* 2 translational degrees of freedom per body, 1 rotational per dimer with a lever arm (a
-   * dimer of a = 0 has no moment of inertia and no rotational energy) */
-  double dof = 2.0 * s->n + (s->shape[HD_SP_DIMER].a > 0 ? s->n_species[HD_SP_DIMER] : 0);
+  /* 2 translational degrees of freedom per body, 1 rotational per body with a moment of inertia
+   * (a dimer of a = 0 has none and no rotational energy) */
+  double dof = 2.0 * s->n;
+  for (int sp = 0; sp < s->nsp; sp++)
+    if (hd_shape_inertia(&s->shape[sp]) > 0) dof += s->n_species[sp];
   return 2.0 * s->c.e_kin / dof;
 }
 
@@ -85,13 +90,19 @@ static void m_sample(const void *m, hd_sample_row *row) {
                          q.s_par};
 }
 
+/* states.kind of body i: HD_KIND_DIMER, HD_KIND_DISK, or HD_DB_KIND_BODY for a named species. */
+static int body_kind(const hd_sim *s, int32_t i) {
+  int sp = s->b[i].species;
+  return sp == HD_SP_DIMER ? HD_KIND_DIMER : sp == HD_SP_DISK ? HD_KIND_DISK : HD_DB_KIND_BODY;
+}
+
 static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label, hd_error *err) {
   const hd_sim *s = m;
   for (int32_t i = 0; i < s->n; i++) {
     hd_kin k;
     hd_sim_body_now(s, i, &k);
     hd_state_rec rec = {
-        hd_sim_time(s), s->id[i],     s->shape[s->b[i].species].kind, k.x, k.y, k.phi, k.vx, k.vy,
+        hd_sim_time(s), s->id[i],     body_kind(s, i), k.x, k.y, k.phi, k.vx, k.vy,
         k.omega,        hd_sim_cpd(s)};
     int rc = hd_db_log_state(db, run, label, &rec, err);
     if (rc) return rc;
@@ -106,8 +117,53 @@ static int m_states(const void *m, hd_state_rec *out, hd_error *err) {
     hd_kin k;
     hd_sim_body_now(s, i, &k);
     out[i] = (hd_state_rec){
-        hd_sim_time(s), s->id[i],     s->shape[s->b[i].species].kind, k.x, k.y, k.phi, k.vx, k.vy,
+        hd_sim_time(s), s->id[i],     body_kind(s, i), k.x, k.y, k.phi, k.vx, k.vy,
         k.omega,        hd_sim_cpd(s)};
+  }
+  return HD_OK;
+}
+
+/* Appends x to buf (size bytes, NUL-terminated) in the shortest %g form that reads back as x. */
+static void put_exact(char *buf, size_t size, double x) {
+  char b[40];
+  for (int prec = 15; prec <= 17; prec++) {
+    snprintf(b, sizeof b, "%.*g", prec, x);
+    if (strtod(b, NULL) == x) break;
+  }
+  size_t n = strlen(buf);
+  snprintf(buf + n, size > n ? size - n : 0, "%s", b);
+}
+
+static int m_log_species(const void *m, hd_db *db, int64_t run, hd_error *err) {
+  const hd_sim *s = m;
+  for (int sp = 0; sp < s->nsp; sp++) {
+    if (s->n_species[sp] == 0) continue;
+    const hd_shape *sh = &s->shape[sp];
+    char disks[HD_MAX_BODY_DISKS * 4 * 26 + 16] = "";
+    for (int k = 0; k < sh->n; k++) {
+      const double v[4] = {sh->ox[k], sh->oy[k], sh->dk[k], sh->mk[k]};
+      for (int c = 0; c < 4; c++) {
+        put_exact(disks, sizeof disks, v[c]);
+        strncat(disks, c < 3 ? " " : k + 1 < sh->n ? "; " : "", sizeof disks - strlen(disks) - 1);
+      }
+    }
+    hd_species_rec rec = {sp,          s->sp_name[sp],           disks, s->n_species[sp],
+                          sh->mass, hd_shape_inertia(sh)};
+    int rc = hd_db_log_species(db, run, &rec, err);
+    if (rc) return rc;
+  }
+  return HD_OK;
+}
+
+static int m_log_species_sample(const void *m, hd_db *db, int64_t run, hd_error *err) {
+  const hd_sim *s = m;
+  for (int sp = 0; sp < s->nsp; sp++) {
+    if (s->n_species[sp] == 0) continue;
+    double et, er;
+    hd_sim_energy(s, sp, &et, &er);
+    hd_species_sample row = {hd_sim_time(s), sp, et / s->n_species[sp], er / s->n_species[sp]};
+    int rc = hd_db_log_species_sample(db, run, &row, err);
+    if (rc) return rc;
   }
   return HD_OK;
 }
@@ -119,7 +175,8 @@ static void m_box(const void *m, double *lx, double *ly) {
 
 const hd_model_ops hd_model_bodies2d = {
     "bodies2d", m_alloc,  m_alloc_restore, m_free,   m_next,       m_checkpoint, m_time,
-    m_cpd,      m_events, m_temperature,   m_sample, m_log_states, m_box,        m_states};
+    m_cpd,      m_events, m_temperature,   m_sample, m_log_states, m_box,        m_states,
+    m_log_species, m_log_species_sample};
 
 const hd_model_ops *hd_model_for_scene(const hd_scene *sc) {
   return sc->n_rods > 0 ? &hd_model_rods : &hd_model_bodies2d;

@@ -166,7 +166,9 @@ static int log_states(runner *r, const char *label, hd_error *err) {
 static int log_sample(runner *r, hd_error *err) {
   hd_sample_row row;
   r->ops->sample(r->s, &row);
-  return hd_db_log_sample(r->db, r->run, &row, err);
+  int rc = hd_db_log_sample(r->db, r->run, &row, err);
+  if (!rc && r->ops->log_species_sample) rc = r->ops->log_species_sample(r->s, r->db, r->run, err);
+  return rc;
 }
 
 /* A checkpoint blob is the runner's state (run_state), the model's blob, then a trailer: the
@@ -541,6 +543,7 @@ static int start(runner *r, hd_error *err) {
   double lx, ly;
   r->ops->box(r->s, &lx, &ly);
   int rc = hd_db_run_box(r->db, r->run, lx, ly, err);
+  if (!rc && r->ops->log_species) rc = r->ops->log_species(r->s, r->db, r->run, err);
   if (!rc) rc = log_states(r, "initial", err);
   if (!rc) rc = observe(r, err); /* the t = 0 sample */
   if (!rc) rc = checkpoint(r, err);

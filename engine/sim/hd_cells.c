@@ -8,7 +8,7 @@
 
 int hd_cells_alloc(hd_sim *s, hd_error *err) {
   double range = 0.0; /* largest centre distance at contact: the largest body's diameter */
-  for (int sp = 0; sp < HD_NSPECIES; sp++)
+  for (int sp = 0; sp < s->nsp; sp++)
     if (s->n_species[sp] > 0) range = fmax(range, 2.0 * hd_shape_radius(&s->shape[sp]));
   if (range <= 0.0) range = 1.0;
   double fx = floor(s->lx / range), fy = floor(s->ly / range);

@@ -8,7 +8,20 @@
 
 #include "hd_sim_internal.h"
 
-#define HD_CKPT_MAGIC 0x31504b4346464148ULL /* "HAFFCKP1" */
+#define HD_CKPT_MAGIC1 0x31504b4346464148ULL /* "HAFFCKP1": dimers and disks only */
+#define HD_CKPT_MAGIC 0x32504b4346464148ULL  /* "HAFFCKP2": with the species table */
+
+/* Fixed-size header of a checkpoint blob of the first version (read only). */
+typedef struct ckpt_header1 {
+  uint64_t magic;      /* HD_CKPT_MAGIC1 */
+  uint32_t body_size;  /* sizeof(hd_body) */
+  uint32_t clock_size; /* sizeof(hd_sim_clock) */
+  int32_t n;           /* bodies */
+  int32_t n_species[2];
+  int32_t ncx, ncy;  /* cells */
+  uint64_t rng_size; /* bytes of RNG state */
+  double lx, ly;     /* box (must match the scene) */
+} ckpt_header1;
 
 /* Fixed-size header of a checkpoint blob. */
 typedef struct ckpt_header {
@@ -16,10 +29,13 @@ typedef struct ckpt_header {
   uint32_t body_size;  /* sizeof(hd_body) */
   uint32_t clock_size; /* sizeof(hd_sim_clock) */
   int32_t n;           /* bodies */
-  int32_t n_species[HD_NSPECIES];
+  int32_t nsp;         /* species */
+  int32_t n_species[HD_MAX_SPECIES];
   int32_t ncx, ncy;  /* cells */
   uint64_t rng_size; /* bytes of RNG state */
   double lx, ly;     /* box (must match the scene) */
+  hd_shape shape[HD_MAX_SPECIES];               /* the species table (must match the scene's) */
+  double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* (unused entries 0) */
 } ckpt_header;
 
 int hd_sim_checkpoint(const hd_sim *s, void **blob, size_t *n, hd_error *err) {
@@ -28,16 +44,21 @@ int hd_sim_checkpoint(const hd_sim *s, void **blob, size_t *n, hd_error *err) {
                  (sizeof(hd_body) + sizeof(int32_t)) * (size_t)s->n + sizeof(int32_t) * ncell + rs;
   unsigned char *p = malloc(total);
   if (!p) return hd_error_set(err, HD_ENOMEM, "out of memory for a checkpoint");
-  ckpt_header h = {HD_CKPT_MAGIC,
-                   sizeof(hd_body),
-                   sizeof(hd_sim_clock),
-                   s->n,
-                   {s->n_species[0], s->n_species[1]},
-                   s->ncx,
-                   s->ncy,
-                   rs,
-                   s->lx,
-                   s->ly};
+  ckpt_header h;
+  memset(&h, 0, sizeof h); /* padding too: the blob is checksummed */
+  h.magic = HD_CKPT_MAGIC;
+  h.body_size = sizeof(hd_body);
+  h.clock_size = sizeof(hd_sim_clock);
+  h.n = s->n;
+  h.nsp = s->nsp;
+  memcpy(h.n_species, s->n_species, sizeof h.n_species);
+  h.ncx = s->ncx;
+  h.ncy = s->ncy;
+  h.rng_size = rs;
+  h.lx = s->lx;
+  h.ly = s->ly;
+  for (int sp = 0; sp < s->nsp; sp++) h.shape[sp] = s->shape[sp];
+  memcpy(h.alpha, s->alpha, sizeof h.alpha);
   unsigned char *q = p;
   memcpy(q, &h, sizeof h), q += sizeof h;
   memcpy(q, &s->c, sizeof s->c), q += sizeof s->c;
@@ -64,13 +85,13 @@ static int check_state(const hd_sim *s, hd_error *err) {
       !isfinite(c->dt_mean) || !(c->t_last <= c->t))
     return hd_error_set(err, HD_EINPUT, "checkpoint: clocks and counters out of range");
   int32_t n = s->n, ncell = s->ncx * s->ncy;
-  int32_t count[HD_NSPECIES] = {0, 0};
+  int32_t count[HD_MAX_SPECIES] = {0};
   /* the box with a margin of one cell: a body is wrapped at its crossing of the box edge, so
    * at its own time it may be just past the edge */
   double x_lo = -s->cwx, x_hi = s->lx + s->cwx, y_lo = -s->cwy, y_hi = s->ly + s->cwy;
   for (int32_t i = 0; i < n; i++) {
     const hd_body *b = &s->b[i];
-    if (b->species < 0 || b->species >= HD_NSPECIES)
+    if (b->species < 0 || b->species >= s->nsp)
       return hd_error_set(err, HD_EINPUT, "checkpoint: body %d has species %d", i, b->species);
     count[b->species]++;
     const hd_kin *k = &b->k;
@@ -84,13 +105,13 @@ static int check_state(const hd_sim *s, hd_error *err) {
     if (isnan(b->p_t) || isnan(b->c_t) || b->ev_t != fmin(b->p_t, b->c_t) || !(b->p_t >= b->t) ||
         !(b->c_t >= b->t) || !(b->ev_t >= c->t))
       return hd_error_set(err, HD_EINPUT, "checkpoint: body %d: event times out of range", i);
-    int nd_i = s->shape[b->species].kind == HD_KIND_DIMER ? 2 : 1;
+    int nd_i = s->shape[b->species].n;
     if (b->c_dir < 0 || b->c_dir > HD_WAKE || b->p_ka < 0 || b->p_ka >= nd_i)
       return hd_error_set(err, HD_EINPUT, "checkpoint: body %d: pending event out of range", i);
     if (b->p_type == HD_EV_PAIR) {
       int32_t j = b->p_partner;
-      if (j < 0 || j >= n || j == i || s->b[j].species < 0 || s->b[j].species >= HD_NSPECIES ||
-          b->p_kb < 0 || b->p_kb >= (s->shape[s->b[j].species].kind == HD_KIND_DIMER ? 2 : 1) ||
+      if (j < 0 || j >= n || j == i || s->b[j].species < 0 || s->b[j].species >= s->nsp ||
+          b->p_kb < 0 || b->p_kb >= s->shape[s->b[j].species].n ||
           abs(hd_image_code(b->p_imx, s->b[j].wx, b->wx)) > 1 ||
           abs(hd_image_code(b->p_imy, s->b[j].wy, b->wy)) > 1)
         return hd_error_set(err, HD_EINPUT, "checkpoint: body %d: pair event out of range", i);
@@ -102,7 +123,9 @@ static int check_state(const hd_sim *s, hd_error *err) {
       return hd_error_set(err, HD_EINPUT, "checkpoint: body %d: pending event out of range", i);
     }
   }
-  if (count[0] != s->n_species[0] || count[1] != s->n_species[1])
+  int same = 1;
+  for (int sp = 0; sp < s->nsp; sp++) same &= count[sp] == s->n_species[sp];
+  if (!same)
     return hd_error_set(err, HD_EINPUT, "checkpoint: species counts do not match the bodies");
   /* the user's numbers: a permutation of 0..n-1; the cell lists: each body once, in its cell */
   unsigned char *seen = calloc((size_t)(n > 0 ? n : 1), 1);
@@ -156,38 +179,70 @@ static int check_state(const hd_sim *s, hd_error *err) {
   return HD_OK;
 }
 
+/* The header of a blob of either version, as a current one (a first-version blob holds dimers
+ * and disks, with the scene's shapes); its size in *hsize.  HD_EINPUT if it is neither. */
+static int read_header(const hd_sim *s, const void *blob, size_t n, ckpt_header *h, size_t *hsize,
+                       hd_error *err) {
+  uint64_t magic;
+  if (n < sizeof magic) return hd_error_set(err, HD_EINPUT, "checkpoint is truncated");
+  memcpy(&magic, blob, sizeof magic);
+  memset(h, 0, sizeof *h);
+  if (magic == HD_CKPT_MAGIC1) {
+    ckpt_header1 o;
+    if (n < sizeof o) return hd_error_set(err, HD_EINPUT, "checkpoint is truncated");
+    memcpy(&o, blob, sizeof o);
+    *h = (ckpt_header){HD_CKPT_MAGIC, o.body_size, o.clock_size, o.n, 2, {o.n_species[0],
+                       o.n_species[1]}, o.ncx, o.ncy, o.rng_size, o.lx, o.ly, {{0}}, {{0}}};
+    for (int sp = 0; sp < s->nsp; sp++) h->shape[sp] = s->shape[sp];
+    *hsize = sizeof o;
+    return HD_OK;
+  }
+  if (n < sizeof *h) return hd_error_set(err, HD_EINPUT, "checkpoint is truncated");
+  memcpy(h, blob, sizeof *h);
+  *hsize = sizeof *h;
+  return HD_OK;
+}
+
 int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err) {
   ckpt_header h;
-  if (n < sizeof h) return hd_error_set(err, HD_EINPUT, "checkpoint is truncated");
-  memcpy(&h, blob, sizeof h);
+  size_t hsize;
+  int rc = read_header(s, blob, n, &h, &hsize, err);
+  if (rc) return rc;
   if (h.magic != HD_CKPT_MAGIC || h.body_size != sizeof(hd_body) ||
       h.clock_size != sizeof(hd_sim_clock) || h.rng_size != gsl_rng_size(s->rng))
     return hd_error_set(err, HD_EINPUT, "checkpoint was written by another build of haff");
   if (h.lx != s->lx || h.ly != s->ly)
     return hd_error_set(err, HD_EINPUT, "checkpoint box %g x %g does not match the scene's", h.lx,
                         h.ly);
+  if (h.nsp != s->nsp)
+    return hd_error_set(err, HD_EINPUT, "checkpoint has %d species, the scene %d", h.nsp, s->nsp);
+  for (int sp = 0; sp < s->nsp; sp++)
+    if (memcmp(&h.shape[sp], &s->shape[sp], sizeof(hd_shape)))
+      return hd_error_set(err, HD_EINPUT, "checkpoint: species %d (%s) has another shape than the "
+                          "scene's", sp, s->sp_name[sp]);
   /* the counts before any size is computed from them (a negative one wrapped round) */
-  if (h.n < 0 || h.n_species[0] < 0 || h.n_species[1] < 0 ||
-      (int64_t)h.n_species[0] + h.n_species[1] != h.n || h.ncx < 1 || h.ncy < 1 ||
+  int64_t total = 0;
+  int bad = h.n < 0;
+  for (int sp = 0; sp < s->nsp; sp++) bad |= h.n_species[sp] < 0, total += h.n_species[sp];
+  if (bad || total != h.n || h.ncx < 1 || h.ncy < 1 ||
       (int64_t)h.ncx * h.ncy > (int64_t)(n / sizeof(int32_t)))
     return hd_error_set(err, HD_EINPUT, "checkpoint: body or cell counts out of range");
   size_t ncell = (size_t)h.ncx * (size_t)h.ncy;
-  size_t want = sizeof h + sizeof(hd_sim_clock) +
+  size_t want = hsize + sizeof(hd_sim_clock) +
                 (sizeof(hd_body) + sizeof(int32_t)) * (size_t)h.n + sizeof(int32_t) * ncell +
                 h.rng_size;
   if (n != want)
     return hd_error_set(err, HD_EINPUT, "checkpoint has %zu bytes, expected %zu", n, want);
   s->n = h.n;
-  s->n_species[0] = h.n_species[0];
-  s->n_species[1] = h.n_species[1];
+  for (int sp = 0; sp < s->nsp; sp++) s->n_species[sp] = h.n_species[sp];
   s->b = hd_bodies_alloc(h.n);
   s->id = malloc(sizeof(int32_t) * (size_t)(h.n > 0 ? h.n : 1));
   if (!s->b || !s->id) return hd_error_set(err, HD_ENOMEM, "out of memory");
-  int rc = hd_cells_alloc(s, err);
+  rc = hd_cells_alloc(s, err);
   if (rc) return rc;
   if (s->ncx != h.ncx || s->ncy != h.ncy)
     return hd_error_set(err, HD_EINPUT, "checkpoint cell grid does not match the scene's");
-  const unsigned char *q = (const unsigned char *)blob + sizeof h;
+  const unsigned char *q = (const unsigned char *)blob + hsize;
   memcpy(&s->c, q, sizeof s->c), q += sizeof s->c;
   memcpy(s->b, q, sizeof(hd_body) * (size_t)h.n), q += sizeof(hd_body) * (size_t)h.n;
   memcpy(s->id, q, sizeof(int32_t) * (size_t)h.n), q += sizeof(int32_t) * (size_t)h.n;

@@ -13,11 +13,11 @@
 static int overlaps_any(const hd_sim *s, int32_t i) {
   const hd_body *bi = &s->b[i];
   const hd_shape *si = &s->shape[bi->species];
-  int nd = si->kind == HD_KIND_DIMER ? 2 : 1;
+  int nd = si->n;
   for (int a = 0; a < nd; a++) { /* inside the walls */
     double x, y;
     hd_kin_disk_pos(&bi->k, si, a, &x, &y);
-    double r = 0.5 * si->d;
+    double r = 0.5 * si->dk[a];
     if (((s->walls & HD_WALL_LEFT) && x < r) || ((s->walls & HD_WALL_RIGHT) && x > s->lx - r) ||
         ((s->walls & HD_WALL_BOTTOM) && y < r) || ((s->walls & HD_WALL_TOP) && y > s->ly - r))
       return -2;
@@ -26,8 +26,7 @@ static int overlaps_any(const hd_sim *s, int32_t i) {
     if (j == i) continue;
     const hd_body *bj = &s->b[j];
     const hd_shape *sj = &s->shape[bj->species];
-    int nj = sj->kind == HD_KIND_DIMER ? 2 : 1;
-    double D = 0.5 * (si->d + sj->d);
+    int nj = sj->n;
     hd_kin kj = bj->k;
     kj.x += sx;
     kj.y += sy;
@@ -35,7 +34,7 @@ static int overlaps_any(const hd_sim *s, int32_t i) {
       double xa, ya;
       hd_kin_disk_pos(&bi->k, si, a, &xa, &ya);
       for (int c = 0; c < nj; c++) {
-        double xb, yb;
+        double xb, yb, D = 0.5 * (si->dk[a] + sj->dk[c]);
         hd_kin_disk_pos(&kj, sj, c, &xb, &yb);
         if ((xb - xa) * (xb - xa) + (yb - ya) * (yb - ya) < D * D) return j;
       }
@@ -64,7 +63,7 @@ static int place_random(hd_sim *s) {
     for (k = 0; k < max_tries; k++) {
       b->k.x = s->lx * gsl_rng_uniform(s->rng);
       b->k.y = s->ly * gsl_rng_uniform(s->rng);
-      b->k.phi = b->species == HD_SP_DIMER ? uniform_phi(s->rng) : 0.0;
+      b->k.phi = s->shape[b->species].n > 1 ? uniform_phi(s->rng) : 0.0;
       hd_cells_insert(s, i, hd_cells_of(s, b->k.x, b->k.y));
       if (overlaps_any(s, i) == -1) break;
       hd_cells_remove(s, i);
@@ -82,13 +81,17 @@ static int place_random(hd_sim *s) {
 static int place_dense_lattice(hd_sim *s, hd_error *err) {
   const double eps = 1.0 + 1e-9;
   double ex, ey;
-  if (s->n_species[HD_SP_DISK] == 0) {
+  int only_dimers = s->n_species[HD_SP_DISK] == 0;
+  for (int sp = HD_SP_NAMED; sp < s->nsp; sp++) only_dimers &= s->n_species[sp] == 0;
+  if (only_dimers) {
     ex = (s->shape[HD_SP_DIMER].a + s->shape[HD_SP_DIMER].d) * eps;
     ey = s->shape[HD_SP_DIMER].d * eps;
   } else {
-    ex = ey = fmax(s->n_species[HD_SP_DIMER] ? 2.0 * hd_shape_radius(&s->shape[HD_SP_DIMER]) : 0.0,
-                   s->shape[HD_SP_DISK].d) *
-              eps;
+    double w = fmax(s->n_species[HD_SP_DIMER] ? 2.0 * hd_shape_radius(&s->shape[HD_SP_DIMER]) : 0.0,
+                    s->shape[HD_SP_DISK].d);
+    for (int sp = HD_SP_NAMED; sp < s->nsp; sp++)
+      if (s->n_species[sp]) w = fmax(w, 2.0 * hd_shape_radius(&s->shape[sp]));
+    ex = ey = w * eps;
   }
   /* sites along each edge, in double (box = 1 1e300 overflowed an int32 cast); a row needs
    * no more than n of them, so the casts below are exact */
@@ -115,7 +118,7 @@ static int place_dense_lattice(hd_sim *s, hd_error *err) {
 /* A rectangular lattice with spacing >= the largest body, orientations random. */
 static int place_lattice(hd_sim *s, hd_error *err) {
   double range = 0.0;
-  for (int sp = 0; sp < HD_NSPECIES; sp++)
+  for (int sp = 0; sp < s->nsp; sp++)
     if (s->n_species[sp] > 0) range = fmax(range, 2.0 * hd_shape_radius(&s->shape[sp]));
   /* the grid hd_scene.c checks: at most floor(L / range) sites along each edge (spacing
    * >= range; equal means touching), as square as the box allows */
@@ -134,7 +137,7 @@ static int place_lattice(hd_sim *s, hd_error *err) {
     hd_body *b = &s->b[i];
     b->k.x = (i % nx + 0.5) * ax;
     b->k.y = (i / nx + 0.5) * ay;
-    b->k.phi = b->species == HD_SP_DIMER ? uniform_phi(s->rng) : 0.0;
+    b->k.phi = s->shape[b->species].n > 1 ? uniform_phi(s->rng) : 0.0;
     hd_cells_insert(s, i, hd_cells_of(s, b->k.x, b->k.y));
   }
   return HD_OK;
@@ -184,17 +187,20 @@ void hd_init_velocities(hd_sim *s, double T) {
 #define HD_MAX_SPIN_RATIO 1e7
 
 /* HD_EINPUT when a state row's angle or spin is beyond what the run can resolve (above). */
-static int check_spins(const hd_state_row *rows, long n, const hd_scene *sc, hd_error *err) {
+static int check_spins(const hd_sim *s, const hd_state_row *rows, long n, const hd_scene *sc,
+                       hd_error *err) {
   double vmax = 0.0;
   for (long r = 0; r < n; r++) vmax = fmax(vmax, hypot(rows[r].vx, rows[r].vy));
   for (long r = 0; r < n; r++) {
-    if (rows[r].kind != HD_KIND_DIMER) continue;
+    if (s->shape[rows[r].species].n == 1) continue; /* a disk has no angle */
     if (!(fabs(rows[r].phi) <= HD_MAX_PHI))
       return hd_error_set(err, HD_EINPUT,
                           "%s:%ld: column 4 (phi) = %g: an angle beyond +-%g rad is not resolved "
                           "(give it in (-pi, pi])",
                           sc->state_file, rows[r].line, rows[r].phi, HD_MAX_PHI);
-    double rim = fabs(rows[r].omega) * 0.5 * sc->dimer_a;
+    double rim = fabs(rows[r].omega) * (rows[r].species == HD_SP_DIMER
+                                            ? 0.5 * sc->dimer_a
+                                            : hd_shape_radius(&s->shape[rows[r].species]));
     if (vmax > 0.0 && rim > HD_MAX_SPIN_RATIO * vmax)
       return hd_error_set(err, HD_EINPUT,
                           "%s:%ld: column 7 (omega) = %g: the rim speed |omega| a/2 = %g is more "
@@ -210,14 +216,18 @@ static int check_spins(const hd_state_row *rows, long n, const hd_scene *sc, hd_
 static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
   hd_state_row *rows = NULL;
   long n = 0;
-  int rc = hd_state_csv_read(sc->state_file, &rows, &n, err);
-  if (!rc) rc = check_spins(rows, n, sc, err);
+  int rc = hd_state_csv_read_species(sc->state_file, sc, &rows, &n, err);
+  for (long r = 0; !rc && r < n; r++)
+    if (rows[r].species < 0 || rows[r].species >= s->nsp)
+      rc = hd_error_set(err, HD_EINPUT, "%s:%ld: column 1 (kind): species %d is not in the scene",
+                        sc->state_file, rows[r].line, rows[r].species);
+  if (!rc) rc = check_spins(s, rows, n, sc, err);
   if (rc) {
     free(rows);
     return rc;
   }
-  int32_t cnt[HD_NSPECIES] = {0, 0};
-  for (long r = 0; r < n; r++) cnt[rows[r].kind == HD_KIND_DIMER ? HD_SP_DIMER : HD_SP_DISK]++;
+  int32_t cnt[HD_MAX_SPECIES] = {0};
+  for (long r = 0; r < n; r++) cnt[rows[r].species]++;
   if ((sc->n_dimers && sc->n_dimers != cnt[0]) || (sc->n_disks && sc->n_disks != cnt[1])) {
     free(rows);
     return hd_error_set(err, HD_EINPUT,
@@ -225,9 +235,15 @@ static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
                         "[dimers]/[disks] count say %ld and %ld",
                         sc->state_file, cnt[0], cnt[1], sc->n_dimers, sc->n_disks);
   }
-  s->n_species[0] = cnt[0];
-  s->n_species[1] = cnt[1];
-  s->n = cnt[0] + cnt[1];
+  for (int sp = HD_SP_NAMED; sp < s->nsp; sp++)
+    if (sc->named[sp - HD_SP_NAMED].count && sc->named[sp - HD_SP_NAMED].count != cnt[sp]) {
+      free(rows);
+      return hd_error_set(err, HD_EINPUT,
+                          "%s: holds %d bodies of species %s but its [species] count says %ld",
+                          sc->state_file, cnt[sp], s->sp_name[sp], sc->named[sp - 2].count);
+    }
+  s->n = 0;
+  for (int sp = 0; sp < s->nsp; sp++) s->n_species[sp] = cnt[sp], s->n += cnt[sp];
   free(s->b);
   s->b = hd_bodies_alloc(s->n);
   if (!s->b) {
@@ -235,10 +251,11 @@ static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
     return hd_error_set(err, HD_ENOMEM, "out of memory");
   }
   rc = hd_cells_alloc(s, err);
-  int32_t next[HD_NSPECIES] = {0, cnt[0]};
+  int32_t next[HD_MAX_SPECIES] = {0};
+  for (int sp = 1; sp < s->nsp; sp++) next[sp] = next[sp - 1] + cnt[sp - 1];
   long *line = malloc(sizeof(long) * (size_t)(s->n > 0 ? s->n : 1));
   for (long r = 0; rc == HD_OK && r < n; r++) {
-    int sp = rows[r].kind == HD_KIND_DIMER ? HD_SP_DIMER : HD_SP_DISK;
+    int sp = rows[r].species, turns = s->shape[sp].n > 1;
     int32_t i = next[sp]++;
     hd_body *b = &s->b[i];
     b->species = sp;
@@ -247,8 +264,8 @@ static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
                     rows[r].y,
                     rows[r].vx,
                     rows[r].vy,
-                    sp == HD_SP_DIMER ? remainder(rows[r].phi, 2 * M_PI) : 0.0,
-                    sp == HD_SP_DIMER ? rows[r].omega : 0.0};
+                    turns ? remainder(rows[r].phi, 2 * M_PI) : 0.0,
+                    turns ? rows[r].omega : 0.0};
     if (line) line[i] = rows[r].line;
     if (b->k.x < 0 || b->k.x >= s->lx || b->k.y < 0 || b->k.y >= s->ly) {
       rc = hd_error_set(err, HD_EINPUT, "%s:%ld: body at (%g, %g) is outside the box %g x %g",
@@ -282,14 +299,17 @@ static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
 
 int hd_init_state(hd_sim *s, const hd_scene *sc, hd_error *err) {
   if (sc->placement == HD_PLACE_STATE) return place_from_file(s, sc, err);
-  s->n = s->n_species[0] + s->n_species[1];
+  s->n = 0;
+  for (int sp = 0; sp < s->nsp; sp++) s->n += s->n_species[sp];
   s->b = hd_bodies_alloc(s->n);
   if (!s->b) return hd_error_set(err, HD_ENOMEM, "out of memory for %d bodies", s->n);
   int rc = hd_cells_alloc(s, err);
   if (rc) return rc;
-  for (int32_t i = 0; i < s->n; i++) {
-    s->b[i].species = i < s->n_species[0] ? HD_SP_DIMER : HD_SP_DISK;
+  for (int32_t i = 0, sp = 0, left = s->n_species[0]; i < s->n; i++) {
+    while (left == 0) left = s->n_species[++sp]; /* dimers, disks, then each named species */
+    s->b[i].species = sp;
     s->b[i].next = -1;
+    left--;
   }
   if (s->n == 0) /* a scene without bodies: no grid to size (0 / 0 sites per row) */
     rc = HD_OK;

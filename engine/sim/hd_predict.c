@@ -93,6 +93,12 @@ static inline void predict_disk_pair(const hd_sim *s, hd_body *bi, int32_t j, do
   }
 }
 
+/* Contact distance of two disk bodies (the diameter of a species with itself). */
+static inline double disk_contact(const hd_sim *s, const hd_body *bi, const hd_body *bj) {
+  return bi->species == bj->species ? s->shape[bi->species].d
+                                    : 0.5 * (s->shape[bi->species].d + s->shape[bj->species].d);
+}
+
 /* max and min of doubles that are not NaN, inline (fmax and fmin are library calls) */
 static inline double dmax(double a, double b) {
   return a > b ? a : b;
@@ -108,8 +114,8 @@ static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, dou
   const double dtj = s->c.t - bj->t;
   const hd_shape *si = &s->shape[bi->species];
   int ix = (sx > 0) - (sx < 0), iy = (sy > 0) - (sy < 0);
-  if (bi->species == HD_SP_DISK && bj->species == HD_SP_DISK) {
-    predict_disk_pair(s, bi, j, sx, sy, ix, iy, si->d, best);
+  if (si->tag == HD_SHAPE_DISK && s->shape[bj->species].tag == HD_SHAPE_DISK) {
+    predict_disk_pair(s, bi, j, sx, sy, ix, iy, disk_contact(s, bi, bj), best);
     return;
   }
   /* the search ends at the first crossing of either body: whichever crosses first predicts
@@ -179,8 +185,9 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
   hd_body *bi = &s->b[i];
   const double now = s->c.t;
   const hd_shape *si = &s->shape[bi->species];
-  double rad[HD_NSPECIES];
-  for (int sp = 0; sp < HD_NSPECIES; sp++) rad[sp] = hd_shape_radius(&s->shape[sp]) * (1.0 + 1e-9);
+  const double *rad = s->reach; /* enclosing radii, widened */
+  const double rad_i = rad[bi->species];
+  const int i_disk = si->tag == HD_SHAPE_DISK; /* (locals: the stores below may alias s) */
   hd_cand cs[HD_MAX_CAND];
   int nc = 0, ord[HD_MAX_CAND];
   double sca[2]; /* sin and cos of i's orientation, shared by its searches */
@@ -188,11 +195,12 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
   HD_FOR_NEIGHBOURS(s, bi->cell, {
     if (j == i || j == skip) continue;
     const hd_body *bj = &s->b[j];
-    if (bi->species == HD_SP_DISK && bj->species == HD_SP_DISK) {
-      predict_disk_pair(s, bi, j, sx, sy, (sx > 0) - (sx < 0), (sy > 0) - (sy < 0), si->d, best);
+    if (i_disk && s->shape[bj->species].tag == HD_SHAPE_DISK) {
+      predict_disk_pair(s, bi, j, sx, sy, (sx > 0) - (sx < 0), (sy > 0) - (sy < 0),
+                        disk_contact(s, bi, bj), best);
       continue;
     }
-    double dtj = now - bj->t, R = rad[bi->species] + rad[bj->species];
+    double dtj = now - bj->t, R = rad_i + rad[bj->species];
     double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x,
            ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
     /* the circles' first meeting, without branches on the data (they would be mispredicted):

@@ -3,6 +3,7 @@
  * hd_predict.c, cells in hd_cells.c, the initial state in hd_init.c. */
 #include <stddef.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -21,18 +22,64 @@
 static const hd_wall default_walls[4] = {
     {0, 0.0, +1.0}, {0, 0.0, -1.0}, {1, 0.0, +1.0}, {1, 0.0, -1.0}};
 
+/* The species table from the scene: [dimers] (0), [disks] (1), then each `[species NAME]`
+ * section (2, 3, ...), with the pair restitutions.  The pair (dimers, disks) takes [disks]
+ * alpha_dimer; a pair with a named species takes sc->alpha_pair.  HD_EINPUT for a named species
+ * the engine cannot build (the scene's loader checks the same: this guards a scene filled by
+ * hand). */
+static int species_setup(hd_sim *s, const hd_scene *sc, hd_error *err) {
+  if (sc->n_named < 0 || sc->n_named > HD_MAX_SPECIES - 2)
+    return hd_error_set(err, HD_EINPUT, "scene: %d [species] sections, at most %d", sc->n_named,
+                        HD_MAX_SPECIES - 2);
+  s->nsp = 2 + sc->n_named;
+  s->n_species[HD_SP_DIMER] = (int32_t)sc->n_dimers;
+  s->n_species[HD_SP_DISK] = (int32_t)sc->n_disks;
+  hd_shape_dimer(&s->shape[HD_SP_DIMER], sc->dimer_d, sc->dimer_a, sc->dimer_m);
+  hd_shape_disk(&s->shape[HD_SP_DISK], sc->disk_sigma, sc->disk_mass);
+  snprintf(s->sp_name[HD_SP_DIMER], sizeof s->sp_name[0], "dimer");
+  snprintf(s->sp_name[HD_SP_DISK], sizeof s->sp_name[0], "disk");
+  s->alpha[HD_SP_DIMER][HD_SP_DIMER] = sc->dimer_alpha;
+  s->alpha[HD_SP_DISK][HD_SP_DISK] = sc->disk_alpha;
+  s->alpha[HD_SP_DIMER][HD_SP_DISK] = s->alpha[HD_SP_DISK][HD_SP_DIMER] = sc->disk_alpha_dimer;
+  for (int k = 0; k < sc->n_named; k++) {
+    const hd_scene_species *sp = &sc->named[k];
+    int i = HD_SP_NAMED + k;
+    if (sp->count < 0 || sp->count > HD_MAX_COUNT ||
+        hd_shape_cluster(&s->shape[i], sp->ndisk, sp->x, sp->y, sp->d, sp->m, 1) ||
+        !(sp->alpha >= 0.0 && sp->alpha <= 1.0))
+      return hd_error_set(err, HD_EINPUT,
+                          "scene:%ld: [species %.31s]: count, disks or alpha out of range",
+                          sp->line, sp->name);
+    s->n_species[i] = (int32_t)sp->count;
+    snprintf(s->sp_name[i], sizeof s->sp_name[0], "%.31s", sp->name);
+    s->alpha[i][i] = sp->alpha;
+    for (int j = 0; j < i; j++) {
+      double a = sc->alpha_pair[i][j];
+      if (!(a >= 0.0 && a <= 1.0))
+        return hd_error_set(err, HD_EINPUT,
+                            "scene:%ld: [species %.31s] alpha with species %d = %g: must be in "
+                            "[0, 1]",
+                            sp->line, sp->name, j, a);
+      s->alpha[i][j] = s->alpha[j][i] = a;
+    }
+  }
+  int64_t n = 0;
+  for (int i = 0; i < s->nsp; i++) n += s->n_species[i];
+  for (int i = 0; i < s->nsp; i++) s->reach[i] = hd_shape_radius(&s->shape[i]) * (1.0 + 1e-9);
+  if (n > INT32_MAX) return hd_error_set(err, HD_EINPUT, "scene: %lld bodies: too many", (long long)n);
+  return HD_OK;
+}
+
 /* Everything hd_sim_alloc and hd_sim_alloc_restore share: species, box, walls, RNG. */
 static int sim_setup(hd_sim **out, const hd_scene *sc, hd_error *err) {
   *out = NULL;
   hd_sim *s = calloc(1, sizeof *s);
   if (!s) return hd_error_set(err, HD_ENOMEM, "out of memory");
-  s->n_species[HD_SP_DIMER] = (int32_t)sc->n_dimers;
-  s->n_species[HD_SP_DISK] = (int32_t)sc->n_disks;
-  s->shape[HD_SP_DIMER] = (hd_shape){HD_KIND_DIMER, sc->dimer_d, sc->dimer_a, sc->dimer_m};
-  s->shape[HD_SP_DISK] = (hd_shape){HD_KIND_DISK, sc->disk_sigma, 0.0, sc->disk_mass};
-  s->alpha[HD_SP_DIMER][HD_SP_DIMER] = sc->dimer_alpha;
-  s->alpha[HD_SP_DISK][HD_SP_DISK] = sc->disk_alpha;
-  s->alpha[HD_SP_DIMER][HD_SP_DISK] = s->alpha[HD_SP_DISK][HD_SP_DIMER] = sc->disk_alpha_dimer;
+  int rc = species_setup(s, sc, err);
+  if (rc) {
+    hd_sim_free(s);
+    return rc;
+  }
   s->wall_alpha = sc->wall_alpha;
   s->lx = sc->box_x;
   s->ly = sc->box_y;
@@ -73,7 +120,9 @@ int hd_sim_queue_init(hd_sim *s, hd_error *err) {
   else if (bytes > HD_PREFETCH_BYTES)
     hd_queue_set_prefetch(s->q, hd_predict_prefetch_near, s, 2);
   s->rebase_every = s->n > 1000 ? 100 * (int64_t)s->n : 100000;
-  s->disks_only = s->n_species[HD_SP_DIMER] == 0;
+  s->disks_only = 1; /* only [disks] bodies */
+  for (int sp = 0; sp < s->nsp; sp++)
+    if (sp != HD_SP_DISK && s->n_species[sp] > 0) s->disks_only = 0;
   s->partial_cross = s->disks_only && s->ncx >= 3 && s->ncy >= 3;
   return HD_OK;
 }
@@ -92,10 +141,10 @@ static void start(hd_sim *s) {
 /* Melts a lattice (placement too dense for random addition): elastic dynamics for 20
  * collisions per body, then fresh Maxwellian velocities and the clocks back to zero. */
 static int melt(hd_sim *s, const hd_scene *sc, hd_error *err) {
-  double alpha[HD_NSPECIES][HD_NSPECIES], wall_alpha = s->wall_alpha;
+  double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES], wall_alpha = s->wall_alpha;
   memcpy(alpha, s->alpha, sizeof alpha);
-  for (int a = 0; a < HD_NSPECIES; a++)
-    for (int b = 0; b < HD_NSPECIES; b++) s->alpha[a][b] = 1.0;
+  for (int a = 0; a < HD_MAX_SPECIES; a++)
+    for (int b = 0; b < HD_MAX_SPECIES; b++) s->alpha[a][b] = 1.0;
   s->wall_alpha = 1.0;
   int rc = HD_OK;
   /* 40 cpd, or until nothing moves (no event left), or a bound on events for a gas whose
@@ -128,17 +177,8 @@ static int melt(hd_sim *s, const hd_scene *sc, hd_error *err) {
   return HD_OK;
 }
 
-/* Until the engine runs named species (issue 18, branch cluster): refuse them, naming the
- * section.  The lead removes this when merging the engine that consumes them. */
-static int refuse_named(const hd_scene *sc, hd_error *err) {
-  if (sc->n_named == 0) return HD_OK;
-  return hd_error_set(err, HD_EINPUT, "%s:%ld: [species %s]: not supported by this engine",
-                      sc->path[0] ? sc->path : "<scene>", sc->named[0].line, sc->named[0].name);
-}
-
 int hd_sim_alloc(hd_sim **out, const hd_scene *sc, hd_error *err) {
   hd_sim *s;
-  if (refuse_named(sc, err)) return HD_EINPUT;
   int rc = sim_setup(&s, sc, err);
   if (rc) return rc;
   rc = hd_init_state(s, sc, err); /* sets n, b and the cells */
@@ -169,7 +209,6 @@ int hd_sim_alloc(hd_sim **out, const hd_scene *sc, hd_error *err) {
 int hd_sim_alloc_restore(hd_sim **out, const hd_scene *sc, const void *blob, size_t n,
                          hd_error *err) {
   hd_sim *s;
-  if (refuse_named(sc, err)) return HD_EINPUT;
   int rc = sim_setup(&s, sc, err);
   if (rc) return rc;
   rc = hd_sim_restore_blob(s, blob, n, err);
@@ -234,14 +273,13 @@ void hd_sim_momentum(const hd_sim *s, double *px, double *py) {
 static double pair_overlap(const hd_sim *s, const hd_kin *ki, const hd_shape *si, const hd_kin *kj,
                            const hd_shape *sj) {
   double worst = -INFINITY;
-  int ni = si->kind == HD_KIND_DIMER ? 2 : 1, nj = sj->kind == HD_KIND_DIMER ? 2 : 1;
-  double D = 0.5 * (si->d + sj->d);
+  int ni = si->n, nj = sj->n;
   (void)s;
   for (int a = 0; a < ni; a++) {
     double xa, ya;
     hd_kin_disk_pos(ki, si, a, &xa, &ya);
     for (int b = 0; b < nj; b++) {
-      double xb, yb;
+      double xb, yb, D = 0.5 * (si->dk[a] + sj->dk[b]);
       hd_kin_disk_pos(kj, sj, b, &xb, &yb);
       double dist = hypot(xb - xa, yb - ya);
       worst = fmax(worst, (D - dist) / D);
@@ -356,8 +394,8 @@ static void rebook_energy(hd_sim *s) {
 static int frozen(const hd_sim *s) {
   for (int32_t i = 0; i < s->n; i++)
     if (s->b[i].k.vx != 0.0 || s->b[i].k.vy != 0.0) return 0;
-  double reach[HD_NSPECIES];
-  for (int sp = 0; sp < HD_NSPECIES; sp++) reach[sp] = hd_shape_radius(&s->shape[sp]) * (1 + 1e-9);
+  double reach[HD_MAX_SPECIES];
+  for (int sp = 0; sp < s->nsp; sp++) reach[sp] = hd_shape_radius(&s->shape[sp]) * (1 + 1e-9);
   for (int32_t i = 0; i < s->n; i++) {
     const hd_body *bi = &s->b[i];
     int close = 0;
@@ -429,7 +467,11 @@ static void rebase(hd_sim *s) {
   hd_sim_sort(s); /* also rebuilds the queue, whose order rounding may have changed */
 }
 
+/* hd_coll_kind of a collision of i with j (j < 0: a wall): the paper's five kinds for dimers
+ * and disks, 6 (body-body) and 7 (body-wall) when a named species takes part. */
 static int collision_kind(const hd_sim *s, int32_t i, int32_t j) {
+  if (s->b[i].species >= HD_SP_NAMED || (j >= 0 && s->b[j].species >= HD_SP_NAMED))
+    return j < 0 ? 7 : 6;
   int di = s->b[i].species == HD_SP_DIMER, dj = j >= 0 && s->b[j].species == HD_SP_DIMER;
   if (j < 0) return di ? 3 : 4;
   if (di && dj) return 0;
@@ -465,7 +507,7 @@ static int check_pileup(hd_sim *s, int32_t i, int32_t j, hd_error *err) {
 /* Collapse bookkeeping after a collision with normal relative velocity vn. */
 static int check_collapse(hd_sim *s, double vn, hd_error *err) {
   double mass = 0.0;
-  for (int sp = 0; sp < HD_NSPECIES; sp++) mass += s->n_species[sp] * hd_shape_mass(&s->shape[sp]);
+  for (int sp = 0; sp < s->nsp; sp++) mass += s->n_species[sp] * hd_shape_mass(&s->shape[sp]);
   double vth = sqrt(2.0 * fmax(s->c.e_kin, 0.0) / mass);
   if (fabs(vn) < HD_SLOW_VN * vth || vth == 0.0) {
     if (++s->c.slow_run < HD_SLOW_RUN) return HD_OK;
@@ -494,7 +536,7 @@ static int verify_contact(const hd_sim *s, const hd_kin *ki, const hd_kin *kj, i
   double xa, ya, xb, yb;
   hd_kin_disk_pos(ki, si, ka, &xa, &ya);
   hd_kin_disk_pos(kj, sj, kb, &xb, &yb);
-  double D = 0.5 * (si->d + sj->d), gap = (hypot(xb - xa, yb - ya) - D) / D;
+  double D = 0.5 * (si->dk[ka] + sj->dk[kb]), gap = (hypot(xb - xa, yb - ya) - D) / D;
   if (fabs(gap) > HD_VERIFY_TOL)
     return hd_error_set(err, HD_EPHYS,
                         "verification: bodies %d and %d collide at distance "
@@ -604,7 +646,7 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
     s->last_i = i;
     s->last_j = j;
     *ev = (hd_event_out){hd_sim_time(s), collision_kind(s, i, j), i, j, ka, kb, ev->info};
-    if (bi->species == HD_SP_DISK && bj->species == HD_SP_DIMER) { /* log the dimer first */
+    if (bi->species > bj->species) { /* the lower species first (the dimer of dimer-disk) */
       ev->i = j, ev->j = i, ev->ka = kb, ev->kb = ka;
       double th = ev->info.theta_i;
       ev->info.theta_i = ev->info.theta_j, ev->info.theta_j = th;

@@ -21,8 +21,10 @@
 #include "hd_queue.h"
 #include "hd_scene.h"
 
-/* Species index of a body (its shape is sim->shape[species]). */
-enum { HD_SP_DIMER = 0, HD_SP_DISK = 1, HD_NSPECIES = 2 };
+/* Species index of a body (its shape is sim->shape[species]): [dimers] is 0, [disks] 1, the
+ * scene's `[species NAME]` sections 2, 3, ... (hd_scene.named[species - 2]), up to
+ * HD_MAX_SPECIES (hd_scene.h). */
+enum { HD_SP_DIMER = 0, HD_SP_DISK = 1, HD_SP_NAMED = 2 };
 
 /* Event types. */
 enum { HD_EV_NONE = 0, HD_EV_PAIR = 1, HD_EV_CELL = 2, HD_EV_WALL = 3 };
@@ -39,7 +41,7 @@ typedef struct hd_body {
   /* first cache line: what a neighbour's prediction reads */
   double t;        /* time of the state k */
   hd_kin k;        /* centre of mass, velocity, orientation, angular velocity at t */
-  int32_t species; /* HD_SP_DIMER or HD_SP_DISK */
+  int32_t species; /* index into hd_sim.shape (HD_SP_DIMER, HD_SP_DISK, HD_SP_NAMED + k) */
   int32_t next;    /* next body in the cell's list, -1 at the end */
   /* second cache line */
   double ev_t;       /* min(p_t, c_t): time of the next event (INFINITY if none) */
@@ -93,7 +95,8 @@ typedef struct hd_sim_clock {
 /* What one collision did, for the log. */
 typedef struct hd_event_out {
   double t;               /* absolute time */
-  int kind;               /* hd_coll_kind (hd_db.h numbering: 0 dimer-dimer ... 4 disk-wall) */
+  int kind;               /* hd_coll_kind (hd_db.h numbering: 0 dimer-dimer ... 4 disk-wall,
+                           * 6 body-body, 7 body-wall for a pair with a named species) */
   int32_t i, j;           /* bodies; j = -1 - wall index for a wall */
   int ka, kb;             /* touching disks (kb = -1 for a wall) */
   hd_collision_info info; /* angles, f, de, vn */
@@ -104,12 +107,17 @@ typedef struct hd_sim {
   int32_t n;             /* bodies */
   int64_t drift_removed; /* times the system was taken to its centre-of-mass frame (rebase) */
   int zero_momentum;     /* velocities drawn with zero total momentum (not from a state file) */
-  int32_t n_species[HD_NSPECIES];         /* bodies per species */
+  int nsp;                                /* species: 2 + the scene's named ones */
+  int32_t n_species[HD_MAX_SPECIES];      /* bodies per species */
   hd_body *b;                             /* the bodies, kept sorted by cell (see hd_sim_sort) */
   int32_t *id;                            /* id[i]: the user's number of body i (dimers first, then
-                                             disks, as created); stable while b is re-sorted */
-  hd_shape shape[HD_NSPECIES];            /* shapes by species */
-  double alpha[HD_NSPECIES][HD_NSPECIES]; /* pair restitution by species */
+                                             disks, then each named species, as created); stable
+                                             while b is re-sorted */
+  hd_shape shape[HD_MAX_SPECIES];         /* shapes by species (HD_SHAPE_* tag derived) */
+  char sp_name[HD_MAX_SPECIES][HD_SPECIES_NAME_MAX]; /* species names: "dimer", "disk", NAME */
+  double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES];      /* pair restitution by species */
+  double reach[HD_MAX_SPECIES]; /* enclosing radius of each species widened by 1e-9 (the
+                                 * neighbour filter of hd_predict.c) */
   double wall_alpha;                      /* body-wall restitution */
   double lx, ly;                          /* box */
   unsigned walls;                         /* HD_WALL_* bits */
@@ -122,7 +130,7 @@ typedef struct hd_sim {
   hd_sim_clock c;                         /* clocks and counters */
   int64_t rebase_every;                   /* events between rebases of the time origin */
   int verify;                             /* check invariants at every event (slow) */
-  int disks_only;         /* no dimers: disk-disk prediction without shape dispatch */
+  int disks_only;         /* only [disks] bodies: disk-disk prediction without shape dispatch */
   int partial_cross;      /* pure disks, >= 3x3 cells: crossings search 3 new cells */
   int melt;               /* set-up only: the lattice placed must be melted */
   double max_overlap;     /* verification: largest relative overlap seen */
