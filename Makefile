@@ -226,7 +226,7 @@ bench: bin/haff $(BENCH_BIN) $(MEMLAT_BIN)
 SHAPES_BIN := $(BUILD)/plots/shapes
 $(SHAPES_BIN): plots/shapes.c $(LIB) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -o $@ $< $(LIB) $(LDLIBS)
+	$(CC) $(CFLAGS) $(ALL_INC) -o $@ $< $(LIB) $(LDLIBS)
 
 plots: bin/haff $(SHAPES_BIN)
 	@$(MAKE) --no-print-directory -f plots/plots.mk SHAPES_BIN=$(SHAPES_BIN)

@@ -107,7 +107,7 @@ static void put_body(FILE *out, const xyz_geom *g, long long body, int kind, con
   for (int j = 0; j < disks; j++) {
     double x = k->x, y = k->y, vx = k->vx, vy = k->vy, m = 0, r = 0.5;
     if (kind == HD_DB_KIND_ROD) {
-      m = body % 2 ? 1 + 1 / g->rod_gamma : 1 + g->rod_gamma; /* engine/rods.c */
+      m = body % 2 ? 1 + 1 / g->rod_gamma : 1 + g->rod_gamma; /* engine/rods/rods.c */
     } else { /* the engine's disk positions and velocities */
       m = sh->mk[j], r = 0.5 * sh->dk[j];
       hd_kin_disk_pos(k, sh, j, &x, &y);
