@@ -96,8 +96,8 @@ typedef struct movie {
   int density, fps, size, gif;
   double lx, ly;
   hd_scene sc;
-  int *kinds; /* body kinds, from the initial states */
-  long n;     /* bodies */
+  int *kinds;           /* body kinds, from the initial states */
+  long n;               /* bodies */
   hd_shape dimer, disk; /* the scene's [dimers] and [disks], as the engine has them */
   int nsp;              /* species of the run's species table (schema version 3), 0 if none */
   hd_shape sp[HD_MAX_SPECIES];       /* their shapes (hd_db_read_species) */

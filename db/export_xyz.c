@@ -33,7 +33,6 @@
 #include "hd_db.h"
 #include "hd_scene.h"
 
-
 /* The geometry export needs, read from the run's scene text. */
 typedef struct xyz_geom {
   double lx, ly;      /* box edges, NAN until known */
@@ -43,7 +42,7 @@ typedef struct xyz_geom {
   double rod_gamma;   /* [rods] gamma (masses 1 + gamma, 1 + 1/gamma alternate) */
   int rods;           /* a rods run */
   int nsp;            /* species of the run's species table (schema version 3), 0 if none */
-  hd_shape sp[HD_MAX_SPECIES]; /* their shapes: the engine's (hd_db_read_species) */
+  hd_shape sp[HD_MAX_SPECIES];       /* their shapes: the engine's (hd_db_read_species) */
   int64_t first[HD_MAX_SPECIES + 1]; /* bodies first[s] .. first[s + 1] - 1 are of species s */
 } xyz_geom;
 
@@ -99,7 +98,7 @@ static void put_num(FILE *out, double x) {
 /* Writes the lines of one body (its disks). */
 static void put_body(FILE *out, const xyz_geom *g, long long body, int kind, const hd_kin *k) {
   const hd_shape *sh = body_shape(g, body, kind);
-  const char *species = kind == HD_KIND_DIMER    ? "N"
+  const char *species = kind == HD_KIND_DIMER     ? "N"
                         : kind == HD_DB_KIND_ROD  ? "C"
                         : kind == HD_DB_KIND_BODY ? "O"
                                                   : "Ar";
@@ -174,7 +173,7 @@ static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geo
   /* states: one frame per (label, t); frames rows: one each (src 1), when the file has the
    * table (a database written before it has none, and is opened read-only: no schema added) */
 #define STATES_FRAMES                                                                              \
-  "SELECT label AS lab, t, max(cpd) AS cpd, count(*) AS n, "                                        \
+  "SELECT label AS lab, t, max(cpd) AS cpd, count(*) AS n, "                                       \
   "0 AS src, 0 AS id FROM states WHERE run = ?1 AND (?2 = 'all' OR label = ?2) GROUP BY label, t"
 #define ORDER_FRAMES                                                                               \
   " ORDER BY t, CASE lab WHEN 'initial' THEN 0 WHEN 'frames' THEN 1 WHEN 'velocities' THEN 2 "     \

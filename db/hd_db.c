@@ -32,20 +32,20 @@ extern const char hd_schema_sql[];
 
 struct hd_db {
   sqlite3 *db;
-  char *path;                /* as given, for messages */
-  int readonly;              /* opened by hd_db_open_readonly */
-  long batch_rows;           /* rows per batch transaction */
-  long pending;              /* rows in the open batch */
-  int in_tx;                 /* a batch transaction is open */
-  sqlite3_stmt *ins_run;     /* INSERT INTO runs */
-  sqlite3_stmt *ins_coll;    /* INSERT INTO collisions */
-  sqlite3_stmt *ins_sample;  /* INSERT INTO samples */
+  char *path;                 /* as given, for messages */
+  int readonly;               /* opened by hd_db_open_readonly */
+  long batch_rows;            /* rows per batch transaction */
+  long pending;               /* rows in the open batch */
+  int in_tx;                  /* a batch transaction is open */
+  sqlite3_stmt *ins_run;      /* INSERT INTO runs */
+  sqlite3_stmt *ins_coll;     /* INSERT INTO collisions */
+  sqlite3_stmt *ins_sample;   /* INSERT INTO samples */
   sqlite3_stmt *ins_spsample; /* INSERT INTO sample_species */
-  sqlite3_stmt *ins_state;   /* INSERT INTO states */
-  sqlite3_stmt *ins_ckpt;    /* INSERT INTO checkpoints */
-  sqlite3_stmt *del_ckpt;    /* DELETE older checkpoints of a run */
-  sqlite3_stmt *ins_coll_k;  /* INSERT INTO collisions, HD_DB_GROUP rows at once */
-  sqlite3_stmt *ins_coll2_k; /* the same without the rod columns (left NULL): 2D collisions */
+  sqlite3_stmt *ins_state;    /* INSERT INTO states */
+  sqlite3_stmt *ins_ckpt;     /* INSERT INTO checkpoints */
+  sqlite3_stmt *del_ckpt;     /* DELETE older checkpoints of a run */
+  sqlite3_stmt *ins_coll_k;   /* INSERT INTO collisions, HD_DB_GROUP rows at once */
+  sqlite3_stmt *ins_coll2_k;  /* the same without the rod columns (left NULL): 2D collisions */
   /* The writer thread (see "asynchronous rows" below). */
   int writer_on; /* the thread has been started */
   pthread_t writer;
@@ -178,9 +178,9 @@ static int prepare_group(hd_db *db, sqlite3_stmt **st, const char *cols, int nco
 }
 
 static void finalize_all(hd_db *db) {
-  sqlite3_stmt **sts[] = {&db->ins_run,  &db->ins_coll, &db->ins_sample, &db->ins_state,
-                          &db->ins_ckpt, &db->del_ckpt, &db->ins_coll_k, &db->ins_coll2_k,
-                          &db->ins_spsample};
+  sqlite3_stmt **sts[] = {&db->ins_run,    &db->ins_coll,    &db->ins_sample,
+                          &db->ins_state,  &db->ins_ckpt,    &db->del_ckpt,
+                          &db->ins_coll_k, &db->ins_coll2_k, &db->ins_spsample};
   for (size_t k = 0; k < sizeof sts / sizeof sts[0]; k++) {
     sqlite3_finalize(*sts[k]);
     *sts[k] = NULL;
@@ -807,8 +807,7 @@ static int put_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *
   return batch_step(db, st, err, "insert sample");
 }
 
-static int put_species_sample(hd_db *db, int64_t run, const hd_species_sample *r,
-                              hd_error *err) {
+static int put_species_sample(hd_db *db, int64_t run, const hd_species_sample *r, hd_error *err) {
   int rc = batch_begin(db, err);
   if (rc) return rc;
   sqlite3_stmt *st = db->ins_spsample;
@@ -1590,8 +1589,8 @@ int hd_db_read_species(sqlite3 *h, int64_t run, hd_shape *shape, int64_t *count,
       SQLITE_OK)
     return HD_OK; /* a file from before schema version 3 */
   sqlite3_stmt *st = NULL;
-  if (sqlite3_prepare_v2(h, "SELECT idx, disks, count FROM species WHERE run = ?1 ORDER BY idx",
-                         -1, &st, NULL) != SQLITE_OK)
+  if (sqlite3_prepare_v2(h, "SELECT idx, disks, count FROM species WHERE run = ?1 ORDER BY idx", -1,
+                         &st, NULL) != SQLITE_OK)
     return hd_error_set(err, HD_EIO, "read species: %s", sqlite3_errmsg(h));
   sqlite3_bind_int64(st, 1, run);
   int s, rc = HD_OK;
@@ -1612,7 +1611,8 @@ int hd_db_read_species(sqlite3 *h, int64_t run, hd_shape *shape, int64_t *count,
     else
       count[(*n)++] = sqlite3_column_int64(st, 2);
   }
-  if (!rc && s != SQLITE_DONE) rc = hd_error_set(err, HD_EIO, "read species: %s", sqlite3_errmsg(h));
+  if (!rc && s != SQLITE_DONE)
+    rc = hd_error_set(err, HD_EIO, "read species: %s", sqlite3_errmsg(h));
   sqlite3_finalize(st);
   return rc;
 }

@@ -137,132 +137,132 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
 #define CUSTOM(fn) .type = KT_CUSTOM, .set = (fn)
 
 /* Every key: X(ID, section, name, the rest of its key_def).  K_ID is its index. */
-#define SCENE_KEYS(X)                                                                              \
-  X(AREA, S_SYSTEM, "area_fraction", REAL(0), F(area_fraction), .lo = 0,                           \
-    .hi = HD_MAX_AREA_FRACTION, .lo_open = 1, .hi_open = 1, .show = show_set, .put = put_area,     \
-    .doc_key = "area_fraction = eta", .doc_def = "—",                                              \
-    .doc = "instead of `box`: a square box whose area makes the bodies cover eta")                 \
-  X(BOX, S_SYSTEM, "box", CUSTOM(set_box), F(box_x), .show = show_box, .put = put_box,             \
-    .doc_key = "box = Lx Ly", .doc_def = "—", .doc_range = "both > 0",                             \
-    .doc = "box edges; periodic in every direction no wall closes")                                \
-  X(SEED, S_SYSTEM, "seed", .type = KT_U64, F(seed), .def = 1, .doc_range = "0 … 2^64−1",          \
-    .doc = "RNG seed (`haff run --seed N` is the override `--set system.seed=N`)")                 \
-  X(DCOUNT, S_DIMERS, "count", COUNT(n_dimers, "dimers"))                                          \
-  X(DD, S_DIMERS, "d", REAL(1), F(dimer_d), R_POS, .doc = "diameter of each disk")                 \
-  X(DA, S_DIMERS, "a", REAL(1), F(dimer_a), R_NONNEG, .doc_range = "0 or ≥ 10⁻⁹ d",                \
-    .doc = "bond length, centre to centre (below 10⁻⁹ d the bond is lost in the round-off of " \
-           "the positions; `a = 0` is a disk of mass 2m)")                                         \
-  X(DM, S_DIMERS, "m", REAL(1), F(dimer_m), R_POS, .doc = "mass of each disk (a dimer weighs 2m)") \
-  X(DALPHA, S_DIMERS, "alpha", REAL(1), F(dimer_alpha), R_UNIT, .doc = "dimer–dimer restitution")  \
-  X(SCOUNT, S_DISKS, "count", COUNT(n_disks, "disks"))                                             \
-  X(SSIGMA, S_DISKS, "sigma", REAL(1), F(disk_sigma), R_POS, .doc = "diameter")                    \
-  X(SMASS, S_DISKS, "mass", REAL(1), F(disk_mass), R_POS, .doc = "mass")                           \
-  X(SALPHA, S_DISKS, "alpha", REAL(1), F(disk_alpha), R_UNIT, .doc = "disk–disk restitution")      \
-  X(SALPHAD, S_DISKS, "alpha_dimer", REAL(1), F(disk_alpha_dimer), R_UNIT, .doc_def = "= `alpha`", \
-    .doc = "dimer–disk restitution (eq. 21–22)")                                                   \
-  X(PCOUNT, S_SPECIES, "count", .type = KT_LONG, SPF(count), .lo = 0, .hi = (double)HD_MAX_COUNT,  \
-    .doc_def = "required", .doc = "number of bodies")                                              \
-  X(PALPHA, S_SPECIES, "alpha", REAL(1), SPF(alpha), R_UNIT,                                       \
-    .doc = "restitution between two bodies of the species")                                        \
-  X(PSHAPE, S_SPECIES, "shape", CUSTOM(set_shape), .show = show_short_shape, .put = put_shape,     \
-    .doc_def = "— (or `disks`)",                                                                   \
-    .doc_range = "`disk` \\| `dimer A` \\| `linear N [S]` \\| `triangle [S]` \\| "                 \
-                 "`bent ANGLE [S]`",                                                               \
-    .doc = "a short form (below); S, the centre spacing, defaults to `d`")                         \
-  X(PD, S_SPECIES, "d", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,              \
-    .put = put_sp_dm, .doc = "with `shape`: the diameter of every disk")                           \
-  X(PM, S_SPECIES, "m", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,              \
-    .put = put_sp_dm, .doc = "with `shape`: the mass of every disk")                               \
-  X(PDISKS, S_SPECIES, "disks", CUSTOM(set_disks), .show = show_explicit, .put = put_disks,        \
-    .doc_key = "disks = x y d m; x y d m; ...", .doc_def = "— (or `shape`)",                       \
-    .doc_range = "1 to 8 disks, d > 0, m > 0; no blank before `;`",                                \
-    .doc = "instead of `shape`: each disk's centre in the body frame, diameter and mass")          \
-  X(PALPHAX, S_SPECIES, "alpha_OTHER", CUSTOM(set_alpha_other), .put = put_pairs,                  \
-    .doc_def = "the smaller of the two `alpha`s", .doc_range = "[0, 1]",                           \
-    .doc = "restitution between this species and OTHER: another species' NAME, `dimers` or "       \
-           "`disks` (the pair is set once, in either section)")                                    \
-  X(WSIDES, S_WALLS, "sides", CUSTOM(set_sides), F(walls), .show = show_sides, .put = put_sides,   \
-    .doc_def = "required",                                                                         \
-    .doc_range = "`left right`, `bottom top` or all four, space separated, no repeats",            \
-    .doc = "flat hard walls on those box edges")                                                   \
-  X(WALPHA, S_WALLS, "alpha", REAL(1), F(wall_alpha), R_UNIT,                                      \
-    .doc = "body–wall restitution (eq. 24–25)")                                                    \
-  X(TEMP, S_INIT, "temperature", REAL(1), F(temperature), R_NONNEG, .why = "must be > 0",          \
-    .doc_range = "> 0 (≥ 0 with `state`)",                                                         \
-    .doc = "kT per degree of freedom of the initial velocities; not used with `state`")            \
-  X(PLACE, S_INIT, "placement", .type = KT_ENUM, F(placement), .names = placements,                \
-    .show = show_not_state, .doc = "how bodies are placed, orientations random")                   \
-  X(STATE, S_INIT, "state", CUSTOM(set_state), F(state_file), .show = show_state,                  \
-    .put = put_state, .doc_def = "—", .doc_range = "a CSV file",                                   \
-    .doc = "every body given explicitly; relative to the scene file's folder")                     \
-  X(STIME, S_RUN, "stop_time", REAL(0), F(stop_time), R_POS, .if_pos = 1, .doc_def = "unset",      \
-    .doc = "stop at this time")                                                                    \
-  X(SEVENTS, S_RUN, "stop_events", .type = KT_WHOLE, F(stop_events), .lo = 1,                      \
-    .hi = 9007199254740992.0, .if_pos = 1, .doc_def = "unset", .doc_range = "whole, 1 to 2⁵³",     \
-    .doc = "stop after this many collisions")                                                      \
-  X(SCPD, S_RUN, "stop_cpd", REAL(0), F(stop_cpd), R_POS, .if_pos = 1, .doc_def = "unset",         \
-    .doc = "stop at this many collisions per particle")                                            \
-  X(VERIFY, S_RUN, "verify", .type = KT_BOOL, F(verify), .names = zero_one,                        \
-    .doc = "check no-overlap and time order at every event")                                       \
-  X(CKPT, S_RUN, "checkpoint_every", REAL(60), F(checkpoint_every), R_POS,                         \
-    .doc = "wall-clock seconds between checkpoints")                                               \
-  X(LCOLL, S_LOG, "collisions", CUSTOM(set_collisions), F(log_collisions), .put = put_collisions,  \
-    .doc_def = "`all`", .doc_range = "`all` \\| `none` \\| `every N` (N whole ≥ 1)",               \
-    .doc = "which collisions get a row")                                                           \
-  X(LSAMPLES, S_LOG, "samples_every", REAL(0), F(samples_every), R_NONNEG, .doc_def = "0 (none)",  \
-    .doc = "cpd between samples of E_tr, E_rot")                                                   \
-  X(LVEL, S_LOG, "velocities_at", CUSTOM(set_vel_at), F(velocities_at), .show = show_vel,          \
-    .put = put_vel, .doc_def = "none",                                                             \
-    .doc_range = "up to 64 cpd values ≥ 0, strictly ascending, space separated",                   \
-    .doc = "when every body's velocity is stored (at the first collision at or past each value; "  \
-           "values that one collision passes together give one snapshot). A value past "           \
-           "`stop_cpd` is an error at set-up; values the run does not reach for another stop "     \
-           "give none, and the run's message says how many")                                       \
-  X(LVELT, S_LOG, "velocities_at_time", CUSTOM(set_vel_at), F(velocities_at),                      \
-    .show = show_vel_time, .put = put_vel, .doc_def = "none",                                      \
-    .doc_range = "up to 64 times ≥ 0, strictly ascending; not with `velocities_at`",               \
-    .doc = "the same in time: each snapshot is taken at exactly that time (the run is advanced "   \
-           "to it, no collision changed). A time past `stop_time` is an error at set-up")          \
-  X(LFRAMES, S_LOG, "frames_every", REAL(0), F(frames_every), R_NONNEG, .if_pos = 1,               \
-    .doc_def = "0 (none)",                                                                         \
-    .doc = "a frame (position, orientation, velocity of every body, table `frames`) every this "   \
-           "many cpd: at cpd 0 and at the first collision at or past each multiple, one per "      \
-           "collision at most")                                                                    \
-  X(LFRAMEST, S_LOG, "frames_every_time", REAL(0), F(frames_every_time), R_NONNEG, .if_pos = 1,    \
-    .doc_def = "0 (none)", .doc_range = "≥ 0; needs `stop_time`; not with `frames_every`",         \
-    .doc = "a frame at t = 0, T, 2T, … up to `stop_time`, at exactly those times (the engine "   \
-           "stops there; the run's collisions are bit for bit those of a run without frames)")     \
-  X(LFRAMESMB, S_LOG, "frames_max_mb", REAL(HD_FRAMES_MAX_MB), F(frames_max_mb), R_POS,            \
-    .show = show_frames, .doc_range = "> 0; only with frames",                                     \
-    .doc = "cap on the frames' storage, in MB (10⁶ bytes)")                                        \
-  X(RCOUNT, S_RODS, "count", .type = KT_LONG, F(n_rods), .lo = 2, .hi = (double)HD_MAX_COUNT,      \
-    .check = check_rod_count, .doc_def = "required", .doc_range = "whole, even, ≥ 2",              \
-    .doc = "rods on the ring (lengths alternate short/long); the ring length is `count`")          \
-  X(RGAMMA, S_RODS, "gamma", REAL(HD_RODS_GAMMA_DEFAULT), F(rod_gamma), .lo = 0, .hi = 1,          \
-    .lo_open = 1, .doc = "length and mass ratio short/long")                                       \
-  X(RNMOD, S_RODS, "nmod", .type = KT_LONG, F(rod_nmod), .def = HD_RODS_NMOD_DEFAULT, .lo = 1,     \
-    .hi = 1e9, .doc = "vibrational modes per rod")                                                 \
-  X(RMODEL, S_RODS, "model", .type = KT_ENUM, F(rod_model), .names = rod_models,                   \
-    .doc = "`stochastic` (ε ~ p_β) or `constant`")                                                 \
-  X(REPS, S_RODS, "eps", REAL(HD_RODS_GAMMA_DEFAULT), F(rod_eps), R_UNIT, .show = show_rod_eps,    \
-    .doc_def = "= `gamma`", .doc = "the constant model's ε (only with model = constant)")          \
-  X(RDAMP, S_RODS, "damping", REAL(0), F(rod_damping), R_NONNEG,                                   \
-    .doc = "ν: bath temperatures decay as e^{−νt} between collisions")                             \
-  X(RTC, S_RODS, "tc", REAL(0), F(rod_tc), R_NONNEG,                                               \
-    .doc = "TC model: ε = 1 when a rod collided less than tc ago (0 = off)")                       \
-  X(RSTEP, S_RODS, "eps_step", REAL(0), F(rod_eps_step), R_NONNEG, .check = check_eps_step,        \
-    .doc_def = "0 (= 0.01)", .doc_range = "0 or in [1e-5, 0.5]",                                   \
-    .doc = "grid step of the ε sampler (the direct one, and the one the table is built from); "  \
-           "the direct sampler's √step bias lowers the stationary E_kin by ~3.5 % at 0.01 and "   \
-           "~1 % at 0.0025 (4× slower); see docs/rods.md")                        \
-  X(RTEMP, S_RODS, "temperature", REAL(HD_RODS_TEMPERATURE_DEFAULT), F(rod_temperature), R_POS,    \
-    .doc = "initial temperature T0: E_kin(0) = N T0/2")                                            \
-  X(RTABLE, S_RODS, "table", .type = KT_BOOL, F(rod_table), .names = no_yes,                       \
-    .doc_def = "yes (stochastic model, baths = mean, γ < 1), else no",                            \
+#define SCENE_KEYS(X)                                                                                \
+  X(AREA, S_SYSTEM, "area_fraction", REAL(0), F(area_fraction), .lo = 0,                             \
+    .hi = HD_MAX_AREA_FRACTION, .lo_open = 1, .hi_open = 1, .show = show_set, .put = put_area,       \
+    .doc_key = "area_fraction = eta", .doc_def = "—",                                                \
+    .doc = "instead of `box`: a square box whose area makes the bodies cover eta")                   \
+  X(BOX, S_SYSTEM, "box", CUSTOM(set_box), F(box_x), .show = show_box, .put = put_box,               \
+    .doc_key = "box = Lx Ly", .doc_def = "—", .doc_range = "both > 0",                               \
+    .doc = "box edges; periodic in every direction no wall closes")                                  \
+  X(SEED, S_SYSTEM, "seed", .type = KT_U64, F(seed), .def = 1, .doc_range = "0 … 2^64−1",            \
+    .doc = "RNG seed (`haff run --seed N` is the override `--set system.seed=N`)")                   \
+  X(DCOUNT, S_DIMERS, "count", COUNT(n_dimers, "dimers"))                                            \
+  X(DD, S_DIMERS, "d", REAL(1), F(dimer_d), R_POS, .doc = "diameter of each disk")                   \
+  X(DA, S_DIMERS, "a", REAL(1), F(dimer_a), R_NONNEG, .doc_range = "0 or ≥ 10⁻⁹ d",                  \
+    .doc = "bond length, centre to centre (below 10⁻⁹ d the bond is lost in the round-off of "   \
+           "the positions; `a = 0` is a disk of mass 2m)")                                           \
+  X(DM, S_DIMERS, "m", REAL(1), F(dimer_m), R_POS, .doc = "mass of each disk (a dimer weighs 2m)")   \
+  X(DALPHA, S_DIMERS, "alpha", REAL(1), F(dimer_alpha), R_UNIT, .doc = "dimer–dimer restitution")    \
+  X(SCOUNT, S_DISKS, "count", COUNT(n_disks, "disks"))                                               \
+  X(SSIGMA, S_DISKS, "sigma", REAL(1), F(disk_sigma), R_POS, .doc = "diameter")                      \
+  X(SMASS, S_DISKS, "mass", REAL(1), F(disk_mass), R_POS, .doc = "mass")                             \
+  X(SALPHA, S_DISKS, "alpha", REAL(1), F(disk_alpha), R_UNIT, .doc = "disk–disk restitution")        \
+  X(SALPHAD, S_DISKS, "alpha_dimer", REAL(1), F(disk_alpha_dimer), R_UNIT, .doc_def = "= `alpha`",   \
+    .doc = "dimer–disk restitution (eq. 21–22)")                                                     \
+  X(PCOUNT, S_SPECIES, "count", .type = KT_LONG, SPF(count), .lo = 0, .hi = (double)HD_MAX_COUNT,    \
+    .doc_def = "required", .doc = "number of bodies")                                                \
+  X(PALPHA, S_SPECIES, "alpha", REAL(1), SPF(alpha), R_UNIT,                                         \
+    .doc = "restitution between two bodies of the species")                                          \
+  X(PSHAPE, S_SPECIES, "shape", CUSTOM(set_shape), .show = show_short_shape, .put = put_shape,       \
+    .doc_def = "— (or `disks`)",                                                                     \
+    .doc_range = "`disk` \\| `dimer A` \\| `linear N [S]` \\| `triangle [S]` \\| "                   \
+                 "`bent ANGLE [S]`",                                                                 \
+    .doc = "a short form (below); S, the centre spacing, defaults to `d`")                           \
+  X(PD, S_SPECIES, "d", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,                \
+    .put = put_sp_dm, .doc = "with `shape`: the diameter of every disk")                             \
+  X(PM, S_SPECIES, "m", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,                \
+    .put = put_sp_dm, .doc = "with `shape`: the mass of every disk")                                 \
+  X(PDISKS, S_SPECIES, "disks", CUSTOM(set_disks), .show = show_explicit, .put = put_disks,          \
+    .doc_key = "disks = x y d m; x y d m; ...", .doc_def = "— (or `shape`)",                         \
+    .doc_range = "1 to 8 disks, d > 0, m > 0; no blank before `;`",                                  \
+    .doc = "instead of `shape`: each disk's centre in the body frame, diameter and mass")            \
+  X(PALPHAX, S_SPECIES, "alpha_OTHER", CUSTOM(set_alpha_other), .put = put_pairs,                    \
+    .doc_def = "the smaller of the two `alpha`s", .doc_range = "[0, 1]",                             \
+    .doc = "restitution between this species and OTHER: another species' NAME, `dimers` or "         \
+           "`disks` (the pair is set once, in either section)")                                      \
+  X(WSIDES, S_WALLS, "sides", CUSTOM(set_sides), F(walls), .show = show_sides, .put = put_sides,     \
+    .doc_def = "required",                                                                           \
+    .doc_range = "`left right`, `bottom top` or all four, space separated, no repeats",              \
+    .doc = "flat hard walls on those box edges")                                                     \
+  X(WALPHA, S_WALLS, "alpha", REAL(1), F(wall_alpha), R_UNIT,                                        \
+    .doc = "body–wall restitution (eq. 24–25)")                                                      \
+  X(TEMP, S_INIT, "temperature", REAL(1), F(temperature), R_NONNEG, .why = "must be > 0",            \
+    .doc_range = "> 0 (≥ 0 with `state`)",                                                           \
+    .doc = "kT per degree of freedom of the initial velocities; not used with `state`")              \
+  X(PLACE, S_INIT, "placement", .type = KT_ENUM, F(placement), .names = placements,                  \
+    .show = show_not_state, .doc = "how bodies are placed, orientations random")                     \
+  X(STATE, S_INIT, "state", CUSTOM(set_state), F(state_file), .show = show_state,                    \
+    .put = put_state, .doc_def = "—", .doc_range = "a CSV file",                                     \
+    .doc = "every body given explicitly; relative to the scene file's folder")                       \
+  X(STIME, S_RUN, "stop_time", REAL(0), F(stop_time), R_POS, .if_pos = 1, .doc_def = "unset",        \
+    .doc = "stop at this time")                                                                      \
+  X(SEVENTS, S_RUN, "stop_events", .type = KT_WHOLE, F(stop_events), .lo = 1,                        \
+    .hi = 9007199254740992.0, .if_pos = 1, .doc_def = "unset", .doc_range = "whole, 1 to 2⁵³",       \
+    .doc = "stop after this many collisions")                                                        \
+  X(SCPD, S_RUN, "stop_cpd", REAL(0), F(stop_cpd), R_POS, .if_pos = 1, .doc_def = "unset",           \
+    .doc = "stop at this many collisions per particle")                                              \
+  X(VERIFY, S_RUN, "verify", .type = KT_BOOL, F(verify), .names = zero_one,                          \
+    .doc = "check no-overlap and time order at every event")                                         \
+  X(CKPT, S_RUN, "checkpoint_every", REAL(60), F(checkpoint_every), R_POS,                           \
+    .doc = "wall-clock seconds between checkpoints")                                                 \
+  X(LCOLL, S_LOG, "collisions", CUSTOM(set_collisions), F(log_collisions), .put = put_collisions,    \
+    .doc_def = "`all`", .doc_range = "`all` \\| `none` \\| `every N` (N whole ≥ 1)",                 \
+    .doc = "which collisions get a row")                                                             \
+  X(LSAMPLES, S_LOG, "samples_every", REAL(0), F(samples_every), R_NONNEG, .doc_def = "0 (none)",    \
+    .doc = "cpd between samples of E_tr, E_rot")                                                     \
+  X(LVEL, S_LOG, "velocities_at", CUSTOM(set_vel_at), F(velocities_at), .show = show_vel,            \
+    .put = put_vel, .doc_def = "none",                                                               \
+    .doc_range = "up to 64 cpd values ≥ 0, strictly ascending, space separated",                     \
+    .doc = "when every body's velocity is stored (at the first collision at or past each value; "    \
+           "values that one collision passes together give one snapshot). A value past "             \
+           "`stop_cpd` is an error at set-up; values the run does not reach for another stop "       \
+           "give none, and the run's message says how many")                                         \
+  X(LVELT, S_LOG, "velocities_at_time", CUSTOM(set_vel_at), F(velocities_at),                        \
+    .show = show_vel_time, .put = put_vel, .doc_def = "none",                                        \
+    .doc_range = "up to 64 times ≥ 0, strictly ascending; not with `velocities_at`",                 \
+    .doc = "the same in time: each snapshot is taken at exactly that time (the run is advanced "     \
+           "to it, no collision changed). A time past `stop_time` is an error at set-up")            \
+  X(LFRAMES, S_LOG, "frames_every", REAL(0), F(frames_every), R_NONNEG, .if_pos = 1,                 \
+    .doc_def = "0 (none)",                                                                           \
+    .doc = "a frame (position, orientation, velocity of every body, table `frames`) every this "     \
+           "many cpd: at cpd 0 and at the first collision at or past each multiple, one per "        \
+           "collision at most")                                                                      \
+  X(LFRAMEST, S_LOG, "frames_every_time", REAL(0), F(frames_every_time), R_NONNEG, .if_pos = 1,      \
+    .doc_def = "0 (none)", .doc_range = "≥ 0; needs `stop_time`; not with `frames_every`",           \
+    .doc = "a frame at t = 0, T, 2T, … up to `stop_time`, at exactly those times (the engine "     \
+           "stops there; the run's collisions are bit for bit those of a run without frames)")       \
+  X(LFRAMESMB, S_LOG, "frames_max_mb", REAL(HD_FRAMES_MAX_MB), F(frames_max_mb), R_POS,              \
+    .show = show_frames, .doc_range = "> 0; only with frames",                                       \
+    .doc = "cap on the frames' storage, in MB (10⁶ bytes)")                                          \
+  X(RCOUNT, S_RODS, "count", .type = KT_LONG, F(n_rods), .lo = 2, .hi = (double)HD_MAX_COUNT,        \
+    .check = check_rod_count, .doc_def = "required", .doc_range = "whole, even, ≥ 2",                \
+    .doc = "rods on the ring (lengths alternate short/long); the ring length is `count`")            \
+  X(RGAMMA, S_RODS, "gamma", REAL(HD_RODS_GAMMA_DEFAULT), F(rod_gamma), .lo = 0, .hi = 1,            \
+    .lo_open = 1, .doc = "length and mass ratio short/long")                                         \
+  X(RNMOD, S_RODS, "nmod", .type = KT_LONG, F(rod_nmod), .def = HD_RODS_NMOD_DEFAULT, .lo = 1,       \
+    .hi = 1e9, .doc = "vibrational modes per rod")                                                   \
+  X(RMODEL, S_RODS, "model", .type = KT_ENUM, F(rod_model), .names = rod_models,                     \
+    .doc = "`stochastic` (ε ~ p_β) or `constant`")                                                   \
+  X(REPS, S_RODS, "eps", REAL(HD_RODS_GAMMA_DEFAULT), F(rod_eps), R_UNIT, .show = show_rod_eps,      \
+    .doc_def = "= `gamma`", .doc = "the constant model's ε (only with model = constant)")            \
+  X(RDAMP, S_RODS, "damping", REAL(0), F(rod_damping), R_NONNEG,                                     \
+    .doc = "ν: bath temperatures decay as e^{−νt} between collisions")                               \
+  X(RTC, S_RODS, "tc", REAL(0), F(rod_tc), R_NONNEG,                                                 \
+    .doc = "TC model: ε = 1 when a rod collided less than tc ago (0 = off)")                         \
+  X(RSTEP, S_RODS, "eps_step", REAL(0), F(rod_eps_step), R_NONNEG, .check = check_eps_step,          \
+    .doc_def = "0 (= 0.01)", .doc_range = "0 or in [1e-5, 0.5]",                                     \
+    .doc = "grid step of the ε sampler (the direct one, and the one the table is built from); "     \
+           "the direct sampler's √step bias lowers the stationary E_kin by ~3.5 % at 0.01 and "    \
+           "~1 % at 0.0025 (4× slower); see docs/rods.md")                                           \
+  X(RTEMP, S_RODS, "temperature", REAL(HD_RODS_TEMPERATURE_DEFAULT), F(rod_temperature), R_POS,      \
+    .doc = "initial temperature T0: E_kin(0) = N T0/2")                                              \
+  X(RTABLE, S_RODS, "table", .type = KT_BOOL, F(rod_table), .names = no_yes,                         \
+    .doc_def = "yes (stochastic model, baths = mean, γ < 1), else no",                               \
     .doc = "yes: ε from the balanced tabulated p_β (fast, ~3 s to build at the start; stationary " \
-           "E_kin within 0.25 % of equipartition); no: the direct sampler (not with baths = "      \
-           "unequal). **Changed (issue 16):** the default was no")                         \
-  X(RBATHS, S_RODS, "baths", .type = KT_ENUM, F(rod_unequal), .names = rod_baths,                  \
+           "E_kin within 0.25 % of equipartition); no: the direct sampler (not with baths = "        \
+           "unequal). **Changed (issue 16):** the default was no")                                   \
+  X(RBATHS, S_RODS, "baths", .type = KT_ENUM, F(rod_unequal), .names = rod_baths,                    \
     .doc = "`mean` (paper: β = E_tr/mean T_B) or `unequal` (β per rod)")
 
 #define KEY_ENUM(id, ...) K_##id,

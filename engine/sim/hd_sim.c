@@ -66,7 +66,8 @@ static int species_setup(hd_sim *s, const hd_scene *sc, hd_error *err) {
   int64_t n = 0;
   for (int i = 0; i < s->nsp; i++) n += s->n_species[i];
   for (int i = 0; i < s->nsp; i++) s->reach[i] = hd_shape_radius(&s->shape[i]) * (1.0 + 1e-9);
-  if (n > INT32_MAX) return hd_error_set(err, HD_EINPUT, "scene: %lld bodies: too many", (long long)n);
+  if (n > INT32_MAX)
+    return hd_error_set(err, HD_EINPUT, "scene: %lld bodies: too many", (long long)n);
   return HD_OK;
 }
 
