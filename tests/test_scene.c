@@ -1164,6 +1164,13 @@ static void read_stored_lenient(void **state) {
   assert_string_equal(again.text, sc.text);
   hd_scene_free(&again);
   hd_scene_free(&sc);
+  /* found by make fuzz: "state =; NAME" (a value starting with ';') read only, was written
+   * "state = ; NAME", which reads back as a comment: refused on its line */
+  assert_int_equal(hd_scene_read_stored(&sc, "[system]\nbox = 10 10\n[init]\nstate =; x.csv\n",
+                                        "runs.scene", &e),
+                   HD_EINPUT);
+  assert_string_equal(e.msg, "runs.scene:4: [init] state = ; x.csv: a file name cannot start "
+                             "with ';' (a comment)");
   /* but a bad value is still an error, named as the loader names it */
   assert_int_equal(hd_scene_read_stored(&sc, "[dimers]\nalpha = x\n", "runs.scene", &e), HD_EINPUT);
   assert_string_equal(e.msg, "runs.scene:2: [dimers] alpha = x: not a number");

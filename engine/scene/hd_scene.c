@@ -582,6 +582,9 @@ static int set_sides(ctx *c, int si, int k, const char *v) {
 
 static int set_state(ctx *c, int si, int k, const char *v) {
   if (!*v) return FAIL_AT(c, si, k, "missing value: expected a CSV file name");
+  /* the canonical text writes "state = NAME": a NAME starting with ';' would read back as an
+   * inline comment (found by make fuzz through hd_scene_read_stored, which opens no file) */
+  if (*v == ';') return FAIL_AT(c, si, k, "a file name cannot start with ';' (a comment)");
   if (strlen(v) >= sizeof c->state_rel) return FAIL_AT(c, si, k, "file name too long");
   strcpy(c->state_rel, v);
   return HD_OK;
