@@ -97,8 +97,8 @@ int main(int argc, char **argv) {
   }
   if (db && hd_db_commit(db, &err)) return 1;
   double dt = bench_now() - t0;
-  printf("%s\t%ld\t%.2f\t%d\t%ld\t%.3f\t%.4g\t%.4g\t%.3f\n", argv[1], n, eta, log,
-         ncoll, dt, (double)ncoll / dt, (double)(s->c.events - e0) / dt,
+  printf("%s\t%ld\t%.2f\t%d\t%ld\t%.3f\t%.4g\t%.4g\t%.3f\n", argv[1], n, eta, log, ncoll, dt,
+         (double)ncoll / dt, (double)(s->c.events - e0) / dt,
          (double)s->c.stale / (double)(s->c.events - e0));
   if (db) {
     hd_db_close(db, &err);

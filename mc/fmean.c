@@ -134,8 +134,8 @@ int hd_fmean_sample_contact(gsl_rng *rng, double a_over_d, int no_partner_partne
   return 1;
 }
 
-int hd_fmean_sample_shape(gsl_rng *rng, const hd_shape *sh, int all, hd_kin *A, hd_kin *B,
-                          int *ka, int *kb) {
+int hd_fmean_sample_shape(gsl_rng *rng, const hd_shape *sh, int all, hd_kin *A, hd_kin *B, int *ka,
+                          int *kb) {
   int n = sh->n, i = 0, j = 0;
   double wsum = 0.0; /* touching pair (i, j) with probability D_ij / sum */
   for (int p = 0; p < n; p++)
@@ -151,8 +151,12 @@ int hd_fmean_sample_shape(gsl_rng *rng, const hd_shape *sh, int all, hd_kin *A, 
   double D = 0.5 * (sh->dk[i] + sh->dk[j]), cb = cos(phib), sb = sin(phib);
   double bjx = sh->ox[i] + D * cos(psi), bjy = sh->oy[i] + D * sin(psi); /* B_j's centre */
   *A = (hd_kin){0, 0, 0, 0, 0, 0};
-  *B = (hd_kin){bjx - (sh->ox[j] * cb - sh->oy[j] * sb), bjy - (sh->ox[j] * sb + sh->oy[j] * cb),
-                0, 0, phib, 0};
+  *B = (hd_kin){bjx - (sh->ox[j] * cb - sh->oy[j] * sb),
+                bjy - (sh->ox[j] * sb + sh->oy[j] * cb),
+                0,
+                0,
+                phib,
+                0};
   *ka = i;
   *kb = j;
   for (int p = 0; p < n; p++) {
@@ -180,9 +184,9 @@ static double now_seconds(void) {
 typedef struct mc_state {
   gsl_rng *rng;
   hd_fmean_model model;
-  double a;         /* a/d */
-  double theta_max; /* heuristic range */
-  int no_pp;        /* no partner-partner rejection */
+  double a;           /* a/d */
+  double theta_max;   /* heuristic range */
+  int no_pp;          /* no partner-partner rejection */
   const hd_shape *sh; /* NULL, or the shape of both bodies (hd_fmean_opts.shape) */
   unsigned long tried;
   double fb[BATCH], wb[BATCH], yb[BATCH], zb[BATCH]; /* batch: f, w, w f, w f v_n^2 */

@@ -118,8 +118,8 @@ int hd_fmean_sample_contact(gsl_rng *rng, double a_over_d, int no_partner_partne
  * the touching disks *ka, *kb.  Returns 1 if it is accepted: for exclusion (all = 1) no other
  * disk pair overlaps; for the heuristic (all = 0) only the touching disks are checked against
  * the other body's other disks (for a dimer: the paper's independent angles), 0 if rejected. */
-int hd_fmean_sample_shape(gsl_rng *rng, const hd_shape *sh, int all, hd_kin *A, hd_kin *B,
-                          int *ka, int *kb);
+int hd_fmean_sample_shape(gsl_rng *rng, const hd_shape *sh, int all, hd_kin *A, hd_kin *B, int *ka,
+                          int *kb);
 
 /* Runs one Monte Carlo estimate with opts and fills *res.  Returns HD_OK, or HD_EINPUT
  * (with err set) for invalid options, HD_ENOMEM if the RNG cannot be allocated, HD_EPHYS if

@@ -62,8 +62,7 @@ static hd_shape general(const hd_shape *s) {
 }
 
 /* A cluster of n disks at (x, y) with diameters d, masses m, tagged by hd_shape_cluster. */
-static hd_shape cluster(int n, const double *x, const double *y, const double *d,
-                        const double *m) {
+static hd_shape cluster(int n, const double *x, const double *y, const double *d, const double *m) {
   hd_shape g;
   assert_int_equal(hd_shape_cluster(&g, n, x, y, d, m, 1), 0);
   return g;
@@ -1183,7 +1182,6 @@ static void predict_walls(void **state) {
   gsl_rng_free(r);
 }
 
-
 /* ---- general clusters --------------------------------------------------------------------- */
 
 /* The cluster shapes of the tests: trimers of unit disks (linear, bent at 120 degrees at the
@@ -1213,7 +1211,7 @@ static void cluster_shapes(void **state) {
   assert_int_equal(a.tag, HD_SHAPE_CLUSTER);
   /* by definition: total mass, centre of mass at the origin, I = sum m |o|^2 */
   assert_true(l.mass == 3.0 && fabs(l.inertia - 2.0) <= 1e-15 && fabs(l.radius - 1.5) <= 1e-15);
-  assert_true(fabs(t.inertia - 1.0) <= 1e-15);          /* 3 (1/sqrt 3)^2 */
+  assert_true(fabs(t.inertia - 1.0) <= 1e-15); /* 3 (1/sqrt 3)^2 */
   assert_true(fabs(t.radius - (1 / sqrt(3) + 0.5)) <= 1e-15);
   double cx = 0, cy = 0;
   for (int k = 0; k < 3; k++) cx += b.ox[k], cy += b.oy[k];
@@ -1251,9 +1249,9 @@ static int same_or_nan(double a, double b, double tol) {
 static void general_matches_paper(void **state) {
   (void)state;
   gsl_rng *r = rng_new(91);
-  const hd_shape sh[][2] = {{dimer(1, 1, 1), dimer(1, 1, 1)},   {dimer(1, 2, 1), dimer(1, 0.5, 1)},
-                            {dimer(1, 1, 1), disk(1.3, 0.7)},   {disk(0.8, 2), dimer(1, 1.5, 1)},
-                            {disk(1.3, 2), disk(0.6, 0.5)},     {dimer(1, 0.3, 2), dimer(1, 3, 2)}};
+  const hd_shape sh[][2] = {{dimer(1, 1, 1), dimer(1, 1, 1)}, {dimer(1, 2, 1), dimer(1, 0.5, 1)},
+                            {dimer(1, 1, 1), disk(1.3, 0.7)}, {disk(0.8, 2), dimer(1, 1.5, 1)},
+                            {disk(1.3, 2), disk(0.6, 0.5)},   {dimer(1, 0.3, 2), dimer(1, 3, 2)}};
   const double alphas[] = {0.0, 0.6, 1.0};
   int n = sanitize() ? 50 : 400;
   double worst_v = 0, worst_t = 0;
@@ -1272,7 +1270,8 @@ static void general_matches_paper(void **state) {
       double vs = 1.0 + vscale(&A, sa) + vscale(&B, sb), tol = 1e-12 * vs;
       double dv = fmax(fmax(fabs(A1.vx - A2.vx), fabs(A1.vy - A2.vy)),
                        fmax(fabs(B1.vx - B2.vx), fabs(B1.vy - B2.vy)));
-      dv = fmax(dv, fmax(sa->rmax * fabs(A1.omega - A2.omega), sb->rmax * fabs(B1.omega - B2.omega)));
+      dv = fmax(dv,
+                fmax(sa->rmax * fabs(A1.omega - A2.omega), sb->rmax * fabs(B1.omega - B2.omega)));
       worst_v = fmax(worst_v, dv / vs);
       assert_true(dv <= tol);
       assert_true(same_or_nan(i1.theta_i, i2.theta_i, 1e-12));
@@ -1282,7 +1281,8 @@ static void general_matches_paper(void **state) {
       /* prediction from an approach */
       random_approach(r, sa, sb, k % 2 ? 2.0 : 0.0, 2.0, 0.01, 1.5, &A, &B);
       hd_contact c1, c2;
-      int g1 = hd_predict_pair(&A, sa, &B, sb, 3.0, &c1), g2 = hd_predict_pair(&A, &ga, &B, &gb, 3.0, &c2);
+      int g1 = hd_predict_pair(&A, sa, &B, sb, 3.0, &c1),
+          g2 = hd_predict_pair(&A, &ga, &B, &gb, 3.0, &c2);
       assert_int_equal(g1, g2);
       if (g1) {
         worst_t = fmax(worst_t, fabs(c1.t - c2.t) / (1.0 + c1.t));
@@ -1291,7 +1291,11 @@ static void general_matches_paper(void **state) {
       }
       /* walls: A's disk ka against a wall through its contact point */
       hd_wall w = {k % 2, 0.0, (k / 2) % 2 ? 1.0 : -1.0};
-      hd_kin W = {0, 0, gsl_ran_gaussian(r, 1), gsl_ran_gaussian(r, 1), unif(r, -M_PI, M_PI),
+      hd_kin W = {0,
+                  0,
+                  gsl_ran_gaussian(r, 1),
+                  gsl_ran_gaussian(r, 1),
+                  unif(r, -M_PI, M_PI),
                   sa->n > 1 ? gsl_ran_gaussian(r, 2.0) : 0.0};
       if (sa->n == 1) W.phi = 0;
       double gap = unif(r, 0.01, 1.5) + hd_shape_radius(sa);
@@ -1315,7 +1319,8 @@ static void general_matches_paper(void **state) {
     }
   }
   printf("# general vs paper: largest velocity difference %.3g of the speed scale, contact time "
-         "%.3g\n", worst_v, worst_t);
+         "%.3g\n",
+         worst_v, worst_t);
   gsl_rng_free(r);
 }
 
@@ -1386,8 +1391,8 @@ static void check_cluster_collision(gsl_rng *r, const hd_shape *sa, const hd_sha
 static void collide_clusters(void **state) {
   (void)state;
   gsl_rng *r = rng_new(93);
-  const hd_shape sh[] = {trimer_linear(), trimer_bent(), trimer_triangle(), dimer_asym(),
-                         dimer(1, 1, 1), disk(1.3, 0.7)};
+  const hd_shape sh[] = {trimer_linear(), trimer_bent(),  trimer_triangle(),
+                         dimer_asym(),    dimer(1, 1, 1), disk(1.3, 0.7)};
   const double alphas[] = {0.0, 0.5, 0.9, 1.0};
   int n = sanitize() ? 20 : 150;
   for (size_t a = 0; a < 4; a++)

@@ -43,8 +43,7 @@ static void add_species(hd_scene *sc, const char *name, int n, const double *x, 
 /* The shapes of the tests (unit disks unless said): a linear trimer, one bent at 120 degrees at
  * its middle disk, a triangle, and an asymmetric dimer (d 1 and 0.5, m 1 and 0.3, 0.8 apart).
  * *area: the area of one body (the union of its disks). */
-static void shape_of(int which, int *n, double *x, double *y, double *d, double *m,
-                     double *area) {
+static void shape_of(int which, int *n, double *x, double *y, double *d, double *m, double *area) {
   const double q = M_PI / 4;
   for (int i = 0; i < 3; i++) d[i] = m[i] = 1.0, y[i] = 0.0;
   switch (which) {
@@ -112,8 +111,8 @@ static void elastic_clusters(void **state) {
     long nk = 0, nmu = 0;
     for (long k = 0; k < n; k++) {
       hd_event_out ev;
-      if (hd_sim_next(s, INFINITY, &ev, &err)) fail_msg("%s: collision %ld: %s", shape_name[which],
-                                                        k, err.msg);
+      if (hd_sim_next(s, INFINITY, &ev, &err))
+        fail_msg("%s: collision %ld: %s", shape_name[which], k, err.msg);
       assert_int_equal(ev.kind, 6);
       assert_true(isfinite(ev.info.f) && ev.info.f > 0 && ev.info.vn < 0);
       const hd_shape *sh = &s->shape[s->b[ev.i].species];
@@ -210,8 +209,8 @@ static void mixture_species(void **state) {
         for (int sp = 0; sp < 4; sp++) {
           double et, er;
           hd_sim_energy(s, sp, &et, &er);
-          T[sp][0] += et / (double)s->n_species[sp];                           /* 2 dof: T */
-          T[sp][1] += 2 * er / (double)s->n_species[sp];                       /* 1 dof: T */
+          T[sp][0] += et / (double)s->n_species[sp];     /* 2 dof: T */
+          T[sp][1] += 2 * er / (double)s->n_species[sp]; /* 1 dof: T */
         }
         nT++;
       }
@@ -221,8 +220,8 @@ static void mixture_species(void **state) {
     hd_sim_momentum(s, &px, &py);
     double e0 = e0t + e0r, e1 = et + er;
     printf("# mixture%s: kinds %ld %ld %ld %ld, energy %.6g -> %.6g (booked loss %.6g)\n",
-           inel ? " (alpha 0.5 between the named)" : "", kinds[0], kinds[1], kinds[2], kinds[6],
-           e0, e1, lost);
+           inel ? " (alpha 0.5 between the named)" : "", kinds[0], kinds[1], kinds[2], kinds[6], e0,
+           e1, lost);
     assert_true(hypot(px, py) < 1e-12 * sqrt(500.0));
     assert_true(s->max_overlap < 1e-9);
     if (inel) {
@@ -376,8 +375,9 @@ static void run_stores_species(void **state) {
   assert_int_equal(q_int(h, "SELECT count(*) FROM frames WHERE n = 45"), 3); /* cpd 0, 5, 10 */
   assert_true(q_int(h, "SELECT count(*) FROM collisions WHERE kind = 'body-body'") > 0);
   assert_true(q_int(h, "SELECT count(*) FROM collisions WHERE kind = 'body-wall'") > 0);
-  assert_int_equal(q_int(h, "SELECT count(*) FROM collisions WHERE kind LIKE 'body-%' AND i >= 30 AND "
-                            "(j BETWEEN 0 AND 29 OR disk_i NOT BETWEEN 0 AND 2)"),
+  assert_int_equal(q_int(h,
+                         "SELECT count(*) FROM collisions WHERE kind LIKE 'body-%' AND i >= 30 AND "
+                         "(j BETWEEN 0 AND 29 OR disk_i NOT BETWEEN 0 AND 2)"),
                    0);
   sqlite3_close(h);
   /* the export writes each trimer's disks where the engine has them: 1 from the middle disk */
@@ -418,10 +418,8 @@ static void run_stores_species(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(fast_paths),
-      cmocka_unit_test(checkpoint_resume),
-      cmocka_unit_test(run_stores_species),
-      cmocka_unit_test(mixture_species),
+      cmocka_unit_test(fast_paths),         cmocka_unit_test(checkpoint_resume),
+      cmocka_unit_test(run_stores_species), cmocka_unit_test(mixture_species),
       cmocka_unit_test(elastic_clusters),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,5 +1,5 @@
-/* Tests of the ring of rods (engine/rods/rods.h): conservation laws to round-off, the collision rule
- * with the true masses, exact checkpoints, collapse detection against McNamara and Young, the
+/* Tests of the ring of rods (engine/rods/rods.h): conservation laws to round-off, the collision
+ * rule with the true masses, exact checkpoints, collapse detection against McNamara and Young, the
  * stationary kinetic energy and collision rate against the ideal-gas theory (docs/rods.md). */
 // clang-format off
 #include <setjmp.h>

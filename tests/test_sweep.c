@@ -278,11 +278,12 @@ static void merge_killed_leaves_out(void **state) {
 static void old_schema_reads_and_upgrades(void **state) {
   (void)state;
   if (!haff) skip();
-  assert_int_equal(sh("%s run short.ini -o old.db --quiet && sqlite3 old.db 'ALTER TABLE runs "
-                      "DROP COLUMN cpd; DROP TABLE provenance; DROP TABLE species; DROP TABLE sample_species; "
-                      "PRAGMA user_version = 0'",
-                      haff),
-                   0);
+  assert_int_equal(
+      sh("%s run short.ini -o old.db --quiet && sqlite3 old.db 'ALTER TABLE runs "
+         "DROP COLUMN cpd; DROP TABLE provenance; DROP TABLE species; DROP TABLE sample_species; "
+         "PRAGMA user_version = 0'",
+         haff),
+      0);
   assert_int_equal(q1("old.db", "SELECT count(*) FROM pragma_table_info('runs') WHERE name = "
                                 "'cpd'"),
                    0);

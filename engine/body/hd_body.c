@@ -771,8 +771,8 @@ int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const 
 }
 
 /* hd_predict_wall for a general cluster. */
-static int predict_wall_general(const hd_kin *A, const hd_shape *sa, const hd_wall *w,
-                                double tmax, hd_contact *c) {
+static int predict_wall_general(const hd_kin *A, const hd_shape *sa, const hd_wall *w, double tmax,
+                                hd_contact *c) {
   hd_ca ca;
   hd_ca_geom x = {0};
   x.wall = 1;

@@ -49,7 +49,7 @@ typedef struct hd_shape {
   double ox[HD_MAX_BODY_DISKS], oy[HD_MAX_BODY_DISKS]; /* disk centres minus the centre of
                                                         * mass, body frame */
   double dk[HD_MAX_BODY_DISKS], mk[HD_MAX_BODY_DISKS]; /* diameters and masses of the disks */
-  double mass;    /* total mass */
+  double mass;                                         /* total mass */
   double inertia; /* moment of inertia about the centre of mass, sum m_k |o_k|^2 */
   double radius;  /* smallest circle about the centre of mass that holds the body,
                    * max |o_k| + d_k / 2 */
@@ -73,9 +73,9 @@ int hd_shape_cluster(hd_shape *s, int n, const double *x, const double *y, const
 typedef struct hd_kin {
   double x, y;   /* centre of mass */
   double vx, vy; /* centre-of-mass velocity */
-  double phi;   /* orientation of the body frame (a dimer: of the axis disk 0 -> disk 1; 0 for a
-                 * disk body), kept in (-pi, pi] */
-  double omega; /* signed angular velocity (0 for a disk body) */
+  double phi;    /* orientation of the body frame (a dimer: of the axis disk 0 -> disk 1; 0 for a
+                  * disk body), kept in (-pi, pi] */
+  double omega;  /* signed angular velocity (0 for a disk body) */
 } hd_kin;
 
 /* A hard wall: the line {axis coordinate == pos}; bodies live on the side `normal` points to. */
@@ -164,14 +164,14 @@ typedef struct hd_ca_geom {
  * that could touch first and stopping them all once that bound passes the earliest contact found.
  * Only t is for the caller; the other fields are private to hd_body.c. */
 typedef struct hd_ca {
-  double t;                 /* no contact of the pair before t (from the common time origin) */
-  hd_ca_geom g;             /* the geometry */
-  double tend;              /* the search ends after tend (the enclosing circles part for good) */
-  uint64_t ign;             /* disk pairs ignored as just collided (bit p for pair p) */
-  int fresh;                /* the t = 0 contact checks are still to be made */
-  long it;                  /* steps taken (guard against misuse, see hd_body.c) */
-  int sc0;                  /* sa0, ca0 hold sin and cos of A's orientation at t = 0 */
-  double sa0, ca0;          /* (given to hd_ca_begin: shared by the searches of one body) */
+  double t;        /* no contact of the pair before t (from the common time origin) */
+  hd_ca_geom g;    /* the geometry */
+  double tend;     /* the search ends after tend (the enclosing circles part for good) */
+  uint64_t ign;    /* disk pairs ignored as just collided (bit p for pair p) */
+  int fresh;       /* the t = 0 contact checks are still to be made */
+  long it;         /* steps taken (guard against misuse, see hd_body.c) */
+  int sc0;         /* sa0, ca0 hold sin and cos of A's orientation at t = 0 */
+  double sa0, ca0; /* (given to hd_ca_begin: shared by the searches of one body) */
 } hd_ca;
 
 /* sin and cos of x exactly as the contact search computes them (for hd_ca_begin's sca). */

@@ -19,18 +19,18 @@
 
 /* One body's side of a contact. */
 typedef struct hd_side {
-  double ex, ey;   /* outward axis at the contacting disk (unit, centre of mass -> contacting
-                    * disk; for a dimer partner disk -> contacting disk); 0 when the disk is at
-                    * the centre of mass (a disk body) */
-  double ox, oy;   /* contacting disk centre minus centre of mass ((a/2) e for a dimer) */
-  double vx, vy;   /* velocity of the contacting disk centre */
-  double m;        /* mass of the contacting disk (m of a dimer, the mass of a disk body) */
-  double mass;     /* total mass */
-  double a;        /* bond length of a dimer, else 0 */
-  double inertia;  /* moment of inertia about the centre of mass */
-  int rot;         /* 1 for a body that turns under an impulse (a dimer with a > 0, a cluster
-                    * with inertia > 0) */
-  int gen;         /* 1: a general cluster (the rotational terms use ox, oy and inertia) */
+  double ex, ey;  /* outward axis at the contacting disk (unit, centre of mass -> contacting
+                   * disk; for a dimer partner disk -> contacting disk); 0 when the disk is at
+                   * the centre of mass (a disk body) */
+  double ox, oy;  /* contacting disk centre minus centre of mass ((a/2) e for a dimer) */
+  double vx, vy;  /* velocity of the contacting disk centre */
+  double m;       /* mass of the contacting disk (m of a dimer, the mass of a disk body) */
+  double mass;    /* total mass */
+  double a;       /* bond length of a dimer, else 0 */
+  double inertia; /* moment of inertia about the centre of mass */
+  int rot;        /* 1 for a body that turns under an impulse (a dimer with a > 0, a cluster
+                   * with inertia > 0) */
+  int gen;        /* 1: a general cluster (the rotational terms use ox, oy and inertia) */
 } hd_side;
 
 /* Fills the side of disk `which` of body k of shape s. */

@@ -159,5 +159,4 @@ double hd_eps_table_moment(const hd_eps_table *t);
  * finite and positive (the table is then unchanged). */
 int hd_eps_table_balance(hd_eps_table *t, double *scale, hd_error *err);
 
-
 #endif

@@ -101,9 +101,8 @@ static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label
   for (int32_t i = 0; i < s->n; i++) {
     hd_kin k;
     hd_sim_body_now(s, i, &k);
-    hd_state_rec rec = {
-        hd_sim_time(s), s->id[i],     body_kind(s, i), k.x, k.y, k.phi, k.vx, k.vy,
-        k.omega,        hd_sim_cpd(s)};
+    hd_state_rec rec = {hd_sim_time(s), s->id[i], body_kind(s, i), k.x,          k.y, k.phi,
+                        k.vx,           k.vy,     k.omega,         hd_sim_cpd(s)};
     int rc = hd_db_log_state(db, run, label, &rec, err);
     if (rc) return rc;
   }
@@ -116,9 +115,8 @@ static int m_states(const void *m, hd_state_rec *out, hd_error *err) {
   for (int32_t i = 0; i < s->n; i++) {
     hd_kin k;
     hd_sim_body_now(s, i, &k);
-    out[i] = (hd_state_rec){
-        hd_sim_time(s), s->id[i],     body_kind(s, i), k.x, k.y, k.phi, k.vx, k.vy,
-        k.omega,        hd_sim_cpd(s)};
+    out[i] = (hd_state_rec){hd_sim_time(s), s->id[i], body_kind(s, i), k.x,          k.y, k.phi,
+                            k.vx,           k.vy,     k.omega,         hd_sim_cpd(s)};
   }
   return HD_OK;
 }
@@ -147,7 +145,7 @@ static int m_log_species(const void *m, hd_db *db, int64_t run, hd_error *err) {
         strncat(disks, c < 3 ? " " : k + 1 < sh->n ? "; " : "", sizeof disks - strlen(disks) - 1);
       }
     }
-    hd_species_rec rec = {sp,          s->sp_name[sp],           disks, s->n_species[sp],
+    hd_species_rec rec = {sp,       s->sp_name[sp],      disks, s->n_species[sp],
                           sh->mass, hd_shape_inertia(sh)};
     int rc = hd_db_log_species(db, run, &rec, err);
     if (rc) return rc;
@@ -174,9 +172,10 @@ static void m_box(const void *m, double *lx, double *ly) {
 }
 
 const hd_model_ops hd_model_bodies2d = {
-    "bodies2d", m_alloc,  m_alloc_restore, m_free,   m_next,       m_checkpoint, m_time,
-    m_cpd,      m_events, m_temperature,   m_sample, m_log_states, m_box,        m_states,
-    m_log_species, m_log_species_sample};
+    "bodies2d", m_alloc,       m_alloc_restore, m_free,
+    m_next,     m_checkpoint,  m_time,          m_cpd,
+    m_events,   m_temperature, m_sample,        m_log_states,
+    m_box,      m_states,      m_log_species,   m_log_species_sample};
 
 const hd_model_ops *hd_model_for_scene(const hd_scene *sc) {
   return sc->n_rods > 0 ? &hd_model_rods : &hd_model_bodies2d;

@@ -112,6 +112,5 @@ static void m_box(const void *m, double *lx, double *ly) {
 }
 
 const hd_model_ops hd_model_rods = {
-    "rods", m_alloc,  m_alloc_restore, m_free,   m_next,       m_checkpoint, m_time,
-    m_cpd,  m_events, m_temperature,   m_sample, m_log_states, m_box,        m_states,
-    NULL,   NULL};
+    "rods",   m_alloc,       m_alloc_restore, m_free,       m_next, m_checkpoint, m_time, m_cpd,
+    m_events, m_temperature, m_sample,        m_log_states, m_box,  m_states,     NULL,   NULL};

@@ -31,9 +31,9 @@ typedef struct ckpt_header {
   int32_t n;           /* bodies */
   int32_t nsp;         /* species */
   int32_t n_species[HD_MAX_SPECIES];
-  int32_t ncx, ncy;  /* cells */
-  uint64_t rng_size; /* bytes of RNG state */
-  double lx, ly;     /* box (must match the scene) */
+  int32_t ncx, ncy;                             /* cells */
+  uint64_t rng_size;                            /* bytes of RNG state */
+  double lx, ly;                                /* box (must match the scene) */
   hd_shape shape[HD_MAX_SPECIES];               /* the species table (must match the scene's) */
   double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* (unused entries 0) */
 } ckpt_header;
@@ -191,8 +191,10 @@ static int read_header(const hd_sim *s, const void *blob, size_t n, ckpt_header 
     ckpt_header1 o;
     if (n < sizeof o) return hd_error_set(err, HD_EINPUT, "checkpoint is truncated");
     memcpy(&o, blob, sizeof o);
-    *h = (ckpt_header){HD_CKPT_MAGIC, o.body_size, o.clock_size, o.n, 2, {o.n_species[0],
-                       o.n_species[1]}, o.ncx, o.ncy, o.rng_size, o.lx, o.ly, {{0}}, {{0}}};
+    *h = (ckpt_header){
+        HD_CKPT_MAGIC, o.body_size, o.clock_size, o.n,  2,    {o.n_species[0], o.n_species[1]},
+        o.ncx,         o.ncy,       o.rng_size,   o.lx, o.ly, {{0}},
+        {{0}}};
     for (int sp = 0; sp < s->nsp; sp++) h->shape[sp] = s->shape[sp];
     *hsize = sizeof o;
     return HD_OK;
@@ -218,8 +220,10 @@ int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err) {
     return hd_error_set(err, HD_EINPUT, "checkpoint has %d species, the scene %d", h.nsp, s->nsp);
   for (int sp = 0; sp < s->nsp; sp++)
     if (memcmp(&h.shape[sp], &s->shape[sp], sizeof(hd_shape)))
-      return hd_error_set(err, HD_EINPUT, "checkpoint: species %d (%s) has another shape than the "
-                          "scene's", sp, s->sp_name[sp]);
+      return hd_error_set(err, HD_EINPUT,
+                          "checkpoint: species %d (%s) has another shape than the "
+                          "scene's",
+                          sp, s->sp_name[sp]);
   /* the counts before any size is computed from them (a negative one wrapped round) */
   int64_t total = 0;
   int bad = h.n < 0;
@@ -228,9 +232,8 @@ int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err) {
       (int64_t)h.ncx * h.ncy > (int64_t)(n / sizeof(int32_t)))
     return hd_error_set(err, HD_EINPUT, "checkpoint: body or cell counts out of range");
   size_t ncell = (size_t)h.ncx * (size_t)h.ncy;
-  size_t want = hsize + sizeof(hd_sim_clock) +
-                (sizeof(hd_body) + sizeof(int32_t)) * (size_t)h.n + sizeof(int32_t) * ncell +
-                h.rng_size;
+  size_t want = hsize + sizeof(hd_sim_clock) + (sizeof(hd_body) + sizeof(int32_t)) * (size_t)h.n +
+                sizeof(int32_t) * ncell + h.rng_size;
   if (n != want)
     return hd_error_set(err, HD_EINPUT, "checkpoint has %zu bytes, expected %zu", n, want);
   s->n = h.n;

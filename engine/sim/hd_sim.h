@@ -107,29 +107,29 @@ typedef struct hd_sim {
   int32_t n;             /* bodies */
   int64_t drift_removed; /* times the system was taken to its centre-of-mass frame (rebase) */
   int zero_momentum;     /* velocities drawn with zero total momentum (not from a state file) */
-  int nsp;                                /* species: 2 + the scene's named ones */
-  int32_t n_species[HD_MAX_SPECIES];      /* bodies per species */
-  hd_body *b;                             /* the bodies, kept sorted by cell (see hd_sim_sort) */
-  int32_t *id;                            /* id[i]: the user's number of body i (dimers first, then
-                                             disks, then each named species, as created); stable
-                                             while b is re-sorted */
-  hd_shape shape[HD_MAX_SPECIES];         /* shapes by species (HD_SHAPE_* tag derived) */
+  int nsp;               /* species: 2 + the scene's named ones */
+  int32_t n_species[HD_MAX_SPECIES]; /* bodies per species */
+  hd_body *b;                        /* the bodies, kept sorted by cell (see hd_sim_sort) */
+  int32_t *id;                       /* id[i]: the user's number of body i (dimers first, then
+                                        disks, then each named species, as created); stable
+                                        while b is re-sorted */
+  hd_shape shape[HD_MAX_SPECIES];    /* shapes by species (HD_SHAPE_* tag derived) */
   char sp_name[HD_MAX_SPECIES][HD_SPECIES_NAME_MAX]; /* species names: "dimer", "disk", NAME */
   double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES];      /* pair restitution by species */
   double reach[HD_MAX_SPECIES]; /* enclosing radius of each species widened by 1e-9 (the
                                  * neighbour filter of hd_predict.c) */
-  double wall_alpha;                      /* body-wall restitution */
-  double lx, ly;                          /* box */
-  unsigned walls;                         /* HD_WALL_* bits */
-  hd_wall wall[4];                        /* walls by index: left, right, bottom, top */
-  int32_t ncx, ncy;                       /* cells per direction (>= 1) */
-  double cwx, cwy;                        /* cell widths (>= largest body diameter) */
-  int32_t *head;                          /* first body of each cell, -1 if empty */
-  hd_queue *q;                            /* the event queue */
-  gsl_rng *rng;                           /* seeded generator (initial state; stochastic rules) */
-  hd_sim_clock c;                         /* clocks and counters */
-  int64_t rebase_every;                   /* events between rebases of the time origin */
-  int verify;                             /* check invariants at every event (slow) */
+  double wall_alpha;            /* body-wall restitution */
+  double lx, ly;                /* box */
+  unsigned walls;               /* HD_WALL_* bits */
+  hd_wall wall[4];              /* walls by index: left, right, bottom, top */
+  int32_t ncx, ncy;             /* cells per direction (>= 1) */
+  double cwx, cwy;              /* cell widths (>= largest body diameter) */
+  int32_t *head;                /* first body of each cell, -1 if empty */
+  hd_queue *q;                  /* the event queue */
+  gsl_rng *rng;                 /* seeded generator (initial state; stochastic rules) */
+  hd_sim_clock c;               /* clocks and counters */
+  int64_t rebase_every;         /* events between rebases of the time origin */
+  int verify;                   /* check invariants at every event (slow) */
   int disks_only;         /* only [disks] bodies: disk-disk prediction without shape dispatch */
   int partial_cross;      /* pure disks, >= 3x3 cells: crossings search 3 new cells */
   int melt;               /* set-up only: the lattice placed must be melted */
