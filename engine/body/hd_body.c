@@ -770,10 +770,34 @@ int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const 
   return r;
 }
 
+/* The rotating part of a wall search (hd_predict_wall): the window where
+ * G(t) = x->dx - reach - hsep + x->dvx t <= 0 (the body, reach from its centre at most, can touch
+ * the wall only there), then the conservative advancement over x's disks in it.  Returns 1 with
+ * *c filled (kb = 0) at the earliest contact in [0, tmax], else 0. */
+static int wall_search(const hd_ca_geom *x, double reach, double tmax, hd_contact *c) {
+  double hsep = TOL_SEP * x->D, G0 = x->dx - reach - hsep, t_in = 0.0, t_out = HUGE_VAL;
+  if (G0 > 0.0) {
+    if (!(x->dvx < 0.0)) return 0;
+    t_in = G0 / (-x->dvx);
+  } else if (x->dvx > 0.0) {
+    t_out = -G0 / x->dvx;
+  }
+  if (t_in > tmax) return 0;
+  hd_ca ca;
+  double tc;
+  int p;
+  ca.g = *x;
+  ca_init(&ca, t_in, t_out);
+  if (!ca_solve(&ca, tmax, &tc, &p)) return 0;
+  c->t = tc;
+  c->ka = p;
+  c->kb = 0;
+  return 1;
+}
+
 /* hd_predict_wall for a general cluster. */
 static int predict_wall_general(const hd_kin *A, const hd_shape *sa, const hd_wall *w, double tmax,
                                 hd_contact *c) {
-  hd_ca ca;
   hd_ca_geom x = {0};
   x.wall = 1;
   x.sha = sa;
@@ -818,31 +842,13 @@ static int predict_wall_general(const hd_kin *A, const hd_shape *sa, const hd_wa
     return found;
   }
 
-  /* pre-filter: the enclosing circle must reach the wall; window where
-   * G(t) = centre gap - radius + rate t <= hsep */
-  double hsep = TOL_SEP * x.D, G0 = x.dx - sa->radius - hsep, t_in = 0.0, t_out = HUGE_VAL;
-  if (G0 > 0.0) {
-    if (!(x.dvx < 0.0)) return 0;
-    t_in = G0 / (-x.dvx);
-  } else if (x.dvx > 0.0) {
-    t_out = -G0 / x.dvx;
-  }
-  if (t_in > tmax) return 0;
-  double tc;
-  int p;
-  ca.g = x;
-  ca_init(&ca, t_in, t_out);
-  if (!ca_solve(&ca, tmax, &tc, &p)) return 0;
-  c->t = tc;
-  c->ka = p;
-  c->kb = 0;
-  return 1;
+  /* pre-filter: the enclosing circle must reach the wall */
+  return wall_search(&x, sa->radius, tmax, c);
 }
 
 int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, double tmax,
                     hd_contact *c) {
   if (sa->tag == HD_SHAPE_CLUSTER) return predict_wall_general(A, sa, w, tmax, c);
-  hd_ca ca;
   hd_ca_geom x;
   x.wall = 1;
   x.sha = x.shb = NULL;
@@ -893,23 +899,6 @@ int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, doubl
     return found;
   }
 
-  /* pre-filter: the body's extreme point must reach the wall; window where
-   * G(t) = gap - a/2 + rate t <= hsep */
-  double hsep = TOL_SEP * x.D, G0 = x.dx - x.ha - hsep, t_in = 0.0, t_out = HUGE_VAL;
-  if (G0 > 0.0) {
-    if (!(x.dvx < 0.0)) return 0;
-    t_in = G0 / (-x.dvx);
-  } else if (x.dvx > 0.0) {
-    t_out = -G0 / x.dvx;
-  }
-  if (t_in > tmax) return 0;
-  double tc;
-  int p;
-  ca.g = x;
-  ca_init(&ca, t_in, t_out);
-  if (!ca_solve(&ca, tmax, &tc, &p)) return 0;
-  c->t = tc;
-  c->ka = p;
-  c->kb = 0;
-  return 1;
+  /* pre-filter: the body's extreme point (a/2 from the centre) must reach the wall */
+  return wall_search(&x, x.ha, tmax, c);
 }
