@@ -96,8 +96,17 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
   for (size_t i = n0; i < nu; i++) k[i - n0] = s.t[i] - s.t[n0], x[i - n0] = s.cpd[i] - s.cpd[n0];
 
   hd_error fe;
-  out->haff_ok = hd_fit_haff_log(k, x, nu - n0, ri->alpha, &out->haff, &fe) == HD_OK;
-  if (!out->haff_ok) snprintf(out->why, sizeof out->why, "eq. 31 fit: %.200s", fe.msg);
+  if (isnan(ri->alpha)) {
+    /* named species whose pairs collide with different restitutions: eq. (31) has one alpha */
+    out->haff_ok = 0;
+    snprintf(out->why, sizeof out->why,
+             "no eq. 31 fit: the species' restitutions differ (alpha %g to %g), eq. 31 has one "
+             "alpha; haff energy draws the decay",
+             ri->alpha_lo, ri->alpha_hi);
+  } else {
+    out->haff_ok = hd_fit_haff_log(k, x, nu - n0, ri->alpha, &out->haff, &fe) == HD_OK;
+    if (!out->haff_ok) snprintf(out->why, sizeof out->why, "eq. 31 fit: %.200s", fe.msg);
+  }
   out->nu0_enskog = hd_enskog_nu0(ri->density, ri->d, out->T0, ri->mass, ri->eta_disk);
   if (out->haff_ok && out->nu0_enskog > 0) {
     out->ratio = out->haff.nu0 / out->nu0_enskog;
@@ -125,7 +134,7 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
   for (size_t i = n0; i < nu; i++)
     if (s.cpd[i] >= o->cpd_min_k && s.e_rot[i] > 0)
       x[m] = s.cpd[i], k[m++] = s.e_tr[i] / s.e_rot[i];
-  if (hd_ana_dimers(ri->species)) {
+  if (ri->rotates) {
     out->K_ok = hd_fit_linear_t(x, k, m, o->level, &out->K, &fe) == HD_OK;
     if (!out->K_ok && !out->why[0]) snprintf(out->why, sizeof out->why, "K fit: %.200s", fe.msg);
     /* the same fit on the two halves (in cpd) of its samples: K's window error */
@@ -150,9 +159,15 @@ static int rel_eq(double x, double y) {
   return fabs(x - y) <= 1e-9 * fmax(fabs(x), fabs(y));
 }
 
+/* x and y within 1e-9 (NaN equals NaN: a/d of shapes, alpha of mixed restitutions). */
+static int abs_eq(double x, double y) {
+  if (isnan(x) || isnan(y)) return isnan(x) && isnan(y);
+  return fabs(x - y) < 1e-9;
+}
+
 int hd_group_same_label(const hd_group *a, const hd_group *b) {
-  return a->species == b->species && a->walls == b->walls && fabs(a->alpha - b->alpha) < 1e-9 &&
-         fabs(a->a_over_d - b->a_over_d) < 1e-9;
+  return a->species == b->species && a->walls == b->walls && !strcmp(a->label, b->label) &&
+         abs_eq(a->alpha, b->alpha) && abs_eq(a->a_over_d, b->a_over_d);
 }
 
 int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *ng, hd_error *err) {
@@ -164,14 +179,15 @@ int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *n
     hd_group *g = NULL;
     for (size_t j = 0; j < *ng && !g; j++) {
       const hd_group *q = &(*groups)[j];
-      if (q->species == r->species && q->walls == r->walls && fabs(q->alpha - r->alpha) < 1e-9 &&
-          fabs(q->a_over_d - r->a_over_d) < 1e-9 && q->nbodies == r->n && rel_eq(q->d, r->d) &&
-          rel_eq(q->m, r->m) && rel_eq(q->density, r->density))
+      if (q->species == r->species && q->walls == r->walls && !strcmp(q->label, r->label) &&
+          abs_eq(q->alpha, r->alpha) && abs_eq(q->a_over_d, r->a_over_d) && q->nbodies == r->n &&
+          rel_eq(q->d, r->d) && rel_eq(q->m, r->m) && rel_eq(q->density, r->density))
         g = &(*groups)[j];
     }
     if (!g) {
       g = &(*groups)[(*ng)++];
       g->species = r->species, g->walls = r->walls, g->alpha = r->alpha, g->a_over_d = r->a_over_d;
+      snprintf(g->label, sizeof g->label, "%s", r->label);
       g->nbodies = r->n, g->density = r->density, g->d = r->d, g->m = r->m;
       g->idx = malloc(n * sizeof *g->idx);
       if (!g->idx) {

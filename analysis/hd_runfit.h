@@ -77,8 +77,9 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
  * differ only in N or density used to be pooled into one Table I row (an average of two
  * different ensembles); they now form groups of their own with the same (alpha, a/d) label. */
 typedef struct hd_group {
-  int species; /* hd_run_info.species of its runs */
-  int walls;   /* and their walls flag */
+  int species;                  /* hd_run_info.species of its runs */
+  int walls;                    /* and their walls flag */
+  char label[HD_ANA_LABEL_MAX]; /* and their label (hd_run_info.label) */
   double alpha, a_over_d;
   long nbodies;   /* N of the species */
   double density; /* its number density (hd_run_info.density) */

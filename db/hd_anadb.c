@@ -18,11 +18,46 @@ int hd_ana_open(sqlite3 **db, const char *path, hd_error *err) {
 }
 
 const char *hd_ana_species_name(int species, int walls) {
-  static const char *const name[4][2] = {{"dimers", "dimers+walls"},
+  static const char *const name[5][2] = {{"dimers", "dimers+walls"},
                                          {"disks", "disks+walls"},
                                          {"other", "other+walls"},
-                                         {"dimers+disks", "dimers+disks+walls"}};
-  return species >= 0 && species < 4 ? name[species][walls != 0] : "other";
+                                         {"dimers+disks", "dimers+disks+walls"},
+                                         {"shapes", "shapes+walls"}};
+  return species >= 0 && species < 5 ? name[species][walls != 0] : "other";
+}
+
+/* A scene with named species (issue 18): the gas as a whole.  ri->label names the present
+ * species; alpha is the restitution of every pair of them, NaN when they differ. */
+static void parse_shapes(const hd_scene *sc, hd_run_info *ri) {
+  long count[HD_MAX_SPECIES] = {sc->n_dimers, sc->n_disks};
+  const char *name[HD_MAX_SPECIES] = {"dimers", "disks"};
+  for (int k = 0; k < sc->n_named; k++) {
+    count[2 + k] = sc->named[k].count, name[2 + k] = sc->named[k].name;
+    if (sc->named[k].count > 0 && sc->named[k].ndisk > 1) ri->rotates = 1;
+  }
+  if (sc->n_dimers > 0) ri->rotates = 1;
+  int ns = 2 + sc->n_named, len = snprintf(ri->label, sizeof ri->label, "shapes:");
+  double lo = INFINITY, hi = -INFINITY;
+  for (int i = 0; i < ns; i++) {
+    if (count[i] <= 0) continue;
+    ri->n += count[i];
+    if (len > 0 && (size_t)len < sizeof ri->label)
+      len += snprintf(ri->label + len, sizeof ri->label - (size_t)len, "%s%s",
+                      ri->label[len - 1] == ':' ? "" : "+", name[i]);
+    for (int j = 0; j <= i; j++) {
+      if (count[j] <= 0) continue;
+      double al = i == j ? (i == 0   ? sc->dimer_alpha
+                            : i == 1 ? sc->disk_alpha
+                                     : sc->named[i - 2].alpha)
+                         : sc->alpha_pair[i][j];
+      lo = fmin(lo, al), hi = fmax(hi, al);
+    }
+  }
+  if (sc->walls && len > 0 && (size_t)len < sizeof ri->label)
+    snprintf(ri->label + len, sizeof ri->label - (size_t)len, "+walls");
+  ri->alpha_lo = lo, ri->alpha_hi = hi;
+  ri->alpha = hi - lo <= 1e-12 ? hi : NAN;
+  ri->a = 0, ri->d = ri->m = ri->mass = ri->a_over_d = NAN;
 }
 
 int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
@@ -31,12 +66,21 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
   int rc = hd_scene_read_stored(&sc, text, "runs.scene", err);
   if (rc) return rc;
   hd_scene_free(&sc);
-  if (sc.n_dimers > 0) {
+  int named = 0;
+  for (int k = 0; k < sc.n_named; k++) named |= sc.named[k].count > 0;
+  ri->rotates = 0;
+  ri->walls = sc.walls != 0;
+  if (named) {
+    ri->species = HD_ANA_SHAPES;
+    ri->n = 0;
+    parse_shapes(&sc, ri);
+  } else if (sc.n_dimers > 0) {
     ri->species = sc.n_disks > 0 ? HD_ANA_MIXTURE : HD_ANA_DIMERS;
     ri->n = sc.n_dimers;
     ri->alpha = sc.dimer_alpha, ri->a = sc.dimer_a, ri->d = sc.dimer_d, ri->m = sc.dimer_m;
     ri->mass = 2.0 * sc.dimer_m;
     ri->a_over_d = sc.dimer_a / sc.dimer_d;
+    ri->rotates = 1;
   } else if (sc.n_disks > 0) {
     ri->species = HD_ANA_DISKS;
     ri->n = sc.n_disks;
@@ -47,7 +91,10 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
     ri->species = HD_ANA_OTHER;
     ri->n = 0, ri->alpha = 1, ri->a = 0, ri->d = 1, ri->m = 1, ri->mass = 1, ri->a_over_d = 0;
   }
-  ri->walls = sc.walls != 0;
+  if (ri->species != HD_ANA_SHAPES) {
+    ri->alpha_lo = ri->alpha_hi = ri->alpha;
+    snprintf(ri->label, sizeof ri->label, "%s", hd_ana_species_name(ri->species, ri->walls));
+  }
   /* the box as given, or derived from area_fraction over every body (hd_scene_covered_area) */
   ri->box_x = sc.box_x, ri->box_y = sc.box_y, ri->area_fraction = sc.area_fraction;
   double area = sc.box_x * sc.box_y;

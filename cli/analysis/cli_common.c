@@ -281,8 +281,7 @@ size_t hd_cli_table_groups(const char *cmd, const hd_group *g, size_t ng, int wi
       fprintf(stderr,
               "haff %s: note: left out %zu run%s of %s (alpha %g a/d %g): the table is for one "
               "species in a periodic box; haff-fit --alpha-group fits them\n",
-              cmd, g[j].n, g[j].n == 1 ? "" : "s", hd_ana_species_name(g[j].species, g[j].walls),
-              g[j].alpha, g[j].a_over_d);
+              cmd, g[j].n, g[j].n == 1 ? "" : "s", g[j].label, g[j].alpha, g[j].a_over_d);
   }
   return in;
 }

@@ -29,16 +29,15 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
     De = nfit ? De / (double)nfit : NAN;
     nu = nfit ? nu / (double)nfit : NAN;
     if (!first) fprintf(out, "\n\n"); /* blank lines between blocks, none after the last */
-    fprintf(out, "# %s alpha=%g a_over_d=%g runs=%zu D_e=%.6g nu0_eff=%.6g\n",
-            hd_ana_species_name(ri->species, ri->walls), al, ri->a_over_d, m, De, nu);
+    fprintf(out, "# %s alpha=%g a_over_d=%g runs=%zu D_e=%.6g nu0_eff=%.6g\n", ri->label, al,
+            ri->a_over_d, m, De, nu);
     /* header: column 1's name is the block's legend title (gnuplot: title columnheader(1)) */
     if (ri->species == HD_ANA_DIMERS && !ri->walls) /* the papers' case: the legend as before */
       fprintf(out, "alpha=%g a/d=%g (%zu runs)", al, ri->a_over_d, m);
     else if (ri->species == HD_ANA_DISKS && !ri->walls)
       fprintf(out, "disks alpha=%g (%zu runs)", al, m);
     else
-      fprintf(out, "%s alpha=%g a/d=%g (%zu runs)", hd_ana_species_name(ri->species, ri->walls), al,
-              ri->a_over_d, m);
+      fprintf(out, "%s alpha=%g a/d=%g (%zu runs)", ri->label, al, ri->a_over_d, m);
     fprintf(out, "\tcpd\tE\tE_over_E0\te_tr\te_rot\tx\tnu0t\thaff_E_over_E0\tx_eq31\thomog\n");
     double E0 = 0;
     for (size_t k = 0; k < m; k++) E0 += s[k].e_tr[0] + s[k].e_rot[0];

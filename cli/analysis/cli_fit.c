@@ -56,13 +56,12 @@ int haff_fit_main(int argc, char **argv) {
           out,
           "%lld\t%s\t%g\t%g\t%zu\t%d\t%.6g\t%.6g\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.6g\t%.3g\t%.3g\t"
           "%.6g\t%.6g\t%.3g\t%.4g\t%.4g\t%d\t%s\n",
-          (long long)f->info.id, hd_ana_species_name(f->info.species, f->info.walls), f->info.alpha,
-          f->info.a_over_d, f->n_used, f->homog.detected, f->t_end, f->cpd_end,
-          f->haff_ok ? h->D_e : nan, f->haff_ok ? h->D_e_err : nan, f->haff_ok ? h->nu0 : nan,
-          f->haff_ok ? h->nu0_err : nan, f->nu0_enskog, f->ratio, f->ratio_err,
-          f->haff_ok ? h->chi2 / (double)h->dof : nan, f->cpd_start, f->D_e_slope, f->D_e_slope_err,
-          f->hcs.have ? f->hcs.s_perp : nan, f->hcs.have ? f->hcs.flow_excess : nan, f->hcs.ended,
-          hd_cli_window_name(f->window));
+          (long long)f->info.id, f->info.label, f->info.alpha, f->info.a_over_d, f->n_used,
+          f->homog.detected, f->t_end, f->cpd_end, f->haff_ok ? h->D_e : nan,
+          f->haff_ok ? h->D_e_err : nan, f->haff_ok ? h->nu0 : nan, f->haff_ok ? h->nu0_err : nan,
+          f->nu0_enskog, f->ratio, f->ratio_err, f->haff_ok ? h->chi2 / (double)h->dof : nan,
+          f->cpd_start, f->D_e_slope, f->D_e_slope_err, f->hcs.have ? f->hcs.s_perp : nan,
+          f->hcs.have ? f->hcs.flow_excess : nan, f->hcs.ended, hd_cli_window_name(f->window));
     }
   } else {
     hd_group *g;
@@ -83,10 +82,10 @@ int haff_fit_main(int argc, char **argv) {
       fprintf(out,
               "%g\t%g\t%s\t%zu\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.3g\t%ld\t%.4g\t%.4g\t%.6g\t%.3g\t"
               "%.3g\t%.3g\t%.3g\t%.3g\t%.4g\t%s\n",
-              g[j].alpha, g[j].a_over_d, hd_ana_species_name(g[j].species, g[j].walls), q.m, q.D_e,
-              q.D_e_err, q.nu0, q.nu0_err, q.ratio, q.ratio_err, g[j].nbodies, q.cpd_start,
-              q.cpd_end, q.D_e_slope, q.D_e_slope_err, q.D_e_sys, q.sys_window, q.sys_est,
-              q.sys_box, q.s_perp, q.flagged ? "inhomogeneous" : "");
+              g[j].alpha, g[j].a_over_d, g[j].label, q.m, q.D_e, q.D_e_err, q.nu0, q.nu0_err,
+              q.ratio, q.ratio_err, g[j].nbodies, q.cpd_start, q.cpd_end, q.D_e_slope,
+              q.D_e_slope_err, q.D_e_sys, q.sys_window, q.sys_est, q.sys_box, q.s_perp,
+              q.flagged ? "inhomogeneous" : "");
     }
     hd_groups_free(g, ng);
   }

@@ -24,6 +24,15 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
   int rc = hd_cli_fits(a, cmd, &db, &fits, &n);
   if (rc) return rc;
   int bins = a->bins ? a->bins : 40, species = fits[0].info.species;
+  if (species == HD_ANA_SHAPES) {
+    fprintf(stderr,
+            "haff %s: run %lld has named species (%s): veldist reads one species, [dimers] or "
+            "[disks]; the states table holds every body's velocity (kind 'body')\n",
+            cmd, (long long)fits[0].info.id, fits[0].info.label);
+    free(fits);
+    hd_ana_close(db);
+    return 2;
+  }
   gsl_histogram *h[3];
   for (int k = 0; k < 3; k++) {
     h[k] = gsl_histogram_alloc((size_t)bins);
@@ -127,6 +136,14 @@ int haff_veldist_main(int argc, char **argv) {
     hd_ana_close(db);
     fprintf(stderr, "haff %s: run %lld is a rods run: see haff rods-veldist\n", argv[0],
             (long long)a.run);
+    return 2;
+  }
+  if (ri.species == HD_ANA_SHAPES) {
+    hd_ana_close(db);
+    fprintf(stderr,
+            "haff %s: run %lld has named species (%s): veldist reads one species, [dimers] or "
+            "[disks]; the states table holds every body's velocity (kind 'body')\n",
+            argv[0], (long long)a.run, ri.label);
     return 2;
   }
   int bins = a.bins ? a.bins : 40;
