@@ -63,9 +63,11 @@ static char err_text[4096], out_text[16384];
 static hd_optres res;
 
 /* Runs hd_opt_parse(spec) on "test" + the NULL-terminated args into *a (defaults set here),
- * with stderr in err_text and stdout in out_text.  Returns what the parser returned. */
+ * with stderr in err_text and stdout in out_text.  Returns what the parser returned.  argv is
+ * static: res.pos points into it after the call (a local array left it dangling, and
+ * values_are_stored read res.pos[0] from a dead stack frame). */
 static int run_spec(const hd_optspec *spec, targs *a, const char *const *args) {
-  char *argv[32];
+  static char *argv[32];
   int argc = 0;
   argv[argc++] = (char *)"test";
   for (; *args; args++) argv[argc++] = (char *)*args;
