@@ -273,10 +273,11 @@ static void damped_no_false_collapse(void **state) {
 /* The paper's Fig. 11: 50 damped rods (N_mod = 1000, nu = 0.01, gamma = 0.8, table) cool on
  * average as E ~ t^-2, with steps where clusters meet.  Measured: the log of the mean over 12
  * seeds of E_kin at 41 times 10^(1 + k/10) up to 10^5 (E is constant between collisions) has
- * slope -1.95 (seeds 1-12), -1.90 (9-20), -1.92 (1-20); bootstrap s.e. over 20 seeds 0.03.
- * Tolerance 0.25 (~6 s.e.): the same ring undamped levels off at equipartition (slope ~ -0.6 over
- * that window), a bath that never gives energy back collapses.  Fixed seeds 1-12.  (Up to 10^6
- * the mean steepens: -2.10 +- 0.03 from 10, -2.4 +- 0.09 from 10^3; docs/rods.md.) */
+ * slope -1.95 (seeds 1-12), -1.90 (9-20), -1.92 (1-20); bootstrap s.e. of 12 seeds 0.016-0.026.
+ * Tolerance 0.25 (5x the spread of two seed sets): the same ring undamped levels off at
+ * equipartition (slope ~ -0.6 over that window), a bath that never gives energy back collapses.
+ * Fixed seeds 1-12.  (Up to 10^6 the mean steepens: -2.10 +- 0.03 from 10, -2.4 +- 0.09 from 10^3;
+ * docs/rods.md.) */
 static void damped_energy_t_minus_2(void **state) {
   (void)state;
   if (test_sanitized()) return; /* 12 rings to t = 1e5: slow under ASan */
