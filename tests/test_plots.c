@@ -14,6 +14,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "test_gnuplot.h"
@@ -122,6 +125,97 @@ static void pipeline_and_rebuild(void **state) {
            tmp);
   assert_int_not_equal(system(cmd), 0); /* nor what does not depend on it */
   assert_int_equal(make("", t, "make4.log"), 0);
+}
+
+/* make -f plots/rods.mk FLAGS TARGETS at tiny sizes (100 rods to t = 300; Figs. 5-8 at 100 and
+ * 200) into tmp/rout, its output in tmp/LOG. */
+static int rods_make(const char *flags, const char *targets, const char *log) {
+  char cmd[4096];
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -f "
+           "plots/rods.mk %s HAFF='%s' OUT='%s/rout' T1=100 T2=200 RODS_SET=\"--set "
+           "rods.count=100 --set run.stop_time=300 --set 'log.velocities_at_time=1 10 100 200 "
+           "300'\" %s > '%s/%s' 2>&1",
+           root, flags, haff, tmp, targets, tmp, log);
+  return system(cmd);
+}
+
+/* One integer from sql on database path (-1 when it cannot be read). */
+static long long q1_path(const char *path, const char *sql) {
+  sqlite3 *db;
+  long long v = -1;
+  if (sqlite3_open_v2(path, &db, SQLITE_OPEN_READONLY, NULL) == SQLITE_OK) {
+    sqlite3_busy_timeout(db, 2000);
+    sqlite3_stmt *st;
+    if (sqlite3_prepare_v2(db, sql, -1, &st, NULL) == SQLITE_OK) {
+      if (sqlite3_step(st) == SQLITE_ROW) v = sqlite3_column_int64(st, 0);
+      sqlite3_finalize(st);
+    }
+  }
+  sqlite3_close(db);
+  return v;
+}
+
+/* plots/rods.mk: every rod figure from tiny runs, then nothing to do.  A run stopped part way
+ * (SIGINT after its first checkpoint: the state an interrupted `make plots PAPER=1` leaves,
+ * hours into the damped ring) is resumed by the next make, not started again nor taken as
+ * finished: one run in its database, status done, its final snapshot (1000 rods) at its stop time.
+ */
+static void rods_pipeline_resumes(void **state) {
+  (void)state;
+  need();
+  static const char *const figs[] = {"energy",  "collisions", "density", "phase",    "local",
+                                     "veldist", "gofr",       "damped",  "damped50", "collapse"};
+  if (rods_make("", "rods-plots", "rods1.log") != 0) {
+    show_log("rods1.log");
+    fail_msg("make -f plots/rods.mk (tiny) failed");
+  }
+  char p[600], cmd[2048];
+  for (size_t k = 0; k < sizeof figs / sizeof figs[0]; k++) {
+    snprintf(p, sizeof p, "%s/rout/rods-%s.png", tmp, figs[k]);
+    if (access(p, R_OK) != 0) fail_msg("%s not drawn", p);
+  }
+  assert_int_equal(rods_make("-q", "rods-plots", "rods2.log"), 0); /* up to date */
+  /* the damped ring run afresh, longer, with a checkpoint every 1024 collisions, and stopped */
+  char rd[400], db[500];
+  snprintf(rd, sizeof rd, "%s/rout/data/rods-default", tmp);
+  snprintf(db, sizeof db, "%s/rods-damped.db", rd);
+  snprintf(cmd, sizeof cmd, "rm -f '%s/rods-damped.ok' '%s'", rd, db);
+  assert_int_equal(system(cmd), 0);
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && exec '%s' run scenes/rods-damped.ini -o '%s' --quiet --set "
+           "run.stop_time=3000 --set run.checkpoint_every=1e-9 2>/dev/null",
+           root, haff, db);
+  pid_t pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
+    _exit(127);
+  }
+  struct timespec nap = {0, 20000000};
+  for (int k = 0; k < 1000 && q1_path(db, "SELECT count(*) FROM checkpoints") < 1; k++)
+    nanosleep(&nap, NULL);
+  kill(pid, SIGINT);
+  int ws;
+  assert_int_equal(waitpid(pid, &ws, 0), pid);
+  if (q1_path(db, "SELECT count(*) FROM runs WHERE status = 'interrupted'") != 1)
+    fail_msg("the damped run was not stopped part way (exit %d): make it longer", ws);
+  long long ev0 = q1_path(db, "SELECT events FROM runs");
+  if (rods_make("", "rods-plots", "rods3.log") != 0) {
+    show_log("rods3.log");
+    fail_msg("make after the interrupted run failed");
+  }
+  snprintf(cmd, sizeof cmd, "grep -q 'resume .*rods-damped.db' '%s/rods3.log'", tmp);
+  assert_int_equal(system(cmd), 0);
+  snprintf(cmd, sizeof cmd, "grep -q 'run scenes/rods' '%s/rods3.log'", tmp);
+  assert_int_not_equal(system(cmd), 0); /* no run started again */
+  assert_int_equal(q1_path(db, "SELECT count(*) FROM runs"), 1);
+  assert_int_equal(q1_path(db, "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
+  assert_true(q1_path(db, "SELECT events FROM runs") > ev0);
+  assert_int_equal(
+      q1_path(db, "SELECT count(*) = 1000 FROM states WHERE label = 'final' AND t = 3000"), 1);
+  printf("# rods.mk: damped ring stopped after %lld collisions, resumed by make to %lld\n", ev0,
+         q1_path(db, "SELECT events FROM runs"));
 }
 
 static long long count(sqlite3 *db, const char *sql) {
@@ -242,6 +336,7 @@ static void gnuplot_render(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(pipeline_and_rebuild), cmocka_unit_test(merge_keeps_rows),
-      cmocka_unit_test(tsv_columns), cmocka_unit_test(gnuplot_render)};
+      cmocka_unit_test(tsv_columns), cmocka_unit_test(gnuplot_render),
+      cmocka_unit_test(rods_pipeline_resumes)};
   return cmocka_run_group_tests(tests, setup, teardown);
 }
