@@ -14,6 +14,14 @@ static void stat_line(FILE *out, size_t s, const hd_snapshot *sn, const char *va
           var, v->n, v->scale, v->kurt, v->a2, v->a2_err, v->ks_d, v->ks_p);
 }
 
+/* Says on stderr why a run of named species (hd_run_info.species HD_ANA_SHAPES) is refused. */
+static void refuse_shapes(const char *cmd, const hd_run_info *ri) {
+  fprintf(stderr,
+          "haff %s: run %lld has named species (%s): veldist reads one species, [dimers] or "
+          "[disks]; the states table holds every body's velocity (kind 'body')\n",
+          cmd, (long long)ri->id, ri->label);
+}
+
 /* --pool: one histogram of the snapshots of every run (or --run) of one species whose cpd lies
  * in the run's HCS window (hd_run_fit_do: after the transient, before the end of homogeneity),
  * each scaled by its own s as in the per-snapshot blocks. */
@@ -25,10 +33,7 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
   if (rc) return rc;
   int bins = a->bins ? a->bins : 40, species = fits[0].info.species;
   if (species == HD_ANA_SHAPES) {
-    fprintf(stderr,
-            "haff %s: run %lld has named species (%s): veldist reads one species, [dimers] or "
-            "[disks]; the states table holds every body's velocity (kind 'body')\n",
-            cmd, (long long)fits[0].info.id, fits[0].info.label);
+    refuse_shapes(cmd, &fits[0].info);
     free(fits);
     hd_ana_close(db);
     return 2;
@@ -140,10 +145,7 @@ int haff_veldist_main(int argc, char **argv) {
   }
   if (ri.species == HD_ANA_SHAPES) {
     hd_ana_close(db);
-    fprintf(stderr,
-            "haff %s: run %lld has named species (%s): veldist reads one species, [dimers] or "
-            "[disks]; the states table holds every body's velocity (kind 'body')\n",
-            argv[0], (long long)a.run, ri.label);
+    refuse_shapes(argv[0], &ri);
     return 2;
   }
   int bins = a.bins ? a.bins : 40;
