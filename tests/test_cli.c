@@ -722,6 +722,19 @@ static void live_run_commits_every_second(void **state) {
   assert_true(q1("live.db", "SELECT count(*) FROM collisions WHERE run = 1") >= seen);
 }
 
+/* Writes scene text base followed by extra sections to name in dir. */
+static void write_scene(const char *name, const char *base, const char *extra) {
+  char text[1024];
+  snprintf(text, sizeof text, "%s%s", base, extra);
+  write_file(name, text);
+}
+
+/* Runs the scenes NAME.ini of the space-separated names, in order, into database db. */
+static void run_scenes(const char *names, const char *db) {
+  assert_int_equal(
+      sh("(for s in %s; do %s run $s.ini -o %s --quiet || exit 1; done)", names, haff, db), 0);
+}
+
 /* Runs that are not the papers' case (dimers mixed with disks, walls) are told apart: haff-fit
  * and energy label them dimers+disks and dimers+walls (both read "dimers"), and table1/table2
  * leave them out with a note (their rows looked like the pure runs', same alpha and a/d). */
@@ -731,16 +744,10 @@ static void mixtures_and_walls_labelled(void **state) {
   const char *base = "[system]\narea_fraction = 0.05\n[dimers]\ncount = 100\nalpha = 0.9\n"
                      "a = 0.5\n[run]\nstop_cpd = 20\n[log]\ncollisions = none\n"
                      "samples_every = 0.5\n";
-  char text[512];
-  write_file("pure.ini", base);
-  snprintf(text, sizeof text, "%s[disks]\ncount = 50\n", base);
-  write_file("mixed.ini", text);
-  snprintf(text, sizeof text, "%s[walls]\nsides = left right\n", base);
-  write_file("walled.ini", text);
-  assert_int_equal(sh("(for s in pure mixed walled; do %s run $s.ini -o lab.db --quiet || exit "
-                      "1; done)",
-                      haff),
-                   0);
+  write_scene("pure.ini", base, "");
+  write_scene("mixed.ini", base, "[disks]\ncount = 50\n");
+  write_scene("walled.ini", base, "[walls]\nsides = left right\n");
+  run_scenes("pure mixed walled", "lab.db");
   assert_int_equal(sh("(%s haff-fit lab.db | cut -f2 | tr '\\n' ' ' > species.txt)", haff), 0);
   char p[300], line[200] = "";
   snprintf(p, sizeof p, "%s/species.txt", dir);
@@ -778,12 +785,9 @@ static void named_species_labelled(void **state) {
   const char *tri = "[system]\narea_fraction = 0.05\n[species tri]\ncount = 150\nshape = triangle\n"
                     "alpha = 0.9\n[run]\nstop_cpd = 20\n[log]\ncollisions = none\n"
                     "samples_every = 0.5\n";
-  char text[512];
-  write_file("tri.ini", tri);
-  snprintf(text, sizeof text, "%s[dimers]\ncount = 50\nalpha = 0.95\n", tri);
-  write_file("trimix.ini", text);
-  assert_int_equal(
-      sh("(%s run tri.ini -o sh.db --quiet && %s run trimix.ini -o sh.db --quiet)", haff, haff), 0);
+  write_scene("tri.ini", tri, "");
+  write_scene("trimix.ini", tri, "[dimers]\ncount = 50\nalpha = 0.95\n");
+  run_scenes("tri trimix", "sh.db");
   assert_int_equal(sh("(%s haff-fit sh.db > shfit.tsv; test $? = 0)", haff), 0);
   char p[300], line[512];
   snprintf(p, sizeof p, "%s/shfit.tsv", dir);
