@@ -5,6 +5,8 @@
 #include "rods.h"
 
 #include <gsl/gsl_randist.h>
+#include <gsl/gsl_sort.h>
+#include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,6 +34,8 @@ void hd_rods_free(hd_rods *r) {
   if (r->rng) gsl_rng_free(r->rng);
   hd_eps_sampler_free(r->sampler);
   hd_eps_table_free(r->table);
+  free(r->low_q);
+  free(r->low_have);
   free(r);
 }
 
@@ -158,8 +162,13 @@ static int alloc_bare(hd_rods **out, const hd_rods_params *p, hd_error *err) {
         rc = hd_eps_table_build(&r->table, r->sampler, 1e-3, 1e3, 25, 129, 1000, tr, err);
         /* its detailed-balance moment projected to 0 (eq. 19): the table's noise and step bias
          * otherwise move the stationary E_kin by -6 % (docs/mc-eps.md section 4c) */
-        if (!rc) rc = hd_eps_table_balance(r->table, NULL, err);
+        if (!rc) rc = hd_eps_table_balance(r->table, &r->table_scale, err);
         gsl_rng_free(tr);
+        if (!rc) {
+          r->low_q = malloc((size_t)HD_RODS_LOW_NODES * (size_t)r->table->nu * sizeof(double));
+          r->low_have = calloc(HD_RODS_LOW_NODES, 1);
+          if (!r->low_q || !r->low_have) rc = hd_error_set(err, HD_ENOMEM, "rods: out of memory");
+        }
       }
     }
     if (rc) {
@@ -269,6 +278,64 @@ static double ratio(double a, double b) {
   return a / b;
 }
 
+/* beta of node j of the extension below the table's grid: beta_min 10^(-j/4) (j = 0: the
+ * table's first node). */
+static double low_beta(const hd_rods *r, int j) {
+  return r->table->beta_min * pow(10.0, -0.25 * (double)j);
+}
+
+/* The quantile row of node j >= 1 below the table's grid, built on first use (rods.h); NULL if
+ * its generator cannot be allocated (the caller then draws directly). */
+static const double *low_row(hd_rods *r, int j) {
+  int nu = r->table->nu;
+  double *row = r->low_q + (size_t)(j - 1) * (size_t)nu;
+  if (r->low_have[j - 1]) return row;
+  enum { SAMPLES = 1000 };
+  double x[SAMPLES];
+  gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
+  if (!g) return NULL;
+  gsl_rng_set(g, HD_RODS_TABLE_SEED + (unsigned long)j);
+  double b = low_beta(r, j);
+  for (int i = 0; i < SAMPLES; i++) x[i] = hd_eps_sample(r->sampler, b, g);
+  gsl_rng_free(g);
+  gsl_sort(x, 1, SAMPLES);
+  for (int k = 0; k < nu; k++)
+    row[k] = r->table_scale *
+             gsl_stats_quantile_from_sorted_data(x, 1, SAMPLES, (double)k / (double)(nu - 1));
+  r->low_have[j - 1] = 1;
+  return row;
+}
+
+/* Q(u) of a quantile row of nu entries, linear in u (as the table's nodes). */
+static double row_quantile(const double *row, int nu, double u) {
+  double y = u * (nu - 1);
+  int k = (int)y;
+  if (k >= nu - 1) return row[nu - 1];
+  return row[k] + (y - k) * (row[k + 1] - row[k]);
+}
+
+/* One eps at beta in [low_beta(LOW_NODES), beta_min): the two nodes around beta, same u,
+ * linear in ln beta as within the table. */
+static double low_sample(hd_rods *r, double beta) {
+  double s = -4.0 * log10(beta / r->table->beta_min); /* in (0, LOW_NODES] */
+  int j = (int)s;
+  if (j >= HD_RODS_LOW_NODES) j = HD_RODS_LOW_NODES - 1;
+  double f = s - j, u = gsl_rng_uniform(r->rng);
+  const double *hi = low_row(r, j + 1);
+  if (!hi || (j > 0 && !low_row(r, j))) return hd_eps_sample(r->sampler, beta, r->rng);
+  double qa = j > 0 ? row_quantile(low_row(r, j), r->table->nu, u)
+                    : hd_eps_table_quantile(r->table, r->table->beta_min, u);
+  return (1 - f) * qa + f * row_quantile(hi, r->table->nu, u);
+}
+
+double hd_rods_table_eps(hd_rods *r, double beta) {
+  if (r->table && beta >= r->table->beta_min) return hd_eps_table_sample(r->table, beta, r->rng);
+  /* below the table's grid the table only repeats its end node (mean 3.39 against 5.71 at
+   * beta = 1e-5): the lazily built nodes below it (rods.h), then direct draws */
+  if (r->table && beta >= low_beta(r, HD_RODS_LOW_NODES)) return low_sample(r, beta);
+  return hd_eps_sample(r->sampler, beta, r->rng);
+}
+
 static double draw_eps(hd_rods *r, long a, long b, double e_tr, double tba, double tbb) {
   const hd_rods_params *p = &r->p;
   if (p->model == HD_RODS_CONSTANT) return p->eps;
@@ -280,10 +347,8 @@ static double draw_eps(hd_rods *r, long a, long b, double e_tr, double tba, doub
       long s = a % 2 ? b : a, l = a % 2 ? a : b; /* short (even) and long (odd) rod */
       double ts = s == a ? tba : tbb, tl = l == a ? tba : tbb;
       eps = hd_eps_sample2(r->sampler, ratio(e_tr, ts), ratio(e_tr, tl), r->rng);
-    } else if (r->table && ratio(e_tr, tbm) >= r->table->beta_min) {
-      /* below the table's grid (hot baths: beta < 1e-3, ~1e-3 of the draws) the table only
-       * repeats its end node (mean 3.39 against 5.71 at beta = 1e-5): sampled directly there */
-      eps = hd_eps_table_sample(r->table, ratio(e_tr, tbm), r->rng);
+    } else if (r->table) {
+      eps = hd_rods_table_eps(r, ratio(e_tr, tbm));
     } else {
       eps = hd_eps_sample(r->sampler, ratio(e_tr, tbm), r->rng);
     }

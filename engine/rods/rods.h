@@ -100,6 +100,14 @@ typedef struct hd_rods_params {
  * scaled by hd_eps_table_balance so that its detailed-balance moment D is 0. */
 #define HD_RODS_TABLE_SEED 20250601UL
 
+/* Below the table's grid (beta < 1e-3: slow pairs among hot baths, ~1e-3 of the draws in a
+ * damped ring's dense clusters, but a third of its time at ~0.15 ms a direct draw) the ring
+ * extends the table by HD_RODS_LOW_NODES nodes at the table's own spacing (4 per decade) down
+ * to beta = 1e-6, each built when a draw first needs it: 1000 direct draws from an mt19937
+ * seeded HD_RODS_TABLE_SEED + j for node j (so a resumed run rebuilds the same node), their
+ * empirical quantiles times the table's balance factor.  Below 1e-6: direct draws. */
+#define HD_RODS_LOW_NODES 12
+
 /* One collision as the ring reports it. */
 typedef struct hd_rods_event {
   double t;          /* time */
@@ -140,7 +148,17 @@ typedef struct hd_rods {
   gsl_rng *rng;
   hd_eps_sampler *sampler; /* stochastic model */
   hd_eps_table *table;     /* when p.table */
+  double table_scale;      /* the balance factor applied to the table (hd_eps_table_balance) */
+  double *low_q;           /* HD_RODS_LOW_NODES x table->nu quantiles of the nodes below the
+                            * table's grid, node j (1..) at beta_min 10^(-j/4); NULL without table */
+  unsigned char *low_have; /* low_have[j - 1]: node j built */
 } hd_rods;
+
+/* One eps at beta = E_tr/T_B from ring r's sampler and generator, as a collision draws it
+ * before the baths' cap: from the table on its grid (p.table), from the lazily built nodes below
+ * it down to 1e-6 (HD_RODS_LOW_NODES), else directly.  r must have a sampler (the stochastic
+ * model, gamma < 1). */
+double hd_rods_table_eps(hd_rods *r, double beta);
 
 /* Fills p with the defaults (n = 0, gamma 0.8, nmod 1000, stochastic, eps = gamma, no damping,
  * no TC, T0 = 1, direct sampler, mean baths, seed 1). */
