@@ -1,13 +1,13 @@
 # The rod paper's figures (Aspelmeier, Giese, Zippelius 1998): make -f plots/rods.mk rods-plots
-# Runs scenes/rods-*.ini with $(HAFF) into $(RD)/rods-*.db, extracts TSV with the haff
+# Runs scenes/rods-*.ini with $(HAFF) into $(RODS_DIR)/rods-*.db, extracts TSV with the haff
 # rods-* subcommands and draws plots/rods*.gp into $(OUT)/rods-*.png and .svg.
 # Default sizes: 1000 rods to t = 1e4 (a few minutes on one core in all); PAPER=1: the
 # paper's 10^4 rods to t = 1e5 (the damped ring takes hours: docs/rods.md, Speed).  A run that
 # ends in collapse (the constant model) is expected.
-# Each size has its own folder RD (data/rods-default, data/rods-paper), so switching PAPER reruns
+# Each size has its own folder RODS_DIR (data/rods-default, data/rods-paper), so switching PAPER reruns
 # nothing already made; $(D)/rods-size.txt names the folder last used and the figures depend on
 # it, so they are redrawn from that folder's data.  A run is finished when its stamp
-# $(RD)/rods-NAME.ok exists: a run stopped part way (Ctrl-C, SIGTERM, a full disk, a crash)
+# $(RODS_DIR)/rods-NAME.ok exists: a run stopped part way (Ctrl-C, SIGTERM, a full disk, a crash)
 # leaves its database and no stamp, and the next make resumes it from its last checkpoint
 # (`haff resume`) instead of starting again.  RODS_SET adds --set overrides to every run (tests).
 # Included by plots/plots.mk (`make plots`); the figure rules that write several files are
@@ -31,12 +31,12 @@ T2   ?= 2000
 VEL  :=
 endif
 RODS_SET ?=
-RD   ?= $(D)/rods-$(RODS_SIZE)
-$(shell mkdir -p $(RD); echo '$(RD)' | cmp -s - $(D)/rods-size.txt || echo '$(RD)' > $(D)/rods-size.txt)
+RODS_DIR := $(D)/rods-$(RODS_SIZE)
+$(shell mkdir -p $(RODS_DIR); echo '$(RODS_DIR)' | cmp -s - $(D)/rods-size.txt || echo '$(RODS_DIR)' > $(D)/rods-size.txt)
 RUNS := stochastic constant 50 damped damped50
 FIGS := energy collisions density phase local veldist gofr damped damped50 collapse
 .PHONY: rods-plots
-rods-plots: $(RUNS:%=$(RD)/rods-%.ok) $(foreach f,$(FIGS),$(OUT)/rods-$(f).png)
+rods-plots: $(RUNS:%=$(RODS_DIR)/rods-%.ok) $(foreach f,$(FIGS),$(OUT)/rods-$(f).png)
 
 # A run's stamp, made when its database holds the scene's run to its end: done, or collapsed
 # for the constant model.  A database newer than the scene whose run was stopped part way
@@ -47,9 +47,9 @@ rods-plots: $(RUNS:%=$(RD)/rods-%.ok) $(foreach f,$(FIGS),$(OUT)/rods-$(f).png)
 # newer than what it was made from).
 SIZED := stochastic constant damped
 STATUS = $$(sqlite3 $$db "SELECT status FROM runs ORDER BY id DESC LIMIT 1" 2>/dev/null)
-$(RD)/rods-%.ok: scenes/rods-%.ini
-	@mkdir -p $(RD)
-	@db=$(RD)/rods-$*.db; end=done; [ $* = constant ] && end=collapsed; \
+$(RODS_DIR)/rods-%.ok: scenes/rods-%.ini
+	@mkdir -p $(RODS_DIR)
+	@db=$(RODS_DIR)/rods-$*.db; end=done; [ $* = constant ] && end=collapsed; \
 	if [ -f $$db ] && [ $$db -nt $< ]; then st=$(STATUS); else st=none; fi; \
 	case $$st in \
 	  $$end) ;; \
@@ -61,29 +61,29 @@ $(RD)/rods-%.ok: scenes/rods-%.ini
 	st=$(STATUS); [ "$$st" = $$end ] || { echo "$$db: run $$st, not $$end"; exit 1; }
 	@touch $@
 
-$(RD)/%.energy.tsv: $(RD)/%.ok
+$(RODS_DIR)/%.energy.tsv: $(RODS_DIR)/%.ok
 	$(HAFF) rods-energy $(<:.ok=.db) > $@
-$(RD)/rods-stochastic.density.tsv: $(RD)/rods-stochastic.ok
-	$(HAFF) rods-density $(RD)/rods-stochastic.db > $@
-$(RD)/rods-stochastic.phase1.tsv: $(RD)/rods-stochastic.ok
-	$(HAFF) rods-phase $(RD)/rods-stochastic.db --t $(T1) > $@
-$(RD)/rods-stochastic.phase2.tsv: $(RD)/rods-stochastic.ok
-	$(HAFF) rods-phase $(RD)/rods-stochastic.db --t $(T2) > $@
-$(RD)/rods-stochastic.local.tsv: $(RD)/rods-stochastic.ok
-	$(HAFF) rods-density $(RD)/rods-stochastic.db --t 1e9 > $@
-$(RD)/rods-stochastic.veldist.tsv: $(RD)/rods-stochastic.ok
-	$(HAFF) rods-veldist $(RD)/rods-stochastic.db --t $(T1) > $@
-$(RD)/rods-stochastic.gofr.tsv: $(RD)/rods-stochastic.ok
-	$(HAFF) rods-gofr $(RD)/rods-stochastic.db --t $(T1) > $@
+$(RODS_DIR)/rods-stochastic.density.tsv: $(RODS_DIR)/rods-stochastic.ok
+	$(HAFF) rods-density $(RODS_DIR)/rods-stochastic.db > $@
+$(RODS_DIR)/rods-stochastic.phase1.tsv: $(RODS_DIR)/rods-stochastic.ok
+	$(HAFF) rods-phase $(RODS_DIR)/rods-stochastic.db --t $(T1) > $@
+$(RODS_DIR)/rods-stochastic.phase2.tsv: $(RODS_DIR)/rods-stochastic.ok
+	$(HAFF) rods-phase $(RODS_DIR)/rods-stochastic.db --t $(T2) > $@
+$(RODS_DIR)/rods-stochastic.local.tsv: $(RODS_DIR)/rods-stochastic.ok
+	$(HAFF) rods-density $(RODS_DIR)/rods-stochastic.db --t 1e9 > $@
+$(RODS_DIR)/rods-stochastic.veldist.tsv: $(RODS_DIR)/rods-stochastic.ok
+	$(HAFF) rods-veldist $(RODS_DIR)/rods-stochastic.db --t $(T1) > $@
+$(RODS_DIR)/rods-stochastic.gofr.tsv: $(RODS_DIR)/rods-stochastic.ok
+	$(HAFF) rods-gofr $(RODS_DIR)/rods-stochastic.db --t $(T1) > $@
 $(D)/rods-collapse.tsv: $(HAFF)
 	@mkdir -p $(D)
 	$(HAFF) rods-collapse --n 4,8,16,32,64 --eps 0.3,0.5,0.7,0.8,0.9,0.95 --seeds 3 --cpd 1000 > $@
 
-ENERGY := $(RUNS:%=$(RD)/rods-%.energy.tsv)
+ENERGY := $(RUNS:%=$(RODS_DIR)/rods-%.energy.tsv)
 $(OUT)/rods-energy.png $(OUT)/rods-collisions.png $(OUT)/rods-damped.png $(OUT)/rods-damped50.png &: $(ENERGY) plots/rods.gp $(D)/rods-size.txt
-	gnuplot -e "D='$(RD)'; O='$(OUT)'" plots/rods.gp
-LOCAL := $(foreach k,density phase1 phase2 local veldist gofr,$(RD)/rods-stochastic.$(k).tsv)
+	gnuplot -e "D='$(RODS_DIR)'; O='$(OUT)'" plots/rods.gp
+LOCAL := $(foreach k,density phase1 phase2 local veldist gofr,$(RODS_DIR)/rods-stochastic.$(k).tsv)
 $(OUT)/rods-density.png $(OUT)/rods-phase.png $(OUT)/rods-local.png $(OUT)/rods-veldist.png $(OUT)/rods-gofr.png &: $(LOCAL) plots/rods-local.gp $(D)/rods-size.txt
-	gnuplot -e "D='$(RD)'; O='$(OUT)'" plots/rods-local.gp
+	gnuplot -e "D='$(RODS_DIR)'; O='$(OUT)'" plots/rods-local.gp
 $(OUT)/rods-collapse.png: $(D)/rods-collapse.tsv plots/rods-collapse.gp
 	gnuplot -e "D='$(D)'; O='$(OUT)'" plots/rods-collapse.gp
