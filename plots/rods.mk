@@ -2,8 +2,8 @@
 # Runs scenes/rods-*.ini with $(HAFF) into $(RODS_DIR)/rods-*.db, extracts TSV with the haff
 # rods-* subcommands and draws plots/rods*.gp into $(OUT)/rods-*.png and .svg.
 # Default sizes: 1000 rods to t = 1e4 (a few minutes on one core in all); PAPER=1: the
-# paper's 10^4 rods to t = 1e5 (the damped ring takes hours: docs/rods.md, Speed).  A run that
-# ends in collapse (the constant model) is expected.
+# paper's 10^4 rods to t = 1e5 (the damped ring alone takes 1.5-2 h: docs/rods.md, Speed).  A
+# run that ends in collapse (the constant model) is expected.
 # Each size has its own folder RODS_DIR (data/rods-default, data/rods-paper), so switching PAPER reruns
 # nothing already made; $(D)/rods-size.txt names the folder last used and the figures depend on
 # it, so they are redrawn from that folder's data.  A run is finished when its stamp
