@@ -121,6 +121,16 @@ typedef struct hd_eps_table {
 int hd_eps_table_build(hd_eps_table **out, hd_eps_sampler *s, double beta_min, double beta_max,
                        int nbeta, int nu, long samples, gsl_rng *rng, hd_error *err);
 
+/* One more node for table t at beta, built as hd_eps_table_build builds its nodes (t->samples
+ * draws from s, t->nu quantiles; s must have the options t was built with) into row (t->nu
+ * doubles), from rng.  Not scaled by any balance.  HD_OK or HD_ENOMEM. */
+int hd_eps_table_row(const hd_eps_table *t, hd_eps_sampler *s, double beta, double *row,
+                     gsl_rng *rng, hd_error *err);
+
+/* Q(u) of one quantile row of nu >= 2 entries at u_j = j/(nu-1): linear in u, clamped to the
+ * row's ends (a table node's inverse CDF). */
+double hd_eps_row_quantile(const double *row, int nu, double u);
+
 /* Frees a table.  NULL is allowed. */
 void hd_eps_table_free(hd_eps_table *t);
 

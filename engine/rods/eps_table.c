@@ -46,6 +46,47 @@ static int o_richardson(const hd_eps_sampler *s) {
   return o.richardson != 0;
 }
 
+/* One node: nu quantiles of `samples` direct draws at beta into row, with the work arrays x
+ * (and xc, non-NULL exactly when the sampler does Richardson) of `samples` doubles. */
+static void fill_row(hd_eps_sampler *s, double b, long samples, int nu, double *x, double *xc,
+                     double *row, gsl_rng *rng) {
+  if (!xc) {
+    for (long i = 0; i < samples; i++) x[i] = hd_eps_sample(s, b, rng);
+    gsl_sort(x, 1, (size_t)samples);
+    for (int j = 0; j < nu; j++)
+      row[j] = gsl_stats_quantile_from_sorted_data(x, 1, (size_t)samples, (double)j / (nu - 1));
+    return;
+  }
+  /* Quantile-level Richardson (docs/mc-eps.md): Q = 2 Q_fine - Q_coarse from the two sorted
+   * samples of paired paths, the O(sqrt(step)) bias of the law removed without the widening of
+   * per-path extrapolation; made nondecreasing (running max) and >= 0. */
+  for (long i = 0; i < samples; i++) hd_eps_sample_pair(s, b, b, &xc[i], &x[i], rng);
+  gsl_sort(x, 1, (size_t)samples);
+  gsl_sort(xc, 1, (size_t)samples);
+  for (int j = 0; j < nu; j++) {
+    double u = (double)j / (nu - 1);
+    double v = 2 * gsl_stats_quantile_from_sorted_data(x, 1, (size_t)samples, u) -
+               gsl_stats_quantile_from_sorted_data(xc, 1, (size_t)samples, u);
+    if (v < 0) v = 0;
+    if (j > 0 && v < row[j - 1]) v = row[j - 1];
+    row[j] = v;
+  }
+}
+
+int hd_eps_table_row(const hd_eps_table *t, hd_eps_sampler *s, double beta, double *row,
+                     gsl_rng *rng, hd_error *err) {
+  double *x = malloc((size_t)t->samples * sizeof(double));
+  double *xc = o_richardson(s) ? malloc((size_t)t->samples * sizeof(double)) : NULL;
+  int rc = HD_OK;
+  if (!x || (o_richardson(s) && !xc))
+    rc = hd_error_set(err, HD_ENOMEM, "eps table: out of memory");
+  else
+    fill_row(s, beta, t->samples, t->nu, x, xc, row, rng);
+  free(x);
+  free(xc);
+  return rc;
+}
+
 int hd_eps_table_build(hd_eps_table **out, hd_eps_sampler *s, double beta_min, double beta_max,
                        int nbeta, int nu, long samples, gsl_rng *rng, hd_error *err) {
   *out = NULL;
@@ -75,31 +116,8 @@ int hd_eps_table_build(hd_eps_table **out, hd_eps_sampler *s, double beta_min, d
   t->adapt = o.adapt;
   t->richardson = o.richardson;
   double t0 = now_seconds();
-  for (int k = 0; k < nbeta; k++) {
-    double b = node_beta(t, k);
-    double *row = t->q + k * nu;
-    if (!xc) {
-      for (long i = 0; i < samples; i++) x[i] = hd_eps_sample(s, b, rng);
-      gsl_sort(x, 1, (size_t)samples);
-      for (int j = 0; j < nu; j++)
-        row[j] = gsl_stats_quantile_from_sorted_data(x, 1, (size_t)samples, (double)j / (nu - 1));
-      continue;
-    }
-    /* Quantile-level Richardson (docs/mc-eps.md): Q = 2 Q_fine - Q_coarse from the two sorted
-     * samples of paired paths, the O(sqrt(step)) bias of the law removed without the widening of
-     * per-path extrapolation; made nondecreasing (running max) and >= 0. */
-    for (long i = 0; i < samples; i++) hd_eps_sample_pair(s, b, b, &xc[i], &x[i], rng);
-    gsl_sort(x, 1, (size_t)samples);
-    gsl_sort(xc, 1, (size_t)samples);
-    for (int j = 0; j < nu; j++) {
-      double u = (double)j / (nu - 1);
-      double v = 2 * gsl_stats_quantile_from_sorted_data(x, 1, (size_t)samples, u) -
-                 gsl_stats_quantile_from_sorted_data(xc, 1, (size_t)samples, u);
-      if (v < 0) v = 0;
-      if (j > 0 && v < row[j - 1]) v = row[j - 1];
-      row[j] = v;
-    }
-  }
+  for (int k = 0; k < nbeta; k++)
+    fill_row(s, node_beta(t, k), samples, nu, x, xc, t->q + k * nu, rng);
   t->seconds = now_seconds() - t0;
   free(x);
   free(xc);
@@ -107,15 +125,17 @@ int hd_eps_table_build(hd_eps_table **out, hd_eps_sampler *s, double beta_min, d
   return HD_OK;
 }
 
+double hd_eps_row_quantile(const double *row, int nu, double u) {
+  double y = u * (nu - 1);
+  int j = (int)y;
+  if (j >= nu - 1) return row[nu - 1];
+  if (j < 0) return row[0];
+  return row[j] + (y - j) * (row[j + 1] - row[j]);
+}
+
 /* Q_k(u) by linear interpolation in u. */
 static double node_quantile(const hd_eps_table *t, int k, double u) {
-  double y = u * (t->nu - 1);
-  int j = (int)y;
-  if (j >= t->nu - 1) return t->q[k * t->nu + t->nu - 1];
-  if (j < 0) return t->q[k * t->nu];
-  double f = y - j;
-  const double *r = t->q + k * t->nu;
-  return r[j] + f * (r[j + 1] - r[j]);
+  return hd_eps_row_quantile(t->q + k * t->nu, t->nu, u);
 }
 
 double hd_eps_table_quantile(const hd_eps_table *t, double beta, double u) {

@@ -5,8 +5,6 @@
 #include "rods.h"
 
 #include <gsl/gsl_randist.h>
-#include <gsl/gsl_sort.h>
-#include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -278,54 +276,45 @@ static double ratio(double a, double b) {
   return a / b;
 }
 
-/* beta of node j of the extension below the table's grid: beta_min 10^(-j/4) (j = 0: the
- * table's first node). */
-static double low_beta(const hd_rods *r, int j) {
-  return r->table->beta_min * pow(10.0, -0.25 * (double)j);
+/* ln of the table's node spacing, ln(beta_max/beta_min)/(nbeta - 1): the extension's too. */
+static double low_step(const hd_rods *r) {
+  const hd_eps_table *t = r->table;
+  return log(t->beta_max / t->beta_min) / (double)(t->nbeta - 1);
 }
 
-/* The quantile row of node j >= 1 below the table's grid, built on first use (rods.h); NULL if
- * its generator cannot be allocated (the caller then draws directly). */
+/* beta of node j of the extension below the table's grid (j = 0: the table's first node). */
+static double low_beta(const hd_rods *r, int j) {
+  return r->table->beta_min * exp(-(double)j * low_step(r));
+}
+
+/* The quantile row of node j >= 1 below the table's grid, built on first use as the table
+ * builds its nodes (hd_eps_table_row, seed HD_RODS_TABLE_SEED + j) and scaled by the table's
+ * balance factor; NULL when out of memory (the caller then draws directly). */
 static const double *low_row(hd_rods *r, int j) {
-  int nu = r->table->nu;
-  double *row = r->low_q + (size_t)(j - 1) * (size_t)nu;
+  double *row = r->low_q + (size_t)(j - 1) * (size_t)r->table->nu;
   if (r->low_have[j - 1]) return row;
-  enum { SAMPLES = 1000 };
-  double x[SAMPLES];
   gsl_rng *g = gsl_rng_alloc(gsl_rng_mt19937);
   if (!g) return NULL;
   gsl_rng_set(g, HD_RODS_TABLE_SEED + (unsigned long)j);
-  double b = low_beta(r, j);
-  for (int i = 0; i < SAMPLES; i++) x[i] = hd_eps_sample(r->sampler, b, g);
+  hd_error e;
+  int rc = hd_eps_table_row(r->table, r->sampler, low_beta(r, j), row, g, &e);
   gsl_rng_free(g);
-  gsl_sort(x, 1, SAMPLES);
-  for (int k = 0; k < nu; k++)
-    row[k] = r->table_scale *
-             gsl_stats_quantile_from_sorted_data(x, 1, SAMPLES, (double)k / (double)(nu - 1));
+  if (rc) return NULL;
+  for (int k = 0; k < r->table->nu; k++) row[k] *= r->table_scale;
   r->low_have[j - 1] = 1;
   return row;
-}
-
-/* Q(u) of a quantile row of nu entries, linear in u (as the table's nodes). */
-static double row_quantile(const double *row, int nu, double u) {
-  double y = u * (nu - 1);
-  int k = (int)y;
-  if (k >= nu - 1) return row[nu - 1];
-  return row[k] + (y - k) * (row[k + 1] - row[k]);
 }
 
 /* One eps at beta in [low_beta(LOW_NODES), beta_min): the two nodes around beta, same u,
  * linear in ln beta as within the table. */
 static double low_sample(hd_rods *r, double beta) {
-  double s = -4.0 * log10(beta / r->table->beta_min); /* in (0, LOW_NODES] */
-  int j = (int)s;
+  double s = log(r->table->beta_min / beta) / low_step(r); /* in (0, LOW_NODES] */
+  int j = (int)s, nu = r->table->nu;
   if (j >= HD_RODS_LOW_NODES) j = HD_RODS_LOW_NODES - 1;
+  const double *lo = j > 0 ? low_row(r, j) : r->table->q, *hi = low_row(r, j + 1);
+  if (!lo || !hi) return hd_eps_sample(r->sampler, beta, r->rng);
   double f = s - j, u = gsl_rng_uniform(r->rng);
-  const double *hi = low_row(r, j + 1);
-  if (!hi || (j > 0 && !low_row(r, j))) return hd_eps_sample(r->sampler, beta, r->rng);
-  double qa = j > 0 ? row_quantile(low_row(r, j), r->table->nu, u)
-                    : hd_eps_table_quantile(r->table, r->table->beta_min, u);
-  return (1 - f) * qa + f * row_quantile(hi, r->table->nu, u);
+  return (1 - f) * hd_eps_row_quantile(lo, nu, u) + f * hd_eps_row_quantile(hi, nu, u);
 }
 
 double hd_rods_table_eps(hd_rods *r, double beta) {

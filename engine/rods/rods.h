@@ -103,9 +103,10 @@ typedef struct hd_rods_params {
 /* Below the table's grid (beta < 1e-3: slow pairs among hot baths, ~1e-3 of the draws in a
  * damped ring's dense clusters, but a third of its time at ~0.15 ms a direct draw) the ring
  * extends the table by HD_RODS_LOW_NODES nodes at the table's own spacing (4 per decade) down
- * to beta = 1e-6, each built when a draw first needs it: 1000 direct draws from an mt19937
- * seeded HD_RODS_TABLE_SEED + j for node j (so a resumed run rebuilds the same node), their
- * empirical quantiles times the table's balance factor.  Below 1e-6: direct draws. */
+ * to beta = 1e-6, each built when a draw first needs it as the table builds its nodes
+ * (hd_eps_table_row: 1000 direct draws, their empirical quantiles) from an mt19937 seeded
+ * HD_RODS_TABLE_SEED + j for node j (so a resumed run rebuilds the same node), times the
+ * table's balance factor.  Below 1e-6: direct draws. */
 #define HD_RODS_LOW_NODES 12
 
 /* One collision as the ring reports it. */
