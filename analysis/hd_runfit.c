@@ -91,6 +91,9 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
   out->cpd_end = s.cpd[nu - 1];
   out->E0 = e[n0];
   out->T0 = s.e_tr[n0];
+  out->decay = e[n0] > 0 && e[nu - 1] > 0 ? log(e[n0] / e[nu - 1]) : NAN;
+  out->short_window =
+      nu - n0 < HD_FIT_MIN_SAMPLES || (ri->alpha < 1 && !(out->decay >= HD_FIT_MIN_DECAY));
   /* eq. (31) from the window's first sample: t and cpd counted from there (Haff's law is the
    * same from any origin, with nu0 the rate there) */
   for (size_t i = n0; i < nu; i++) k[i - n0] = s.t[i] - s.t[n0], x[i - n0] = s.cpd[i] - s.cpd[n0];
@@ -205,11 +208,26 @@ void hd_groups_free(hd_group *g, size_t ng) {
   free(g);
 }
 
-/* sqrt(max(0, d^2 - se^2)): the part of a mean difference d that its standard error se does not
- * explain (0 for NaN). */
+/* sqrt(d^2 - se^2): the part of a mean difference d that its standard error se does not explain,
+ * when d is resolved (|d| > 2 se); NaN otherwise (not measured: it was printed as 0, or as a
+ * clipped 8e-08 when |d| was just above se) and for d NaN. */
 static double excess(double d, double se) {
-  double v = d * d - (isnan(se) ? 0 : se * se);
-  return isnan(d) || !(v > 0) ? 0 : sqrt(v);
+  double s2 = isnan(se) ? 0 : se * se;
+  return isnan(d) || !(d * d > 4 * s2) ? NAN : sqrt(d * d - s2);
+}
+
+/* Sum of squares of the terms that are not NaN, or NaN if all are. */
+static double quad_sum(const double *t, int n) {
+  double s = 0;
+  int k = 0;
+  for (int i = 0; i < n; i++)
+    if (!isnan(t[i])) s += t[i] * t[i], k++;
+  return k ? sqrt(s) : NAN;
+}
+
+const char *hd_group_flag_name(int flagged) {
+  static const char *const names[4] = {"", "inhomogeneous", "short", "inhomogeneous,short"};
+  return names[flagged & 3];
 }
 
 void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opts *o,
@@ -219,8 +237,22 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
   double *v = malloc(10 * (n ? n : 1) * sizeof *v);
   if (!v) { /* every number NaN: the caller prints them as such */
     double nan = NAN;
-    *out = (hd_group_fit){0,   nan, nan, nan, nan, nan, nan, nan, nan, nan,
-                          nan, nan, nan, nan, nan, nan, 0,   0,   0,   nan};
+    *out = (hd_group_fit){.D_e = nan,
+                          .D_e_err = nan,
+                          .nu0 = nan,
+                          .nu0_err = nan,
+                          .ratio = nan,
+                          .ratio_err = nan,
+                          .D_e_slope = nan,
+                          .D_e_slope_err = nan,
+                          .sys_window = nan,
+                          .sys_est = nan,
+                          .sys_box = nan,
+                          .D_e_sys = nan,
+                          .cpd_start = nan,
+                          .cpd_end = nan,
+                          .s_perp = nan,
+                          .flow_excess = nan};
     return;
   }
   double *D = v, *nu = v + n, *ra = v + 2 * n, *Ds = v + 3 * n, *dh = v + 4 * n, *de = v + 5 * n,
@@ -228,7 +260,12 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
   size_t m = 0, ms = 0, mh = 0, me = 0, mp = 0, mf = 0;
   for (size_t k = 0; k < n; k++) {
     const hd_run_fit *f = &fits[g->idx[k]];
+    if (f->hcs.have) out->measured = 1;
     if (!f->haff_ok) continue;
+    if (f->short_window) { /* eq. (31) cannot be trusted there (HD_FIT_MIN_DECAY) */
+      out->n_short++;
+      continue;
+    }
     D[m] = f->haff.D_e, nu[m] = f->haff.nu0, ra[m] = f->ratio;
     c0[m] = f->cpd_start, c1[m++] = f->cpd_end;
     if (f->slope_ok) Ds[ms++] = f->D_e_slope, de[me++] = f->haff.D_e - f->D_e_slope;
@@ -255,11 +292,15 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
   out->sys_est = excess(tmp, s);
   hd_ensemble_mean(sp, mp, &out->s_perp, &tmp);
   hd_ensemble_mean(fx, mf, &tmp, &s);
-  out->sys_box = mf && !isnan(out->D_e) ? out->D_e * fmax(0, tmp) : 0;
+  out->sys_box = mf && !isnan(out->D_e) ? out->D_e * fmax(0, tmp) : NAN;
   out->flow_excess = mf ? tmp : NAN;
-  out->D_e_sys = sqrt(out->sys_window * out->sys_window + out->sys_est * out->sys_est +
-                      out->sys_box * out->sys_box);
-  out->flagged = out->measured && ((mp && out->s_perp > o->s_flag) || 2 * out->ended > m);
+  double terms[3] = {out->sys_window, out->sys_est, out->sys_box};
+  out->D_e_sys = quad_sum(terms, 3);
+  out->flagged = out->measured && ((mp && out->s_perp > o->s_flag) || 2 * out->ended > m)
+                     ? HD_FLAG_INHOMOG
+                     : 0;
+  if (out->n_short && (m == 0 || 2 * out->n_short > m + out->n_short))
+    out->flagged |= HD_FLAG_SHORT;
   free(v);
 }
 
@@ -284,10 +325,13 @@ void hd_k_sys_do(const hd_run_fit *fits, const size_t *idx, size_t n, const doub
     out->win[0] = out->win[1] = NAN;
   }
   free(d);
-  double f = isnan(fx) ? 0 : fmax(0, fx);
-  out->box[0] = isnan(a[0]) ? 0 : fabs(a[0] + 1) * f;
-  out->box[1] = isnan(a[1]) ? 0 : fabs(a[1]) * f;
-  for (int j = 0; j < 2; j++) out->sys[j] = hypot(out->win[j], out->box[j]);
+  double f = isnan(fx) ? NAN : fmax(0, fx); /* no state measures: not measured */
+  out->box[0] = isnan(a[0]) ? NAN : fabs(a[0] + 1) * f;
+  out->box[1] = isnan(a[1]) ? NAN : fabs(a[1]) * f;
+  for (int j = 0; j < 2; j++) {
+    double t[2] = {out->win[j], out->box[j]};
+    out->sys[j] = quad_sum(t, 2);
+  }
 }
 
 void hd_ensemble_mean(const double *vals, size_t n, double *mean, double *se) {

@@ -34,6 +34,16 @@ enum {
                           * window: a file from before, or a run still going) */
 };
 
+/* The shortest window the eq. (31) fit is trusted on (docs/analysis.md, "Short windows: the
+ * rule").  Measured: 12 runs of 400 dimers (a = d, alpha = 0.9, area fraction 0.05, a sample
+ * every 0.1 cpd), windows from cpd 5 of 1 to 50 cpd: while E decays by less than a factor e over
+ * the window, eq. (31)'s D_e over the seeds is biased (0.34 and 0.69 at 1 and 2 cpd, against
+ * 3.05) or scatters by 50-450 % of itself (3 to 10 cpd), its formal error 10-100 times below
+ * that; from one e-fold on (15-20 cpd there) the scatter falls to 20 %, 14 %, 6.5 %, 3.6 %, 2.6 %
+ * at ln(E0/E) = 0.93, 1.25, 1.56, 2.2, 3.1. */
+#define HD_FIT_MIN_DECAY 1.0  /* ln(E_start / E_end) over the window, alpha < 1 */
+#define HD_FIT_MIN_SAMPLES 10 /* samples in the window (any alpha) */
+
 /* The defaults above. */
 hd_fit_opts hd_fit_opts_defaults(void);
 
@@ -64,6 +74,11 @@ typedef struct hd_run_fit {
   int K_half_ok[2];        /* 1 if the K fit on the first / second half (in cpd) succeeded */
   hd_linfit K_half[2];     /* ... its result: the window's systematic error of a0, a1 */
   char why[256];           /* why a fit failed ("" if both succeeded) */
+  double decay;            /* ln(E_start / E_end) over the window (NaN if an energy is <= 0) */
+  int short_window;        /* 1: the window is too short for eq. (31): fewer than
+                            * HD_FIT_MIN_SAMPLES samples, or alpha < 1 and decay <
+                            * HD_FIT_MIN_DECAY.  Its D_e is printed, flagged `short`, and left
+                            * out of the groups' means */
 } hd_run_fit;
 
 /* Reads the samples of ri and fills *out.  A failed fit is not an error (haff_ok/K_ok = 0 and
@@ -109,12 +124,24 @@ typedef struct hd_group_fit {
   double cpd_start, cpd_end; /* mean window */
   double s_perp;             /* mean window s_perp (NaN without state measures) */
   size_t ended;              /* runs whose HCS ended within min_window cpd of its start */
-  int flagged;               /* 1: "inhomogeneous" (s_perp > s_flag, or most runs ended early) */
+  int flagged;               /* HD_FLAG_* bits: inhomogeneous (s_perp > s_flag, or most runs
+                              * ended early), short (most runs' windows too short, or none
+                              * left to fit: hd_run_fit.short_window); 0 if none */
+  size_t n_short;            /* runs left out for a short window (hd_run_fit.short_window) */
   int measured;              /* 1 if the runs carry state measures (else no flag can be given) */
   double flow_excess;        /* mean window flow_frac - flow_chaos (NaN without state measures) */
 } hd_group_fit;
 
-/* Fills *out for the runs fits[g->idx[..]] with the rules of o (s_flag, min_window). */
+/* hd_group_fit.flagged bits. */
+enum { HD_FLAG_INHOMOG = 1, HD_FLAG_SHORT = 2 };
+
+/* The flag column's text for bits: "", "inhomogeneous", "short" or "inhomogeneous,short". */
+const char *hd_group_flag_name(int flagged);
+
+/* Fills *out for the runs fits[g->idx[..]] with the rules of o (s_flag, min_window).  Runs whose
+ * window is short (hd_run_fit.short_window) are left out of every mean and counted in n_short.
+ * A systematic term that its own noise explains (|d| <= 2 se) was not measured: NaN, as is
+ * sys_box without state measures, and D_e_sys when no term was measured. */
 void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opts *o,
                      hd_group_fit *out);
 
@@ -129,10 +156,11 @@ void hd_ensemble_mean(const double *vals, size_t n, double *mean, double *se);
  * explain, as for D_e_sys. */
 typedef struct hd_k_sys {
   size_t mh;     /* runs with both half-window K fits */
-  double win[2]; /* half the mean (second half - first half) of a0 and of a1 over the runs */
+  double win[2]; /* half the mean (second half - first half) of a0 and of a1 over the runs, less
+                  * its noise; NaN when the noise explains it (not measured) */
   double box[2]; /* correlated flow counted in e_tr: (a0 + 1) fx and |a1| fx, fx = the group's
-                  * mean flow excess (0 when NaN or < 0) */
-  double sys[2]; /* sqrt(win^2 + box^2) */
+                  * mean flow excess (0 when < 0; NaN without state measures) */
+  double sys[2]; /* sqrt(win^2 + box^2) over the terms measured; NaN if neither was */
 } hd_k_sys;
 
 /* Fills *out from the runs fits[idx[0..n)] (their K_half fits), the combined a0, a1 (a[0],

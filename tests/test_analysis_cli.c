@@ -206,7 +206,8 @@ static int read_rows(const char *path, double rows[][16], int maxrows, int skip_
     p = end;
     while (*p == '\t' && c < 16) {
       p++;
-      v = strtod(p, &end);
+      v = *p == '\t' || *p == '\n' ? NAN : strtod(p, &end); /* an empty cell: missing */
+      if (*p == '\t' || *p == '\n') end = p;
       rows[n][c++] = end == p ? NAN : v; /* text fields read as NaN */
       p = end;
       while (*p && *p != '\t' && *p != '\n') p++;

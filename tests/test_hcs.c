@@ -95,7 +95,7 @@ static void group_errors(void **state) {
   assert_true(!q.flagged && q.ended == 2);
   for (int k = 0; k < 4; k++) f[k].hcs.have = 0; /* no measures: no box term, no flag */
   hd_group_fit_do(f, &g, &o, &q);
-  assert_true(!q.measured && !q.flagged && q.sys_box == 0);
+  assert_true(!q.measured && !q.flagged && isnan(q.sys_box)); /* not measured: NaN, not 0 */
 }
 
 /* A file written before schema version 2 (samples without the state measures) is read with NaN
@@ -184,6 +184,11 @@ typedef struct grow {
   double box, alpha;
 } grow;
 
+/* A cell's number; an empty cell (a value not measured, printed empty) gives `empty`. */
+static double cell(const char *p, double empty) {
+  return *p == '\t' || *p == 0 ? empty : strtod(p, NULL);
+}
+
 static int read_groups(const char *path, grow *g, int max) {
   FILE *f = fopen(path, "r");
   assert_non_null(f);
@@ -208,12 +213,12 @@ static int read_groups(const char *path, grow *g, int max) {
     c = 0;
     for (char *p = line, *q; p; p = q ? q + 1 : NULL, c++) {
       q = strchr(p, '\t');
-      if (c == col[0]) r->D = strtod(p, NULL);
-      if (c == col[1]) r->err = strtod(p, NULL);
-      if (c == col[2]) r->sys = strtod(p, NULL);
+      if (c == col[0]) r->D = cell(p, NAN);
+      if (c == col[1]) r->err = cell(p, NAN);
+      if (c == col[2]) r->sys = cell(p, 0); /* not measured: counts 0 in a total */
       if (c == col[3]) r->n = strtol(p, NULL, 10);
-      if (c == col[5]) r->box = strtod(p, NULL);
-      if (c == col[6]) r->alpha = strtod(p, NULL);
+      if (c == col[5]) r->box = cell(p, 0);
+      if (c == col[6]) r->alpha = cell(p, NAN);
       if (c == col[4]) {
         size_t len = q ? (size_t)(q - p) : strlen(p);
         snprintf(r->flag, sizeof r->flag, "%.*s", (int)(len < 31 ? len : 31), p);
@@ -375,7 +380,7 @@ static void k_sys(void **state) {
   hd_k_sys_do(f, idx, 3, a, -0.01, &q);
   assert_true(q.box[0] == 0 && q.box[1] == 0 && fabs(q.sys[0] - 0.05) < 1e-12);
   hd_k_sys_do(f, idx, 3, a, NAN, &q);
-  assert_true(q.box[0] == 0);
+  assert_true(isnan(q.box[0]) && fabs(q.sys[0] - 0.05) < 1e-12); /* no measures: not 0 */
 }
 
 /* Writes a dimer run (N = 900, a = d = 1, box 100 x 100, alpha) that follows Haff's law with
@@ -526,6 +531,119 @@ static void acceptance_cheap(void **state) {
   assert_int_equal(fails, 1);
 }
 
+/* A window too short for eq. (31) (issue 25): the issue's run, 400 dimers (a = d, alpha = 0.9,
+ * area fraction 0.05) to 3 cpd with a sample every 0.1 cpd, was fitted D_e = 0.054 +- 2.5e-12
+ * (chi2/dof 1e-25) and not flagged.  Now haff-fit flags the row `short` (E decays by 1 % over
+ * its window, the rule asks a factor e: HD_FIT_MIN_DECAY), the group is flagged short with no
+ * D_e, table1 leaves it out, and no output prints nan.  Then elastic disks (alpha = 1: D_e does
+ * not exist) print their missing values empty, and made-up groups check the rules: one short run
+ * of four is left out of the mean (not flagged), three are; a systematic term within 2 of its
+ * standard errors was not measured (NaN, printed empty), not 0 or a clipped 1e-8. */
+static void short_window(void **state) {
+  (void)state;
+  char db[400], out[400], text[512];
+  snprintf(db, sizeof db, "%s/short.db", dir);
+  snprintf(out, sizeof out, "%s/short.tsv", dir);
+  snprintf(text, sizeof text,
+           "[system]\narea_fraction = 0.05\nseed = 1\n[dimers]\ncount = 400\nalpha = 0.9\na = 1\n"
+           "[init]\ntemperature = 1\nplacement = random\n[run]\nstop_cpd = 3\n[log]\n"
+           "collisions = none\nsamples_every = 0.1\n");
+  hd_scene sc;
+  hd_error err;
+  assert_int_equal(hd_scene_load_string(&sc, text, "short.ini", NULL, 0, &err), HD_OK);
+  hd_run_opts ro = {.db_path = db, .quiet = 1, .version = "test"};
+  int64_t run;
+  assert_int_equal(hd_run_new(&sc, &ro, &run, &err), HD_OK);
+  hd_scene_free(&sc);
+  char *argv[] = {"haff-fit", db, "-o", out, NULL};
+  assert_int_equal(haff_fit_main(4, argv), 0);
+  char buf[4096];
+  FILE *f = fopen(out, "r");
+  assert_non_null(f);
+  size_t nb = fread(buf, 1, sizeof buf - 1, f);
+  buf[nb] = 0;
+  fclose(f);
+  printf("# %s", strchr(buf, '\n') + 1);
+  assert_non_null(strstr(buf, "\tdecay\tflag\n"));
+  assert_non_null(strstr(buf, "\tshort\n")); /* the row is flagged */
+  char *grp[] = {"haff-fit", db, "--alpha-group", "-o", out, NULL};
+  assert_int_equal(haff_fit_main(5, grp), 0);
+  grow g[2];
+  assert_int_equal(read_groups(out, g, 2), 1);
+  assert_string_equal(g[0].flag, "short");
+  assert_true(isnan(g[0].D)); /* no D_e from a window that cannot give one */
+  char *t1[] = {"table1", db, "-o", out, NULL};
+  assert_int_equal(haff_table1_main(4, t1), 0);
+  f = fopen(out, "r");
+  nb = fread(buf, 1, sizeof buf - 1, f);
+  buf[nb] = 0;
+  fclose(f);
+  assert_null(strchr(buf, '\n') ? strchr(strchr(buf, '\n') + 1, '\n') : NULL); /* header only */
+  /* elastic disks: no D_e, and every command's output free of nan */
+  char db2[400];
+  snprintf(db2, sizeof db2, "%s/elastic.db", dir);
+  snprintf(text, sizeof text,
+           "[system]\narea_fraction = 0.05\n[disks]\ncount = 100\nalpha = 1\n[init]\n"
+           "temperature = 1\nplacement = random\n[run]\nstop_cpd = 20\n[log]\ncollisions = "
+           "none\nsamples_every = 0.5\n");
+  for (int k = 1; k <= 2; k++) {
+    assert_int_equal(hd_scene_load_string(&sc, text, "el.ini", NULL, 0, &err), HD_OK);
+    sc.seed = (unsigned long long)k;
+    hd_run_opts r2 = {.db_path = db2, .quiet = 1, .version = "test"};
+    assert_int_equal(hd_run_new(&sc, &r2, &run, &err), HD_OK);
+    hd_scene_free(&sc);
+  }
+  const char *cmds[6][3] = {{"haff-fit", NULL, NULL}, {"haff-fit", "--alpha-group", NULL},
+                            {"table1", NULL, NULL},   {"table1", "--md", NULL},
+                            {"energy", NULL, NULL},   {"haff-fit", "--alpha-group", NULL}};
+  for (int c = 0; c < 6; c++) {
+    const char *d = c == 5 ? db : db2;
+    char *av[6] = {(char *)cmds[c][0], (char *)d, "-o", out, (char *)cmds[c][1], NULL};
+    int ac = cmds[c][1] ? 5 : 4;
+    int rc = !strcmp(cmds[c][0], "haff-fit") ? haff_fit_main(ac, av)
+             : !strcmp(cmds[c][0], "table1") ? haff_table1_main(ac, av)
+                                             : haff_energy_main(ac, av);
+    assert_int_equal(rc, 0);
+    f = fopen(out, "r");
+    nb = fread(buf, 1, sizeof buf - 1, f);
+    buf[nb] = 0;
+    fclose(f);
+    if (strstr(buf, "nan")) printf("# %s %s: %s\n", cmds[c][0], cmds[c][1] ? cmds[c][1] : "", buf);
+    assert_null(strstr(buf, "nan"));
+  }
+  /* the group rules on made-up runs */
+  hd_run_fit fr[4];
+  size_t idx[4] = {0, 1, 2, 3};
+  memset(fr, 0, sizeof fr);
+  for (int k = 0; k < 4; k++) {
+    fr[k].haff_ok = fr[k].slope_ok = 1;
+    fr[k].haff.D_e = 3.00 + 0.02 * k, fr[k].D_e_slope = fr[k].haff.D_e - 0.01 * (k % 2 ? 1 : -1);
+    fr[k].D_e_half[0] = 3.00, fr[k].D_e_half[1] = 3.00 + 0.001 * k;
+    fr[k].cpd_start = 5, fr[k].cpd_end = 160;
+  }
+  hd_group gg = {0};
+  gg.n = 4, gg.idx = idx;
+  hd_fit_opts o = hd_fit_opts_defaults();
+  hd_group_fit q;
+  hd_group_fit_do(fr, &gg, &o, &q);
+  printf("# made up: sys window %g estimator %g box %g total %g\n", q.sys_window, q.sys_est,
+         q.sys_box, q.D_e_sys);
+  /* drift 0.0015 +- 0.00065 (2.3 se): measured; estimator 0 +- 0.0058: not; box: no measures */
+  assert_true(q.sys_window > 0 && isnan(q.sys_est) && isnan(q.sys_box));
+  assert_true(fabs(q.D_e_sys - q.sys_window) < 1e-15 && !q.flagged);
+  for (int k = 0; k < 4; k++) fr[k].D_e_half[1] = 3.00 + 0.001 * (k % 2);
+  hd_group_fit_do(fr, &gg, &o, &q);
+  assert_true(isnan(q.sys_window) && isnan(q.D_e_sys)); /* nothing measured: not 0 */
+  fr[0].short_window = 1;
+  hd_group_fit_do(fr, &gg, &o, &q);
+  assert_true(q.m == 3 && q.n_short == 1 && !q.flagged && fabs(q.D_e - 3.04) < 1e-12);
+  fr[1].short_window = fr[2].short_window = 1;
+  hd_group_fit_do(fr, &gg, &o, &q);
+  assert_true(q.m == 1 && q.n_short == 3 && q.flagged == HD_FLAG_SHORT);
+  assert_string_equal(hd_group_flag_name(q.flagged), "short");
+  assert_string_equal(hd_group_flag_name(HD_FLAG_SHORT | HD_FLAG_INHOMOG), "inhomogeneous,short");
+}
+
 static int setup(void **state) {
   (void)state;
   return test_cli_mkdtemp("hcs");
@@ -542,6 +660,7 @@ int main(void) {
       cmocka_unit_test(schema_upgrade), cmocka_unit_test(schema_same_version),
       cmocka_unit_test(stored_window),  cmocka_unit_test(k_sys),
       cmocka_unit_test(table2_sys),     cmocka_unit_test(acceptance_cheap),
+      cmocka_unit_test(short_window),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

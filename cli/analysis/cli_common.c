@@ -22,7 +22,8 @@ const hd_optdef hd_cli_opts[] = {
                 .set = HD_OPT_GROUP),
     HD_OPT_FLAG("md", 0, hd_cli_args, md, "a Markdown table instead of TSV", .set = HD_OPT_MD),
     HD_OPT_FLAG("keep-flagged", 0, hd_cli_args, keep_flagged,
-                "keep the groups flagged inhomogeneous (left out by default)", .set = HD_OPT_MD),
+                "keep the groups flagged inhomogeneous or short (left out by default)",
+                .set = HD_OPT_MD),
     HD_OPT_ENUM("k-ci", 0, hd_cli_args, kmode, "ac|ols|runs", "ac|ols|runs",
                 "ac [default]: runs combined by inverse-variance weights, each run's errors\n"
                 "widened by its residuals' autocorrelation time (docs/analysis.md);\n"
@@ -295,10 +296,16 @@ int hd_cli_flagged_out(const char *cmd, const hd_group *g, const hd_group_fit *q
             "schema 2): its homogeneity is not checked and D_e_sys has no box term\n",
             cmd, g->alpha, g->a_over_d);
   if (!q->flagged || keep) return 0;
-  fprintf(stderr,
-          "haff %s: note: left out alpha %g a/d %g N %ld: inhomogeneous (window mean s_perp %.3g, "
-          "%zu of %zu runs left the HCS early); --keep-flagged keeps it\n",
-          cmd, g->alpha, g->a_over_d, g->nbodies, q->s_perp, q->ended, q->m);
+  if (q->flagged & HD_FLAG_INHOMOG)
+    fprintf(stderr,
+            "haff %s: note: left out alpha %g a/d %g N %ld: inhomogeneous (window mean s_perp "
+            "%.3g, %zu of %zu runs left the HCS early); --keep-flagged keeps it\n",
+            cmd, g->alpha, g->a_over_d, g->nbodies, q->s_perp, q->ended, q->m);
+  else
+    fprintf(stderr,
+            "haff %s: note: left out alpha %g a/d %g N %ld: short (%zu of %zu runs have a window "
+            "too short for eq. (31)); --keep-flagged keeps it\n",
+            cmd, g->alpha, g->a_over_d, g->nbodies, q->n_short, q->n_short + q->m);
   return 1;
 }
 
@@ -310,4 +317,26 @@ void hd_cli_one_run_note(const char *cmd, const hd_group *g, size_t m) {
             "error needs >= 2 runs; the fit's formal error, haff-fit's *_fit_err, is several times "
             "smaller than the scatter between runs)\n",
             cmd, g->alpha, g->a_over_d);
+}
+
+void hd_cli_short_note(const char *cmd, const hd_group *g, const hd_group_fit *q) {
+  if (q->n_short)
+    fprintf(stderr,
+            "haff %s: note: alpha %g a/d %g N %ld: left out %zu run%s whose window is too short "
+            "for eq. (31) (< %d samples, or ln(E_start/E_end) < %g)%s\n",
+            cmd, g->alpha, g->a_over_d, g->nbodies, q->n_short, q->n_short == 1 ? "" : "s",
+            HD_FIT_MIN_SAMPLES, HD_FIT_MIN_DECAY,
+            q->flagged & HD_FLAG_SHORT ? ": the group is flagged short" : "");
+}
+
+const char *hd_cli_num(const char *fmt, double x, int md) {
+  static char buf[64][40];
+  static unsigned k;
+  char *b = buf[k++ % 64];
+  if (isnan(x)) return md ? "—" : "";
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wformat-nonliteral"
+  snprintf(b, sizeof buf[0], fmt, x);
+#pragma GCC diagnostic pop
+  return b;
 }

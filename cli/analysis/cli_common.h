@@ -117,6 +117,14 @@ size_t hd_cli_table_groups(const char *cmd, const hd_group *g, size_t ng, int wi
  * stderr, and that a group without state measures could not be checked. */
 int hd_cli_flagged_out(const char *cmd, const hd_group *g, const hd_group_fit *q, int keep);
 
+/* Says on stderr how many of group g's runs q left out for a short window (none: nothing). */
+void hd_cli_short_note(const char *cmd, const hd_group *g, const hd_group_fit *q);
+
+/* x printed with the printf format fmt (one double conversion), or, when x is NaN, "" (tsv) or
+ * "—" (md = 1): a missing or unmeasured value is never printed as nan.  The text lives in one of
+ * 64 rotating static buffers: valid until 63 more calls. */
+const char *hd_cli_num(const char *fmt, double x, int md);
+
 /* Says on stderr why a group fitted from one run has no error (hd_ensemble_mean). */
 void hd_cli_one_run_note(const char *cmd, const hd_group *g, size_t m);
 

@@ -12,7 +12,7 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
   hd_series *s = calloc(m, sizeof *s);
   if (!s) return hd_error_set(err, HD_ENOMEM, "out of memory");
   int rc = HD_OK;
-  size_t len = (size_t)-1, homog = (size_t)-1, nfit = 0, i0 = 0;
+  size_t len = (size_t)-1, homog = (size_t)-1, nfit = 0, nshort = 0, i0 = 0;
   double De = 0, nu = 0;
   for (size_t k = 0; k < m && rc == HD_OK; k++) {
     const hd_run_fit *f = &fits[idx[k]];
@@ -21,7 +21,8 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
     if (s[k].n < len) len = s[k].n;
     if (f->n_used < homog) homog = f->n_used;
     if (f->n_start > i0) i0 = f->n_start; /* the latest window start of the runs */
-    if (f->haff_ok) De += f->haff.D_e, nu += f->haff.nu0, nfit++;
+    if (f->haff_ok && !f->short_window) De += f->haff.D_e, nu += f->haff.nu0, nfit++;
+    nshort += f->short_window != 0;
   }
   if (rc == HD_OK) {
     const hd_run_info *ri = &fits[idx[0]].info;
@@ -29,8 +30,11 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
     De = nfit ? De / (double)nfit : NAN;
     nu = nfit ? nu / (double)nfit : NAN;
     if (!first) fprintf(out, "\n\n"); /* blank lines between blocks, none after the last */
-    fprintf(out, "# %s alpha=%g a_over_d=%g runs=%zu D_e=%.6g nu0_eff=%.6g\n", ri->label, al,
-            ri->a_over_d, m, De, nu);
+    /* a run whose window is too short for eq. (31) (hd_run_fit.short_window) is left out of
+     * D_e and nu0_eff; none left: they are empty and the block says flag=short */
+    fprintf(out, "# %s alpha=%g a_over_d=%g runs=%zu D_e=%s nu0_eff=%s%s\n", ri->label, al,
+            ri->a_over_d, m, hd_cli_num("%.6g", De, 0), hd_cli_num("%.6g", nu, 0),
+            nfit == 0 && nshort ? " flag=short" : "");
     /* header: column 1's name is the block's legend title (gnuplot: title columnheader(1)) */
     if (ri->species == HD_ANA_DIMERS && !ri->walls) /* the papers' case: the legend as before */
       fprintf(out, "alpha=%g a/d=%g (%zu runs)", al, ri->a_over_d, m);
@@ -56,8 +60,9 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
       double g = c / (2 * De), u = 1 + g * nu * (t - ts), haff = Es / E0 / (u * u);
       double xeq = c * (cs + hd_haff_tau(t - ts, al, De, nu));
       if (c == 0) haff = 1;
-      fprintf(out, "%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%d\n", t, cpd,
-              et + er, (et + er) / E0, et, er, c * cpd, nu * t, haff, xeq, i >= i0 && i < homog);
+      fprintf(out, "%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%s\t%s\t%s\t%d\n", t, cpd, et + er,
+              (et + er) / E0, et, er, c * cpd, hd_cli_num("%.8g", nu * t, 0),
+              hd_cli_num("%.8g", haff, 0), hd_cli_num("%.8g", xeq, 0), i >= i0 && i < homog);
     }
   }
   for (size_t k = 0; k < m; k++) hd_series_free(&s[k]);

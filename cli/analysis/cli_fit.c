@@ -26,7 +26,10 @@ const hd_optspec haff_fit_spec = {
         "used when the detection options are the defaults), 'computed' (found now: other options,\n"
         "or a file without it), 'whole' (--no-detect).  A run that cannot be fitted gets nan and a "
         "note;\n"
-        "exit 2 when none can.\n"};
+        "exit 2 when none can.  flag 'short' (per run; per group when most of its runs are): the\n"
+        "window has < 10 samples or E decays by less than a factor e over it; eq. (31) is not\n"
+        "constrained there, and groups leave such runs out.  A missing value, or a systematic\n"
+        "term not resolved from its noise, is printed empty (never nan or 0).\n"};
 
 int haff_fit_main(int argc, char **argv) {
   hd_cli_args a;
@@ -47,22 +50,36 @@ int haff_fit_main(int argc, char **argv) {
     fprintf(out, "run\tspecies\talpha\ta_over_d\tn_used\tdetected\tt_end\tcpd_end\tD_e\t"
                  "D_e_fit_err\tnu0_eff\tnu0_eff_fit_err\tnu0_enskog\tratio\tratio_fit_err\t"
                  "chi2_dof\tcpd_start\tD_e_slope\tD_e_slope_err\ts_perp\tflow_excess\t"
-                 "hcs_ended\twindow\n");
+                 "hcs_ended\twindow\tdecay\tflag\n");
+    size_t nshort = 0;
     for (size_t i = 0; i < n; i++) {
       const hd_run_fit *f = &fits[i];
       double nan = NAN;
       const hd_haff_fit *h = &f->haff;
-      fprintf(
-          out,
-          "%lld\t%s\t%g\t%g\t%zu\t%d\t%.6g\t%.6g\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.6g\t%.3g\t%.3g\t"
-          "%.6g\t%.6g\t%.3g\t%.4g\t%.4g\t%d\t%s\n",
-          (long long)f->info.id, f->info.label, f->info.alpha, f->info.a_over_d, f->n_used,
-          f->homog.detected, f->t_end, f->cpd_end, f->haff_ok ? h->D_e : nan,
-          f->haff_ok ? h->D_e_err : nan, f->haff_ok ? h->nu0 : nan, f->haff_ok ? h->nu0_err : nan,
-          f->nu0_enskog, f->ratio, f->ratio_err, f->haff_ok ? h->chi2 / (double)h->dof : nan,
-          f->cpd_start, f->D_e_slope, f->D_e_slope_err, f->hcs.have ? f->hcs.s_perp : nan,
-          f->hcs.have ? f->hcs.flow_excess : nan, f->hcs.ended, hd_cli_window_name(f->window));
+      int ok = f->haff_ok;
+      nshort += f->short_window != 0;
+#define N(fmt, x) hd_cli_num(fmt, x, 0)
+      fprintf(out,
+              "%lld\t%s\t%s\t%s\t%zu\t%d\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%"
+              "s\t%d\t%s\t%s\t%s\n",
+              (long long)f->info.id, f->info.label, N("%g", f->info.alpha),
+              N("%g", f->info.a_over_d), f->n_used, f->homog.detected, N("%.6g", f->t_end),
+              N("%.6g", f->cpd_end), N("%.6g", ok ? h->D_e : nan), N("%.3g", ok ? h->D_e_err : nan),
+              N("%.6g", ok ? h->nu0 : nan), N("%.3g", ok ? h->nu0_err : nan),
+              N("%.6g", f->nu0_enskog), N("%.6g", f->ratio), N("%.3g", f->ratio_err),
+              N("%.3g", ok ? h->chi2 / (double)h->dof : nan), N("%.6g", f->cpd_start),
+              N("%.6g", f->D_e_slope), N("%.3g", f->D_e_slope_err),
+              N("%.4g", f->hcs.have ? f->hcs.s_perp : nan),
+              N("%.4g", f->hcs.have ? f->hcs.flow_excess : nan), f->hcs.ended,
+              hd_cli_window_name(f->window), N("%.3g", f->decay), f->short_window ? "short" : "");
     }
+    if (nshort)
+      fprintf(stderr,
+              "haff %s: note: %zu run%s flagged short: the window has fewer than %d samples or E "
+              "decays by less than a factor e over it (ln(E_start/E_end) < %g): eq. (31) cannot "
+              "separate D_e from nu0 there, whatever its formal error says "
+              "(docs/analysis.md, \"Short windows\"); the groups leave them out\n",
+              argv[0], nshort, nshort == 1 ? "" : "s", HD_FIT_MIN_SAMPLES, HD_FIT_MIN_DECAY);
   } else {
     hd_group *g;
     size_t ng;
@@ -79,13 +96,18 @@ int haff_fit_main(int argc, char **argv) {
       hd_group_fit q;
       hd_group_fit_do(fits, &g[j], &a.fit, &q);
       hd_cli_one_run_note(argv[0], &g[j], q.m);
+      hd_cli_short_note(argv[0], &g[j], &q);
+#define N(fmt, x) hd_cli_num(fmt, x, 0)
       fprintf(out,
-              "%g\t%g\t%s\t%zu\t%.6g\t%.3g\t%.6g\t%.3g\t%.6g\t%.3g\t%ld\t%.4g\t%.4g\t%.6g\t%.3g\t"
-              "%.3g\t%.3g\t%.3g\t%.3g\t%.4g\t%s\n",
-              g[j].alpha, g[j].a_over_d, g[j].label, q.m, q.D_e, q.D_e_err, q.nu0, q.nu0_err,
-              q.ratio, q.ratio_err, g[j].nbodies, q.cpd_start, q.cpd_end, q.D_e_slope,
-              q.D_e_slope_err, q.D_e_sys, q.sys_window, q.sys_est, q.sys_box, q.s_perp,
-              q.flagged ? "inhomogeneous" : "");
+              "%s\t%s\t%s\t%zu\t%s\t%s\t%s\t%s\t%s\t%s\t%ld\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%"
+              "s\n",
+              N("%g", g[j].alpha), N("%g", g[j].a_over_d), g[j].label, q.m, N("%.6g", q.D_e),
+              N("%.3g", q.D_e_err), N("%.6g", q.nu0), N("%.3g", q.nu0_err), N("%.6g", q.ratio),
+              N("%.3g", q.ratio_err), g[j].nbodies, N("%.4g", q.cpd_start), N("%.4g", q.cpd_end),
+              N("%.6g", q.D_e_slope), N("%.3g", q.D_e_slope_err), N("%.3g", q.D_e_sys),
+              N("%.3g", q.sys_window), N("%.3g", q.sys_est), N("%.3g", q.sys_box),
+              N("%.4g", q.s_perp), hd_group_flag_name(q.flagged));
+#undef N
     }
     hd_groups_free(g, ng);
   }

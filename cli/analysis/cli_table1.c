@@ -38,14 +38,19 @@ int haff_table1_main(int argc, char **argv) {
     hd_group_fit_do(s.fits, &s.g[j], &a.fit, &q);
     if (hd_cli_flagged_out(argv[0], &s.g[j], &q, a.keep_flagged)) continue;
     hd_cli_one_run_note(argv[0], &s.g[j], q.m);
+    hd_cli_short_note(argv[0], &s.g[j], &q);
+#define N(fmt, x) hd_cli_num(fmt, x, a.md)
     if (a.md)
-      fprintf(out, "| %g | %g | %.4f | %.2g | %.2g | %.4f | %.2g | %zu | %.0f–%.0f | %s |\n",
-              s.g[j].alpha, s.g[j].a_over_d, q.D_e, q.D_e_err, q.D_e_sys, q.ratio, q.ratio_err, q.m,
-              q.cpd_start, q.cpd_end, q.flagged ? "inhomogeneous" : "");
+      fprintf(out, "| %g | %g | %s | %s | %s | %s | %s | %zu | %.0f–%.0f | %s |\n", s.g[j].alpha,
+              s.g[j].a_over_d, N("%.4f", q.D_e), N("%.2g", q.D_e_err), N("%.2g", q.D_e_sys),
+              N("%.4f", q.ratio), N("%.2g", q.ratio_err), q.m, q.cpd_start, q.cpd_end,
+              hd_group_flag_name(q.flagged));
     else
-      fprintf(out, "%g\t%g\t%.6g\t%.3g\t%.6g\t%.3g\t%zu\t%.3g\t%.4g\t%.4g\t%s\n", s.g[j].alpha,
-              s.g[j].a_over_d, q.D_e, q.D_e_err, q.ratio, q.ratio_err, q.m, q.D_e_sys, q.cpd_start,
-              q.cpd_end, q.flagged ? "inhomogeneous" : "");
+      fprintf(out, "%g\t%g\t%s\t%s\t%s\t%s\t%zu\t%s\t%s\t%s\t%s\n", s.g[j].alpha, s.g[j].a_over_d,
+              N("%.6g", q.D_e), N("%.3g", q.D_e_err), N("%.6g", q.ratio), N("%.3g", q.ratio_err),
+              q.m, N("%.3g", q.D_e_sys), N("%.4g", q.cpd_start), N("%.4g", q.cpd_end),
+              hd_group_flag_name(q.flagged));
+#undef N
   }
   hd_cli_groups_free(&s);
   return hd_cli_close(out, &a);

@@ -48,13 +48,16 @@ int haff_table2_main(int argc, char **argv) {
     hd_k_sys ks;
     double a01[2] = {r[0], r[3]};
     hd_k_sys_do(s.fits, s.g[j].idx, s.g[j].n, a01, q.flow_excess, &ks);
+#define N(fmt, x) hd_cli_num(fmt, x, a.md)
     if (a.md)
-      fprintf(out, "| %g | %g | %.4f | [%.4f, %.4f] | %.2g | %.3e | [%.3e, %.3e] | %.2g |\n",
-              s.g[j].alpha, s.g[j].a_over_d, r[0], r[1], r[2], ks.sys[0], r[3], r[4], r[5],
-              ks.sys[1]);
+      fprintf(out, "| %g | %g | %.4f | [%.4f, %.4f] | %s | %.3e | [%.3e, %.3e] | %s |\n",
+              s.g[j].alpha, s.g[j].a_over_d, r[0], r[1], r[2], N("%.2g", ks.sys[0]), r[3], r[4],
+              r[5], N("%.2g", ks.sys[1]));
     else
-      fprintf(out, "%g\t%g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.3g\t%.3g\n", s.g[j].alpha,
-              s.g[j].a_over_d, r[0], r[1], r[2], r[3], r[4], r[5], ks.sys[0], ks.sys[1]);
+      fprintf(out, "%g\t%g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%s\t%s\n", s.g[j].alpha,
+              s.g[j].a_over_d, r[0], r[1], r[2], r[3], r[4], r[5], N("%.3g", ks.sys[0]),
+              N("%.3g", ks.sys[1]));
+#undef N
   }
   hd_cli_groups_free(&s);
   rc = hd_cli_close(out, &a);
