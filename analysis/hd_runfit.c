@@ -110,7 +110,20 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
     out->haff_ok = hd_fit_haff_log(k, x, nu - n0, ri->alpha, &out->haff, &fe) == HD_OK;
     if (!out->haff_ok) snprintf(out->why, sizeof out->why, "eq. 31 fit: %.200s", fe.msg);
   }
-  out->nu0_enskog = hd_enskog_nu0(ri->density, ri->d, out->T0, ri->mass, ri->eta_disk);
+  /* T at the window's start from all its samples, not one: Haff's law T(t) = T0 / u(t)^2,
+   * u = 1 + gamma nu0 t with the fit's gamma and nu0 (u = 1 at alpha = 1), so T0 is the mean of
+   * e_tr u^2 over the window; one sample's T fluctuates by ~sqrt(2/N) */
+  out->T0_avg = NAN;
+  if (out->haff_ok && nu > n0) {
+    double gam = ri->alpha < 1 ? (1 - ri->alpha * ri->alpha) / (2 * out->haff.D_e) : 0, sum = 0;
+    for (size_t i = n0; i < nu; i++) {
+      double u = 1 + gam * out->haff.nu0 * (s.t[i] - s.t[n0]);
+      sum += s.e_tr[i] * u * u;
+    }
+    out->T0_avg = sum / (double)(nu - n0);
+  }
+  out->nu0_enskog = hd_enskog_nu0(ri->density, ri->d, isnan(out->T0_avg) ? out->T0 : out->T0_avg,
+                                  ri->mass, ri->eta_disk);
   if (out->haff_ok && out->nu0_enskog > 0) {
     out->ratio = out->haff.nu0 / out->nu0_enskog;
     out->ratio_err = out->haff.nu0_err / out->nu0_enskog;

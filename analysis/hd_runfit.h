@@ -60,6 +60,9 @@ typedef struct hd_run_fit {
   double t_end, cpd_end;     /* last sample used */
   double E0;                 /* e_tr + e_rot of the first sample used */
   double T0;                 /* translational temperature of the first sample used (= e_tr in 2D) */
+  double T0_avg;             /* the same from every sample of the window: the mean of
+                              * e_tr (1 + gamma nu0 t)^2 (Haff's law with the eq. (31) fit's
+                              * gamma, nu0; the mean of e_tr at alpha = 1); NaN without a fit */
   int slope_ok;              /* 1 if the ln E against cpd fit succeeded */
   double D_e_slope;          /* -(1 - alpha^2) / (slope of ln E against cpd): needs no nu0 */
   double D_e_slope_err;      /* its error from the residuals' autocorrelation-corrected OLS error */
@@ -67,18 +70,19 @@ typedef struct hd_run_fit {
                               * (NaN if a half has < 3 samples): the window's systematic error */
   int haff_ok;               /* 1 if the eq. (31) fit succeeded */
   hd_haff_fit haff;          /* its result */
-  double nu0_enskog; /* eq. (29) for disks of diameter d, body mass, density n, T0, eta_disk */
-  double ratio, ratio_err; /* nu0_eff / nu0_enskog and its standard error */
-  int K_ok;                /* 1 if the K fit succeeded */
-  hd_linfit K;             /* K = e_tr/e_rot = a0 + a1 cpd */
-  int K_half_ok[2];        /* 1 if the K fit on the first / second half (in cpd) succeeded */
-  hd_linfit K_half[2];     /* ... its result: the window's systematic error of a0, a1 */
-  char why[256];           /* why a fit failed ("" if both succeeded) */
-  double decay;            /* ln(E_start / E_end) over the window (NaN if an energy is <= 0) */
-  int short_window;        /* 1: the window is too short for eq. (31): fewer than
-                            * HD_FIT_MIN_SAMPLES samples, or alpha < 1 and decay <
-                            * HD_FIT_MIN_DECAY.  Its D_e is printed, flagged `short`, and left
-                            * out of the groups' means */
+  double nu0_enskog;         /* eq. (29) for disks of diameter d, body mass, density n, T0_avg (T0
+                              * without a fit), eta_disk */
+  double ratio, ratio_err;   /* nu0_eff / nu0_enskog and its standard error */
+  int K_ok;                  /* 1 if the K fit succeeded */
+  hd_linfit K;               /* K = e_tr/e_rot = a0 + a1 cpd */
+  int K_half_ok[2];          /* 1 if the K fit on the first / second half (in cpd) succeeded */
+  hd_linfit K_half[2];       /* ... its result: the window's systematic error of a0, a1 */
+  char why[256];             /* why a fit failed ("" if both succeeded) */
+  double decay;              /* ln(E_start / E_end) over the window (NaN if an energy is <= 0) */
+  int short_window;          /* 1: the window is too short for eq. (31): fewer than
+                              * HD_FIT_MIN_SAMPLES samples, or alpha < 1 and decay <
+                              * HD_FIT_MIN_DECAY.  Its D_e is printed, flagged `short`, and left
+                              * out of the groups' means */
 } hd_run_fit;
 
 /* Reads the samples of ri and fills *out.  A failed fit is not an error (haff_ok/K_ok = 0 and

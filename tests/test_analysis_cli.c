@@ -274,7 +274,7 @@ static void table1(void **state) {
   assert_non_null(fgets(head, sizeof head, f));
   fclose(f);
   assert_string_equal(head, "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\tD_e_sys\t"
-                            "cpd_start\tcpd_end\tflag\n");
+                            "cpd_start\tcpd_end\tflag\tN\tarea_fraction\tnu_kt\tnu_kt_err\n");
   int n = read_rows(out, rows, 10, 1);
   assert_int_equal(n, 3);
   int seen = 0;
@@ -287,6 +287,12 @@ static void table1(void **state) {
       assert_int_equal((int)r[6], 3);
       assert_true(fabs(r[2] - 3) < 3 * r[3] + 0.02);
       assert_true(fabs(r[4] - 1.25) < 3 * r[5] + 0.01);
+      /* nu_kt: the ratio over the theory of haff mc rate at a = d (2.090, issue 25's independent
+       * value, +-0.12 % MC error) with g(area fraction)/g(eta_disk) (area fraction: 900 dimers
+       * of area 2 pi/4 in 100^2; eta_disk half of it) */
+      double phi = 900 * M_PI / 2 / 1e4, kt = 2.090 * hd_enskog_g2d(phi) / hd_enskog_g2d(phi / 2);
+      assert_true(fabs(r[12] - phi) < 1e-3 * phi && (int)r[11] == 900);
+      assert_true(fabs(r[13] / (r[4] / kt) - 1) < 0.004);
     }
     if (r[1] == 0) seen++, assert_true(fabs(r[2] - 2) < 0.1);
     /* a group of one run has no ensemble error (the fit's formal one was printed before) */

@@ -287,7 +287,7 @@ static void tsv_columns(void **state) {
   need();
   const char *want[][2] = {
       {"table1.tsv", "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\tD_e_sys\tcpd_start\t"
-                     "cpd_end\tflag"},
+                     "cpd_end\tflag\tN\tarea_fraction\tnu_kt\tnu_kt_err"},
       {"table2.tsv", "alpha\ta_over_d\ta0\ta0_lo\ta0_hi\ta1\ta1_lo\ta1_hi\ta0_sys\ta1_sys"},
       {"fmean_vs_engine.tsv", "source\ta_over_d\talpha\tf_mean\tf_err\tD_over_f\tn"},
       {"data/errcost.tsv",

@@ -313,7 +313,7 @@ int hd_cli_flagged_out(const char *cmd, const hd_group *g, const hd_group_fit *q
 void hd_cli_one_run_note(const char *cmd, const hd_group *g, size_t m) {
   if (m == 1)
     fprintf(stderr,
-            "haff %s: note: alpha %g a/d %g: one fitted run, so its errors are nan (an ensemble "
+            "haff %s: note: alpha %g a/d %g: one fitted run, so its errors are empty (an ensemble "
             "error needs >= 2 runs; the fit's formal error, haff-fit's *_fit_err, is several times "
             "smaller than the scatter between runs)\n",
             cmd, g->alpha, g->a_over_d);

@@ -20,7 +20,7 @@ const hd_optspec haff_fit_spec = {
         "runs "
         "with\n"
         "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m and density;\n"
-        "mean +- standard error over the runs; nan with one run).  Per run, *_fit_err are the\n"
+        "mean +- standard error over the runs; empty with one run).  Per run, *_fit_err are the\n"
         "formal least-squares errors, which take the residuals of the cumulative cpd(t) as\n"
         "independent: several times too small.  window: 'stored' (the run's runs.hcs_* window,\n"
         "used when the detection options are the defaults), 'computed' (found now: other options,\n"

@@ -183,8 +183,7 @@ static int fmean_convergence(const fopts *o) {
   return 0;
 }
 
-/* The body of --disks ('x y d m; x y d m; ...') into *shape.  Returns 0, or 2 after one line. */
-static int fmean_shape(const char *spec, hd_shape *shape) {
+int hd_mc_parse_disks(const char *cmd, const char *spec, hd_shape *shape) {
   double x[HD_MAX_BODY_DISKS], y[HD_MAX_BODY_DISKS], dd[HD_MAX_BODY_DISKS], mm[HD_MAX_BODY_DISKS];
   int k = 0, used = 0;
   const char *p = spec;
@@ -197,9 +196,9 @@ static int fmean_shape(const char *spec, hd_shape *shape) {
   while (*p == ' ') p++;
   if (*p || hd_shape_cluster(shape, k, x, y, dd, mm, 0)) {
     fprintf(stderr,
-            "haff mc fmean: --disks '%s': expected 1 to %d disks 'x y d m' separated by ';' "
+            "haff %s: --disks '%s': expected 1 to %d disks 'x y d m' separated by ';' "
             "(d, m > 0)\n",
-            spec, HD_MAX_BODY_DISKS);
+            cmd, spec, HD_MAX_BODY_DISKS);
     return 2;
   }
   return 0;
@@ -219,7 +218,7 @@ static int fmean_rows(const fopts *fo) {
     return 2;
   }
   hd_shape shape;
-  if (fo->disks && fmean_shape(fo->disks, &shape)) return 2;
+  if (fo->disks && hd_mc_parse_disks("mc fmean", fo->disks, &shape)) return 2;
   hd_error err;
   hd_fmean_opts o;
   hd_fmean_opts_default(&o);
