@@ -798,13 +798,18 @@ static void named_species_labelled(void **state) {
   double alpha[2], ad[2], De[2], n0e[2];
   for (int r = 0; r < 2; r++) {
     assert_non_null(fgets(line, sizeof line, f));
-    char a1[32], a2[32], d1[32], n1[32];
-    /* run species alpha a_over_d n_used detected t_end cpd_end D_e err nu0 err nu0_enskog */
-    assert_int_equal(sscanf(line, "%*s %63s %31s %31s %*s %*s %*s %*s %31s %*s %*s %*s %31s",
-                            lab[r], a1, a2, d1, n1),
-                     5);
-    alpha[r] = strtod(a1, NULL), ad[r] = strtod(a2, NULL), De[r] = strtod(d1, NULL);
-    n0e[r] = strtod(n1, NULL);
+    /* run species alpha a_over_d n_used detected t_end cpd_end D_e err nu0 err nu0_enskog, split
+     * at tabs: a missing value is an empty cell (issue 25), which reads as NaN here */
+    double v[13];
+    char *q = line;
+    for (int c = 0; c < 13; c++) {
+      char *tab = strchr(q, '\t');
+      if (tab) *tab = 0;
+      if (c == 1) snprintf(lab[r], sizeof lab[r], "%.63s", q);
+      v[c] = *q ? strtod(q, NULL) : NAN;
+      q = tab ? tab + 1 : q + strlen(q);
+    }
+    alpha[r] = v[2], ad[r] = v[3], De[r] = v[8], n0e[r] = v[12];
   }
   fclose(f);
   printf("# named species: %s alpha %g D_e %g; %s alpha %g D_e %g\n", lab[0], alpha[0], De[0],

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_common.h" /* hd_cli_num */
 #include "haff.h"
 #include "hd_opt.h"
 #include "hd_sim.h"
@@ -129,9 +130,10 @@ int haff_rods_collapse_main(int argc, char **argv) {
       }
       gsl_sort(at, 1, (size_t)col);
       double nmy = hd_rods_my_ncrit(eps);
-      printf("%ld\t%g\t%ld\t%ld\t%.3g\t%.4g\t%d\t%.6g\n", N, eps, col, seeds,
+      printf("%ld\t%g\t%ld\t%ld\t%.3g\t%.4g\t%d\t%s\n", N, eps, col, seeds,
              (double)col / (double)seeds, nmy, (double)N > nmy,
-             col ? gsl_stats_median_from_sorted_data(at, 1, (size_t)col) : NAN);
+             hd_cli_num("%.6g", col ? gsl_stats_median_from_sorted_data(at, 1, (size_t)col) : NAN,
+                        0)); /* no collapse: empty, not nan */
       fflush(stdout);
     }
   }

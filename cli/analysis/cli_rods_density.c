@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "cli_rods.h"
+#include "cli_common.h" /* hd_cli_num */
 #include "haff.h"
 
 const hd_optspec haff_rods_density_spec = {
@@ -43,8 +44,9 @@ static int density(const char *cmd, const ropts *o, rrun *r, const double *ts, l
     }
     double mean = (double)N / o->bins;
     for (int b = 0; b < o->bins; b++)
-      printf("%.10g\t%d\t%.6g\t%.6g\t%.6g\n", ts[k], b, (b + 0.5) * (double)N / o->bins,
-             (double)cnt[b] / mean, cnt[b] ? ek[b] / (double)cnt[b] : NAN);
+      printf("%.10g\t%d\t%.6g\t%.6g\t%s\n", ts[k], b, (b + 0.5) * (double)N / o->bins,
+             (double)cnt[b] / mean,
+             hd_cli_num("%.6g", cnt[b] ? ek[b] / (double)cnt[b] : NAN, 0)); /* empty bin: empty */
     printf("\n");
     hd_rcli_snap_free(&s);
   }

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "cli_rods.h"
+#include "cli_common.h" /* hd_cli_num */
 #include "haff.h"
 
 const hd_optspec haff_rods_veldist_spec = {
@@ -71,10 +72,11 @@ static int veldist(const char *cmd, const ropts *o, const rrun *r, const rsnap *
   printf("w\tp_all\tp_cluster\tgauss_all\tgauss_cluster\n");
   for (int b = 0; b < o->bins; b++) {
     double c = lo + (b + 0.5) * dw;
-    double ga = exp(-0.5 * (c - ma) * (c - ma) / (sa * sa)) / (sa * sqrt(2 * M_PI));
+    double ga = sa > 0 ? exp(-0.5 * (c - ma) * (c - ma) / (sa * sa)) / (sa * sqrt(2 * M_PI)) : NAN;
     double gc =
         scl > 0 ? exp(-0.5 * (c - mc) * (c - mc) / (scl * scl)) / (scl * sqrt(2 * M_PI)) : NAN;
-    printf("%.6g\t%.6g\t%.6g\t%.6g\t%.6g\n", c, ha[b], hc[b], ga, gc);
+    printf("%.6g\t%.6g\t%.6g\t%s\t%s\n", c, ha[b], hc[b], hd_cli_num("%.6g", ga, 0),
+           hd_cli_num("%.6g", gc, 0)); /* no cluster: empty, not nan */
   }
   free(w), free(ha), free(hc), hd_rcli_clusters_free(&cl);
   return 0;

@@ -18,6 +18,13 @@ echo "Parameters (plots/plots.mk): \`$config\`."
 echo
 echo "### Table I (\`table1.tsv\`): D_e and ν0_eff/ν0, mean ± standard error over the runs"
 echo
+echo "ν0 is eq. (29) in haff's convention: the bodies' number density, σ = d, the body mass (2m"
+echo "for a dimer), g(η) at the reference disks' η = πnd²/4, and the translational temperature at the"
+echo "window's start averaged over its samples. ν0_eff/ν_kt divides by the low-density theory of"
+echo "rotating dimers (\`haff mc rate\`: 1.643, 2.090, 2.608 at a/d = 0.5, 1, 1.5) times"
+echo "g(area fraction)/g(η); it is 1 where runs and theory agree (docs/mc-rate.md). The paper's"
+echo "1.07–1.50 trend in a/d is reproduced by no convention (docs/analysis.md, \"ν0\")."
+echo
 cat "$out/table1.md"
 echo
 echo "### Inside the HCS's validity? Every (α, a/d) group (\`data/fits-groups.tsv\`)"
@@ -61,7 +68,7 @@ echo "### a/d near 2 (\`data/gap.tsv\`, \`data/gap-fits.tsv\`): the fate of each
 echo
 tsv2md "$data/gap.tsv"
 echo
-echo "Fits of eq. (31) to those runs (\`haff haff-fit\`; a failed fit shows nan, its reason below):"
+echo "Fits of eq. (31) to those runs (\`haff haff-fit\`; a failed fit shows empty cells, its reason below):"
 echo
 tsv2md "$data/gap-fits.tsv"
 echo
