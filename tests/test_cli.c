@@ -742,8 +742,10 @@ static void mixtures_and_walls_labelled(void **state) {
   (void)state;
   if (!haff) skip();
   const char *base = "[system]\narea_fraction = 0.05\n[dimers]\ncount = 100\nalpha = 0.9\n"
-                     "a = 0.5\n[run]\nstop_cpd = 20\n[log]\ncollisions = none\n"
+                     "a = 0.5\n[run]\nstop_cpd = 30\n[log]\ncollisions = none\n"
                      "samples_every = 0.5\n";
+  /* 30 cpd: over 5-20 cpd E decays by less than a factor e at alpha = 0.9, and the fits flag
+   * such a window short (issue 25) and the tables leave it out */
   write_scene("pure.ini", base, "");
   write_scene("mixed.ini", base, "[disks]\ncount = 50\n");
   write_scene("walled.ini", base, "[walls]\nsides = left right\n");

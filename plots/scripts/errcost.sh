@@ -26,7 +26,7 @@ for arg in "$@"; do
   fits=$("$haff" haff-fit "$db" | awk -F '\t' 'NR > 1 { print $1 "\t" $9 "\t" $8 }')
   cpu=$(sqlite3 -separator $'\t' "$db" "SELECT run, cpu_seconds FROM plots_runs ORDER BY run")
   join -t $'\t' <(sort -k1,1 <<< "$fits") <(sort -k1,1 <<< "$cpu") | sort -n -k1,1 |
-    awk -F '\t' -v L="$L" -v sys="${sys:-nan}" '
+    awk -F '\t' -v L="$L" -v sys="${sys:-}" '
       { n++; de[n] = $2; ce[n] = $3; cpu[n] = $4 }
       function sd(R,   i, s, ss, m) {
         s = ss = 0
@@ -39,8 +39,10 @@ for arg in "$@"; do
         s = c = e = 0
         for (i = 1; i <= R; i++) { s += de[i]; c += cpu[i]; e += ce[i] }
         e1 = sd(R) / sqrt(R)
-        printf "%s\t%d\t%.4g\t%.6g\t%.4g\t%.4g\t%.4g\t%.4g\t%.4g\n", L, R, c, s / R, e1, e / R,
-               sd(n) / sqrt(R), sys, sqrt(e1 * e1 + sys * sys)
+        # sys empty: not measured (the group flagged short: its windows too short for eq. 31)
+        printf "%s\t%d\t%.4g\t%.6g\t%.4g\t%.4g\t%.4g\t%s\t%s\n", L, R, c, s / R, e1, e / R,
+               sd(n) / sqrt(R), sys == "" ? "" : sprintf("%.4g", sys),
+               sys == "" ? "" : sprintf("%.4g", sqrt(e1 * e1 + sys * sys))
       }
       END { for (R = 2; R < n; R *= 2) row(R); if (n >= 2) row(n) }'
 done
