@@ -14,7 +14,7 @@ block() { awk -v h="$2:" '$0 == h {f = 1; next} f && /^$/ {f = 0} f && /^  [^ ]/
 roff() { sed -e 's/\\/\\e/g' -e "s/^\\([.']\\)/\\\\\\&\\1/" -e 's/-/\\-/g'; }
 
 top=$("$haff" --help)
-version=$("$haff" --version)
+version=$("$haff" --version | head -1)  # "haff VERSION"; the build lines follow it
 cmds=$(block "$top" commands)
 [ -n "$cmds" ] || { echo "haff-man.sh: no commands in '$haff --help'" >&2; exit 1; }
 

@@ -13,6 +13,9 @@
 --   3  adds the species and sample_species tables (issue 18: species of any shape, named in
 --      the scene), and the collision kinds body-body, body-wall and the states kind body.
 --      New tables only: a file of version 0 or 2 is brought to 3 by creating them.
+--   4  adds how each run was made (issue 28): runs.git_commit, git_dirty, compiler, cflags,
+--      command and sweep_point (added to older files' runs with ALTER TABLE, old rows NULL),
+--      and the view run_species; run_summary gives named species (issue 18) their label.
 PRAGMA journal_mode = WAL;
 
 -- One row per run.  status: running, done, interrupted, collapsed, failed.
@@ -42,7 +45,20 @@ CREATE TABLE IF NOT EXISTS runs (
                                    -- state measures; the window may end earlier where the
                                    -- rate detector did), 'rate' (rate/sqrt(E) alone)
   hcs_s_perp      REAL,            -- mean s_perp over the state measures' window (NULL without)
-  hcs_flow_excess REAL             -- mean flow_frac - flow_chaos there
+  hcs_flow_excess REAL,            -- mean flow_frac - flow_chaos there
+  -- How the run was made (schema version 4; NULL in runs made before).  The build's are
+  -- compiled in (the Makefile, engine/core/hd_build.h) and printed by `haff -V`.  A run's
+  -- identity is (scene, seed, git_commit): `haff merge` refuses a run whose identity OUT has
+  -- (a NULL commit counts as 'unknown'), `haff run` one whose scene and seed DB has (--force).
+  git_commit   TEXT,               -- the commit haff was built from (git rev-parse HEAD), or
+                                   -- 'unknown' (built outside git, e.g. from a tarball)
+  git_dirty    INTEGER,            -- 1: the build's tree differed from the commit, 0: it did
+                                   -- not, NULL: unknown
+  compiler     TEXT,               -- e.g. 'cc (Debian 12.2.0-14) 12.2.0'
+  cflags       TEXT,               -- the flags of the build (-O2 ...)
+  command      TEXT,               -- the command line that began the run, shell-quoted
+  sweep_point  TEXT                -- 'DIR point K: SETS' for a point of `haff sweep` (DIR the
+                                   -- study's folder, SETS its --set overrides), else NULL
 );
 
 -- Where each run was made, and where it was merged from (schema version 2).  One row per run,

@@ -85,7 +85,10 @@ static int teardown(void **state) {
   return haff && dir[0] ? test_cli_rmdir() : 0;
 }
 
-/* -V and --version print "haff VERSION", VERSION being what runs.version stores. */
+/* -V and --version print "haff VERSION", VERSION being what runs.version stores, then the
+ * build's provenance as the run stored it: "commit HASH" (runs.git_commit; in a git work tree
+ * of the source folder, its HEAD, with " (modified)" when git_dirty is 1), "compiler ..." and
+ * "cflags ..." (runs.compiler, runs.cflags).  The run also stores its command line. */
 static void version(void **state) {
   (void)state;
   if (!haff) skip();
@@ -94,9 +97,33 @@ static void version(void **state) {
   assert_int_equal(sh("%s --version", haff), 0);
   char *v2 = slurp("out.txt");
   assert_string_equal(v, v2);
-  assert_int_equal(sh("sqlite3 d.db \"SELECT 'haff ' || version FROM runs WHERE id = 1\""), 0);
+  assert_int_equal(sh("sqlite3 d.db \"SELECT 'haff ' || version || char(10) || 'commit ' || "
+                      "git_commit || CASE git_dirty WHEN 1 THEN ' (modified)' WHEN 0 THEN '' "
+                      "ELSE ' (not a git build)' END || char(10) || 'compiler ' || compiler || "
+                      "char(10) || 'cflags ' || cflags FROM runs WHERE id = 1\""),
+                   0);
   char *stored = slurp("out.txt");
   assert_string_equal(v, stored);
+  /* the commit is the source tree's HEAD when the tree is a git work tree (else 'unknown') */
+  char *nl = strchr(v, '\n');
+  assert_non_null(nl);
+  char commit[64] = "";
+  assert_int_equal(sscanf(nl + 1, "commit %63s", commit), 1);
+  if (sh("test \"$(git -C %s rev-parse --show-toplevel 2>/dev/null)\" = %s && "
+         "git -C %s rev-parse HEAD",
+         root, root, root) == 0) {
+    char *head = slurp("out.txt");
+    head[strcspn(head, "\n")] = 0;
+    assert_string_equal(commit, head);
+    free(head);
+  } else {
+    assert_string_equal(commit, "unknown");
+  }
+  assert_int_equal(sh("sqlite3 d.db \"SELECT command FROM runs WHERE id = 1\""), 0);
+  char *cmd = slurp("out.txt"), want[4200];
+  snprintf(want, sizeof want, "%s run d.ini -o d.db --quiet\n", haff);
+  assert_string_equal(cmd, want);
+  free(cmd);
   free(v);
   free(v2);
   free(stored);
