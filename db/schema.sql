@@ -293,12 +293,14 @@ p AS (
          max(CASE WHEN section = 'rods' AND key = 'eps' THEN num END) AS eps,
          max(CASE WHEN section = 'rods' AND key = 'gamma' THEN num END) AS gamma
   FROM pp GROUP BY run),
--- the species sections that have bodies, with the name alpha_NAME gives them
+-- the species sections that have bodies, with the name alpha_NAME gives them, in the runs
+-- with bodies of a named species (the others need none of what follows)
 present AS (
   SELECT run, section,
          CASE WHEN section LIKE 'species %' THEN substr(section, 9) ELSE section END AS name
   FROM pp WHERE key = 'count' AND num > 0
-    AND (section IN ('dimers', 'disks') OR section LIKE 'species %')),
+    AND (section IN ('dimers', 'disks') OR section LIKE 'species %')
+    AND run IN (SELECT run FROM p WHERE n_named > 0)),
 -- the restitution of every pair of them that a key sets: each one's own alpha, alpha_OTHER of a
 -- named species with OTHER present, [disks] alpha_dimer with dimers present (a pair that no key
 -- sets takes the smaller own alpha, which is among these: it moves neither end of the range)
@@ -316,24 +318,12 @@ pair AS (
     AND EXISTS (SELECT 1 FROM present AS s WHERE s.run = x.run AND s.section = 'disks')),
 pr AS (SELECT run, min(al) AS alpha_lo, max(al) AS alpha_hi FROM pair GROUP BY run),
 -- the label: the present species' names in species order, which is their order in runs.scene
--- (dimers, disks, then each [species NAME] as written); rank k of each, then pivoted
-pos AS (
-  SELECT s.run, s.name, instr(r.scene, '[' || s.section || ']') AS at
-  FROM present AS s JOIN runs AS r ON r.id = s.run),
-rk AS (
-  SELECT a.run, a.name, (SELECT count(*) FROM pos AS b WHERE b.run = a.run AND b.at < a.at) AS k
-  FROM pos AS a),
+-- (dimers, disks, then each [species NAME] as written), joined by '+'
 lab AS (
-  SELECT run, 'shapes:' || substr(
-           coalesce('+' || max(CASE k WHEN 0 THEN name END), '') ||
-           coalesce('+' || max(CASE k WHEN 1 THEN name END), '') ||
-           coalesce('+' || max(CASE k WHEN 2 THEN name END), '') ||
-           coalesce('+' || max(CASE k WHEN 3 THEN name END), '') ||
-           coalesce('+' || max(CASE k WHEN 4 THEN name END), '') ||
-           coalesce('+' || max(CASE k WHEN 5 THEN name END), '') ||
-           coalesce('+' || max(CASE k WHEN 6 THEN name END), '') ||
-           coalesce('+' || max(CASE k WHEN 7 THEN name END), ''), 2) AS label
-  FROM rk GROUP BY run),
+  SELECT DISTINCT s.run, 'shapes:' || group_concat(s.name, '+') OVER (
+           PARTITION BY s.run ORDER BY instr(r.scene, '[' || s.section || ']')
+           ROWS BETWEEN UNBOUNDED PRECEDING AND UNBOUNDED FOLLOWING) AS label
+  FROM present AS s JOIN runs AS r ON r.id = s.run),
 q AS (
   SELECT r.*, p.*, pr.alpha_lo, pr.alpha_hi, lab.label,
          coalesce(p.n_dimers, 0) AS nd, coalesce(p.n_disks, 0) AS ns,
