@@ -90,7 +90,8 @@ help:
 	@echo "make scene-keys  rewrite the key tables of docs/scene-keys.md from the key table"
 	@echo "make bench   benchmarks -> bench/results.md"
 	@echo "make plots   the papers' figures and tables -> plots/out/"
-	@echo "make install PREFIX=/usr/local DESTDIR=   bin/haff, man page haff(1), bash completion"
+	@echo "make install PREFIX=/usr/local DESTDIR=   bin/haff, man page haff(1), bash completion,"
+	@echo "             the docs in PREFIX/share/doc/haff (DOCDIR)"
 	@echo "make uninstall PREFIX=... DESTDIR=...      removes what make install put there"
 
 # --- dependencies --------------------------------------------------------------------------
@@ -168,10 +169,11 @@ bin/haff: $(CLI_OBJ) $(LIB)
 $(SOLIB): $(LIB_OBJ)
 	$(CC) $(CFLAGS) -shared -o $@ $^ $(LDLIBS)
 
-# The man page, made from the binary's own help texts (cli/haff-man.sh), so it cannot drift.
+# The man page, made from the binary's own help texts (cli/haff-man.sh), so it cannot drift; it
+# names DOCDIR (below) as where the documentation is (make install writes it again for its own).
 $(BUILD)/haff.1: bin/haff cli/haff-man.sh
 	@mkdir -p $(@D)
-	cli/haff-man.sh bin/haff > $@.tmp && mv $@.tmp $@
+	cli/haff-man.sh bin/haff $(DOCDIR) > $@.tmp && mv $@.tmp $@
 
 # Every test links the library and the subcommands (all the CLI's objects but the one with
 # main()): tests call subcommands' mains (haff_fit_main, ...) and test_cli_tables checks the
@@ -270,21 +272,31 @@ format:
 	clang-format -i $(LIB_SRC) $(CLI_SRC) $(TEST_SRC) $(wildcard */*.h */*/*.h)
 
 # --- install -------------------------------------------------------------------------------
+# bin/haff, the man page haff(1), the bash completion and the documentation (DOCDIR: README.md,
+# docs/, db/README.md, the schema and the example queries, in the source tree's layout so that
+# their links hold); the man page names DOCDIR.
 PREFIX  ?= /usr/local
 BINDIR  ?= $(PREFIX)/bin
 MANDIR  ?= $(PREFIX)/share/man
+DOCDIR  ?= $(PREFIX)/share/doc/haff
 BASHCOMPDIR ?= $(PREFIX)/share/bash-completion/completions
+DOC_FILES := README.md $(wildcard docs/*.md) db/README.md db/schema.sql $(wildcard db/queries/*.sql)
 INSTALLED := $(DESTDIR)$(BINDIR)/haff $(DESTDIR)$(MANDIR)/man1/haff.1 \
-             $(DESTDIR)$(BASHCOMPDIR)/haff
+             $(DESTDIR)$(BASHCOMPDIR)/haff $(addprefix $(DESTDIR)$(DOCDIR)/,$(DOC_FILES))
 
-install: bin/haff $(BUILD)/haff.1
-	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(BASHCOMPDIR)
+install: bin/haff cli/haff-man.sh
+	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(BASHCOMPDIR) \
+	  $(sort $(dir $(addprefix $(DESTDIR)$(DOCDIR)/,$(DOC_FILES))))
 	install -m 755 bin/haff $(DESTDIR)$(BINDIR)/haff
-	install -m 644 $(BUILD)/haff.1 $(DESTDIR)$(MANDIR)/man1/haff.1
+	cli/haff-man.sh bin/haff $(DOCDIR) > $(BUILD)/haff-install.1
+	install -m 644 $(BUILD)/haff-install.1 $(DESTDIR)$(MANDIR)/man1/haff.1
 	install -m 644 cli/haff-completion.bash $(DESTDIR)$(BASHCOMPDIR)/haff
+	for f in $(DOC_FILES); do install -m 644 $$f $(DESTDIR)$(DOCDIR)/$$f || exit 1; done
 
+# removes what make install put there, and DOCDIR's folders once they are empty
 uninstall:
 	rm -f $(INSTALLED)
+	-rmdir $(addprefix $(DESTDIR)$(DOCDIR)/,docs db/queries db) $(DESTDIR)$(DOCDIR) 2>/dev/null
 
 clean:
 	rm -rf build build-asan build-fuzz bin
