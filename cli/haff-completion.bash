@@ -58,7 +58,8 @@ _haff() {
   local cmd=${COMP_WORDS[1]}
   help=$("$haff" "$cmd" --help 2>/dev/null) || return 0
   if [ "$COMP_CWORD" -eq 2 ]; then
-    words="$(_haff_block "$help" programs) $(_haff_block "$help" formats)"
+    words=$(_haff_block "$help" programs)
+    [[ $cur == -* ]] || words+=" $(_haff_block "$help" formats)"
     if [ -n "${words// /}" ]; then
       mapfile -t COMPREPLY < <(compgen -W "$words" -- "$cur")
       return 0
