@@ -221,10 +221,10 @@ static int refuse_same(const char *db, const hd_scene *sc) {
              !strcmp(same.status, "failed");
   fprintf(stderr,
           "haff run: %s has run %lld of this scene and seed already (status %s, commit %.12s): "
-          "not run again; --force runs it once more%s%s%s\n",
-          db, (long long)same.run, same.status, same.commit,
-          open ? " (to continue that run: haff resume " : "", open ? db : "",
-          open ? " --run ID)" : "");
+          "not run again; --force runs it once more",
+          db, (long long)same.run, same.status, same.commit);
+  if (open) fprintf(stderr, "; haff resume continues that one (--run %lld)", (long long)same.run);
+  fputc('\n', stderr);
   return 2;
 }
 
@@ -242,7 +242,7 @@ int haff_run_main(int argc, char **argv) {
     return list_keys();
   }
   if (res.npos != 1) {
-    fprintf(stderr, "haff run: expected one scene file (haff run --help)\n");
+    fprintf(stderr, "haff run: expected one scene file (see haff run --help)\n");
     return 2;
   }
   unsigned long long seed = 0;
