@@ -33,7 +33,11 @@ const hd_optspec haff_export_spec = {
             "       [--label initial|final|checkpoint|velocities|frames|all] [-o FILE]\n"
             "Writes the stored states and frames of a run as extended XYZ (OVITO, ASE): one frame\n"
             "per (label, time), one line per disk (a dimer gives two, species N; single disks Ar;\n"
-            "rods C) with position, velocity, mass, momentum, radius, body, phi and omega.\n"};
+            "rods C) with position, velocity, mass, momentum, radius, body, phi and omega.\n"
+            "\n"
+            "formats:\n"
+            "  xyz      extended XYZ, for OVITO, ASE and VMD\n"
+            "\n"};
 
 int haff_export_main(int argc, char **argv) {
   if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {

@@ -27,7 +27,8 @@ const hd_optspec haff_merge_spec = {
         "database\n"
         "  or fails PRAGMA integrity_check, OUT being written by a run, a run (same scene, seed "
         "and\n"
-        "  version) already in OUT.  Atomic: OUT is replaced only once the merge is whole.\n"};
+        "  commit: runs.git_commit) already in OUT.  Atomic: OUT is replaced only once the merge\n"
+        "  is whole.\n"};
 
 int haff_merge_main(int argc, char **argv) {
   merge_args a = {0};

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "haff.h"
 #include "hd_db.h"
@@ -24,6 +25,9 @@ typedef struct run_args {
   hd_optlist sets;            /* over set_v */
   long long run;              /* haff resume --run ID, 0: the newest resumable */
   int all, quiet;             /* --all (resume), --quiet */
+  int force;                  /* --force: a run of a scene and seed that DB has already */
+  int list_keys;              /* --list-keys: print the scene keys, run nothing */
+  const char *sweep_point;    /* --sweep-point TEXT (haff sweep's points): runs.sweep_point */
   double progress;            /* --progress SECONDS, NAN when not given */
 } run_args;
 
@@ -37,6 +41,13 @@ static const hd_optdef run_opts[] = {
                .set = FOR_RUN),
     HD_OPT_INT("run", 0, run_args, run, 1, LLONG_MAX, 0, "ID", "the run [the newest resumable run]",
                .set = FOR_RESUME),
+    HD_OPT_FLAG("force", 0, run_args, force,
+                "run even when DB has a run of the same scene and seed", .set = FOR_RUN),
+    HD_OPT_FLAG("list-keys", 0, run_args, list_keys,
+                "prints every scene key as SECTION.KEY (for --set), one a line; runs nothing",
+                .set = FOR_RUN),
+    /* not listed: haff sweep's note of which point a run is (runs.sweep_point) */
+    HD_OPT_STR("sweep-point", 0, run_args, sweep_point, "TEXT", NULL, .set = FOR_RUN),
     HD_OPT_FLAG("all", 0, run_args, all, "every resumable run, oldest first", .set = FOR_RESUME),
     HD_OPT_FLAG("quiet", 'q', run_args, quiet, "no progress, no closing line"),
     HD_OPT_DBL("progress", 0, run_args, progress, 0, 1e9, 0, "SECONDS",
@@ -44,12 +55,16 @@ static const hd_optdef run_opts[] = {
     {0}};
 
 const hd_optspec haff_run_spec = {
-    HD_OPT_SPEC("run", run_opts, FOR_RUN, 1, 1, "one scene file"),
+    HD_OPT_SPEC("run", run_opts, FOR_RUN, 0, 1, "one scene file"),
     .head =
-        "usage: haff run SCENE [-o DB] [--set SECTION.KEY=VALUE]... [--seed N] [--quiet]\n"
-        "                [--progress SECONDS]\n"
+        "usage: haff run SCENE [-o DB] [--set SECTION.KEY=VALUE]... [--seed N] [--force]\n"
+        "                [--quiet] [--progress SECONDS]\n"
+        "       haff run --list-keys\n"
         "  Runs the scene file SCENE and appends one run to DB (default: SCENE's name with .db,\n"
         "  in the current folder).  --set overrides a scene key; --seed overrides [system] seed.\n"
+        "  A scene and seed that DB has run already are refused (exit 2: the run would repeat\n"
+        "  it, and analyses would count it twice) unless --force.  The run records the command\n"
+        "  line and the build (haff -V) in runs.command, runs.git_commit ... runs.cflags.\n"
         "  Exit status: 0 done, 1 failed run (collapse, interrupted, database), 2 bad "
         "usage/input.\n"
         "  SIGINT/SIGTERM: the run is checkpointed, marked 'interrupted'; continue with haff "
@@ -100,13 +115,15 @@ static void say_interrupted(const char *cmd, const char *msg, const char *db, in
  * with how to go on, the error, a note, or "done" unless quiet.  *run gets the run's id.
  * Returns the status (HD_EINTR: stopped by a signal). */
 static int drive_run(const char *cmd, const hd_scene *sc, int64_t want, const char *db, int quiet,
-                     double every, int64_t *run) {
+                     double every, const char *cmdline, const char *sweep_point, int64_t *run) {
   hd_error err;
   hd_error_clear(&err);
   char note[256] = "";
   hd_run_opts o = {.db_path = db,
                    .quiet = quiet,
                    .version = HAFF_VERSION,
+                   .command = cmdline,
+                   .sweep_point = sweep_point,
                    .note = note,
                    .note_size = sizeof note,
                    .progress_every = every};
@@ -154,12 +171,80 @@ static int parse_seed(const char *arg, unsigned long long *seed) {
   return 0;
 }
 
+/* The command line argv[0 .. argc) as one line that a POSIX shell reads back: each word
+ * single-quoted when it needs it (a quote in it as '\''), blanks between; malloc'd, NULL when out
+ * of memory.  A control byte (a newline) is kept inside its quotes. */
+static char *command_line(int argc, char *const *argv) {
+  size_t cap = 1;
+  for (int k = 0; k < argc; k++) cap += 4 * strlen(argv[k]) + 3;
+  char *s = malloc(cap), *p = s;
+  if (!s) return NULL;
+  for (int k = 0; k < argc; k++) {
+    const char *w = argv[k];
+    int plain = w[0] && strspn(w, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                                  "0123456789._/-+=:,@%") == strlen(w);
+    if (k) *p++ = ' ';
+    if (!plain) *p++ = '\'';
+    for (; *w; w++)
+      if (*w == '\'' && !plain)
+        memcpy(p, "'\\''", 4), p += 4;
+      else
+        *p++ = *w;
+    if (!plain) *p++ = '\'';
+  }
+  *p = '\0';
+  return s;
+}
+
+/* --list-keys: every scene key as SECTION.KEY, one a line, from the scene's key table. */
+static int list_keys(void) {
+  char key[96];
+  for (int k = 0; hd_scene_key_name(k, key, sizeof key) == 0; k++) printf("%s\n", key);
+  return 0;
+}
+
+/* Refuses (2, said) a run of scene sc into db when db has one of the same scene and seed
+ * already: a second run would repeat the first bit for bit, and the analyses would count it
+ * twice.  0 when db is not there yet, has no such run, or cannot be read (the run then says
+ * why). */
+static int refuse_same(const char *db, const hd_scene *sc) {
+  if (access(db, F_OK) != 0) return 0;
+  hd_error err;
+  hd_error_clear(&err);
+  hd_db *h = NULL;
+  hd_same_run same;
+  int rc = hd_db_open_readonly(&h, db, &err);
+  if (!rc) rc = hd_db_find_same_run(h, sc->text ? sc->text : "", sc->seed, &same, &err);
+  hd_db_close(h, NULL);
+  if (rc || same.run == 0) return 0;
+  int open = !strcmp(same.status, "interrupted") || !strcmp(same.status, "running") ||
+             !strcmp(same.status, "failed");
+  fprintf(stderr,
+          "haff run: %s has run %lld of this scene and seed already (status %s, commit %.12s): "
+          "not run again; --force runs it once more",
+          db, (long long)same.run, same.status, same.commit);
+  if (open) fprintf(stderr, "; haff resume continues that one (--run %lld)", (long long)same.run);
+  fputc('\n', stderr);
+  return 2;
+}
+
 int haff_run_main(int argc, char **argv) {
   run_args a;
   hd_optres res;
   double every;
   int rc = run_parse(&haff_run_spec, argc, argv, &a, &res, &every);
   if (rc) return rc < 0 ? 0 : rc;
+  if (a.list_keys) {
+    if (argc != 2) {
+      fprintf(stderr, "haff run: --list-keys goes alone\n");
+      return 2;
+    }
+    return list_keys();
+  }
+  if (res.npos != 1) {
+    fprintf(stderr, "haff run: expected one scene file (see haff run --help)\n");
+    return 2;
+  }
   unsigned long long seed = 0;
   int have_seed = a.seed != NULL, quiet = a.quiet, nset = a.sets.n;
   if (have_seed && parse_seed(a.seed, &seed)) return 2;
@@ -192,8 +277,15 @@ int haff_run_main(int argc, char **argv) {
     fprintf(stderr, "haff run: %s\n", err.msg);
     return 2;
   }
+  if (!a.force && refuse_same(db, &sc)) {
+    hd_scene_free(&sc);
+    return 2;
+  }
+  /* the command line as typed (main's), else as this subcommand was called */
+  char *cmdline = haff_argv ? command_line(haff_argc, haff_argv) : command_line(argc, argv);
   int64_t run = 0;
-  rc = drive_run("run", &sc, 0, db, quiet, every, &run);
+  rc = drive_run("run", &sc, 0, db, quiet, every, cmdline, a.sweep_point, &run);
+  free(cmdline);
   hd_scene_free(&sc);
   return hd_exit_code(rc);
 }
@@ -212,7 +304,7 @@ const hd_optspec haff_resume_spec = {
  * (HD_EINTR: stopped by a signal). */
 static int resume_one(const char *db, long long want, int quiet, double every) {
   int64_t run = 0;
-  return drive_run("resume", NULL, (int64_t)want, db, quiet, every, &run);
+  return drive_run("resume", NULL, (int64_t)want, db, quiet, every, NULL, NULL, &run);
 }
 
 /* --all: the ids of db's resumable runs, oldest first, into *ids (malloc'd); HD_OK or an error

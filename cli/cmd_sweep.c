@@ -631,7 +631,7 @@ static pid_t start_point(const study *st, int k, double progress) {
   }
   const char *argv[16 + 2 * (SW_MAX_AXES + 64)];
   int a = 0;
-  char *buf = NULL;
+  char *buf = NULL, *pt = NULL;
   argv[a++] = exe;
   if (resume) {
     argv[a++] = "resume";
@@ -645,6 +645,10 @@ static pid_t start_point(const study *st, int k, double progress) {
     const char *sets[SW_MAX_AXES + 64];
     int n = split_sets(st->p[k].sets, &buf, sets, SW_MAX_AXES + 64);
     for (int j = 0; j < n; j++) argv[a++] = "--set", argv[a++] = sets[j];
+    /* which point this run is, for runs.sweep_point */
+    size_t pn = strlen(st->dir) + strlen(st->p[k].sets) + 32;
+    if ((pt = malloc(pn))) snprintf(pt, pn, "%s point %d: %s", st->dir, k, st->p[k].sets);
+    if (pt) argv[a++] = "--sweep-point", argv[a++] = pt;
   }
   argv[a++] = "--progress";
   argv[a++] = prog;
@@ -660,6 +664,7 @@ static pid_t start_point(const study *st, int k, double progress) {
     _exit(127);
   }
   free(buf);
+  free(pt);
   return pid;
 }
 

@@ -2,9 +2,11 @@
 # Writes the man page haff(1) to stdout, made from the help texts of the binary itself, so that it
 # cannot drift from them: `haff --help` (the dispatcher's table of subcommands), `haff -V`, and
 # each subcommand's `--help` (and each program's of a subcommand that lists "programs:", as
-# `haff mc`).  usage: cli/haff-man.sh BIN/haff > haff.1   (the Makefile's build/haff.1)
+# `haff mc`).  usage: cli/haff-man.sh BIN/haff [DOCDIR] > haff.1   (the Makefile's build/haff.1;
+# DOCDIR: where `make install` puts the documentation, PREFIX/share/doc/haff)
 set -euo pipefail
-haff=${1:?usage: haff-man.sh PATH/TO/haff}
+haff=${1:?usage: haff-man.sh PATH/TO/haff [DOCDIR]}
+docdir=${2:-/usr/local/share/doc/haff}
 
 # The commands listed in a help text's block that starts with the line "$2:" (two-space
 # indent, name first), one a line.
@@ -14,7 +16,7 @@ block() { awk -v h="$2:" '$0 == h {f = 1; next} f && /^$/ {f = 0} f && /^  [^ ]/
 roff() { sed -e 's/\\/\\e/g' -e "s/^\\([.']\\)/\\\\\\&\\1/" -e 's/-/\\-/g'; }
 
 top=$("$haff" --help)
-version=$("$haff" --version)
+version=$("$haff" --version | head -1)  # "haff VERSION"; the build lines follow it
 cmds=$(block "$top" commands)
 [ -n "$cmds" ] || { echo "haff-man.sh: no commands in '$haff --help'" >&2; exit 1; }
 
@@ -49,13 +51,18 @@ for c in $cmds; do
     echo ".fi"
   done
 done
-cat <<'EOF'
+docroff=$(roff <<<"$docdir")
+cat <<EOF
 .SH EXIT STATUS
 0 ok, 1 failed run (collapse, interrupted, database or resource error), 2 bad usage or input
 (one line on stderr names the file, line and key).
 .SH FILES
-A run writes \fIDB\fR (SQLite, WAL mode) and, while it goes, \fIDB\fR.lock beside it.
-The schema and example queries: db/README.md and docs/sql.md in the source tree.
+A run writes \\fIDB\\fR (SQLite, WAL mode) and, while it goes, \\fIDB\\fR.lock beside it.
+.TP
+.I $docroff
+The documentation, installed by make install: README.md (start there), docs/scene\\-keys.md
+(every scene key), docs/sql.md (the database with SQL and pandas), docs/analysis.md,
+db/README.md and db/schema.sql (the tables), db/queries/ (example queries).
 .SH SEE ALSO
 .BR sqlite3 (1),
 .BR gnuplot (1)

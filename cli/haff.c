@@ -1,17 +1,21 @@
 /* bin/haff: dispatches to the subcommands of the table haff_commands (cli/haff_commands.c). */
 #include "haff.h"
+#include "hd_build.h"
 
 #include <errno.h>
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static void usage(FILE *out) {
   fprintf(out, "usage: haff COMMAND [ARGS...]   (haff COMMAND --help for each)\n\ncommands:\n");
   for (const haff_command *c = haff_commands; c->name; c++)
     if (!c->group) fprintf(out, "  %-12s %s\n", c->name, c->summary);
-  fprintf(out,
-          "\noptions: -h, --help (this text), -V, --version (the version, as in runs.version)\n");
+  fprintf(
+      out,
+      "\noptions: -h, --help (this text), -V, --version (the version, as in runs.version, and\n"
+      "the build: its git commit, compiler and flags, as runs.git_commit ... cflags store them)\n");
   fprintf(out, "\nexit status: 0 ok, 1 failed run (collapse, interrupted, resource), 2 bad usage "
                "or input\n");
 }
@@ -57,6 +61,13 @@ int main(int argc, char **argv) {
   /* a file size limit (ulimit -f) then fails the write with EFBIG, which the run reports and
    * survives like a full disk, instead of killing the process with the run left 'running' */
   signal(SIGXFSZ, SIG_IGN);
+  /* the command line as typed, for runs.command: a copy of the pointers, which getopt_long
+   * permutes in argv as it parses */
+  char **typed = malloc(((size_t)argc + 1) * sizeof *typed);
+  if (typed) {
+    memcpy(typed, argv, ((size_t)argc + 1) * sizeof *typed);
+    haff_argc = argc, haff_argv = typed;
+  }
   if (argc < 2) {
     usage(stderr);
     return 2;
@@ -66,7 +77,13 @@ int main(int argc, char **argv) {
     return stdout_flushed(NULL, 0);
   }
   if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-V")) {
-    printf("haff %s\n", HAFF_VERSION);
+    /* the first line is runs.version (the man page's header takes it); then the build's
+     * provenance, as runs.git_commit, git_dirty, compiler and cflags store it */
+    printf("haff %s\ncommit %s%s\ncompiler %s\ncflags %s\n", HAFF_VERSION, hd_build_commit,
+           hd_build_dirty == 1   ? " (modified)"
+           : hd_build_dirty == 0 ? ""
+                                 : " (not a git build)",
+           hd_build_compiler, hd_build_cflags);
     return stdout_flushed(NULL, 0);
   }
   for (const haff_command *c = haff_commands; c->name; c++)

@@ -23,8 +23,14 @@ typedef struct haff_command {
 /* Every subcommand, in the order of `haff --help`; ends with an entry whose name is NULL. */
 extern const haff_command haff_commands[];
 
-/* The version string stored in runs.version. */
+/* The version string stored in runs.version (the build's commit: hd_build.h, runs.git_commit). */
 #define HAFF_VERSION "0.1.0"
+
+/* The process's whole command line as typed (main's argc and a copy of its argv, which option
+ * parsing permutes), set by main (cli/haff.c) before it dispatches, for runs.command; argv NULL
+ * when a subcommand's main is called directly (tests). */
+extern int haff_argc;
+extern char **haff_argv;
 
 /* cli/cmd_run.c: haff run SCENE, haff resume DB */
 int haff_run_main(int argc, char **argv);

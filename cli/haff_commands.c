@@ -4,6 +4,9 @@
 
 #include "haff.h"
 
+int haff_argc;
+char **haff_argv;
+
 const haff_command haff_commands[] = {
     {"run", NULL, haff_run_main, "run a scene and append one run to a database", &haff_run_spec},
     {"resume", NULL, haff_resume_main, "continue an interrupted run from its last checkpoint",

@@ -243,6 +243,12 @@ static const struct {
     {"runs", "hcs_end", "TEXT"},
     {"runs", "hcs_s_perp", "REAL"},
     {"runs", "hcs_flow_excess", "REAL"},
+    {"runs", "git_commit", "TEXT"}, /* 4: how the run was made (hd_db_run_provenance) */
+    {"runs", "git_dirty", "INTEGER"},
+    {"runs", "compiler", "TEXT"},
+    {"runs", "cflags", "TEXT"},
+    {"runs", "command", "TEXT"},
+    {"runs", "sweep_point", "TEXT"},
 };
 
 /* Whether table.column is one of added_columns (an older haff file may lack it). */
@@ -376,7 +382,9 @@ static int schema_apply(hd_db *db, hd_error *err) {
   }
   char set[64];
   snprintf(set, sizeof set, "PRAGMA user_version = %d", HD_DB_SCHEMA_VERSION);
-  if (!rc && (sqlite3_exec(db->db, "DROP VIEW IF EXISTS params; DROP VIEW IF EXISTS run_summary;",
+  if (!rc && (sqlite3_exec(db->db,
+                           "DROP VIEW IF EXISTS params; DROP VIEW IF EXISTS run_summary; "
+                           "DROP VIEW IF EXISTS run_species;",
                            NULL, NULL, NULL) != SQLITE_OK ||
               sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK ||
               sqlite3_exec(db->db, set, NULL, NULL, NULL) != SQLITE_OK))
@@ -1296,6 +1304,63 @@ int hd_db_run_origin(hd_db *db, int64_t run, const char *host, const char *slurm
                     "INSERT OR REPLACE INTO provenance (run, host, slurm_job, slurm_task) "
                     "VALUES (?1, ?2, ?3, ?4)",
                     bind_origin, v, "record where the run is made", NULL, err);
+}
+
+/* Binds text v to parameter k of st, NULL for NULL or "". */
+static void bind_text_or_null(sqlite3_stmt *st, int k, const char *v) {
+  if (v && v[0])
+    sqlite3_bind_text(st, k, v, -1, SQLITE_STATIC);
+  else
+    sqlite3_bind_null(st, k);
+}
+
+static void bind_prov(sqlite3_stmt *st, const void *ctx) {
+  const hd_run_prov *p = ctx;
+  bind_text_or_null(st, 2, p->git_commit);
+  if (p->git_dirty == 0 || p->git_dirty == 1)
+    sqlite3_bind_int(st, 3, p->git_dirty);
+  else
+    sqlite3_bind_null(st, 3);
+  bind_text_or_null(st, 4, p->compiler);
+  bind_text_or_null(st, 5, p->cflags);
+  bind_text_or_null(st, 6, p->command);
+  bind_text_or_null(st, 7, p->sweep_point);
+}
+
+int hd_db_run_provenance(hd_db *db, int64_t run, const hd_run_prov *p, hd_error *err) {
+  if (!p) return hd_error_set(err, HD_EINPUT, "hd_db_run_provenance: no provenance given");
+  return run_update(db, run,
+                    "UPDATE runs SET git_commit = ?2, git_dirty = ?3, compiler = ?4, cflags = ?5, "
+                    "command = ?6, sweep_point = ?7 WHERE id = ?1",
+                    bind_prov, p, "record how the run is made", NULL, err);
+}
+
+int hd_db_find_same_run(hd_db *db, const char *scene_text, unsigned long long seed,
+                        hd_same_run *same, hd_error *err) {
+  if (!db) return hd_error_set(err, HD_EIO, "database: not open");
+  memset(same, 0, sizeof *same);
+  int rc = drain(db, err);
+  if (rc) return rc;
+  int has_commit = !column_missing(db->db, "runs", "git_commit");
+  sqlite3_stmt *st = NULL;
+  const char *sql = has_commit ? "SELECT id, status, coalesce(git_commit, 'unknown') FROM runs "
+                                 "WHERE scene = ?1 AND seed = ?2 ORDER BY id LIMIT 1"
+                               : "SELECT id, status, 'unknown' FROM runs "
+                                 "WHERE scene = ?1 AND seed = ?2 ORDER BY id LIMIT 1";
+  if (sqlite3_prepare_v2(db->db, sql, -1, &st, NULL) != SQLITE_OK)
+    return sql_error(db, err, "look for the same run");
+  sqlite3_bind_text(st, 1, scene_text ? scene_text : "", -1, SQLITE_STATIC);
+  sqlite3_bind_int64(st, 2, (sqlite3_int64)seed);
+  int s = sqlite3_step(st);
+  if (s == SQLITE_ROW) {
+    same->run = sqlite3_column_int64(st, 0);
+    snprintf(same->status, sizeof same->status, "%s", (const char *)sqlite3_column_text(st, 1));
+    snprintf(same->commit, sizeof same->commit, "%s", (const char *)sqlite3_column_text(st, 2));
+  } else if (s != SQLITE_DONE) {
+    rc = sql_error(db, err, "look for the same run");
+  }
+  sqlite3_finalize(st);
+  return rc;
 }
 
 int hd_db_build_indexes(hd_db *db, hd_error *err) {

@@ -15,10 +15,11 @@
 
 /* The schema version, stored in the file as PRAGMA user_version: 0 for the files made before it
  * was kept; 2 adds runs.cpd, the provenance and frames tables, the state measures of samples and
- * the views params and run_summary (db/README.md lists them).  A file opened for writing
- * (hd_db_open, hd_db_open_existing) is brought up to it; the change is additive, so files of
- * every version stay readable.  A writer refuses a file of a newer version. */
-#define HD_DB_SCHEMA_VERSION 3
+ * the views params and run_summary; 3 the species tables; 4 how each run was made
+ * (runs.git_commit ... sweep_point) and the view run_species (db/README.md lists them).  A file
+ * opened for writing (hd_db_open, hd_db_open_existing) is brought up to it; the change is additive,
+ * so files of every version stay readable.  A writer refuses a file of a newer version. */
+#define HD_DB_SCHEMA_VERSION 4
 
 typedef struct hd_db hd_db;
 typedef struct sqlite3 sqlite3; /* the same typedef as <sqlite3.h> (C11 allows the repeat) */
@@ -201,6 +202,33 @@ int hd_db_run_progress(hd_db *db, int64_t run, int64_t events, double cpd, hd_er
  * ids (NULL or "" for none; source stays NULL: made here).  Commits the open batch first. */
 int hd_db_run_origin(hd_db *db, int64_t run, const char *host, const char *slurm_job,
                      const char *slurm_task, hd_error *err);
+
+/* How a run was made (schema version 4), for hd_db_run_provenance.  Text NULL or "": NULL. */
+typedef struct hd_run_prov {
+  const char *git_commit;  /* the commit haff was built from, or "unknown" */
+  int git_dirty;           /* 1 the tree differed from it, 0 it did not, -1 unknown (NULL) */
+  const char *compiler;    /* the compiler's version line */
+  const char *cflags;      /* the build's flags */
+  const char *command;     /* the command line that began the run */
+  const char *sweep_point; /* "DIR point K: SETS" for a point of haff sweep, else NULL */
+} hd_run_prov;
+
+/* Stores p in run's runs.git_commit, git_dirty, compiler, cflags, command and sweep_point.
+ * Commits the open batch first.  HD_OK, HD_EIO. */
+int hd_db_run_provenance(hd_db *db, int64_t run, const hd_run_prov *p, hd_error *err);
+
+/* The first run of db with this scene text (runs.scene) and seed, if any. */
+typedef struct hd_same_run {
+  int64_t run;     /* its id, 0: none */
+  char status[16]; /* its status */
+  char commit[48]; /* its git_commit, 'unknown' when not known (NULL, or a file before v4) */
+} hd_same_run;
+
+/* Looks in db (open for writing or read-only) for a run of the same scene text and seed, so
+ * that `haff run` does not repeat one by mistake; same->run 0 when there is none.  HD_OK,
+ * HD_EIO. */
+int hd_db_find_same_run(hd_db *db, const char *scene_text, unsigned long long seed,
+                        hd_same_run *same, hd_error *err);
 
 /* Builds the indexes (after a run): collisions(run,seq), collisions(run,kind), samples(run,t),
  * states(run,label,t), checkpoints(run).  Commits the open batch first. */

@@ -177,17 +177,30 @@ static int merge_one(sqlite3 *h, const char *tmp, const char *path, const char *
                      const char *out, int64_t *runs, hd_error *err) {
   sqlite3_stmt *st;
   int rc = HD_OK;
-  /* a run already present: the same scene text, seed and version */
+  /* a run already present: the same identity, scene text, seed and commit (runs.git_commit;
+   * 'unknown' for NULL and for an input from before schema version 4, which has no column) */
+  int s_commit = 0;
+  if (sqlite3_prepare_v2(h,
+                         "SELECT count(*) FROM pragma_table_info('runs', 's') WHERE name = "
+                         "'git_commit'",
+                         -1, &st, NULL) == SQLITE_OK) {
+    if (sqlite3_step(st) == SQLITE_ROW) s_commit = sqlite3_column_int(st, 0);
+    sqlite3_finalize(st);
+  }
   if ((rc = prepare(h,
-                    "SELECT s.id, m.id, s.seed FROM s.runs s JOIN main.runs m ON "
-                    "m.scene = s.scene AND m.seed = s.seed AND m.version = s.version "
-                    "ORDER BY s.id LIMIT 1",
+                    s_commit ? "SELECT s.id, m.id, s.seed FROM s.runs s JOIN main.runs m ON "
+                               "m.scene = s.scene AND m.seed = s.seed AND coalesce(m.git_commit, "
+                               "'unknown') = coalesce(s.git_commit, 'unknown') "
+                               "ORDER BY s.id LIMIT 1"
+                             : "SELECT s.id, m.id, s.seed FROM s.runs s JOIN main.runs m ON "
+                               "m.scene = s.scene AND m.seed = s.seed AND coalesce(m.git_commit, "
+                               "'unknown') = 'unknown' ORDER BY s.id LIMIT 1",
                     &st, shown, "compare runs", err)))
     return rc;
   if (sqlite3_step(st) == SQLITE_ROW)
     rc = hd_error_set(err, HD_EINPUT,
                       "%s: run %lld (seed %lld) is already in %s as run %lld (the same scene, "
-                      "seed and version): nothing merged",
+                      "seed and commit): nothing merged",
                       shown, (long long)sqlite3_column_int64(st, 0),
                       (long long)sqlite3_column_int64(st, 2), out,
                       (long long)sqlite3_column_int64(st, 1));

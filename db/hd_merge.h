@@ -7,10 +7,10 @@
  *
  * Refused, as bad input, before OUT is touched: a file given twice (also as OUT), a file that is
  * not a haff database or fails PRAGMA integrity_check, OUT being written by a run (its DB.lock
- * held), and a run whose identity (scene text, seed, version) is already in OUT or in an input
- * merged before it.  Atomic: the merge is built in a temporary file beside OUT (a copy of OUT
- * when it exists) that is renamed over OUT at the end, so a merge that fails or is killed
- * leaves OUT as it was. */
+ * held), and a run whose identity (scene text, seed, commit: runs.git_commit, "unknown" when
+ * NULL or not kept) is already in OUT or in an input merged before it.  Atomic: the merge is built
+ * in a temporary file beside OUT (a copy of OUT when it exists) that is renamed over OUT at the
+ * end, so a merge that fails or is killed leaves OUT as it was. */
 #ifndef HD_MERGE_H
 #define HD_MERGE_H
 

@@ -13,6 +13,9 @@
 --   3  adds the species and sample_species tables (issue 18: species of any shape, named in
 --      the scene), and the collision kinds body-body, body-wall and the states kind body.
 --      New tables only: a file of version 0 or 2 is brought to 3 by creating them.
+--   4  adds how each run was made (issue 28): runs.git_commit, git_dirty, compiler, cflags,
+--      command and sweep_point (added to older files' runs with ALTER TABLE, old rows NULL),
+--      and the view run_species; run_summary gives named species (issue 18) their label.
 PRAGMA journal_mode = WAL;
 
 -- One row per run.  status: running, done, interrupted, collapsed, failed.
@@ -42,7 +45,20 @@ CREATE TABLE IF NOT EXISTS runs (
                                    -- state measures; the window may end earlier where the
                                    -- rate detector did), 'rate' (rate/sqrt(E) alone)
   hcs_s_perp      REAL,            -- mean s_perp over the state measures' window (NULL without)
-  hcs_flow_excess REAL             -- mean flow_frac - flow_chaos there
+  hcs_flow_excess REAL,            -- mean flow_frac - flow_chaos there
+  -- How the run was made (schema version 4; NULL in runs made before).  The build's are
+  -- compiled in (the Makefile, engine/core/hd_build.h) and printed by `haff -V`.  A run's
+  -- identity is (scene, seed, git_commit): `haff merge` refuses a run whose identity OUT has
+  -- (a NULL commit counts as 'unknown'), `haff run` one whose scene and seed DB has (--force).
+  git_commit   TEXT,               -- the commit haff was built from (git rev-parse HEAD), or
+                                   -- 'unknown' (built outside git, e.g. from a tarball)
+  git_dirty    INTEGER,            -- 1: the build's tree differed from the commit, 0: it did
+                                   -- not, NULL: unknown
+  compiler     TEXT,               -- e.g. 'cc (Debian 12.2.0-14) 12.2.0'
+  cflags       TEXT,               -- the flags of the build (-O2 ...)
+  command      TEXT,               -- the command line that began the run, shell-quoted
+  sweep_point  TEXT                -- 'DIR point K: SETS' for a point of `haff sweep` (DIR the
+                                   -- study's folder, SETS its --set overrides), else NULL
 );
 
 -- Where each run was made, and where it was merged from (schema version 2).  One row per run,
@@ -233,18 +249,28 @@ SELECT run, section, key, value,
 FROM kv;
 
 -- run_summary: one row per run with its parameters as typed columns.
---   species        'dimers', 'disks', 'mixture' (dimers and disks) or 'rods'
---   n              bodies (n_dimers + n_disks, or n_rods)
+--   species        'dimers', 'disks', 'mixture' (dimers and disks) or 'rods'; for a run with
+--                  bodies of a [species NAME] section (schema version 3): 'shapes:' and the
+--                  species that have bodies, in species order (dimers, disks, then each NAME),
+--                  joined by '+', e.g. 'shapes:dimers+tri+asym': the label of the analyses
+--                  (`haff haff-fit`), which add '+walls' where this view has the column walls
+--   n              bodies (n_dimers + n_disks + those of every [species NAME], or n_rods)
 --   area_fraction  as given, or the bodies' area over the box's (the dimer's area is two disks
---                  of diameter d at distance a, less their overlap); NULL for rods
+--                  of diameter d at distance a, less their overlap); NULL for rods, and for a
+--                  run with named species whose box was given (their areas: run_species)
 --   alpha          restitution of the dimers (of the disks when there are no dimers); NULL for
---                  rods, whose restitution is eps (model = constant) or drawn (stochastic)
+--                  rods, whose restitution is eps (model = constant) or drawn (stochastic); with
+--                  named species, the restitution of every pair of species that have bodies
+--                  (their own alpha and the alpha_OTHER between them) when it is one value, else
+--                  NULL (the analyses then fit no single alpha); each species': run_species
 --   a_over_d       dimers' a/d (NULL without dimers)
 --   cpd_reached    cpd of the newest sample; t_reached its time
--- and the runs columns seed, status, version, started, finished, events, wall_seconds.
+-- and the runs columns seed, status, version, started, finished, events, wall_seconds and
+-- (schema version 4) git_commit, git_dirty.
 -- Needs SQLite's math functions (sqrt, acos: the sqlite3 shell and Debian's library have them).
 CREATE VIEW IF NOT EXISTS run_summary AS
-WITH p AS (
+WITH pp AS (SELECT run, section, key, value, num FROM params),
+p AS (
   SELECT run,
          max(CASE WHEN section = 'system' AND key = 'area_fraction' THEN num END) AS area_fraction,
          max(CASE WHEN section = 'system' AND key = 'box' THEN value END) AS box,
@@ -257,6 +283,8 @@ WITH p AS (
            AS n_disks,
          max(CASE WHEN section = 'disks' AND key = 'sigma' THEN num END) AS sigma,
          max(CASE WHEN section = 'disks' AND key = 'alpha' THEN num END) AS alpha_disk,
+         CAST(sum(CASE WHEN section LIKE 'species %' AND key = 'count' AND num > 0 THEN num END)
+           AS INTEGER) AS n_named,
          max(CASE WHEN section = 'walls' AND key = 'sides' THEN value END) AS walls,
          max(CASE WHEN section = 'walls' AND key = 'alpha' THEN num END) AS alpha_wall,
          CAST(max(CASE WHEN section = 'rods' AND key = 'count' THEN num END) AS INTEGER)
@@ -264,33 +292,114 @@ WITH p AS (
          max(CASE WHEN section = 'rods' AND key = 'model' THEN value END) AS rod_model,
          max(CASE WHEN section = 'rods' AND key = 'eps' THEN num END) AS eps,
          max(CASE WHEN section = 'rods' AND key = 'gamma' THEN num END) AS gamma
-  FROM params GROUP BY run),
+  FROM pp GROUP BY run),
+-- the species sections that have bodies, with the name alpha_NAME gives them, in the runs
+-- with bodies of a named species (the others need none of what follows)
+present AS (
+  SELECT run, section,
+         CASE WHEN section LIKE 'species %' THEN substr(section, 9) ELSE section END AS name
+  FROM pp WHERE key = 'count' AND num > 0
+    AND (section IN ('dimers', 'disks') OR section LIKE 'species %')
+    AND run IN (SELECT run FROM p WHERE n_named > 0)),
+-- the restitution of every pair of them that a key sets: each one's own alpha, alpha_OTHER of a
+-- named species with OTHER present, [disks] alpha_dimer with dimers present (a pair that no key
+-- sets takes the smaller own alpha, which is among these: it moves neither end of the range)
+pair AS (
+  SELECT x.run, x.num AS al FROM pp AS x JOIN present AS s ON s.run = x.run AND s.section = x.section
+  WHERE x.key = 'alpha'
+  UNION ALL
+  SELECT x.run, x.num FROM pp AS x
+    JOIN present AS s ON s.run = x.run AND s.section = x.section AND s.section LIKE 'species %'
+    JOIN present AS o ON o.run = x.run AND x.key = 'alpha_' || o.name AND o.section <> s.section
+  UNION ALL
+  SELECT x.run, x.num FROM pp AS x
+    JOIN present AS o ON o.run = x.run AND o.section = 'dimers'
+  WHERE x.section = 'disks' AND x.key = 'alpha_dimer'
+    AND EXISTS (SELECT 1 FROM present AS s WHERE s.run = x.run AND s.section = 'disks')),
+pr AS (SELECT run, min(al) AS alpha_lo, max(al) AS alpha_hi FROM pair GROUP BY run),
+-- the label: the present species' names in species order, which is their order in runs.scene
+-- (dimers, disks, then each [species NAME] as written), joined by '+'
+lab AS (
+  SELECT DISTINCT s.run, 'shapes:' || group_concat(s.name, '+') OVER (
+           PARTITION BY s.run ORDER BY instr(r.scene, '[' || s.section || ']')
+           ROWS BETWEEN UNBOUNDED PRECEDING AND UNBOUNDED FOLLOWING) AS label
+  FROM present AS s JOIN runs AS r ON r.id = s.run),
 q AS (
-  SELECT r.*, p.*,
+  SELECT r.*, p.*, pr.alpha_lo, pr.alpha_hi, lab.label,
          coalesce(p.n_dimers, 0) AS nd, coalesce(p.n_disks, 0) AS ns,
+         coalesce(p.n_named, 0) AS nn,
          coalesce(r.box_x, CAST(substr(p.box, 1, instr(p.box, ' ') - 1) AS REAL)) AS lx,
          coalesce(r.box_y, CAST(substr(p.box, instr(p.box, ' ') + 1) AS REAL)) AS ly
-  FROM runs AS r LEFT JOIN p ON p.run = r.id)
+  FROM runs AS r LEFT JOIN p ON p.run = r.id LEFT JOIN pr ON pr.run = r.id
+    LEFT JOIN lab ON lab.run = r.id)
 SELECT id AS run,
-       CASE WHEN n_rods > 0 THEN 'rods' WHEN nd > 0 AND ns > 0 THEN 'mixture'
+       CASE WHEN n_rods > 0 THEN 'rods'
+            WHEN nn > 0 THEN label
+            WHEN nd > 0 AND ns > 0 THEN 'mixture'
             WHEN nd > 0 THEN 'dimers' WHEN ns > 0 THEN 'disks' END AS species,
-       CASE WHEN n_rods > 0 THEN n_rods ELSE nd + ns END AS n,
+       CASE WHEN n_rods > 0 THEN n_rods ELSE nd + ns + nn END AS n,
        n_dimers, n_disks, n_rods,
        CASE WHEN n_rods > 0 THEN NULL
             WHEN area_fraction IS NOT NULL THEN area_fraction
+            WHEN nn > 0 THEN NULL
             ELSE (nd * CASE WHEN a >= d THEN pi() * d * d / 2.0
                             ELSE pi() * d * d / 2.0
                                  - (d * d / 2.0 * acos(a / d) - a / 2.0 * sqrt(d * d - a * a)) END
                   + ns * pi() * sigma * sigma / 4.0) / (lx * ly) END AS area_fraction,
        lx AS box_x, ly AS box_y,
-       CASE WHEN nd > 0 THEN alpha_dimer WHEN ns > 0 THEN alpha_disk END AS alpha,
+       CASE WHEN n_rods > 0 THEN NULL
+            WHEN nn > 0 THEN CASE WHEN alpha_hi - alpha_lo <= 1e-12 THEN alpha_hi END
+            WHEN nd > 0 THEN alpha_dimer WHEN ns > 0 THEN alpha_disk END AS alpha,
        CASE WHEN ns > 0 THEN alpha_disk END AS alpha_disk,
        alpha_wall, walls,
        CASE WHEN nd > 0 THEN a / d END AS a_over_d,
        CASE WHEN nd > 0 THEN d END AS d, CASE WHEN nd > 0 THEN a END AS a,
        CASE WHEN ns > 0 THEN sigma END AS sigma,
        rod_model, eps, gamma,
-       seed, status, version, started, finished, events, wall_seconds,
+       seed, status, version, started, finished, events, wall_seconds, git_commit, git_dirty,
        (SELECT s.cpd FROM samples AS s WHERE s.run = q.id ORDER BY s.t DESC LIMIT 1) AS cpd_reached,
        (SELECT max(s.t) FROM samples AS s WHERE s.run = q.id) AS t_reached
 FROM q;
+
+-- run_species (schema version 4): one row per species of a run that has bodies, from the
+-- species table and the scene: run; idx (species.idx: 0 [dimers], 1 [disks], 2, 3, ... each
+-- [species NAME] in scene order; 0 for rods); species, the name the analyses' labels use
+-- ('dimers', 'disks', NAME, 'rods'); n its bodies; alpha the restitution of its own pairs
+-- (NULL for rods); shape the scene's short form ('triangle 1', 'linear 3 1'; 'dimer A' for
+-- [dimers] of a = A, 'disk' for [disks]; NULL for a species given by its disks); disks, mass,
+-- inertia as in species (NULL for rods).  A run from before schema version 3 (no species rows)
+-- gets its rows from the scene: its dimers, disks or rods.
+CREATE VIEW IF NOT EXISTS run_species AS
+WITH pp AS (SELECT run, section, key, value, num FROM params
+            WHERE key IN ('alpha', 'shape', 'a', 'count')),
+sec AS (
+  SELECT s.run, s.idx, s.name, s.disks, s.count, s.mass, s.inertia,
+         CASE s.name WHEN 'dimer' THEN 'dimers' WHEN 'disk' THEN 'disks'
+                     ELSE 'species ' || s.name END AS section
+  FROM species AS s WHERE s.count > 0)
+SELECT sec.run, sec.idx,
+       CASE WHEN sec.section LIKE 'species %' THEN sec.name ELSE sec.section END AS species,
+       sec.count AS n,
+       (SELECT x.num FROM pp AS x WHERE x.run = sec.run AND x.section = sec.section
+          AND x.key = 'alpha') AS alpha,
+       CASE sec.section
+         WHEN 'dimers' THEN 'dimer ' || (SELECT x.value FROM pp AS x WHERE x.run = sec.run
+                                           AND x.section = 'dimers' AND x.key = 'a')
+         WHEN 'disks' THEN 'disk'
+         ELSE (SELECT x.value FROM pp AS x WHERE x.run = sec.run AND x.section = sec.section
+                 AND x.key = 'shape') END AS shape,
+       sec.disks, sec.mass, sec.inertia
+FROM sec
+UNION ALL
+SELECT x.run, CASE x.section WHEN 'disks' THEN 1 ELSE 0 END, x.section,
+       CAST(x.num AS INTEGER),
+       (SELECT y.num FROM pp AS y WHERE y.run = x.run AND y.section = x.section
+          AND y.key = 'alpha' AND x.section <> 'rods'),
+       CASE x.section
+         WHEN 'dimers' THEN 'dimer ' || (SELECT y.value FROM pp AS y WHERE y.run = x.run
+                                           AND y.section = 'dimers' AND y.key = 'a')
+         WHEN 'disks' THEN 'disk' END,
+       NULL, NULL, NULL
+FROM pp AS x
+WHERE x.key = 'count' AND x.num > 0 AND x.section IN ('dimers', 'disks', 'rods')
+  AND NOT EXISTS (SELECT 1 FROM species AS s WHERE s.run = x.run);

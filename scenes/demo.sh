@@ -28,4 +28,7 @@ bin/haff haff-fit "$db" || true
 echo "(*_fit_err: the fit's formal error; runs of other seeds scatter ~10x more, and"
 echo " 'haff table1' over several runs gives the standard error: docs/analysis.md)"
 echo
-echo "Query it yourself:  sqlite3 $db   (tables: runs collisions samples states checkpoints)"
+# the tables and views the file holds, from the file itself (sqlite3 .tables lists them all)
+echo "Query it yourself:  sqlite3 $db   (tables and views: $(sqlite3 "$db" \
+  "SELECT group_concat(name, ' ') FROM (SELECT name FROM sqlite_schema WHERE type IN ('table', \
+  'view') AND name NOT LIKE 'sqlite%' ORDER BY type, name)"); db/schema.sql documents them)"

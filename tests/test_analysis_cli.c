@@ -578,7 +578,10 @@ static void veldist_pool(void **state) {
  * and requires exit status 0, an empty stderr and a non-empty output. */
 static void gnuplot_scripts(void **state) {
   (void)state;
-  if (system("command -v gnuplot >/dev/null 2>&1") != 0) skip();
+  if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
+    printf("# skipped: no gnuplot on the PATH (make deps installs gnuplot-nox)\n");
+    skip();
+  }
   char src[512];
   snprintf(src, sizeof src, "%s", __FILE__);
   char *slash = strrchr(src, '/');

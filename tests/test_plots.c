@@ -89,7 +89,10 @@ static int teardown(void **state) {
 }
 
 static void need(void) {
-  if (!root[0] || !tmp[0]) skip();
+  if (!root[0] || !tmp[0]) {
+    printf("# skipped: %s\n", root[0] ? "no temporary folder" : "the source tree not found");
+    skip();
+  }
 }
 
 static void show_log(const char *log) {

@@ -189,6 +189,73 @@ static void run_summary_area_fraction(void **state) {
   sqlite3_close(h);
 }
 
+/* run_summary and run_species for named species (issue 28): scenes/shapes-mixture.ini (200
+ * dimers, 200 triangles, 200 asymmetric dimers, restitutions 0.95, 0.9, 0.95 and 0.92 for
+ * tri-dimers) and a triangle + linear trimer scene.  run_summary's species is the label of
+ * haff haff-fit (read from its output), n every body, alpha NULL when the pairs differ and the
+ * common value when they agree; run_species has one row per species with its own alpha, count
+ * and shape.  (Before: species '' or 'dimers', n 0 or 200, alpha NULL or the dimers'.) */
+static void run_summary_named_species(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("%s run %s/scenes/shapes-mixture.ini -o shapes.db --quiet --set "
+                      "run.stop_cpd=1.5",
+                      haff, root),
+                   0);
+  write_file("tt.ini", "[system]\narea_fraction = 0.1\nseed = 5\n[species tri]\ncount = 30\n"
+                       "shape = triangle\nalpha = 0.9\n[species rod3]\ncount = 20\n"
+                       "shape = linear 3\nalpha = 0.8\nalpha_tri = 0.85\n[run]\nstop_cpd = 1\n"
+                       "[log]\nsamples_every = 0.5\n");
+  assert_int_equal(sh("%s run tt.ini -o shapes.db --quiet", haff), 0);
+  /* the same pair of species, every restitution 0.9: alpha is that value */
+  assert_int_equal(sh("%s run tt.ini -o shapes.db --quiet --set species.rod3.alpha=0.9 --set "
+                      "species.rod3.alpha_tri=0.9",
+                      haff),
+                   0);
+  assert_int_equal(sh("%s haff-fit shapes.db > fit.tsv 2>/dev/null; test -s fit.tsv", haff), 0);
+  char p[300];
+  snprintf(p, sizeof p, "%s/fit.tsv", dir);
+  char *fit = slurp(p);
+  assert_non_null(fit);
+  sqlite3 *h = open_db("shapes.db");
+  static const char *const want[3] = {"shapes:dimers+tri+asym 600 200 NULL",
+                                      "shapes:tri+rod3 50 NULL NULL", "shapes:tri+rod3 50 NULL 0.9"};
+  for (int run = 1; run <= 3; run++) {
+    char sql[300], t[200], label[100];
+    snprintf(sql, sizeof sql,
+             "SELECT species || ' ' || n || ' ' || coalesce(n_dimers, 'NULL') || ' ' || "
+             "coalesce(alpha, 'NULL') FROM run_summary WHERE run = %d",
+             run);
+    qv(h, sql, t, sizeof t, NULL);
+    assert_string_equal(t, want[run - 1]);
+    /* haff-fit's label of the run: its row "run<TAB>species<TAB>..." */
+    char key[16];
+    snprintf(key, sizeof key, "\n%d\t", run);
+    const char *row = strstr(fit, key);
+    if (!row) fail_msg("haff-fit printed no row for run %d:\n%s", run, fit);
+    assert_int_equal(sscanf(row + strlen(key), "%99[^\t]", label), 1);
+    snprintf(sql, sizeof sql, "SELECT species FROM run_summary WHERE run = %d", run);
+    qv(h, sql, t, sizeof t, NULL);
+    assert_string_equal(t, label);
+  }
+  char t[1000];
+  qv(h,
+     "SELECT group_concat(species || ':' || n || ':' || alpha || ':' || coalesce(shape, '-'), ' ') "
+     "FROM (SELECT * FROM run_species WHERE run = 1 ORDER BY idx)",
+     t, sizeof t, NULL);
+  assert_string_equal(t, "dimers:200:0.95:dimer 1 tri:200:0.9:triangle 1 asym:200:0.95:-");
+  qv(h,
+     "SELECT group_concat(idx || ':' || species || ':' || n || ':' || alpha || ':' || shape || "
+     "':' || mass, ' ') FROM (SELECT * FROM run_species WHERE run = 2 ORDER BY idx)",
+     t, sizeof t, NULL);
+  assert_string_equal(t, "2:tri:30:0.9:triangle 1:3.0 3:rod3:20:0.8:linear 3 1:3.0");
+  /* every body is in one species row */
+  assert_true(qd(h, "SELECT count(*) FROM run_summary r WHERE n <> (SELECT sum(n) FROM "
+                    "run_species s WHERE s.run = r.run)") == 0);
+  sqlite3_close(h);
+  free(fit);
+}
+
 /* A file of schema version 0 (before the views) stays readable as it is, and gets the views,
  * made anew, the first time haff opens it for writing; a stale view of the same name is
  * replaced. */
@@ -209,7 +276,7 @@ static void schema_upgrade(void **state) {
   h = open_db("old.db");
   assert_int_equal((int)qd(h, "PRAGMA user_version"), 0); /* readers leave it as it is */
   sqlite3_close(h);
-  assert_int_equal(sh("%s run mix.ini -o old.db --quiet", haff), 0);
+  assert_int_equal(sh("%s run mix.ini -o old.db --quiet --seed 1234", haff), 0);
   h = open_db("old.db");
   assert_int_equal((int)qd(h, "PRAGMA user_version"), HD_DB_SCHEMA_VERSION);
   assert_int_equal((int)qd(h, "SELECT count(*) FROM run_summary"), 11);
@@ -323,6 +390,7 @@ static void sql_doc_questions(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(params_view),       cmocka_unit_test(run_summary_area_fraction),
+      cmocka_unit_test(run_summary_named_species),
       cmocka_unit_test(schema_upgrade),    cmocka_unit_test(queries_use_indexes),
       cmocka_unit_test(sql_doc_questions),
   };

@@ -298,6 +298,69 @@ static void old_schema_reads_and_upgrades(void **state) {
   assert_true(q1("old.db", "SELECT count(*) FROM species WHERE run = 2") >= 1); /* version 3 */
 }
 
+/* A run's identity is (scene, seed, commit) (issue 28): haff run refuses a second run of a
+ * scene and seed into one database (exit 2, one line naming the run, nothing written) unless
+ * --force; haff merge refuses a run of the same identity, and takes one of another commit (a
+ * rerun by another build; before, the version "0.1.0" of every build made it a duplicate).  An
+ * input from before schema version 4 (no runs.git_commit) counts as commit 'unknown'.  Each run
+ * records the command line that began it, and a sweep's run its point. */
+static void run_identity_and_duplicates(void **state) {
+  (void)state;
+  if (!haff) skip();
+  char e[2048];
+  assert_int_equal(sh("%s run short.ini -o id.db --seed 5 --quiet", haff), 0);
+  assert_int_equal(sh("%s run short.ini -o id.db --seed 5 --quiet", haff), 2);
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "haff run: id.db has run 1 of this scene and seed already (status "
+                            "done, commit "));
+  assert_non_null(strstr(e, "--force"));
+  assert_int_equal(q1("id.db", "SELECT count(*) FROM runs"), 1);
+  assert_int_equal(sh("%s run short.ini -o id.db --seed 6 --quiet", haff), 0); /* other seed */
+  assert_int_equal(sh("%s run short.ini -o id.db --seed 5 --quiet --force", haff), 0);
+  assert_int_equal(q1("id.db", "SELECT count(*) FROM runs WHERE seed = 5"), 2);
+  assert_int_equal(q1("id.db", "SELECT count(*) FROM runs WHERE id = 3 AND command LIKE "
+                               "'%/haff run short.ini -o id.db --seed 5 --quiet --force' AND "
+                               "git_commit IS NOT NULL AND compiler IS NOT NULL AND cflags LIKE "
+                               "'%-std=c11%' AND sweep_point IS NULL"),
+                   1);
+  /* merge: the same identity refused, another commit taken */
+  assert_int_equal(sh("%s run short.ini -o id2.db --seed 5 --quiet", haff), 0);
+  assert_int_equal(sh("%s merge idm.db id.db", haff), 0);
+  assert_int_equal(sh("%s merge idm.db id2.db", haff), 2);
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "id2.db: run 1 (seed 5) is already in idm.db as run 1 (the same "
+                            "scene, seed and commit)"));
+  assert_int_equal(sh("sqlite3 id2.db \"UPDATE runs SET git_commit = 'another'\""), 0);
+  assert_int_equal(sh("%s merge idm.db id2.db", haff), 0);
+  assert_int_equal(q1("idm.db", "SELECT count(*) FROM runs WHERE seed = 5"), 3);
+  assert_int_equal(q1("idm.db", "SELECT count(*) FROM runs WHERE git_commit = 'another'"), 1);
+  /* an input of schema version 3 (no git_commit): 'unknown', a duplicate of an 'unknown' run */
+  assert_int_equal(
+      sh("%s run short.ini -o v3.db --seed 7 --quiet && cp v3.db v3b.db && "
+         "for f in v3.db v3b.db; do sqlite3 $f 'DROP VIEW run_summary; ALTER TABLE runs "
+         "DROP COLUMN git_commit; PRAGMA user_version = 3' || exit 1; done",
+         haff),
+      0);
+  assert_int_equal(sh("%s merge idm.db v3.db", haff), 0);
+  assert_int_equal(q1("idm.db", "SELECT count(*) FROM runs WHERE seed = 7 AND git_commit IS "
+                                "NULL"),
+                   1);
+  assert_int_equal(sh("%s merge idm.db v3b.db", haff), 2);
+  /* a file of version 3 is brought to 4 by a run, its old rows NULL */
+  assert_int_equal(sh("%s run short.ini -o v3.db --seed 8 --quiet", haff), 0);
+  assert_int_equal(q1("v3.db", "PRAGMA user_version"), HD_DB_SCHEMA_VERSION);
+  assert_int_equal(q1("v3.db", "SELECT count(*) FROM runs WHERE git_commit IS NULL"), 1);
+  assert_int_equal(q1("v3.db", "SELECT count(*) FROM runs WHERE git_commit IS NOT NULL"), 1);
+  assert_int_equal(sh("%s run short.ini -o v3.db --seed 7 --quiet", haff), 2); /* still refused */
+  /* a sweep's runs record their point */
+  write_file("pt.ini", "[sweep]\nscene = short.ini\n[points]\npoint = disks.alpha=0.5\n"
+                       "point = disks.alpha=0.6 system.seed=4\n");
+  assert_int_equal(sh("%s sweep pt.ini --quiet", haff), 0);
+  assert_int_equal(q1("pt/study.db", "SELECT count(*) FROM runs WHERE id = 2 AND sweep_point "
+                                     "LIKE '%/pt point 1: disks.alpha=0.6 system.seed=4'"),
+                   1);
+}
+
 /* hd_db_merge from the library (so that the sanitized build runs it too): runs written with
  * the hd_db API, two inputs into a new OUT and a third into it, ids shifted and every row under
  * its run; a duplicate run and a file given twice refused with OUT as it was; a writer refuses a
@@ -549,6 +612,7 @@ int main(void) {
       cmocka_unit_test(merge_runs_and_refusals),
       cmocka_unit_test(merge_killed_leaves_out),
       cmocka_unit_test(old_schema_reads_and_upgrades),
+      cmocka_unit_test(run_identity_and_duplicates),
       cmocka_unit_test(merge_library),
       cmocka_unit_test(sweep_grid_runs_and_merges),
       cmocka_unit_test(sweep_bad_input),

@@ -85,7 +85,10 @@ static int teardown(void **state) {
   return haff && dir[0] ? test_cli_rmdir() : 0;
 }
 
-/* -V and --version print "haff VERSION", VERSION being what runs.version stores. */
+/* -V and --version print "haff VERSION", VERSION being what runs.version stores, then the
+ * build's provenance as the run stored it: "commit HASH" (runs.git_commit; in a git work tree
+ * of the source folder, its HEAD, with " (modified)" when git_dirty is 1), "compiler ..." and
+ * "cflags ..." (runs.compiler, runs.cflags).  The run also stores its command line. */
 static void version(void **state) {
   (void)state;
   if (!haff) skip();
@@ -94,9 +97,33 @@ static void version(void **state) {
   assert_int_equal(sh("%s --version", haff), 0);
   char *v2 = slurp("out.txt");
   assert_string_equal(v, v2);
-  assert_int_equal(sh("sqlite3 d.db \"SELECT 'haff ' || version FROM runs WHERE id = 1\""), 0);
+  assert_int_equal(sh("sqlite3 d.db \"SELECT 'haff ' || version || char(10) || 'commit ' || "
+                      "git_commit || CASE git_dirty WHEN 1 THEN ' (modified)' WHEN 0 THEN '' "
+                      "ELSE ' (not a git build)' END || char(10) || 'compiler ' || compiler || "
+                      "char(10) || 'cflags ' || cflags FROM runs WHERE id = 1\""),
+                   0);
   char *stored = slurp("out.txt");
   assert_string_equal(v, stored);
+  /* the commit is the source tree's HEAD when the tree is a git work tree (else 'unknown') */
+  char *nl = strchr(v, '\n');
+  assert_non_null(nl);
+  char commit[64] = "";
+  assert_int_equal(sscanf(nl + 1, "commit %63s", commit), 1);
+  if (sh("test \"$(git -C %s rev-parse --show-toplevel 2>/dev/null)\" = %s && "
+         "git -C %s rev-parse HEAD",
+         root, root, root) == 0) {
+    char *head = slurp("out.txt");
+    head[strcspn(head, "\n")] = 0;
+    assert_string_equal(commit, head);
+    free(head);
+  } else {
+    assert_string_equal(commit, "unknown");
+  }
+  assert_int_equal(sh("sqlite3 d.db \"SELECT command FROM runs WHERE id = 1\""), 0);
+  char *cmd = slurp("out.txt"), want[4200];
+  snprintf(want, sizeof want, "%s run d.ini -o d.db --quiet\n", haff);
+  assert_string_equal(cmd, want);
+  free(cmd);
   free(v);
   free(v2);
   free(stored);
@@ -151,9 +178,11 @@ static void run_refuses_dash(void **state) {
   assert_false(exists("-"));
 }
 
-/* make install PREFIX DESTDIR puts bin/haff, haff.1 and the completion under DESTDIR/PREFIX;
- * the man page has a section for every subcommand of the dispatcher table (and of `haff mc`);
- * the completion offers them, and a subcommand's options; make uninstall removes all three. */
+/* make install PREFIX DESTDIR puts bin/haff, haff.1, the completion and the documentation
+ * (PREFIX/share/doc/haff, which the man page names) under DESTDIR/PREFIX; the man page has a
+ * section for every subcommand of the dispatcher table (and of `haff mc`); the completion offers
+ * them, a subcommand's own options, export's formats and, after --set, the scene keys; make
+ * uninstall removes it all. */
 static void install_man_completion(void **state) {
   (void)state;
   if (!haff) skip();
@@ -163,6 +192,13 @@ static void install_man_completion(void **state) {
   assert_true(exists("stage/opt/h/bin/haff"));
   assert_true(exists("stage/opt/h/share/man/man1/haff.1"));
   assert_true(exists("stage/opt/h/share/bash-completion/completions/haff"));
+  /* the documentation, in the source tree's layout, and the man page points there */
+#define DOC "stage/opt/h/share/doc/haff/"
+  static const char *const docs[] = {DOC "README.md",          DOC "docs/sql.md",
+                                     DOC "docs/scene-keys.md", DOC "db/README.md",
+                                     DOC "db/schema.sql",      DOC "db/queries/views.sql"};
+  for (size_t k = 0; k < sizeof docs / sizeof *docs; k++)
+    if (!exists(docs[k])) fail_msg("make install did not install %s", docs[k]);
   assert_int_equal(sh("stage/opt/h/bin/haff -V"), 0);
   char names[64][32];
   int n = dispatcher_names(names, 64);
@@ -176,6 +212,8 @@ static void install_man_completion(void **state) {
   assert_non_null(strstr(man, "\n.SS haff mc fmean\n"));
   assert_non_null(strstr(man, "\n.SS haff mc eps\n"));
   assert_non_null(strstr(man, ".TH HAFF 1"));
+  assert_non_null(strstr(man, "\n.I /opt/h/share/doc/haff\n"));
+  assert_null(strstr(man, "source tree"));
   free(man);
   /* troff formats it without a warning (an unescaped "." or "\\" of a help text would give one) */
   assert_int_equal(sh("groff -man -ww -z -Tutf8 stage/opt/h/share/man/man1/haff.1"), 0);
@@ -187,8 +225,13 @@ static void install_man_completion(void **state) {
       "source stage/opt/h/share/bash-completion/completions/haff; "
       "c() { COMP_WORDS=(\"$@\"); COMP_CWORD=$(($# - 1)); _haff; echo \"${COMPREPLY[*]}\"; }; "
       "c stage/opt/h/bin/haff ''; c stage/opt/h/bin/haff run --; c stage/opt/h/bin/haff mc ''; "
-      "c stage/opt/h/bin/haff mc fmean --sc";
+      "c stage/opt/h/bin/haff mc fmean --sc; c stage/opt/h/bin/haff sweep --s; "
+      "c stage/opt/h/bin/haff export ''; c stage/opt/h/bin/haff run --set di; "
+      "c stage/opt/h/bin/haff run sp.ini --set species.tr; "
+      "c stage/opt/h/bin/haff run sp.ini --set species.rod3.alpha_";
   write_file("comp.sh", comp);
+  write_file("sp.ini", "[species tri]\ncount = 3\nshape = triangle\n[species rod3]\ncount = 2\n"
+                       "shape = linear 3\n");
   assert_int_equal(sh("bash comp.sh"), 0);
   char *out = slurp("out.txt");
   char *l2 = strchr(out, '\n');
@@ -210,12 +253,96 @@ static void install_man_completion(void **state) {
   assert_non_null(l4);
   *l4++ = 0;
   assert_string_equal(l3, "fmean eps rate"); /* haff mc rate (issue 25) */
-  assert_string_equal(l4, "--scan\n");
+  char *l5 = strchr(l4, '\n');
+  assert_non_null(l5);
+  *l5++ = 0;
+  assert_string_equal(l4, "--scan");
+  /* sweep's options are its own (not --set, which its help names in the prose); export's
+   * formats; --set: the scene keys of haff run --list-keys, a species' with the scene's names */
+  char *l6 = strchr(l5, '\n'), *l7, *l8, *l9, *l10;
+  assert_non_null(l6);
+  *l6++ = 0;
+  assert_string_equal(l5, "--slurm --status");
+  assert_non_null(l7 = strchr(l6, '\n'));
+  *l7++ = 0;
+  assert_string_equal(l6, "xyz");
+  assert_non_null(l8 = strchr(l7, '\n'));
+  *l8++ = 0;
+  assert_string_equal(l7, "dimers.count= dimers.d= dimers.a= dimers.m= dimers.alpha= "
+                          "disks.count= disks.sigma= disks.mass= disks.alpha= disks.alpha_dimer=");
+  assert_non_null(l9 = strchr(l8, '\n'));
+  *l9++ = 0;
+  assert_string_equal(l8, "species.tri.count= species.tri.alpha= species.tri.shape= "
+                          "species.tri.d= species.tri.m= species.tri.disks= "
+                          "species.tri.alpha_rod3= species.tri.alpha_dimers= "
+                          "species.tri.alpha_disks=");
+  assert_non_null(l10 = strchr(l9, '\n'));
+  *l10 = 0;
+  assert_string_equal(l9, "species.rod3.alpha_tri= species.rod3.alpha_dimers= "
+                          "species.rod3.alpha_disks=");
   free(out);
   assert_int_equal(sh("%s %s uninstall PREFIX=/opt/h DESTDIR=%s/stage", mk, root, dir), 0);
   assert_false(exists("stage/opt/h/bin/haff"));
   assert_false(exists("stage/opt/h/share/man/man1/haff.1"));
   assert_false(exists("stage/opt/h/share/bash-completion/completions/haff"));
+  assert_false(exists("stage/opt/h/share/doc/haff"));
+}
+
+/* tests/run-tests ends with "N passed, N failed" as its last line (CI parses it) and says on
+ * the line before how many tests were skipped and why: those of the sanitizer build as one
+ * count, those of the normal build by name with the reason each printed ("# skipped: ...").
+ * The programs here are stand-ins that print what cmocka prints. */
+static void run_tests_counts_skips(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("a.sh", "#!/bin/sh\necho '[ RUN      ] plot'\necho '# skipped: no gnuplot'\n"
+                     "echo '[  SKIPPED ] plot'\necho '[==========] 3 test(s) run.'\n"
+                     "echo '[  PASSED  ] 2 test(s).'\necho '[  SKIPPED ] 1 test(s), listed "
+                     "below:'\necho '[  SKIPPED ] plot'\n");
+  write_file("b.sh", "#!/bin/sh\necho '[  PASSED  ] 4 test(s).'\n");
+  write_file("c.sh", "#!/bin/sh\necho '[  PASSED  ] 1 test(s).'\necho '[  SKIPPED ] 3 "
+                     "test(s), listed below:'\n");
+  assert_int_equal(sh("chmod +x a.sh b.sh c.sh && %s/tests/run-tests ./a.sh ./b.sh -- ./c.sh "
+                      "| tail -2",
+                      root),
+                   0);
+  char *out = slurp("out.txt");
+  assert_string_equal(out, "4 skipped: 3 in the sanitizer build (the tests that drive bin/haff, "
+                           "which is not built with the sanitizers, and long physics tests; the "
+                           "normal build runs them), 1 in the normal build (a.sh plot: no "
+                           "gnuplot)\n7 passed, 0 failed\n");
+  free(out);
+  /* nothing skipped: the closing line alone */
+  assert_int_equal(sh("%s/tests/run-tests ./b.sh | tail -2", root), 0);
+  out = slurp("out.txt");
+  assert_string_equal(out, "\n4 passed, 0 failed\n");
+  free(out);
+}
+
+/* Docs that were wrong (issue 28): README's database paragraph said half of it twice; README
+ * named ../shared/DESIGN.md as if it were in the repository; docs/scene-keys.md said the engine
+ * refuses [species] sections, which it runs (tests/test_cluster.c). */
+static void docs_say_what_is(void **state) {
+  (void)state;
+  if (!haff) skip();
+  char p[4200];
+  snprintf(p, sizeof p, "%s/README.md", root);
+  char *readme = slurp(p);
+  const char *once = "a killed process leaves whole batches only";
+  char *first = strstr(readme, once);
+  assert_non_null(first);
+  assert_null(strstr(first + 1, once));
+  assert_null(strstr(readme, "a run that can be resumed; a done or collapsed run's is deleted, "
+                             "~150 bytes per body), `frames`"));
+  for (char *q = strstr(readme, "DESIGN.md"); q; q = strstr(q + 1, "DESIGN.md"))
+    if (q >= readme + 10 && !strncmp(q - 10, "../shared/", 10))
+      fail_msg("README.md names ../shared/DESIGN.md, which is not in the repository");
+  free(readme);
+  snprintf(p, sizeof p, "%s/docs/scene-keys.md", root);
+  char *keys = slurp(p);
+  assert_null(strstr(keys, "not supported by this"));
+  assert_null(strstr(keys, "refuses a scene with `[species]` sections"));
+  free(keys);
 }
 
 /* build/libhaff.so is built with `make` and loads, with the library's functions in it. */
@@ -235,7 +362,8 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(version),          cmocka_unit_test(dash_is_stdout),
       cmocka_unit_test(run_refuses_dash), cmocka_unit_test(install_man_completion),
-      cmocka_unit_test(shared_library),
+      cmocka_unit_test(shared_library),   cmocka_unit_test(run_tests_counts_skips),
+      cmocka_unit_test(docs_say_what_is),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -12,6 +12,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "hd_build.h"
 #include "hd_db.h"
 #include "hd_model.h"
 #include "hd_sim.h"
@@ -577,6 +578,15 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
     frames_estimate(&r);
     rc = run_lock(&r, err);
     if (!rc) rc = record_origin(&r, err);
+    if (!rc) {
+      hd_run_prov prov = {.git_commit = hd_build_commit,
+                          .git_dirty = hd_build_dirty,
+                          .compiler = hd_build_compiler,
+                          .cflags = hd_build_cflags,
+                          .command = o->command,
+                          .sweep_point = o->sweep_point};
+      rc = hd_db_run_provenance(r.db, r.run, &prov, err);
+    }
     if (!rc) rc = start(&r, err);
     if (rc) { /* any failure of the set-up marks the run, which cannot be resumed */
       hd_error e2;

@@ -12,11 +12,15 @@
 
 /* How a run is driven. */
 typedef struct hd_run_opts {
-  const char *db_path; /* database to append the run to (created if missing) */
-  int quiet;           /* no progress line */
-  const char *version; /* written to runs.version */
-  char *note;          /* NULL, or note_size bytes that get "" or why a run that ended well
-                          ended before its stop condition (also in runs.message) */
+  const char *db_path;     /* database to append the run to (created if missing) */
+  int quiet;               /* no progress line */
+  const char *version;     /* written to runs.version */
+  const char *command;     /* hd_run_new: the command line, written to runs.command (NULL: none);
+                              runs.git_commit, git_dirty, compiler and cflags are this library's
+                              build (hd_build.h) */
+  const char *sweep_point; /* hd_run_new: written to runs.sweep_point (NULL: none) */
+  char *note;              /* NULL, or note_size bytes that get "" or why a run that ended well
+                              ended before its stop condition (also in runs.message) */
   size_t note_size;
   double progress_every; /* when stderr is not a terminal (a batch log): one progress line every
                             this many seconds; 0 takes HD_RUN_PROGRESS_EVERY, < 0 none.  On a

@@ -1791,6 +1791,14 @@ int hd_scene_keys_doc(const char *in, char **out, hd_error *err) {
 
 /* ---- public -------------------------------------------------------------------------------- */
 
+int hd_scene_key_name(int k, char *buf, size_t size) {
+  if (k < 0 || k >= N_KEY) return 1;
+  const key_def *kd = &keys[k];
+  int n = snprintf(buf, size, "%s.%s%s", sec_name[kd->sec], kd->sec == S_SPECIES ? "NAME." : "",
+                   kd->name);
+  return n < 0 || (size_t)n >= size;
+}
+
 void hd_scene_defaults(hd_scene *sc) {
   memset(sc, 0, sizeof *sc);
   strcpy(sc->dir, ".");

@@ -178,6 +178,12 @@ int hd_scene_read_stored(hd_scene *sc, const char *text, const char *name, hd_er
  * or an unclosed table, HD_ENOMEM. */
 int hd_scene_keys_doc(const char *in, char **out, hd_error *err);
 
+/* The k-th scene key of the key table (k = 0, 1, ...) as an override names it, into buf:
+ * "SECTION.KEY" ("system.seed"; "species.NAME.count" for a [species NAME] key, NAME and the
+ * OTHER of alpha_OTHER standing for names).  Returns 0, or 1 when k is past the last key (or
+ * buf too small). */
+int hd_scene_key_name(int k, char *buf, size_t size);
+
 /* Whether override `over` ("SECTION.KEY=VALUE", as hd_scene_load reads it) sets [section] key. */
 int hd_scene_override_sets(const char *over, const char *section, const char *key);
 
