@@ -44,7 +44,7 @@ static const char *data_targets =
     "$T/data/energy.tsv $T/data/energy_disks.tsv $T/data/fig1.tsv $T/data/angles.tsv "
     "$T/data/angles_elastic.tsv $T/data/veldist.tsv $T/data/errcost.tsv $T/table1.tsv "
     "$T/table2.tsv $T/fmean_vs_engine.tsv $T/data/hcs-n50.tsv $T/data/hcs-n100.tsv "
-    "$T/data/errcost-stable.tsv $T/data/veldist_pool.tsv";
+    "$T/data/errcost-stable.tsv $T/data/veldist_pool.tsv $T/data/band.tsv $T/data/band_disks.tsv";
 
 /* data_targets with $T replaced by tmp/out */
 static void targets(char *buf, size_t n) {
@@ -319,7 +319,8 @@ static void gnuplot_render(void **state) {
   struct {
     const char *gp, *args;
   } s[] = {{"fig1", "in='%1$s/%2$s/fig1.tsv'; title='test'"},
-           {"fig2", "in='%1$s/%2$s/energy.tsv'; ref='%1$s/%2$s/energy_disks.tsv'"},
+           {"fig2", "in='%1$s/%2$s/energy.tsv'; band='%1$s/%2$s/band.tsv'; "
+                    "bandref='%1$s/%2$s/band_disks.tsv'"},
            {"fig3", "in='%1$s/%2$s/energy.tsv'"},
            {"fig5", "in='%1$s/%2$s/angles.tsv'; in2='%1$s/%2$s/angles_elastic.tsv'; "
                     "fm='%1$s/%3$s/fmean_vs_engine.tsv'; ad=1"},
