@@ -182,8 +182,10 @@ $(DATA)/band_disks.tsv: $(DATA)/disks.db $(SCRIPTS)/energy_band.py
 	$(SCRIPTS)/energy_band.py $< disks > $@
 $(OUT)/fig2.png $(OUT)/fig2.svg $(OUT)/fig2.pdf: $(OUT)/fig2.%: $(DATA)/energy.tsv $(DATA)/band.tsv $(DATA)/band_disks.tsv plots/fig2.gp $(STYLE)
 	$(GNUPLOT) -e "in='$<'; band='$(DATA)/band.tsv'; bandref='$(DATA)/band_disks.tsv'; out='$@'" plots/fig2.gp
-$(OUT)/fig3.png $(OUT)/fig3.svg $(OUT)/fig3.pdf: $(OUT)/fig3.%: $(DATA)/energy.tsv plots/fig3.gp $(STYLE)
-	$(GNUPLOT) -e "in='$<'; out='$@'" plots/fig3.gp
+# Fig. 3 marks the groups the tables flag (fits-groups.tsv's last column)
+$(OUT)/fig3.png $(OUT)/fig3.svg $(OUT)/fig3.pdf: $(OUT)/fig3.%: $(DATA)/energy.tsv $(DATA)/fits-groups.tsv plots/fig3.gp $(STYLE)
+	$(GNUPLOT) -e "in='$<'; out='$@'; flagged='$$(awk -F'\t' 'NR > 1 && $$2 == $(FIG2_A) && \
+	  $$NF != "" { printf "%s ", $$1 }' $(DATA)/fits-groups.tsv)'" plots/fig3.gp
 
 # --- Fig. 1: 400 dimers, a = d, alpha = 0.95 -----------------------------------------------
 $(eval $(call RUN,$(RD)/fig1.db,scenes/paper-fig1.ini,--seed 1))
