@@ -99,6 +99,7 @@ TABLES  := $(OUT)/table1.tsv $(OUT)/table1.md $(OUT)/table2.tsv $(OUT)/table2.md
 plots: $(foreach f,$(PAPER_FIGS),$(OUT)/$(f).png $(OUT)/$(f).svg $(OUT)/$(f).pdf) $(TABLES) \
        $(OUT)/README.md fmean-plots rods-plots shapes-plots $(OUT)/index.html
 
+FMEAN_T1 := $(OUT)/table1.tsv
 include plots/fmean.mk
 include plots/shapes.mk
 include plots/rods.mk
