@@ -258,10 +258,11 @@ $(foreach n,$(HCS_STABLE) $(HCS_UNSTABLE),$(eval $(call RUN,$(RD)/hcs-al$(HCS_AL
 $(DATA)/hcs-n%.tsv: $(RD)/hcs-al$(HCS_ALPHA)-n%.db
 	sqlite3 -separator $$'\t' $< "SELECT cpd, s_perp, s_par, flow_frac / flow_chaos, count_var, \
 	  s_rho FROM samples ORDER BY t" > $@
-hcs_label = $(shell awk 'BEGIN { n = $(1); printf "%d disks, α = $(HCS_ALPHA), L = %.0f σ", n, sqrt(n * 3.14159265 / 4 / $(ETA)) }')
+hcs_label = $(shell awk 'BEGIN { n = $(1); printf "%d disks, α = $(HCS_ALPHA), L = %.0f d", n, sqrt(n * 3.14159265 / 4 / $(ETA)) }')
 $(OUT)/hcs.png $(OUT)/hcs.svg $(OUT)/hcs.pdf: $(OUT)/hcs.%: $(DATA)/hcs-n$(HCS_STABLE).tsv $(DATA)/hcs-n$(HCS_UNSTABLE).tsv plots/hcs.gp $(STYLE)
 	$(GNUPLOT) -e "stable='$<'; unstable='$(DATA)/hcs-n$(HCS_UNSTABLE).tsv'; out='$@'; \
-	  ls='$(call hcs_label,$(HCS_STABLE))'; lu='$(call hcs_label,$(HCS_UNSTABLE))'" plots/hcs.gp
+	  ls='$(call hcs_label,$(HCS_STABLE))'; lu='$(call hcs_label,$(HCS_UNSTABLE))'; \
+	  alpha=$(HCS_ALPHA); eta=$(ETA)" plots/hcs.gp
 
 # --- plots/out/README.md: plots/README.md and this build's numbers ---------------------------
 $(OUT)/README.md: plots/README.md $(SCRIPTS)/readme.sh $(TABLES) $(DATA)/fits.tsv \
