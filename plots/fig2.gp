@@ -9,7 +9,13 @@
 # usage: gnuplot -e "band='b.tsv'; in='energy.tsv'[; bandref='bd.tsv']; out='fig2.png'" plots/fig2.gp
 load system("dirname '".ARG0."'")."/style.gp"
 if (!exists("in")) in = 'energy.tsv'
-if (!exists("band")) band = 'band.tsv'
+# without band (a bare `haff energy` file: the tests), the main panel and the lower one from in,
+# without bands
+nob = !exists("band")
+if (nob) band = in
+bx(d) = nob ? column(7) : column(1)
+bm(d) = nob ? column(4) : column(2)
+bs(d) = nob ? 0 : column(3)
 if (!exists("out")) out = 'fig2.png'
 eval term(out, 820, 820)
 set output out
@@ -17,8 +23,8 @@ set datafile separator "\t"
 stats band using 1 nooutput
 nb = STATS_blocks
 nr = 0
-if (exists("bandref")) { stats bandref using 1 nooutput; nr = STATS_blocks }
-stats band using 1 nooutput
+if (exists("bandref")) { stats bandref using 1 nooutput; nr = STATS_blocks } else { bandref = band }
+stats band using (bx(0)) nooutput
 xmax = STATS_max
 set multiplot title "Energy per dimer, a/d = 1: mean of the runs ± one s.d. (bands); d = m = T_0 = 1"
 # --- main panel ---------------------------------------------------------------------------
@@ -40,8 +46,8 @@ plot exp(-x/3) with lines dt 2 lw 1.5 lc rgb "black" title "exp(−x/3): D_e = 3
      for [i=0:nr-1] bandref index i using 1:2 with lines lw 2.5 dt 2*i+1 \
        lc rgb (i == 0 ? OI8 : OI7) title columnheader(1), \
      (nr > 1 ? NaN : NaN) with lines lc rgb "white" title (nr > 1 ? "(the disk lines coincide: x scales α out)" : ""), \
-     for [i=0:nb-1] band index i using 1:($2 - $3):($2 + $3) with filledcurves lc i+1 notitle, \
-     for [i=0:nb-1] band index i using 1:2 every 12 with points lt i+1 title columnheader(1)
+     for [i=0:nb-1] band index i using (bx(0)):(bm(0) - bs(0)):(bm(0) + bs(0)) with filledcurves lc i+1 notitle, \
+     for [i=0:nb-1] band index i using (bx(0)):(bm(0)) every 12 with points lt i+1 title columnheader(1)
 unset object 1
 # --- lower panel: over exp(-x/3) -------------------------------------------------------------
 set tmargin at screen 0.375
@@ -54,9 +60,9 @@ set ylabel "E / E(0) / exp(−x/3)"
 set yrange [*:*]
 set key top left horizontal
 plot 1 with lines dt 2 lw 1.5 lc rgb "black" notitle, \
-     for [i=0:nb-1] band index i using 1:(($2 - $3) * exp($1 / 3)):(($2 + $3) * exp($1 / 3)) \
+     for [i=0:nb-1] band index i using (bx(0)):((bm(0) - bs(0)) * exp(bx(0) / 3)):((bm(0) + bs(0)) * exp(bx(0) / 3)) \
        with filledcurves lc i+1 notitle, \
-     for [i=0:nb-1] band index i using 1:($2 * exp($1 / 3)) with lines lt i+1 notitle
+     for [i=0:nb-1] band index i using (bx(0)):(bm(0) * exp(bx(0) / 3)) with lines lt i+1 notitle
 # --- inset: against nu0_eff t, log-log --------------------------------------------------------
 stats in using 4 nooutput
 ymin = STATS_min
