@@ -46,7 +46,7 @@ plot exp(-x/3) with lines dt 2 lw 1.5 lc rgb "black" title "exp(−x/3): D_e = 3
      for [i=0:nr-1] bandref index i using 1:2 with lines lw 2.5 dt 2*i+1 \
        lc rgb (i == 0 ? OI8 : OI7) title columnheader(1), \
      (nr > 1 ? NaN : NaN) with lines lc rgb "white" title (nr > 1 ? "(the disk lines coincide: x scales α out)" : ""), \
-     for [i=0:nb-1] band index i using (bx(0)):(bm(0) - bs(0)):(bm(0) + bs(0)) with filledcurves lc i+1 notitle, \
+     for [i=0:nb-1] band index i using (bx(0)):(bm(0) - bs(0)):(bm(0) + bs(0)) with filledcurves fs transparent solid 0.25 lc i+1 notitle, \
      for [i=0:nb-1] band index i using (bx(0)):(bm(0)) every 12 with points lt i+1 title columnheader(1)
 unset object 1
 # --- lower panel: over exp(-x/3) -------------------------------------------------------------
@@ -61,7 +61,7 @@ set yrange [*:*]
 set key top left horizontal
 plot 1 with lines dt 2 lw 1.5 lc rgb "black" notitle, \
      for [i=0:nb-1] band index i using (bx(0)):((bm(0) - bs(0)) * exp(bx(0) / 3)):((bm(0) + bs(0)) * exp(bx(0) / 3)) \
-       with filledcurves lc i+1 notitle, \
+       with filledcurves fs transparent solid 0.25 lc i+1 notitle, \
      for [i=0:nb-1] band index i using (bx(0)):(bm(0) * exp(bx(0) / 3)) with lines lt i+1 notitle
 # --- inset: against nu0_eff t, log-log --------------------------------------------------------
 stats in using 4 nooutput

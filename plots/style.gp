@@ -37,7 +37,7 @@ set linetype cycle 8
 # a sequential palette for colour maps that is monotone in lightness (viridis-like: dark blue to
 # yellow), readable in greyscale
 set palette defined (0 "#30123b", 0.15 "#3e4a89", 0.35 "#26828e", 0.55 "#35b779", 0.8 "#b5de2b", 1 "#fde725")
-set style fill transparent solid 0.25 noborder
+set style fill solid 1.0 noborder   # bands: fs transparent solid 0.25 where drawn
 set grid lc rgb "#e0e0e0" lw 1
 set border lw 1.2
 set tics out nomirror
