@@ -73,7 +73,7 @@ $(RODS_DIR)/rods-stochastic.phase2.tsv: $(RODS_DIR)/rods-stochastic.ok
 $(RODS_DIR)/rods-stochastic.local.tsv: $(RODS_DIR)/rods-stochastic.ok
 	$(HAFF) rods-density $(RODS_DIR)/rods-stochastic.db --t 1e9 > $@
 $(RODS_DIR)/rods-stochastic.veldist.tsv: $(RODS_DIR)/rods-stochastic.ok
-	$(HAFF) rods-veldist $(RODS_DIR)/rods-stochastic.db --t $(T1) > $@
+	$(HAFF) rods-veldist $(RODS_DIR)/rods-stochastic.db --t $(T1) --gap 0.2 > $@
 $(RODS_DIR)/rods-stochastic.gofr.tsv: $(RODS_DIR)/rods-stochastic.ok
 	$(HAFF) rods-gofr $(RODS_DIR)/rods-stochastic.db --t $(T1) --range 250 --bins 500 > $@
 $(D)/rods-collapse.tsv: $(HAFF)

@@ -45,12 +45,13 @@ CAPTIONS = {
     "fig4": ("Fig. 4", "Two dimers at contact, a/d = 1: the allowed range |θ| ≤ θ<sub>max</sub> of "
              "the contact angle (Monte Carlo geometry, no statistics). Lengths in units of d."),
     "fig5": ("Fig. 5", "Distribution of the contact angle θ per block of collisions (α = 0.98, "
-             "lines) and of the whole elastic run (α = 1, points with error bars: each bin's "
-             "standard error, every second block's bars shown); dashed: the uniform model. Bins "
-             "drawn as steps. " + U_DIMER),
+             "steps) and of the whole elastic run (α = 1, points with error bars: each bin's "
+             "standard error; the blocks' typical error is written in the key); dashed: the "
+             "uniform model. " + U_DIMER),
     "fig6": ("Fig. 6", "Distributions of the velocity components c = V<sub>x,y</sub>/v<sub>th</sub> "
-             "and of c = ω/ω<sub>th</sub>, with v<sub>th</sub> = √(2T<sub>tr</sub>/M) and "
-             "ω<sub>th</sub> = √(2T<sub>rot</sub>/I) of the snapshot (rms scaling), per snapshot "
+             "and of c = ω/ω<sub>th</sub>, with v<sub>th</sub> the rms of one velocity component "
+             "(= √(T<sub>tr</sub>/M)) and ω<sub>th</sub> the rms of ω (= √(T<sub>rot</sub>/I)) of "
+             "the snapshot, per snapshot "
              "(cpd in the key); black: the pooled snapshots of many runs with Poisson error bars "
              "(√count). Bins with one count or fewer are not drawn. " + U_DIMER),
     "hcs": ("hcs", "State measures against cpd, each over its value for an uncorrelated gas: "
@@ -67,7 +68,8 @@ CAPTIONS = {
                "right: ⟨f⟩ = ⟨μ<sub>eff</sub>/m<sub>ref</sub>⟩ of the run's collisions (batch-means "
                "error) against the Monte Carlo collision model (standard error). "
                "m<sub>ref</sub>: the mass of one disk of the shape's first disk; asym: a dimer of "
-               "a disk d = 1, m = 1 and a disk d = 0.6, m = 0.5. " + U_DIMER),
+               "a disk d = 1, m = 1 and a disk d = 0.5, m = 0.3, 0.8 d apart. The right panel shows "
+               "engine − MC with the combined error. " + U_DIMER),
     "fmean": ("fmean", "⟨f⟩(a/d) and D<sub>e</sub>(a/d) of the three contact models (Monte Carlo, "
               "error bars: standard error), with Table I of the paper and haff's own fitted "
               "D<sub>e</sub> (table1.tsv, ± standard error over the runs). " + U_DIMER),
@@ -77,16 +79,20 @@ CAPTIONS = {
                         "and constant ε (dashed) until the constant model's collapse, linear "
                         "axes. One run each. " + U_RODS),
     "rods-damped": ("rods Figs. 9–10", "Damped bath: collisions (left axis) and kinetic energy "
-                    "per rod (right axis) against t. One run. " + U_RODS),
+                    "per rod (right axis) against t. One run. The late steps of the energy (the last one "
+                    "two decades) are real: the energy sits in a few fast rods between the "
+                    "clusters, and each step is one of them running into a cluster "
+                    "(plots/README.md). " + U_RODS),
     "rods-damped50": ("rods Fig. 11", "50 damped rods: E<sub>kin</sub> ∝ t<sup>−2</sup>. One run. "
                       + U_RODS),
     "rods-density": ("rods Figs. 3–4", "Coarse-grained density (rods per unit length, 100 bins) "
-                     "in the (x, t) plane, linear and log time. One run. " + U_RODS),
+                     "in the (x, t) plane, linear and log time, one row per snapshot. One run. " + U_RODS),
     "rods-phase": ("rods Fig. 5", "Phase space (x, v) of every rod at two times. One run. "
                    + U_RODS),
     "rods-local": ("rods Fig. 6", "Local density and kinetic energy per rod along the ring at the "
                    "last snapshot. One run. " + U_RODS),
-    "rods-veldist": ("rods Fig. 7", "Velocity histograms of all rods and of one cluster, with "
+    "rods-veldist": ("rods Fig. 7", "Velocity histograms of all rods and of one cluster (rods "
+                     "closer than 0.2 mean spacings), with "
                      "Poisson error bars (√count), against the Gaussians of the same variance. "
                      + U_RODS),
     "rods-gofr": ("rods Fig. 8", "Pair correlation g(x) of the ring, normalised by the mean "
