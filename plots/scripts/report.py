@@ -246,10 +246,17 @@ def num(s):
         return float("nan")
 
 
+def pm(v, e, f="%.4f"):
+    """'v ± e' with f, or '—' for a value that is not a number (no fit: elastic runs)."""
+    if v != v:
+        return "—"
+    return (f + " ± " + f) % (v, e) if e == e else f % v
+
+
 def table1_html(rows):
     h = ["<table><caption>Table I: D<sub>e</sub> and ν<sub>0</sub><sup>eff</sup>/ν<sub>0</sub> "
          "(haff: mean ± standard error over the runs, ± systematic; paper: Costantini et al. "
-         "2005, Table I)</caption>",
+         "2005, Table I; d = m = T<sub>0</sub> = 1; a/d = 0: hard disks)</caption>",
          "<tr><th>a/d</th><th>α</th><th>runs</th><th>D<sub>e</sub> (haff)</th>"
          "<th>D<sub>e</sub> (paper)</th><th>ν<sub>0</sub><sup>eff</sup>/ν<sub>0</sub> (haff)</th>"
          "<th>ν<sub>0</sub><sup>eff</sup>/ν<sub>0</sub> (paper)</th><th>flag</th></tr>"]
@@ -259,15 +266,18 @@ def table1_html(rows):
         p = PAPER_T1.get((round(ad, 3), round(al, 3))) or (PAPER_T1.get((0.0, None))
                                                           if ad == 0 else None)
         seen.add((round(ad, 3), round(al, 3)))
-        h.append("<tr><td>%g</td><td>%g</td><td>%s</td><td>%.4f ± %.4f ± %.4f</td><td>%s</td>"
-                 "<td>%.3f ± %.3f</td><td>%s</td><td>%s</td></tr>" % (
-                     ad, al, E(r["runs"]), num(r["D_e"]), num(r["D_e_err"]), num(r["D_e_sys"]),
-                     "%.3f" % p[0] if p else "—", num(r["ratio"]), num(r["ratio_err"]),
+        de = pm(num(r["D_e"]), num(r["D_e_err"]))
+        if de != "—":
+            de += " ± %.4f" % num(r["D_e_sys"])
+        h.append("<tr><td>%g</td><td>%g</td><td>%s</td><td>%s</td><td>%s</td>"
+                 "<td>%s</td><td>%s</td><td>%s</td></tr>" % (
+                     ad, al, E(r["runs"]), de,
+                     "%.3f" % p[0] if p else "—", pm(num(r["ratio"]), num(r["ratio_err"]), "%.3f"),
                      "%.2f" % p[1] if p and p[1] else "—", E(r.get("flag", ""))))
     for (ad, al), p in sorted((k, v) for k, v in PAPER_T1.items() if k[1] is not None):
         if (ad, al) not in seen:
             h.append("<tr class='missing'><td>%g</td><td>%g</td><td>0</td><td>— (not in this "
-                     "build's table)</td><td>%.3f</td><td>—</td><td>%.2f</td><td></td></tr>"
+                     "build's table: flagged or not run)</td><td>%.3f</td><td>—</td><td>%.2f</td><td></td></tr>"
                      % (ad, al, p[0], p[1]))
     h.append("</table>")
     return "\n".join(h)
@@ -301,6 +311,8 @@ def main():
     ap.add_argument("--png", action="append", default=[], help="figure names, in page order")
     ap.add_argument("-o", "--output")
     a = ap.parse_args()
+    if a.version.startswith("haff "):
+        a.version = a.version[5:]
     dbs = {}
     for d in a.db:
         fig, _, path = d.partition("=")
