@@ -24,8 +24,14 @@ cnt(p) = p / one
 ok(p) = p > 0 && cnt(p) > 1.5
 haspool = exists("pool")
 if (!haspool) pool = in
-# the pool's count per bin: p * n * dc (n: column 8, the values pooled)
+# the pool's count per bin: p * n * dc (n: column 8, the values pooled); its plot elements
+# (macros: none without a pool)
 pc(p) = p * column(8) * dc
+POOLA = !haspool ? "" : ", pool index 0 using 3:($4 > 0 ? $4 : NaN):($4 / sqrt(pc($4))) " \
+  . "with yerrorbars pt 5 ps 1.0 lc rgb 'black' title columnheader(1), pool index 0 using " \
+  . "3:($5 > 0 ? $5 : NaN):($5 / sqrt(pc($5))) with yerrorbars pt 4 ps 1.0 lc rgb 'black' notitle"
+POOLB = !haspool ? "" : ", pool index 0 using 3:($6 > 0 ? $6 : NaN):($6 / sqrt(pc($6))) " \
+  . "with yerrorbars pt 5 ps 1.0 lc rgb 'black' notitle"
 if (!exists("what")) what = "900 dimers, a = d, α = 0.9"
 set multiplot title "Scaled velocity distributions, ".what." (d = m = T_0 = 1)\n" \
   . "v_{th} = rms of V_x, V_y = √(T_{tr}/M);  ω_{th} = rms of ω = √(T_{rot}/I);  error bars √count" font ",11"
@@ -49,11 +55,7 @@ plot one with lines dt 3 lw 1 lc rgb "gray50" title "one count in a snapshot", \
        with yerrorbars pt 6 ps 0.6 lt i+1 notitle, \
      in index 0 using 3:7 with lines dt 2 lw 2 lc rgb "black" title "Gaussian", \
      NaN with points pt 7 ps 0.8 lc rgb "gray40" title "filled: V_x", \
-     NaN with points pt 6 ps 0.8 lc rgb "gray40" title "open: V_y", \
-     pool index 0 using 3:(haspool && $4 > 0 ? $4 : NaN):($4 / sqrt(pc($4))) \
-       with yerrorbars pt 5 ps 1.0 lc rgb "black" title (haspool ? columnheader(1) : ""), \
-     pool index 0 using 3:(haspool && $5 > 0 ? $5 : NaN):($5 / sqrt(pc($5))) \
-       with yerrorbars pt 4 ps 1.0 lc rgb "black" notitle
+     NaN with points pt 6 ps 0.8 lc rgb "gray40" title "open: V_y" @POOLA
 set xlabel "c = ω / ω_{th}"
 set title "b) rotational"
 unset ylabel
@@ -63,7 +65,5 @@ set rmargin at screen 0.705
 plot one with lines dt 3 lw 1 lc rgb "gray50" notitle, \
      for [i=0:nb-1] in index i using 3:(ok($6) ? $6 : NaN):(sqrt(cnt($6)) * one) \
        with yerrorbars pt 7 ps 0.6 lt i+1 notitle, \
-     in index 0 using 3:7 with lines dt 2 lw 2 lc rgb "black" notitle, \
-     pool index 0 using 3:(haspool && $6 > 0 ? $6 : NaN):($6 / sqrt(pc($6))) \
-       with yerrorbars pt 5 ps 1.0 lc rgb "black" notitle
+     in index 0 using 3:7 with lines dt 2 lw 2 lc rgb "black" notitle @POOLB
 unset multiplot

@@ -76,11 +76,13 @@ do for [ext in "png svg pdf"] {
   set title sprintf("Fig. 7: velocities √m v of all rods and of one cluster, error bars √count\n%s\n%s", vh1, UNITS) font ",10"
   set xlabel '√m v'; set ylabel 'p(√m v)'
   set samples 500
+  set yrange [0:*]
   set key top right
   g(x, m, s) = exp(-(x - m)**2 / (2 * s * s)) / (s * sqrt(2 * pi))
   plot vd u 1:($2 > 0 ? $2 : NaN):($2 / sqrt($2 * nrods * dw)) w yerrorbars pt 6 lt 1 t sprintf('all %d rods', int(nrods)), \
        '' u 1:($3 > 0 ? $3 : NaN):($3 / sqrt($3 * ncl * dw)) w yerrorbars pt 5 lt 2 t sprintf('cluster of %d rods', int(ncl)), \
        g(x, ma, sa) w l lt 1 lw 1.5 t 'Gaussian (all)', g(x, mc, sc) w l lt 2 lw 1.5 dt 2 t 'Gaussian (cluster)'
+  set autoscale y
   # --- Fig. 8: pair correlation ----------------------------------------------------------------
   tg = system("head -1 '".D."/rods-stochastic.gofr.tsv' | awk '{ print $4 }'")
   eval term(O.'/rods-gofr.'.ext, 900, 560)
