@@ -37,7 +37,8 @@ CAPTIONS = {
              "spread (± one standard deviation) over the runs of each α; lines: hard disks "
              "(α = 0.95, 0.9, the same N and η); dashed: exp(−x/3) (D<sub>e</sub> = 3). Inset: the "
              "same against ν<sub>0</sub><sup>eff</sup>t with Haff's law of the fitted "
-             "D<sub>e</sub> (dashed) and a t<sup>−2</sup> guide. " + U_DIMER),
+             "D<sub>e</sub> (dashed) and a t<sup>−2</sup> guide. Lower panel: E/E(0) over exp(−x/3), "
+             "where the bands and the differences between the α can be seen. " + U_DIMER),
     "fig3": ("Fig. 3", "(1 − α²)·cpd against ν<sub>0</sub><sup>eff</sup>t (log axis) with eq. (31) "
              "of the fitted D<sub>e</sub>; open symbols: groups the tables flag inhomogeneous "
              "(α = 0.9, 0.8 at this N), shown for comparison. Points: mean over the runs. "
@@ -53,7 +54,8 @@ CAPTIONS = {
              "(= √(T<sub>tr</sub>/M)) and ω<sub>th</sub> the rms of ω (= √(T<sub>rot</sub>/I)) of "
              "the snapshot, per snapshot "
              "(cpd in the key); black: the pooled snapshots of many runs with Poisson error bars "
-             "(√count). Bins with one count or fewer are not drawn. " + U_DIMER),
+             "(√count), also on the snapshots' points. Bins of one snapshot with a single count are "
+             "left out (the one-count floor is drawn). " + U_DIMER),
     "hcs": ("hcs", "State measures against cpd, each over its value for an uncorrelated gas: "
             "s<sub>⊥</sub> (shear), s<sub>∥</sub>, flow energy, cell-count variance, for a box "
             "below (left) and above (right) the HCS's critical size L<sub>c</sub> (the box edge "
@@ -61,13 +63,13 @@ CAPTIONS = {
             "HCS window ends. One run each, no error bars. " + U_DIMER),
     "errcost": ("errcost", "Error of the ensemble mean ⟨D<sub>e</sub>⟩ over R runs against their "
                 "total CPU time, one colour per run length (cpd); filled: standard error "
-                "sd/√R; open: total error √(stat² + sys²); R is written beside each point. "
+                "sd(all runs)/√R, the expected error of R runs; open: total error √(stat² + sys²); R is written beside each point. "
                 "Points of R = 2 are left out: the standard deviation of two values is itself "
                 "uncertain by ~70 %. Both panels share the y range."),
     "shapes": ("shapes", "Rigid clusters of disks: E/E<sub>0</sub> against (1 − α²)·cpd per shape; "
                "right: ⟨f⟩ = ⟨μ<sub>eff</sub>/m<sub>ref</sub>⟩ of the run's collisions (batch-means "
                "error) against the Monte Carlo collision model (standard error). "
-               "m<sub>ref</sub>: the mass of one disk of the shape's first disk; asym: a dimer of "
+               "m<sub>ref</sub>: the mass of the touching disk (docs/contract.md); asym: a dimer of "
                "a disk d = 1, m = 1 and a disk d = 0.5, m = 0.3, 0.8 d apart. The right panel shows "
                "engine − MC with the combined error. " + U_DIMER),
     "fmean": ("fmean", "⟨f⟩(a/d) and D<sub>e</sub>(a/d) of the three contact models (Monte Carlo, "
@@ -75,9 +77,10 @@ CAPTIONS = {
               "D<sub>e</sub> (table1.tsv, ± standard error over the runs). " + U_DIMER),
     "rods-energy": ("rods Fig. 1", "Kinetic energy per rod against t. No error bars (one run "
                     "each). " + U_RODS),
-    "rods-collisions": ("rods Fig. 2", "Total collisions against t; inset: stochastic (solid) "
-                        "and constant ε (dashed) until the constant model's collapse, linear "
-                        "axes. One run each. " + U_RODS),
+    "rods-collisions": ("rods Fig. 2", "(a) Total collisions against t with the ideal-gas "
+                        "count and eq. (35); (b) the paper's inset: stochastic (solid) and "
+                        "constant ε (dashed) until the constant model's inelastic collapse, "
+                        "linear axes. One run each. " + U_RODS),
     "rods-damped": ("rods Figs. 9–10", "Damped bath: collisions (left axis) and kinetic energy "
                     "per rod (right axis) against t. One run. The late steps of the energy (the last one "
                     "two decades) are real: the energy sits in a few fast rods between the "
@@ -85,7 +88,7 @@ CAPTIONS = {
                     "(plots/README.md). " + U_RODS),
     "rods-damped50": ("rods Fig. 11", "50 damped rods: E<sub>kin</sub> ∝ t<sup>−2</sup>. One run. "
                       + U_RODS),
-    "rods-density": ("rods Figs. 3–4", "Coarse-grained density (rods per unit length, 100 bins) "
+    "rods-density": ("rods Figs. 3–4", "Coarse-grained density over the mean N/L (100 bins) "
                      "in the (x, t) plane, linear and log time, one row per snapshot. One run. " + U_RODS),
     "rods-phase": ("rods Fig. 5", "Phase space (x, v) of every rod at two times. One run. "
                    + U_RODS),
@@ -96,8 +99,9 @@ CAPTIONS = {
                      "Poisson error bars (√count), against the Gaussians of the same variance. "
                      + U_RODS),
     "rods-gofr": ("rods Fig. 8", "Pair correlation g(x) of the ring, normalised by the mean "
-                  "density N/L; in a clustered ring g falls below 1 at large x (the pairs sit "
-                  "inside clusters), see plots/README.md. " + U_RODS),
+                  "density N/L (uniform rods: 1; its mean over the whole ring is 1). The ring is "
+                  "clustered: g ≈ 4 inside a cluster, a correlation hole of ≈ 0.5 next to it, "
+                  "peaks at the distances between clusters (plots/README.md). " + U_RODS),
     "rods-collapse": ("rods collapse", "Fraction of constant-ε rings that collapse, against "
                       "McNamara–Young's N = −ln(1−ε)/(1−ε). Three seeds per point."),
 }
