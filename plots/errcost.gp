@@ -25,15 +25,19 @@ set format y "10^{%L}"
 set format x "10^{%L}"
 set xlabel "total CPU time of the R runs (s)"
 set key top right spacing 1.2 font ",10"
-# one x and one y range for both panels (from every point of both files)
-stats in using 3:7 nooutput
-x0 = STATS_min_x; x1 = STATS_max_x; y0 = STATS_min_y; y1 = STATS_max_y
+# one x and one y range for both panels (from every point of both files; one column at a time:
+# stats of two columns fits a line and warns when there are two points)
+stats in using 3 nooutput
+x0 = STATS_min; x1 = STATS_max
+stats in using 7 nooutput
+y0 = STATS_min; y1 = STATS_max
 stats in using 9 nooutput
 y1 = STATS_max > y1 ? STATS_max : y1
 if (two) {
-  stats in2 using 3:7 nooutput
-  x0 = STATS_min_x < x0 ? STATS_min_x : x0; x1 = STATS_max_x > x1 ? STATS_max_x : x1
-  y0 = STATS_min_y < y0 ? STATS_min_y : y0; y1 = STATS_max_y > y1 ? STATS_max_y : y1
+  stats in2 using 3 nooutput
+  x0 = STATS_min < x0 ? STATS_min : x0; x1 = STATS_max > x1 ? STATS_max : x1
+  stats in2 using 7 nooutput
+  y0 = STATS_min < y0 ? STATS_min : y0; y1 = STATS_max > y1 ? STATS_max : y1
   stats in2 using 9 nooutput
   y1 = STATS_max > y1 ? STATS_max : y1
 }

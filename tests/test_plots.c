@@ -342,6 +342,36 @@ static void gnuplot_render(void **state) {
     }
 }
 
+/* The paper figures through plots.mk (after pipeline_and_rebuild made their data): each as PNG,
+ * SVG and PDF (issue 26: the PDFs for papers, from the shared style's terminals), real files of
+ * their format, and a second make has nothing to do (make -q). */
+static void figures_png_svg_pdf_once(void **state) {
+  (void)state;
+  need();
+  static const char *const figs[] = {"fig1", "fig2", "fig3", "fig5", "fig6", "errcost", "hcs"};
+  char t[4096] = "", cmd[4096];
+  for (size_t i = 0; i < sizeof figs / sizeof figs[0]; i++)
+    for (int e = 0; e < 3; e++) {
+      size_t l = strlen(t);
+      snprintf(t + l, sizeof t - l, "%s/out/%s.%s ", tmp, figs[i],
+               e == 0   ? "png"
+               : e == 1 ? "svg"
+                        : "pdf");
+    }
+  if (make("", t, "figs1.log") != 0) {
+    show_log("figs1.log");
+    fail_msg("make -f plots/plots.mk (tiny) of the figures failed");
+  }
+  assert_int_equal(make("-q", t, "figs2.log"), 0); /* a second make: nothing to do */
+  for (size_t i = 0; i < sizeof figs / sizeof figs[0]; i++) {
+    snprintf(cmd, sizeof cmd,
+             "cd '%1$s/out' && head -c 4 %2$s.png | grep -q PNG && head -c 4 %2$s.pdf | grep -q "
+             "'%%PDF' && grep -q '<svg' %2$s.svg",
+             tmp, figs[i]);
+    if (system(cmd) != 0) fail_msg("%s: not a PNG, PDF and SVG", figs[i]);
+  }
+}
+
 /* The report page (issue 26): plots/scripts/report.py on small generated inputs (two figures
  * drawn with plots/style.gp, Tables I-II, one tiny run) writes one self-contained index.html;
  * its captions say what was run (N, area fraction, seeds, from the run's database) and Table I
@@ -397,9 +427,12 @@ static void report_page_in_chromium(void **state) {
 }
 
 int main(void) {
-  const struct CMUnitTest tests[] = {
-      cmocka_unit_test(pipeline_and_rebuild),  cmocka_unit_test(merge_keeps_rows),
-      cmocka_unit_test(tsv_columns),           cmocka_unit_test(gnuplot_render),
-      cmocka_unit_test(rods_pipeline_resumes), cmocka_unit_test(report_page_in_chromium)};
+  const struct CMUnitTest tests[] = {cmocka_unit_test(pipeline_and_rebuild),
+                                     cmocka_unit_test(merge_keeps_rows),
+                                     cmocka_unit_test(tsv_columns),
+                                     cmocka_unit_test(gnuplot_render),
+                                     cmocka_unit_test(figures_png_svg_pdf_once),
+                                     cmocka_unit_test(rods_pipeline_resumes),
+                                     cmocka_unit_test(report_page_in_chromium)};
   return cmocka_run_group_tests(tests, setup, teardown);
 }
