@@ -42,7 +42,7 @@ if (two) {
   y1 = STATS_max > y1 ? STATS_max : y1
 }
 set xrange [x0 / 2 : x1 * 3]
-set yrange [y0 / 2 : y1 * 3]
+set yrange [y0 / 2 : y1 * 15]   # room above the curves for the key
 if (two) { set multiplot layout 1,2 title suptitle."; R = 4, 8, … runs (R = 2 left out: its sd is noise); d = m = T_0 = 1" }
 do for [p = (two ? 0 : 1) : 1] {
   f = p == 0 ? in2 : in
