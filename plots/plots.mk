@@ -4,8 +4,11 @@
 # plots/scripts/run.sh; every figure on its data and its .gp script; a change of the
 # parameters below rewrites $(DATA)/config.txt, which the merged databases depend on).
 # plots/README.md says what each output is; this build's numbers go to $(OUT)/README.md.
+# Every figure is written as PNG, SVG and PDF in one style (plots/style.gp, loaded by every .gp),
+# and $(OUT)/index.html shows them all with Tables I-II on one page (plots/scripts/report.py).
 #
-#   make plots                 default ensembles (2.5 minutes with make -j2 on 2 shared cores)
+#   make plots                 default ensembles (2.5 minutes with make -j2 on 2 idle cores; 13
+#                              minutes on 2 cores shared with 7 other builds)
 #   make plots PAPER=1         larger ensembles and longer runs
 #   make plots ETA=0.1         another area fraction (runs go to their own folder)
 #   make -f plots/plots.mk plots-clean   removes $(OUT)
