@@ -18,6 +18,8 @@ DEPS_PKGS += python3-pandas groff-base
 DEPS_PKGS += python3-ase ffmpeg
 # clang: make fuzz (libFuzzer on the parsers and the checkpoint restore)
 DEPS_PKGS += clang
+# chromium: tests/test_plots.c loads make plots' report page (plots/out/index.html) headless
+DEPS_PKGS += chromium
 WARN    := -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes -Wmissing-prototypes
 # Warnings are errors in CI (CI=true) and whenever WERROR=1.
 ifneq ($(filter true 1,$(CI) $(WERROR)),)
@@ -89,7 +91,7 @@ help:
 	@echo "make demo    run the demo scene and print what it logged"
 	@echo "make scene-keys  rewrite the key tables of docs/scene-keys.md from the key table"
 	@echo "make bench   benchmarks -> bench/results.md"
-	@echo "make plots   the papers' figures and tables -> plots/out/"
+	@echo "make plots   the papers' figures (PNG, SVG, PDF) and tables -> plots/out/, all on plots/out/index.html"
 	@echo "make install PREFIX=/usr/local DESTDIR=   bin/haff, man page haff(1), bash completion,"
 	@echo "             the docs in PREFIX/share/doc/haff (DOCDIR)"
 	@echo "make uninstall PREFIX=... DESTDIR=...      removes what make install put there"

@@ -1,14 +1,19 @@
-/* `haff movie DB [--run ID] -o run.mp4|run.gif [--color speed|density] [--fps N] [--size PX]`:
- * a movie of a run's frames ([log] frames_every or frames_every_time) in the style of the dimer
- * paper's Fig. 1: every disk drawn as its disk (a dimer as its two), coloured by its body's
- * speed or by the local density around it, the box and the time shown.  gnuplot (pngcairo)
+/* `haff movie DB [--run ID] -o run.mp4|run.gif [--color speed|density|species] [--fps N]
+ * [--size PX]`: a movie of a run's frames ([log] frames_every or frames_every_time) in the style
+ * of the dimer paper's Fig. 1: every disk drawn as its disk (a dimer as its two), coloured by its
+ * body's speed, by the local density around it or by its species; axes in units of the disk
+ * diameter d (x / d, y / d), each frame stamped with its time t and cpd.  gnuplot (pngcairo)
  * draws the frames into a temporary folder, ffmpeg encodes them; the folder is removed after.
  *
  * Colours (a cooling gas slows down and clusters: scales of the frame itself, so that the
  * structure stays visible while the energy falls by decades):
  *   speed    |V| of the body over the frame's rms |V|, on [0, 3];
  *   density  bodies whose centres lie within 5 diameters (periodic images included), over the
- *            frame's mean count in such a disc, on [0, 3].
+ *            frame's mean count in such a disc, on [0, 3];
+ *   species  one colour per species (the run's species table; without one, dimers and disks),
+ *            from the Okabe-Ito palette (distinct for colour-blind readers), named in a key.
+ * The unit of length d: the dimers' disk diameter, else the disks', else the first species'
+ * largest disk (a ring of rods: its own length unit).
  * Positions are wrapped into the box (a disk over an edge is cut there, not drawn twice). */
 #include <errno.h>
 #include <math.h>
@@ -39,6 +44,9 @@ static int run_prog(char *const argv[]) {
   if (waitpid(pid, &st, 0) != pid) return -1;
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
+
+/* How bodies are coloured (--color). */
+enum { COLOR_SPEED, COLOR_DENSITY, COLOR_SPECIES };
 
 /* Colour values of the n bodies of a frame (speed or density mode) into val. */
 static void colour(int density, long n, const double *x, const double *y, const float *vx,
@@ -93,7 +101,8 @@ static void colour(int density, long n, const double *x, const double *y, const 
 typedef struct movie {
   const char *dbpath, *outpath, *tmp;
   int64_t run;
-  int density, fps, size, gif;
+  int color, fps, size, gif; /* color: COLOR_SPEED, COLOR_DENSITY or COLOR_SPECIES */
+  double unit;               /* the unit of length d of the axes (see the top) */
   double lx, ly;
   hd_scene sc;
   int *kinds;           /* body kinds, from the initial states */
@@ -102,7 +111,16 @@ typedef struct movie {
   int nsp;              /* species of the run's species table (schema version 3), 0 if none */
   hd_shape sp[HD_MAX_SPECIES];       /* their shapes (hd_db_read_species) */
   int64_t first[HD_MAX_SPECIES + 1]; /* bodies first[s] .. first[s + 1] - 1 are of species s */
+  char spname[HD_MAX_SPECIES][64];   /* their names (species.name), for --color species */
 } movie;
+
+/* The species index of body i for --color species: its species in the run's species table, or
+ * for a run without one 0 for a dimer and 1 for a disk. */
+static int body_species(const movie *m, long i) {
+  for (int s = 0; s < m->nsp; s++)
+    if (i >= m->first[s] && i < m->first[s + 1]) return s;
+  return m->kinds[i] == HD_KIND_DIMER ? 0 : 1;
+}
 
 /* The shape of body i (not a rod): its species' in the run's species table, or for a run without
  * one the scene's [dimers] or [disks] by its stored kind. */
@@ -155,6 +173,24 @@ static int read_run(sqlite3 *h, movie *m) {
   }
   m->first[0] = 0;
   for (int k = 0; k < m->nsp; k++) m->first[k + 1] = m->first[k] + count[k];
+  for (int k = 0; k < m->nsp; k++) snprintf(m->spname[k], sizeof m->spname[k], "species %d", k);
+  sqlite3_stmt *q = NULL; /* the names, where the species table has them */
+  if (m->nsp > 0 &&
+      sqlite3_prepare_v2(h, "SELECT idx, name FROM species WHERE run = ? ORDER BY idx", -1, &q,
+                         NULL) == SQLITE_OK) {
+    sqlite3_bind_int64(q, 1, m->run);
+    for (int k = 0; k < m->nsp && sqlite3_step(q) == SQLITE_ROW; k++) {
+      const unsigned char *nm = sqlite3_column_text(q, 1);
+      if (nm) snprintf(m->spname[k], sizeof m->spname[k], "%s", (const char *)nm);
+    }
+  }
+  sqlite3_finalize(q);
+  m->unit = m->sc.n_rods > 0     ? 1
+            : m->sc.n_dimers > 0 ? m->sc.dimer_d
+            : m->sc.n_disks > 0  ? m->sc.disk_sigma
+            : m->nsp > 0         ? m->sp[0].d
+                                 : 1;
+  if (!(m->unit > 0)) m->unit = 1;
   return 0;
 }
 
@@ -193,15 +229,39 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
     hgt = 2 * fmax(40, round(0.5 * m->size * m->ly / m->lx)) + 60;
   else
     w = 2 * fmax(40, round(0.5 * m->size * m->lx / m->ly));
-  if (!code)
+  double u = m->unit;
+  /* Okabe-Ito: distinct for colour-blind readers (the figures' palette, plots/style.gp) */
+  static const char *const okabe[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
+                                      "#E69F00", "#56B4E9", "#000000", "#777777"};
+  if (!code) {
     fprintf(gp,
-            "set terminal pngcairo size %.0f,%.0f font ',10'\n"
+            "set terminal pngcairo size %.0f,%.0f font 'DejaVu Sans,10'\nset encoding utf8\n"
             "set size ratio -1\nset xrange [0:%.17g]\nset yrange [0:%.17g]\n"
             "set xtics out nomirror\nset ytics out nomirror\nset border lw 1.5\n"
-            "set cbrange [0:3]\nset cblabel '%s'\nset palette rgbformulae 22,13,-31\n"
-            "unset key\nset style fill solid 1.0 noborder\n",
-            w, hgt, m->lx, m->ly,
-            m->density ? "local density / mean (within 5 d)" : "|V| / rms |V|");
+            "set xlabel '%s' offset 0,0.5\nset ylabel '%s' offset 1.5,0\n"
+            "set style fill solid 1.0 noborder\n",
+            w, hgt, m->lx / u, m->ly / u, m->sc.n_rods > 0 ? "x" : "x / d",
+            m->sc.n_rods > 0 ? "" : "y / d");
+    if (m->color == COLOR_SPECIES) {
+      fprintf(gp, "unset colorbox\nset key outside top center horizontal samplen 1\n");
+      int ns = m->nsp > 0 ? m->nsp : 2;
+      fprintf(gp, "keys = \"");
+      for (int k = 0; k < ns; k++) {
+        if (m->nsp == 0 && ((k == 0 && m->sc.n_dimers == 0) || (k == 1 && m->sc.n_disks == 0)))
+          continue; /* only the kinds the run has */
+        fprintf(gp, "keyentry with boxes fc rgb '%s' title '%s', ", okabe[k % 8],
+                m->nsp > 0 ? m->spname[k]
+                : k == 0   ? "dimer"
+                           : "disk");
+      }
+      fprintf(gp, "\"\n");
+    } else
+      fprintf(gp,
+              "unset key\nset cbrange [0:3]\nset cblabel '%s'\n"
+              "set palette defined (0 '#30123b', 0.15 '#3e4a89', 0.35 '#26828e', 0.55 "
+              "'#35b779', 0.8 '#b5de2b', 1 '#fde725')\n",
+              m->color == COLOR_DENSITY ? "local density / mean (within 5 d)" : "|V| / rms |V|");
+  }
   double reach = 5 * (m->sc.n_dimers > 0 ? m->sc.dimer_d : m->sc.disk_sigma);
   int s = 0;
   hd_framedb_frame fr;
@@ -223,7 +283,11 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
       x[i] = d[0], y[i] = m->sc.n_rods > 0 ? 0.5 : d[1], phi[i] = d[2];
       vx[i] = f[0], vy[i] = m->sc.n_rods > 0 ? 0.0f : f[1];
     }
-    colour(m->density, n, x, y, vx, vy, m->lx, m->ly, reach, val);
+    if (m->color == COLOR_SPECIES)
+      for (long i = 0; i < n; i++)
+        val[i] = (double)strtol(okabe[body_species(m, i) % 8] + 1, NULL, 16);
+    else
+      colour(m->color == COLOR_DENSITY, n, x, y, vx, vy, m->lx, m->ly, reach, val);
     snprintf(path, sizeof path, "%s/f%06ld.dat", m->tmp, *frames);
     FILE *dat = fopen(path, "w");
     if (!dat) {
@@ -239,14 +303,16 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
         if (sh) hd_kin_disk_pos(&k, sh, j, &px, &py); /* the engine's disk positions */
         px -= m->lx * floor(px / m->lx);
         py -= m->ly * floor(py / m->ly);
-        fprintf(dat, "%.9g %.9g %.6g %.5g\n", px, py, r, val[i]);
+        fprintf(dat, "%.9g %.9g %.6g %.8g\n", px / u, py / u, r / u, val[i]);
       }
     }
     fclose(dat);
     fprintf(gp,
             "set output '%s/f%06ld.png'\nset title sprintf('t = %%.6g   cpd = %%.4g   N = %ld', "
-            "%.17g, %.17g)\nplot '%s/f%06ld.dat' using 1:2:3:4 with circles lc palette\n",
-            m->tmp, *frames, n, t, cpd, m->tmp, *frames);
+            "%.17g, %.17g)\nplot '%s/f%06ld.dat' using 1:2:3:4 with circles lc %s notitle%s\n",
+            m->tmp, *frames, n, t, cpd, m->tmp, *frames,
+            m->color == COLOR_SPECIES ? "rgb variable" : "palette",
+            m->color == COLOR_SPECIES ? ", @keys NaN notitle" : "");
     (*frames)++;
   }
   if (!code && s < 0) {
@@ -271,7 +337,8 @@ static const hd_optdef movie_opts[] = {
     HD_OPT_INT("run", 0, movie, run, 1, INT64_MAX, 0, "ID", "the run [the newest run in DB]"),
     HD_OPT_STR("output", 'o', movie, outpath, "FILE",
                "the movie; its extension chooses the format (.mp4 or .gif)"),
-    HD_OPT_ENUM("color", 0, movie, density, "speed|density", "C", "speed or density [speed]"),
+    HD_OPT_ENUM("color", 0, movie, color, "speed|density|species", "C",
+                "speed, density or species [speed]"),
     HD_OPT_INT("fps", 0, movie, fps, 1, 120, 0, "N", "frames per second [10]"),
     HD_OPT_INT("size", 0, movie, size, 100, 4000, 0, "PX",
                "width of the longer side in pixels, even [720]"),
@@ -279,12 +346,13 @@ static const hd_optdef movie_opts[] = {
 
 const hd_optspec haff_movie_spec = {
     HD_OPT_SPEC("movie", movie_opts, 0, 1, 1, "one DB"),
-    .head = "usage: haff movie DB [--run ID] -o FILE.mp4|FILE.gif [--color speed|density]\n"
-            "                  [--fps N] [--size PX]\n"
+    .head = "usage: haff movie DB [--run ID] -o FILE.mp4|FILE.gif\n"
+            "                  [--color speed|density|species] [--fps N] [--size PX]\n"
             "Draws the frames of a run ([log] frames_every or frames_every_time) as a movie: each\n"
             "disk as its disk, coloured by its body's speed over the frame's rms speed, or by the\n"
-            "local density (bodies within 5 diameters over the frame's mean), on [0, 3]; box,\n"
-            "time and cpd shown.  gnuplot draws, ffmpeg encodes (H.264 for .mp4, GIF for .gif).\n"};
+            "local density (bodies within 5 diameters over the frame's mean), on [0, 3], or by\n"
+            "its species (a key names them); axes in units of the disk diameter d, each frame\n"
+            "stamped with t, cpd and N.  gnuplot draws, ffmpeg encodes (H.264 for .mp4, GIF).\n"};
 
 int haff_movie_main(int argc, char **argv) {
   movie m = {.fps = 10, .size = 720};

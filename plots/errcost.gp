@@ -1,5 +1,6 @@
-# Error against run time (issues 5 and 15): the standard error of the ensemble mean of D_e
-# (eq. 31 fits, one per run; filled points) and the total error sqrt(stat^2 + sys^2) with the
+# Error against run time (issues 5 and 15): the expected standard error of the ensemble mean of
+# R runs' D_e, sd(all runs)/sqrt(R) (eq. 31 fits, one per run; filled points, R written beside
+# each) and the total error sqrt(stat^2 + sys^2) with the
 # group's systematic error D_e_sys (open points, dashed) against the total CPU seconds of the
 # runs, one colour per run length (2, 4, 8, ... runs), with the 1/sqrt(CPU) law through the
 # longest runs' last point.  A longer run stops paying where its total error is no lower than a
@@ -8,6 +9,7 @@
 # same for a second box (then two panels: in2 left, in right).
 # usage: gnuplot -e "in='errcost.tsv'; out='errcost.png'[; title='...'][; in2='..'; title2='..'
 #        ; suptitle='..']" plots/errcost.gp
+load system("dirname '".ARG0."'")."/style.gp"
 if (!exists("in")) in = 'errcost.tsv'
 if (!exists("out")) out = 'errcost.png'
 if (!exists("title")) title = 'D_e at one (α, a/d): error against cost'
@@ -15,35 +17,50 @@ two = exists("in2")
 if (!exists("title2")) title2 = ''
 if (!exists("suptitle")) suptitle = ''
 W = two ? 1200 : 800
-if (out[strlen(out)-3:] eq ".svg") { set terminal svg size W,600 enhanced font "Helvetica,14" } \
-else { set terminal pngcairo size W,600 enhanced font "DejaVu Sans,11" }
+eval term(out, W, 620)
 set output out
-set encoding utf8
 set datafile separator "\t"
 set logscale xy
 set format y "10^{%L}"
-set xlabel "total CPU time of the runs (s)"
-set key top right spacing 1.3 font ",9"
-set grid lc rgb "#dddddd"
-if (two) { set multiplot layout 1,2 title suptitle }
+set format x "10^{%L}"
+set xlabel "total CPU time of the R runs (s)"
+set key top right spacing 1.2 font ",10"
+# one x and one y range for both panels (from every point of both files; one column at a time:
+# stats of two columns fits a line and warns when there are two points)
+stats in using 3 nooutput
+x0 = STATS_min; x1 = STATS_max
+stats in using 7 nooutput
+y0 = STATS_min; y1 = STATS_max
+stats in using 9 nooutput
+y1 = STATS_max > y1 ? STATS_max : y1
+if (two) {
+  stats in2 using 3 nooutput
+  x0 = STATS_min < x0 ? STATS_min : x0; x1 = STATS_max > x1 ? STATS_max : x1
+  stats in2 using 7 nooutput
+  y0 = STATS_min < y0 ? STATS_min : y0; y1 = STATS_max > y1 ? STATS_max : y1
+  stats in2 using 9 nooutput
+  y1 = STATS_max > y1 ? STATS_max : y1
+}
+set xrange [x0 / 2 : x1 * 3]
+set yrange [y0 / 2 : y1 * 15]   # room above the curves for the key
+if (two) { set multiplot layout 1,2 title suptitle."; R = 4, 8, … runs (R = 2 left out: its sd is noise); d = m = T_0 = 1" }
 do for [p = (two ? 0 : 1) : 1] {
   f = p == 0 ? in2 : in
   set title (p == 0 ? title2 : title)
   stats f using 3 nooutput
   nb = STATS_blocks
-  # fast runs can all take the same (quantised) CPU time: give a single x value a range of its own
-  if (STATS_min == STATS_max && STATS_min > 0) { set xrange [STATS_min / 2 : STATS_max * 2] } else { set xrange [*:*] }
-  stats f using 5 nooutput
-  if (STATS_min == STATS_max && STATS_min > 0) { set yrange [STATS_min / 2 : STATS_max * 2] } else { set yrange [*:*] }
   stats f index (nb - 1) using 3 nooutput
   c1 = STATS_max
-  stats f index (nb - 1) using ($3 == c1 ? $5 : NaN) nooutput
+  stats f index (nb - 1) using ($3 == c1 ? $7 : NaN) nooutput
   e1 = STATS_max
-  set ylabel (p == 1 || !two ? "error of ⟨D_e⟩" : "error of ⟨D_e⟩")
-  plot for [i=0:nb-1] f index i using 3:5 with linespoints pt 7 ps 0.9 lc i+1 title columnheader(1), \
+  set ylabel "error of ⟨D_e⟩"
+  plot for [i=0:nb-1] f index i using 3:7 with linespoints pt 7 ps 0.9 lt i+1 title columnheader(1), \
+       for [i=0:nb-1] f index i using 3:7:(sprintf("%d", $2)) with labels offset char 0.2,char -0.8 \
+         left font ",8" tc lt i+1 notitle, \
        for [i=0:nb-1] f index i using 3:(column(9) > 0 ? column(9) : NaN) with linespoints dt 2 \
-         lw 2 pt 6 ps 1.1 lc i+1 notitle, \
-       e1 * sqrt(c1 / x) with lines dt 3 lw 2 lc rgb "black" title "stat ∝ (CPU time)^{-1/2}", \
-       NaN with linespoints dt 2 lw 2 pt 6 lc rgb "gray40" title "total, √(stat² + sys²)"
+         lw 2 pt 6 ps 1.1 lt i+1 notitle, \
+       e1 * sqrt(c1 / x) with lines dt 3 lw 2 lc rgb "black" title "stat ∝ (CPU time)^{−1/2}", \
+       NaN with linespoints dt 2 lw 2 pt 6 lc rgb "gray40" title "total, √(stat² + sys²)", \
+       NaN with points pt 7 lc rgb "gray40" title "stat: sd of all runs / √R (R beside)"
 }
 if (two) { unset multiplot }

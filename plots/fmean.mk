@@ -5,7 +5,7 @@
 #
 # Targets
 #   fmean-plots             all of the below
-#   $(OUT)/fig4.png .svg    Fig. 4 redrawn: two dimers at contact for a/d = $(FIG4_A), the
+#   $(OUT)/fig4.png .svg .pdf  Fig. 4 redrawn: two dimers at contact for a/d = $(FIG4_A), the
 #                           allowed contact-angle range marked   (data: $(OUT)/fig4.dat)
 #   $(OUT)/fmean.png .svg   <f>(a/d) and D_e(a/d) for the heuristic, exclusion and collision
 #                           models over a/d = $(FMEAN_SCAN)      (data: $(OUT)/fmean.tsv)
@@ -22,13 +22,16 @@ FMEAN_SEED    ?= 1
 GNUPLOT       ?= gnuplot
 
 .PHONY: fmean-plots fmean-clean
-fmean-plots: $(OUT)/fig4.png $(OUT)/fig4.svg $(OUT)/fmean.png $(OUT)/fmean.svg
+fmean-plots: $(OUT)/fig4.png $(OUT)/fig4.svg $(OUT)/fig4.pdf $(OUT)/fmean.png $(OUT)/fmean.svg \
+             $(OUT)/fmean.pdf
+# haff's own Table I for the lower panel of fmean (plots.mk sets it; alone: none)
+FMEAN_T1 ?=
 
 $(OUT)/fig4.dat: $(HAFF)
 	@mkdir -p $(@D)
 	$(HAFF) mc fmean --a $(FIG4_A) --fig4-data > $@.tmp && mv $@.tmp $@
 
-$(OUT)/fig4.png $(OUT)/fig4.svg &: $(OUT)/fig4.dat plots/fig4.gp
+$(OUT)/fig4.png $(OUT)/fig4.svg $(OUT)/fig4.pdf &: $(OUT)/fig4.dat plots/fig4.gp plots/style.gp
 	$(GNUPLOT) -e "data='$<'; a=$(FIG4_A); outbase='$(OUT)/fig4'" plots/fig4.gp
 
 $(OUT)/fmean.tsv: $(HAFF)
@@ -36,9 +39,9 @@ $(OUT)/fmean.tsv: $(HAFF)
 	$(HAFF) mc fmean --scan $(FMEAN_SCAN) --model all --samples $(FMEAN_SAMPLES) \
 	  --seed $(FMEAN_SEED) > $@.tmp && mv $@.tmp $@
 
-$(OUT)/fmean.png $(OUT)/fmean.svg &: $(OUT)/fmean.tsv plots/fmean.gp
-	$(GNUPLOT) -e "data='$<'; outbase='$(OUT)/fmean'" plots/fmean.gp
+$(OUT)/fmean.png $(OUT)/fmean.svg $(OUT)/fmean.pdf &: $(OUT)/fmean.tsv plots/fmean.gp plots/style.gp $(FMEAN_T1)
+	$(GNUPLOT) -e "data='$<'; t1='$(FMEAN_T1)'; outbase='$(OUT)/fmean'" plots/fmean.gp
 
 fmean-clean:
-	rm -f $(OUT)/fig4.dat $(OUT)/fig4.png $(OUT)/fig4.svg \
-	      $(OUT)/fmean.tsv $(OUT)/fmean.png $(OUT)/fmean.svg
+	rm -f $(OUT)/fig4.dat $(OUT)/fig4.png $(OUT)/fig4.svg $(OUT)/fig4.pdf \
+	      $(OUT)/fmean.tsv $(OUT)/fmean.png $(OUT)/fmean.svg $(OUT)/fmean.pdf

@@ -4,8 +4,11 @@
 # plots/scripts/run.sh; every figure on its data and its .gp script; a change of the
 # parameters below rewrites $(DATA)/config.txt, which the merged databases depend on).
 # plots/README.md says what each output is; this build's numbers go to $(OUT)/README.md.
+# Every figure is written as PNG, SVG and PDF in one style (plots/style.gp, loaded by every .gp),
+# and $(OUT)/index.html shows them all with Tables I-II on one page (plots/scripts/report.py).
 #
-#   make plots                 default ensembles (2.5 minutes with make -j2 on 2 shared cores)
+#   make plots                 default ensembles (2.5 minutes with make -j2 on 2 idle cores; 13
+#                              minutes on 2 cores shared with 7 other builds)
 #   make plots PAPER=1         larger ensembles and longer runs
 #   make plots ETA=0.1         another area fraction (runs go to their own folder)
 #   make -f plots/plots.mk plots-clean   removes $(OUT)
@@ -19,6 +22,8 @@ HAFF    ?= bin/haff
 OUT     ?= plots/out
 GNUPLOT ?= gnuplot
 SCRIPTS := plots/scripts
+# the one style every figure loads (fonts, lines, palette, terminals by extension)
+STYLE   := plots/style.gp
 DATA    := $(OUT)/data
 
 # --- parameters ------------------------------------------------------------------------------
@@ -94,9 +99,10 @@ PAPER_FIGS := fig1 fig2 fig3 fig5 fig6 errcost hcs
 TABLES  := $(OUT)/table1.tsv $(OUT)/table1.md $(OUT)/table2.tsv $(OUT)/table2.md \
            $(OUT)/fmean_vs_engine.tsv
 .PHONY: plots plots-clean
-plots: $(foreach f,$(PAPER_FIGS),$(OUT)/$(f).png $(OUT)/$(f).svg) $(TABLES) $(OUT)/README.md \
-       fmean-plots rods-plots shapes-plots
+plots: $(foreach f,$(PAPER_FIGS),$(OUT)/$(f).png $(OUT)/$(f).svg $(OUT)/$(f).pdf) $(TABLES) \
+       $(OUT)/README.md fmean-plots rods-plots shapes-plots $(OUT)/index.html
 
+FMEAN_T1 := $(OUT)/table1.tsv
 include plots/fmean.mk
 include plots/shapes.mk
 include plots/rods.mk
@@ -173,16 +179,23 @@ $(DATA)/energy.tsv: $(DATA)/fig23.db $(HAFF)
 $(DATA)/energy_disks.tsv: $(DATA)/disks.db $(HAFF)
 	$(HAFF) energy $< -o $@
 
-$(OUT)/fig2.png $(OUT)/fig2.svg: $(OUT)/fig2.%: $(DATA)/energy.tsv $(DATA)/energy_disks.tsv plots/fig2.gp
-	$(GNUPLOT) -e "in='$<'; ref='$(DATA)/energy_disks.tsv'; out='$@'" plots/fig2.gp
-$(OUT)/fig3.png $(OUT)/fig3.svg: $(OUT)/fig3.%: $(DATA)/energy.tsv plots/fig3.gp
-	$(GNUPLOT) -e "in='$<'; out='$@'" plots/fig3.gp
+# Fig. 2's mean and spread (s.d.) over the runs per alpha, dimers and disks
+$(DATA)/band.tsv: $(DATA)/fig23.db $(SCRIPTS)/energy_band.py
+	$(SCRIPTS)/energy_band.py $< > $@
+$(DATA)/band_disks.tsv: $(DATA)/disks.db $(SCRIPTS)/energy_band.py
+	$(SCRIPTS)/energy_band.py $< disks > $@
+$(OUT)/fig2.png $(OUT)/fig2.svg $(OUT)/fig2.pdf: $(OUT)/fig2.%: $(DATA)/energy.tsv $(DATA)/band.tsv $(DATA)/band_disks.tsv plots/fig2.gp $(STYLE)
+	$(GNUPLOT) -e "in='$<'; band='$(DATA)/band.tsv'; bandref='$(DATA)/band_disks.tsv'; out='$@'" plots/fig2.gp
+# Fig. 3 marks the groups the tables flag (fits-groups.tsv's last column)
+$(OUT)/fig3.png $(OUT)/fig3.svg $(OUT)/fig3.pdf: $(OUT)/fig3.%: $(DATA)/energy.tsv $(DATA)/fits-groups.tsv plots/fig3.gp $(STYLE)
+	$(GNUPLOT) -e "in='$<'; out='$@'; flagged='$$(awk -F'\t' 'NR > 1 && $$2 == $(FIG2_A) && \
+	  $$NF != "" { printf "%s ", $$1 }' $(DATA)/fits-groups.tsv)'" plots/fig3.gp
 
 # --- Fig. 1: 400 dimers, a = d, alpha = 0.95 -----------------------------------------------
 $(eval $(call RUN,$(RD)/fig1.db,scenes/paper-fig1.ini,--seed 1))
 $(DATA)/fig1.tsv: $(RD)/fig1.db $(SCRIPTS)/fig1data.sh
 	$(SCRIPTS)/fig1data.sh $< final > $@
-$(OUT)/fig1.png $(OUT)/fig1.svg: $(OUT)/fig1.%: $(DATA)/fig1.tsv plots/fig1.gp
+$(OUT)/fig1.png $(OUT)/fig1.svg $(OUT)/fig1.pdf: $(OUT)/fig1.%: $(DATA)/fig1.tsv plots/fig1.gp $(STYLE)
 	$(GNUPLOT) -e "in='$<'; out='$@'; title='400 dimers, a = d, α = 0.95, η = $(ETA): final state'" plots/fig1.gp
 
 # --- Fig. 5 and <f>: logged collisions, alpha = 0.98 and 1 (a = d), elastic a/d = FMEAN_A ----
@@ -201,7 +214,7 @@ $(DATA)/angles_elastic.tsv: $(DATA)/fig5.db $(HAFF)
 	  "SELECT count(*) FROM collisions WHERE run = 2 AND kind = 'dimer-dimer'")
 $(OUT)/fmean_vs_engine.tsv: $(DATA)/fmean.db $(HAFF) $(SCRIPTS)/fmean_engine.sh
 	$(SCRIPTS)/fmean_engine.sh $(HAFF) $< $(MC_SAMPLES) > $@
-$(OUT)/fig5.png $(OUT)/fig5.svg: $(OUT)/fig5.%: $(DATA)/angles.tsv $(DATA)/angles_elastic.tsv $(OUT)/fmean_vs_engine.tsv plots/fig5.gp
+$(OUT)/fig5.png $(OUT)/fig5.svg $(OUT)/fig5.pdf: $(OUT)/fig5.%: $(DATA)/angles.tsv $(DATA)/angles_elastic.tsv $(OUT)/fmean_vs_engine.tsv plots/fig5.gp $(STYLE)
 	$(GNUPLOT) -e "in='$<'; in2='$(DATA)/angles_elastic.tsv'; fm='$(OUT)/fmean_vs_engine.tsv'; ad=1; out='$@'" plots/fig5.gp
 
 # --- Fig. 6: velocity snapshots at [log] velocities_at --------------------------------------
@@ -217,7 +230,7 @@ $(DATA)/veldist_pool.tsv: $(DATA)/fig6all.db $(HAFF)
 	$(HAFF) veldist $< --pool --bins 50 -o $@
 $(DATA)/veldist_stats.tsv: $(RD)/fig6.db $(HAFF)
 	$(HAFF) veldist $< --run 1 --stats -o $@
-$(OUT)/fig6.png $(OUT)/fig6.svg: $(OUT)/fig6.%: $(DATA)/veldist.tsv $(DATA)/veldist_pool.tsv plots/fig6.gp
+$(OUT)/fig6.png $(OUT)/fig6.svg $(OUT)/fig6.pdf: $(OUT)/fig6.%: $(DATA)/veldist.tsv $(DATA)/veldist_pool.tsv plots/fig6.gp $(STYLE)
 	$(GNUPLOT) -e "in='$<'; pool='$(DATA)/veldist_pool.tsv'; out='$@'" plots/fig6.gp
 
 # --- error of D_e against CPU time (issue 5) -------------------------------------------------
@@ -236,7 +249,7 @@ $(foreach c,$(ERR_CPD),$(foreach s,$(ESEEDS),$(eval $(call RUN,$(call err_s_db,$
 $(foreach c,$(ERR_CPD),$(eval $(call MERGE,$(DATA)/err-n$(ERR_NSTABLE)-c$(c).db,$(foreach s,$(ESEEDS),$(call err_s_db,$(c),$(s))))))
 $(DATA)/errcost-stable.tsv: $(foreach c,$(ERR_CPD),$(DATA)/err-n$(ERR_NSTABLE)-c$(c).db) $(HAFF) $(SCRIPTS)/errcost.sh
 	$(SCRIPTS)/errcost.sh $(HAFF) $(foreach c,$(ERR_CPD),$(c):$(DATA)/err-n$(ERR_NSTABLE)-c$(c).db) > $@
-$(OUT)/errcost.png $(OUT)/errcost.svg: $(OUT)/errcost.%: $(DATA)/errcost.tsv $(DATA)/errcost-stable.tsv plots/errcost.gp
+$(OUT)/errcost.png $(OUT)/errcost.svg $(OUT)/errcost.pdf: $(OUT)/errcost.%: $(DATA)/errcost.tsv $(DATA)/errcost-stable.tsv plots/errcost.gp $(STYLE)
 	$(GNUPLOT) -e "in='$<'; in2='$(DATA)/errcost-stable.tsv'; out='$@'; \
 	  title='$(NDIM) dimers (L ≈ L_c)'; title2='$(ERR_NSTABLE) dimers (stable)'; \
 	  suptitle='D_e at α = $(ERR_ALPHA), a/d = $(ERR_A), η = $(ETA)'" plots/errcost.gp
@@ -248,10 +261,11 @@ $(foreach n,$(HCS_STABLE) $(HCS_UNSTABLE),$(eval $(call RUN,$(RD)/hcs-al$(HCS_AL
 $(DATA)/hcs-n%.tsv: $(RD)/hcs-al$(HCS_ALPHA)-n%.db
 	sqlite3 -separator $$'\t' $< "SELECT cpd, s_perp, s_par, flow_frac / flow_chaos, count_var, \
 	  s_rho FROM samples ORDER BY t" > $@
-hcs_label = $(shell awk 'BEGIN { n = $(1); printf "%d disks, α = $(HCS_ALPHA), L = %.0f σ", n, sqrt(n * 3.14159265 / 4 / $(ETA)) }')
-$(OUT)/hcs.png $(OUT)/hcs.svg: $(OUT)/hcs.%: $(DATA)/hcs-n$(HCS_STABLE).tsv $(DATA)/hcs-n$(HCS_UNSTABLE).tsv plots/hcs.gp
+hcs_label = $(shell awk 'BEGIN { n = $(1); printf "%d disks, α = $(HCS_ALPHA), L = %.0f d", n, sqrt(n * 3.14159265 / 4 / $(ETA)) }')
+$(OUT)/hcs.png $(OUT)/hcs.svg $(OUT)/hcs.pdf: $(OUT)/hcs.%: $(DATA)/hcs-n$(HCS_STABLE).tsv $(DATA)/hcs-n$(HCS_UNSTABLE).tsv plots/hcs.gp $(STYLE)
 	$(GNUPLOT) -e "stable='$<'; unstable='$(DATA)/hcs-n$(HCS_UNSTABLE).tsv'; out='$@'; \
-	  ls='$(call hcs_label,$(HCS_STABLE))'; lu='$(call hcs_label,$(HCS_UNSTABLE))'" plots/hcs.gp
+	  ls='$(call hcs_label,$(HCS_STABLE))'; lu='$(call hcs_label,$(HCS_UNSTABLE))'; \
+	  alpha=$(HCS_ALPHA); eta=$(ETA)" plots/hcs.gp
 
 # --- plots/out/README.md: plots/README.md and this build's numbers ---------------------------
 $(OUT)/README.md: plots/README.md $(SCRIPTS)/readme.sh $(TABLES) $(DATA)/fits.tsv \
@@ -259,6 +273,24 @@ $(OUT)/README.md: plots/README.md $(SCRIPTS)/readme.sh $(TABLES) $(DATA)/fits.ts
                   $(DATA)/long-fits.tsv $(DATA)/errcost.tsv $(DATA)/errcost-stable.tsv \
                   $(DATA)/veldist_stats.tsv $(DATA)/config.txt
 	$(SCRIPTS)/readme.sh $(OUT) $(DATA) '$(CONFIG)' $(HAFF) > $@
+
+# --- plots/out/index.html: every figure and Tables I-II on one self-contained page -----------
+# (plots/scripts/report.py: figures inline as data: URIs, captions with what was run, read from
+# the run databases below, the paper's tables beside this build's, provenance)
+REPORT_FIGS := fig1 fig2 fig3 fig4 fig5 fig6 hcs errcost shapes fmean $(FIGS:%=rods-%)
+REPORT_DBS  := fig1=$(RD)/fig1.db fig2=$(DATA)/fig23.db fig2=$(DATA)/disks.db fig3=$(DATA)/fig23.db \
+  fig5=$(DATA)/fig5.db fig6=$(RD)/fig6.db fig6=$(DATA)/fig6all.db \
+  $(foreach n,$(HCS_STABLE) $(HCS_UNSTABLE),hcs=$(RD)/hcs-al$(HCS_ALPHA)-n$(n).db) \
+  $(foreach c,$(ERR_CPD),errcost=$(DATA)/err-c$(c).db errcost=$(DATA)/err-n$(ERR_NSTABLE)-c$(c).db) \
+  fmean=$(DATA)/tables.db \
+  $(foreach f,energy collisions,rods-$(f)=$(RODS_DIR)/rods-stochastic.db \
+    rods-$(f)=$(RODS_DIR)/rods-constant.db rods-$(f)=$(RODS_DIR)/rods-50.db) \
+  rods-damped=$(RODS_DIR)/rods-damped.db rods-damped50=$(RODS_DIR)/rods-damped50.db \
+  $(foreach f,density phase local veldist gofr,rods-$(f)=$(RODS_DIR)/rods-stochastic.db)
+$(OUT)/index.html: $(REPORT_FIGS:%=$(OUT)/%.png) $(OUT)/table1.tsv $(OUT)/table2.tsv \
+                   $(SCRIPTS)/report.py $(DATA)/config.txt $(HAFF)
+	$(SCRIPTS)/report.py $(OUT) --version "$$($(HAFF) --version)" --config '$(CONFIG)' \
+	  $(REPORT_DBS:%=--db %) $(REPORT_FIGS:%=--png %) -o $@
 
 plots-clean: fmean-clean
 	rm -rf $(OUT)

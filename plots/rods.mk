@@ -36,7 +36,8 @@ $(shell mkdir -p $(RODS_DIR); echo '$(RODS_DIR)' | cmp -s - $(D)/rods-size.txt |
 RUNS := stochastic constant 50 damped damped50
 FIGS := energy collisions density phase local veldist gofr damped damped50 collapse
 .PHONY: rods-plots
-rods-plots: $(RUNS:%=$(RODS_DIR)/rods-%.ok) $(foreach f,$(FIGS),$(OUT)/rods-$(f).png)
+rods-plots: $(RUNS:%=$(RODS_DIR)/rods-%.ok) $(foreach f,$(FIGS),$(OUT)/rods-$(f).png \
+            $(OUT)/rods-$(f).svg $(OUT)/rods-$(f).pdf)
 
 # A run's stamp, made when its database holds the scene's run to its end: done, or collapsed
 # for the constant model.  A database newer than the scene whose run was stopped part way
@@ -72,18 +73,20 @@ $(RODS_DIR)/rods-stochastic.phase2.tsv: $(RODS_DIR)/rods-stochastic.ok
 $(RODS_DIR)/rods-stochastic.local.tsv: $(RODS_DIR)/rods-stochastic.ok
 	$(HAFF) rods-density $(RODS_DIR)/rods-stochastic.db --t 1e9 > $@
 $(RODS_DIR)/rods-stochastic.veldist.tsv: $(RODS_DIR)/rods-stochastic.ok
-	$(HAFF) rods-veldist $(RODS_DIR)/rods-stochastic.db --t $(T1) > $@
+	$(HAFF) rods-veldist $(RODS_DIR)/rods-stochastic.db --t $(T1) --gap 0.2 > $@
 $(RODS_DIR)/rods-stochastic.gofr.tsv: $(RODS_DIR)/rods-stochastic.ok
-	$(HAFF) rods-gofr $(RODS_DIR)/rods-stochastic.db --t $(T1) > $@
+	$(HAFF) rods-gofr $(RODS_DIR)/rods-stochastic.db --t $(T1) --range 250 --bins 500 > $@
 $(D)/rods-collapse.tsv: $(HAFF)
 	@mkdir -p $(D)
 	$(HAFF) rods-collapse --n 4,8,16,32,64 --eps 0.3,0.5,0.7,0.8,0.9,0.95 --seeds 3 --cpd 1000 > $@
 
 ENERGY := $(RUNS:%=$(RODS_DIR)/rods-%.energy.tsv)
-$(OUT)/rods-energy.png $(OUT)/rods-collisions.png $(OUT)/rods-damped.png $(OUT)/rods-damped50.png &: $(ENERGY) plots/rods.gp $(D)/rods-size.txt
+ROD_E_FIGS := $(foreach f,energy collisions damped damped50,$(foreach e,png svg pdf,$(OUT)/rods-$(f).$(e)))
+$(ROD_E_FIGS) &: $(ENERGY) plots/rods.gp plots/style.gp $(D)/rods-size.txt
 	gnuplot -e "D='$(RODS_DIR)'; O='$(OUT)'" plots/rods.gp
 LOCAL := $(foreach k,density phase1 phase2 local veldist gofr,$(RODS_DIR)/rods-stochastic.$(k).tsv)
-$(OUT)/rods-density.png $(OUT)/rods-phase.png $(OUT)/rods-local.png $(OUT)/rods-veldist.png $(OUT)/rods-gofr.png &: $(LOCAL) plots/rods-local.gp $(D)/rods-size.txt
+ROD_L_FIGS := $(foreach f,density phase local veldist gofr,$(foreach e,png svg pdf,$(OUT)/rods-$(f).$(e)))
+$(ROD_L_FIGS) &: $(LOCAL) plots/rods-local.gp plots/style.gp $(D)/rods-size.txt
 	gnuplot -e "D='$(RODS_DIR)'; O='$(OUT)'" plots/rods-local.gp
-$(OUT)/rods-collapse.png: $(D)/rods-collapse.tsv plots/rods-collapse.gp
+$(OUT)/rods-collapse.png $(OUT)/rods-collapse.svg $(OUT)/rods-collapse.pdf &: $(D)/rods-collapse.tsv plots/rods-collapse.gp plots/style.gp
 	gnuplot -e "D='$(D)'; O='$(OUT)'" plots/rods-collapse.gp

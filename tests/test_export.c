@@ -299,9 +299,31 @@ static void movie_of_frames(void **state) {
          haff, root))
     fail_msg("%s", out());
   bad("movie m.db -o x.avi", "-o x.avi: give the movie's file, ending in .mp4 or .gif");
-  bad("movie m.db -o x.mp4 --color mass", "--color 'mass': expected speed or density");
+  bad("movie m.db -o x.mp4 --color mass", "--color 'mass': expected speed, density or species");
   bad("movie m.db -o x.mp4 --run 7", "there is no such run");
   assert_int_equal(sh("test ! -e x.mp4 && test ! -e x.avi"), 0);
+}
+
+/* haff movie --color species (issue 26): a mixture of dimers and a named species, and a run
+ * without a species table's dimers and disks, each drawn as a movie of all its frames. */
+static void movie_colour_species(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("mix.ini", "[system]\nbox = 14 14\nseed = 3\n[dimers]\ncount = 12\n[species tri]\n"
+                        "count = 8\nshape = triangle\n[run]\nstop_cpd = 4\n[log]\n"
+                        "collisions = none\nframes_every = 1\n");
+  run_ok("mix.ini", "mix.db", "--quiet");
+  if (sh("%s movie mix.db -o mix.gif --color species --size 300", haff)) fail_msg("%s", out());
+  assert_non_null(strstr(out(), "mix.gif: 5 frames of run 1"));
+  assert_int_equal(sh("test \"$(ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                      "stream=nb_read_frames -of csv=p=0 mix.gif)\" = 5"),
+                   0);
+  write_file("dd.ini", "[system]\nbox = 14 14\nseed = 3\n[dimers]\ncount = 10\n[disks]\n"
+                       "count = 10\n[run]\nstop_cpd = 2\n[log]\ncollisions = none\n"
+                       "frames_every = 1\n");
+  run_ok("dd.ini", "dd.db", "--quiet");
+  if (sh("%s movie dd.db -o dd.mp4 --color species", haff)) fail_msg("%s", out());
+  assert_non_null(strstr(out(), "dd.mp4: 3 frames of run 1"));
 }
 
 /* In this process (so that the ASan+UBSan build checks them too, as the other tests drive
@@ -391,6 +413,7 @@ int main(void) {
       cmocka_unit_test(frames_resumed),
       cmocka_unit_test(ase_reads_every_kind_of_run),
       cmocka_unit_test(movie_of_frames),
+      cmocka_unit_test(movie_colour_species),
       cmocka_unit_test(frames_in_process),
   };
   return cmocka_run_group_tests(tests, setup, teardown);

@@ -752,7 +752,9 @@ static void scene_keys_doc_current(void **state) {
  * (tests/data/scenes/canonical-b0b522c.txt, made by that binary): runs.scene keeps its form.
  * One documented edit: rods-50.ini and rods-damped50.ini no longer set `table`, whose default
  * became yes (issue 16), and no longer set eps_step = 0.0025: in that file their `table = no`
- * reads `table = yes` and their eps_step 0. */
+ * reads `table = yes` and their eps_step 0.  Issue 26: rods-stochastic.ini's snapshot times
+ * (velocities_at_time) every 250 after t = 200, so that Fig. 3's linear time axis shows rows, not
+ * blocks: that line holds the new list. */
 static void canonical_text_as_before(void **state) {
   (void)state;
   char *all = slurp("tests/data/scenes/canonical-b0b522c.txt");
