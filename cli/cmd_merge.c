@@ -17,7 +17,7 @@ static const hd_optdef merge_opts[] = {
     HD_OPT_FLAG("quiet", 'q', merge_args, quiet, "no closing line"), {0}};
 
 const hd_optspec haff_merge_spec = {
-    HD_OPT_SPEC("merge", merge_opts, 0, 2, -1, "OUT.db and at least one IN.db"),
+    HD_OPT_SPEC("merge", merge_opts, 0, 2, -1, "OUT.db and at least one IN.db"), .out_pos = 1,
     .head =
         "usage: haff merge OUT.db IN.db... [--quiet]\n"
         "  Appends every run of the IN databases to OUT (created if missing), with new run ids;\n"

@@ -270,7 +270,8 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
 static const hd_optdef movie_opts[] = {
     HD_OPT_INT("run", 0, movie, run, 1, INT64_MAX, 0, "ID", "the run [the newest run in DB]"),
     HD_OPT_STR("output", 'o', movie, outpath, "FILE",
-               "the movie; its extension chooses the format (.mp4 or .gif)"),
+               "the movie; its extension chooses the format (.mp4 or .gif)",
+               .flags = HD_OPTF_OUTPUT),
     HD_OPT_ENUM("color", 0, movie, density, "speed|density", "C", "speed or density [speed]"),
     HD_OPT_INT("fps", 0, movie, fps, 1, 120, 0, "N", "frames per second [10]"),
     HD_OPT_INT("size", 0, movie, size, 100, 4000, 0, "PX",

@@ -73,7 +73,7 @@ const hd_optdef hd_cli_opts[] = {
     HD_OPT_STR("label", 0, hd_cli_args, label, "L",
                "states label [velocities] (e.g. initial, final)", .set = HD_OPT_STATS),
     HD_OPT_STR("o", 'o', hd_cli_args, out, "FILE", "write to FILE instead of stdout (- is stdout)",
-               .flags = HD_OPTF_SHORT),
+               .flags = HD_OPTF_SHORT | HD_OPTF_OUTPUT),
     {0}};
 
 int hd_cli_parse(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a) {
