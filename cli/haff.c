@@ -42,21 +42,18 @@ static int group_main(const haff_command *g, int argc, char **argv) {
  * error (a full disk, /dev/full, a closed pipe) turns a success into 1, with one line naming the
  * command.  A command that failed already said why; its code stays. */
 static int stdout_flushed(const char *cmd, int rc) {
-  errno = 0;
-  int bad = fflush(stdout) != 0;
-  bad |= ferror(stdout) != 0;
-  if (bad && rc == 0) {
-    fprintf(stderr, "haff%s%s: stdout: write error%s%s\n", cmd ? " " : "", cmd ? cmd : "",
-            errno ? ": " : "", errno ? strerror(errno) : "");
-    return 1;
+  if (rc) { /* said why already */
+    fflush(stdout);
+    return rc;
   }
-  return rc;
+  return haff_close_out(stdout, cmd, NULL); /* with the reason: haff_stdout_wrap kept it */
 }
 
 int main(int argc, char **argv) {
   /* a file size limit (ulimit -f) then fails the write with EFBIG, which the run reports and
    * survives like a full disk, instead of killing the process with the run left 'running' */
   signal(SIGXFSZ, SIG_IGN);
+  haff_stdout_wrap();
   if (argc < 2) {
     usage(stderr);
     return 2;
