@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <math.h>
 #include <cmocka.h>
 #include <signal.h>
 #include <sqlite3.h>
@@ -105,10 +106,254 @@ static void path_overwrites_rule(void **state) {
   assert_false(hd_path_overwrites(a, b));
 }
 
+/* One value of sql on database name in dir (-1 when it fails). */
+static long long q1(const char *name, const char *sql) {
+  sqlite3 *h;
+  char p[400];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  long long v = -1;
+  if (sqlite3_open(p, &h) == SQLITE_OK) {
+    sqlite3_stmt *st;
+    if (sqlite3_prepare_v2(h, sql, -1, &st, NULL) == SQLITE_OK) {
+      int r = sqlite3_step(st);
+      if (r == SQLITE_ROW) v = sqlite3_column_int64(st, 0);
+      if (r == SQLITE_DONE) v = 0;
+      sqlite3_finalize(st);
+    }
+  }
+  sqlite3_close(h);
+  return v;
+}
+
+/* Item 2: an input whose table name closes the quote of a statement merge builds (before:
+ * `haff merge out.db evil.db` printed "1 runs merged", exit 0, and out.db's runs were gone) is
+ * refused, out.db byte-identical; a user's table with plain names (plots_runs) still follows
+ * its runs, its definition not run but rebuilt from its columns. */
+static void merge_no_sql_from_names(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("cp d.db out.db && cp out.db keep.db && %s run disks.ini -o evil.db "
+                      "--seed 9 --quiet",
+                      haff),
+                   0);
+  static const char evil[] = "samples\"\" SELECT * FROM main.samples WHERE 0; DELETE FROM "
+                             "main.runs; --";
+  char sql[512];
+  snprintf(sql, sizeof sql, "CREATE TABLE \"%s\" (run INTEGER); INSERT INTO \"%s\" VALUES (1)",
+           evil, evil);
+  sqlite3 *h;
+  char p[400];
+  snprintf(p, sizeof p, "%s/evil.db", dir);
+  assert_int_equal(sqlite3_open(p, &h), SQLITE_OK);
+  assert_int_equal(sqlite3_exec(h, sql, NULL, NULL, NULL), SQLITE_OK);
+  sqlite3_close(h);
+  int rc = sh("%s merge out.db evil.db", haff);
+  char err[1024];
+  read_file("err.txt", err, sizeof err);
+  if (rc != 2 || !strstr(err, "not a plain identifier")) fail_msg("exit %d: %s", rc, err);
+  assert_true(same_bytes("out.db", "keep.db"));
+  assert_int_equal(q1("out.db", "SELECT count(*) FROM runs"), 1);
+  /* a plain user table follows its run, with a constraint of its definition not copied */
+  assert_int_equal(sh("%s run disks.ini -o ok.db --seed 8 --quiet && sqlite3 ok.db \"CREATE "
+                      "TABLE plots_runs (run INTEGER, file TEXT CHECK (file <> 'x'), cpu_seconds "
+                      "REAL); INSERT INTO plots_runs VALUES (1, 'ok.db', 2.5)\"",
+                      haff),
+                   0);
+  assert_int_equal(sh("%s merge out.db ok.db --quiet", haff), 0);
+  assert_int_equal(q1("out.db", "SELECT count(*) FROM runs"), 2);
+  assert_int_equal(q1("out.db", "SELECT count(*) FROM plots_runs WHERE run = 2 AND file = "
+                                "'ok.db' AND cpu_seconds = 2.5"),
+                   1);
+  assert_int_equal(q1("out.db", "SELECT count(*) FROM sqlite_schema WHERE name = 'plots_runs' "
+                                "AND sql LIKE '%CHECK%'"),
+                   0);
+  assert_int_equal(q1("out.db", "SELECT count(*) FROM collisions WHERE run = 2"),
+                   q1("ok.db", "SELECT count(*) FROM collisions"));
+}
+
+/* Item 3: the one list of per-run tables holds every table of db/schema.sql with a run column
+ * (read from a fresh database): a table added to the schema and not to the list fails here. */
+static void run_tables_list_complete(void **state) {
+  (void)state;
+  char p[400];
+  snprintf(p, sizeof p, "%s/fresh.db", dir);
+  hd_db *db;
+  hd_error err;
+  assert_int_equal(hd_db_open(&db, p, &err), HD_OK);
+  sqlite3 *h = hd_db_handle(db);
+  sqlite3_stmt *st;
+  assert_int_equal(sqlite3_prepare_v2(h,
+                                      "SELECT name FROM sqlite_schema t WHERE type = 'table' AND "
+                                      "EXISTS (SELECT 1 FROM pragma_table_info(t.name) WHERE "
+                                      "name = 'run') ORDER BY name",
+                                      -1, &st, NULL),
+                   SQLITE_OK);
+  int n_schema = 0;
+  while (sqlite3_step(st) == SQLITE_ROW) {
+    const char *t = (const char *)sqlite3_column_text(st, 0);
+    int found = 0;
+    for (const hd_run_table *k = hd_db_run_tables(); k->name; k++) found |= !strcmp(k->name, t);
+    if (!found) fail_msg("table %s has a run column and is not in hd_db_run_tables", t);
+    n_schema++;
+  }
+  sqlite3_finalize(st);
+  int n_list = 0;
+  for (const hd_run_table *k = hd_db_run_tables(); k->name; k++) n_list++;
+  assert_int_equal(n_list, n_schema); /* and nothing in the list that the schema lacks */
+  assert_int_equal(hd_db_close(db, &err), HD_OK);
+}
+
+/* Item 3: rows of a run written past its checkpoint in every per-run table, then truncated
+ * to it (what a resume after kill -9 or a full disk does): no sample_species row past the
+ * checkpoint stays (before: all did, and the resumed run wrote them again: duplicated (t,
+ * species) rows); hd_db_run_delete leaves no row of the run in any table. */
+static void truncate_and_delete_every_table(void **state) {
+  (void)state;
+  char p[400];
+  snprintf(p, sizeof p, "%s/trunc.db", dir);
+  hd_db *db;
+  hd_error err;
+  int64_t run, other;
+  assert_int_equal(hd_db_open(&db, p, &err), HD_OK);
+  assert_int_equal(hd_db_run_begin(db, "[system]\nseed = 1\n", 1, "t", &run, &err), HD_OK);
+  assert_int_equal(hd_db_run_begin(db, "[system]\nseed = 2\n", 2, "t", &other, &err), HD_OK);
+  hd_species_rec sp = {2, "tri", "0 0 1 1", 5, 1, 0.1};
+  for (int64_t r = run; r <= other; r++) {
+    assert_int_equal(hd_db_log_species(db, r, &sp, &err), HD_OK);
+    for (int k = 0; k <= 10; k++) {
+      hd_sample_row s = {0};
+      s.t = k, s.cpd = k, s.e_tr = 1, s.e_rot = 1;
+      s.e_tr_dimer = s.e_rot_dimer = s.e_tr_disk = NAN;
+      s.flow_frac = s.flow_chaos = s.count_var = s.s_rho = s.s_perp = s.s_par = NAN;
+      assert_int_equal(hd_db_log_sample(db, r, &s, &err), HD_OK);
+      hd_species_sample ss = {k, 2, 1, 1};
+      assert_int_equal(hd_db_log_species_sample(db, r, &ss, &err), HD_OK);
+    }
+  }
+  assert_int_equal(hd_db_checkpoint_save(db, run, 50, 5.0, "x", 1, &err), HD_OK);
+  assert_int_equal(hd_db_truncate_after(db, run, 50, 5.0, &err), HD_OK);
+  sqlite3 *h = hd_db_handle(db);
+  static const char *const counts[] = {
+      "SELECT count(*) FROM sample_species WHERE run = 1 AND t > 5",
+      "SELECT count(*) FROM samples WHERE run = 1 AND t > 5",
+      "SELECT count(*) FROM sample_species WHERE run = 2 AND t > 5"};
+  static const long long want[] = {0, 0, 5};
+  for (int k = 0; k < 3; k++) {
+    sqlite3_stmt *st;
+    assert_int_equal(sqlite3_prepare_v2(h, counts[k], -1, &st, NULL), SQLITE_OK);
+    assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+    if (sqlite3_column_int64(st, 0) != want[k])
+      fail_msg("%s: %lld, not %lld", counts[k], (long long)sqlite3_column_int64(st, 0), want[k]);
+    sqlite3_finalize(st);
+  }
+  /* species are kept by a resume from a checkpoint, dropped when begun again from set-up */
+  sqlite3_stmt *st;
+  assert_int_equal(
+      sqlite3_prepare_v2(h, "SELECT count(*) FROM species WHERE run = 1", -1, &st, NULL),
+      SQLITE_OK);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  assert_int_equal(sqlite3_column_int(st, 0), 1);
+  sqlite3_reset(st);
+  assert_int_equal(hd_db_truncate_after(db, run, 0, -INFINITY, &err), HD_OK);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  assert_int_equal(sqlite3_column_int(st, 0), 0);
+  sqlite3_finalize(st);
+  /* deletion: nothing of run 2 in any per-run table, nor its runs row */
+  assert_int_equal(hd_db_run_delete(db, other, &err), HD_OK);
+  assert_int_equal(hd_db_run_delete(db, other, &err), HD_EINPUT);
+  for (const hd_run_table *k = hd_db_run_tables(); k->name; k++) {
+    char sql[128];
+    snprintf(sql, sizeof sql, "SELECT count(*) FROM %s WHERE run = 2", k->name);
+    assert_int_equal(sqlite3_prepare_v2(h, sql, -1, &st, NULL), SQLITE_OK);
+    assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+    if (sqlite3_column_int(st, 0)) fail_msg("%s still holds rows of the deleted run", k->name);
+    sqlite3_finalize(st);
+  }
+  assert_int_equal(hd_db_close(db, &err), HD_OK);
+  assert_int_equal(q1("trunc.db", "SELECT count(*) FROM runs"), 1);
+}
+
+/* Item 12: merge's special names: OUT "-", ":memory:" or "file:..." refused (exit 2, no file
+ * made: before, "-" became a file and ":memory:" failed with "no such table: s.runs"); an input
+ * file named ":memory:" or "file:x" is read as the file it is. */
+static void merge_special_names(void **state) {
+  (void)state;
+  if (!haff) skip();
+  static const char *const outs[] = {"-", ":memory:", "file:m.db", "file:m.db?mode=memory"};
+  for (size_t k = 0; k < sizeof outs / sizeof *outs; k++) {
+    int rc = sh("%s merge '%s' d.db", haff, outs[k]);
+    char err[1024];
+    read_file("err.txt", err, sizeof err);
+    if (rc != 2 || !strstr(err, "nothing merged"))
+      fail_msg("OUT %s: exit %d: %s", outs[k], rc, err);
+    if (exists(outs[k]) || exists("m.db")) fail_msg("OUT %s: a file was made", outs[k]);
+  }
+  assert_int_equal(sh("cp d.db ./:memory: && %s run disks.ini -o ./file:x.db --seed 5 --quiet && "
+                      "%s merge ./sp.db :memory: file:x.db --quiet",
+                      haff, haff),
+                   0);
+  assert_int_equal(q1("sp.db", "SELECT count(*) FROM runs"), 2);
+}
+
+/* Item 12: a merge stopped by SIGTERM or SIGINT leaves OUT as it was and no OUT.merge-PID.tmp
+ * (before: the full-size temporary file stayed).  A large input (about 10^6 collisions rows)
+ * keeps the merge busy long enough to be stopped in its copy. */
+static void merge_signal_cleans_up(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("big.ini", "[system]\narea_fraction = 0.2\nseed = 4\n[disks]\ncount = 2000\n"
+                        "alpha = 0.97\n[run]\nstop_cpd = 400\n[log]\ncollisions = all\n");
+  assert_int_equal(sh("%s run big.ini -o big.db --quiet", haff), 0);
+  for (int s = 0; s < 2; s++) {
+    assert_int_equal(sh("cp d.db mo.db && cp mo.db mkeep.db"), 0);
+    /* "true;": sh() runs "cd DIR && CMD", and "cd && haff &" would put the cd in the background too
+     */
+    int rc =
+        sh("true; %s merge mo.db big.db & pid=$!; sleep 0.3; kill -%s $pid; wait $pid; echo $? "
+           "> rc.txt",
+           haff, s ? "INT" : "TERM");
+    assert_int_equal(rc, 0);
+    char out[64];
+    read_file("rc.txt", out, sizeof out);
+    assert_true(same_bytes("mo.db", "mkeep.db"));
+    if (sh("ls mo.db.merge-* 2>/dev/null | grep -q .") == 0)
+      fail_msg("SIG%s: a temporary file stayed (exit %s)", s ? "INT" : "TERM", out);
+    if (atoi(out) == 0)
+      fail_msg("SIG%s: the merge ended before the signal: make big.db larger", s ? "INT" : "TERM");
+  }
+}
+
+/* Item 12: "write error" lines name the subcommand and the reason (before: "haff: stdout:
+ * write error" with neither, for the analyses and rods-collapse). */
+static void write_errors_say_why(void **state) {
+  (void)state;
+  if (!haff) skip();
+  static const char *const cmds[] = {"haff-fit d.db", "energy d.db", "energy d.db -o /dev/full",
+                                     "rods-collapse --n 10 --eps 0.1 --seeds 2 --cpd 100"};
+  for (size_t k = 0; k < sizeof cmds / sizeof *cmds; k++) {
+    char name[64];
+    snprintf(name, sizeof name, "haff %.*s:", (int)strcspn(cmds[k], " "), cmds[k]);
+    assert_int_equal(sh("%s %s > /dev/full", haff, cmds[k]), 1);
+    char err[2048];
+    read_file("err.txt", err, sizeof err);
+    const char *w = strstr(err, "write error");
+    if (!w || !strstr(err, name) || !strstr(w, "No space left on device"))
+      fail_msg("%s: %s", cmds[k], err);
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(output_is_not_input),
       cmocka_unit_test(path_overwrites_rule),
+      cmocka_unit_test(merge_no_sql_from_names),
+      cmocka_unit_test(run_tables_list_complete),
+      cmocka_unit_test(truncate_and_delete_every_table),
+      cmocka_unit_test(merge_special_names),
+      cmocka_unit_test(merge_signal_cleans_up),
+      cmocka_unit_test(write_errors_say_why),
   };
+  const char *only = getenv("TEST_FILTER"); /* e.g. TEST_FILTER=merge_* */
+  if (only && *only) cmocka_set_test_filter(only);
   return cmocka_run_group_tests(tests, setup, teardown);
 }
