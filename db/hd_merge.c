@@ -38,6 +38,18 @@ static int check_input(const char *path, hd_error *err) {
   if (rc) return rc;
   sqlite3_busy_timeout(h, 10000);
   sqlite3_stmt *st;
+  int version = -1; /* a schema from a newer haff: columns this one would drop unseen */
+  if (sqlite3_prepare_v2(h, "PRAGMA user_version", -1, &st, NULL) == SQLITE_OK) {
+    if (sqlite3_step(st) == SQLITE_ROW) version = sqlite3_column_int(st, 0);
+    sqlite3_finalize(st);
+  }
+  if (version > HD_DB_SCHEMA_VERSION) {
+    sqlite3_close(h);
+    return hd_error_set(err, HD_EINPUT,
+                        "%s: schema version %d is newer than this haff's (%d): merge it with a "
+                        "newer haff",
+                        path, version, HD_DB_SCHEMA_VERSION);
+  }
   if (sqlite3_prepare_v2(h, "PRAGMA integrity_check", -1, &st, NULL) != SQLITE_OK) {
     rc = sql_fail(h, path, "integrity check", err);
   } else {
@@ -516,6 +528,17 @@ static int merge(const char *out, const char *const *in, int n_in, int64_t *runs
       rc = hd_error_set(err, HD_EINPUT, "%s: is the output database too: nothing merged", in[k]);
   }
   free(ids);
+  for (int k = 0; k < n_in && !rc; k++)
+    if (hd_merge_lock_held(in[k], -1)) /* its running run would be copied half-way */
+      rc = hd_error_set(err, HD_EINPUT,
+                        "%s: a run is writing to it (%s.lock is held): merge it when it has "
+                        "ended; nothing merged",
+                        in[k], in[k]);
+  if (!rc && out_exists && !(so.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)))
+    rc = hd_error_set(err, HD_EINPUT,
+                      "%s: is write-protected (mode %03o): nothing merged (chmod u+w to merge "
+                      "into it)",
+                      out, (unsigned)(so.st_mode & 0777));
   for (int k = 0; k < n_in && !rc; k++) rc = check_input(in[k], err);
   if (!rc && out_exists && hd_merge_lock_held(out, -1))
     rc = hd_error_set(err, HD_EINPUT,
@@ -570,6 +593,8 @@ static int merge(const char *out, const char *const *in, int n_in, int64_t *runs
       rc = exec(h, tmp, "PRAGMA journal_mode = DELETE", "end the write-ahead log", err);
     sqlite3_close(h);
   }
+  if (!rc && out_exists && chmod(tmp, so.st_mode & 07777) != 0) /* OUT keeps its mode */
+    rc = hd_error_set(err, HD_EIO, "%s: chmod: %s", tmp, strerror(errno));
   if (!rc) rc = sync_file(tmp, err);
   if (!rc && hd_stop_requested) /* a signal between two statements */
     rc = hd_error_set(err, HD_EINTR, "%s: interrupted by a signal: nothing merged", out);

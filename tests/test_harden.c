@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -342,6 +343,52 @@ static void write_errors_say_why(void **state) {
   }
 }
 
+/* Found by this round's own campaign: merge refused (exit 2, OUT byte-identical) for an input
+ * a run is still writing (before: its 'running' run was copied half-way, exit 0), an input of a
+ * newer schema version (before: merged with its unknown columns dropped), a write-protected
+ * OUT (before: replaced by rename); and OUT keeps its file mode (before: the temporary file's
+ * 0644). */
+static void merge_campaign_refusals(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("cp d.db o.db && cp d.db okeep.db && %s run disks.ini -o live.db --seed 6 "
+                      "--quiet && cp live.db fut.db && sqlite3 fut.db 'PRAGMA user_version = 9'",
+                      haff),
+                   0);
+  char lk[400];
+  snprintf(lk, sizeof lk, "%s/live.db.lock", dir);
+  int fd = open(lk, O_RDWR | O_CREAT, 0644);
+  assert_true(fd >= 0);
+  struct flock fl = {.l_type = F_WRLCK, .l_whence = SEEK_SET, .l_start = 1, .l_len = 1};
+  assert_int_equal(fcntl(fd, F_SETLK, &fl), 0); /* as a run writing run 1 holds it */
+  static const struct {
+    const char *cmd, *why;
+  } cases[] = {{"merge o.db live.db", "a run is writing to it"},
+               {"merge o.db fut.db", "newer than this haff's"},
+               {"chmod 444 o.db && %s merge o.db d2.db", "write-protected"}};
+  assert_int_equal(sh("%s run disks.ini -o d2.db --seed 12 --quiet", haff), 0);
+  for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+    char cmd[512];
+    if (strstr(cases[k].cmd, "%s"))
+      snprintf(cmd, sizeof cmd, cases[k].cmd, haff);
+    else
+      snprintf(cmd, sizeof cmd, "%s %s", haff, cases[k].cmd);
+    int rc = sh("%s", cmd);
+    char err[1024];
+    read_file("err.txt", err, sizeof err);
+    if (rc != 2 || !strstr(err, cases[k].why)) fail_msg("%s: exit %d: %s", cmd, rc, err);
+    assert_true(same_bytes("o.db", "okeep.db"));
+  }
+  close(fd);
+  assert_int_equal(sh("chmod 640 o.db && %s merge o.db live.db --quiet && stat -c %%a o.db > "
+                      "mode.txt",
+                      haff),
+                   0);
+  char mode[16];
+  read_file("mode.txt", mode, sizeof mode);
+  assert_string_equal(mode, "640\n");
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(output_is_not_input),
@@ -352,6 +399,7 @@ int main(void) {
       cmocka_unit_test(merge_special_names),
       cmocka_unit_test(merge_signal_cleans_up),
       cmocka_unit_test(write_errors_say_why),
+      cmocka_unit_test(merge_campaign_refusals),
   };
   const char *only = getenv("TEST_FILTER"); /* e.g. TEST_FILTER=merge_* */
   if (only && *only) cmocka_set_test_filter(only);
