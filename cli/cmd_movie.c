@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include "haff.h"
@@ -31,7 +32,9 @@ static int run_prog(char *const argv[]) {
   pid_t pid = fork();
   if (pid < 0) return -1;
   if (pid == 0) {
-    if (!freopen("/dev/null", "w", stdout)) _exit(127);
+    /* the descriptor, not the stream: bin/haff's stdout is a stream of its own (haff_out.c) */
+    int null = open("/dev/null", O_WRONLY);
+    if (null < 0 || dup2(null, STDOUT_FILENO) < 0) _exit(127);
     execvp(argv[0], argv);
     _exit(127);
   }

@@ -24,7 +24,9 @@ typedef struct haff_command {
 
 /* Output streams that remember why a write failed (cli/haff_out.c), so that every "write
  * error" names its reason even when the failed write was an earlier, automatic flush of the
- * buffer.  haff_stdout_wrap: stdout becomes such a stream (bin/haff's main, first). */
+ * buffer.  haff_stdout_wrap: stdout becomes such a stream (bin/haff's main, first); it has no
+ * file descriptor of its own (fileno(stdout) is -1, freopen fails on it): a child process that
+ * must not write to stdout gets /dev/null by dup2 onto STDOUT_FILENO. */
 void haff_stdout_wrap(void);
 /* path opened for writing (created, truncated) as such a stream; NULL with errno set. */
 FILE *haff_fopen_out(const char *path);

@@ -325,14 +325,21 @@ static int query_int(sqlite3 *h, const char *sql) {
   return v;
 }
 
-/* Whether the table exists and lacks the column: 1, 0, or -1 on error. */
+/* Whether the table exists and lacks the column: 1, 0, or -1 on error (a fixed statement,
+ * the names bound). */
 static int column_missing(sqlite3 *h, const char *table, const char *column) {
-  char sql[256];
-  snprintf(sql, sizeof sql,
-           "SELECT (SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = '%s') "
-           "AND NOT (SELECT count(*) FROM pragma_table_info('%s') WHERE name = '%s')",
-           table, table, column);
-  return query_int(h, sql);
+  sqlite3_stmt *st;
+  if (sqlite3_prepare_v2(h,
+                         "SELECT (SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND "
+                         "name = ?1) AND NOT (SELECT count(*) FROM pragma_table_info(?1) WHERE "
+                         "name = ?2)",
+                         -1, &st, NULL) != SQLITE_OK)
+    return -1;
+  sqlite3_bind_text(st, 1, table, -1, SQLITE_STATIC);
+  sqlite3_bind_text(st, 2, column, -1, SQLITE_STATIC);
+  int v = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int(st, 0) : -1;
+  sqlite3_finalize(st);
+  return v;
 }
 
 /* Applies db/schema.sql (every statement IF NOT EXISTS) and brings a file of an older schema
@@ -369,6 +376,7 @@ static int schema_apply(hd_db *db, hd_error *err) {
   for (size_t k = 0; !rc && k < sizeof added_columns / sizeof *added_columns; k++) {
     int m = column_missing(db->db, added_columns[k].table, added_columns[k].column);
     char sql[256];
+    /* names of added_columns[], this file's constants (a name cannot be a bound parameter) */
     snprintf(sql, sizeof sql, "ALTER TABLE %s ADD COLUMN %s %s", added_columns[k].table,
              added_columns[k].column, added_columns[k].decl);
     if (m < 0 || (m && sqlite3_exec(db->db, sql, NULL, NULL, NULL) != SQLITE_OK))

@@ -512,6 +512,21 @@ static int merge(const char *out, const char *const *in, int n_in, int64_t *runs
   int out_exists = stat(out, &so) == 0;
   if (out_exists && S_ISDIR(so.st_mode))
     return hd_error_set(err, HD_EINPUT, "%s: is a directory, not a database file", out);
+  /* the rename at the end replaces a name: through a symbolic link, the file it leads to (not
+   * the link); a file of more names (hard links) would be replaced under this one only */
+  struct stat sl;
+  char real[PATH_MAX];
+  if (lstat(out, &sl) == 0 && S_ISLNK(sl.st_mode)) {
+    if (!out_exists || !realpath(out, real))
+      return hd_error_set(err, HD_EINPUT,
+                          "%s: a symbolic link to no file: give the database's own name", out);
+    out = real;
+  }
+  if (out_exists && so.st_nlink > 1)
+    return hd_error_set(err, HD_EINPUT,
+                        "%s: has %ld hard links: the merge would replace it under this name only; "
+                        "nothing merged",
+                        out, (long)so.st_nlink);
   /* each file once: the same file (by device and inode, whatever the path) given twice */
   struct stat *ids = calloc((size_t)n_in, sizeof *ids);
   if (!ids) return hd_error_set(err, HD_ENOMEM, "merge: out of memory");

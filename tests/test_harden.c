@@ -346,8 +346,8 @@ static void write_errors_say_why(void **state) {
 /* Found by this round's own campaign: merge refused (exit 2, OUT byte-identical) for an input
  * a run is still writing (before: its 'running' run was copied half-way, exit 0), an input of a
  * newer schema version (before: merged with its unknown columns dropped), a write-protected
- * OUT (before: replaced by rename); and OUT keeps its file mode (before: the temporary file's
- * 0644). */
+ * OUT (before: replaced by rename), an OUT with more hard links; OUT keeps its file mode
+ * (before: the temporary file's 0644) and a symbolic link OUT stays a link. */
 static void merge_campaign_refusals(void **state) {
   (void)state;
   if (!haff) skip();
@@ -387,6 +387,18 @@ static void merge_campaign_refusals(void **state) {
   char mode[16];
   read_file("mode.txt", mode, sizeof mode);
   assert_string_equal(mode, "640\n");
+  /* OUT through a symbolic link: the file it leads to gets the runs, the link stays (before:
+   * the link was replaced by a file and the database it named kept its old runs); OUT with a
+   * second hard link: refused (the rename would replace one name only) */
+  assert_int_equal(sh("cp d.db tg.db && ln -s tg.db ln.db && %s merge ln.db d2.db --quiet && "
+                      "test -L ln.db",
+                      haff),
+                   0);
+  assert_int_equal(q1("tg.db", "SELECT count(*) FROM runs"), 2);
+  assert_int_equal(sh("ln tg.db hl.db && cp tg.db tgkeep.db"), 0);
+  assert_int_equal(sh("%s merge hl.db fut.db", haff), 2);
+  assert_int_equal(sh("%s merge hl.db live.db", haff), 2);
+  assert_true(same_bytes("tg.db", "tgkeep.db"));
 }
 
 int main(void) {
