@@ -500,6 +500,33 @@ static int stop_asked(void *arg) {
   return hd_stop_requested != 0;
 }
 
+/* What OUT and its log look like (existence, inode, size, modification time), to tell at the
+ * end whether another process changed OUT while the merge was built from its copy. */
+typedef struct out_look {
+  int exists[2];
+  struct stat st[2];
+} out_look;
+
+static void look_at(const char *out, out_look *l) {
+  char wal[PATH_MAX + 8];
+  snprintf(wal, sizeof wal, "%s-wal", out);
+  const char *p[2] = {out, wal};
+  memset(l, 0, sizeof *l);
+  for (int k = 0; k < 2; k++) l->exists[k] = stat(p[k], &l->st[k]) == 0;
+}
+
+static int same_look(const out_look *a, const out_look *b) {
+  for (int k = 0; k < 2; k++) {
+    if (a->exists[k] != b->exists[k]) return 0;
+    if (!a->exists[k]) continue;
+    const struct stat *x = &a->st[k], *y = &b->st[k];
+    if (x->st_ino != y->st_ino || x->st_dev != y->st_dev || x->st_size != y->st_size ||
+        x->st_mtim.tv_sec != y->st_mtim.tv_sec || x->st_mtim.tv_nsec != y->st_mtim.tv_nsec)
+      return 0;
+  }
+  return 1;
+}
+
 /* The merge proper, after the signals are set: see hd_db_merge. */
 static int merge(const char *out, const char *const *in, int n_in, int64_t *runs, hd_error *err) {
   int64_t nruns = 0;
@@ -568,6 +595,8 @@ static int merge(const char *out, const char *const *in, int n_in, int64_t *runs
       !(tmp_name = hd_db_plain_name(tmp, plain, sizeof plain)))
     return hd_error_set(err, HD_EINPUT, "%s: path too long", out);
   remove_tmp(tmp);
+  out_look before, after;
+  look_at(out, &before);
   if (out_exists) rc = copy_out(out, tmp, err);
   hd_db *db = NULL;
   if (!rc) rc = hd_db_open(&db, tmp, err); /* the schema, brought to this haff's version */
@@ -613,7 +642,19 @@ static int merge(const char *out, const char *const *in, int n_in, int64_t *runs
   if (!rc) rc = sync_file(tmp, err);
   if (!rc && hd_stop_requested) /* a signal between two statements */
     rc = hd_error_set(err, HD_EINTR, "%s: interrupted by a signal: nothing merged", out);
-  if (!rc && rename(tmp, out) != 0)
+  /* another merge or a run that wrote OUT meanwhile: its rows would be lost by the rename */
+  if (!rc) look_at(out, &after);
+  if (!rc && !same_look(&before, &after))
+    rc = hd_error_set(err, HD_EINPUT,
+                      "%s: changed while the merge was made (another merge or a run writing to "
+                      "it): nothing merged; merge again",
+                      out);
+  if (!rc && !out_exists && renameat2(AT_FDCWD, tmp, AT_FDCWD, out, RENAME_NOREPLACE) != 0)
+    rc =
+        hd_error_set(err, errno == EEXIST ? HD_EINPUT : HD_EIO, "%s: rename to %s: %s%s", tmp, out,
+                     strerror(errno),
+                     errno == EEXIST ? " (made by another process meanwhile): nothing merged" : "");
+  if (!rc && out_exists && rename(tmp, out) != 0)
     rc = hd_error_set(err, HD_EIO, "%s: rename to %s: %s", tmp, out, strerror(errno));
   if (rc) {
     if (hd_stop_requested && rc != HD_EINTR) /* SQLite's "interrupted", said plainly */

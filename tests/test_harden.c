@@ -401,6 +401,36 @@ static void merge_campaign_refusals(void **state) {
   assert_true(same_bytes("tg.db", "tgkeep.db"));
 }
 
+/* Campaign: two merges into one OUT at once.  The second merge stops the first (SIGSTOP) once
+ * its temporary file exists (it has copied OUT), merges a small input and ends; the first then
+ * goes on: it must not rename its copy over OUT (that lost the second merge's runs, both exit
+ * 0), but refuse with exit 2 and OUT keeping the second merge's run. */
+static void concurrent_merges_lose_nothing(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("cp d.db cm.db && %s run disks.ini -o s21.db --seed 21 --quiet", haff), 0);
+  if (!exists("big.db")) {
+    write_file("big.ini", "[system]\narea_fraction = 0.2\nseed = 4\n[disks]\ncount = 2000\n"
+                          "alpha = 0.97\n[run]\nstop_cpd = 400\n[log]\ncollisions = all\n");
+    assert_int_equal(sh("%s run big.ini -o big.db --quiet", haff), 0);
+  }
+  int rc = sh("true; %s merge cm.db big.db --quiet 2> big.err & pid=$!; "
+              "for i in $(seq 1000); do ls cm.db.merge-*.tmp >/dev/null 2>&1 && break; sleep 0.01; "
+              "done; kill -STOP $pid; %s merge cm.db s21.db --quiet; echo $? > small.rc; "
+              "kill -CONT $pid; wait $pid; echo $? > big.rc",
+              haff, haff);
+  assert_int_equal(rc, 0);
+  char small[16], big[16], err[1024];
+  read_file("small.rc", small, sizeof small);
+  read_file("big.rc", big, sizeof big);
+  read_file("big.err", err, sizeof err);
+  assert_string_equal(small, "0\n");
+  if (strcmp(big, "2\n") || !strstr(err, "changed while the merge was made"))
+    fail_msg("the first merge: exit %s: %s", big, err);
+  assert_int_equal(q1("cm.db", "SELECT count(*) FROM runs WHERE seed = 21"), 1);
+  assert_int_equal(q1("cm.db", "SELECT count(*) FROM runs"), 2);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(output_is_not_input),
@@ -412,6 +442,7 @@ int main(void) {
       cmocka_unit_test(merge_signal_cleans_up),
       cmocka_unit_test(write_errors_say_why),
       cmocka_unit_test(merge_campaign_refusals),
+      cmocka_unit_test(concurrent_merges_lose_nothing),
   };
   const char *only = getenv("TEST_FILTER"); /* e.g. TEST_FILTER=merge_* */
   if (only && *only) cmocka_set_test_filter(only);
