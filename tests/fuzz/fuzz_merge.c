@@ -117,6 +117,18 @@ static long long q1(const char *path, const char *sql) {
   return v;
 }
 
+/* Removes the working folder when the fuzzer ends (libFuzzer exits through exit()). */
+static void cleanup(void) {
+  DIR *d = opendir(dir);
+  for (struct dirent *e; d && (e = readdir(d));) {
+    char p[400];
+    snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+    if (e->d_name[0] != '.') unlink(p);
+  }
+  if (d) closedir(d);
+  rmdir(dir);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   if (!dir[0]) {
     snprintf(dir, sizeof dir, "/tmp/haff-fuzz-merge-XXXXXX");
@@ -128,6 +140,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     make_db(tmpl_in, 2);
     make_db(tmpl_out, 1);
     out_bytes = slurp(tmpl_out, &out_size);
+    atexit(cleanup);
   }
   if (size < 1 || size > (1 << 20)) return 0;
   rm_db(in_path);
