@@ -17,18 +17,20 @@ static const hd_optdef merge_opts[] = {
     HD_OPT_FLAG("quiet", 'q', merge_args, quiet, "no closing line"), {0}};
 
 const hd_optspec haff_merge_spec = {
-    HD_OPT_SPEC("merge", merge_opts, 0, 2, -1, "OUT.db and at least one IN.db"),
+    HD_OPT_SPEC("merge", merge_opts, 0, 2, -1, "OUT.db and at least one IN.db"), .out_pos = 1,
     .head =
         "usage: haff merge OUT.db IN.db... [--quiet]\n"
         "  Appends every run of the IN databases to OUT (created if missing), with new run ids;\n"
         "  their collisions, samples, states, checkpoints and provenance follow them, and the\n"
         "  provenance table records each run's source file and id, host and Slurm job and task.\n"
-        "  Refused (exit 2, OUT untouched): a file given twice, a file that is not a haff "
-        "database\n"
-        "  or fails PRAGMA integrity_check, OUT being written by a run, a run (same scene, seed "
-        "and\n"
-        "  commit: runs.git_commit) already in OUT.  Atomic: OUT is replaced only once the merge\n"
-        "  is whole.\n"};
+        "  Refused (exit 2, OUT untouched): a file given twice (also as OUT, by any link), a file\n"
+        "  that is not a haff database, is of a newer schema or fails PRAGMA integrity_check, OUT\n"
+        "  or an input being written by a run, a write-protected OUT, OUT '-', ':memory:' or\n"
+        "  'file:...' (./NAME is the file), a table of yours with a name that is not a plain\n"
+        "  identifier, a run (same scene, seed and\n"
+        "  commit: runs.git_commit) already in OUT.  Atomic: OUT is\n"
+        "  replaced only once the merge is whole; SIGINT or SIGTERM stop it (exit 1), OUT as "
+        "it was.\n"};
 
 int haff_merge_main(int argc, char **argv) {
   merge_args a = {0};

@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include "haff.h"
@@ -36,7 +37,9 @@ static int run_prog(char *const argv[]) {
   pid_t pid = fork();
   if (pid < 0) return -1;
   if (pid == 0) {
-    if (!freopen("/dev/null", "w", stdout)) _exit(127);
+    /* the descriptor, not the stream: bin/haff's stdout is a stream of its own (haff_out.c) */
+    int null = open("/dev/null", O_WRONLY);
+    if (null < 0 || dup2(null, STDOUT_FILENO) < 0) _exit(127);
     execvp(argv[0], argv);
     _exit(127);
   }
@@ -336,7 +339,8 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
 static const hd_optdef movie_opts[] = {
     HD_OPT_INT("run", 0, movie, run, 1, INT64_MAX, 0, "ID", "the run [the newest run in DB]"),
     HD_OPT_STR("output", 'o', movie, outpath, "FILE",
-               "the movie; its extension chooses the format (.mp4 or .gif)"),
+               "the movie; its extension chooses the format (.mp4 or .gif)",
+               .flags = HD_OPTF_OUTPUT),
     HD_OPT_ENUM("color", 0, movie, color, "speed|density|species", "C",
                 "speed, density or species [speed]"),
     HD_OPT_INT("fps", 0, movie, fps, 1, 120, 0, "N", "frames per second [10]"),

@@ -982,7 +982,7 @@ static const hd_optdef sweep_opts[] = {
      .letter = 'o',
      .kind = HD_ARG_PATH,
      .off = offsetof(sweep_args, out),
-     .flags = HD_OPTF_SHORT,
+     .flags = HD_OPTF_SHORT | HD_OPTF_OUTPUT,
      .meta = "DIR",
      .help = "the study's folder [SWEEP's name without .ini, in the current folder]"},
     HD_OPT_INT("jobs", 'j', sweep_args, jobs, 1, 4096, 0, "N", "points run at once, locally [1]"),

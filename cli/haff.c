@@ -46,15 +46,11 @@ static int group_main(const haff_command *g, int argc, char **argv) {
  * error (a full disk, /dev/full, a closed pipe) turns a success into 1, with one line naming the
  * command.  A command that failed already said why; its code stays. */
 static int stdout_flushed(const char *cmd, int rc) {
-  errno = 0;
-  int bad = fflush(stdout) != 0;
-  bad |= ferror(stdout) != 0;
-  if (bad && rc == 0) {
-    fprintf(stderr, "haff%s%s: stdout: write error%s%s\n", cmd ? " " : "", cmd ? cmd : "",
-            errno ? ": " : "", errno ? strerror(errno) : "");
-    return 1;
+  if (rc) { /* said why already */
+    fflush(stdout);
+    return rc;
   }
-  return rc;
+  return haff_close_out(stdout, cmd, NULL); /* with the reason: haff_stdout_wrap kept it */
 }
 
 int main(int argc, char **argv) {
@@ -68,6 +64,7 @@ int main(int argc, char **argv) {
     memcpy(typed, argv, ((size_t)argc + 1) * sizeof *typed);
     haff_argc = argc, haff_argv = typed;
   }
+  haff_stdout_wrap();
   if (argc < 2) {
     usage(stderr);
     return 2;

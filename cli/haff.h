@@ -7,6 +7,8 @@
 #ifndef HAFF_CLI_H
 #define HAFF_CLI_H
 
+#include <stdio.h>
+
 #include "hd_opt.h"
 
 /* One subcommand of bin/haff, or a group of them (`haff mc PROGRAM`). */
@@ -19,6 +21,18 @@ typedef struct haff_command {
   const char *summary;                /* one line for `haff --help` (`haff GROUP --help`) */
   const hd_optspec *spec;             /* its options and help; NULL for a group */
 } haff_command;
+
+/* Output streams that remember why a write failed (cli/haff_out.c), so that every "write
+ * error" names its reason even when the failed write was an earlier, automatic flush of the
+ * buffer.  haff_stdout_wrap: stdout becomes such a stream (bin/haff's main, first); it has no
+ * file descriptor of its own (fileno(stdout) is -1, freopen fails on it): a child process that
+ * must not write to stdout gets /dev/null by dup2 onto STDOUT_FILENO. */
+void haff_stdout_wrap(void);
+/* path opened for writing (created, truncated) as such a stream; NULL with errno set. */
+FILE *haff_fopen_out(const char *path);
+/* Closes f (stdout: flushes it): 0, or 1 after one line "haff CMD: NAME: write error: REASON"
+ * on stderr (name NULL: "stdout"; cmd NULL: "haff: ..."). */
+int haff_close_out(FILE *f, const char *cmd, const char *name);
 
 /* Every subcommand, in the order of `haff --help`; ends with an entry whose name is NULL. */
 extern const haff_command haff_commands[];

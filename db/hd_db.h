@@ -273,9 +273,27 @@ int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_
  * continued; else 0 (also when there is no such run).  HD_OK or HD_EIO. */
 int hd_db_run_unstarted(hd_db *db, int64_t run, int *unstarted, hd_error *err);
 
-/* Deletes the rows a resumed run will write again: collisions with seq > seq, samples,
- * frames and states with t > t; and the run's 'checkpoint' and 'final' states (where it stopped: it
- * goes on, and writes its final state again). */
+/* A table of db/schema.sql that holds rows of runs (a `run` column), in the one list that
+ * truncation (hd_db_truncate_after), deletion (hd_db_run_delete) and merge (db/hd_merge.c)
+ * use. */
+typedef struct hd_run_table {
+  const char *name;     /* the table */
+  const char *truncate; /* the DELETE of the rows a resumed run writes again (?1 run, ?2 the
+                         * checkpoint's seq, ?3 its t), NULL when its rows are kept */
+} hd_run_table;
+
+/* The per-run tables, ending with an entry whose name is NULL (runs itself not included). */
+const hd_run_table *hd_db_run_tables(void);
+
+/* Deletes run and its rows in every per-run table, in one transaction.  HD_EINPUT when there
+ * is no such run.  Commits the open batch first. */
+int hd_db_run_delete(hd_db *db, int64_t run, hd_error *err);
+
+/* Deletes the rows a resumed run will write again, in every per-run table
+ * (hd_db_run_tables): collisions with seq > seq, samples,
+ * frames, sample_species and states with t > t; and the run's 'checkpoint' and 'final' states
+ * (where it stopped: it goes on, and writes its final state again); species too when t < 0 (a
+ * run begun again from its set-up, t = -inf, writes them again). */
 int hd_db_truncate_after(hd_db *db, int64_t run, int64_t seq, double t, hd_error *err);
 
 /* The id of the newest run that has a checkpoint and whose status is 'interrupted', 'failed'

@@ -5,12 +5,19 @@
  * lacks it).  Each run's provenance row (host, Slurm job and task) is carried over with the file
  * and id it came from (db/schema.sql, table provenance).
  *
- * Refused, as bad input, before OUT is touched: a file given twice (also as OUT), a file that is
- * not a haff database or fails PRAGMA integrity_check, OUT being written by a run (its DB.lock
- * held), and a run whose identity (scene text, seed, commit: runs.git_commit, "unknown" when
- * NULL or not kept) is already in OUT or in an input merged before it.  Atomic: the merge is built
- * in a temporary file beside OUT (a copy of OUT when it exists) that is renamed over OUT at the
- * end, so a merge that fails or is killed leaves OUT as it was. */
+ * Refused, as bad input, before OUT is touched: a file given twice (also as OUT, by any link, or
+ * as its SQLite log), an OUT name that SQLite or the command line reads otherwise ("-",
+ * ":memory:", "file:..."; "./NAME" is the file), a write-protected OUT, a file that is not a
+ * haff database, is of a newer schema version or fails PRAGMA integrity_check, OUT or an input
+ * being written by a run (its DB.lock held), and a run whose identity (scene text, seed,
+ * commit: runs.git_commit, "unknown" when NULL or not kept) is already in OUT or in an input merged before it.  No SQL is built from a name
+ * found in a file: haff's per-run tables (hd_db_run_tables) are copied with the columns of
+ * haff's own schema that the input has; a user's table with a run column only when its name
+ * and its columns' are plain identifiers (else the merge is refused), created in OUT from its
+ * columns and their affinities (its definition's text is never run).  SIGINT and SIGTERM stop
+ * the merge (HD_EINTR) with its temporary file removed.  OUT keeps its file mode.  Atomic: the
+ * merge is built in a temporary file beside OUT (a copy of OUT when it exists) that is renamed over
+ * OUT at the end, so a merge that fails or is killed leaves OUT as it was. */
 #ifndef HD_MERGE_H
 #define HD_MERGE_H
 
@@ -20,7 +27,7 @@
 
 /* Merges the n_in databases in[] into out (created when missing).  *runs gets the number of
  * runs appended (may be NULL).  Returns HD_OK, HD_EINPUT (see above; err names the file, and
- * the run for a duplicate), HD_EIO (a read or write failed) or HD_ENOMEM. */
+ * the run for a duplicate), HD_EINTR (a signal), HD_EIO (a read or write failed) or HD_ENOMEM. */
 int hd_db_merge(const char *out, const char *const *in, int n_in, int64_t *runs, hd_error *err);
 
 /* Whether a process holds a write lock in path.lock, the lock file of the runs writing to the

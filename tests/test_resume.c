@@ -206,6 +206,26 @@ static void damaged_checkpoint_rods(void **state) {
   flip_bits(scene_rods, 60);
 }
 
+/* Issue 24 item 10: a HAFFCKP2 checkpoint with its 16-byte checksum trailer cut off, alone or
+ * with a bit flipped as well, is refused as damaged and nothing changes (before: it was read
+ * as an older blob without a trailer, unchecked, and 9 of 30 stripped blobs with a flip
+ * resumed to exit 0 with other rows). */
+static void stripped_trailer_refused(void **state) {
+  (void)state;
+  kept_checkpoint(scene2d);
+  q1("kept.db", "UPDATE checkpoints SET blob = substr(blob, 1, length(blob) - 16)");
+  for (int flip = 0; flip < 2; flip++) {
+    copy_file("kept.db", "f.db");
+    if (flip) assert_int_equal(test_flip_checkpoint_bit(path_of("f.db"), 8 * 200 + 3), 0);
+    hd_error err;
+    int rc = resume("f.db", &err);
+    if (rc != HD_EINPUT || !strstr(err.msg, "the checkpoint of run 1 is damaged") ||
+        !strstr(err.msg, "trailer is missing"))
+      fail_msg("flip %d: status %d: %s", flip, rc, err.msg);
+    assert_int_equal(q1("f.db", "SELECT count(*) FROM runs WHERE status = 'running'"), 1);
+  }
+}
+
 /* ---------------------------------------------------------------------------------------- */
 /* a run killed in its set-up */
 
@@ -356,6 +376,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup_teardown(damaged_checkpoint_2d, setup, teardown),
       cmocka_unit_test_setup_teardown(damaged_checkpoint_rods, setup, teardown),
+      cmocka_unit_test_setup_teardown(stripped_trailer_refused, setup, teardown),
       cmocka_unit_test_setup_teardown(rerun_killed_in_setup, setup, teardown),
       cmocka_unit_test(fuzz_corpus_replays),
   };

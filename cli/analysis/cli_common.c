@@ -1,5 +1,6 @@
 /* cli_common: option parsing and shared plumbing of the analysis subcommands. */
 #include "cli_common.h"
+#include "haff.h"
 
 #include "hd_db.h"
 
@@ -74,7 +75,7 @@ const hd_optdef hd_cli_opts[] = {
     HD_OPT_STR("label", 0, hd_cli_args, label, "L",
                "states label [velocities] (e.g. initial, final)", .set = HD_OPT_STATS),
     HD_OPT_STR("o", 'o', hd_cli_args, out, "FILE", "write to FILE instead of stdout (- is stdout)",
-               .flags = HD_OPTF_SHORT),
+               .flags = HD_OPTF_SHORT | HD_OPTF_OUTPUT),
     {0}};
 
 int hd_cli_parse(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a) {
@@ -89,6 +90,7 @@ int hd_cli_parse(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a) 
   hd_optres res;
   int rc = hd_opt_parse(spec, argc, argv, a, &res);
   if (rc) return rc;
+  a->cmd = spec->cmd;
   a->db = res.pos[0];
   if (a->run >= 0 && a->all) {
     fprintf(stderr, "haff %s: --run and --all exclude each other\n", spec->cmd);
@@ -99,22 +101,15 @@ int hd_cli_parse(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a) 
 
 FILE *hd_cli_out(const hd_cli_args *a) {
   if (!a->out || !strcmp(a->out, "-")) return stdout; /* -o -: the stream to stdout */
-  FILE *f = fopen(a->out, "w");
-  if (!f) fprintf(stderr, "haff: %s: cannot write: %s\n", a->out, strerror(errno));
+  FILE *f = haff_fopen_out(a->out);
+  if (!f)
+    fprintf(stderr, "haff %s: %s: cannot write: %s\n", a->cmd ? a->cmd : "", a->out,
+            strerror(errno));
   return f;
 }
 
 int hd_cli_close(FILE *f, const hd_cli_args *a) {
-  int bad = ferror(f);
-  if (f != stdout)
-    bad |= fclose(f);
-  else
-    bad |= fflush(f);
-  if (bad) {
-    fprintf(stderr, "haff: %s: write error\n", a->out && strcmp(a->out, "-") ? a->out : "stdout");
-    return 1;
-  }
-  return 0;
+  return haff_close_out(f, a->cmd, f == stdout ? NULL : a->out);
 }
 
 int hd_cli_fail(const char *cmd, const hd_error *err) {

@@ -26,6 +26,7 @@ enum {
 
 /* Parsed arguments. */
 typedef struct hd_cli_args {
+  const char *cmd;   /* the subcommand, for messages (set by hd_cli_parse) */
   const char *db;    /* the database (positional) */
   const char *out;   /* -o FILE, NULL for stdout */
   int64_t run;       /* --run ID, -1 when absent */

@@ -40,7 +40,8 @@ static const hd_optdef eps_opts[] = {
     HD_OPT_FLAG("richardson", 0, eopts, o.richardson,
                 "per-path Richardson extrapolation (4x finer grid)"),
     HD_OPT_STR("dump", 0, eopts, dump, "FILE",
-               "write the samples, one per line (-: to stdout, the summary to stderr)"),
+               "write the samples, one per line (-: to stdout, the summary to stderr)",
+               .flags = HD_OPTF_OUTPUT),
     HD_OPT_FLAG("convergence", 0, eopts, conv,
                 "bias against the step: TSV of mean eps at steps H..H/64 on coupled\n"
                 "paths, and the detailed-balance yardsticks <beta(eps^2-1)> and\n"
@@ -48,7 +49,8 @@ static const hd_optdef eps_opts[] = {
     HD_OPT_FLAG("tabulate", 0, eopts, tab,
                 "build inverse-CDF tables on a log beta grid and store them in --db;\n"
                 "prints the table's KS distance and mean error against direct sampling"),
-    HD_OPT_PATH("db", 0, eopts, dbpath, HD_OPTF_NOT_STDOUT, "DB", "the database of --tabulate"),
+    HD_OPT_PATH("db", 0, eopts, dbpath, HD_OPTF_NOT_STDOUT | HD_OPTF_OUTPUT, "DB",
+                "the database of --tabulate"),
     NUM("beta-min", bmin, "B0", "table grid: smallest beta [1e-3]"),
     NUM("beta-max", bmax, "B1", "table grid: largest beta [1e3]"),
     HD_OPT_INT("nbeta", 0, eopts, nbeta, INT_MIN, INT_MAX, 0, "K", "table grid: beta nodes [25]"),

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 enum { MAX_OPTS = 64, VAL0 = 256 /* getopt_long's val of opts[k]: VAL0 + k */ };
 
@@ -254,6 +255,98 @@ int hd_opt_parse(const hd_optspec *spec, int argc, char **argv, void *dest, hd_o
       fprintf(stderr, "haff %s: expected %s (see haff %s --help)\n", spec->cmd, spec->pos,
               spec->cmd);
     return 2;
+  }
+  return hd_opt_check_outputs(spec, res, dest);
+}
+
+/* path with its folder resolved (realpath of the folder, then the last name) into buf (size
+ * PATH_MAX + NAME_MAX); NULL when the folder cannot be resolved. */
+static const char *canonical(const char *path, char *buf, size_t size) {
+  const char *slash = strrchr(path, '/');
+  char dir[PATH_MAX], real[PATH_MAX];
+  const char *name = slash ? slash + 1 : path;
+  if (!slash)
+    snprintf(dir, sizeof dir, ".");
+  else if (slash == path)
+    snprintf(dir, sizeof dir, "/");
+  else
+    snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+  if (!realpath(dir, real)) return NULL;
+  int k = snprintf(buf, size, "%s/%s", strcmp(real, "/") ? real : "", name);
+  return k >= 0 && (size_t)k < size ? buf : NULL;
+}
+
+/* Whether a and b name the same file: by device and inode when both exist, else (neither
+ * exists: a log not made yet) by their canonical paths. */
+static int same_file(const char *a, const char *b) {
+  struct stat sa, sb;
+  int ea = stat(a, &sa) == 0, eb = stat(b, &sb) == 0;
+  if (ea && eb) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+  if (ea != eb) return 0; /* one exists, the other not */
+  char ca[2 * PATH_MAX], cb[2 * PATH_MAX];
+  const char *pa = canonical(a, ca, sizeof ca), *pb = canonical(b, cb, sizeof cb);
+  return pa && pb ? !strcmp(pa, pb) : !strcmp(a, b);
+}
+
+int hd_path_overwrites(const char *out, const char *in) {
+  static const char *const side[] = {"", "-wal", "-shm", "-journal"};
+  if (!out || !in || !*out || !*in) return 0;
+  char real[PATH_MAX]; /* SQLite keeps the log of a linked database beside the file linked to */
+  const char *names[2] = {in, realpath(in, real) ? real : in};
+  for (int n = 0; n < 2; n++)
+    for (size_t k = 0; k < sizeof side / sizeof *side; k++) {
+      char p[PATH_MAX + 16];
+      if (snprintf(p, sizeof p, "%s%s", names[n], side[k]) >= (int)sizeof p) continue;
+      if (same_file(out, p)) return 1;
+    }
+  return 0;
+}
+
+/* The value of string option d (NULL when not given or "-", stdout). */
+static const char *path_value(const hd_optres *res, const hd_optspec *spec, int k,
+                              const void *dest) {
+  const hd_optdef *d = &spec->opts[k];
+  if (!res->given[k] || (d->kind != HD_ARG_STRING && d->kind != HD_ARG_PATH)) return NULL;
+  const char *v;
+  memcpy(&v, (const char *)dest + d->off, sizeof v);
+  return v && strcmp(v, "-") ? v : NULL;
+}
+
+int hd_opt_check_outputs(const hd_optspec *spec, const hd_optres *res, const void *dest) {
+  enum { MAXF = MAX_OPTS + 64 };
+  const char *out[MAXF], *oname[MAXF], *in[MAXF];
+  char names[MAX_OPTS][64];
+  int no = 0, ni = 0;
+  for (int k = 0; spec->opts[k].name && k < MAX_OPTS; k++) {
+    const hd_optdef *d = &spec->opts[k];
+    const char *v = path_value(res, spec, k, dest);
+    if (!v) continue;
+    if ((d->flags & HD_OPTF_OUTPUT) && no < MAXF)
+      oname[no] = opt_name(d, names[k], sizeof names[k]), out[no++] = v;
+    else if ((d->flags & HD_OPTF_INPUT) && ni < MAXF)
+      in[ni++] = v;
+  }
+  for (int j = 0; j < res->npos; j++) {
+    if (j == spec->out_pos - 1 && no < MAXF)
+      oname[no] = "the output", out[no++] = res->pos[j];
+    else if (j != spec->out_pos - 1 && ni < MAXF)
+      in[ni++] = res->pos[j];
+  }
+  for (int o = 0; o < no; o++) {
+    for (int i = 0; i < ni; i++)
+      if (hd_path_overwrites(out[o], in[i])) {
+        fprintf(stderr,
+                "haff %s: %s %s would overwrite the input %s (the same file, or its SQLite "
+                "log): refused, nothing written\n",
+                spec->cmd, oname[o], out[o], in[i]);
+        return 2;
+      }
+    for (int p = 0; p < o; p++)
+      if (hd_path_overwrites(out[o], out[p]) || hd_path_overwrites(out[p], out[o])) {
+        fprintf(stderr, "haff %s: %s %s and %s %s are the same file: give two\n", spec->cmd,
+                oname[p], out[p], oname[o], out[o]);
+        return 2;
+      }
   }
   return 0;
 }

@@ -31,7 +31,11 @@ enum {
   HD_OPTF_CLEAR = 16,      /* FLAG: stores 0 (a --no-X flag) */
   HD_OPTF_NOT_STDOUT = 32, /* PATH: "-" refused (a database is a file, not a stream) */
   HD_OPTF_SHORT = 64,      /* only the short form (-o): name is its name in messages and help */
-  HD_OPTF_ONCE = 128       /* given twice is an error ("--seed given twice: give one") */
+  HD_OPTF_ONCE = 128,      /* given twice is an error ("--seed given twice: give one") */
+  HD_OPTF_OUTPUT = 256,    /* STRING, PATH: a file the command writes ("-": stdout); refused by
+                            * hd_opt_parse when it would overwrite an input (hd_path_overwrites) */
+  HD_OPTF_INPUT = 512      /* STRING, PATH: a file the command reads, besides its positional
+                            * arguments (which are inputs unless hd_optspec.out_pos says) */
 };
 
 /* The values of an HD_ARG_LIST option, in the order given. */
@@ -67,6 +71,9 @@ typedef struct hd_optspec {
   unsigned allowed;       /* which options of a shared table apply (hd_optdef.set); 0: all */
   int npos_min, npos_max; /* how many positional arguments (npos_max < 0: any number) */
   const char *pos;        /* what they are, for "expected PHRASE": "one database" */
+  int out_pos;            /* 1 + the index of the positional argument that is an output (merge's
+                           * OUT.db), checked like an HD_OPTF_OUTPUT option; 0: every
+                           * positional argument is an input */
 } hd_optspec;
 
 /* What hd_opt_parse found besides the stored values. */
@@ -85,6 +92,20 @@ typedef struct hd_optres {
  * range, unknown option, missing value, an option that does not apply to this subcommand
  * (said after its value is checked), a wrong count of positional arguments). */
 int hd_opt_parse(const hd_optspec *spec, int argc, char **argv, void *dest, hd_optres *res);
+
+/* The one rule for outputs that must not be inputs, applied by hd_opt_parse after the values
+ * are read and before the command opens anything: every output (an HD_OPTF_OUTPUT option given,
+ * not "-"; the positional argument out_pos) is compared by hd_path_overwrites with every input
+ * (the other positional arguments, the HD_OPTF_INPUT options given) and with every other
+ * output.  Returns 0, or 2 after one line on stderr, e.g. "haff energy: -o x.db would overwrite
+ * the input x.db (the same file): nothing written". */
+int hd_opt_check_outputs(const hd_optspec *spec, const hd_optres *res, const void *dest);
+
+/* Whether writing the file out would destroy the file in: 1 when they are the same file (by
+ * device and inode when both exist, whatever symbolic or hard link leads there; else the same
+ * path once the folder is resolved by realpath), or when out is one of the files SQLite keeps
+ * beside a database in (in-wal, in-shm, in-journal), which hold its newest rows; else 0. */
+int hd_path_overwrites(const char *out, const char *in);
 
 /* The one number parser: reads s as the value of option d by its range and rules, into *x
  * (kind HD_ARG_DOUBLE) or *i (HD_ARG_INT).  Returns 0, or 2 after printing one line on stderr

@@ -176,7 +176,9 @@ static int log_sample(runner *r, hd_error *err) {
  * magic "HAFFSUM1" and a 64-bit checksum of everything before it.  One flipped bit anywhere
  * (a damaged disk, a hand edit) is refused by resume as a damaged checkpoint; it used to crash
  * the engine, or finish "done" with wrong data.  A blob without the trailer was written before
- * it existed and is still read: the models check what they restore either way. */
+ * it existed and is still read (the models check what they restore either way), unless its
+ * model blob is of a format always stored with the trailer (hd_sim_checkpoint_needs_trailer:
+ * HAFFCKP2), where a missing trailer is damage. */
 #define HD_CKSUM_MAGIC 0x314d555346464148ULL /* "HAFFSUM1" */
 typedef struct ckpt_trailer {
   uint64_t magic; /* HD_CKSUM_MAGIC */
@@ -618,14 +620,16 @@ static int restore(runner *r, const unsigned char *blob, size_t n, int64_t seq, 
   hd_error e;
   hd_error_clear(&e);
   int rc = HD_OK;
-  ckpt_trailer tr;
-  if (n >= sizeof r->st + sizeof tr) {
-    memcpy(&tr, blob + n - sizeof tr, sizeof tr);
-    if (tr.magic == HD_CKSUM_MAGIC) { /* else a checkpoint of an older haff, without it */
-      n -= sizeof tr;
-      if (ckpt_sum(blob, n) != tr.sum) rc = hd_error_set(&e, HD_EINPUT, "checksum mismatch");
-    }
-  }
+  ckpt_trailer tr = {0, 0};
+  if (n >= sizeof r->st + sizeof tr) memcpy(&tr, blob + n - sizeof tr, sizeof tr);
+  if (tr.magic == HD_CKSUM_MAGIC) {
+    n -= sizeof tr;
+    if (ckpt_sum(blob, n) != tr.sum) rc = hd_error_set(&e, HD_EINPUT, "checksum mismatch");
+  } else if (n > sizeof r->st &&
+             hd_sim_checkpoint_needs_trailer(blob + sizeof r->st, n - sizeof r->st)) {
+    /* every HAFFCKP2 blob was stored with its trailer: one without has lost it */
+    rc = hd_error_set(&e, HD_EINPUT, "its checksum trailer is missing");
+  } /* else a checkpoint of an older haff (HAFFCKP1, rods), stored before the trailer */
   if (!rc && n < sizeof r->st) rc = hd_error_set(&e, HD_EINPUT, "truncated");
   if (!rc) {
     memcpy(&r->st, blob, sizeof r->st);

@@ -205,6 +205,13 @@ static int read_header(const hd_sim *s, const void *blob, size_t n, ckpt_header 
   return HD_OK;
 }
 
+int hd_sim_checkpoint_needs_trailer(const void *blob, size_t n) {
+  uint64_t magic;
+  if (!blob || n < sizeof magic) return 0;
+  memcpy(&magic, blob, sizeof magic);
+  return magic == HD_CKPT_MAGIC;
+}
+
 int hd_sim_restore_blob(hd_sim *s, const void *blob, size_t n, hd_error *err) {
   ckpt_header h;
   size_t hsize;
