@@ -501,6 +501,109 @@ static int manifest_read(study *st, const char *dir) {
   return rc;
 }
 
+/* ------------------------------------------------------------------------------------------ */
+/* the study's lock: DIR/sweep.lock
+ *
+ * POSIX record locks (fcntl), which the kernel drops when the process ends however it ends
+ * (kill -9 too), so a lock is never stale; the file's text only names the last holder.
+ * Byte 0: the study, held (write lock, not waited for) by a local sweep, --resume and --merge
+ * for their whole life: a second one on the same folder is refused, naming the holder.
+ * Byte 1 + k: point k, held by the sweep process (local or a Slurm task) that runs it, from
+ * before its database is looked at until its run has ended: no other sweep classes, renames or
+ * starts a point that another one is running, even in the set-up before the run's own lock.
+ * Every lock of a process goes with any close() of the file, so the one descriptor stays open. */
+
+static int lock_fd = -1; /* DIR/sweep.lock, open for the process's life once opened */
+
+/* Opens DIR/sweep.lock (created unless readonly); 0, or -1 with errno. */
+static int lock_open(const study *st, int readonly) {
+  if (lock_fd >= 0) return 0;
+  char path[PATH_MAX + 32];
+  snprintf(path, sizeof path, "%s/sweep.lock", st->dir);
+  lock_fd =
+      readonly ? open(path, O_RDONLY | O_CLOEXEC) : open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  return lock_fd >= 0 ? 0 : -1;
+}
+
+/* Byte at of the lock file: type F_WRLCK (taken, not waited for) or F_UNLCK; 0 or -1. */
+static int lock_byte(off_t at, short type) {
+  struct flock fl;
+  memset(&fl, 0, sizeof fl);
+  fl.l_type = type;
+  fl.l_whence = SEEK_SET;
+  fl.l_start = at;
+  fl.l_len = 1;
+  return fcntl(lock_fd, F_SETLK, &fl);
+}
+
+/* The pid of another process that holds byte at, or 0 when none does. */
+static long lock_holder(off_t at) {
+  if (lock_fd < 0) return 0;
+  struct flock fl;
+  memset(&fl, 0, sizeof fl);
+  fl.l_type = F_WRLCK;
+  fl.l_whence = SEEK_SET;
+  fl.l_start = at;
+  fl.l_len = 1;
+  if (fcntl(lock_fd, F_GETLK, &fl) != 0 || fl.l_type == F_UNLCK) return 0;
+  return fl.l_pid > 0 ? (long)fl.l_pid : -1;
+}
+
+/* Takes the study's lock for what (e.g. "sweep"), or refuses: 0, or 1 after one line that
+ * names the holder (a sweep working on the folder is not waited for). */
+static int study_lock(const study *st, const char *what) {
+  if (lock_open(st, 0)) {
+    fprintf(stderr, "haff sweep: %s/sweep.lock: %s\n", st->dir, strerror(errno));
+    return 1;
+  }
+  if (lock_byte(0, F_WRLCK) != 0) {
+    int e = errno;
+    if (e != EACCES && e != EAGAIN) {
+      fprintf(stderr, "haff sweep: %s/sweep.lock: cannot lock: %s\n", st->dir, strerror(e));
+      return 1;
+    }
+    char who[256] = "";
+    ssize_t n = pread(lock_fd, who, sizeof who - 1, 0);
+    who[n > 0 ? n : 0] = '\0';
+    who[strcspn(who, "\n")] = '\0';
+    for (char *c = who; *c; c++)
+      if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
+    long pid = lock_holder(0);
+    char holder[320];
+    if (who[0])
+      snprintf(holder, sizeof holder, "%s", who);
+    else
+      snprintf(holder, sizeof holder, "pid %ld", pid);
+    fprintf(stderr,
+            "haff sweep: %s: another haff sweep works on this study (%s; lock %s/sweep.lock): "
+            "refused, not waited for; when it has ended: haff sweep --status or --resume\n",
+            st->dir, holder, st->dir);
+    return 1;
+  }
+  char host[128] = "?", text[512];
+  gethostname(host, sizeof host - 1);
+  host[sizeof host - 1] = '\0';
+  time_t now = time(NULL);
+  struct tm tm;
+  char when[32] = "";
+  if (gmtime_r(&now, &tm)) strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  int len = snprintf(text, sizeof text, "pid %ld on %s since %s: haff sweep %s\n", (long)getpid(),
+                     host, when, what);
+  if (ftruncate(lock_fd, 0) == 0 && pwrite(lock_fd, text, (size_t)len, 0) == len) {
+    /* only a note: the lock is the fcntl lock */
+  }
+  return 0;
+}
+
+/* Claims point k for this process: 1 taken, 0 another process runs it (or no lock file). */
+static int point_claim(int k) {
+  return lock_fd >= 0 && lock_byte((off_t)k + 1, F_WRLCK) == 0;
+}
+
+static void point_release(int k) {
+  if (lock_fd >= 0) lock_byte((off_t)k + 1, F_UNLCK);
+}
+
 static int mkdir_p(const char *path) {
   return mkdir(path, 0777) == 0 || errno == EEXIST ? 0 : -1;
 }
@@ -531,7 +634,11 @@ static int study_create(study *st, const char *dir) {
   if (!text) return 1;
   char path[PATH_MAX + 32], sub[PATH_MAX + 32];
   snprintf(path, sizeof path, "%s/manifest.tsv", st->dir);
-  int rc = 0;
+  int rc = study_lock(st, "SWEEP.ini"); /* before the manifest is read or written */
+  if (rc) {
+    free(text);
+    return rc;
+  }
   FILE *f = fopen(path, "r");
   if (f) { /* a study is there: the same one, or refused */
     size_t n = strlen(text);
@@ -572,14 +679,23 @@ static int point_state(const study *st, int k, char *status, size_t size, int *r
   point_db(st, k, db, sizeof db);
   status[0] = '\0';
   *resumable = 0;
+  /* another sweep process runs it (from before its database exists, through the run's
+   * set-up), or a run's lock is held in DB.lock: being written, whatever its file says now
+   * (not opened: not classed failed, not renamed, its -wal and -shm not touched) */
+  if (lock_holder((off_t)k + 1)) return P_RUNNING;
   if (access(db, F_OK) != 0) return P_MISSING;
+  if (hd_merge_lock_held(db, -1)) return P_RUNNING;
   hd_error err;
   int64_t run = 0;
   if (hd_db_newest_run(db, &run, status, size, resumable, &err)) return P_FAILED;
   if (run == 0) return P_MISSING;
   if (!strcmp(status, "done") || !strcmp(status, "collapsed")) return P_DONE;
-  if (!strcmp(status, "running"))
-    return hd_merge_lock_held(db, run) ? P_RUNNING : P_INTERRUPTED; /* killed */
+  if (!strcmp(status, "running")) {
+    /* killed (its lock is not held): from its checkpoint, or (none: killed in its set-up) run again
+     * from its scene and seed by haff resume, as the same run, not a second one */
+    *resumable = 1;
+    return P_INTERRUPTED;
+  }
   if (!strcmp(status, "interrupted")) return P_INTERRUPTED;
   return P_FAILED;
 }
@@ -608,8 +724,12 @@ static void self_exe(char *buf, size_t size) {
 static pid_t start_point(const study *st, int k, double progress) {
   char status[32];
   int resumable;
+  if (!point_claim(k)) return 0; /* another sweep process runs it */
   int s = point_state(st, k, status, sizeof status, &resumable);
-  if (s == P_DONE || s == P_RUNNING) return 0;
+  if (s == P_DONE || s == P_RUNNING) {
+    point_release(k);
+    return 0;
+  }
   char db[PATH_MAX + 64], log[PATH_MAX + 64], exe[PATH_MAX], prog[32];
   point_db(st, k, db, sizeof db);
   point_log(st, k, log, sizeof log);
@@ -622,12 +742,18 @@ static pid_t start_point(const study *st, int k, double progress) {
       snprintf(aside, sizeof aside, "%s.failed-%d", db, j);
       if (access(aside, F_OK) != 0) break;
     }
-    if (rename(db, aside) != 0) return -1;
-    char side[PATH_MAX + 80];
-    snprintf(side, sizeof side, "%s-wal", db);
-    unlink(side);
-    snprintf(side, sizeof side, "%s-shm", db);
-    unlink(side);
+    if (rename(db, aside) != 0) {
+      point_release(k);
+      return -1;
+    }
+    /* its -wal and -shm go with it (renamed, never unlinked: they may hold its last rows) */
+    static const char *const sides[] = {"-wal", "-shm"};
+    for (int j = 0; j < 2; j++) {
+      char from[PATH_MAX + 80], to[PATH_MAX + 120];
+      snprintf(from, sizeof from, "%s%s", db, sides[j]);
+      snprintf(to, sizeof to, "%s%s", aside, sides[j]);
+      if (access(from, F_OK) == 0) rename(from, to);
+    }
   }
   const char *argv[16 + 2 * (SW_MAX_AXES + 64)];
   int a = 0;
@@ -660,6 +786,7 @@ static pid_t start_point(const study *st, int k, double progress) {
     _exit(127);
   }
   free(buf);
+  if (pid < 0) point_release(k);
   return pid;
 }
 
@@ -712,6 +839,7 @@ static int run_points(const study *st, const int *list, int n, int jobs, double 
       if (pid[j] == w) {
         pid[j] = 0;
         active--;
+        point_release(who[j]);
         /* judged by its database, not its exit status: a run that collapsed (exit 1) has
          * ended, and is a result of the study */
         char status[32];
@@ -1085,12 +1213,23 @@ int haff_sweep_main(int argc, char **argv) {
                       : merge_dir  ? merge_dir
                                    : task_dir;
     if ((rc = manifest_read(&st, dir))) return rc;
-    if (status_dir)
+    if (status_dir) {
+      lock_open(&st, 1); /* to see the points that other sweeps run (none: no lock file) */
       rc = study_status(&st);
-    else if (merge_dir)
-      rc = study_merge(&st, quiet);
-    else if (task_dir)
-      rc = run_task(&st, res.pos[0], so.chunk, progress, quiet);
+    } else if (merge_dir) {
+      rc = study_lock(&st, "--merge");
+      if (!rc) rc = study_merge(&st, quiet);
+    } else if (task_dir) {
+      /* a Slurm task: its points' locks only (the tasks of an array run side by side) */
+      if (lock_open(&st, 0)) {
+        fprintf(stderr, "haff sweep: %s/sweep.lock: %s\n", st.dir, strerror(errno));
+        rc = 1;
+      } else {
+        rc = run_task(&st, res.pos[0], so.chunk, progress, quiet);
+      }
+    } else {
+      rc = study_lock(&st, "--resume");
+    }
   } else {
     if (res.npos != 1) {
       fprintf(stderr, "haff sweep: expected one sweep file (haff sweep --help)\n");

@@ -19,8 +19,11 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <fcntl.h>
+
 #include "hd_db.h"
 #include "hd_merge.h"
+#include "hd_scene.h"
 
 #include "test_cli_util.h"
 
@@ -59,6 +62,53 @@ static pid_t start(const char *errfile, const char *const *args) {
     execv(haff, (char *const *)argv);
     _exit(98);
   }
+  return pid;
+}
+
+/* Leaves in database name (in dir) what a run of scene file scene (with the overrides sets)
+ * killed in its set-up leaves: its row 'running', no checkpoint, no lock held. */
+static void killed_in_setup(const char *scene, const char *const *sets, int nset,
+                            const char *name) {
+  char sp[400], dp[400];
+  snprintf(sp, sizeof sp, "%s/%s", dir, scene);
+  snprintf(dp, sizeof dp, "%s/%s", dir, name);
+  hd_scene sc;
+  hd_error err;
+  hd_error_clear(&err);
+  if (hd_scene_load(&sc, sp, sets, nset, &err)) fail_msg("%s", err.msg);
+  hd_db *db = NULL;
+  assert_int_equal(hd_db_open(&db, dp, &err), HD_OK);
+  int64_t run = 0;
+  assert_int_equal(hd_db_run_begin(db, sc.text, sc.seed, "test", &run, &err), HD_OK);
+  assert_int_equal(hd_db_close(db, &err), HD_OK);
+  hd_scene_free(&sc);
+  assert_int_equal(q1(name, "SELECT count(*) FROM runs WHERE status = 'running'"), 1);
+  assert_int_equal(q1(name, "SELECT count(*) FROM checkpoints"), 0);
+}
+
+/* Forks a process that holds byte at of lock file name (in dir) until killed; returns its pid
+ * once it holds it. */
+static pid_t hold_lock(const char *name, off_t at) {
+  int pipefd[2];
+  assert_int_equal(pipe(pipefd), 0);
+  fflush(NULL);
+  pid_t pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) {
+    char p[400];
+    snprintf(p, sizeof p, "%s/%s", dir, name);
+    int fd = open(p, O_RDWR | O_CREAT, 0644);
+    struct flock fl = {.l_type = F_WRLCK, .l_whence = SEEK_SET, .l_start = at, .l_len = 1};
+    if (fd < 0 || fcntl(fd, F_SETLK, &fl)) _exit(1);
+    char c = 'l';
+    if (write(pipefd[1], &c, 1) != 1) _exit(2);
+    pause();
+    _exit(0);
+  }
+  char c = 0;
+  assert_int_equal(read(pipefd[0], &c, 1), 1);
+  close(pipefd[0]);
+  close(pipefd[1]);
   return pid;
 }
 
@@ -174,6 +224,31 @@ static void resume_all(void **state) {
   char e[1024];
   read_file("err.txt", e, sizeof e);
   assert_non_null(strstr(e, "no run to resume"));
+}
+
+/* haff resume DB --all runs again a run killed in its set-up (left 'running' without a
+ * checkpoint), as plain haff resume does: it said "no run to resume" and exited 0. */
+static void resume_all_killed_in_setup(void **state) {
+  (void)state;
+  if (!haff) skip();
+  killed_in_setup("short.ini", NULL, 0, "ks7.db");
+  assert_int_equal(sh("%s resume ks7.db --all --quiet", haff), 0);
+  assert_int_equal(q1("ks7.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
+  assert_int_equal(q1("ks7.db", "SELECT count(*) FROM runs"), 1);
+  assert_int_equal(sh("%s run short.ini -o ks7ref.db --quiet", haff), 0);
+  assert_int_equal(q1("ks7.db", "SELECT events FROM runs"),
+                   q1("ks7ref.db", "SELECT events FROM runs"));
+  /* one that another process holds is left to it, and said so */
+  killed_in_setup("short.ini", NULL, 0, "ks7b.db");
+  pid_t holder = hold_lock("ks7b.db.lock", 1);
+  int rc = sh("%s resume ks7b.db --all", haff);
+  kill(holder, SIGKILL);
+  waitpid(holder, NULL, 0);
+  assert_int_equal(rc, 0);
+  char e[2048];
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "run 1 is being run by another process: left to it"));
+  assert_int_equal(q1("ks7b.db", "SELECT count(*) FROM runs WHERE status = 'running'"), 1);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -501,6 +576,111 @@ static void sweep_collapsed_point_is_done(void **state) {
   assert_int_equal(q1("c/study.db", "SELECT count(*) FROM runs WHERE status = 'collapsed'"), 2);
 }
 
+/* A point killed in its set-up (its row 'running', no checkpoint, nobody's lock) is run again
+ * as that same run by --resume: it was run as a second run, and the stale 'running' row was
+ * merged into study.db beside it. */
+static void sweep_point_killed_in_setup(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("ks.ini", "[sweep]\nscene = short.ini\nseeds = 3\n");
+  assert_int_equal(sh("%s sweep ks.ini --quiet", haff), 0);
+  long long events = q1("ks/points/p0000.db", "SELECT events FROM runs");
+  assert_true(events > 0);
+  assert_int_equal(sh("rm ks/points/p0000.db ks/study.db"), 0);
+  killed_in_setup("short.ini", (const char *const[]){"system.seed=3"}, 1, "ks/points/p0000.db");
+  assert_int_equal(sh("%s sweep --status ks > kss.txt", haff), 0);
+  char m[2048];
+  read_file("kss.txt", m, sizeof m);
+  assert_non_null(strstr(m, "\n0\tinterrupted\trunning\t"));
+  assert_int_equal(sh("%s sweep --resume ks --quiet", haff), 0);
+  assert_int_equal(q1("ks/points/p0000.db", "SELECT count(*) FROM runs"), 1);
+  assert_int_equal(q1("ks/points/p0000.db", "SELECT events FROM runs WHERE status = 'done'"),
+                   events);
+  assert_int_equal(q1("ks/study.db", "SELECT count(*) FROM runs"), 1);
+  assert_int_equal(q1("ks/study.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
+}
+
+/* One lock per study folder (DIR/sweep.lock): while a sweep works on a folder, a second sweep
+ * of the same file, a --resume and a --merge are refused (exit 1, naming the holder's pid);
+ * --status still reads it.  Two --resume started at once end with every run once in study.db. */
+static void sweep_lock_refuses_a_second(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("lk.ini", "[sweep]\nscene = long.ini\nseeds = 1 2\n");
+  pid_t pid = start("lk-err.txt",
+                    (const char *const[]){"sweep", "lk.ini", "--progress", "0", "--quiet", NULL});
+  assert_true(wait_positive("lk/points/p0000.db", "SELECT events FROM runs", pid) > 0);
+  char want[64], e[4096];
+  snprintf(want, sizeof want, "pid %ld on ", (long)pid);
+  static const char *const second[] = {"sweep lk.ini", "sweep --resume lk", "sweep --merge lk"};
+  for (int k = 0; k < 3; k++) {
+    int rc = sh("%s %s", haff, second[k]);
+    read_file("err.txt", e, sizeof e);
+    if (rc != 1 || !strstr(e, "another haff sweep works on this study") || !strstr(e, want))
+      fail_msg("haff %s: exit %d, '%s'", second[k], rc, e);
+  }
+  assert_int_equal(sh("%s sweep --status lk > lks.txt", haff), 0);
+  read_file("lks.txt", e, sizeof e);
+  assert_non_null(strstr(e, "\n0\trunning\t"));
+  kill(pid, SIGTERM);
+  int st;
+  waitpid(pid, &st, 0);
+  assert_true(WIFEXITED(st) && WEXITSTATUS(st) == 1);
+  /* two at once: one works, the other is refused or finds nothing to do */
+  pid_t a = start("lka.txt", (const char *const[]){"sweep", "--resume", "lk", "--jobs", "2",
+                                                   "--progress", "0", NULL});
+  pid_t b = start("lkb.txt", (const char *const[]){"sweep", "--resume", "lk", "--jobs", "2",
+                                                   "--progress", "0", NULL});
+  int sa, sb;
+  waitpid(a, &sa, 0);
+  waitpid(b, &sb, 0);
+  assert_true(WIFEXITED(sa) && WIFEXITED(sb));
+  int ea = WEXITSTATUS(sa), eb = WEXITSTATUS(sb);
+  assert_true((ea == 0 && (eb == 0 || eb == 1)) || (eb == 0 && ea == 1));
+  assert_int_equal(q1("lk/study.db", "SELECT count(*) FROM runs"), 2);
+  assert_int_equal(q1("lk/study.db", "SELECT count(DISTINCT seed) FROM runs WHERE status = "
+                                     "'done'"),
+                   2);
+  for (int k = 0; k < 2; k++) {
+    char db[64];
+    snprintf(db, sizeof db, "lk/points/p%04d.db", k);
+    assert_int_equal(q1(db, "SELECT count(*) FROM runs"), 1);
+  }
+}
+
+/* A point database that another process is writing (its DB.lock held) is running, whatever
+ * its file says: not classed failed, not renamed .failed-N, its -wal untouched (it was
+ * renamed and its -wal unlinked under the writer); once nobody holds it, a file that is not a
+ * database is kept aside and the point is run. */
+static void sweep_point_being_written_is_not_failed(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("gf.ini", "[sweep]\nscene = short.ini\n");
+  assert_int_equal(sh("%s sweep gf.ini --quiet", haff), 0);
+  assert_int_equal(sh("rm gf/study.db"), 0);
+  write_file("gf/points/p0000.db", "not yet a database, being written");
+  write_file("gf/points/p0000.db-wal", "its wal");
+  pid_t holder = hold_lock("gf/points/p0000.db.lock", 1);
+  int rc = sh("%s sweep --resume gf --quiet", haff);
+  int rs = sh("%s sweep --status gf > gfs.txt", haff);
+  kill(holder, SIGKILL);
+  waitpid(holder, NULL, 0);
+  assert_int_equal(rc, 1);
+  assert_int_equal(rs, 0);
+  char m[2048];
+  read_file("gfs.txt", m, sizeof m);
+  assert_non_null(strstr(m, "\n0\trunning\t"));
+  assert_false(exists("gf/points/p0000.db.failed-1"));
+  read_file("gf/points/p0000.db", m, sizeof m);
+  assert_string_equal(m, "not yet a database, being written");
+  read_file("gf/points/p0000.db-wal", m, sizeof m);
+  assert_string_equal(m, "its wal");
+  /* nobody holds it now: kept aside, then run */
+  assert_int_equal(sh("%s sweep --resume gf --quiet", haff), 0);
+  assert_true(exists("gf/points/p0000.db.failed-1"));
+  assert_int_equal(q1("gf/study.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
+}
+
 /* --slurm with a stand-in sbatch on PATH: the array script (one task per chunk of points, the
  * --time/--partition/--account given) and the merge job submitted afterok on the array. */
 static void sweep_slurm_scripts(void **state) {
@@ -546,6 +726,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(progress_in_a_batch_log),
       cmocka_unit_test(resume_all),
+      cmocka_unit_test(resume_all_killed_in_setup),
       cmocka_unit_test(merge_runs_and_refusals),
       cmocka_unit_test(merge_killed_leaves_out),
       cmocka_unit_test(old_schema_reads_and_upgrades),
@@ -554,6 +735,9 @@ int main(void) {
       cmocka_unit_test(sweep_bad_input),
       cmocka_unit_test(sweep_interrupted_then_resumed),
       cmocka_unit_test(sweep_collapsed_point_is_done),
+      cmocka_unit_test(sweep_point_killed_in_setup),
+      cmocka_unit_test(sweep_lock_refuses_a_second),
+      cmocka_unit_test(sweep_point_being_written_is_not_failed),
       cmocka_unit_test(sweep_slurm_scripts),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
