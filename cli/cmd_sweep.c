@@ -35,18 +35,22 @@
 #include "hd_scene.h"
 
 static const char sweep_usage[] =
-    "usage: haff sweep SWEEP.ini [-o DIR] [--jobs N] [--progress S] [--dry-run]\n"
+    "usage: haff sweep SWEEP.ini [-o DIR] [--jobs N] [--progress S] [--dry-run] [--drop-points]\n"
     "       haff sweep SWEEP.ini --slurm [-o DIR] [--chunk C] [--time T] [--partition P]\n"
-    "                  [--account A]\n"
+    "                  [--account A] [--sbatch 'OPTIONS'] [--dry-run] [--drop-points]\n"
     "       haff sweep --status DIR\n"
-    "       haff sweep --resume DIR [--jobs N | --slurm ...]\n"
-    "       haff sweep --merge DIR\n"
+    "       haff sweep --resume DIR [--jobs N | --slurm ...] [--drop-points]\n"
+    "       haff sweep --merge DIR [--drop-points]\n"
     "  A study: a base scene and axes of --set overrides and seeds (SWEEP.ini, below) give\n"
     "  points; each point is one run in its own database DIR/points/pNNNN.db (DIR: SWEEP's\n"
     "  name without .ini, in the current folder), listed in DIR/manifest.tsv.  Locally --jobs N\n"
     "  [1] points run at once, then every run is merged into DIR/study.db.  --slurm writes\n"
-    "  DIR/slurm/array-K.sh (a job array, C points per task [1]; --time, --partition and\n"
-    "  --account go to sbatch) and merge-K.sh (afterok on the array), and submits both.\n"
+    "  DIR/slurm/array-K.sh (a job array, C points per task [1]; --time, --partition,\n"
+    "  --account and the options of --sbatch go to every job as #SBATCH lines) and\n"
+    "  merge-K.sh (afterok on the array), and submits both (--dry-run: writes them, submits\n"
+    "  nothing).  --drop-points removes the points' databases once study.db is merged and\n"
+    "  verified.  One sweep at a time works on a folder (DIR/sweep.lock): a second is\n"
+    "  refused, naming the first.\n"
     "  --status lists each point: done, running, interrupted, failed or missing.  --resume\n"
     "  resumes the interrupted points from their checkpoints and reruns failed or missing\n"
     "  ones, locally or as a new array.  A finished study is not run again.\n"
@@ -405,6 +409,7 @@ typedef struct study {
   char scene[PATH_MAX]; /* the base scene, absolute */
   point *p;
   int n;
+  int dropped; /* the points' databases were removed after a verified merge (--drop-points) */
 } study;
 
 static void study_free(study *st) {
@@ -427,6 +432,17 @@ static void point_db(const study *st, int k, char *buf, size_t size) {
 
 static void point_log(const study *st, int k, char *buf, size_t size) {
   snprintf(buf, size, "%s/logs/p%0*d.log", st->dir, width(st->n), k);
+}
+
+/* DIR/points/DROPPED: written once --drop-points has removed the points' databases. */
+static void dropped_path(const study *st, char *buf, size_t size) {
+  snprintf(buf, size, "%s/points/DROPPED", st->dir);
+}
+
+static void study_see_dropped(study *st) {
+  char path[PATH_MAX + 32];
+  dropped_path(st, path, sizeof path);
+  st->dropped = access(path, F_OK) == 0;
 }
 
 /* The manifest text of a study (tab-separated, one line per point). */
@@ -498,6 +514,7 @@ static int manifest_read(study *st, const char *dir) {
     rc = 2;
   }
   if (rc) study_free(st);
+  if (!rc) study_see_dropped(st);
   return rc;
 }
 
@@ -630,6 +647,7 @@ static int study_create(study *st, const char *dir) {
     fprintf(stderr, "haff sweep: %s: %s\n", dir, strerror(errno));
     return 1;
   }
+  study_see_dropped(st);
   char *text = manifest_text(st);
   if (!text) return 1;
   char path[PATH_MAX + 32], sub[PATH_MAX + 32];
@@ -683,7 +701,11 @@ static int point_state(const study *st, int k, char *status, size_t size, int *r
    * set-up), or a run's lock is held in DB.lock: being written, whatever its file says now
    * (not opened: not classed failed, not renamed, its -wal and -shm not touched) */
   if (lock_holder((off_t)k + 1)) return P_RUNNING;
-  if (access(db, F_OK) != 0) return P_MISSING;
+  if (access(db, F_OK) != 0) {
+    if (!st->dropped) return P_MISSING;
+    snprintf(status, size, "dropped"); /* merged into study.db, then removed */
+    return P_DONE;
+  }
   if (hd_merge_lock_held(db, -1)) return P_RUNNING;
   hd_error err;
   int64_t run = 0;
@@ -874,7 +896,16 @@ static int unfinished(const study *st, int *list, int with_running) {
 }
 
 /* Merges every point into DIR/study.db (replaced).  0, 1 (a point not done) or 2. */
-static int study_merge(const study *st, int quiet) {
+static int study_merge(const study *st, int quiet, int64_t *merged) {
+  *merged = 0;
+  if (st->dropped) { /* the points are gone: study.db is the study */
+    if (!quiet)
+      fprintf(stderr,
+              "haff sweep: %s: the points were dropped after their merge: study.db is the "
+              "study, not merged again\n",
+              st->dir);
+    return 0;
+  }
   int *list = malloc((size_t)st->n * sizeof *list);
   if (!list) return 1;
   int m = unfinished(st, list, 1);
@@ -911,6 +942,53 @@ static int study_merge(const study *st, int quiet) {
     return hd_exit_code(rc);
   }
   if (!quiet) fprintf(stderr, "haff sweep: %lld runs merged into %s\n", (long long)runs, out);
+  *merged = runs;
+  return 0;
+}
+
+/* --drop-points: after a merge of merged runs into DIR/study.db, checks that study.db reads
+ * back with one run per point, the last of them ended (done or collapsed), then removes every
+ * point's database (with its -wal, -shm and .lock) and writes DIR/points/DROPPED so that the
+ * study stays done.  0, or 1 after one line (nothing removed). */
+static int drop_points(study *st, int64_t merged, int quiet) {
+  if (st->dropped) return 0;
+  char out[PATH_MAX + 32], status[32];
+  snprintf(out, sizeof out, "%s/study.db", st->dir);
+  int64_t last = 0;
+  int resumable = 0;
+  hd_error err;
+  hd_error_clear(&err);
+  if (merged != st->n || hd_db_newest_run(out, &last, status, sizeof status, &resumable, &err) ||
+      last != merged || (strcmp(status, "done") && strcmp(status, "collapsed"))) {
+    fprintf(stderr,
+            "haff sweep: %s: --drop-points: study.db does not read back as %d runs, one per "
+            "point (%lld merged, %lld read%s%s): the points are kept\n",
+            st->dir, st->n, (long long)merged, (long long)last, err.msg[0] ? ": " : "", err.msg);
+    return 1;
+  }
+  char mark[PATH_MAX + 32], text[256];
+  dropped_path(st, mark, sizeof mark);
+  snprintf(text, sizeof text,
+           "the %d point databases were removed after their merge into study.db (%lld runs)\n",
+           st->n, (long long)merged);
+  if (write_atomic(mark, text)) { /* first: a study never looks undone */
+    fprintf(stderr, "haff sweep: %s: cannot write: %s: the points are kept\n", mark,
+            strerror(errno));
+    return 1;
+  }
+  st->dropped = 1;
+  static const char *const ext[] = {"", "-wal", "-shm", ".lock"};
+  for (int k = 0; k < st->n; k++) {
+    char db[PATH_MAX + 64], f[PATH_MAX + 80];
+    point_db(st, k, db, sizeof db);
+    for (int j = 0; j < 4; j++) {
+      snprintf(f, sizeof f, "%s%s", db, ext[j]);
+      unlink(f);
+    }
+  }
+  if (!quiet)
+    fprintf(stderr, "haff sweep: %s: the %d point databases dropped (study.db verified)\n", st->dir,
+            st->n);
   return 0;
 }
 
@@ -941,9 +1019,100 @@ static int study_status(const study *st) {
 /* Slurm */
 
 typedef struct slurm_opts {
-  const char *time, *partition, *account;
-  int chunk;
+  const char *time, *partition, *account; /* --time, --partition, --account */
+  const char *sbatch;                     /* --sbatch 'OPTIONS': more sbatch options */
+  int chunk;                              /* --chunk */
+  int dry;                                /* --dry-run: the scripts written, not submitted */
+  int drop;                               /* --drop-points, given to the merge job */
 } slurm_opts;
+
+/* Whether s holds a control byte (no quoting keeps it on one #SBATCH or shell line). */
+static int has_control(const char *s) {
+  for (; *s; s++)
+    if ((unsigned char)*s < 0x20 || *s == 0x7f) return 1;
+  return 0;
+}
+
+/* Appends to buf (at *len, size) the word w as one argument of an #SBATCH line: as it is when
+ * it has only plain characters, else in double quotes with \ before " and \ (sbatch reads a
+ * script's #SBATCH lines so: quotes group, a backslash escapes, an unquoted # ends the line).
+ * pct: with every % doubled (a file name pattern: %% is a %). */
+static void sbatch_word(char *buf, size_t *len, size_t size, const char *w, int pct) {
+  int plain = *w && strspn(w, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
+                              "._/:=,+@-") == strlen(w);
+  if (*len + 1 >= size) return;
+  if (!plain) buf[(*len)++] = '"';
+  for (; *w && *len + 4 < size; w++) {
+    if (!plain && (*w == '"' || *w == '\\')) buf[(*len)++] = '\\';
+    if (pct && *w == '%') buf[(*len)++] = '%';
+    buf[(*len)++] = *w;
+  }
+  if (!plain && *len + 1 < size) buf[(*len)++] = '"';
+  buf[*len] = '\0';
+}
+
+/* Splits --sbatch's text into words (blanks separate; '...' and "..." group, as a shell and
+ * sbatch do) and appends them as one #SBATCH line to buf.  0, or 2 after one line. */
+static int sbatch_extra(const char *text, char *buf, size_t *len, size_t size) {
+  if (has_control(text)) {
+    fprintf(stderr, "haff sweep: --sbatch: a control character (newline, tab...): not an #SBATCH "
+                    "line\n");
+    return 2;
+  }
+  char word[1024];
+  int nw = 0;
+  const char *p = text;
+  *len += (size_t)snprintf(buf + *len, size - *len, "#SBATCH");
+  for (;;) {
+    while (*p == ' ') p++;
+    if (!*p) break;
+    size_t k = 0;
+    char q = 0;
+    for (; *p && (q || *p != ' '); p++) {
+      if (q && *p == q) {
+        q = 0;
+      } else if (!q && (*p == '\'' || *p == '"')) {
+        q = *p;
+      } else if (k + 1 < sizeof word) {
+        word[k++] = *p;
+      }
+    }
+    word[k] = '\0';
+    if (q) {
+      fprintf(stderr, "haff sweep: --sbatch '%s': an unclosed quote\n", text);
+      return 2;
+    }
+    if (nw == 0 && word[0] != '-') {
+      fprintf(stderr, "haff sweep: --sbatch '%s': sbatch options begin with '-'\n", text);
+      return 2;
+    }
+    if (!strcmp(word, "-a") || !strncmp(word, "--array", 7) || !strncmp(word, "--wrap", 6) ||
+        (word[0] == '-' && word[1] == 'a' && isdigit((unsigned char)word[2]))) {
+      fprintf(stderr, "haff sweep: --sbatch: '%s': the job array and its script are haff's\n",
+              word);
+      return 2;
+    }
+    *len += (size_t)snprintf(buf + *len, size - *len, " ");
+    sbatch_word(buf, len, size, word, 0);
+    nw++;
+  }
+  if (nw == 0) {
+    fprintf(stderr, "haff sweep: --sbatch: no options\n");
+    return 2;
+  }
+  *len += (size_t)snprintf(buf + *len, size - *len, "\n");
+  return 0;
+}
+
+/* The study folder dir (absolute) can go into #SBATCH --output and the scripts' comments: 0,
+ * or 2 after one line (a control byte, which no quoting keeps on its line). */
+static int slurm_dir_ok(const char *dir) {
+  if (!has_control(dir)) return 0;
+  fprintf(stderr,
+          "haff sweep: --slurm: the study folder's path holds a control character (a newline, "
+          "a tab...), which no #SBATCH line can quote: give a plain -o DIR\n");
+  return 2;
+}
 
 /* Runs cmd (a shell line) and reads the job id sbatch --parsable prints; 0 or -1. */
 static int submit(const char *cmd, char *id, size_t size) {
@@ -978,6 +1147,7 @@ static void shq(const char *s, char *buf, size_t size) {
 /* Writes and submits a job array over the points list[0..m) and a merge job after it. */
 static int slurm_submit(const study *st, const int *list, int m, const slurm_opts *so,
                         double progress, int quiet) {
+  if (slurm_dir_ok(st->dir)) return 2;
   char exe[PATH_MAX], qexe[PATH_MAX * 2], qdir[PATH_MAX * 2];
   self_exe(exe, sizeof exe);
   shq(exe, qexe, sizeof qexe);
@@ -998,13 +1168,24 @@ static int slurm_submit(const study *st, const int *list, int m, const slurm_opt
   free(t);
   int chunk = so->chunk > 0 ? so->chunk : 1;
   int tasks = (m + chunk - 1) / chunk;
-  char opt[1024] = "";
+  char opt[8192] = "";
   size_t ol = 0; /* the options checked free of blanks and quotes */
   if (so->time) ol += (size_t)snprintf(opt + ol, sizeof opt - ol, "#SBATCH --time=%s\n", so->time);
   if (so->partition)
     ol += (size_t)snprintf(opt + ol, sizeof opt - ol, "#SBATCH --partition=%s\n", so->partition);
   if (so->account)
     ol += (size_t)snprintf(opt + ol, sizeof opt - ol, "#SBATCH --account=%s\n", so->account);
+  if (so->sbatch && (rc = sbatch_extra(so->sbatch, opt, &ol, sizeof opt))) return rc;
+  /* #SBATCH --output=DIR/logs/...: quoted for sbatch, DIR's % doubled */
+  char out_arr[PATH_MAX * 2 + 64], out_mrg[PATH_MAX * 2 + 64], w[PATH_MAX + 64];
+  size_t la = 0, lm = 0;
+  snprintf(w, sizeof w, "--output=%s/logs/", st->dir);
+  sbatch_word(out_arr, &la, sizeof out_arr, w, 1);
+  sbatch_word(out_mrg, &lm, sizeof out_mrg, w, 1);
+  if (out_arr[la - 1] == '"') la--, lm--; /* the patterns inside the quotes */
+  snprintf(out_arr + la, sizeof out_arr - la, "slurm-%%A_%%a.out%s", out_arr[0] == '"' ? "\"" : "");
+  snprintf(out_mrg + lm, sizeof out_mrg - lm, "slurm-merge-%%j.out%s",
+           out_mrg[0] == '"' ? "\"" : "");
   char script[16 * PATH_MAX];
   char qtodo[PATH_MAX * 2];
   shq(todo, qtodo, sizeof qtodo);
@@ -1014,22 +1195,22 @@ static int slurm_submit(const study *st, const int *list, int m, const slurm_opt
            "#SBATCH --job-name=haff-sweep\n"
            "#SBATCH --array=0-%d\n"
            "#SBATCH --ntasks=1\n"
-           "#SBATCH --output=%s/logs/slurm-%%A_%%a.out\n"
+           "#SBATCH %s\n"
            "%s"
            "# srun: a job step, which `scancel --signal=TERM` and the time limit's SIGTERM reach\n"
            "# (haff checkpoints, marks the run interrupted; haff sweep --resume goes on)\n"
            "exec srun --ntasks=1 %s sweep --task %s %s --chunk %d --progress %g\n",
-           st->dir, sub, chunk, tasks - 1, st->dir, opt, qexe, qdir, qtodo, chunk, progress);
+           st->dir, sub, chunk, tasks - 1, out_arr, opt, qexe, qdir, qtodo, chunk, progress);
   if (!rc) rc = write_atomic(arr, script);
   snprintf(script, sizeof script,
            "#!/bin/sh\n"
            "# haff sweep: merges the points of %s into study.db once the array has ended well\n"
            "#SBATCH --job-name=haff-merge\n"
            "#SBATCH --ntasks=1\n"
-           "#SBATCH --output=%s/logs/slurm-merge-%%j.out\n"
+           "#SBATCH %s\n"
            "%s"
-           "exec %s sweep --merge %s\n",
-           st->dir, st->dir, opt, qexe, qdir);
+           "exec %s sweep --merge %s%s\n",
+           st->dir, out_mrg, opt, qexe, qdir, so->drop ? " --drop-points" : "");
   if (!rc) rc = write_atomic(mrg, script);
   if (rc) {
     fprintf(stderr, "haff sweep: %s/slurm: cannot write the job scripts: %s\n", st->dir,
@@ -1041,6 +1222,16 @@ static int slurm_submit(const study *st, const int *list, int m, const slurm_opt
   char cmd[3 * PATH_MAX], qarr[PATH_MAX * 2], qmrg[PATH_MAX * 2], job[64], mjob[64];
   shq(arr, qarr, sizeof qarr);
   shq(mrg, qmrg, sizeof qmrg);
+  if (so->dry) { /* written, not submitted: the scripts' paths on stdout */
+    printf("%s\t%s\n", arr, mrg);
+    if (!quiet)
+      fprintf(stderr,
+              "haff sweep: --dry-run: wrote %s (%d tasks, %d points) and %s; nothing "
+              "submitted (by hand: sbatch --parsable %s, then sbatch --dependency=afterok:JOB "
+              "%s)\n",
+              arr, tasks, m, mrg, qarr, qmrg);
+    return 0;
+  }
   snprintf(cmd, sizeof cmd, "sbatch --parsable %s", qarr);
   if (submit(cmd, job, sizeof job)) {
     fprintf(stderr, "haff sweep: sbatch %s failed (is Slurm there?)\n", arr);
@@ -1095,9 +1286,9 @@ static int run_task(const study *st, const char *todo, int chunk, double progres
 /* The options of haff sweep. */
 typedef struct sweep_args {
   const char *out, *status_dir, *resume_dir, *merge_dir, *task_dir; /* -o, --status ... --task */
-  slurm_opts so;               /* --time, --partition, --account, --chunk */
-  int jobs, slurm, dry, quiet; /* --jobs, --slurm, --dry-run, --quiet */
-  double progress;             /* --progress S [60] */
+  slurm_opts so;                     /* --time, --partition, --account, --sbatch, --chunk */
+  int jobs, slurm, dry, quiet, drop; /* --jobs, --slurm, --dry-run, --quiet, --drop-points */
+  double progress;                   /* --progress S [60] */
 } sweep_args;
 
 static const hd_optdef sweep_opts[] = {
@@ -1120,9 +1311,15 @@ static const hd_optdef sweep_opts[] = {
     HD_OPT_STR("time", 0, sweep_args, so.time, "T", "sbatch --time"),
     HD_OPT_STR("partition", 0, sweep_args, so.partition, "P", "sbatch --partition"),
     HD_OPT_STR("account", 0, sweep_args, so.account, "A", "sbatch --account"),
+    HD_OPT_STR("sbatch", 0, sweep_args, so.sbatch, "'OPTIONS'",
+               "more sbatch options for every job (an #SBATCH line of the scripts)"),
+    HD_OPT_FLAG("drop-points", 0, sweep_args, drop,
+                "removes the points' databases once study.db is merged and verified"),
     HD_OPT_DBL("progress", 0, sweep_args, progress, 0, 1e9, 0, "S",
                "a progress line of each run every S seconds [60] (0: none)"),
-    HD_OPT_FLAG("dry-run", 0, sweep_args, dry, "prints the manifest of the points, runs nothing"),
+    HD_OPT_FLAG("dry-run", 0, sweep_args, dry,
+                "prints the manifest, runs nothing; with --slurm: writes the study folder and "
+                "the job scripts, submits nothing"),
     HD_OPT_FLAG("quiet", 'q', sweep_args, quiet, "no progress, no closing lines"),
     {0}};
 
@@ -1134,6 +1331,7 @@ const hd_optspec haff_sweep_spec = {HD_OPT_SPEC("sweep", sweep_opts, 0, 0, 1, "o
 static int sweep_unfinished(study *st, int slurm, const slurm_opts *so, int jobs, double progress,
                             int quiet) {
   int rc = 0;
+  int64_t merged = 0;
   int *list = malloc((size_t)st->n * sizeof *list);
   int m = list ? unfinished(st, list, 0) : 0;
   char out_db[PATH_MAX + 32];
@@ -1145,7 +1343,8 @@ static int sweep_unfinished(study *st, int slurm, const slurm_opts *so, int jobs
       fprintf(stderr, "haff sweep: %s: every point is done and merged: nothing to do\n", st->dir);
   } else if (slurm) {
     if (m == 0) { /* done, not merged: a merge job alone would do; merge here */
-      rc = study_merge(st, quiet);
+      rc = so->dry ? 0 : study_merge(st, quiet, &merged);
+      if (!rc && so->drop && !so->dry) rc = drop_points(st, merged, quiet);
     } else {
       rc = slurm_submit(st, list, m, so, progress, quiet);
     }
@@ -1154,9 +1353,9 @@ static int sweep_unfinished(study *st, int slurm, const slurm_opts *so, int jobs
       fprintf(stderr, "haff sweep: %s: %d of %d points to run, %d at a time\n", st->dir, m, st->n,
               jobs);
     rc = run_points(st, list, m, jobs, progress, quiet);
-    if (!rc)
-      rc = study_merge(st, quiet);
-    else
+    if (!rc) rc = study_merge(st, quiet, &merged);
+    if (!rc && so->drop) rc = drop_points(st, merged, quiet);
+    if (rc == 1 && !merged)
       fprintf(stderr,
               "haff sweep: not every point is done: haff sweep --status %s, then "
               "--resume %s\n",
@@ -1181,21 +1380,31 @@ static int sweep_check(const sweep_args *a, int *modes) {
               given[k]);
       return 2;
     }
-  if (!a->slurm && (a->so.time || a->so.partition || a->so.account)) {
-    fprintf(stderr, "haff sweep: --time, --partition and --account go with --slurm\n");
+  if (!a->slurm && (a->so.time || a->so.partition || a->so.account || a->so.sbatch)) {
+    fprintf(stderr, "haff sweep: --time, --partition, --account and --sbatch go with --slurm\n");
+    return 2;
+  }
+  if (a->dry && (a->status_dir || a->merge_dir || a->task_dir || (a->resume_dir && !a->slurm))) {
+    fprintf(stderr, "haff sweep: --dry-run goes with a sweep file, or with --resume --slurm\n");
+    return 2;
+  }
+  if (a->drop && (a->status_dir || a->task_dir)) {
+    fprintf(stderr, "haff sweep: --drop-points goes with a sweep, --resume or --merge\n");
     return 2;
   }
   return 0;
 }
 
 int haff_sweep_main(int argc, char **argv) {
-  sweep_args a = {.so = {NULL, NULL, NULL, 1}, .jobs = 1, .progress = 60};
+  sweep_args a = {.so = {.chunk = 1}, .jobs = 1, .progress = 60};
   hd_optres res;
   int rc = hd_opt_parse(&haff_sweep_spec, argc, argv, &a, &res);
   if (rc) return rc < 0 ? 0 : rc;
   const char *out = a.out, *status_dir = a.status_dir, *resume_dir = a.resume_dir,
              *merge_dir = a.merge_dir, *task_dir = a.task_dir;
   slurm_opts so = a.so;
+  so.dry = a.dry;
+  so.drop = a.drop;
   int jobs = a.jobs, slurm = a.slurm, dry = a.dry, quiet = a.quiet;
   double progress = a.progress;
   int modes;
@@ -1217,8 +1426,10 @@ int haff_sweep_main(int argc, char **argv) {
       lock_open(&st, 1); /* to see the points that other sweeps run (none: no lock file) */
       rc = study_status(&st);
     } else if (merge_dir) {
+      int64_t merged = 0;
       rc = study_lock(&st, "--merge");
-      if (!rc) rc = study_merge(&st, quiet);
+      if (!rc) rc = study_merge(&st, quiet, &merged);
+      if (!rc && a.drop) rc = drop_points(&st, merged, quiet);
     } else if (task_dir) {
       /* a Slurm task: its points' locks only (the tasks of an array run side by side) */
       if (lock_open(&st, 0)) {
@@ -1241,7 +1452,7 @@ int haff_sweep_main(int argc, char **argv) {
     if (!rc) snprintf(st.scene, sizeof st.scene, "%s", sw.scene);
     sweep_free(&sw);
     if (rc) return rc;
-    if (dry) {
+    if (dry && !slurm) {
       char *t = manifest_text(&st);
       if (t) fputs(t, stdout);
       free(t);
@@ -1257,7 +1468,8 @@ int haff_sweep_main(int argc, char **argv) {
       char *dot = strrchr(dir, '.');
       if (dot && dot != dir) *dot = '\0';
     }
-    rc = study_create(&st, dir);
+    rc = slurm ? slurm_dir_ok(dir) : 0;
+    if (!rc) rc = study_create(&st, dir);
     if (!rc) resume_dir = dir; /* then as --resume: what is not done yet */
   }
   if (!rc && resume_dir) rc = sweep_unfinished(&st, slurm, &so, jobs, progress, quiet);

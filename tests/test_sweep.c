@@ -722,6 +722,88 @@ static void sweep_slurm_scripts(void **state) {
   assert_int_equal(sh("PATH=%s/fakebin:$PATH %s sweep s.ini --slurm --time 'a b'", dir, haff), 2);
 }
 
+/* --slurm --dry-run writes the study folder, the manifest and the job scripts and submits
+ * nothing; the folder's path is quoted in #SBATCH --output (a blank split it; a quote and a %
+ * are escaped) and a path with a newline (which injected a shell line into the script) is
+ * refused; --sbatch 'OPTIONS' reaches both scripts as one quoted #SBATCH line, and what would
+ * break the array is refused.  Each script passes bash -n. */
+static void sweep_slurm_dry_run_and_quoting(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("mkdir -p fakebin2 && printf '#!/bin/sh\\necho \"$@\" >> %s/sbatch2.txt\\n"
+                      "echo 7\\n' > fakebin2/sbatch && chmod +x fakebin2/sbatch",
+                      dir),
+                   0);
+  write_file("q.ini", "[sweep]\nscene = short.ini\nseeds = 1:3:1\n");
+  assert_int_equal(sh("PATH=%s/fakebin2:$PATH %s sweep q.ini --slurm --dry-run -o 'q dir %%x\"y' "
+                      "--time 5 --sbatch '--mem=1G --qos \"high prio\" --comment=a#b' > qp.txt",
+                      dir, haff),
+                   0);
+  assert_false(exists("sbatch2.txt")); /* nothing submitted */
+  assert_true(exists("q dir %x\"y/manifest.tsv"));
+  char m[8192], want[1024];
+  read_file("qp.txt", m, sizeof m);
+  snprintf(want, sizeof want,
+           "%s/q dir %%x\"y/slurm/array-1.sh\t%s/q dir %%x\"y/slurm/merge-1.sh\n", dir, dir);
+  assert_string_equal(m, want);
+  read_file("q dir %x\"y/slurm/array-1.sh", m, sizeof m);
+  snprintf(want, sizeof want, "\n#SBATCH \"--output=%s/q dir %%%%x\\\"y/logs/slurm-%%A_%%a.out\"\n",
+           dir);
+  if (!strstr(m, want)) fail_msg("no line '%s' in\n%s", want, m);
+  assert_non_null(strstr(m, "\n#SBATCH --time=5\n#SBATCH --mem=1G --qos \"high prio\" "
+                            "\"--comment=a#b\"\n"));
+  assert_non_null(strstr(m, "#SBATCH --array=0-2\n"));
+  read_file("q dir %x\"y/slurm/merge-1.sh", m, sizeof m);
+  assert_non_null(strstr(m, "\n#SBATCH --mem=1G --qos \"high prio\" \"--comment=a#b\"\n"));
+  assert_int_equal(sh("bash -n 'q dir %%x\"y/slurm/array-1.sh' && bash -n 'q dir "
+                      "%%x\"y/slurm/merge-1.sh'"),
+                   0);
+  /* a newline in the folder: refused before anything is made */
+  int rc = sh("%s sweep q.ini --slurm --dry-run -o \"$(printf 'nl\\nx')\"", haff);
+  read_file("err.txt", m, sizeof m);
+  assert_int_equal(rc, 2);
+  assert_non_null(strstr(m, "control character"));
+  assert_false(exists("nl\nx"));
+  /* --sbatch refusals */
+  static const char *const bad_opts[] = {"--array=1-3", "mem=1G", "--qos 'a", "-a 1", ""};
+  for (int k = 0; k < 5; k++) {
+    rc = sh("%s sweep q.ini --slurm --dry-run -o q2 --sbatch '%s'", haff, bad_opts[k]);
+    if (rc != 2) fail_msg("--sbatch '%s': exit %d", bad_opts[k], rc);
+  }
+  assert_int_equal(sh("%s sweep q.ini --sbatch --mem=1G", haff), 2); /* without --slurm */
+  assert_false(exists("sbatch2.txt"));
+}
+
+/* --drop-points: after a merge that reads back with one done run per point, the points'
+ * databases are removed and DIR/points/DROPPED says so; the study stays done (--status: done,
+ * dropped; a second sweep and --merge leave study.db as it is). */
+static void sweep_drop_points(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("dp.ini", "[sweep]\nscene = short.ini\nseeds = 1 2\n");
+  assert_int_equal(sh("%s sweep dp.ini --drop-points --quiet", haff), 0);
+  assert_int_equal(q1("dp/study.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 2);
+  assert_false(exists("dp/points/p0000.db"));
+  assert_false(exists("dp/points/p0001.db"));
+  assert_true(exists("dp/points/DROPPED"));
+  assert_int_equal(sh("%s sweep --status dp > dps.txt", haff), 0);
+  char m[2048];
+  read_file("dps.txt", m, sizeof m);
+  assert_non_null(strstr(m, "\n1\tdone\tdropped\t"));
+  struct stat a, b;
+  char p[400];
+  snprintf(p, sizeof p, "%s/dp/study.db", dir);
+  assert_int_equal(stat(p, &a), 0);
+  assert_int_equal(sh("%s sweep dp.ini", haff), 0);
+  assert_int_equal(sh("%s sweep --merge dp", haff), 0);
+  assert_int_equal(stat(p, &b), 0);
+  assert_true(a.st_mtim.tv_sec == b.st_mtim.tv_sec && a.st_mtim.tv_nsec == b.st_mtim.tv_nsec);
+  /* without it the points stay */
+  assert_int_equal(sh("%s sweep dp.ini -o dk --quiet", haff), 0);
+  assert_true(exists("dk/points/p0001.db"));
+  assert_int_equal(sh("%s sweep --status dk --drop-points", haff), 2);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(progress_in_a_batch_log),
@@ -739,6 +821,8 @@ int main(void) {
       cmocka_unit_test(sweep_lock_refuses_a_second),
       cmocka_unit_test(sweep_point_being_written_is_not_failed),
       cmocka_unit_test(sweep_slurm_scripts),
+      cmocka_unit_test(sweep_slurm_dry_run_and_quoting),
+      cmocka_unit_test(sweep_drop_points),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
