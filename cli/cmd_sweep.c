@@ -33,6 +33,7 @@
 #include "hd_merge.h"
 #include "hd_opt.h"
 #include "hd_scene.h"
+#include "hd_sweepfile.h"
 
 static const char sweep_usage[] =
     "usage: haff sweep SWEEP.ini [-o DIR] [--jobs N] [--progress S] [--dry-run] [--drop-points]\n"
@@ -64,58 +65,27 @@ static const char sweep_usage[] =
     "    point = disks.alpha=0.9 disks.count=500\n"
     "  Exit status: 0 all points done, 1 a point not done, 2 bad usage or input.\n";
 
-#define SW_MAX_AXES 32
-#define SW_MAX_VALUES 100000
+#define SW_MAX_AXES HD_SWEEP_MAX_AXES
 #define SW_MAX_POINTS 1000000
 
-/* One axis: its key, its values (strings as given to --set) and its line in the sweep file. */
-typedef struct axis {
-  char *key;
-  char **v;
-  int n;
-  long line;
-} axis;
-
-/* A parsed sweep file. */
+/* A sweep file (hd_sweepfile) and the path of its base scene. */
 typedef struct sweep {
   char path[PATH_MAX];  /* the sweep file as given */
   char scene[PATH_MAX]; /* the base scene, absolute */
-  long scene_line;
-  axis ax[SW_MAX_AXES];
-  int nax;
-  axis seeds;    /* key "system.seed", n = 0 when not given */
-  char **points; /* [points] lines: blank-separated overrides */
-  long *pt_line;
-  int npoints;
+  hd_sweepfile f;
 } sweep;
 
 /* A point: its number, the overrides (owned, NUL-separated in one string), its line. */
 typedef struct point {
   int id;
-  char *sets; /* "S.K=V S.K=V ..." */
+  char *sets; /* "S.K=V S.K=V ...", a value with blanks in double quotes */
 } point;
 
 static void sweep_free(sweep *s) {
-  for (int k = 0; k < s->nax; k++) {
-    for (int j = 0; j < s->ax[k].n; j++) free(s->ax[k].v[j]);
-    free(s->ax[k].v);
-    free(s->ax[k].key);
-  }
-  for (int j = 0; j < s->seeds.n; j++) free(s->seeds.v[j]);
-  free(s->seeds.v);
-  for (int k = 0; k < s->npoints; k++) free(s->points[k]);
-  free(s->points);
-  free(s->pt_line);
+  hd_sweepfile_free(&s->f);
 }
 
-static char *trim(char *p) {
-  while (isspace((unsigned char)*p)) p++;
-  char *e = p + strlen(p);
-  while (e > p && isspace((unsigned char)e[-1])) *--e = '\0';
-  return p;
-}
-
-/* Bad input in the sweep file: one line "FILE:LINE: [section] key: why"; returns 2. */
+/* Bad input in the sweep file: one line "FILE:LINE: [section] key: why" (escaped); returns 2. */
 static int bad(const sweep *s, long line, const char *sec, const char *key, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
 static int bad(const sweep *s, long line, const char *sec, const char *key, const char *fmt, ...) {
@@ -124,189 +94,47 @@ static int bad(const sweep *s, long line, const char *sec, const char *key, cons
   va_start(ap, fmt);
   vsnprintf(why, sizeof why, fmt, ap);
   va_end(ap);
-  fprintf(stderr, "haff sweep: %s:%ld: [%s]%s%s: %s\n", s->path, line, sec, key ? " " : "",
-          key ? key : "", why);
+  hd_error err;
+  hd_error_set(&err, HD_EINPUT, "%s:%ld: [%s]%s%s: %s", s->path, line, sec, key ? " " : "",
+               key ? key : "", why);
+  fprintf(stderr, "haff sweep: %s\n", err.msg);
   return 2;
 }
 
-/* Parses a LIST (values, or FROM:TO:STEP) into a->v; 0 or 2 (said). */
-static int parse_list(const sweep *s, axis *a, const char *sec, char *val) {
-  char *colon = strchr(val, ':');
-  if (colon) {
-    double v[3];
-    char *p = val, *end;
-    for (int k = 0; k < 3; k++) {
-      errno = 0;
-      v[k] = strtod(p, &end);
-      if (end == p || errno || !isfinite(v[k]) || (k < 2 ? *end != ':' : *trim(end) != '\0'))
-        return bad(s, a->line, sec, a->key, "'%s': not a range FROM:TO:STEP", val);
-      p = end + 1;
-    }
-    if (!(v[2] > 0) || v[1] < v[0])
-      return bad(s, a->line, sec, a->key, "'%s': a range needs FROM <= TO and STEP > 0", val);
-    double n = floor((v[1] - v[0]) / v[2] + 1e-9) + 1;
-    if (n > SW_MAX_VALUES)
-      return bad(s, a->line, sec, a->key, "'%s': more than %d values", val, SW_MAX_VALUES);
-    a->n = (int)n;
-    a->v = calloc((size_t)a->n, sizeof *a->v);
-    for (int k = 0; a->v && k < a->n; k++) {
-      char buf[64];
-      snprintf(buf, sizeof buf, "%.12g", v[0] + k * v[2]);
-      a->v[k] = strdup(buf);
-    }
-    return 0;
-  }
-  int cap = 0;
-  for (char *t = strtok(val, " \t"); t; t = strtok(NULL, " \t")) {
-    if (a->n == cap) {
-      cap = cap ? 2 * cap : 8;
-      char **p = realloc(a->v, (size_t)cap * sizeof *p);
-      if (!p) return bad(s, a->line, sec, a->key, "out of memory");
-      a->v = p;
-    }
-    a->v[a->n++] = strdup(t);
-    if (a->n > SW_MAX_VALUES)
-      return bad(s, a->line, sec, a->key, "more than %d values", SW_MAX_VALUES);
-  }
-  if (a->n == 0) return bad(s, a->line, sec, a->key, "no values");
-  for (int k = 0; k < a->n; k++)
-    for (int j = 0; j < k; j++)
-      if (!strcmp(a->v[k], a->v[j]))
-        return bad(s, a->line, sec, a->key, "value '%s' given twice", a->v[k]);
-  return 0;
-}
-
-/* Reads the sweep file (sections, key = value, ; and # comments). 0 or 2 (said). */
+/* Reads the sweep file (hd_sweepfile_read) and finds its base scene (relative to it).  0 or 2
+ * (said). */
 static int sweep_read(sweep *s, const char *path) {
   memset(s, 0, sizeof *s);
   snprintf(s->path, sizeof s->path, "%s", path);
-  FILE *f = fopen(path, "r");
-  if (!f) {
-    fprintf(stderr, "haff sweep: %s: %s\n", path, strerror(errno));
-    return 2;
+  hd_error err;
+  hd_error_clear(&err);
+  int rc = hd_sweepfile_read(&s->f, path, &err);
+  if (rc) {
+    fprintf(stderr, "haff sweep: %s\n", err.msg);
+    return rc == HD_EINPUT ? 2 : 1;
   }
-  char buf[65536], sec[64] = "";
-  long line = 0;
-  int rc = 0;
-  s->seeds.key = NULL;
-  while (!rc && fgets(buf, sizeof buf, f)) {
-    line++;
-    if (!strchr(buf, '\n') && !feof(f)) {
-      rc = bad(s, line, sec, NULL, "line too long (max %zu bytes)", sizeof buf - 2);
-      break;
-    }
-    char *p = trim(buf);
-    if (!*p || *p == ';' || *p == '#') continue;
-    if (*p == '[') {
-      char *close = strchr(p, ']');
-      if (!close || *trim(close + 1)) {
-        rc = bad(s, line, p, NULL, "not a [section] line");
-        break;
-      }
-      *close = '\0';
-      snprintf(sec, sizeof sec, "%s", trim(p + 1));
-      if (strcmp(sec, "sweep") && strcmp(sec, "axes") && strcmp(sec, "points"))
-        rc = bad(s, line, sec, NULL, "unknown section (sweep, axes, points)");
-      continue;
-    }
-    char *eq = strchr(p, '=');
-    if (!eq) {
-      rc = bad(s, line, sec, NULL, "'%s': not KEY = VALUE", p);
-      break;
-    }
-    *eq = '\0';
-    char *key = trim(p), *val = eq + 1;
-    char *c = val; /* an inline comment: ; or # after a blank */
-    for (; *c; c++)
-      if ((*c == ';' || *c == '#') && c > val && isspace((unsigned char)c[-1])) {
-        *c = '\0';
-        break;
-      }
-    val = trim(val);
-    if (!sec[0]) {
-      rc = bad(s, line, "", key, "a key before any [section]");
-    } else if (!strcmp(sec, "sweep")) {
-      if (!strcmp(key, "scene")) {
-        if (s->scene_line) {
-          rc = bad(s, line, sec, key, "duplicate key (first set at line %ld)", s->scene_line);
-          break;
-        }
-        s->scene_line = line;
-        char rel[PATH_MAX * 2];
-        if (val[0] == '/') {
-          snprintf(rel, sizeof rel, "%s", val);
-        } else {
-          const char *slash = strrchr(path, '/');
-          snprintf(rel, sizeof rel, "%.*s%s", slash ? (int)(slash - path + 1) : 0, path, val);
-        }
-        if (!val[0] || !realpath(rel, s->scene))
-          rc = bad(s, line, sec, key, "'%s': %s", val, val[0] ? strerror(errno) : "no file");
-      } else if (!strcmp(key, "seeds")) {
-        if (s->seeds.line) {
-          rc = bad(s, line, sec, key, "duplicate key (first set at line %ld)", s->seeds.line);
-          break;
-        }
-        s->seeds.line = line;
-        s->seeds.key = "seeds";
-        rc = parse_list(s, &s->seeds, sec, val);
-        for (int k = 0; !rc && k < s->seeds.n; k++) {
-          const char *v = s->seeds.v[k];
-          if (!*v || strspn(v, "0123456789") != strlen(v))
-            rc = bad(s, line, sec, key, "'%s': not a non-negative integer seed", v);
-        }
-      } else {
-        rc = bad(s, line, sec, key, "unknown key (scene, seeds)");
-      }
-    } else if (!strcmp(sec, "axes")) {
-      if (s->nax == SW_MAX_AXES) {
-        rc = bad(s, line, sec, key, "more than %d axes", SW_MAX_AXES);
-        break;
-      }
-      if (!strchr(key, '.') || strchr(key, ' ')) {
-        rc = bad(s, line, sec, key, "an axis is SECTION.KEY of the scene");
-        break;
-      }
-      for (int k = 0; k < s->nax; k++)
-        if (!strcmp(s->ax[k].key, key))
-          rc = bad(s, line, sec, key, "duplicate axis (first at line %ld)", s->ax[k].line);
-      if (!rc && !strcmp(key, "system.seed"))
-        rc = bad(s, line, sec, key, "seeds are [sweep] seeds");
-      if (rc) break;
-      axis *a = &s->ax[s->nax++];
-      a->key = strdup(key);
-      a->line = line;
-      rc = parse_list(s, a, sec, val);
-    } else { /* points */
-      if (strcmp(key, "point")) {
-        rc = bad(s, line, sec, key, "unknown key (point)");
-        break;
-      }
-      char **p2 = realloc(s->points, (size_t)(s->npoints + 1) * sizeof *p2);
-      long *l2 = realloc(s->pt_line, (size_t)(s->npoints + 1) * sizeof *l2);
-      if (p2) s->points = p2;
-      if (l2) s->pt_line = l2;
-      if (!p2 || !l2) {
-        rc = bad(s, line, sec, key, "out of memory");
-        break;
-      }
-      s->points[s->npoints] = strdup(val);
-      s->pt_line[s->npoints++] = line;
-      if (!val[0]) rc = bad(s, line, sec, key, "no overrides");
-    }
+  const char *val = s->f.scene;
+  char rel[PATH_MAX * 2];
+  if (val[0] == '/') {
+    snprintf(rel, sizeof rel, "%s", val);
+  } else {
+    const char *slash = strrchr(path, '/');
+    snprintf(rel, sizeof rel, "%.*s%s", slash ? (int)(slash - path + 1) : 0, path, val);
   }
-  fclose(f);
-  if (!rc && !s->scene_line) rc = bad(s, line, "sweep", "scene", "missing: the base scene");
-  if (!rc && s->nax && s->npoints)
-    rc = bad(s, s->pt_line[0], "points", "point", "a sweep has [axes] or [points], not both");
-  return rc;
+  struct stat sb;
+  if (!realpath(rel, s->scene))
+    return bad(s, s->f.scene_line, "sweep", "scene", "'%s': %s", val, strerror(errno));
+  if (stat(s->scene, &sb) == 0 && S_ISDIR(sb.st_mode))
+    return bad(s, s->f.scene_line, "sweep", "scene", "'%s': a directory, not a scene file", val);
+  return 0;
 }
 
-/* Splits "S.K=V S.K=V" into the array sets (pointers into a copy *buf); returns the count. */
+/* Splits "S.K=V S.K=\"V W\"" into the array sets (pointers into a copy *buf, quotes removed);
+ * returns the count (0 when it cannot: an unclosed quote, which the sweep file's reader
+ * refused, or out of memory). */
 static int split_sets(const char *text, char **buf, const char **sets, int max) {
-  *buf = strdup(text);
-  int n = 0;
-  for (char *t = strtok(*buf, " \t"); t && n < max; t = strtok(NULL, " \t")) sets[n++] = t;
-  return n;
+  int n = hd_sweep_split(text, buf, sets, max);
+  return n < 0 ? 0 : n;
 }
 
 /* Checks that the base scene with the overrides of text loads; else says where (line). */
@@ -336,15 +164,15 @@ static int make_points(const sweep *s, point **out, int *np) {
   *out = NULL;
   *np = 0;
   /* each axis value alone first: the line of the value at fault */
-  for (int k = 0; k < s->nax; k++)
-    for (int j = 0; j < s->ax[k].n; j++) {
+  for (int k = 0; k < s->f.nax; k++)
+    for (int j = 0; j < s->f.ax[k].n; j++) {
       char one[4096];
-      snprintf(one, sizeof one, "%s=%s", s->ax[k].key, s->ax[k].v[j]);
-      if (check_sets(s, one, s->ax[k].line, "axes", s->ax[k].key)) return 2;
+      hd_sweep_format_set(one, sizeof one, s->f.ax[k].key, s->f.ax[k].v[j]);
+      if (check_sets(s, one, s->f.ax[k].line, "axes", s->f.ax[k].key)) return 2;
     }
-  double total = s->npoints ? s->npoints : 1;
-  for (int k = 0; k < s->nax; k++) total *= s->ax[k].n;
-  int nseed = s->seeds.n ? s->seeds.n : 1;
+  double total = s->f.npoints ? s->f.npoints : 1;
+  for (int k = 0; k < s->f.nax; k++) total *= s->f.ax[k].n;
+  int nseed = s->f.seeds.n ? s->f.seeds.n : 1;
   total *= nseed;
   if (total > SW_MAX_POINTS) {
     fprintf(stderr, "haff sweep: %s: %.0f points, more than %d\n", s->path, total, SW_MAX_POINTS);
@@ -357,15 +185,18 @@ static int make_points(const sweep *s, point **out, int *np) {
   for (int b = 0; b < base; b++) {
     char text[8192] = "";
     size_t len = 0;
-    if (s->npoints) {
-      len = (size_t)snprintf(text, sizeof text, "%s", s->points[b]);
+    if (s->f.npoints) {
+      len = (size_t)snprintf(text, sizeof text, "%s", s->f.points[b]);
     } else {
       int rem = b;
       int idx[SW_MAX_AXES];
-      for (int k = s->nax - 1; k >= 0; k--) idx[k] = rem % s->ax[k].n, rem /= s->ax[k].n;
-      for (int k = 0; k < s->nax && len < sizeof text; k++)
-        len += (size_t)snprintf(text + len, sizeof text - len, "%s%s=%s", k ? " " : "",
-                                s->ax[k].key, s->ax[k].v[idx[k]]);
+      for (int k = s->f.nax - 1; k >= 0; k--) idx[k] = rem % s->f.ax[k].n, rem /= s->f.ax[k].n;
+      for (int k = 0; k < s->f.nax && len < sizeof text; k++) {
+        if (k) len += (size_t)snprintf(text + len, sizeof text - len, " ");
+        if (len < sizeof text)
+          len += (size_t)hd_sweep_format_set(text + len, sizeof text - len, s->f.ax[k].key,
+                                             s->f.ax[k].v[idx[k]]);
+      }
     }
     if (len >= sizeof text - 64) {
       fprintf(stderr, "haff sweep: %s: a point's overrides are too long\n", s->path);
@@ -374,22 +205,22 @@ static int make_points(const sweep *s, point **out, int *np) {
     }
     for (int q = 0; q < nseed; q++) {
       char full[8300];
-      if (s->seeds.n)
-        snprintf(full, sizeof full, "%s%ssystem.seed=%s", text, len ? " " : "", s->seeds.v[q]);
+      if (s->f.seeds.n)
+        snprintf(full, sizeof full, "%s%ssystem.seed=%s", text, len ? " " : "", s->f.seeds.v[q]);
       else
         snprintf(full, sizeof full, "%s", text);
       p[b * nseed + q].id = b * nseed + q;
       p[b * nseed + q].sets = strdup(full);
     }
     /* the whole point loads (a combination can fail where each value alone does not) */
-    long line = s->npoints ? s->pt_line[b] : s->ax[s->nax ? s->nax - 1 : 0].line;
-    if (check_sets(s, p[b * nseed].sets, s->npoints || s->nax ? line : s->scene_line,
-                   s->npoints ? "points"
-                   : s->nax   ? "axes"
-                              : "sweep",
-                   s->npoints ? "point"
-                   : s->nax   ? s->ax[s->nax - 1].key
-                              : "scene")) {
+    long line = s->f.npoints ? s->f.pt_line[b] : s->f.ax[s->f.nax ? s->f.nax - 1 : 0].line;
+    if (check_sets(s, p[b * nseed].sets, s->f.npoints || s->f.nax ? line : s->f.scene_line,
+                   s->f.npoints ? "points"
+                   : s->f.nax   ? "axes"
+                                : "sweep",
+                   s->f.npoints ? "point"
+                   : s->f.nax   ? s->f.ax[s->f.nax - 1].key
+                                : "scene")) {
       for (int k = 0; k < n; k++) free(p[k].sets);
       free(p);
       return 2;
@@ -1448,6 +1279,10 @@ int haff_sweep_main(int argc, char **argv) {
     }
     sweep sw;
     rc = sweep_read(&sw, res.pos[0]);
+    if (rc) {
+      sweep_free(&sw);
+      return rc;
+    }
     if (!rc) rc = make_points(&sw, &st.p, &st.n);
     if (!rc) snprintf(st.scene, sizeof st.scene, "%s", sw.scene);
     sweep_free(&sw);
