@@ -42,7 +42,7 @@ static const char sweep_usage[] =
     "       haff sweep --status DIR\n"
     "       haff sweep --resume DIR [--jobs N | --slurm ...] [--drop-points]\n"
     "       haff sweep --merge DIR [--drop-points]\n"
-    "  A study: a base scene and axes of --set overrides and seeds (SWEEP.ini, below) give\n"
+    "  A study: a base scene and axes of overrides (SECTION.KEY=VALUE) and seeds (SWEEP.ini) give\n"
     "  points; each point is one run in its own database DIR/points/pNNNN.db (DIR: SWEEP's\n"
     "  name without .ini, in the current folder), listed in DIR/manifest.tsv.  Locally --jobs N\n"
     "  [1] points run at once, then every run is merged into DIR/study.db.  --slurm writes\n"

@@ -892,6 +892,27 @@ static void sweep_values_with_blanks(void **state) {
   assert_non_null(strstr(m, "vq.ini:4: [points] point: an unclosed quote"));
 }
 
+/* The bash completion of `haff sweep --` (which offers every --option its help names) offers
+ * --sbatch and --drop-points, and not --set, which sweep refuses (its help named "--set
+ * overrides"). */
+static void sweep_completion_offers_no_set(void **state) {
+  (void)state;
+  if (!haff) skip();
+  char comp[4200];
+  if (!realpath("cli/haff-completion.bash", comp)) skip(); /* not run from the source tree */
+  assert_int_equal(sh("bash -c 'source %s; COMP_WORDS=(%s sweep --); COMP_CWORD=2; _haff; "
+                      "printf \"%%s\\n\" \"${COMPREPLY[@]}\"' > comp.txt",
+                      comp, haff),
+                   0);
+  char m[4096];
+  m[0] = '\n';
+  read_file("comp.txt", m + 1, sizeof m - 1);
+  assert_non_null(strstr(m, "\n--sbatch\n"));
+  assert_non_null(strstr(m, "\n--drop-points\n"));
+  assert_non_null(strstr(m, "\n--dry-run\n"));
+  assert_null(strstr(m, "\n--set\n"));
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(progress_in_a_batch_log),
@@ -913,6 +934,7 @@ int main(void) {
       cmocka_unit_test(sweep_drop_points),
       cmocka_unit_test(sweep_file_messages),
       cmocka_unit_test(sweep_values_with_blanks),
+      cmocka_unit_test(sweep_completion_offers_no_set),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

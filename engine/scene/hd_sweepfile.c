@@ -26,6 +26,7 @@ void hd_sweepfile_free(hd_sweepfile *s) {
   }
   for (int j = 0; j < s->seeds.n; j++) free(s->seeds.v[j]);
   free(s->seeds.v);
+  free(s->seeds.key);
   for (int k = 0; k < s->npoints; k++) free(s->points[k]);
   free(s->points);
   free(s->pt_line);
@@ -307,11 +308,9 @@ static int one_line(hd_sweepfile *s, char *buf, long line, char *sec, size_t sec
   if (!copy) return bad(err, name, line, sec, key, "out of memory");
   s->points[s->npoints] = copy;
   s->pt_line[s->npoints++] = line;
-  char *wb = NULL;
-  const char *w[1];
-  int n = hd_sweep_split(val, &wb, w, 1);
-  free(wb);
-  if (n < 0) return bad(err, name, line, sec, key, "an unclosed quote");
+  int quotes = 0; /* hd_sweep_split's quotes toggle: balanced when even */
+  for (const char *c = val; *c; c++) quotes += *c == '"';
+  if (quotes % 2) return bad(err, name, line, sec, key, "an unclosed quote");
   return HD_OK;
 }
 
