@@ -913,6 +913,50 @@ static void sweep_completion_offers_no_set(void **state) {
   assert_null(strstr(m, "\n--set\n"));
 }
 
+/* ------------------------------------------------------------------------------------------ */
+/* the sweep file parser below the CLI: the fuzz target on its corpus and on edge inputs */
+
+#include <dirent.h>
+
+#include "fuzz/fuzz_sweep.c"
+
+/* Every seed of tests/fuzz/corpus/sweep/ and some edge inputs pass the fuzz target's checks
+ * (an abort would end this program), and what each seed should give it gives. */
+static void fuzz_sweep_corpus(void **state) {
+  (void)state;
+  DIR *d = opendir("tests/fuzz/corpus/sweep");
+  if (!d) skip(); /* not run from the source tree */
+  int n = 0;
+  for (struct dirent *e; (e = readdir(d));) {
+    if (e->d_name[0] == '.') continue;
+    char p[600];
+    snprintf(p, sizeof p, "tests/fuzz/corpus/sweep/%s", e->d_name);
+    FILE *f = fopen(p, "rb");
+    assert_non_null(f);
+    static char buf[1 << 16];
+    size_t len = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    LLVMFuzzerTestOneInput((const uint8_t *)buf, len);
+    hd_sweepfile s;
+    hd_error err;
+    int rc = hd_sweepfile_parse(&s, buf, len, p, &err);
+    int want = strcmp(e->d_name, "nul.ini") && strcmp(e->d_name, "bad.ini") ? HD_OK : HD_EINPUT;
+    if (rc != want) fail_msg("%s: %d (%s), wanted %d", p, rc, err.msg, want);
+    if (!rc) hd_sweepfile_free(&s);
+    n++;
+  }
+  closedir(d);
+  assert_true(n >= 5);
+  static const char *const edge[] = {"",
+                                     "\xEF\xBB\xBF",
+                                     "[sweep]\nscene=\"",
+                                     "[points]\npoint=\"\"",
+                                     "[sweep]\nscene = a\n[axes]\na.b = 1:1e300:1e-300\n",
+                                     "[sweep]\nscene = a\nseeds = 0:18446744073709551615:1\n"};
+  for (size_t k = 0; k < sizeof edge / sizeof edge[0]; k++)
+    LLVMFuzzerTestOneInput((const uint8_t *)edge[k], strlen(edge[k]));
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(progress_in_a_batch_log),
@@ -935,6 +979,7 @@ int main(void) {
       cmocka_unit_test(sweep_file_messages),
       cmocka_unit_test(sweep_values_with_blanks),
       cmocka_unit_test(sweep_completion_offers_no_set),
+      cmocka_unit_test(fuzz_sweep_corpus),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
