@@ -416,9 +416,11 @@ static int study_lock(const study *st, const char *what) {
     who[strcspn(who, "\n")] = '\0';
     for (char *c = who; *c; c++)
       if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
-    long pid = lock_holder(0);
+    long pid = lock_holder(0), said = 0;
     char holder[320];
-    if (who[0])
+    /* the text names the holder once it has written it: else (a moment after it took the
+     * lock, or another host's pid) the pid the kernel reports */
+    if (who[0] && sscanf(who, "pid %ld", &said) == 1 && (pid <= 0 || said == pid))
       snprintf(holder, sizeof holder, "%s", who);
     else
       snprintf(holder, sizeof holder, "pid %ld", pid);
@@ -472,8 +474,9 @@ static int write_atomic(const char *path, const char *text) {
   return 0;
 }
 
-/* Creates the study folder of st (or checks that the one there is this study). 0, 1 or 2. */
-static int study_create(study *st, const char *dir) {
+/* Creates the study folder of st (or checks that the one there is this study), under the
+ * study lock taken for sweep_file (named to a second sweep).  0, 1 or 2. */
+static int study_create(study *st, const char *dir, const char *sweep_file) {
   if (mkdir_p(dir) || !realpath(dir, st->dir)) {
     fprintf(stderr, "haff sweep: %s: %s\n", dir, strerror(errno));
     return 1;
@@ -483,7 +486,7 @@ static int study_create(study *st, const char *dir) {
   if (!text) return 1;
   char path[PATH_MAX + 32], sub[PATH_MAX + 32];
   snprintf(path, sizeof path, "%s/manifest.tsv", st->dir);
-  int rc = study_lock(st, "SWEEP.ini"); /* before the manifest is read or written */
+  int rc = study_lock(st, sweep_file); /* before the manifest is read or written */
   if (rc) {
     free(text);
     return rc;
@@ -1304,7 +1307,7 @@ int haff_sweep_main(int argc, char **argv) {
       if (dot && dot != dir) *dot = '\0';
     }
     rc = slurm ? slurm_dir_ok(dir) : 0;
-    if (!rc) rc = study_create(&st, dir);
+    if (!rc) rc = study_create(&st, dir, res.pos[0]);
     if (!rc) resume_dir = dir; /* then as --resume: what is not done yet */
   }
   if (!rc && resume_dir) rc = sweep_unfinished(&st, slurm, &so, jobs, progress, quiet);
