@@ -11,6 +11,7 @@
 
 #include "haff.h"
 #include "hd_db.h"
+#include "hd_merge.h"
 #include "hd_opt.h"
 #include "hd_run.h"
 #include "hd_scene.h"
@@ -343,6 +344,12 @@ int haff_resume_main(int argc, char **argv) {
   if (n == 0 && !quiet) fprintf(stderr, "haff resume: %s: no run to resume\n", db);
   int worst = 0;
   for (size_t k = 0; k < n; k++) {
+    if (hd_merge_lock_held(db, ids[k])) { /* a live run ('running', its lock held) */
+      if (!quiet)
+        fprintf(stderr, "haff resume: %s: run %lld is being run by another process: left to it\n",
+                db, (long long)ids[k]);
+      continue;
+    }
     int st = resume_one(db, ids[k], quiet, every);
     if (hd_exit_code(st) > worst) worst = hd_exit_code(st);
     if (st == HD_EINTR) break; /* a signal stops the series, not only this run */

@@ -33,20 +33,25 @@
 #include "hd_merge.h"
 #include "hd_opt.h"
 #include "hd_scene.h"
+#include "hd_sweepfile.h"
 
 static const char sweep_usage[] =
-    "usage: haff sweep SWEEP.ini [-o DIR] [--jobs N] [--progress S] [--dry-run]\n"
+    "usage: haff sweep SWEEP.ini [-o DIR] [--jobs N] [--progress S] [--dry-run] [--drop-points]\n"
     "       haff sweep SWEEP.ini --slurm [-o DIR] [--chunk C] [--time T] [--partition P]\n"
-    "                  [--account A]\n"
+    "                  [--account A] [--sbatch 'OPTIONS'] [--dry-run] [--drop-points]\n"
     "       haff sweep --status DIR\n"
-    "       haff sweep --resume DIR [--jobs N | --slurm ...]\n"
-    "       haff sweep --merge DIR\n"
-    "  A study: a base scene and axes of --set overrides and seeds (SWEEP.ini, below) give\n"
+    "       haff sweep --resume DIR [--jobs N | --slurm ...] [--drop-points]\n"
+    "       haff sweep --merge DIR [--drop-points]\n"
+    "  A study: a base scene and axes of overrides (SECTION.KEY=VALUE) and seeds (SWEEP.ini) give\n"
     "  points; each point is one run in its own database DIR/points/pNNNN.db (DIR: SWEEP's\n"
     "  name without .ini, in the current folder), listed in DIR/manifest.tsv.  Locally --jobs N\n"
     "  [1] points run at once, then every run is merged into DIR/study.db.  --slurm writes\n"
-    "  DIR/slurm/array-K.sh (a job array, C points per task [1]; --time, --partition and\n"
-    "  --account go to sbatch) and merge-K.sh (afterok on the array), and submits both.\n"
+    "  DIR/slurm/array-K.sh (a job array, C points per task [1]; --time, --partition,\n"
+    "  --account and the options of --sbatch go to every job as #SBATCH lines) and\n"
+    "  merge-K.sh (afterok on the array), and submits both (--dry-run: writes them, submits\n"
+    "  nothing).  --drop-points removes the points' databases once study.db is merged and\n"
+    "  verified.  One sweep at a time works on a folder (DIR/sweep.lock): a second is\n"
+    "  refused, naming the first.\n"
     "  --status lists each point: done, running, interrupted, failed or missing.  --resume\n"
     "  resumes the interrupted points from their checkpoints and reruns failed or missing\n"
     "  ones, locally or as a new array.  A finished study is not run again.\n"
@@ -60,58 +65,27 @@ static const char sweep_usage[] =
     "    point = disks.alpha=0.9 disks.count=500\n"
     "  Exit status: 0 all points done, 1 a point not done, 2 bad usage or input.\n";
 
-#define SW_MAX_AXES 32
-#define SW_MAX_VALUES 100000
+#define SW_MAX_AXES HD_SWEEP_MAX_AXES
 #define SW_MAX_POINTS 1000000
 
-/* One axis: its key, its values (strings as given to --set) and its line in the sweep file. */
-typedef struct axis {
-  char *key;
-  char **v;
-  int n;
-  long line;
-} axis;
-
-/* A parsed sweep file. */
+/* A sweep file (hd_sweepfile) and the path of its base scene. */
 typedef struct sweep {
   char path[PATH_MAX];  /* the sweep file as given */
   char scene[PATH_MAX]; /* the base scene, absolute */
-  long scene_line;
-  axis ax[SW_MAX_AXES];
-  int nax;
-  axis seeds;    /* key "system.seed", n = 0 when not given */
-  char **points; /* [points] lines: blank-separated overrides */
-  long *pt_line;
-  int npoints;
+  hd_sweepfile f;
 } sweep;
 
 /* A point: its number, the overrides (owned, NUL-separated in one string), its line. */
 typedef struct point {
   int id;
-  char *sets; /* "S.K=V S.K=V ..." */
+  char *sets; /* "S.K=V S.K=V ...", a value with blanks in double quotes */
 } point;
 
 static void sweep_free(sweep *s) {
-  for (int k = 0; k < s->nax; k++) {
-    for (int j = 0; j < s->ax[k].n; j++) free(s->ax[k].v[j]);
-    free(s->ax[k].v);
-    free(s->ax[k].key);
-  }
-  for (int j = 0; j < s->seeds.n; j++) free(s->seeds.v[j]);
-  free(s->seeds.v);
-  for (int k = 0; k < s->npoints; k++) free(s->points[k]);
-  free(s->points);
-  free(s->pt_line);
+  hd_sweepfile_free(&s->f);
 }
 
-static char *trim(char *p) {
-  while (isspace((unsigned char)*p)) p++;
-  char *e = p + strlen(p);
-  while (e > p && isspace((unsigned char)e[-1])) *--e = '\0';
-  return p;
-}
-
-/* Bad input in the sweep file: one line "FILE:LINE: [section] key: why"; returns 2. */
+/* Bad input in the sweep file: one line "FILE:LINE: [section] key: why" (escaped); returns 2. */
 static int bad(const sweep *s, long line, const char *sec, const char *key, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
 static int bad(const sweep *s, long line, const char *sec, const char *key, const char *fmt, ...) {
@@ -120,189 +94,47 @@ static int bad(const sweep *s, long line, const char *sec, const char *key, cons
   va_start(ap, fmt);
   vsnprintf(why, sizeof why, fmt, ap);
   va_end(ap);
-  fprintf(stderr, "haff sweep: %s:%ld: [%s]%s%s: %s\n", s->path, line, sec, key ? " " : "",
-          key ? key : "", why);
+  hd_error err;
+  hd_error_set(&err, HD_EINPUT, "%s:%ld: [%s]%s%s: %s", s->path, line, sec, key ? " " : "",
+               key ? key : "", why);
+  fprintf(stderr, "haff sweep: %s\n", err.msg);
   return 2;
 }
 
-/* Parses a LIST (values, or FROM:TO:STEP) into a->v; 0 or 2 (said). */
-static int parse_list(const sweep *s, axis *a, const char *sec, char *val) {
-  char *colon = strchr(val, ':');
-  if (colon) {
-    double v[3];
-    char *p = val, *end;
-    for (int k = 0; k < 3; k++) {
-      errno = 0;
-      v[k] = strtod(p, &end);
-      if (end == p || errno || !isfinite(v[k]) || (k < 2 ? *end != ':' : *trim(end) != '\0'))
-        return bad(s, a->line, sec, a->key, "'%s': not a range FROM:TO:STEP", val);
-      p = end + 1;
-    }
-    if (!(v[2] > 0) || v[1] < v[0])
-      return bad(s, a->line, sec, a->key, "'%s': a range needs FROM <= TO and STEP > 0", val);
-    double n = floor((v[1] - v[0]) / v[2] + 1e-9) + 1;
-    if (n > SW_MAX_VALUES)
-      return bad(s, a->line, sec, a->key, "'%s': more than %d values", val, SW_MAX_VALUES);
-    a->n = (int)n;
-    a->v = calloc((size_t)a->n, sizeof *a->v);
-    for (int k = 0; a->v && k < a->n; k++) {
-      char buf[64];
-      snprintf(buf, sizeof buf, "%.12g", v[0] + k * v[2]);
-      a->v[k] = strdup(buf);
-    }
-    return 0;
-  }
-  int cap = 0;
-  for (char *t = strtok(val, " \t"); t; t = strtok(NULL, " \t")) {
-    if (a->n == cap) {
-      cap = cap ? 2 * cap : 8;
-      char **p = realloc(a->v, (size_t)cap * sizeof *p);
-      if (!p) return bad(s, a->line, sec, a->key, "out of memory");
-      a->v = p;
-    }
-    a->v[a->n++] = strdup(t);
-    if (a->n > SW_MAX_VALUES)
-      return bad(s, a->line, sec, a->key, "more than %d values", SW_MAX_VALUES);
-  }
-  if (a->n == 0) return bad(s, a->line, sec, a->key, "no values");
-  for (int k = 0; k < a->n; k++)
-    for (int j = 0; j < k; j++)
-      if (!strcmp(a->v[k], a->v[j]))
-        return bad(s, a->line, sec, a->key, "value '%s' given twice", a->v[k]);
-  return 0;
-}
-
-/* Reads the sweep file (sections, key = value, ; and # comments). 0 or 2 (said). */
+/* Reads the sweep file (hd_sweepfile_read) and finds its base scene (relative to it).  0 or 2
+ * (said). */
 static int sweep_read(sweep *s, const char *path) {
   memset(s, 0, sizeof *s);
   snprintf(s->path, sizeof s->path, "%s", path);
-  FILE *f = fopen(path, "r");
-  if (!f) {
-    fprintf(stderr, "haff sweep: %s: %s\n", path, strerror(errno));
-    return 2;
+  hd_error err;
+  hd_error_clear(&err);
+  int rc = hd_sweepfile_read(&s->f, path, &err);
+  if (rc) {
+    fprintf(stderr, "haff sweep: %s\n", err.msg);
+    return rc == HD_EINPUT ? 2 : 1;
   }
-  char buf[65536], sec[64] = "";
-  long line = 0;
-  int rc = 0;
-  s->seeds.key = NULL;
-  while (!rc && fgets(buf, sizeof buf, f)) {
-    line++;
-    if (!strchr(buf, '\n') && !feof(f)) {
-      rc = bad(s, line, sec, NULL, "line too long (max %zu bytes)", sizeof buf - 2);
-      break;
-    }
-    char *p = trim(buf);
-    if (!*p || *p == ';' || *p == '#') continue;
-    if (*p == '[') {
-      char *close = strchr(p, ']');
-      if (!close || *trim(close + 1)) {
-        rc = bad(s, line, p, NULL, "not a [section] line");
-        break;
-      }
-      *close = '\0';
-      snprintf(sec, sizeof sec, "%s", trim(p + 1));
-      if (strcmp(sec, "sweep") && strcmp(sec, "axes") && strcmp(sec, "points"))
-        rc = bad(s, line, sec, NULL, "unknown section (sweep, axes, points)");
-      continue;
-    }
-    char *eq = strchr(p, '=');
-    if (!eq) {
-      rc = bad(s, line, sec, NULL, "'%s': not KEY = VALUE", p);
-      break;
-    }
-    *eq = '\0';
-    char *key = trim(p), *val = eq + 1;
-    char *c = val; /* an inline comment: ; or # after a blank */
-    for (; *c; c++)
-      if ((*c == ';' || *c == '#') && c > val && isspace((unsigned char)c[-1])) {
-        *c = '\0';
-        break;
-      }
-    val = trim(val);
-    if (!sec[0]) {
-      rc = bad(s, line, "", key, "a key before any [section]");
-    } else if (!strcmp(sec, "sweep")) {
-      if (!strcmp(key, "scene")) {
-        if (s->scene_line) {
-          rc = bad(s, line, sec, key, "duplicate key (first set at line %ld)", s->scene_line);
-          break;
-        }
-        s->scene_line = line;
-        char rel[PATH_MAX * 2];
-        if (val[0] == '/') {
-          snprintf(rel, sizeof rel, "%s", val);
-        } else {
-          const char *slash = strrchr(path, '/');
-          snprintf(rel, sizeof rel, "%.*s%s", slash ? (int)(slash - path + 1) : 0, path, val);
-        }
-        if (!val[0] || !realpath(rel, s->scene))
-          rc = bad(s, line, sec, key, "'%s': %s", val, val[0] ? strerror(errno) : "no file");
-      } else if (!strcmp(key, "seeds")) {
-        if (s->seeds.line) {
-          rc = bad(s, line, sec, key, "duplicate key (first set at line %ld)", s->seeds.line);
-          break;
-        }
-        s->seeds.line = line;
-        s->seeds.key = "seeds";
-        rc = parse_list(s, &s->seeds, sec, val);
-        for (int k = 0; !rc && k < s->seeds.n; k++) {
-          const char *v = s->seeds.v[k];
-          if (!*v || strspn(v, "0123456789") != strlen(v))
-            rc = bad(s, line, sec, key, "'%s': not a non-negative integer seed", v);
-        }
-      } else {
-        rc = bad(s, line, sec, key, "unknown key (scene, seeds)");
-      }
-    } else if (!strcmp(sec, "axes")) {
-      if (s->nax == SW_MAX_AXES) {
-        rc = bad(s, line, sec, key, "more than %d axes", SW_MAX_AXES);
-        break;
-      }
-      if (!strchr(key, '.') || strchr(key, ' ')) {
-        rc = bad(s, line, sec, key, "an axis is SECTION.KEY of the scene");
-        break;
-      }
-      for (int k = 0; k < s->nax; k++)
-        if (!strcmp(s->ax[k].key, key))
-          rc = bad(s, line, sec, key, "duplicate axis (first at line %ld)", s->ax[k].line);
-      if (!rc && !strcmp(key, "system.seed"))
-        rc = bad(s, line, sec, key, "seeds are [sweep] seeds");
-      if (rc) break;
-      axis *a = &s->ax[s->nax++];
-      a->key = strdup(key);
-      a->line = line;
-      rc = parse_list(s, a, sec, val);
-    } else { /* points */
-      if (strcmp(key, "point")) {
-        rc = bad(s, line, sec, key, "unknown key (point)");
-        break;
-      }
-      char **p2 = realloc(s->points, (size_t)(s->npoints + 1) * sizeof *p2);
-      long *l2 = realloc(s->pt_line, (size_t)(s->npoints + 1) * sizeof *l2);
-      if (p2) s->points = p2;
-      if (l2) s->pt_line = l2;
-      if (!p2 || !l2) {
-        rc = bad(s, line, sec, key, "out of memory");
-        break;
-      }
-      s->points[s->npoints] = strdup(val);
-      s->pt_line[s->npoints++] = line;
-      if (!val[0]) rc = bad(s, line, sec, key, "no overrides");
-    }
+  const char *val = s->f.scene;
+  char rel[PATH_MAX * 2];
+  if (val[0] == '/') {
+    snprintf(rel, sizeof rel, "%s", val);
+  } else {
+    const char *slash = strrchr(path, '/');
+    snprintf(rel, sizeof rel, "%.*s%s", slash ? (int)(slash - path + 1) : 0, path, val);
   }
-  fclose(f);
-  if (!rc && !s->scene_line) rc = bad(s, line, "sweep", "scene", "missing: the base scene");
-  if (!rc && s->nax && s->npoints)
-    rc = bad(s, s->pt_line[0], "points", "point", "a sweep has [axes] or [points], not both");
-  return rc;
+  struct stat sb;
+  if (!realpath(rel, s->scene))
+    return bad(s, s->f.scene_line, "sweep", "scene", "'%s': %s", val, strerror(errno));
+  if (stat(s->scene, &sb) == 0 && S_ISDIR(sb.st_mode))
+    return bad(s, s->f.scene_line, "sweep", "scene", "'%s': a directory, not a scene file", val);
+  return 0;
 }
 
-/* Splits "S.K=V S.K=V" into the array sets (pointers into a copy *buf); returns the count. */
+/* Splits "S.K=V S.K=\"V W\"" into the array sets (pointers into a copy *buf, quotes removed);
+ * returns the count (0 when it cannot: an unclosed quote, which the sweep file's reader
+ * refused, or out of memory). */
 static int split_sets(const char *text, char **buf, const char **sets, int max) {
-  *buf = strdup(text);
-  int n = 0;
-  for (char *t = strtok(*buf, " \t"); t && n < max; t = strtok(NULL, " \t")) sets[n++] = t;
-  return n;
+  int n = hd_sweep_split(text, buf, sets, max);
+  return n < 0 ? 0 : n;
 }
 
 /* Checks that the base scene with the overrides of text loads; else says where (line). */
@@ -332,15 +164,15 @@ static int make_points(const sweep *s, point **out, int *np) {
   *out = NULL;
   *np = 0;
   /* each axis value alone first: the line of the value at fault */
-  for (int k = 0; k < s->nax; k++)
-    for (int j = 0; j < s->ax[k].n; j++) {
+  for (int k = 0; k < s->f.nax; k++)
+    for (int j = 0; j < s->f.ax[k].n; j++) {
       char one[4096];
-      snprintf(one, sizeof one, "%s=%s", s->ax[k].key, s->ax[k].v[j]);
-      if (check_sets(s, one, s->ax[k].line, "axes", s->ax[k].key)) return 2;
+      hd_sweep_format_set(one, sizeof one, s->f.ax[k].key, s->f.ax[k].v[j]);
+      if (check_sets(s, one, s->f.ax[k].line, "axes", s->f.ax[k].key)) return 2;
     }
-  double total = s->npoints ? s->npoints : 1;
-  for (int k = 0; k < s->nax; k++) total *= s->ax[k].n;
-  int nseed = s->seeds.n ? s->seeds.n : 1;
+  double total = s->f.npoints ? s->f.npoints : 1;
+  for (int k = 0; k < s->f.nax; k++) total *= s->f.ax[k].n;
+  int nseed = s->f.seeds.n ? s->f.seeds.n : 1;
   total *= nseed;
   if (total > SW_MAX_POINTS) {
     fprintf(stderr, "haff sweep: %s: %.0f points, more than %d\n", s->path, total, SW_MAX_POINTS);
@@ -353,15 +185,18 @@ static int make_points(const sweep *s, point **out, int *np) {
   for (int b = 0; b < base; b++) {
     char text[8192] = "";
     size_t len = 0;
-    if (s->npoints) {
-      len = (size_t)snprintf(text, sizeof text, "%s", s->points[b]);
+    if (s->f.npoints) {
+      len = (size_t)snprintf(text, sizeof text, "%s", s->f.points[b]);
     } else {
       int rem = b;
       int idx[SW_MAX_AXES];
-      for (int k = s->nax - 1; k >= 0; k--) idx[k] = rem % s->ax[k].n, rem /= s->ax[k].n;
-      for (int k = 0; k < s->nax && len < sizeof text; k++)
-        len += (size_t)snprintf(text + len, sizeof text - len, "%s%s=%s", k ? " " : "",
-                                s->ax[k].key, s->ax[k].v[idx[k]]);
+      for (int k = s->f.nax - 1; k >= 0; k--) idx[k] = rem % s->f.ax[k].n, rem /= s->f.ax[k].n;
+      for (int k = 0; k < s->f.nax && len < sizeof text; k++) {
+        if (k) len += (size_t)snprintf(text + len, sizeof text - len, " ");
+        if (len < sizeof text)
+          len += (size_t)hd_sweep_format_set(text + len, sizeof text - len, s->f.ax[k].key,
+                                             s->f.ax[k].v[idx[k]]);
+      }
     }
     if (len >= sizeof text - 64) {
       fprintf(stderr, "haff sweep: %s: a point's overrides are too long\n", s->path);
@@ -370,22 +205,22 @@ static int make_points(const sweep *s, point **out, int *np) {
     }
     for (int q = 0; q < nseed; q++) {
       char full[8300];
-      if (s->seeds.n)
-        snprintf(full, sizeof full, "%s%ssystem.seed=%s", text, len ? " " : "", s->seeds.v[q]);
+      if (s->f.seeds.n)
+        snprintf(full, sizeof full, "%s%ssystem.seed=%s", text, len ? " " : "", s->f.seeds.v[q]);
       else
         snprintf(full, sizeof full, "%s", text);
       p[b * nseed + q].id = b * nseed + q;
       p[b * nseed + q].sets = strdup(full);
     }
     /* the whole point loads (a combination can fail where each value alone does not) */
-    long line = s->npoints ? s->pt_line[b] : s->ax[s->nax ? s->nax - 1 : 0].line;
-    if (check_sets(s, p[b * nseed].sets, s->npoints || s->nax ? line : s->scene_line,
-                   s->npoints ? "points"
-                   : s->nax   ? "axes"
-                              : "sweep",
-                   s->npoints ? "point"
-                   : s->nax   ? s->ax[s->nax - 1].key
-                              : "scene")) {
+    long line = s->f.npoints ? s->f.pt_line[b] : s->f.ax[s->f.nax ? s->f.nax - 1 : 0].line;
+    if (check_sets(s, p[b * nseed].sets, s->f.npoints || s->f.nax ? line : s->f.scene_line,
+                   s->f.npoints ? "points"
+                   : s->f.nax   ? "axes"
+                                : "sweep",
+                   s->f.npoints ? "point"
+                   : s->f.nax   ? s->f.ax[s->f.nax - 1].key
+                                : "scene")) {
       for (int k = 0; k < n; k++) free(p[k].sets);
       free(p);
       return 2;
@@ -405,6 +240,7 @@ typedef struct study {
   char scene[PATH_MAX]; /* the base scene, absolute */
   point *p;
   int n;
+  int dropped; /* the points' databases were removed after a verified merge (--drop-points) */
 } study;
 
 static void study_free(study *st) {
@@ -427,6 +263,17 @@ static void point_db(const study *st, int k, char *buf, size_t size) {
 
 static void point_log(const study *st, int k, char *buf, size_t size) {
   snprintf(buf, size, "%s/logs/p%0*d.log", st->dir, width(st->n), k);
+}
+
+/* DIR/points/DROPPED: written once --drop-points has removed the points' databases. */
+static void dropped_path(const study *st, char *buf, size_t size) {
+  snprintf(buf, size, "%s/points/DROPPED", st->dir);
+}
+
+static void study_see_dropped(study *st) {
+  char path[PATH_MAX + 32];
+  dropped_path(st, path, sizeof path);
+  st->dropped = access(path, F_OK) == 0;
 }
 
 /* The manifest text of a study (tab-separated, one line per point). */
@@ -498,7 +345,113 @@ static int manifest_read(study *st, const char *dir) {
     rc = 2;
   }
   if (rc) study_free(st);
+  if (!rc) study_see_dropped(st);
   return rc;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* the study's lock: DIR/sweep.lock
+ *
+ * POSIX record locks (fcntl), which the kernel drops when the process ends however it ends
+ * (kill -9 too), so a lock is never stale; the file's text only names the last holder.
+ * Byte 0: the study, held (write lock, not waited for) by a local sweep, --resume and --merge
+ * for their whole life: a second one on the same folder is refused, naming the holder.
+ * Byte 1 + k: point k, held by the sweep process (local or a Slurm task) that runs it, from
+ * before its database is looked at until its run has ended: no other sweep classes, renames or
+ * starts a point that another one is running, even in the set-up before the run's own lock.
+ * Every lock of a process goes with any close() of the file, so the one descriptor stays open. */
+
+static int lock_fd = -1; /* DIR/sweep.lock, open for the process's life once opened */
+
+/* Opens DIR/sweep.lock (created unless readonly); 0, or -1 with errno. */
+static int lock_open(const study *st, int readonly) {
+  if (lock_fd >= 0) return 0;
+  char path[PATH_MAX + 32];
+  snprintf(path, sizeof path, "%s/sweep.lock", st->dir);
+  lock_fd =
+      readonly ? open(path, O_RDONLY | O_CLOEXEC) : open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  return lock_fd >= 0 ? 0 : -1;
+}
+
+/* Byte at of the lock file: type F_WRLCK (taken, not waited for) or F_UNLCK; 0 or -1. */
+static int lock_byte(off_t at, short type) {
+  struct flock fl;
+  memset(&fl, 0, sizeof fl);
+  fl.l_type = type;
+  fl.l_whence = SEEK_SET;
+  fl.l_start = at;
+  fl.l_len = 1;
+  return fcntl(lock_fd, F_SETLK, &fl);
+}
+
+/* The pid of another process that holds byte at, or 0 when none does. */
+static long lock_holder(off_t at) {
+  if (lock_fd < 0) return 0;
+  struct flock fl;
+  memset(&fl, 0, sizeof fl);
+  fl.l_type = F_WRLCK;
+  fl.l_whence = SEEK_SET;
+  fl.l_start = at;
+  fl.l_len = 1;
+  if (fcntl(lock_fd, F_GETLK, &fl) != 0 || fl.l_type == F_UNLCK) return 0;
+  return fl.l_pid > 0 ? (long)fl.l_pid : -1;
+}
+
+/* Takes the study's lock for what (e.g. "sweep"), or refuses: 0, or 1 after one line that
+ * names the holder (a sweep working on the folder is not waited for). */
+static int study_lock(const study *st, const char *what) {
+  if (lock_open(st, 0)) {
+    fprintf(stderr, "haff sweep: %s/sweep.lock: %s\n", st->dir, strerror(errno));
+    return 1;
+  }
+  if (lock_byte(0, F_WRLCK) != 0) {
+    int e = errno;
+    if (e != EACCES && e != EAGAIN) {
+      fprintf(stderr, "haff sweep: %s/sweep.lock: cannot lock: %s\n", st->dir, strerror(e));
+      return 1;
+    }
+    char who[256] = "";
+    ssize_t n = pread(lock_fd, who, sizeof who - 1, 0);
+    who[n > 0 ? n : 0] = '\0';
+    who[strcspn(who, "\n")] = '\0';
+    for (char *c = who; *c; c++)
+      if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
+    long pid = lock_holder(0), said = 0;
+    char holder[320];
+    /* the text names the holder once it has written it: else (a moment after it took the
+     * lock, or another host's pid) the pid the kernel reports */
+    if (who[0] && sscanf(who, "pid %ld", &said) == 1 && (pid <= 0 || said == pid))
+      snprintf(holder, sizeof holder, "%s", who);
+    else
+      snprintf(holder, sizeof holder, "pid %ld", pid);
+    fprintf(stderr,
+            "haff sweep: %s: another haff sweep works on this study (%s; lock %s/sweep.lock): "
+            "refused, not waited for; when it has ended: haff sweep --status or --resume\n",
+            st->dir, holder, st->dir);
+    return 1;
+  }
+  char host[128] = "?", text[512];
+  gethostname(host, sizeof host - 1);
+  host[sizeof host - 1] = '\0';
+  time_t now = time(NULL);
+  struct tm tm;
+  char when[32] = "";
+  if (gmtime_r(&now, &tm)) strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  int len = snprintf(text, sizeof text, "pid %ld on %s since %s: haff sweep %s\n", (long)getpid(),
+                     host, when, what);
+  if (ftruncate(lock_fd, 0) == 0 && pwrite(lock_fd, text, (size_t)len, 0) == len) {
+    /* only a note: the lock is the fcntl lock */
+  }
+  return 0;
+}
+
+/* Claims point k for this process: 1 taken, 0 another process runs it (or no lock file). */
+static int point_claim(int k) {
+  return lock_fd >= 0 && lock_byte((off_t)k + 1, F_WRLCK) == 0;
+}
+
+static void point_release(int k) {
+  if (lock_fd >= 0) lock_byte((off_t)k + 1, F_UNLCK);
 }
 
 static int mkdir_p(const char *path) {
@@ -521,17 +474,23 @@ static int write_atomic(const char *path, const char *text) {
   return 0;
 }
 
-/* Creates the study folder of st (or checks that the one there is this study). 0, 1 or 2. */
-static int study_create(study *st, const char *dir) {
+/* Creates the study folder of st (or checks that the one there is this study), under the
+ * study lock taken for sweep_file (named to a second sweep).  0, 1 or 2. */
+static int study_create(study *st, const char *dir, const char *sweep_file) {
   if (mkdir_p(dir) || !realpath(dir, st->dir)) {
     fprintf(stderr, "haff sweep: %s: %s\n", dir, strerror(errno));
     return 1;
   }
+  study_see_dropped(st);
   char *text = manifest_text(st);
   if (!text) return 1;
   char path[PATH_MAX + 32], sub[PATH_MAX + 32];
   snprintf(path, sizeof path, "%s/manifest.tsv", st->dir);
-  int rc = 0;
+  int rc = study_lock(st, sweep_file); /* before the manifest is read or written */
+  if (rc) {
+    free(text);
+    return rc;
+  }
   FILE *f = fopen(path, "r");
   if (f) { /* a study is there: the same one, or refused */
     size_t n = strlen(text);
@@ -572,14 +531,27 @@ static int point_state(const study *st, int k, char *status, size_t size, int *r
   point_db(st, k, db, sizeof db);
   status[0] = '\0';
   *resumable = 0;
-  if (access(db, F_OK) != 0) return P_MISSING;
+  /* another sweep process runs it (from before its database exists, through the run's
+   * set-up), or a run's lock is held in DB.lock: being written, whatever its file says now
+   * (not opened: not classed failed, not renamed, its -wal and -shm not touched) */
+  if (lock_holder((off_t)k + 1)) return P_RUNNING;
+  if (access(db, F_OK) != 0) {
+    if (!st->dropped) return P_MISSING;
+    snprintf(status, size, "dropped"); /* merged into study.db, then removed */
+    return P_DONE;
+  }
+  if (hd_merge_lock_held(db, -1)) return P_RUNNING;
   hd_error err;
   int64_t run = 0;
   if (hd_db_newest_run(db, &run, status, size, resumable, &err)) return P_FAILED;
   if (run == 0) return P_MISSING;
   if (!strcmp(status, "done") || !strcmp(status, "collapsed")) return P_DONE;
-  if (!strcmp(status, "running"))
-    return hd_merge_lock_held(db, run) ? P_RUNNING : P_INTERRUPTED; /* killed */
+  if (!strcmp(status, "running")) {
+    /* killed (its lock is not held): from its checkpoint, or (none: killed in its set-up) run again
+     * from its scene and seed by haff resume, as the same run, not a second one */
+    *resumable = 1;
+    return P_INTERRUPTED;
+  }
   if (!strcmp(status, "interrupted")) return P_INTERRUPTED;
   return P_FAILED;
 }
@@ -608,8 +580,12 @@ static void self_exe(char *buf, size_t size) {
 static pid_t start_point(const study *st, int k, double progress) {
   char status[32];
   int resumable;
+  if (!point_claim(k)) return 0; /* another sweep process runs it */
   int s = point_state(st, k, status, sizeof status, &resumable);
-  if (s == P_DONE || s == P_RUNNING) return 0;
+  if (s == P_DONE || s == P_RUNNING) {
+    point_release(k);
+    return 0;
+  }
   char db[PATH_MAX + 64], log[PATH_MAX + 64], exe[PATH_MAX], prog[32];
   point_db(st, k, db, sizeof db);
   point_log(st, k, log, sizeof log);
@@ -622,12 +598,18 @@ static pid_t start_point(const study *st, int k, double progress) {
       snprintf(aside, sizeof aside, "%s.failed-%d", db, j);
       if (access(aside, F_OK) != 0) break;
     }
-    if (rename(db, aside) != 0) return -1;
-    char side[PATH_MAX + 80];
-    snprintf(side, sizeof side, "%s-wal", db);
-    unlink(side);
-    snprintf(side, sizeof side, "%s-shm", db);
-    unlink(side);
+    if (rename(db, aside) != 0) {
+      point_release(k);
+      return -1;
+    }
+    /* its -wal and -shm go with it (renamed, never unlinked: they may hold its last rows) */
+    static const char *const sides[] = {"-wal", "-shm"};
+    for (int j = 0; j < 2; j++) {
+      char from[PATH_MAX + 80], to[PATH_MAX + 120];
+      snprintf(from, sizeof from, "%s%s", db, sides[j]);
+      snprintf(to, sizeof to, "%s%s", aside, sides[j]);
+      if (access(from, F_OK) == 0) rename(from, to);
+    }
   }
   const char *argv[16 + 2 * (SW_MAX_AXES + 64)];
   int a = 0;
@@ -665,6 +647,7 @@ static pid_t start_point(const study *st, int k, double progress) {
   }
   free(buf);
   free(pt);
+  if (pid < 0) point_release(k);
   return pid;
 }
 
@@ -717,6 +700,7 @@ static int run_points(const study *st, const int *list, int n, int jobs, double 
       if (pid[j] == w) {
         pid[j] = 0;
         active--;
+        point_release(who[j]);
         /* judged by its database, not its exit status: a run that collapsed (exit 1) has
          * ended, and is a result of the study */
         char status[32];
@@ -751,7 +735,16 @@ static int unfinished(const study *st, int *list, int with_running) {
 }
 
 /* Merges every point into DIR/study.db (replaced).  0, 1 (a point not done) or 2. */
-static int study_merge(const study *st, int quiet) {
+static int study_merge(const study *st, int quiet, int64_t *merged) {
+  *merged = 0;
+  if (st->dropped) { /* the points are gone: study.db is the study */
+    if (!quiet)
+      fprintf(stderr,
+              "haff sweep: %s: the points were dropped after their merge: study.db is the "
+              "study, not merged again\n",
+              st->dir);
+    return 0;
+  }
   int *list = malloc((size_t)st->n * sizeof *list);
   if (!list) return 1;
   int m = unfinished(st, list, 1);
@@ -788,6 +781,53 @@ static int study_merge(const study *st, int quiet) {
     return hd_exit_code(rc);
   }
   if (!quiet) fprintf(stderr, "haff sweep: %lld runs merged into %s\n", (long long)runs, out);
+  *merged = runs;
+  return 0;
+}
+
+/* --drop-points: after a merge of merged runs into DIR/study.db, checks that study.db reads
+ * back with one run per point, the last of them ended (done or collapsed), then removes every
+ * point's database (with its -wal, -shm and .lock) and writes DIR/points/DROPPED so that the
+ * study stays done.  0, or 1 after one line (nothing removed). */
+static int drop_points(study *st, int64_t merged, int quiet) {
+  if (st->dropped) return 0;
+  char out[PATH_MAX + 32], status[32];
+  snprintf(out, sizeof out, "%s/study.db", st->dir);
+  int64_t last = 0;
+  int resumable = 0;
+  hd_error err;
+  hd_error_clear(&err);
+  if (merged != st->n || hd_db_newest_run(out, &last, status, sizeof status, &resumable, &err) ||
+      last != merged || (strcmp(status, "done") && strcmp(status, "collapsed"))) {
+    fprintf(stderr,
+            "haff sweep: %s: --drop-points: study.db does not read back as %d runs, one per "
+            "point (%lld merged, %lld read%s%s): the points are kept\n",
+            st->dir, st->n, (long long)merged, (long long)last, err.msg[0] ? ": " : "", err.msg);
+    return 1;
+  }
+  char mark[PATH_MAX + 32], text[256];
+  dropped_path(st, mark, sizeof mark);
+  snprintf(text, sizeof text,
+           "the %d point databases were removed after their merge into study.db (%lld runs)\n",
+           st->n, (long long)merged);
+  if (write_atomic(mark, text)) { /* first: a study never looks undone */
+    fprintf(stderr, "haff sweep: %s: cannot write: %s: the points are kept\n", mark,
+            strerror(errno));
+    return 1;
+  }
+  st->dropped = 1;
+  static const char *const ext[] = {"", "-wal", "-shm", ".lock"};
+  for (int k = 0; k < st->n; k++) {
+    char db[PATH_MAX + 64], f[PATH_MAX + 80];
+    point_db(st, k, db, sizeof db);
+    for (int j = 0; j < 4; j++) {
+      snprintf(f, sizeof f, "%s%s", db, ext[j]);
+      unlink(f);
+    }
+  }
+  if (!quiet)
+    fprintf(stderr, "haff sweep: %s: the %d point databases dropped (study.db verified)\n", st->dir,
+            st->n);
   return 0;
 }
 
@@ -818,9 +858,100 @@ static int study_status(const study *st) {
 /* Slurm */
 
 typedef struct slurm_opts {
-  const char *time, *partition, *account;
-  int chunk;
+  const char *time, *partition, *account; /* --time, --partition, --account */
+  const char *sbatch;                     /* --sbatch 'OPTIONS': more sbatch options */
+  int chunk;                              /* --chunk */
+  int dry;                                /* --dry-run: the scripts written, not submitted */
+  int drop;                               /* --drop-points, given to the merge job */
 } slurm_opts;
+
+/* Whether s holds a control byte (no quoting keeps it on one #SBATCH or shell line). */
+static int has_control(const char *s) {
+  for (; *s; s++)
+    if ((unsigned char)*s < 0x20 || *s == 0x7f) return 1;
+  return 0;
+}
+
+/* Appends to buf (at *len, size) the word w as one argument of an #SBATCH line: as it is when
+ * it has only plain characters, else in double quotes with \ before " and \ (sbatch reads a
+ * script's #SBATCH lines so: quotes group, a backslash escapes, an unquoted # ends the line).
+ * pct: with every % doubled (a file name pattern: %% is a %). */
+static void sbatch_word(char *buf, size_t *len, size_t size, const char *w, int pct) {
+  int plain = *w && strspn(w, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789"
+                              "._/:=,+@-") == strlen(w);
+  if (*len + 1 >= size) return;
+  if (!plain) buf[(*len)++] = '"';
+  for (; *w && *len + 4 < size; w++) {
+    if (!plain && (*w == '"' || *w == '\\')) buf[(*len)++] = '\\';
+    if (pct && *w == '%') buf[(*len)++] = '%';
+    buf[(*len)++] = *w;
+  }
+  if (!plain && *len + 1 < size) buf[(*len)++] = '"';
+  buf[*len] = '\0';
+}
+
+/* Splits --sbatch's text into words (blanks separate; '...' and "..." group, as a shell and
+ * sbatch do) and appends them as one #SBATCH line to buf.  0, or 2 after one line. */
+static int sbatch_extra(const char *text, char *buf, size_t *len, size_t size) {
+  if (has_control(text)) {
+    fprintf(stderr, "haff sweep: --sbatch: a control character (newline, tab...): not an #SBATCH "
+                    "line\n");
+    return 2;
+  }
+  char word[1024];
+  int nw = 0;
+  const char *p = text;
+  *len += (size_t)snprintf(buf + *len, size - *len, "#SBATCH");
+  for (;;) {
+    while (*p == ' ') p++;
+    if (!*p) break;
+    size_t k = 0;
+    char q = 0;
+    for (; *p && (q || *p != ' '); p++) {
+      if (q && *p == q) {
+        q = 0;
+      } else if (!q && (*p == '\'' || *p == '"')) {
+        q = *p;
+      } else if (k + 1 < sizeof word) {
+        word[k++] = *p;
+      }
+    }
+    word[k] = '\0';
+    if (q) {
+      fprintf(stderr, "haff sweep: --sbatch '%s': an unclosed quote\n", text);
+      return 2;
+    }
+    if (nw == 0 && word[0] != '-') {
+      fprintf(stderr, "haff sweep: --sbatch '%s': sbatch options begin with '-'\n", text);
+      return 2;
+    }
+    if (!strcmp(word, "-a") || !strncmp(word, "--array", 7) || !strncmp(word, "--wrap", 6) ||
+        (word[0] == '-' && word[1] == 'a' && isdigit((unsigned char)word[2]))) {
+      fprintf(stderr, "haff sweep: --sbatch: '%s': the job array and its script are haff's\n",
+              word);
+      return 2;
+    }
+    *len += (size_t)snprintf(buf + *len, size - *len, " ");
+    sbatch_word(buf, len, size, word, 0);
+    nw++;
+  }
+  if (nw == 0) {
+    fprintf(stderr, "haff sweep: --sbatch: no options\n");
+    return 2;
+  }
+  *len += (size_t)snprintf(buf + *len, size - *len, "\n");
+  return 0;
+}
+
+/* The study folder dir (absolute) can go into #SBATCH --output and the scripts' comments: 0,
+ * or 2 after one line (a control byte, which no quoting keeps on its line). */
+static int slurm_dir_ok(const char *dir) {
+  if (!has_control(dir)) return 0;
+  fprintf(stderr,
+          "haff sweep: --slurm: the study folder's path holds a control character (a newline, "
+          "a tab...), which no #SBATCH line can quote: give a plain -o DIR\n");
+  return 2;
+}
 
 /* Runs cmd (a shell line) and reads the job id sbatch --parsable prints; 0 or -1. */
 static int submit(const char *cmd, char *id, size_t size) {
@@ -855,6 +986,7 @@ static void shq(const char *s, char *buf, size_t size) {
 /* Writes and submits a job array over the points list[0..m) and a merge job after it. */
 static int slurm_submit(const study *st, const int *list, int m, const slurm_opts *so,
                         double progress, int quiet) {
+  if (slurm_dir_ok(st->dir)) return 2;
   char exe[PATH_MAX], qexe[PATH_MAX * 2], qdir[PATH_MAX * 2];
   self_exe(exe, sizeof exe);
   shq(exe, qexe, sizeof qexe);
@@ -875,13 +1007,24 @@ static int slurm_submit(const study *st, const int *list, int m, const slurm_opt
   free(t);
   int chunk = so->chunk > 0 ? so->chunk : 1;
   int tasks = (m + chunk - 1) / chunk;
-  char opt[1024] = "";
+  char opt[8192] = "";
   size_t ol = 0; /* the options checked free of blanks and quotes */
   if (so->time) ol += (size_t)snprintf(opt + ol, sizeof opt - ol, "#SBATCH --time=%s\n", so->time);
   if (so->partition)
     ol += (size_t)snprintf(opt + ol, sizeof opt - ol, "#SBATCH --partition=%s\n", so->partition);
   if (so->account)
     ol += (size_t)snprintf(opt + ol, sizeof opt - ol, "#SBATCH --account=%s\n", so->account);
+  if (so->sbatch && (rc = sbatch_extra(so->sbatch, opt, &ol, sizeof opt))) return rc;
+  /* #SBATCH --output=DIR/logs/...: quoted for sbatch, DIR's % doubled */
+  char out_arr[PATH_MAX * 2 + 64], out_mrg[PATH_MAX * 2 + 64], w[PATH_MAX + 64];
+  size_t la = 0, lm = 0;
+  snprintf(w, sizeof w, "--output=%s/logs/", st->dir);
+  sbatch_word(out_arr, &la, sizeof out_arr, w, 1);
+  sbatch_word(out_mrg, &lm, sizeof out_mrg, w, 1);
+  if (out_arr[la - 1] == '"') la--, lm--; /* the patterns inside the quotes */
+  snprintf(out_arr + la, sizeof out_arr - la, "slurm-%%A_%%a.out%s", out_arr[0] == '"' ? "\"" : "");
+  snprintf(out_mrg + lm, sizeof out_mrg - lm, "slurm-merge-%%j.out%s",
+           out_mrg[0] == '"' ? "\"" : "");
   char script[16 * PATH_MAX];
   char qtodo[PATH_MAX * 2];
   shq(todo, qtodo, sizeof qtodo);
@@ -891,22 +1034,22 @@ static int slurm_submit(const study *st, const int *list, int m, const slurm_opt
            "#SBATCH --job-name=haff-sweep\n"
            "#SBATCH --array=0-%d\n"
            "#SBATCH --ntasks=1\n"
-           "#SBATCH --output=%s/logs/slurm-%%A_%%a.out\n"
+           "#SBATCH %s\n"
            "%s"
            "# srun: a job step, which `scancel --signal=TERM` and the time limit's SIGTERM reach\n"
            "# (haff checkpoints, marks the run interrupted; haff sweep --resume goes on)\n"
            "exec srun --ntasks=1 %s sweep --task %s %s --chunk %d --progress %g\n",
-           st->dir, sub, chunk, tasks - 1, st->dir, opt, qexe, qdir, qtodo, chunk, progress);
+           st->dir, sub, chunk, tasks - 1, out_arr, opt, qexe, qdir, qtodo, chunk, progress);
   if (!rc) rc = write_atomic(arr, script);
   snprintf(script, sizeof script,
            "#!/bin/sh\n"
            "# haff sweep: merges the points of %s into study.db once the array has ended well\n"
            "#SBATCH --job-name=haff-merge\n"
            "#SBATCH --ntasks=1\n"
-           "#SBATCH --output=%s/logs/slurm-merge-%%j.out\n"
+           "#SBATCH %s\n"
            "%s"
-           "exec %s sweep --merge %s\n",
-           st->dir, st->dir, opt, qexe, qdir);
+           "exec %s sweep --merge %s%s\n",
+           st->dir, out_mrg, opt, qexe, qdir, so->drop ? " --drop-points" : "");
   if (!rc) rc = write_atomic(mrg, script);
   if (rc) {
     fprintf(stderr, "haff sweep: %s/slurm: cannot write the job scripts: %s\n", st->dir,
@@ -918,6 +1061,16 @@ static int slurm_submit(const study *st, const int *list, int m, const slurm_opt
   char cmd[3 * PATH_MAX], qarr[PATH_MAX * 2], qmrg[PATH_MAX * 2], job[64], mjob[64];
   shq(arr, qarr, sizeof qarr);
   shq(mrg, qmrg, sizeof qmrg);
+  if (so->dry) { /* written, not submitted: the scripts' paths on stdout */
+    printf("%s\t%s\n", arr, mrg);
+    if (!quiet)
+      fprintf(stderr,
+              "haff sweep: --dry-run: wrote %s (%d tasks, %d points) and %s; nothing "
+              "submitted (by hand: sbatch --parsable %s, then sbatch --dependency=afterok:JOB "
+              "%s)\n",
+              arr, tasks, m, mrg, qarr, qmrg);
+    return 0;
+  }
   snprintf(cmd, sizeof cmd, "sbatch --parsable %s", qarr);
   if (submit(cmd, job, sizeof job)) {
     fprintf(stderr, "haff sweep: sbatch %s failed (is Slurm there?)\n", arr);
@@ -972,9 +1125,9 @@ static int run_task(const study *st, const char *todo, int chunk, double progres
 /* The options of haff sweep. */
 typedef struct sweep_args {
   const char *out, *status_dir, *resume_dir, *merge_dir, *task_dir; /* -o, --status ... --task */
-  slurm_opts so;               /* --time, --partition, --account, --chunk */
-  int jobs, slurm, dry, quiet; /* --jobs, --slurm, --dry-run, --quiet */
-  double progress;             /* --progress S [60] */
+  slurm_opts so;                     /* --time, --partition, --account, --sbatch, --chunk */
+  int jobs, slurm, dry, quiet, drop; /* --jobs, --slurm, --dry-run, --quiet, --drop-points */
+  double progress;                   /* --progress S [60] */
 } sweep_args;
 
 static const hd_optdef sweep_opts[] = {
@@ -997,9 +1150,15 @@ static const hd_optdef sweep_opts[] = {
     HD_OPT_STR("time", 0, sweep_args, so.time, "T", "sbatch --time"),
     HD_OPT_STR("partition", 0, sweep_args, so.partition, "P", "sbatch --partition"),
     HD_OPT_STR("account", 0, sweep_args, so.account, "A", "sbatch --account"),
+    HD_OPT_STR("sbatch", 0, sweep_args, so.sbatch, "'OPTIONS'",
+               "more sbatch options for every job (an #SBATCH line of the scripts)"),
+    HD_OPT_FLAG("drop-points", 0, sweep_args, drop,
+                "removes the points' databases once study.db is merged and verified"),
     HD_OPT_DBL("progress", 0, sweep_args, progress, 0, 1e9, 0, "S",
                "a progress line of each run every S seconds [60] (0: none)"),
-    HD_OPT_FLAG("dry-run", 0, sweep_args, dry, "prints the manifest of the points, runs nothing"),
+    HD_OPT_FLAG("dry-run", 0, sweep_args, dry,
+                "prints the manifest, runs nothing; with --slurm: writes the study folder and "
+                "the job scripts, submits nothing"),
     HD_OPT_FLAG("quiet", 'q', sweep_args, quiet, "no progress, no closing lines"),
     {0}};
 
@@ -1011,6 +1170,7 @@ const hd_optspec haff_sweep_spec = {HD_OPT_SPEC("sweep", sweep_opts, 0, 0, 1, "o
 static int sweep_unfinished(study *st, int slurm, const slurm_opts *so, int jobs, double progress,
                             int quiet) {
   int rc = 0;
+  int64_t merged = 0;
   int *list = malloc((size_t)st->n * sizeof *list);
   int m = list ? unfinished(st, list, 0) : 0;
   char out_db[PATH_MAX + 32];
@@ -1022,7 +1182,8 @@ static int sweep_unfinished(study *st, int slurm, const slurm_opts *so, int jobs
       fprintf(stderr, "haff sweep: %s: every point is done and merged: nothing to do\n", st->dir);
   } else if (slurm) {
     if (m == 0) { /* done, not merged: a merge job alone would do; merge here */
-      rc = study_merge(st, quiet);
+      rc = so->dry ? 0 : study_merge(st, quiet, &merged);
+      if (!rc && so->drop && !so->dry) rc = drop_points(st, merged, quiet);
     } else {
       rc = slurm_submit(st, list, m, so, progress, quiet);
     }
@@ -1031,9 +1192,9 @@ static int sweep_unfinished(study *st, int slurm, const slurm_opts *so, int jobs
       fprintf(stderr, "haff sweep: %s: %d of %d points to run, %d at a time\n", st->dir, m, st->n,
               jobs);
     rc = run_points(st, list, m, jobs, progress, quiet);
-    if (!rc)
-      rc = study_merge(st, quiet);
-    else
+    if (!rc) rc = study_merge(st, quiet, &merged);
+    if (!rc && so->drop) rc = drop_points(st, merged, quiet);
+    if (rc == 1 && !merged)
       fprintf(stderr,
               "haff sweep: not every point is done: haff sweep --status %s, then "
               "--resume %s\n",
@@ -1058,21 +1219,31 @@ static int sweep_check(const sweep_args *a, int *modes) {
               given[k]);
       return 2;
     }
-  if (!a->slurm && (a->so.time || a->so.partition || a->so.account)) {
-    fprintf(stderr, "haff sweep: --time, --partition and --account go with --slurm\n");
+  if (!a->slurm && (a->so.time || a->so.partition || a->so.account || a->so.sbatch)) {
+    fprintf(stderr, "haff sweep: --time, --partition, --account and --sbatch go with --slurm\n");
+    return 2;
+  }
+  if (a->dry && (a->status_dir || a->merge_dir || a->task_dir || (a->resume_dir && !a->slurm))) {
+    fprintf(stderr, "haff sweep: --dry-run goes with a sweep file, or with --resume --slurm\n");
+    return 2;
+  }
+  if (a->drop && (a->status_dir || a->task_dir)) {
+    fprintf(stderr, "haff sweep: --drop-points goes with a sweep, --resume or --merge\n");
     return 2;
   }
   return 0;
 }
 
 int haff_sweep_main(int argc, char **argv) {
-  sweep_args a = {.so = {NULL, NULL, NULL, 1}, .jobs = 1, .progress = 60};
+  sweep_args a = {.so = {.chunk = 1}, .jobs = 1, .progress = 60};
   hd_optres res;
   int rc = hd_opt_parse(&haff_sweep_spec, argc, argv, &a, &res);
   if (rc) return rc < 0 ? 0 : rc;
   const char *out = a.out, *status_dir = a.status_dir, *resume_dir = a.resume_dir,
              *merge_dir = a.merge_dir, *task_dir = a.task_dir;
   slurm_opts so = a.so;
+  so.dry = a.dry;
+  so.drop = a.drop;
   int jobs = a.jobs, slurm = a.slurm, dry = a.dry, quiet = a.quiet;
   double progress = a.progress;
   int modes;
@@ -1090,12 +1261,25 @@ int haff_sweep_main(int argc, char **argv) {
                       : merge_dir  ? merge_dir
                                    : task_dir;
     if ((rc = manifest_read(&st, dir))) return rc;
-    if (status_dir)
+    if (status_dir) {
+      lock_open(&st, 1); /* to see the points that other sweeps run (none: no lock file) */
       rc = study_status(&st);
-    else if (merge_dir)
-      rc = study_merge(&st, quiet);
-    else if (task_dir)
-      rc = run_task(&st, res.pos[0], so.chunk, progress, quiet);
+    } else if (merge_dir) {
+      int64_t merged = 0;
+      rc = study_lock(&st, "--merge");
+      if (!rc) rc = study_merge(&st, quiet, &merged);
+      if (!rc && a.drop) rc = drop_points(&st, merged, quiet);
+    } else if (task_dir) {
+      /* a Slurm task: its points' locks only (the tasks of an array run side by side) */
+      if (lock_open(&st, 0)) {
+        fprintf(stderr, "haff sweep: %s/sweep.lock: %s\n", st.dir, strerror(errno));
+        rc = 1;
+      } else {
+        rc = run_task(&st, res.pos[0], so.chunk, progress, quiet);
+      }
+    } else {
+      rc = study_lock(&st, "--resume");
+    }
   } else {
     if (res.npos != 1) {
       fprintf(stderr, "haff sweep: expected one sweep file (haff sweep --help)\n");
@@ -1103,11 +1287,15 @@ int haff_sweep_main(int argc, char **argv) {
     }
     sweep sw;
     rc = sweep_read(&sw, res.pos[0]);
+    if (rc) {
+      sweep_free(&sw);
+      return rc;
+    }
     if (!rc) rc = make_points(&sw, &st.p, &st.n);
     if (!rc) snprintf(st.scene, sizeof st.scene, "%s", sw.scene);
     sweep_free(&sw);
     if (rc) return rc;
-    if (dry) {
+    if (dry && !slurm) {
       char *t = manifest_text(&st);
       if (t) fputs(t, stdout);
       free(t);
@@ -1123,7 +1311,8 @@ int haff_sweep_main(int argc, char **argv) {
       char *dot = strrchr(dir, '.');
       if (dot && dot != dir) *dot = '\0';
     }
-    rc = study_create(&st, dir);
+    rc = slurm ? slurm_dir_ok(dir) : 0;
+    if (!rc) rc = study_create(&st, dir, res.pos[0]);
     if (!rc) resume_dir = dir; /* then as --resume: what is not done yet */
   }
   if (!rc && resume_dir) rc = sweep_unfinished(&st, slurm, &so, jobs, progress, quiet);

@@ -1582,8 +1582,9 @@ int hd_db_list_resumable(hd_db *db, int64_t **ids, size_t *n, hd_error *err) {
   sqlite3_stmt *st = NULL;
   if (sqlite3_prepare_v2(db->db,
                          "SELECT id FROM runs WHERE status IN "
-                         "('running','interrupted','failed') AND EXISTS (SELECT 1 FROM "
-                         "checkpoints c WHERE c.run = runs.id) ORDER BY id",
+                         "('running','interrupted','failed') AND (EXISTS (SELECT 1 FROM "
+                         "checkpoints c WHERE c.run = runs.id) OR status = 'running') "
+                         "ORDER BY id",
                          -1, &st, NULL) != SQLITE_OK)
     return sql_error(db, err, "list resumable runs");
   size_t cap = 0;

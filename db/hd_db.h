@@ -306,7 +306,8 @@ int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene
                          unsigned long long *seed, hd_error *err);
 
 /* The ids of every run that hd_db_find_resumable would take (status 'running', 'interrupted'
- * or 'failed' with a checkpoint), oldest first: *ids malloc'd (free(); NULL when *n is 0). */
+ * or 'failed' with a checkpoint, and 'running' without one: killed in its set-up, run again
+ * from the start), oldest first: *ids malloc'd (free(); NULL when *n is 0). */
 int hd_db_list_resumable(hd_db *db, int64_t **ids, size_t *n, hd_error *err);
 
 /* Runs sql (one or more statements, no result rows wanted) with sqlite3_exec, inside the open

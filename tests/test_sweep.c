@@ -19,8 +19,11 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <fcntl.h>
+
 #include "hd_db.h"
 #include "hd_merge.h"
+#include "hd_scene.h"
 
 #include "test_cli_util.h"
 
@@ -59,6 +62,53 @@ static pid_t start(const char *errfile, const char *const *args) {
     execv(haff, (char *const *)argv);
     _exit(98);
   }
+  return pid;
+}
+
+/* Leaves in database name (in dir) what a run of scene file scene (with the overrides sets)
+ * killed in its set-up leaves: its row 'running', no checkpoint, no lock held. */
+static void killed_in_setup(const char *scene, const char *const *sets, int nset,
+                            const char *name) {
+  char sp[400], dp[400];
+  snprintf(sp, sizeof sp, "%s/%s", dir, scene);
+  snprintf(dp, sizeof dp, "%s/%s", dir, name);
+  hd_scene sc;
+  hd_error err;
+  hd_error_clear(&err);
+  if (hd_scene_load(&sc, sp, sets, nset, &err)) fail_msg("%s", err.msg);
+  hd_db *db = NULL;
+  assert_int_equal(hd_db_open(&db, dp, &err), HD_OK);
+  int64_t run = 0;
+  assert_int_equal(hd_db_run_begin(db, sc.text, sc.seed, "test", &run, &err), HD_OK);
+  assert_int_equal(hd_db_close(db, &err), HD_OK);
+  hd_scene_free(&sc);
+  assert_int_equal(q1(name, "SELECT count(*) FROM runs WHERE status = 'running'"), 1);
+  assert_int_equal(q1(name, "SELECT count(*) FROM checkpoints"), 0);
+}
+
+/* Forks a process that holds byte at of lock file name (in dir) until killed; returns its pid
+ * once it holds it. */
+static pid_t hold_lock(const char *name, off_t at) {
+  int pipefd[2];
+  assert_int_equal(pipe(pipefd), 0);
+  fflush(NULL);
+  pid_t pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) {
+    char p[400];
+    snprintf(p, sizeof p, "%s/%s", dir, name);
+    int fd = open(p, O_RDWR | O_CREAT, 0644);
+    struct flock fl = {.l_type = F_WRLCK, .l_whence = SEEK_SET, .l_start = at, .l_len = 1};
+    if (fd < 0 || fcntl(fd, F_SETLK, &fl)) _exit(1);
+    char c = 'l';
+    if (write(pipefd[1], &c, 1) != 1) _exit(2);
+    pause();
+    _exit(0);
+  }
+  char c = 0;
+  assert_int_equal(read(pipefd[0], &c, 1), 1);
+  close(pipefd[0]);
+  close(pipefd[1]);
   return pid;
 }
 
@@ -174,6 +224,31 @@ static void resume_all(void **state) {
   char e[1024];
   read_file("err.txt", e, sizeof e);
   assert_non_null(strstr(e, "no run to resume"));
+}
+
+/* haff resume DB --all runs again a run killed in its set-up (left 'running' without a
+ * checkpoint), as plain haff resume does: it said "no run to resume" and exited 0. */
+static void resume_all_killed_in_setup(void **state) {
+  (void)state;
+  if (!haff) skip();
+  killed_in_setup("short.ini", NULL, 0, "ks7.db");
+  assert_int_equal(sh("%s resume ks7.db --all --quiet", haff), 0);
+  assert_int_equal(q1("ks7.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
+  assert_int_equal(q1("ks7.db", "SELECT count(*) FROM runs"), 1);
+  assert_int_equal(sh("%s run short.ini -o ks7ref.db --quiet", haff), 0);
+  assert_int_equal(q1("ks7.db", "SELECT events FROM runs"),
+                   q1("ks7ref.db", "SELECT events FROM runs"));
+  /* one that another process holds is left to it, and said so */
+  killed_in_setup("short.ini", NULL, 0, "ks7b.db");
+  pid_t holder = hold_lock("ks7b.db.lock", 1);
+  int rc = sh("%s resume ks7b.db --all", haff);
+  kill(holder, SIGKILL);
+  waitpid(holder, NULL, 0);
+  assert_int_equal(rc, 0);
+  char e[2048];
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "run 1 is being run by another process: left to it"));
+  assert_int_equal(q1("ks7b.db", "SELECT count(*) FROM runs WHERE status = 'running'"), 1);
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -564,6 +639,111 @@ static void sweep_collapsed_point_is_done(void **state) {
   assert_int_equal(q1("c/study.db", "SELECT count(*) FROM runs WHERE status = 'collapsed'"), 2);
 }
 
+/* A point killed in its set-up (its row 'running', no checkpoint, nobody's lock) is run again
+ * as that same run by --resume: it was run as a second run, and the stale 'running' row was
+ * merged into study.db beside it. */
+static void sweep_point_killed_in_setup(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("ks.ini", "[sweep]\nscene = short.ini\nseeds = 3\n");
+  assert_int_equal(sh("%s sweep ks.ini --quiet", haff), 0);
+  long long events = q1("ks/points/p0000.db", "SELECT events FROM runs");
+  assert_true(events > 0);
+  assert_int_equal(sh("rm ks/points/p0000.db ks/study.db"), 0);
+  killed_in_setup("short.ini", (const char *const[]){"system.seed=3"}, 1, "ks/points/p0000.db");
+  assert_int_equal(sh("%s sweep --status ks > kss.txt", haff), 0);
+  char m[2048];
+  read_file("kss.txt", m, sizeof m);
+  assert_non_null(strstr(m, "\n0\tinterrupted\trunning\t"));
+  assert_int_equal(sh("%s sweep --resume ks --quiet", haff), 0);
+  assert_int_equal(q1("ks/points/p0000.db", "SELECT count(*) FROM runs"), 1);
+  assert_int_equal(q1("ks/points/p0000.db", "SELECT events FROM runs WHERE status = 'done'"),
+                   events);
+  assert_int_equal(q1("ks/study.db", "SELECT count(*) FROM runs"), 1);
+  assert_int_equal(q1("ks/study.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
+}
+
+/* One lock per study folder (DIR/sweep.lock): while a sweep works on a folder, a second sweep
+ * of the same file, a --resume and a --merge are refused (exit 1, naming the holder's pid);
+ * --status still reads it.  Two --resume started at once end with every run once in study.db. */
+static void sweep_lock_refuses_a_second(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("lk.ini", "[sweep]\nscene = long.ini\nseeds = 1 2\n");
+  pid_t pid = start("lk-err.txt",
+                    (const char *const[]){"sweep", "lk.ini", "--progress", "0", "--quiet", NULL});
+  assert_true(wait_positive("lk/points/p0000.db", "SELECT events FROM runs", pid) > 0);
+  char want[64], e[4096];
+  snprintf(want, sizeof want, "pid %ld on ", (long)pid);
+  static const char *const second[] = {"sweep lk.ini", "sweep --resume lk", "sweep --merge lk"};
+  for (int k = 0; k < 3; k++) {
+    int rc = sh("%s %s", haff, second[k]);
+    read_file("err.txt", e, sizeof e);
+    if (rc != 1 || !strstr(e, "another haff sweep works on this study") || !strstr(e, want))
+      fail_msg("haff %s: exit %d, '%s'", second[k], rc, e);
+  }
+  assert_int_equal(sh("%s sweep --status lk > lks.txt", haff), 0);
+  read_file("lks.txt", e, sizeof e);
+  assert_non_null(strstr(e, "\n0\trunning\t"));
+  kill(pid, SIGTERM);
+  int st;
+  waitpid(pid, &st, 0);
+  assert_true(WIFEXITED(st) && WEXITSTATUS(st) == 1);
+  /* two at once: one works, the other is refused or finds nothing to do */
+  pid_t a = start("lka.txt", (const char *const[]){"sweep", "--resume", "lk", "--jobs", "2",
+                                                   "--progress", "0", NULL});
+  pid_t b = start("lkb.txt", (const char *const[]){"sweep", "--resume", "lk", "--jobs", "2",
+                                                   "--progress", "0", NULL});
+  int sa, sb;
+  waitpid(a, &sa, 0);
+  waitpid(b, &sb, 0);
+  assert_true(WIFEXITED(sa) && WIFEXITED(sb));
+  int ea = WEXITSTATUS(sa), eb = WEXITSTATUS(sb);
+  assert_true((ea == 0 && (eb == 0 || eb == 1)) || (eb == 0 && ea == 1));
+  assert_int_equal(q1("lk/study.db", "SELECT count(*) FROM runs"), 2);
+  assert_int_equal(q1("lk/study.db", "SELECT count(DISTINCT seed) FROM runs WHERE status = "
+                                     "'done'"),
+                   2);
+  for (int k = 0; k < 2; k++) {
+    char db[64];
+    snprintf(db, sizeof db, "lk/points/p%04d.db", k);
+    assert_int_equal(q1(db, "SELECT count(*) FROM runs"), 1);
+  }
+}
+
+/* A point database that another process is writing (its DB.lock held) is running, whatever
+ * its file says: not classed failed, not renamed .failed-N, its -wal untouched (it was
+ * renamed and its -wal unlinked under the writer); once nobody holds it, a file that is not a
+ * database is kept aside and the point is run. */
+static void sweep_point_being_written_is_not_failed(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("gf.ini", "[sweep]\nscene = short.ini\n");
+  assert_int_equal(sh("%s sweep gf.ini --quiet", haff), 0);
+  assert_int_equal(sh("rm gf/study.db"), 0);
+  write_file("gf/points/p0000.db", "not yet a database, being written");
+  write_file("gf/points/p0000.db-wal", "its wal");
+  pid_t holder = hold_lock("gf/points/p0000.db.lock", 1);
+  int rc = sh("%s sweep --resume gf --quiet", haff);
+  int rs = sh("%s sweep --status gf > gfs.txt", haff);
+  kill(holder, SIGKILL);
+  waitpid(holder, NULL, 0);
+  assert_int_equal(rc, 1);
+  assert_int_equal(rs, 0);
+  char m[2048];
+  read_file("gfs.txt", m, sizeof m);
+  assert_non_null(strstr(m, "\n0\trunning\t"));
+  assert_false(exists("gf/points/p0000.db.failed-1"));
+  read_file("gf/points/p0000.db", m, sizeof m);
+  assert_string_equal(m, "not yet a database, being written");
+  read_file("gf/points/p0000.db-wal", m, sizeof m);
+  assert_string_equal(m, "its wal");
+  /* nobody holds it now: kept aside, then run */
+  assert_int_equal(sh("%s sweep --resume gf --quiet", haff), 0);
+  assert_true(exists("gf/points/p0000.db.failed-1"));
+  assert_int_equal(q1("gf/study.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 1);
+}
+
 /* --slurm with a stand-in sbatch on PATH: the array script (one task per chunk of points, the
  * --time/--partition/--account given) and the merge job submitted afterok on the array. */
 static void sweep_slurm_scripts(void **state) {
@@ -605,10 +785,246 @@ static void sweep_slurm_scripts(void **state) {
   assert_int_equal(sh("PATH=%s/fakebin:$PATH %s sweep s.ini --slurm --time 'a b'", dir, haff), 2);
 }
 
+/* --slurm --dry-run writes the study folder, the manifest and the job scripts and submits
+ * nothing; the folder's path is quoted in #SBATCH --output (a blank split it; a quote and a %
+ * are escaped) and a path with a newline (which injected a shell line into the script) is
+ * refused; --sbatch 'OPTIONS' reaches both scripts as one quoted #SBATCH line, and what would
+ * break the array is refused.  Each script passes bash -n. */
+static void sweep_slurm_dry_run_and_quoting(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("mkdir -p fakebin2 && printf '#!/bin/sh\\necho \"$@\" >> %s/sbatch2.txt\\n"
+                      "echo 7\\n' > fakebin2/sbatch && chmod +x fakebin2/sbatch",
+                      dir),
+                   0);
+  write_file("q.ini", "[sweep]\nscene = short.ini\nseeds = 1:3:1\n");
+  assert_int_equal(sh("PATH=%s/fakebin2:$PATH %s sweep q.ini --slurm --dry-run -o 'q dir %%x\"y' "
+                      "--time 5 --sbatch '--mem=1G --qos \"high prio\" --comment=a#b' > qp.txt",
+                      dir, haff),
+                   0);
+  assert_false(exists("sbatch2.txt")); /* nothing submitted */
+  assert_true(exists("q dir %x\"y/manifest.tsv"));
+  char m[8192], want[1024];
+  read_file("qp.txt", m, sizeof m);
+  snprintf(want, sizeof want,
+           "%s/q dir %%x\"y/slurm/array-1.sh\t%s/q dir %%x\"y/slurm/merge-1.sh\n", dir, dir);
+  assert_string_equal(m, want);
+  read_file("q dir %x\"y/slurm/array-1.sh", m, sizeof m);
+  snprintf(want, sizeof want, "\n#SBATCH \"--output=%s/q dir %%%%x\\\"y/logs/slurm-%%A_%%a.out\"\n",
+           dir);
+  if (!strstr(m, want)) fail_msg("no line '%s' in\n%s", want, m);
+  assert_non_null(strstr(m, "\n#SBATCH --time=5\n#SBATCH --mem=1G --qos \"high prio\" "
+                            "\"--comment=a#b\"\n"));
+  assert_non_null(strstr(m, "#SBATCH --array=0-2\n"));
+  read_file("q dir %x\"y/slurm/merge-1.sh", m, sizeof m);
+  assert_non_null(strstr(m, "\n#SBATCH --mem=1G --qos \"high prio\" \"--comment=a#b\"\n"));
+  assert_int_equal(sh("bash -n 'q dir %%x\"y/slurm/array-1.sh' && bash -n 'q dir "
+                      "%%x\"y/slurm/merge-1.sh'"),
+                   0);
+  /* a newline in the folder: refused before anything is made */
+  int rc = sh("%s sweep q.ini --slurm --dry-run -o \"$(printf 'nl\\nx')\"", haff);
+  read_file("err.txt", m, sizeof m);
+  assert_int_equal(rc, 2);
+  assert_non_null(strstr(m, "control character"));
+  assert_false(exists("nl\nx"));
+  /* --sbatch refusals */
+  static const char *const bad_opts[] = {"--array=1-3", "mem=1G", "--qos 'a", "-a 1", ""};
+  for (int k = 0; k < 5; k++) {
+    rc = sh("%s sweep q.ini --slurm --dry-run -o q2 --sbatch '%s'", haff, bad_opts[k]);
+    if (rc != 2) fail_msg("--sbatch '%s': exit %d", bad_opts[k], rc);
+  }
+  assert_int_equal(sh("%s sweep q.ini --sbatch --mem=1G", haff), 2); /* without --slurm */
+  assert_false(exists("sbatch2.txt"));
+}
+
+/* --drop-points: after a merge that reads back with one done run per point, the points'
+ * databases are removed and DIR/points/DROPPED says so; the study stays done (--status: done,
+ * dropped; a second sweep and --merge leave study.db as it is). */
+static void sweep_drop_points(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("dp.ini", "[sweep]\nscene = short.ini\nseeds = 1 2\n");
+  assert_int_equal(sh("%s sweep dp.ini --drop-points --quiet", haff), 0);
+  assert_int_equal(q1("dp/study.db", "SELECT count(*) FROM runs WHERE status = 'done'"), 2);
+  assert_false(exists("dp/points/p0000.db"));
+  assert_false(exists("dp/points/p0001.db"));
+  assert_true(exists("dp/points/DROPPED"));
+  assert_int_equal(sh("%s sweep --status dp > dps.txt", haff), 0);
+  char m[2048];
+  read_file("dps.txt", m, sizeof m);
+  assert_non_null(strstr(m, "\n1\tdone\tdropped\t"));
+  struct stat a, b;
+  char p[400];
+  snprintf(p, sizeof p, "%s/dp/study.db", dir);
+  assert_int_equal(stat(p, &a), 0);
+  assert_int_equal(sh("%s sweep dp.ini", haff), 0);
+  assert_int_equal(sh("%s sweep --merge dp", haff), 0);
+  assert_int_equal(stat(p, &b), 0);
+  assert_true(a.st_mtim.tv_sec == b.st_mtim.tv_sec && a.st_mtim.tv_nsec == b.st_mtim.tv_nsec);
+  /* without it the points stay */
+  assert_int_equal(sh("%s sweep dp.ini -o dk --quiet", haff), 0);
+  assert_true(exists("dk/points/p0001.db"));
+  assert_int_equal(sh("%s sweep --status dk --drop-points", haff), 2);
+}
+
+/* Writes n bytes of text to file name in dir. */
+static void write_bytes(const char *name, const char *text, size_t n) {
+  char p[400];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "wb");
+  assert_non_null(f);
+  assert_int_equal(fwrite(text, 1, n, f), n);
+  assert_int_equal(fclose(f), 0);
+}
+
+/* The sweep file's messages and what it accepts (issue 24 item 12): seeds above 1e12 as a
+ * range (refused as "not a non-negative integer seed": the range was printed %.12g, 1e+12), a
+ * NUL byte named as such (was "line too long"), a control byte never echoed raw, a directory
+ * named as one (was "missing: the base scene"), a UTF-8 byte order mark skipped (was refused). */
+static void sweep_file_messages(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("big.ini", "[sweep]\nscene = short.ini\nseeds = 1000000000000:1000000000002:1\n");
+  assert_int_equal(sh("%s sweep big.ini --dry-run > big.txt", haff), 0);
+  char m[4096], e[2048];
+  read_file("big.txt", m, sizeof m);
+  assert_non_null(strstr(m, "\n1\tpoints/p0001.db\tsystem.seed=1000000000001\n"));
+  write_file("big2.ini", "[sweep]\nscene = short.ini\nseeds = 18446744073709551615 "
+                         "18446744073709551616\n");
+  assert_int_equal(sh("%s sweep big2.ini --dry-run", haff), 2);
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "big2.ini:3: [sweep] seeds: '18446744073709551616': a seed above "));
+  static const char nul[] = "[sweep]\nscene = short.ini\n\0seeds = 1\n";
+  write_bytes("nul.ini", nul, sizeof nul - 1);
+  assert_int_equal(sh("%s sweep nul.ini --dry-run", haff), 2);
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "nul.ini:3: [sweep]: a NUL byte: not a text file"));
+  write_file("esc.ini", "[sweep]\nscene = short.ini\n[axes]\ndisks.alpha = 0.9 \x1b[31mred\n");
+  assert_int_equal(sh("%s sweep esc.ini --dry-run", haff), 2);
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "esc.ini:4: [axes]: a control character (byte 0x1b)"));
+  for (const char *c = e; *c; c++)
+    if ((unsigned char)*c < 0x20 && *c != '\n') fail_msg("a raw control byte in '%s'", e);
+  write_file("esc2.ini", "[sweep]\nscene = short.ini\n[axes]\ndisks.al\x7fpha = 0.9\n");
+  assert_int_equal(sh("%s sweep esc2.ini --dry-run", haff), 2);
+  read_file("err.txt", e, sizeof e);
+  assert_null(strchr(e, 0x7f));
+  assert_int_equal(sh("mkdir -p adir.ini && %s sweep adir.ini --dry-run", haff), 2);
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "adir.ini: a directory, not a sweep file"));
+  write_file("sdir.ini", "[sweep]\nscene = adir.ini\n");
+  assert_int_equal(sh("%s sweep sdir.ini --dry-run", haff), 2);
+  read_file("err.txt", e, sizeof e);
+  assert_non_null(strstr(e, "sdir.ini:2: [sweep] scene: 'adir.ini': a directory"));
+  write_file("bom.ini", "\xEF\xBB\xBF[sweep]\r\nscene = short.ini\r\nseeds = 4 5\r\n");
+  assert_int_equal(sh("%s sweep bom.ini --dry-run > bom.txt", haff), 0);
+  read_file("bom.txt", m, sizeof m);
+  assert_non_null(strstr(m, "\n1\tpoints/p0001.db\tsystem.seed=5\n"));
+}
+
+/* Values with blanks are swept when quoted (`shape = linear 3` could not be): in [axes] and in
+ * [points]; the manifest keeps the quotes and each point's run has the value. */
+static void sweep_values_with_blanks(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("mix.ini", "[system]\narea_fraction = 0.05\nseed = 3\n[species tri]\ncount = 20\n"
+                        "shape = triangle\nalpha = 0.9\n[run]\nstop_cpd = 2\n[log]\n"
+                        "collisions = none\n");
+  write_file("vb.ini", "[sweep]\nscene = mix.ini\n[axes]\n"
+                       "species.tri.shape = \"linear 3\" triangle \"bent 90\"  ; quoted\n");
+  assert_int_equal(sh("%s sweep vb.ini --dry-run > vb.txt", haff), 0);
+  char m[4096];
+  read_file("vb.txt", m, sizeof m);
+  assert_non_null(strstr(m, "\n0\tpoints/p0000.db\tspecies.tri.shape=\"linear 3\"\n"));
+  assert_non_null(strstr(m, "\n1\tpoints/p0001.db\tspecies.tri.shape=triangle\n"));
+  assert_int_equal(sh("%s sweep vb.ini --quiet", haff), 0);
+  assert_int_equal(q1("vb/points/p0000.db", "SELECT count(*) FROM runs WHERE status = 'done' AND "
+                                            "scene LIKE '%shape = linear 3%'"),
+                   1);
+  assert_int_equal(q1("vb/study.db", "SELECT count(*) FROM runs"), 3);
+  write_file("vp.ini", "[sweep]\nscene = mix.ini\n[points]\n"
+                       "point = species.tri.shape=\"linear 4\" species.tri.count=10\n");
+  assert_int_equal(sh("%s sweep vp.ini --quiet", haff), 0);
+  assert_int_equal(q1("vp/study.db", "SELECT count(*) FROM runs WHERE scene LIKE '%shape = "
+                                     "linear 4%' AND scene LIKE '%count = 10%'"),
+                   1);
+  write_file("vq.ini",
+             "[sweep]\nscene = mix.ini\n[points]\npoint = species.tri.shape=\"linear 4\n");
+  assert_int_equal(sh("%s sweep vq.ini --dry-run", haff), 2);
+  read_file("err.txt", m, sizeof m);
+  assert_non_null(strstr(m, "vq.ini:4: [points] point: an unclosed quote"));
+}
+
+/* The bash completion of `haff sweep --` (which offers every --option its help names) offers
+ * --sbatch and --drop-points, and not --set, which sweep refuses (its help named "--set
+ * overrides"). */
+static void sweep_completion_offers_no_set(void **state) {
+  (void)state;
+  if (!haff) skip();
+  char comp[4200];
+  if (!realpath("cli/haff-completion.bash", comp)) skip(); /* not run from the source tree */
+  assert_int_equal(sh("bash -c 'source %s; COMP_WORDS=(%s sweep --); COMP_CWORD=2; _haff; "
+                      "printf \"%%s\\n\" \"${COMPREPLY[@]}\"' > comp.txt",
+                      comp, haff),
+                   0);
+  char m[4096];
+  m[0] = '\n';
+  read_file("comp.txt", m + 1, sizeof m - 1);
+  assert_non_null(strstr(m, "\n--sbatch\n"));
+  assert_non_null(strstr(m, "\n--drop-points\n"));
+  assert_non_null(strstr(m, "\n--dry-run\n"));
+  assert_null(strstr(m, "\n--set\n"));
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* the sweep file parser below the CLI: the fuzz target on its corpus and on edge inputs */
+
+#include <dirent.h>
+
+#include "fuzz/fuzz_sweep.c"
+
+/* Every seed of tests/fuzz/corpus/sweep/ and some edge inputs pass the fuzz target's checks
+ * (an abort would end this program), and what each seed should give it gives. */
+static void fuzz_sweep_corpus(void **state) {
+  (void)state;
+  DIR *d = opendir("tests/fuzz/corpus/sweep");
+  if (!d) skip(); /* not run from the source tree */
+  int n = 0;
+  for (struct dirent *e; (e = readdir(d));) {
+    if (e->d_name[0] == '.') continue;
+    char p[600];
+    snprintf(p, sizeof p, "tests/fuzz/corpus/sweep/%s", e->d_name);
+    FILE *f = fopen(p, "rb");
+    assert_non_null(f);
+    static char buf[1 << 16];
+    size_t len = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    LLVMFuzzerTestOneInput((const uint8_t *)buf, len);
+    hd_sweepfile s;
+    hd_error err;
+    int rc = hd_sweepfile_parse(&s, buf, len, p, &err);
+    int want = strcmp(e->d_name, "nul.ini") && strcmp(e->d_name, "bad.ini") ? HD_OK : HD_EINPUT;
+    if (rc != want) fail_msg("%s: %d (%s), wanted %d", p, rc, err.msg, want);
+    if (!rc) hd_sweepfile_free(&s);
+    n++;
+  }
+  closedir(d);
+  assert_true(n >= 5);
+  static const char *const edge[] = {"",
+                                     "\xEF\xBB\xBF",
+                                     "[sweep]\nscene=\"",
+                                     "[points]\npoint=\"\"",
+                                     "[sweep]\nscene = a\n[axes]\na.b = 1:1e300:1e-300\n",
+                                     "[sweep]\nscene = a\nseeds = 0:18446744073709551615:1\n"};
+  for (size_t k = 0; k < sizeof edge / sizeof edge[0]; k++)
+    LLVMFuzzerTestOneInput((const uint8_t *)edge[k], strlen(edge[k]));
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(progress_in_a_batch_log),
       cmocka_unit_test(resume_all),
+      cmocka_unit_test(resume_all_killed_in_setup),
       cmocka_unit_test(merge_runs_and_refusals),
       cmocka_unit_test(merge_killed_leaves_out),
       cmocka_unit_test(old_schema_reads_and_upgrades),
@@ -618,7 +1034,16 @@ int main(void) {
       cmocka_unit_test(sweep_bad_input),
       cmocka_unit_test(sweep_interrupted_then_resumed),
       cmocka_unit_test(sweep_collapsed_point_is_done),
+      cmocka_unit_test(sweep_point_killed_in_setup),
+      cmocka_unit_test(sweep_lock_refuses_a_second),
+      cmocka_unit_test(sweep_point_being_written_is_not_failed),
       cmocka_unit_test(sweep_slurm_scripts),
+      cmocka_unit_test(sweep_slurm_dry_run_and_quoting),
+      cmocka_unit_test(sweep_drop_points),
+      cmocka_unit_test(sweep_file_messages),
+      cmocka_unit_test(sweep_values_with_blanks),
+      cmocka_unit_test(sweep_completion_offers_no_set),
+      cmocka_unit_test(fuzz_sweep_corpus),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -10,7 +10,8 @@
 # each with its Slurm job and task in `provenance`, the resumed one with exactly the events of
 # the same point run uninterrupted.  Every wait has a timeout; a trap stops every daemon and job.
 # Prints a cmocka-style summary ("[  PASSED  ] 1 test(s)." or "[  FAILED  ] 1 test(s)") that
-# tests/run-tests counts.  HAFF_BIN: the binary (default bin/haff).
+# tests/run-tests counts.  First, `--slurm --dry-run` job scripts (a folder with a blank, a quote
+# and a %, and --sbatch options) must pass `sbatch --test-only`.  HAFF_BIN: the binary (default bin/haff).
 set -u
 HAFF=${HAFF_BIN:-$PWD/bin/haff}
 HAFF=$(readlink -f "$HAFF")
@@ -141,6 +142,22 @@ seeds = 1 2
 [axes]
 disks.alpha = 0.9 0.95
 INI
+# --dry-run: the scripts written, nothing submitted; sbatch --test-only takes them as they are,
+# with the study folder quoted in #SBATCH --output (a blank, a quote and a %) and --sbatch's
+# options (one quoted) passed through
+dry=$(timeout 30 "$HAFF" sweep sweep.ini -o 'dry run "%x' --slurm --dry-run --time 5 \
+  --partition debug --sbatch '--nice=5 --comment "a study, dry"' --drop-points) ||
+  fail "haff sweep --slurm --dry-run failed"
+[ -z "$(timeout 5 squeue -h -o %i 2>/dev/null)" ] || fail "--dry-run submitted a job"
+for f in "${dry%%$'\t'*}" "${dry##*$'\t'}"; do
+  [ -f "$f" ] && bash -n "$f" || fail "--dry-run: no script $f, or not sh"
+  out=$(timeout 30 sbatch --test-only "$f" 2>&1) || fail "sbatch --test-only $f: $out"
+  grep -q -- '--nice=5 --comment "a study, dry"' "$f" || fail "--sbatch not in $f"
+done
+grep -q -- ' --merge .* --drop-points$' "${dry##*$'\t'}" || fail "--drop-points not in the merge job"
+[ -f 'dry run "%x/manifest.tsv' ] || fail "--dry-run wrote no manifest"
+say "ok: --dry-run scripts pass sbatch --test-only"
+
 ids=$(timeout 30 "$HAFF" sweep sweep.ini -o study --slurm --time 5 --partition debug --progress 1) ||
   fail "haff sweep --slurm failed"
 JOB=${ids%%$'\t'*}; MJOB=${ids##*$'\t'}
