@@ -39,6 +39,7 @@ hd_queue *hd_queue_alloc(int32_t cap) {
     return NULL;
   }
   q->nb = nb;
+  q->wfac = 1.0;
   q->xcap = xcap;
   q->ecap = (int32_t)ecap;
   return q;
@@ -70,6 +71,7 @@ static void heap_push(hd_queue *q, double t, int32_t id) {
 
 /* Removes the top entry. */
 static void heap_pop(hd_queue *q) {
+  q->npop++;
   hd_qentry x = q->heap[--q->hn];
   int32_t n = q->hn, k = 0;
   if (n == 0) return;
@@ -208,6 +210,18 @@ static int flush_due(hd_queue *q) {
   return 0;
 }
 
+/* Whether the buckets are crowded (more than HD_QCROWD entries taken per bucket advanced since
+ * the last check); if so, narrows them to about two entries each and rebuilds.  The order of
+ * events does not depend on the width, only the cost; the O(n) rebuild waits for n / 4
+ * entries. */
+static int crowded(hd_queue *q) {
+  if (q->npop <= HD_QCROWD * (q->nadv + 16) || 4 * q->npop < q->n || !(q->wfac > 1e-12)) return 0;
+  q->wfac *= 2.0 * (double)(q->nadv + 1) / (double)q->npop;
+  if (q->wfac < 1e-12) q->wfac = 1e-12;
+  rebuild(q);
+  return 1;
+}
+
 /* Moves to the next non-empty bucket and fills the heap from it; 0 if no entry is left. */
 static int advance(hd_queue *q) {
   if (q->in_buckets == 0 && q->npend == 0) {
@@ -220,9 +234,19 @@ static int advance(hd_queue *q) {
     return 1;
   }
   q->cur++;
-  if ((q->cur & (q->nb - 1)) == 0 && redistribute(q)) { /* a new year */
-    rebuild(q);
-    return 1;
+  q->nadv++;
+  if (crowded(q)) return 1;
+  if ((q->cur & (q->nb - 1)) == 0) {                                  /* a new year */
+    if (q->wfac < 1.0 && q->nadv >= q->nb && 2 * q->npop < q->nadv) { /* sparse: wider */
+      q->wfac = q->wfac * 4.0 < 1.0 ? q->wfac * 4.0 : 1.0;
+      rebuild(q);
+      return 1;
+    }
+    if (q->nadv >= q->nb) q->npop = q->nadv = 0;
+    if (redistribute(q)) {
+      rebuild(q);
+      return 1;
+    }
   }
   if (q->pmin <= q->cur && flush_due(q)) {
     rebuild(q);
@@ -243,6 +267,7 @@ int32_t hd_queue_top(hd_queue *q) {
      * the same event: whichever comes up first stands for both) */
     if (key_of(q, e->id) == e->t) return e->id;
     heap_pop(q);
+    (void)crowded(q);
   }
 }
 
@@ -276,6 +301,8 @@ static void rebuild(hd_queue *q) {
     qsort(sample, (size_t)ns, sizeof(double), cmp_double);
     q->w = 2.0 * sample[ns / 2] / (double)finite;
   }
+  q->w *= q->wfac;
+  q->npop = q->nadv = 0;
   if (!(q->w > 0.0) || !isfinite(q->w) || !isfinite(1.0 / q->w)) q->w = 1.0;
   q->inv_w = 1.0 / q->w;
   q->cur = finite ? bucket_of(q, tmin) : 0;
