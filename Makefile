@@ -254,6 +254,11 @@ $(BENCH_BIN): bench/bench_engine.c $(LIB) | $(DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(ALL_INC) -o $@ $< $(LIB) $(LDLIBS)
 
+BENCH_RODS_BIN := $(BUILD)/bench/bench_rods
+$(BENCH_RODS_BIN): bench/bench_rods.c $(LIB) | $(DEPS_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) $(ALL_INC) -o $@ $< $(LIB) $(LDLIBS)
+
 MEMLAT_BIN := $(BUILD)/bench/memlat
 $(MEMLAT_BIN): bench/memlat.c | $(DEPS_STAMP)
 	@mkdir -p $(@D)

@@ -1,8 +1,9 @@
 /* Benchmark of the engine: collisions per second against N, area fraction and logging.
- * usage: bench_engine KIND N ETA LOG [COLLISIONS]   KIND disk|dimer|trimer (a linear trimer of
- * touching unit disks, a named species: the general cluster code), LOG 0|1 (every collision
- * to an SQLite file in $TMPDIR).  Prints one TSV line:
- * kind n eta log collisions seconds coll_per_s events_per_s stale_fraction */
+ * usage: bench_engine KIND N ETA LOG [COLLISIONS (default max(2N, 2e6))]   KIND disk|dimer|trimer
+ * (a linear trimer of touching unit disks, a named species: the general cluster code), LOG 0|1
+ * (every collision to an SQLite file in $TMPDIR).  Prints one TSV line: kind n eta log collisions
+ * seconds coll_per_s events_per_s stale_fraction Under `valgrind --tool=callgrind
+ * --instr-atstart=no` only the timed loop is counted (bench_callgrind.h). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,6 +11,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bench_callgrind.h"
 #include "bench_util.h"
 #include "hd_db.h"
 #include "hd_model.h"
@@ -33,8 +35,10 @@ int main(int argc, char **argv) {
       (argc > 5 && bench_arg_long("bench_engine", "COLLISIONS", argv[5], 1, 1L << 62, &ncoll)))
     return 2;
   int log = (int)logl;
-  if (argc <= 5) ncoll = 2 * n;
-  if (ncoll < 2000000) ncoll = 2000000;
+  if (argc <= 5) {
+    ncoll = 2 * n;
+    if (ncoll < 2000000) ncoll = 2000000;
+  }
   hd_scene sc;
   memset(&sc, 0, sizeof sc);
   sc.dimer_d = sc.dimer_a = sc.dimer_m = 1.0;
@@ -84,6 +88,7 @@ int main(int argc, char **argv) {
   for (long k = 0; k < n / 2; k++) ops->next(s, INFINITY, &row, &err);
   int64_t e0 = s->c.events;
   double t0 = bench_now();
+  BENCH_CG_START();
   for (long k = 1; k <= ncoll; k++) {
     if (ops->next(s, INFINITY, &row, &err)) {
       fprintf(stderr, "bench: %s\n", err.msg);
@@ -95,6 +100,7 @@ int main(int argc, char **argv) {
       return 1;
     }
   }
+  BENCH_CG_STOP();
   if (db && hd_db_commit(db, &err)) return 1;
   double dt = bench_now() - t0;
   printf("%s\t%ld\t%.2f\t%d\t%ld\t%.3f\t%.4g\t%.4g\t%.3f\n", argv[1], n, eta, log, ncoll, dt,

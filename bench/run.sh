@@ -28,10 +28,39 @@ run() { # kind n eta log
       best=$line
     fi
   done
-  echo "$best" >>"$raw"
+  # instructions per collision: unlogged rows up to N = 1e4 (set-up and warm-up at 1e5 and
+  # 1e6 take minutes under callgrind)
+  local ins="-"
+  [ "$4" = 0 ] && [ "$2" -le 10000 ] && ins=$(instr "$1" "$2" "$3")
+  printf '%s\t%s\n' "$best" "$ins" >>"$raw"
+}
+# instructions per collision of an unlogged run (column instr/coll): from the hardware counters
+# where the machine has them (perf stat, the difference of runs of 2C and C collisions), else
+# from callgrind over C collisions of the timed loop alone (bench_callgrind.h: exact and
+# repeatable on a loaded machine, ~50x slower); C = BENCH_ICOLL [1e5]; BENCH_INSTR=0: none
+icoll=${BENCH_ICOLL:-100000}
+counters=0
+perf stat -x, -e instructions true 2>&1 >/dev/null | grep -q '^[0-9]' && counters=1
+instr() { # kind n eta
+  [ "${BENCH_INSTR:-1}" = 1 ] || { echo "-"; return; }
+  if [ $counters = 1 ]; then
+    local a b
+    a=$(perf stat -x, -e instructions "$bin" "$1" "$2" "$3" 0 "$icoll" 2>&1 >/dev/null | awk -F, '/instructions/{print $1}')
+    b=$(perf stat -x, -e instructions "$bin" "$1" "$2" "$3" 0 $((2 * icoll)) 2>&1 >/dev/null | awk -F, '/instructions/{print $1}')
+    awk -v a="$a" -v b="$b" -v c="$icoll" 'BEGIN { printf "%.0f\n", (b - a) / c }'
+  elif command -v valgrind >/dev/null; then
+    local f
+    f=$(mktemp)
+    valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$f" "$bin" "$1" "$2" "$3" 0 "$icoll" >/dev/null 2>&1
+    awk -v c="$icoll" '/^totals:/ { printf "%.0f\n", $2 / c; exit }' "$f"
+    rm -f "$f"
+  else
+    echo "-"
+  fi
 }
 for kind in disk dimer; do
-  if [ $kind = disk ]; then etas="0.25 0.45"; else etas="0.15 0.30"; fi
+  # dimers also at the paper's density (scenes/paper-dimers.ini: 0.05)
+  if [ $kind = disk ]; then etas="0.25 0.45"; else etas="0.05 0.15 0.30"; fi
   for eta in $etas; do for n in $ns; do for log in 0 1; do
     run $kind $n $eta $log
   done; done; done
@@ -59,17 +88,23 @@ cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
   echo "timed over max(2e6, 2N) collisions after a warm-up of N/2 collisions, best of $reps runs (2 at N = 1e6) (disks at 0.45 start"
   echo "from a lattice, the others from random placement); logging = every collision to SQLite (\`[log] collisions = all\`)."
   echo
-  echo "| kind | N | area fraction | logging | collisions/s | events/s | stale events | logged/unlogged | vs N = 1e3 |"
-  echo "|---|---|---|---|---|---|---|---|---|"
+  echo "| kind | N | area fraction | logging | collisions/s | events/s | stale events | logged/unlogged | vs N = 1e3 | instr/coll |"
+  echo "|---|---|---|---|---|---|---|---|---|---|"
   awk -F'\t' '
     { key=$1 FS $3; r[$1 FS $2 FS $3 FS $4]=$7; if ($2==1000) base[$1 FS $3 FS $4]=$7; rows[NR]=$0 }
     END { for (k=1; k<=NR; k++) { split(rows[k], f, FS);
       un=r[f[1] FS f[2] FS f[3] FS 0]; b=base[f[1] FS f[3] FS f[4]];
-      printf "| %s | %d | %.2f | %s | %.3g | %.3g | %.1f%% | %s | %.2f |\n", f[1], f[2], f[3],
+      printf "| %s | %d | %.2f | %s | %.3g | %.3g | %.1f%% | %s | %.2f | %s |\n", f[1], f[2], f[3],
         f[4]==1 ? "every collision" : "off", f[7], f[8], 100*f[9],
-        f[4]==1 ? sprintf("%.0f%%", 100*f[7]/un) : "", b/f[7] } }' "$raw"
+        f[4]==1 ? sprintf("%.0f%%", 100*f[7]/un) : "", b/f[7], f[10] == "-" ? "" : f[10] } }' "$raw"
   echo
   echo "\"vs N = 1e3\": slowdown factor against N = 1000 at the same kind, fraction and logging."
+  if [ $counters = 1 ]; then
+    echo "\"instr/coll\": instructions per collision (hardware counters, runs of $((2 * icoll)) and $icoll collisions)."
+  else
+    echo "\"instr/coll\": instructions per collision of the timed loop (callgrind, $icoll collisions; no hardware counters here)."
+  fi
+  echo "Which change moved which row: bench/issue27-ab.md (the A/B measurements of issue 27)."
   echo
   echo "Memory of this machine in the same run (\`bench/memlat MB CHAINS\`: a random cycle of"
   echo "64-byte lines through MB megabytes on huge pages, CHAINS walkers at once):"

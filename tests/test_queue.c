@@ -117,9 +117,45 @@ static void many_updates_between_events(void **state) {
   gsl_rng_free(r);
 }
 
+/* A dense cluster (a rod ring's dense phase): 50 of 2000 bodies have their events 1e-4 apart,
+ * the others ~100 ahead, so the width from the keys' spread puts the whole cluster in the
+ * current bucket.  The queue must narrow its buckets (wfac < 1; the heap then holds a few
+ * entries, not the cluster), keep the brute-force order throughout (the order never depends
+ * on the width), and widen them again once the cluster has dissolved (events at the spread of
+ * the others).  Fixed seed; comparisons exact. */
+static void crowded_cluster_narrows(void **state) {
+  (void)state;
+  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(r, 5);
+  enum { n = 2000, nc = 50 };
+  double *t = malloc(sizeof(double) * n);
+  hd_queue *q = hd_queue_alloc(n);
+  assert_non_null(q);
+  for (int32_t i = 0; i < n; i++)
+    t[i] = i < nc ? 1e-4 * gsl_rng_uniform(r) : 100 * gsl_rng_uniform(r);
+  hd_queue_build(q, n, t, 1);
+  double now = 0.0;
+  int32_t hmax = 0;
+  for (long k = 0; k < 60000; k++) {
+    int32_t top = hd_queue_top(q);
+    assert_int_equal(top, brute_min(t, n));
+    now = t[top];
+    if (k > 20000 && q->hn > hmax) hmax = q->hn;
+    /* the cluster's bodies collide again soon while k < 40000, then like the others */
+    t[top] = now + (top < nc && k < 40000 ? 1e-4 : 100) * gsl_rng_uniform(r);
+    hd_queue_update(q, top, t[top]);
+    if (k == 30000) assert_true(q->wfac < 0.1);
+  }
+  assert_true(hmax < 32); /* the current bucket holds a few entries, not the 50 of the cluster */
+  assert_true(q->wfac > 0.5); /* widened again (by 4 at a time, up to 1) */
+  hd_queue_free(q);
+  free(t);
+  gsl_rng_free(r);
+}
+
 int main(void) {
-  const struct CMUnitTest tests[] = {cmocka_unit_test(against_brute_force),
-                                     cmocka_unit_test(ties_by_index),
-                                     cmocka_unit_test(many_updates_between_events)};
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(against_brute_force), cmocka_unit_test(ties_by_index),
+      cmocka_unit_test(many_updates_between_events), cmocka_unit_test(crowded_cluster_narrows)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -16,8 +16,13 @@
  * Insertion is O(1), the minimum O(1) on average when w is about the mean spacing of events
  * (hd_queue_build tunes it from the keys; the engine rebuilds the queue every 100 N events; a
  * queue whose heap, overflow or extension pool fills with stale entries rebuilds itself from
- * the keys).  The order is the total order (time, then body index), so the sequence of events is
- * the same whatever the bucket layout: runs are deterministic and checkpoints exact. */
+ * the keys).  When the events crowd into a few bodies (a rod ring's dense clusters), the width
+ * from the keys' spread is far too wide and each bucket holds hundreds of entries, ordered by
+ * the heap: a queue whose buckets hold more than HD_QCROWD entries each on average narrows its
+ * buckets to about two entries each and rebuilds, and widens them again (up to the rule's
+ * width) when a year holds fewer than one entry per 2 buckets.  The order is the total order (time,
+ * then body index), so the sequence of events is the same whatever the bucket layout: runs are
+ * deterministic and checkpoints exact. */
 #ifndef HD_QUEUE_H
 #define HD_QUEUE_H
 
@@ -44,6 +49,9 @@ typedef struct hd_qblock {
                           * in the pool's free list: the next free block */
   int32_t pad[2];
 } hd_qblock;
+
+/* Entries per bucket advanced above which the queue narrows its buckets. */
+#define HD_QCROWD 32
 
 /* Updates that wait before they are written into their bucket's block (a power of two): the
  * block is prefetched when the update comes and written this many updates later. */
@@ -88,6 +96,11 @@ typedef struct hd_queue {
   int64_t cur;             /* index of the current bucket (floor(t / w)) */
   double w;                /* bucket width */
   double inv_w;            /* 1 / w: the bucket of t is floor(t * inv_w) */
+  double wfac;             /* the bucket width is wfac times its rule's (rebuild): 1, lowered
+                            * when the current buckets overfill (events crowded into a
+                            * fraction of the bodies, as in a rod ring's dense clusters) */
+  int64_t npop;            /* entries taken from the heap since the width was last checked */
+  int64_t nadv;            /* buckets advanced since then */
   hd_queue_prefetch_fn pf; /* prefetch hint, or NULL */
   void *pf_ctx;            /* its context */
   int pf_stages;           /* its stages, 2 or 3 */

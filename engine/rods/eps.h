@@ -111,6 +111,9 @@ typedef struct hd_eps_table {
   int richardson;            /* its richardson option */
   double seconds;            /* build time */
   double *q;                 /* nbeta*nu quantiles, q[k*nu + j], nondecreasing in j */
+  double log_span;           /* ln(beta_max/beta_min) as hd_eps_table_build computed it (each
+                                draw's node position needs it); 0: not set, each draw computes
+                                it (a table filled by other means) */
 } hd_eps_table;
 
 /* Builds a table by direct sampling (samples per node, sorted, empirical quantiles).  The

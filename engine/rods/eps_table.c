@@ -111,6 +111,7 @@ int hd_eps_table_build(hd_eps_table **out, hd_eps_sampler *s, double beta_min, d
   t->gamma_eff = hd_eps_sampler_gamma(s);
   t->beta_min = beta_min;
   t->beta_max = beta_max;
+  t->log_span = log(beta_max / beta_min);
   t->samples = samples;
   t->step = hd_eps_sampler_step(s);
   t->adapt = o.adapt;
@@ -146,7 +147,9 @@ double hd_eps_table_quantile(const hd_eps_table *t, double beta, double u) {
     if (isinf(beta)) return g;
     return g + (node_quantile(t, t->nbeta - 1, u) - g) * sqrt(t->beta_max / beta);
   }
-  double y = log(beta / t->beta_min) / log(t->beta_max / t->beta_min) * (t->nbeta - 1);
+  /* the same double as log(beta_max / beta_min) computed here (-fno-math-errno: log is pure) */
+  double span = t->log_span != 0 ? t->log_span : log(t->beta_max / t->beta_min);
+  double y = log(beta / t->beta_min) / span * (t->nbeta - 1);
   int k = (int)y;
   if (k >= t->nbeta - 1) k = t->nbeta - 2;
   double f = y - k;

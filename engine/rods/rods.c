@@ -1,6 +1,6 @@
 /* hd_rods: the ring of rods (rods.h).  Gaps are stored, not positions: gap k at time gt[k]
  * is g[k], and it changes only when one of its two rods changes velocity, so a collision
- * touches three gaps and three heap entries (O(log N)), and a small gap keeps its full
+ * touches three gaps and three queue entries (hd_queue.h, O(1)), and a small gap keeps its full
  * relative precision however far the rods are from the origin. */
 #include "rods.h"
 
@@ -279,7 +279,7 @@ static double ratio(double a, double b) {
 /* ln of the table's node spacing, ln(beta_max/beta_min)/(nbeta - 1): the extension's too. */
 static double low_step(const hd_rods *r) {
   const hd_eps_table *t = r->table;
-  return log(t->beta_max / t->beta_min) / (double)(t->nbeta - 1);
+  return (t->log_span != 0 ? t->log_span : log(t->beta_max / t->beta_min)) / (double)(t->nbeta - 1);
 }
 
 /* beta of node j of the extension below the table's grid (j = 0: the table's first node). */

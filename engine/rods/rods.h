@@ -1,8 +1,9 @@
 /* hd_rods: the 1D gas of inelastic rods of Aspelmeier, Giese and Zippelius (1998), Secs. II C
  * and IV: N point rods on a ring of length N (mean spacing 1), alternating short/long with
  * length ratio gamma and masses in the same ratio, each with a bath of N_mod vibrational modes
- * at temperature T_B.  Event driven between collisions (one event per gap i|i+1 in an indexed
- * heap), Monte Carlo at collisions (eps drawn from p_beta, eps.h).  docs/rods.md.
+ * at temperature T_B.  Event driven between collisions (one event per gap i|i+1 in the engine's
+ * calendar queue, hd_queue.h), Monte Carlo at collisions (eps drawn from p_beta, eps.h).
+ * docs/rods.md.
  *
  * Units (paper Sec. II C): masses m_short = Gamma_1 = 1 + gamma, m_long = Gamma_2 = 1 + 1/gamma,
  * so that the reduced mass of every colliding pair is mu = Gamma_1 Gamma_2/(Gamma_1 + Gamma_2)
