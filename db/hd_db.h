@@ -18,7 +18,7 @@
  * the views params and run_summary (db/README.md lists them).  A file opened for writing
  * (hd_db_open, hd_db_open_existing) is brought up to it; the change is additive, so files of
  * every version stay readable.  A writer refuses a file of a newer version. */
-#define HD_DB_SCHEMA_VERSION 3
+#define HD_DB_SCHEMA_VERSION 4
 
 typedef struct hd_db hd_db;
 typedef struct sqlite3 sqlite3; /* the same typedef as <sqlite3.h> (C11 allows the repeat) */
@@ -79,7 +79,9 @@ typedef struct hd_state_rec {
   int64_t body;
   int kind; /* HD_KIND_DISK 0, HD_KIND_DIMER 1, HD_DB_KIND_ROD 2, HD_DB_KIND_BODY 3 */
   double x, y, phi, vx, vy, omega;
-  double cpd; /* collisions per particle at t (states.cpd); NaN is stored as NULL */
+  double cpd;  /* collisions per particle at t (states.cpd); NaN is stored as NULL */
+  int species; /* the body's species.idx (states.species, schema version 4): 0 [dimers], 1
+                * [disks], 2.. each [species NAME]; stored as NULL for a rod (kind 2) */
 } hd_state_rec;
 
 /* One row of `species` (schema version 3). */

@@ -13,6 +13,8 @@
 --   3  adds the species and sample_species tables (issue 18: species of any shape, named in
 --      the scene), and the collision kinds body-body, body-wall and the states kind body.
 --      New tables only: a file of version 0 or 2 is brought to 3 by creating them.
+--   4  adds states.species (each body's species.idx; issue 28): ALTER TABLE ... ADD COLUMN,
+--      old rows NULL (their species still follows from the body number and species.count).
 PRAGMA journal_mode = WAL;
 
 -- One row per run.  status: running, done, interrupted, collapsed, failed.
@@ -149,14 +151,18 @@ CREATE TABLE IF NOT EXISTS states (
   cpd   REAL,
   body  INTEGER NOT NULL,
   kind  TEXT NOT NULL,        -- 'dimer', 'disk', 'rod' or 'body' (a named species: version 3)
-  x REAL, y REAL, phi REAL, vx REAL, vy REAL, omega REAL
+  x REAL, y REAL, phi REAL, vx REAL, vy REAL, omega REAL,
+  species INTEGER             -- the body's species: species.idx of the run (0 dimer, 1 disk,
+                              -- 2.. each [species NAME]; its name: JOIN species ON species.run
+                              -- = states.run AND species.idx = states.species); NULL for rods
+                              -- and in rows written before schema version 4
 );
 
 -- Trajectory frames ([log] frames_every / frames_every_time): one row per frame, the bodies
 -- packed in one BLOB in body order (0 .. n-1), 36 bytes each, little-endian: x, y, phi as
 -- float64 (positions exact, as in states), then vx, vy, omega as float32 (7 digits: enough
--- to colour a movie by speed).  Rods: x, 0, 0, v, 0, bath temperature.  The kinds of the
--- bodies are those of the run's 'initial' states.  36 bytes per body against ~107 for a states
+-- to colour a movie by speed).  Rods: x, 0, 0, v, 0, bath temperature.  The kinds and species
+-- of the bodies are those of the run's 'initial' states (states.kind, states.species).  36 bytes per body against ~107 for a states
 -- row with its index (measured in db/README.md).  `haff export xyz` and `haff movie` read them.
 CREATE TABLE IF NOT EXISTS frames (
   run   INTEGER NOT NULL REFERENCES runs(id),

@@ -228,7 +228,9 @@ static void frames_resumed(void **state) {
 /* ASE reads every frame of a pure dimer run (frames by cpd), a pure disk run between walls
  * left and right (pbc "F T F"), a mixture with masses of its own between walls bottom and top
  * (pbc "T F F", with velocities_at snapshots) and a rods run (masses 1 + gamma, 1 + 1/gamma;
- * pbc "T F F"). */
+ * pbc "T F F"), and a mixture of dimers and two named species between walls left and right,
+ * whose species names ASE reads intact (column species_name, an element per species: issue
+ * 28; ase_check.py checks them, and the disks of the named bodies, for every kind of run). */
 static void ase_reads_every_kind_of_run(void **state) {
   (void)state;
   if (!haff) skip();
@@ -249,6 +251,11 @@ static void ase_reads_every_kind_of_run(void **state) {
       {"[rods]\ncount = 40\ngamma = 0.5\n[run]\nstop_time = 3\n[log]\ncollisions = none\n"
        "frames_every_time = 1\n",
        "T F F"},
+      {"[system]\nbox = 30 30\nseed = 18\n[dimers]\ncount = 10\n[species tri]\ncount = 10\n"
+       "shape = triangle\n[species asym]\ncount = 10\ndisks = 0 0 1 1; 0.8 0 0.6 0.5\n"
+       "[walls]\nsides = left right\n[run]\nstop_cpd = 4\n[log]\ncollisions = none\n"
+       "velocities_at = 2\nframes_every = 1\n",
+       "F T F"},
   };
   for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
     write_file("a.ini", runs[k].ini);
