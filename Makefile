@@ -16,6 +16,9 @@ DEPS_PKGS += slurm-wlm munge
 DEPS_PKGS += python3-pandas groff-base
 # python3-ase: tests/ase_check.py reads the XYZ export with ASE; ffmpeg: haff movie encodes
 DEPS_PKGS += python3-ase ffmpeg
+# python3-gsd: tests/gsd_check.py reads `haff export gsd` with the real reader (gsd.hoomd);
+# python3-numpy: the Python module python/haff (its tests run under make test)
+DEPS_PKGS += python3-gsd python3-numpy
 # clang: make fuzz (libFuzzer on the parsers and the checkpoint restore)
 DEPS_PKGS += clang
 WARN    := -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes -Wmissing-prototypes
