@@ -93,7 +93,8 @@ help:
 	@echo "make scene-keys  rewrite the key tables of docs/scene-keys.md from the key table"
 	@echo "make bench   benchmarks -> bench/results.md"
 	@echo "make plots   the papers' figures and tables -> plots/out/"
-	@echo "make install PREFIX=/usr/local DESTDIR=   bin/haff, man page haff(1), bash completion"
+	@echo "make install PREFIX=/usr/local DESTDIR=   bin/haff, man page haff(1), bash completion,"
+	@echo "                                           the Python module haff"
 	@echo "make uninstall PREFIX=... DESTDIR=...      removes what make install put there"
 
 # --- dependencies --------------------------------------------------------------------------
@@ -242,17 +243,25 @@ PREFIX  ?= /usr/local
 BINDIR  ?= $(PREFIX)/bin
 MANDIR  ?= $(PREFIX)/share/man
 BASHCOMPDIR ?= $(PREFIX)/share/bash-completion/completions
+# The Python module python/haff, where Debian's /usr/bin/python3 finds it: /usr/lib/python3/
+# dist-packages for PREFIX=/usr, PREFIX/lib/python3.X/dist-packages otherwise (/usr/local is on
+# its path; another PREFIX needs PYTHONPATH).
+PYVER   := $(shell /usr/bin/python3 -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null)
+PYTHONDIR ?= $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/python3/dist-packages,$(PREFIX)/lib/python$(PYVER)/dist-packages)
 INSTALLED := $(DESTDIR)$(BINDIR)/haff $(DESTDIR)$(MANDIR)/man1/haff.1 \
-             $(DESTDIR)$(BASHCOMPDIR)/haff
+             $(DESTDIR)$(BASHCOMPDIR)/haff $(DESTDIR)$(PYTHONDIR)/haff/__init__.py
 
 install: bin/haff $(BUILD)/haff.1
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(BASHCOMPDIR)
 	install -m 755 bin/haff $(DESTDIR)$(BINDIR)/haff
 	install -m 644 $(BUILD)/haff.1 $(DESTDIR)$(MANDIR)/man1/haff.1
 	install -m 644 cli/haff-completion.bash $(DESTDIR)$(BASHCOMPDIR)/haff
+	install -d $(DESTDIR)$(PYTHONDIR)/haff
+	install -m 644 python/haff/__init__.py $(DESTDIR)$(PYTHONDIR)/haff/__init__.py
 
 uninstall:
 	rm -f $(INSTALLED)
+	rm -rf $(DESTDIR)$(PYTHONDIR)/haff
 
 clean:
 	rm -rf build build-asan build-fuzz bin

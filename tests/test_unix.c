@@ -153,7 +153,8 @@ static void run_refuses_dash(void **state) {
 
 /* make install PREFIX DESTDIR puts bin/haff, haff.1 and the completion under DESTDIR/PREFIX;
  * the man page has a section for every subcommand of the dispatcher table (and of `haff mc`);
- * the completion offers them, and a subcommand's options; make uninstall removes all three. */
+ * the completion offers them, and a subcommand's options; the Python module goes to
+ * PREFIX/lib/python3.X/dist-packages/haff; make uninstall removes them all. */
 static void install_man_completion(void **state) {
   (void)state;
   if (!haff) skip();
@@ -164,6 +165,10 @@ static void install_man_completion(void **state) {
   assert_true(exists("stage/opt/h/share/man/man1/haff.1"));
   assert_true(exists("stage/opt/h/share/bash-completion/completions/haff"));
   assert_int_equal(sh("stage/opt/h/bin/haff -V"), 0);
+  /* the Python module, where /usr/bin/python3 finds it under that prefix (issue 28) */
+  assert_int_equal(sh("cd stage/opt/h/lib/python3.*/dist-packages && /usr/bin/python3 -c "
+                      "'import haff; assert haff.__file__.startswith(\"'$PWD'\")'"),
+                   0);
   char names[64][32];
   int n = dispatcher_names(names, 64);
   assert_true(n >= 17);
@@ -216,6 +221,7 @@ static void install_man_completion(void **state) {
   assert_false(exists("stage/opt/h/bin/haff"));
   assert_false(exists("stage/opt/h/share/man/man1/haff.1"));
   assert_false(exists("stage/opt/h/share/bash-completion/completions/haff"));
+  assert_int_equal(sh("test ! -e stage/opt/h/lib/python3.*/dist-packages/haff"), 0);
 }
 
 /* build/libhaff.so is built with `make` and loads, with the library's functions in it. */
