@@ -21,13 +21,13 @@
  * The hoomd schema (1.4) as written here, for every frame (docs/python.md has the reader's view):
  *   configuration/step (uint64): the frame's index 0, 1, ...; configuration/dimensions (uint8) 2;
  *   configuration/box (float) Lx Ly 0 0 0 0 (a ring of rods: its length, and 1);
- *   particles/N, types, typeid, mass, diameter, body, moment_inertia, position, orientation,
- *   velocity, angmom, image: one particle per body, particle i = body i; then, for every body of
- *   more than one disk, its disks (HOOMD's rigid-body convention: the central particle has body
- *   = its own tag, the constituents body = the central particle's tag; a single-disk body and a
- *   rod have body -1).  Types: the run's species (species.name in idx order; 'rod'), then
- *   'NAME_disk' for the disks of each species of more than one disk.  A central particle has the
- *   body's mass, moment_inertia (0, 0, I), diameter 0, the orientation q = (cos phi/2, 0, 0,
+ *   particles/N, types (int8, NT x M: the names, 0-padded), typeid, mass, diameter, body,
+ * moment_inertia, position, orientation, velocity, angmom, image: one particle per body, particle i
+ * = body i; then, for every body of more than one disk, its disks (HOOMD's rigid-body convention:
+ * the central particle has body = its own tag, the constituents body = the central particle's tag;
+ * a single-disk body and a rod have body -1).  Types: the run's species (species.name in idx order;
+ * 'rod'), then 'NAME_disk' for the disks of each species of more than one disk.  A central particle
+ * has the body's mass, moment_inertia (0, 0, I), diameter 0, the orientation q = (cos phi/2, 0, 0,
  *   sin phi/2) and angmom p = 2 q (0, 0, 0, I omega) = (-2 sin(phi/2) I omega, 0, 0, 2 cos(phi/2)
  *   I omega), HOOMD's conjugate-quaternion momentum (the body-frame angular momentum is
  *   (q* p) / 2): I omega = (cos(phi/2) p_z - sin(phi/2) p_w) / 2.  A disk (free or constituent) has
@@ -51,7 +51,7 @@
 #include "hd_body.h"
 
 /* GSD's chunk types (file-layer specification). */
-enum { GSD_U8 = 1, GSD_U32 = 3, GSD_U64 = 4, GSD_I32 = 7, GSD_F32 = 9, GSD_F64 = 10 };
+enum { GSD_U8 = 1, GSD_U32 = 3, GSD_U64 = 4, GSD_I8 = 5, GSD_I32 = 7, GSD_F32 = 9, GSD_F64 = 10 };
 
 /* The chunk names in id order (every frame writes them in this order). */
 enum {
@@ -127,7 +127,7 @@ static void put_u64(unsigned char *b, uint64_t v) {
 
 /* Bytes of one element of a GSD type. */
 static size_t type_size(int type) {
-  return type == GSD_U8 ? 1 : type == GSD_U64 || type == GSD_F64 ? 8 : 4;
+  return type == GSD_U8 || type == GSD_I8 ? 1 : type == GSD_U64 || type == GSD_F64 ? 8 : 4;
 }
 
 /* Writes n bytes at the end; 0 or 1 (said). */
@@ -314,7 +314,7 @@ static int gsd_emit(void *ctx, const hd_export_geom *g, const hd_export_frame *f
   int rc =
       chunk(w, C_STEP, GSD_U64, 1, 1, &step) || chunk(w, C_DIM, GSD_U8, 1, 1, &dim) ||
       chunk(w, C_BOX, GSD_F32, 6, 1, box) || chunk(w, C_N, GSD_U32, 1, 1, &np) ||
-      chunk(w, C_TYPES, GSD_U8, (uint64_t)nt, (uint32_t)width, tbuf) ||
+      chunk(w, C_TYPES, GSD_I8, (uint64_t)nt, (uint32_t)width, tbuf) ||
       chunk(w, C_TYPEID, GSD_U32, un, 1, w->typeid) || chunk(w, C_MASS, GSD_F32, un, 1, w->mass) ||
       chunk(w, C_DIAM, GSD_F32, un, 1, w->diam) || chunk(w, C_BODY, GSD_I32, un, 1, w->body) ||
       chunk(w, C_MOI, GSD_F32, un, 3, w->moi) || chunk(w, C_POS, GSD_F32, un, 3, w->pos3) ||
