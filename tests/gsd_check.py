@@ -14,6 +14,7 @@ p = 2 q (0, 0, 0, I omega); the log values haff/time, cpd, label and the exact d
 haff/position, velocity, phi, omega.  Every comparison is exact: the float32 fields against the
 float32 of the double computed here, the doubles bit for bit (a disk's position and velocity
 use the engine's formula, glibc's sin and cos, which equal its sincos).
+The pure-Python reader gsd.pygsd (its own parser of the file layer) must read the same frames.
 Prints one line per failed check and "N passed, M failed"; exit 1 on a failure.
 """
 import math
@@ -22,6 +23,7 @@ import struct
 import sys
 
 import gsd.hoomd
+import gsd.pygsd
 import numpy as np
 
 passed = failed = 0
@@ -216,6 +218,14 @@ def main():
         if not rods:
             check(all(p.body[i] == i or p.body[i] == -1 for i in range(len(rows))),
                   where + ": a body's own particle is its tag")
+    # the pure-Python reader of the same package (its own parser of the file layer) agrees
+    with open(path, "rb") as fh:
+        py = gsd.hoomd.HOOMDTrajectory(gsd.pygsd.GSDFile(fh))
+        check(len(py) == len(traj), "pygsd: %d frames" % len(py))
+        for k in (0, len(py) - 1):
+            check(same(py[k].particles.position, traj[k].particles.position) and
+                  same(py[k].log["haff/position"], traj[k].log["haff/position"]),
+                  "pygsd: frame %d differs" % k)
     print("%d passed, %d failed" % (passed, failed))
     sys.exit(1 if failed else 0)
 
