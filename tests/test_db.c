@@ -1107,6 +1107,32 @@ static void export_xyz(void **state) {
   /* the newest run (2) has no states: exit 2 with a message; so give --run 1 */
   assert_int_equal(export_run(fx->path, "--run", "1", "-o", out, NULL, NULL, NULL), 0);
   assert_string_equal(slurp(out), both);
+  /* the GSD writer in process (so the sanitized build runs it too; tests/test_export.c reads
+   * its files with the real gsd.hoomd): a file with GSD's magic and the hoomd schema, the
+   * index's two frames (step 0 and 1) and no .tmp left */
+  {
+    char gsd[400], tmp[420];
+    snprintf(gsd, sizeof gsd, "%s/out.gsd", fx->dir);
+    snprintf(tmp, sizeof tmp, "%s.tmp", gsd);
+    char *argv[] = {"export", "gsd", fx->path, "--run", "1", "-o", gsd, NULL};
+    assert_int_equal(haff_export_main(7, argv), 0);
+    FILE *g = fopen(gsd, "rb");
+    assert_non_null(g);
+    unsigned char h[256];
+    assert_int_equal(fread(h, 1, sizeof h, g), sizeof h);
+    uint64_t magic = 0, index_at = 0, last_frame = 0;
+    for (int k = 7; k >= 0; k--) magic = magic << 8 | h[k], index_at = index_at << 8 | h[8 + k];
+    assert_true(magic == 0x65DF65DF65DF65DFull);
+    assert_string_equal((const char *)h + 112, "hoomd");
+    /* the frame of the index's last entry (before the zero entry that ends it) */
+    unsigned char e[32];
+    assert_int_equal(fseek(g, (long)index_at, SEEK_SET), 0);
+    while (fread(e, 1, sizeof e, g) == sizeof e && (e[16] | e[17] | e[18] | e[19]))
+      for (int k = 7; k >= 0; k--) last_frame = (k == 7 ? 0 : last_frame << 8) | e[k];
+    assert_int_equal(last_frame, 1);
+    fclose(g);
+    assert_int_equal(access(tmp, F_OK), -1);
+  }
 
   /* a box stored with hd_db_run_box wins over the scene's */
   db = open_ok(fx->path);
