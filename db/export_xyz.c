@@ -6,19 +6,22 @@
  *   line 1: the number of particles, i.e. of disks (a dimer gives its 2 disks)
  *   line 2: Lattice="Lx 0 0 0 Ly 0 0 0 1" Properties=PROPS pbc="T T F" Time=t Label=label [Cpd=cpd]
  * with PROPS = species:S:1:pos:R:3:velo:R:3:masses:R:1:momenta:R:3:radius:R:1:body:I:1:phi:R:1:
- * omega:R:1, then one line per disk: species (N: a disk of a dimer, Ar: a single disk, C: a rod;
- * chemical symbols, which ASE requires), x y 0, its velocity vx vy 0 (rotation included), its
- * mass, its momentum (what ASE reads as velocities times masses), its radius, the body index,
- * the body's orientation phi and angular velocity omega.  A dimer's disk k is at R -+ (a/2)(cos
- * phi, sin phi) (disk 0 at -; hd_kin_disk_pos).  Numbers are written in the shortest form that
- * reads back as the same double (at most 17 digits).  Positions are not wrapped into the box.
- * pbc is F along an axis closed by [walls], and along z.
+ * omega:R:1:species_name:S:1, then one line per disk: species (an element per species of the
+ * run: N a disk of a dimer, Ar a single disk, C a rod, O F Ne Na ... the named species by
+ * species.idx; chemical symbols, which ASE requires), x y 0, its velocity vx vy 0 (rotation
+ * included), its mass, its momentum (what ASE reads as velocities times masses), its radius, the
+ * body index, the body's orientation phi and angular velocity omega, and the species' name
+ * (species.name; rod; dimer or disk for a file without the species table: issue 28).  A dimer's
+ * disk k is at R -+ (a/2)(cos phi, sin phi) (disk 0 at -; hd_kin_disk_pos).  Numbers are written in
+ * the shortest form that reads back as the same double (at most 17 digits).  Positions are not
+ * wrapped into the box. pbc is F along an axis closed by [walls], and along z.
  *
  * Lx, Ly come from runs.box_x/box_y (hd_db_run_box), else from the scene's box (given, or
  * derived from area_fraction); the shapes and masses from [dimers] d, a, m and [disks] sigma,
  * mass, walls from [walls] sides: the run's stored scene read by the engine's loader
- * (hd_scene_read_stored), with its defaults.  Frames (table frames) take their body kinds from the
- * run's 'initial' states. */
+ * (hd_scene_read_stored), with its defaults; the named species' shapes from the species table.
+ * Frames (table frames) take their body kinds from the run's 'initial' states.  The frames are
+ * read by hd_export_frames, which the GSD writer (export_gsd.c) shares. */
 #include <limits.h>
 #include <stddef.h>
 #include <math.h>
