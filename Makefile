@@ -16,6 +16,9 @@ DEPS_PKGS += slurm-wlm munge
 DEPS_PKGS += python3-pandas groff-base
 # python3-ase: tests/ase_check.py reads the XYZ export with ASE; ffmpeg: haff movie encodes
 DEPS_PKGS += python3-ase ffmpeg
+# python3-gsd: tests/gsd_check.py reads `haff export gsd` with the real reader (gsd.hoomd);
+# python3-numpy: the Python module python/haff (its tests run under make test)
+DEPS_PKGS += python3-gsd python3-numpy
 # clang: make fuzz (libFuzzer on the parsers and the checkpoint restore)
 DEPS_PKGS += clang
 # chromium: tests/test_plots.c loads make plots' report page (plots/out/index.html) headless
@@ -93,7 +96,7 @@ help:
 	@echo "make bench   benchmarks -> bench/results.md"
 	@echo "make plots   the papers' figures (PNG, SVG, PDF) and tables -> plots/out/, all on plots/out/index.html"
 	@echo "make install PREFIX=/usr/local DESTDIR=   bin/haff, man page haff(1), bash completion,"
-	@echo "             the docs in PREFIX/share/doc/haff (DOCDIR)"
+	@echo "             the docs in PREFIX/share/doc/haff (DOCDIR), the Python module haff (PYTHONDIR)"
 	@echo "make uninstall PREFIX=... DESTDIR=...      removes what make install put there"
 
 # --- dependencies --------------------------------------------------------------------------
@@ -288,8 +291,14 @@ MANDIR  ?= $(PREFIX)/share/man
 DOCDIR  ?= $(PREFIX)/share/doc/haff
 BASHCOMPDIR ?= $(PREFIX)/share/bash-completion/completions
 DOC_FILES := README.md $(wildcard docs/*.md) db/README.md db/schema.sql $(wildcard db/queries/*.sql)
+# The Python module python/haff, where Debian's /usr/bin/python3 finds it: /usr/lib/python3/
+# dist-packages for PREFIX=/usr, PREFIX/lib/python3.X/dist-packages otherwise (/usr/local is on
+# its path; another PREFIX needs PYTHONPATH).
+PYVER   := $(shell /usr/bin/python3 -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null)
+PYTHONDIR ?= $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/python3/dist-packages,$(PREFIX)/lib/python$(PYVER)/dist-packages)
 INSTALLED := $(DESTDIR)$(BINDIR)/haff $(DESTDIR)$(MANDIR)/man1/haff.1 \
-             $(DESTDIR)$(BASHCOMPDIR)/haff $(addprefix $(DESTDIR)$(DOCDIR)/,$(DOC_FILES))
+             $(DESTDIR)$(BASHCOMPDIR)/haff $(addprefix $(DESTDIR)$(DOCDIR)/,$(DOC_FILES)) \
+             $(DESTDIR)$(PYTHONDIR)/haff/__init__.py
 
 install: bin/haff cli/haff-man.sh
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(BASHCOMPDIR) \
@@ -299,11 +308,14 @@ install: bin/haff cli/haff-man.sh
 	install -m 644 $(BUILD)/haff-install.1 $(DESTDIR)$(MANDIR)/man1/haff.1
 	install -m 644 cli/haff-completion.bash $(DESTDIR)$(BASHCOMPDIR)/haff
 	for f in $(DOC_FILES); do install -m 644 $$f $(DESTDIR)$(DOCDIR)/$$f || exit 1; done
+	install -d $(DESTDIR)$(PYTHONDIR)/haff
+	install -m 644 python/haff/__init__.py $(DESTDIR)$(PYTHONDIR)/haff/__init__.py
 
 # removes what make install put there, and DOCDIR's folders once they are empty
 uninstall:
 	rm -f $(INSTALLED)
 	-rmdir $(addprefix $(DESTDIR)$(DOCDIR)/,docs db/queries db) $(DESTDIR)$(DOCDIR) 2>/dev/null
+	rm -rf $(DESTDIR)$(PYTHONDIR)/haff
 
 clean:
 	rm -rf build build-asan build-fuzz bin

@@ -6,19 +6,22 @@
  *   line 1: the number of particles, i.e. of disks (a dimer gives its 2 disks)
  *   line 2: Lattice="Lx 0 0 0 Ly 0 0 0 1" Properties=PROPS pbc="T T F" Time=t Label=label [Cpd=cpd]
  * with PROPS = species:S:1:pos:R:3:velo:R:3:masses:R:1:momenta:R:3:radius:R:1:body:I:1:phi:R:1:
- * omega:R:1, then one line per disk: species (N: a disk of a dimer, Ar: a single disk, C: a rod;
- * chemical symbols, which ASE requires), x y 0, its velocity vx vy 0 (rotation included), its
- * mass, its momentum (what ASE reads as velocities times masses), its radius, the body index,
- * the body's orientation phi and angular velocity omega.  A dimer's disk k is at R -+ (a/2)(cos
- * phi, sin phi) (disk 0 at -; hd_kin_disk_pos).  Numbers are written in the shortest form that
- * reads back as the same double (at most 17 digits).  Positions are not wrapped into the box.
- * pbc is F along an axis closed by [walls], and along z.
+ * omega:R:1:species_name:S:1, then one line per disk: species (an element per species of the
+ * run: N a disk of a dimer, Ar a single disk, C a rod, O F Ne Na ... the named species by
+ * species.idx; chemical symbols, which ASE requires), x y 0, its velocity vx vy 0 (rotation
+ * included), its mass, its momentum (what ASE reads as velocities times masses), its radius, the
+ * body index, the body's orientation phi and angular velocity omega, and the species' name
+ * (species.name; rod; dimer or disk for a file without the species table: issue 28).  A dimer's
+ * disk k is at R -+ (a/2)(cos phi, sin phi) (disk 0 at -; hd_kin_disk_pos).  Numbers are written in
+ * the shortest form that reads back as the same double (at most 17 digits).  Positions are not
+ * wrapped into the box. pbc is F along an axis closed by [walls], and along z.
  *
  * Lx, Ly come from runs.box_x/box_y (hd_db_run_box), else from the scene's box (given, or
  * derived from area_fraction); the shapes and masses from [dimers] d, a, m and [disks] sigma,
  * mass, walls from [walls] sides: the run's stored scene read by the engine's loader
- * (hd_scene_read_stored), with its defaults.  Frames (table frames) take their body kinds from the
- * run's 'initial' states. */
+ * (hd_scene_read_stored), with its defaults; the named species' shapes from the species table.
+ * Frames (table frames) take their body kinds from the run's 'initial' states.  The frames are
+ * read by hd_export_frames, which the GSD writer (export_gsd.c) shares. */
 #include <limits.h>
 #include <stddef.h>
 #include <math.h>
@@ -33,30 +36,21 @@
 #include "hd_db.h"
 #include "hd_scene.h"
 
-/* The geometry export needs, read from the run's scene text. */
-typedef struct xyz_geom {
-  double lx, ly;      /* box edges, NAN until known */
-  hd_shape dimer;     /* [dimers] d, a, m */
-  hd_shape disk;      /* [disks] sigma, mass */
-  int wall_x, wall_y; /* [walls] close x (left right), y (bottom top) */
-  double rod_gamma;   /* [rods] gamma (masses 1 + gamma, 1 + 1/gamma alternate) */
-  int rods;           /* a rods run */
-  int nsp;            /* species of the run's species table (schema version 3), 0 if none */
-  hd_shape sp[HD_MAX_SPECIES];       /* their shapes: the engine's (hd_db_read_species) */
-  int64_t first[HD_MAX_SPECIES + 1]; /* bodies first[s] .. first[s + 1] - 1 are of species s */
-} xyz_geom;
-
-/* The shape of body `body` of kind `kind` (not a rod): its species' in the run's species table,
- * or for a run without one the scene's [dimers] or [disks]. */
-static const hd_shape *body_shape(const xyz_geom *g, long long body, int kind) {
+const hd_shape *hd_export_body_shape(const hd_export_geom *g, long long body, int kind) {
   for (int s = 0; s < g->nsp; s++)
     if (body >= g->first[s] && body < g->first[s + 1]) return &g->sp[s];
   return kind == HD_KIND_DIMER ? &g->dimer : &g->disk;
 }
 
-/* Disks of body `body` of kind `kind`. */
-static int body_disks(const xyz_geom *g, long long body, int kind) {
-  return kind == HD_DB_KIND_ROD ? 1 : body_shape(g, body, kind)->n;
+int hd_export_body_disks(const hd_export_geom *g, long long body, int kind) {
+  return kind == HD_DB_KIND_ROD ? 1 : hd_export_body_shape(g, body, kind)->n;
+}
+
+int hd_export_body_type(const hd_export_geom *g, long long body, int kind) {
+  if (g->rods) return 0;
+  for (int s = 0; s < g->nsp; s++)
+    if (body >= g->first[s] && body < g->first[s + 1]) return s;
+  return kind == HD_KIND_DIMER ? 0 : 1; /* a file without the species table: dimer, disk */
 }
 
 /* The body kind of a states.kind text. */
@@ -70,7 +64,7 @@ static int kind_of(const char *kind) {
 
 /* The geometry of a run's stored scene, read by the engine's own loader (hd_scene_read_stored:
  * the same keys and defaults as the run had).  HD_OK or its error. */
-static int geom_of_scene(const char *text, xyz_geom *g, hd_error *err) {
+static int geom_of_scene(const char *text, hd_export_geom *g, hd_error *err) {
   hd_scene sc;
   int rc = hd_scene_read_stored(&sc, text, "runs.scene", err);
   if (rc) return rc;
@@ -95,18 +89,18 @@ static void put_num(FILE *out, double x) {
   fputs(b, out);
 }
 
-/* Writes the lines of one body (its disks). */
-static void put_body(FILE *out, const xyz_geom *g, long long body, int kind, const hd_kin *k) {
-  const hd_shape *sh = body_shape(g, body, kind);
-  const char *species = kind == HD_KIND_DIMER     ? "N"
-                        : kind == HD_DB_KIND_ROD  ? "C"
-                        : kind == HD_DB_KIND_BODY ? "O"
-                                                  : "Ar";
-  int disks = body_disks(g, body, kind), turns = kind != HD_DB_KIND_ROD && sh->n > 1;
+/* Writes the lines of one body (its disks): species (the type's element), pos, velo, masses,
+ * momenta, radius, body, phi, omega, species_name. */
+static void put_body(FILE *out, const hd_export_geom *g, long long body, int kind,
+                     const hd_kin *k) {
+  const hd_shape *sh = hd_export_body_shape(g, body, kind);
+  int type = hd_export_body_type(g, body, kind);
+  const char *species = g->type_elem[type];
+  int disks = hd_export_body_disks(g, body, kind), turns = kind != HD_DB_KIND_ROD && sh->n > 1;
   for (int j = 0; j < disks; j++) {
     double x = k->x, y = k->y, vx = k->vx, vy = k->vy, m = 0, r = 0.5;
     if (kind == HD_DB_KIND_ROD) {
-      m = body % 2 ? 1 + 1 / g->rod_gamma : 1 + g->rod_gamma; /* engine/rods/rods.c */
+      m = hd_export_rod_mass(g, body);
     } else { /* the engine's disk positions and velocities */
       m = sh->mk[j], r = 0.5 * sh->dk[j];
       hd_kin_disk_pos(k, sh, j, &x, &y);
@@ -122,8 +116,14 @@ static void put_body(FILE *out, const xyz_geom *g, long long body, int kind, con
     put_num(out, turns ? k->phi : 0);
     fputc(' ', out);
     put_num(out, turns ? k->omega : 0);
+    fputc(' ', out);
+    fputs(g->type_name[type], out);
     fputc('\n', out);
   }
+}
+
+double hd_export_rod_mass(const hd_export_geom *g, long long body) {
+  return body % 2 ? 1 + 1 / g->rod_gamma : 1 + g->rod_gamma; /* engine/rods/rods.c */
 }
 
 /* The kinds of the run's bodies (from its 'initial' states) into *kinds (malloc'd), *n. */
@@ -164,12 +164,39 @@ static int read_kinds(hd_db *db, int64_t run, int **kinds, long *n) {
   return 0;
 }
 
-/* Writes the frames of run/label to out.  Returns 0 or an exit code with one line on stderr. */
-static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geom *g, FILE *out) {
+/* A frame's bodies, grown as needed. */
+typedef struct frame_buf {
+  long cap;
+  long long *body;
+  int *kind;
+  hd_kin *kin;
+} frame_buf;
+
+/* Room for n bodies in fb; 0 or 1 (out of memory, said). */
+static int frame_room(frame_buf *fb, long n) {
+  if (n <= fb->cap) return 0;
+  long cap = n + n / 2 + 64;
+  long long *b = realloc(fb->body, (size_t)cap * sizeof *b);
+  if (b) fb->body = b;
+  int *k = b ? realloc(fb->kind, (size_t)cap * sizeof *k) : NULL;
+  if (k) fb->kind = k;
+  hd_kin *q = k ? realloc(fb->kin, (size_t)cap * sizeof *q) : NULL;
+  if (!q) {
+    fprintf(stderr, "haff export: out of memory for a frame of %ld bodies\n", n);
+    return 1;
+  }
+  fb->kin = q;
+  fb->cap = cap;
+  return 0;
+}
+
+int hd_export_frames(hd_db *db, int64_t run, const char *label, const hd_export_geom *g,
+                     hd_export_emit emit, void *ctx) {
   sqlite3 *h = hd_db_handle(db);
   sqlite3_stmt *frames = NULL, *bodies = NULL, *blob = NULL;
   int code = 0, *kinds = NULL;
   long nkinds = -1; /* not read yet */
+  frame_buf fb = {0};
   /* states: one frame per (label, t); frames rows: one each (src 1), when the file has the
    * table (a database written before it has none, and is opened read-only: no schema added) */
 #define STATES_FRAMES                                                                              \
@@ -201,12 +228,17 @@ static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geo
   long n_frames = 0;
   int s, b = SQLITE_DONE;
   while ((s = sqlite3_step(frames)) == SQLITE_ROW) {
-    const char *lab = (const char *)sqlite3_column_text(frames, 0);
-    double t = sqlite3_column_double(frames, 1);
+    hd_export_frame f = {(const char *)sqlite3_column_text(frames, 0),
+                         sqlite3_column_double(frames, 1),
+                         sqlite3_column_double(frames, 2),
+                         sqlite3_column_type(frames, 2) != SQLITE_NULL,
+                         0,
+                         NULL,
+                         NULL,
+                         NULL};
     int from_frames = sqlite3_column_int(frames, 4);
     long long nb = sqlite3_column_int64(frames, 3);
-    const unsigned char *data = NULL;
-    if (from_frames) { /* the disks of a frame: its bodies' kinds, from the initial states */
+    if (from_frames) { /* the bodies of a frame: their kinds from the initial states */
       if (nkinds < 0 && (code = read_kinds(db, run, &kinds, &nkinds))) break;
       sqlite3_reset(blob);
       sqlite3_bind_int64(blob, 1, sqlite3_column_int64(frames, 5));
@@ -215,60 +247,42 @@ static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geo
         fprintf(stderr,
                 "haff export: %s: run %lld: the frame at t = %.17g holds %lld bodies, the run's "
                 "initial states %ld\n",
-                hd_db_path(db), (long long)run, t, nb, nkinds);
+                hd_db_path(db), (long long)run, f.t, nb, nkinds);
         code = 1;
         break;
       }
-      data = sqlite3_column_blob(blob, 1);
-      long long disks = 0;
-      for (long i = 0; i < nkinds; i++) disks += body_disks(g, i, kinds[i]);
-      nb = disks;
-    } else { /* the disks of the states at (lab, t) */
-      sqlite3_reset(bodies);
-      sqlite3_bind_int64(bodies, 1, run);
-      sqlite3_bind_text(bodies, 2, lab, -1, SQLITE_TRANSIENT);
-      sqlite3_bind_double(bodies, 3, t);
-      nb = 0;
-      while ((b = sqlite3_step(bodies)) == SQLITE_ROW)
-        nb += body_disks(g, sqlite3_column_int64(bodies, 0),
-                         kind_of((const char *)sqlite3_column_text(bodies, 1)));
-      if (b != SQLITE_DONE) break;
-    }
-    fprintf(out, "%lld\n", nb);
-    fprintf(out,
-            "Lattice=\"%.17g 0 0 0 %.17g 0 0 0 1\" Properties=species:S:1:pos:R:3:velo:R:3:"
-            "masses:R:1:momenta:R:3:radius:R:1:body:I:1:phi:R:1:omega:R:1 pbc=\"%c %c F\" Time=",
-            g->lx, g->ly, g->wall_x ? 'F' : 'T', g->rods || g->wall_y ? 'F' : 'T');
-    put_num(out, t);
-    fprintf(out, " Label=%s", lab);
-    if (sqlite3_column_type(frames, 2) != SQLITE_NULL) {
-      fputs(" Cpd=", out);
-      put_num(out, sqlite3_column_double(frames, 2));
-    }
-    fputc('\n', out);
-    if (data) {
+      const unsigned char *data = sqlite3_column_blob(blob, 1);
+      if ((code = frame_room(&fb, nkinds))) break;
       for (long i = 0; i < nkinds; i++) {
         double d[3];
-        float f[3];
+        float v[3];
         memcpy(d, data + (size_t)i * HD_FRAME_BODY_BYTES, sizeof d);
-        memcpy(f, data + (size_t)i * HD_FRAME_BODY_BYTES + sizeof d, sizeof f);
-        hd_kin k = {d[0], d[1], f[0], f[1], d[2], f[2]};
-        put_body(out, g, i, kinds[i], &k);
+        memcpy(v, data + (size_t)i * HD_FRAME_BODY_BYTES + sizeof d, sizeof v);
+        fb.body[i] = i;
+        fb.kind[i] = kinds[i];
+        fb.kin[i] = (hd_kin){d[0], d[1], v[0], v[1], d[2], v[2]};
       }
-    } else {
+      f.n = nkinds;
+    } else { /* the bodies of the states at (lab, t) */
       sqlite3_reset(bodies);
       sqlite3_bind_int64(bodies, 1, run);
-      sqlite3_bind_text(bodies, 2, lab, -1, SQLITE_TRANSIENT);
-      sqlite3_bind_double(bodies, 3, t);
-      while ((b = sqlite3_step(bodies)) == SQLITE_ROW) {
-        int kd = kind_of((const char *)sqlite3_column_text(bodies, 1));
-        hd_kin k = {sqlite3_column_double(bodies, 2), sqlite3_column_double(bodies, 3),
-                    sqlite3_column_double(bodies, 5), sqlite3_column_double(bodies, 6),
-                    sqlite3_column_double(bodies, 4), sqlite3_column_double(bodies, 7)};
-        put_body(out, g, sqlite3_column_int64(bodies, 0), kd, &k);
+      sqlite3_bind_text(bodies, 2, f.label, -1, SQLITE_TRANSIENT);
+      sqlite3_bind_double(bodies, 3, f.t);
+      if ((code = frame_room(&fb, (long)nb))) break;
+      while ((b = sqlite3_step(bodies)) == SQLITE_ROW && f.n < nb) {
+        fb.body[f.n] = sqlite3_column_int64(bodies, 0);
+        fb.kind[f.n] = kind_of((const char *)sqlite3_column_text(bodies, 1));
+        fb.kin[f.n] = (hd_kin){sqlite3_column_double(bodies, 2), sqlite3_column_double(bodies, 3),
+                               sqlite3_column_double(bodies, 5), sqlite3_column_double(bodies, 6),
+                               sqlite3_column_double(bodies, 4), sqlite3_column_double(bodies, 7)};
+        f.n++;
       }
       if (b != SQLITE_DONE) break;
     }
+    f.body = fb.body;
+    f.kind = fb.kind;
+    f.kin = fb.kin;
+    if ((code = emit(ctx, g, &f))) break;
     n_frames++;
   }
   if (code) {
@@ -291,14 +305,85 @@ static int write_frames(hd_db *db, int64_t run, const char *label, const xyz_geo
     code = 2;
   }
   free(kinds);
+  free(fb.body);
+  free(fb.kind);
+  free(fb.kin);
   sqlite3_finalize(frames);
   sqlite3_finalize(bodies);
   sqlite3_finalize(blob);
   return code;
 }
 
-/* Finds the run (newest if run <= 0) and its geometry.  Returns 0 or an exit code. */
-static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
+/* hd_export_emit of the XYZ writer: ctx is the FILE. */
+static int xyz_emit(void *ctx, const hd_export_geom *g, const hd_export_frame *f) {
+  FILE *out = ctx;
+  long long disks = 0;
+  for (long i = 0; i < f->n; i++) disks += hd_export_body_disks(g, f->body[i], f->kind[i]);
+  fprintf(out, "%lld\n", disks);
+  fprintf(out,
+          "Lattice=\"%.17g 0 0 0 %.17g 0 0 0 1\" Properties=species:S:1:pos:R:3:velo:R:3:"
+          "masses:R:1:momenta:R:3:radius:R:1:body:I:1:phi:R:1:omega:R:1:species_name:S:1 "
+          "pbc=\"%c %c F\" Time=",
+          g->lx, g->ly, g->wall_x ? 'F' : 'T', g->rods || g->wall_y ? 'F' : 'T');
+  put_num(out, f->t);
+  fprintf(out, " Label=%s", f->label);
+  if (f->has_cpd) {
+    fputs(" Cpd=", out);
+    put_num(out, f->cpd);
+  }
+  fputc('\n', out);
+  for (long i = 0; i < f->n; i++) put_body(out, g, f->body[i], f->kind[i], &f->kin[i]);
+  return 0;
+}
+
+/* The element symbol of species idx (species.idx): chemical symbols, since ASE looks every
+ * name up in the periodic table; OVITO takes them as type names. */
+static const char *species_element(int idx) {
+  static const char *const named[] = {"O", "F", "Ne", "Na", "Mg", "Al", "Si", "P", "S", "Cl"};
+  return idx == 0 ? "N" : idx == 1 ? "Ar" : named[(idx - 2) % (int)(sizeof named / sizeof *named)];
+}
+
+/* The types of g (names and elements): the run's species table in idx order, else ("rod") for
+ * rods, else ("dimer", "disk").  0 or an exit code (said). */
+static int read_types(hd_db *db, int64_t run, hd_export_geom *g) {
+  static const char *const dflt[] = {"dimer", "disk"};
+  if (g->rods || g->nsp == 0) {
+    g->ntypes = g->rods ? 1 : 2;
+    for (int k = 0; k < g->ntypes; k++) {
+      snprintf(g->type_name[k], sizeof g->type_name[k], "%s", g->rods ? "rod" : dflt[k]);
+      snprintf(g->type_elem[k], sizeof g->type_elem[k], "%s", g->rods ? "C" : species_element(k));
+    }
+    return 0;
+  }
+  sqlite3 *h = hd_db_handle(db);
+  sqlite3_stmt *st = NULL;
+  if (sqlite3_prepare_v2(h, "SELECT idx, name FROM species WHERE run = ?1 ORDER BY idx", -1, &st,
+                         NULL) != SQLITE_OK) {
+    fprintf(stderr, "haff export: %s: read species: %s\n", hd_db_path(db), sqlite3_errmsg(h));
+    return 1;
+  }
+  sqlite3_bind_int64(st, 1, run);
+  int s;
+  g->ntypes = 0;
+  while ((s = sqlite3_step(st)) == SQLITE_ROW && g->ntypes < g->nsp) {
+    const char *name = (const char *)sqlite3_column_text(st, 1);
+    int k = g->ntypes++;
+    snprintf(g->type_name[k], sizeof g->type_name[k], "%s", name ? name : "?");
+    for (char *c = g->type_name[k]; *c; c++) /* one word in an XYZ column */
+      if (*c == ' ' || *c == '\t' || *c == '"') *c = '_';
+    snprintf(g->type_elem[k], sizeof g->type_elem[k], "%s",
+             species_element(sqlite3_column_int(st, 0)));
+  }
+  sqlite3_finalize(st);
+  if (g->ntypes != g->nsp) {
+    fprintf(stderr, "haff export: %s: run %lld: read species: %s\n", hd_db_path(db), (long long)run,
+            sqlite3_errmsg(h));
+    return 1;
+  }
+  return 0;
+}
+
+int hd_export_read_run(hd_db *db, int64_t *run, hd_export_geom *g) {
   sqlite3 *h = hd_db_handle(db);
   sqlite3_stmt *st = NULL;
   const char *sql = *run > 0 ? "SELECT id, scene, box_x, box_y FROM runs WHERE id = ?1"
@@ -333,6 +418,7 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
     }
     g->first[0] = 0;
     for (int k = 0; k < g->nsp; k++) g->first[k + 1] = g->first[k] + count[k];
+    if (!code) code = read_types(db, *run, g);
     if (sqlite3_column_type(st, 2) != SQLITE_NULL && sqlite3_column_type(st, 3) != SQLITE_NULL) {
       g->lx = sqlite3_column_double(st, 2);
       g->ly = sqlite3_column_double(st, 3);
@@ -361,15 +447,15 @@ static int read_run(hd_db *db, int64_t *run, xyz_geom *g) {
 
 int hd_xyz_export(hd_db *db, int64_t run, const char *label, const char *outpath) {
   int64_t r = run;
-  xyz_geom g;
-  int code = read_run(db, &r, &g);
+  hd_export_geom g;
+  int code = hd_export_read_run(db, &r, &g);
   FILE *out = stdout;
   if (outpath && !strcmp(outpath, "-")) outpath = NULL; /* -o -: stdout */
   if (!code && outpath && !(out = fopen(outpath, "w"))) {
     fprintf(stderr, "haff export: %s: cannot write: %m\n", outpath);
     code = 1;
   }
-  if (!code) code = write_frames(db, r, label, &g, out);
+  if (!code) code = hd_export_frames(db, r, label, &g, xyz_emit, out);
   if (out && out != stdout && fclose(out) != 0 && !code) {
     fprintf(stderr, "haff export: %s: write failed: %m\n", outpath);
     code = 1;

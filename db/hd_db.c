@@ -249,6 +249,7 @@ static const struct {
     {"runs", "cflags", "TEXT"},
     {"runs", "command", "TEXT"},
     {"runs", "sweep_point", "TEXT"},
+    {"states", "species", "INTEGER"}, /* 4: the body's species.idx (NULL for rods) */
 };
 
 /* Whether table.column is one of added_columns (an older haff file may lack it). */
@@ -495,7 +496,8 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
   if (!rc)
     rc = prepare(db, &db->ins_state,
                  "INSERT INTO states (run, label, t, cpd, body, kind, x, y, phi, vx, vy, "
-                 "omega) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)",
+                 "omega, species) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, "
+                 "?13)",
                  err);
   if (!rc)
     rc = prepare(db, &db->ins_ckpt,
@@ -852,6 +854,10 @@ static int put_state(hd_db *db, int64_t run, const char *label, const hd_state_r
   bind_real(st, 10, r->vx);
   bind_real(st, 11, r->vy);
   bind_real(st, 12, r->omega);
+  if (r->kind == HD_DB_KIND_ROD || r->species < 0)
+    sqlite3_bind_null(st, 13);
+  else
+    sqlite3_bind_int(st, 13, r->species);
   return batch_step(db, st, err, "insert state");
 }
 

@@ -16,7 +16,7 @@
 /* The schema version, stored in the file as PRAGMA user_version: 0 for the files made before it
  * was kept; 2 adds runs.cpd, the provenance and frames tables, the state measures of samples and
  * the views params and run_summary; 3 the species tables; 4 how each run was made
- * (runs.git_commit ... sweep_point) and the view run_species (db/README.md lists them).  A file
+ * (runs.git_commit ... sweep_point), the view run_species and states.species (db/README.md lists them).  A file
  * opened for writing (hd_db_open, hd_db_open_existing) is brought up to it; the change is additive,
  * so files of every version stay readable.  A writer refuses a file of a newer version. */
 #define HD_DB_SCHEMA_VERSION 4
@@ -80,7 +80,9 @@ typedef struct hd_state_rec {
   int64_t body;
   int kind; /* HD_KIND_DISK 0, HD_KIND_DIMER 1, HD_DB_KIND_ROD 2, HD_DB_KIND_BODY 3 */
   double x, y, phi, vx, vy, omega;
-  double cpd; /* collisions per particle at t (states.cpd); NaN is stored as NULL */
+  double cpd;  /* collisions per particle at t (states.cpd); NaN is stored as NULL */
+  int species; /* the body's species.idx (states.species, schema version 4): 0 [dimers], 1
+                * [disks], 2.. each [species NAME]; stored as NULL for a rod (kind 2) */
 } hd_state_rec;
 
 /* One row of `species` (schema version 3). */

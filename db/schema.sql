@@ -16,6 +16,8 @@
 --   4  adds how each run was made (issue 28): runs.git_commit, git_dirty, compiler, cflags,
 --      command and sweep_point (added to older files' runs with ALTER TABLE, old rows NULL),
 --      and the view run_species; run_summary gives named species (issue 18) their label.
+--      Also states.species (each body's species.idx; issue 28): ALTER TABLE ... ADD COLUMN,
+--      old rows NULL (their species still follows from the body number and species.count).
 PRAGMA journal_mode = WAL;
 
 -- One row per run.  status: running, done, interrupted, collapsed, failed.
@@ -165,14 +167,18 @@ CREATE TABLE IF NOT EXISTS states (
   cpd   REAL,
   body  INTEGER NOT NULL,
   kind  TEXT NOT NULL,        -- 'dimer', 'disk', 'rod' or 'body' (a named species: version 3)
-  x REAL, y REAL, phi REAL, vx REAL, vy REAL, omega REAL
+  x REAL, y REAL, phi REAL, vx REAL, vy REAL, omega REAL,
+  species INTEGER             -- the body's species: species.idx of the run (0 dimer, 1 disk,
+                              -- 2.. each [species NAME]; its name: JOIN species ON species.run
+                              -- = states.run AND species.idx = states.species); NULL for rods
+                              -- and in rows written before schema version 4
 );
 
 -- Trajectory frames ([log] frames_every / frames_every_time): one row per frame, the bodies
 -- packed in one BLOB in body order (0 .. n-1), 36 bytes each, little-endian: x, y, phi as
 -- float64 (positions exact, as in states), then vx, vy, omega as float32 (7 digits: enough
--- to colour a movie by speed).  Rods: x, 0, 0, v, 0, bath temperature.  The kinds of the
--- bodies are those of the run's 'initial' states.  36 bytes per body against ~107 for a states
+-- to colour a movie by speed).  Rods: x, 0, 0, v, 0, bath temperature.  The kinds and species
+-- of the bodies are those of the run's 'initial' states (states.kind, states.species).  36 bytes per body against ~107 for a states
 -- row with its index (measured in db/README.md).  `haff export xyz` and `haff movie` read them.
 CREATE TABLE IF NOT EXISTS frames (
   run   INTEGER NOT NULL REFERENCES runs(id),

@@ -372,6 +372,10 @@ static void run_stores_species(void **state) {
   assert_int_equal(q_int(h, "SELECT count(*) FROM states WHERE label = 'initial' AND kind = 'body' "
                             "AND body >= 30"),
                    15);
+  /* each state names its body's species (states.species, schema version 4) */
+  assert_int_equal(q_int(h, "SELECT count(*) FROM states WHERE species IS CASE WHEN body < 20 "
+                            "THEN 0 WHEN body < 30 THEN 1 ELSE 2 END"),
+                   q_int(h, "SELECT count(*) FROM states"));
   assert_int_equal(q_int(h, "SELECT count(*) FROM frames WHERE n = 45"), 3); /* cpd 0, 5, 10 */
   assert_true(q_int(h, "SELECT count(*) FROM collisions WHERE kind = 'body-body'") > 0);
   assert_true(q_int(h, "SELECT count(*) FROM collisions WHERE kind = 'body-wall'") > 0);

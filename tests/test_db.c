@@ -172,9 +172,9 @@ static void round_trip(void **state) {
   }
   hd_sample_row s = {1.25, 42, 0.84, 0.75, 0.5, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
   assert_int_equal(hd_db_log_sample(db, run, &s, &err), HD_OK);
-  hd_state_rec st0 = {0.0, 0, 1, 1.5, 2.5, -0.5, 0.1, 0.2, 3.0, NAN};
-  hd_state_rec st1 = {2.0, 1, 0, 0.5, 0.25, 0.0, -0.1, 0.3, 0.0, 1.5};
-  hd_state_rec st2 = {2.0, 2, HD_DB_KIND_ROD, 7.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.5};
+  hd_state_rec st0 = {0.0, 0, 1, 1.5, 2.5, -0.5, 0.1, 0.2, 3.0, NAN, 0};
+  hd_state_rec st1 = {2.0, 1, 0, 0.5, 0.25, 0.0, -0.1, 0.3, 0.0, 1.5, 1};
+  hd_state_rec st2 = {2.0, 2, HD_DB_KIND_ROD, 7.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.5, -1};
   assert_int_equal(hd_db_log_state(db, run, "initial", &st0, &err), HD_OK);
   assert_int_equal(hd_db_log_state(db, run, "final", &st1, &err), HD_OK);
   assert_int_equal(hd_db_log_state(db, run, "final", &st2, &err), HD_OK);
@@ -445,7 +445,7 @@ static void checkpoint_save_load_truncate(void **state) {
   } sts[] = {{"initial", 0},     {"velocities", 5},  {"checkpoint", 20},
              {"velocities", 25}, {"checkpoint", 25}, {"final", 29}};
   for (size_t k = 0; k < sizeof sts / sizeof sts[0]; k++) {
-    hd_state_rec s = {sts[k].t, 0, 1, 0, 0, 0, 0, 0, 0, NAN};
+    hd_state_rec s = {sts[k].t, 0, 1, 0, 0, 0, 0, 0, 0, NAN, 0};
     assert_int_equal(hd_db_log_state(db, r1, sts[k].label, &s, &err), HD_OK);
     assert_int_equal(hd_db_log_state(db, r2, sts[k].label, &s, &err), HD_OK);
   }
@@ -1056,6 +1056,47 @@ static char *slurp(const char *path) {
   return buf;
 }
 
+/* states.species (schema version 4, issue 28): each body's species.idx is stored (NULL for a
+ * rod); a file of version 3 (states without the column, one row) opened for writing gets the
+ * column, its old row reads NULL, new rows carry their species, and user_version is 4. */
+static void states_species(void **state) {
+  fixture *fx = *state;
+  sqlite3 *h = NULL;
+  assert_int_equal(sqlite3_open(fx->path, &h), SQLITE_OK);
+  assert_int_equal(sqlite3_exec(h,
+                                "CREATE TABLE states (run INTEGER NOT NULL, label TEXT NOT NULL, "
+                                "t REAL NOT NULL, cpd REAL, body INTEGER NOT NULL, kind TEXT NOT "
+                                "NULL, x REAL, y REAL, phi REAL, vx REAL, vy REAL, omega REAL);"
+                                "INSERT INTO states VALUES (1, 'initial', 0, 0, 0, 'dimer', 1, 2, "
+                                "0, 0, 0, 0); PRAGMA user_version = 3",
+                                NULL, NULL, NULL),
+                   SQLITE_OK);
+  sqlite3_close(h);
+  hd_db *db = open_ok(fx->path);
+  hd_error err;
+  hd_error_clear(&err);
+  hd_state_rec named = {1.0, 7, HD_DB_KIND_BODY, 1, 2, 0.5, 0, 0, 0, 0.1, 3};
+  hd_state_rec disk = {1.0, 3, HD_KIND_DISK, 1, 2, 0, 0, 0, 0, 0.1, 1};
+  hd_state_rec rod = {1.0, 0, HD_DB_KIND_ROD, 1, 0, 0, 0, 0, 0, 0.1, 5};
+  assert_int_equal(hd_db_log_state(db, 1, "final", &named, &err), HD_OK);
+  assert_int_equal(hd_db_log_state(db, 1, "final", &disk, &err), HD_OK);
+  assert_int_equal(hd_db_log_state(db, 1, "final", &rod, &err), HD_OK);
+  close_ok(db);
+  assert_int_equal(sqlite3_open(fx->path, &h), SQLITE_OK);
+  sqlite3_stmt *q = NULL;
+  assert_int_equal(sqlite3_prepare_v2(h,
+                                      "SELECT group_concat(coalesce(species, 'null'), ' '), "
+                                      "(SELECT user_version FROM pragma_user_version) FROM "
+                                      "(SELECT species FROM states ORDER BY rowid)",
+                                      -1, &q, NULL),
+                   SQLITE_OK);
+  assert_int_equal(sqlite3_step(q), SQLITE_ROW);
+  assert_string_equal((const char *)sqlite3_column_text(q, 0), "null 3 1 null");
+  assert_int_equal(sqlite3_column_int(q, 1), 4);
+  sqlite3_finalize(q);
+  sqlite3_close(h);
+}
+
 static int export_run(char *a1, char *a2, char *a3, char *a4, char *a5, char *a6, char *a7,
                       char *a8) {
   char *argv[] = {"export", "xyz", a1, a2, a3, a4, a5, a6, a7, a8, NULL};
@@ -1073,10 +1114,10 @@ static void export_xyz(void **state) {
                           "d = 1\na = 1\n[disks]\ncount = 1\nsigma = 0.5\n",
                           3);
   /* a dimer at (2.5, 3), phi = 0, V = (1, 0), omega = 2; a disk at (6, 4), v = (0, -1) */
-  hd_state_rec d0 = {0.0, 0, 1, 2.5, 3.0, 0.0, 1.0, 0.0, 2.0, NAN};
-  hd_state_rec s0 = {0.0, 1, 0, 6.0, 4.0, 0.0, 0.0, -1.0, 0.0, NAN};
-  hd_state_rec d1 = {1.5, 0, 1, 4.0, 3.0, M_PI, 1.0, 0.0, 2.0, 0.25};
-  hd_state_rec s1 = {1.5, 1, 0, 6.0, 2.5, 0.0, 0.0, -1.0, 0.0, 0.25};
+  hd_state_rec d0 = {0.0, 0, 1, 2.5, 3.0, 0.0, 1.0, 0.0, 2.0, NAN, 0};
+  hd_state_rec s0 = {0.0, 1, 0, 6.0, 4.0, 0.0, 0.0, -1.0, 0.0, NAN, 1};
+  hd_state_rec d1 = {1.5, 0, 1, 4.0, 3.0, M_PI, 1.0, 0.0, 2.0, 0.25, 0};
+  hd_state_rec s1 = {1.5, 1, 0, 6.0, 2.5, 0.0, 0.0, -1.0, 0.0, 0.25, 1};
   assert_int_equal(hd_db_log_state(db, run, "final", &d1, &err), HD_OK);
   assert_int_equal(hd_db_log_state(db, run, "final", &s1, &err), HD_OK);
   assert_int_equal(hd_db_log_state(db, run, "initial", &s0, &err), HD_OK);
@@ -1090,15 +1131,16 @@ static void export_xyz(void **state) {
   /* Disk 0 of the dimer at R - (a/2)(1, 0) = (2, 3) with velocity V + omega z x (-1/2, 0) =
    * (1, -1); disk 1 at (3, 3) with (1, 1).  Masses m = 1 (momenta = velocities), radii d/2 =
    * 0.5 and sigma/2 = 0.25; phi and omega of the body.  Chemical symbols N (a dimer's disk) and
-   * Ar (a disk), which ASE reads; pbc: periodic in x and y, not z. */
+   * Ar (a disk), which ASE reads, and the species names (dimer, disk: a run without a species
+   * table); pbc: periodic in x and y, not z. */
   const char *want =
       "3\n"
       "Lattice=\"10 0 0 0 8 0 0 0 1\" "
       "Properties=species:S:1:pos:R:3:velo:R:3:masses:R:1:momenta:R:3:radius:R:1:body:I:1:"
-      "phi:R:1:omega:R:1 pbc=\"T T F\" Time=0 Label=initial\n"
-      "N 2 3 0 1 -1 0 1 1 -1 0 0.5 0 0 2\n"
-      "N 3 3 0 1 1 0 1 1 1 0 0.5 0 0 2\n"
-      "Ar 6 4 0 0 -1 0 1 0 -1 0 0.25 1 0 0\n";
+      "phi:R:1:omega:R:1:species_name:S:1 pbc=\"T T F\" Time=0 Label=initial\n"
+      "N 2 3 0 1 -1 0 1 1 -1 0 0.5 0 0 2 dimer\n"
+      "N 3 3 0 1 1 0 1 1 1 0 0.5 0 0 2 dimer\n"
+      "Ar 6 4 0 0 -1 0 1 0 -1 0 0.25 1 0 0 disk\n";
   assert_string_equal(slurp(out), want);
 
   /* all labels: two frames in time order; phi = pi puts disk 0 at R + (a/2, 0), and its
@@ -1108,15 +1150,43 @@ static void export_xyz(void **state) {
       "3\n"
       "Lattice=\"10 0 0 0 8 0 0 0 1\" "
       "Properties=species:S:1:pos:R:3:velo:R:3:masses:R:1:momenta:R:3:radius:R:1:body:I:1:"
-      "phi:R:1:omega:R:1 pbc=\"T T F\" Time=1.5 Label=final Cpd=0.25\n"
-      "N 4.5 3 0 1.0000000000000002 1 0 1 1.0000000000000002 1 0 0.5 0 3.141592653589793 2\n"
-      "N 3.5 3 0 0.9999999999999999 -1 0 1 0.9999999999999999 -1 0 0.5 0 3.141592653589793 2\n"
-      "Ar 6 2.5 0 0 -1 0 1 0 -1 0 0.25 1 0 0\n";
+      "phi:R:1:omega:R:1:species_name:S:1 pbc=\"T T F\" Time=1.5 Label=final Cpd=0.25\n"
+      "N 4.5 3 0 1.0000000000000002 1 0 1 1.0000000000000002 1 0 0.5 0 3.141592653589793 2 "
+      "dimer\n"
+      "N 3.5 3 0 0.9999999999999999 -1 0 1 0.9999999999999999 -1 0 0.5 0 3.141592653589793 2 "
+      "dimer\n"
+      "Ar 6 2.5 0 0 -1 0 1 0 -1 0 0.25 1 0 0 disk\n";
   char both[2048];
   snprintf(both, sizeof both, "%s%s", want, want_final);
   /* the newest run (2) has no states: exit 2 with a message; so give --run 1 */
   assert_int_equal(export_run(fx->path, "--run", "1", "-o", out, NULL, NULL, NULL), 0);
   assert_string_equal(slurp(out), both);
+  /* the GSD writer in process (so the sanitized build runs it too; tests/test_export.c reads
+   * its files with the real gsd.hoomd): a file with GSD's magic and the hoomd schema, the
+   * index's two frames (step 0 and 1) and no .tmp left */
+  {
+    char gsd[400], tmp[420];
+    snprintf(gsd, sizeof gsd, "%s/out.gsd", fx->dir);
+    snprintf(tmp, sizeof tmp, "%s.tmp", gsd);
+    char *argv[] = {"export", "gsd", fx->path, "--run", "1", "-o", gsd, NULL};
+    assert_int_equal(haff_export_main(7, argv), 0);
+    FILE *g = fopen(gsd, "rb");
+    assert_non_null(g);
+    unsigned char h[256];
+    assert_int_equal(fread(h, 1, sizeof h, g), sizeof h);
+    uint64_t magic = 0, index_at = 0, last_frame = 0;
+    for (int k = 7; k >= 0; k--) magic = magic << 8 | h[k], index_at = index_at << 8 | h[8 + k];
+    assert_true(magic == 0x65DF65DF65DF65DFull);
+    assert_string_equal((const char *)h + 112, "hoomd");
+    /* the frame of the index's last entry (before the zero entry that ends it) */
+    unsigned char e[32];
+    assert_int_equal(fseek(g, (long)index_at, SEEK_SET), 0);
+    while (fread(e, 1, sizeof e, g) == sizeof e && (e[16] | e[17] | e[18] | e[19]))
+      for (int k = 7; k >= 0; k--) last_frame = (k == 7 ? 0 : last_frame << 8) | e[k];
+    assert_int_equal(last_frame, 1);
+    fclose(g);
+    assert_int_equal(access(tmp, F_OK), -1);
+  }
 
   /* a box stored with hd_db_run_box wins over the scene's */
   db = open_ok(fx->path);
@@ -1156,6 +1226,7 @@ int main(void) {
       cmocka_unit_test_setup_teardown(disk_full, setup, teardown),
       cmocka_unit_test_setup_teardown(queries, setup, teardown),
       cmocka_unit_test_setup_teardown(export_xyz, setup, teardown),
+      cmocka_unit_test_setup_teardown(states_species, setup, teardown),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -228,7 +228,9 @@ static void frames_resumed(void **state) {
 /* ASE reads every frame of a pure dimer run (frames by cpd), a pure disk run between walls
  * left and right (pbc "F T F"), a mixture with masses of its own between walls bottom and top
  * (pbc "T F F", with velocities_at snapshots) and a rods run (masses 1 + gamma, 1 + 1/gamma;
- * pbc "T F F"). */
+ * pbc "T F F"), and a mixture of dimers and two named species between walls left and right,
+ * whose species names ASE reads intact (column species_name, an element per species: issue
+ * 28; ase_check.py checks them, and the disks of the named bodies, for every kind of run). */
 static void ase_reads_every_kind_of_run(void **state) {
   (void)state;
   if (!haff) skip();
@@ -249,6 +251,11 @@ static void ase_reads_every_kind_of_run(void **state) {
       {"[rods]\ncount = 40\ngamma = 0.5\n[run]\nstop_time = 3\n[log]\ncollisions = none\n"
        "frames_every_time = 1\n",
        "T F F"},
+      {"[system]\nbox = 30 30\nseed = 18\n[dimers]\ncount = 10\n[species tri]\ncount = 10\n"
+       "shape = triangle\n[species asym]\ncount = 10\ndisks = 0 0 1 1; 0.8 0 0.6 0.5\n"
+       "[walls]\nsides = left right\n[run]\nstop_cpd = 4\n[log]\ncollisions = none\n"
+       "velocities_at = 2\nframes_every = 1\n",
+       "F T F"},
   };
   for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
     write_file("a.ini", runs[k].ini);
@@ -262,6 +269,39 @@ static void ase_reads_every_kind_of_run(void **state) {
     snprintf(grep, sizeof grep, "head -2 a.xyz | grep -q 'pbc=\"%s\"'", runs[k].pbc);
     assert_int_equal(sh("%s", grep), 0);
   }
+}
+
+/* `haff export gsd` (issue 28) read by Debian's real GSD reader (python3-gsd, gsd.hoomd) and
+ * checked field by field, exactly, against the database by tests/gsd_check.py: a dimer run
+ * (frames by cpd, velocities_at), a mixture of dimers, disks and two named species (a triangle,
+ * an asymmetric pair) between walls, and a ring of rods.  The default output name is the
+ * database's with .gsd; stdout, an unknown format and a missing run are refused with exit 2 and
+ * leave no file. */
+static void gsd_reads_every_kind_of_run(void **state) {
+  (void)state;
+  if (!haff) skip();
+  static const char *const runs[] = {
+      "[system]\narea_fraction = 0.3\nseed = 7\n[dimers]\ncount = 60\nalpha = 0.8\n[run]\n"
+      "stop_cpd = 6\n[log]\ncollisions = none\nvelocities_at = 3\nframes_every = 2\n",
+      "[system]\nbox = 30 30\nseed = 18\n[dimers]\ncount = 10\n[disks]\ncount = 10\n"
+      "sigma = 0.8\nmass = 0.5\n[species tri]\ncount = 10\nshape = triangle\n"
+      "[species asym]\ncount = 10\ndisks = 0 0 1 1; 0.8 0 0.6 0.5\n[walls]\n"
+      "sides = left right\n[run]\nstop_cpd = 4\n[log]\ncollisions = none\nframes_every = 1\n",
+      "[rods]\ncount = 40\ngamma = 0.5\n[run]\nstop_time = 3\n[log]\ncollisions = none\n"
+      "frames_every_time = 1\n",
+  };
+  for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
+    write_file("g.ini", runs[k]);
+    assert_int_equal(sh("rm -f g.db g.gsd"), 0);
+    run_ok("g.ini", "g.db", "--quiet");
+    assert_true(q1("g.db", "SELECT count(*) FROM frames") >= 4);
+    if (sh("%s export gsd g.db && /usr/bin/python3 %s/tests/gsd_check.py g.gsd g.db 1", haff, root))
+      fail_msg("run %zu: %s", k, out());
+  }
+  bad("export gsd g.db -o -", "stdout");
+  bad("export pdb g.db -o x.pdb", "unknown format");
+  bad("export gsd g.db --run 9 -o none.gsd", "no run 9");
+  assert_int_equal(sh("test ! -e none.gsd && test ! -e none.gsd.tmp"), 0);
 }
 
 /* haff movie: as many video frames as stored frames (ffprobe counts them), the size asked for
@@ -412,6 +452,7 @@ int main(void) {
       cmocka_unit_test(frames_bad_input_and_cap),
       cmocka_unit_test(frames_resumed),
       cmocka_unit_test(ase_reads_every_kind_of_run),
+      cmocka_unit_test(gsd_reads_every_kind_of_run),
       cmocka_unit_test(movie_of_frames),
       cmocka_unit_test(movie_colour_species),
       cmocka_unit_test(frames_in_process),

@@ -179,10 +179,10 @@ static void run_refuses_dash(void **state) {
 }
 
 /* make install PREFIX DESTDIR puts bin/haff, haff.1, the completion and the documentation
- * (PREFIX/share/doc/haff, which the man page names) under DESTDIR/PREFIX; the man page has a
- * section for every subcommand of the dispatcher table (and of `haff mc`); the completion offers
- * them, a subcommand's own options, export's formats and, after --set, the scene keys; make
- * uninstall removes it all. */
+ * (PREFIX/share/doc/haff, which the man page names) under DESTDIR/PREFIX, and the Python module
+ * in PREFIX/lib/python3.X/dist-packages/haff; the man page has a section for every subcommand
+ * of the dispatcher table (and of `haff mc`); the completion offers them, a subcommand's own
+ * options, export's formats and, after --set, the scene keys; make uninstall removes it all. */
 static void install_man_completion(void **state) {
   (void)state;
   if (!haff) skip();
@@ -200,6 +200,10 @@ static void install_man_completion(void **state) {
   for (size_t k = 0; k < sizeof docs / sizeof *docs; k++)
     if (!exists(docs[k])) fail_msg("make install did not install %s", docs[k]);
   assert_int_equal(sh("stage/opt/h/bin/haff -V"), 0);
+  /* the Python module, where /usr/bin/python3 finds it under that prefix (issue 28) */
+  assert_int_equal(sh("cd stage/opt/h/lib/python3.*/dist-packages && /usr/bin/python3 -c "
+                      "'import haff; assert haff.__file__.startswith(\"'$PWD'\")'"),
+                   0);
   char names[64][32];
   int n = dispatcher_names(names, 64);
   assert_true(n >= 17);
@@ -285,6 +289,7 @@ static void install_man_completion(void **state) {
   assert_false(exists("stage/opt/h/bin/haff"));
   assert_false(exists("stage/opt/h/share/man/man1/haff.1"));
   assert_false(exists("stage/opt/h/share/bash-completion/completions/haff"));
+  assert_int_equal(sh("test ! -e stage/opt/h/lib/python3.*/dist-packages/haff"), 0);
   assert_false(exists("stage/opt/h/share/doc/haff"));
 }
 

@@ -101,8 +101,8 @@ static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label
   for (int32_t i = 0; i < s->n; i++) {
     hd_kin k;
     hd_sim_body_now(s, i, &k);
-    hd_state_rec rec = {hd_sim_time(s), s->id[i], body_kind(s, i), k.x,          k.y, k.phi,
-                        k.vx,           k.vy,     k.omega,         hd_sim_cpd(s)};
+    hd_state_rec rec = {hd_sim_time(s), s->id[i],      body_kind(s, i), k.x, k.y, k.phi, k.vx, k.vy,
+                        k.omega,        hd_sim_cpd(s), s->b[i].species};
     int rc = hd_db_log_state(db, run, label, &rec, err);
     if (rc) return rc;
   }
@@ -115,8 +115,9 @@ static int m_states(const void *m, hd_state_rec *out, hd_error *err) {
   for (int32_t i = 0; i < s->n; i++) {
     hd_kin k;
     hd_sim_body_now(s, i, &k);
-    out[i] = (hd_state_rec){hd_sim_time(s), s->id[i], body_kind(s, i), k.x,          k.y, k.phi,
-                            k.vx,           k.vy,     k.omega,         hd_sim_cpd(s)};
+    out[i] =
+        (hd_state_rec){hd_sim_time(s), s->id[i],      body_kind(s, i), k.x, k.y, k.phi, k.vx, k.vy,
+                       k.omega,        hd_sim_cpd(s), s->b[i].species};
   }
   return HD_OK;
 }

@@ -1,0 +1,430 @@
+"""haff from Python: read a haff database into numpy arrays (or pandas DataFrames), and run or
+resume scenes with the installed `haff` program.
+
+Pure Python over the standard sqlite3 module and numpy; pandas is optional (as_frame=True).
+docs/python.md has the examples and the measurements.
+
+    import haff
+    db = haff.open("study.db")
+    db.runs()                                   # run_summary: one dict per run, typed
+    db.params(3)                                # {"dimers.alpha": 0.95, ...}
+    c = db.collisions(3, kinds=["dimer-dimer"], columns=["t", "f"])   # numpy structured array
+    for chunk in db.collisions(chunk=1_000_000): ...                   # memory-light
+    for fr in db.frames(3): fr.t, fr.bodies["x"], fr.disks()["x"]      # decoded frames
+    run = haff.run("scene.ini", "out.db", set={"dimers.alpha": 0.9})   # calls `haff run`
+"""
+import itertools
+import math
+import os
+import shutil
+import sqlite3
+import subprocess
+
+import numpy as np
+
+__all__ = ["open", "Database", "Frame", "HaffError", "run", "resume", "COLLISION_KINDS",
+           "FRAME_DTYPE"]
+
+#: collisions.kind, in the order of the codes of Database.collisions' "kind" field
+COLLISION_KINDS = ("dimer-dimer", "dimer-disk", "disk-disk", "dimer-wall", "disk-wall",
+                   "rod-rod", "body-body", "body-wall")
+
+#: one body of a frames row (db/schema.sql): 36 bytes, little-endian
+FRAME_DTYPE = np.dtype([("x", "<f8"), ("y", "<f8"), ("phi", "<f8"),
+                        ("vx", "<f4"), ("vy", "<f4"), ("omega", "<f4")])
+
+# the columns of the tables as numpy types; a nullable integer column reads NULL as -1, a REAL
+# column NULL as NaN; text columns are given as (sql, dtype) below
+_COLLISION_COLUMNS = {
+    "seq": "i8", "t": "f8", "kind": "i1", "i": "i8", "j": "i8", "disk_i": "i4", "disk_j": "i4",
+    "theta_i": "f8", "theta_j": "f8", "f": "f8", "de": "f8", "vn": "f8", "eps": "f8",
+    "e_tr": "f8", "tb_i": "f8", "tb_j": "f8"}
+_SAMPLE_COLUMNS = {
+    "t": "f8", "collisions": "i8", "cpd": "f8", "e_tr": "f8", "e_rot": "f8", "e_tr_dimer": "f8",
+    "e_rot_dimer": "f8", "e_tr_disk": "f8", "flow_frac": "f8", "flow_chaos": "f8",
+    "count_var": "f8", "s_rho": "f8", "s_perp": "f8", "s_par": "f8"}
+_STATE_COLUMNS = {
+    "label": "U10", "t": "f8", "cpd": "f8", "body": "i8", "kind": "U5", "species": "i4",
+    "x": "f8", "y": "f8", "phi": "f8", "vx": "f8", "vy": "f8", "omega": "f8"}
+
+
+class HaffError(Exception):
+    """A haff command that failed (its exit status and its message), or a database that is not
+    what was asked for."""
+
+
+def open(path):  # noqa: A001 (the module's verb, as in gsd.hoomd.open)
+    """Opens the haff database at path for reading (it is never written); see Database."""
+    return Database(path)
+
+
+class Database:
+    """A haff database, read-only (PRAGMA query_only).  Every reader takes run=None for every
+    run (the rows then carry a "run" field) or one run id; as_frame=True gives a pandas
+    DataFrame instead of a numpy structured array."""
+
+    def __init__(self, path):
+        if not os.path.isfile(path):
+            raise HaffError("%s: no such database file" % path)
+        self.path = path
+        self.con = sqlite3.connect(path)
+        self.con.execute("PRAGMA query_only = 1")
+        names = {r[0] for r in self.con.execute(
+            "SELECT name FROM sqlite_master WHERE type IN ('table', 'view')")}
+        if "runs" not in names:
+            self.con.close()
+            raise HaffError("%s: not a haff database (no runs table)" % path)
+        self._tables = names
+        self._columns = {}
+
+    def close(self):
+        self.con.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    # ---- helpers --------------------------------------------------------------------------
+    def _has(self, table, column):
+        if table not in self._columns:
+            self._columns[table] = {r[1] for r in self.con.execute(
+                "PRAGMA table_info(%s)" % table)}
+        return column in self._columns[table]
+
+    def _select(self, table, columns, spec):
+        """SQL expressions and dtype for columns of table (a missing column reads NULL)."""
+        exprs, fields = [], []
+        for c in columns:
+            if c not in spec:
+                raise HaffError("%s has no column %r (has: %s)" % (table, c, ", ".join(spec)))
+            t = spec[c]
+            e = c if self._has(table, c) else "NULL"
+            if c == "kind" and table == "collisions":
+                e = "CASE kind %s ELSE -1 END" % " ".join(
+                    "WHEN '%s' THEN %d" % (k, n) for n, k in enumerate(COLLISION_KINDS))
+            elif t[0] in "iu":
+                e = "ifnull(%s, -1)" % e
+            elif t[0] == "U":
+                e = "ifnull(%s, '')" % e
+            exprs.append(e)
+            fields.append((c, t))
+        return exprs, np.dtype(fields)
+
+    @staticmethod
+    def _runs_where(run):
+        if run is None:
+            return "", ()
+        return " WHERE run = ?", (int(run),)
+
+    def _array(self, sql, args, dtype, count=None):
+        cur = self.con.execute(sql, args)
+        return np.fromiter(cur, dtype=dtype, count=-1 if count is None else count)
+
+    @staticmethod
+    def _frame(a, as_frame, categorical=None):
+        if not as_frame:
+            return a
+        import pandas as pd
+        df = pd.DataFrame(a)
+        for col, cats in (categorical or {}).items():
+            if col in df:
+                df[col] = pd.Categorical.from_codes(df[col].astype("int64").clip(-1), cats)
+        return df
+
+    def _count(self, table, run):
+        where, args = self._runs_where(run)
+        return self.con.execute("SELECT count(*) FROM %s%s" % (table, where), args).fetchone()[0]
+
+    # ---- runs and parameters --------------------------------------------------------------
+    def run_ids(self):
+        """The ids of the runs, oldest first."""
+        return [r[0] for r in self.con.execute("SELECT id FROM runs ORDER BY id")]
+
+    def runs(self, as_frame=False):
+        """The run_summary view (db/README.md): one dict per run with typed columns (run,
+        species, n, ..., alpha, a_over_d, ..., status, events, cpd_reached, t_reached), plus
+        "params", the run's scene keys (Database.params).  as_frame: a DataFrame (no params)."""
+        if as_frame:
+            import pandas as pd
+            return pd.read_sql("SELECT * FROM run_summary ORDER BY run", self.con)
+        cur = self.con.execute("SELECT * FROM run_summary ORDER BY run")
+        names = [d[0] for d in cur.description]
+        out = [dict(zip(names, row)) for row in cur]
+        params = self.params()
+        for r in out:
+            r["params"] = params.get(r["run"], {})
+        return out
+
+    def params(self, run=None):
+        """The scene keys of a run as {"section.key": value}, value a float when the key is a
+        number (the params view's num), else its text; run=None: {run: {...}} for every run."""
+        where, args = self._runs_where(run)
+        out = {}
+        for r, sec, key, value, num in self.con.execute(
+                "SELECT run, section, key, value, num FROM params%s" % where, args):
+            out.setdefault(r, {})["%s.%s" % (sec, key)] = value if num is None else num
+        return out.get(int(run), {}) if run is not None else out
+
+    def species(self, run):
+        """The species table of a run: one dict per species (idx, name, count, mass, inertia,
+        disks: [(x, y, d, m), ...] in the body frame about the centre of mass); [] for rods and
+        files made before schema version 3."""
+        if "species" not in self._tables:
+            return []
+        out = []
+        for idx, name, disks, count, mass, inertia in self.con.execute(
+                "SELECT idx, name, disks, count, mass, inertia FROM species WHERE run = ? "
+                "ORDER BY idx", (int(run),)):
+            d = [tuple(float(v) for v in p.split()) for p in disks.split(";") if p.strip()]
+            out.append({"idx": idx, "name": name, "count": count, "mass": mass,
+                        "inertia": inertia, "disks": d})
+        return out
+
+    # ---- rows -----------------------------------------------------------------------------
+    def collisions(self, run=None, kinds=None, columns=None, chunk=None, as_frame=False):
+        """The collisions of a run (or of every run, with a "run" field), in (run, seq) order,
+        as a numpy structured array: seq, t, kind (a code: COLLISION_KINDS[kind]; a DataFrame
+        has it as a Categorical), i, j, disk_i, disk_j (-1 for NULL), theta_i, theta_j, f, de,
+        vn, eps, e_tr, tb_i, tb_j (NaN for NULL).  kinds: only these kinds (names); columns:
+        only these fields.  chunk=N: an iterator over arrays (or DataFrames) of at most N rows,
+        for files larger than memory.  Reads ~3x faster than pandas.read_sql (docs/python.md)."""
+        cols = list(columns or _COLLISION_COLUMNS)
+        if run is None and "run" not in cols:
+            cols = ["run"] + cols
+        spec = dict(_COLLISION_COLUMNS, run="i8")
+        exprs, dtype = self._select("collisions", cols, spec)
+        where, args = self._runs_where(run)
+        if kinds:
+            kinds = [kinds] if isinstance(kinds, str) else list(kinds)
+            bad = [k for k in kinds if k not in COLLISION_KINDS]
+            if bad:
+                raise HaffError("unknown collision kind %s (kinds: %s)" %
+                                (", ".join(bad), ", ".join(COLLISION_KINDS)))
+            where += (" AND " if where else " WHERE ") + "kind IN (%s)" % ",".join("?" * len(kinds))
+            args += tuple(kinds)
+        sql = "SELECT %s FROM collisions%s ORDER BY %s" % (
+            ", ".join(exprs), where, "seq" if run is not None else "run, seq")
+        cats = {"kind": list(COLLISION_KINDS)}
+        if chunk:
+            return self._chunks(sql, args, dtype, int(chunk), as_frame, cats)
+        return self._frame(self._array(sql, args, dtype), as_frame, cats)
+
+    def _chunks(self, sql, args, dtype, n, as_frame, cats):
+        cur = self.con.cursor()
+        cur.execute(sql, args)
+        while True:
+            a = np.fromiter(itertools.islice(cur, n), dtype=dtype)
+            if len(a) == 0:
+                return
+            yield self._frame(a, as_frame, cats)
+
+    def samples(self, run=None, columns=None, as_frame=False):
+        """The samples of a run (or every run, with "run") in time order: t, collisions, cpd,
+        e_tr, e_rot, the per-species columns and the state measures (NaN for NULL)."""
+        cols = list(columns or _SAMPLE_COLUMNS)
+        if run is None and "run" not in cols:
+            cols = ["run"] + cols
+        exprs, dtype = self._select("samples", cols, dict(_SAMPLE_COLUMNS, run="i8"))
+        where, args = self._runs_where(run)
+        sql = "SELECT %s FROM samples%s ORDER BY %s" % (", ".join(exprs), where,
+                                                         "t" if run is not None else "run, t")
+        return self._frame(self._array(sql, args, dtype), as_frame)
+
+    def states(self, run=None, label=None, as_frame=False):
+        """The states rows of a run (or every run, with "run"), by (label, t, body): label, t,
+        cpd, body, kind, species (species.idx; -1 for rods and rows written before schema
+        version 4), x, y, phi, vx, vy, omega.  label: only 'initial', 'final', 'checkpoint' or
+        'velocities'."""
+        cols = list(_STATE_COLUMNS)
+        if run is None:
+            cols = ["run"] + cols
+        exprs, dtype = self._select("states", cols, dict(_STATE_COLUMNS, run="i8"))
+        where, args = self._runs_where(run)
+        if label is not None:
+            where += (" AND " if where else " WHERE ") + "label = ?"
+            args += (label,)
+        sql = "SELECT %s FROM states%s ORDER BY %s" % (
+            ", ".join(exprs), where, ("" if run is not None else "run, ") + "label, t, body")
+        return self._frame(self._array(sql, args, dtype), as_frame)
+
+    # ---- frames ---------------------------------------------------------------------------
+    def frame_count(self, run):
+        if "frames" not in self._tables:
+            return 0
+        return self.con.execute("SELECT count(*) FROM frames WHERE run = ?",
+                                (int(run),)).fetchone()[0]
+
+    def _bodies(self, run):
+        """kind and species of every body of a run, from its initial states (the frames' rule);
+        species from the species counts when the file has no states.species."""
+        st = self.states(run, label="initial")
+        if len(st) == 0:
+            raise HaffError("%s: run %d has no initial states" % (self.path, run))
+        t0 = st["t"].min()
+        st = st[st["t"] == t0]
+        st = st[np.argsort(st["body"], kind="stable")]
+        species = st["species"].copy()
+        if np.all(species < 0) and st["kind"][0] != "rod":
+            first = 0
+            for sp in self.species(run):
+                species[(st["body"] >= first) & (st["body"] < first + sp["count"])] = sp["idx"]
+                first += sp["count"]
+        return st["kind"], species
+
+    def frames(self, run, start=0, stop=None):
+        """Iterates over the frames of a run in time order, one Frame at a time (one frames row
+        in memory): Frame.index, t, cpd, bodies (FRAME_DTYPE: x, y, phi float64; vx, vy, omega
+        float32 as stored), kind and species of each body, and Frame.disks()."""
+        if "frames" not in self._tables:
+            return
+        kind, species = self._bodies(run)
+        shapes = _shapes(self.species(run))
+        cur = self.con.execute(
+            "SELECT t, cpd, n, data FROM frames WHERE run = ? ORDER BY t, rowid LIMIT ? OFFSET ?",
+            (int(run), -1 if stop is None else max(0, stop - start), int(start)))
+        for k, (t, cpd, n, data) in enumerate(cur, start):
+            if n != len(kind) or len(data) != n * FRAME_DTYPE.itemsize:
+                raise HaffError("%s: run %d: frame %d holds %d bodies, the initial states %d" %
+                                (self.path, run, k, n, len(kind)))
+            yield Frame(k, t, cpd, np.frombuffer(data, dtype=FRAME_DTYPE), kind, species,
+                        shapes)
+
+    def frame(self, run, index):
+        """Frame number index (0-based, time order) of a run."""
+        for f in self.frames(run, index, index + 1):
+            return f
+        raise HaffError("%s: run %d has no frame %d" % (self.path, run, index))
+
+
+def _shapes(species):
+    """The engine's shapes of the species rows (hd_shape_cluster, with its fast paths): the
+    disks recentred on the centre of mass; a symmetric pair of equal disks is a dimer (half
+    bond h: the engine's formulas differ in the order of a product); a lone disk a disk."""
+    out = {}
+    for sp in species:
+        d = sp["disks"]
+        mass = cx = cy = 0.0
+        for x, y, _, m in d:
+            mass += m
+            cx += m * x
+            cy += m * y
+        cx /= mass
+        cy /= mass
+        o = [(x - cx, y - cy, dd, m) for x, y, dd, m in d]
+        tag = "cluster"
+        if len(o) == 1:
+            tag = "disk"
+        elif len(o) == 2 and o[0][2] == o[1][2] and o[0][3] == o[1][3] and o[0][1] == 0.0 and \
+                o[1][1] == 0.0 and o[0][0] == -o[1][0] and o[0][0] <= 0:
+            tag = "dimer"
+            o = [(0.5 * (o[1][0] - o[0][0]) * s, 0.0, dd, m) for s, (_, _, dd, m) in
+                 zip((-1.0, 1.0), o)]
+        out[sp["idx"]] = (tag, o, sp["name"])
+    return out
+
+
+DISK_DTYPE = np.dtype([("body", "i8"), ("species", "i4"), ("x", "f8"), ("y", "f8"),
+                       ("vx", "f8"), ("vy", "f8"), ("mass", "f8"), ("diameter", "f8")])
+
+
+class Frame:
+    """One decoded frames row: index (0-based, time order), t, cpd, bodies (a FRAME_DTYPE array
+    of the n bodies in body order), kind (each body's states.kind) and species (species.idx;
+    -1 for rods)."""
+
+    def __init__(self, index, t, cpd, bodies, kind, species, shapes):
+        self.index, self.t, self.cpd, self.bodies = index, t, cpd, bodies
+        self.kind, self.species, self._shapes = kind, species, shapes
+
+    def __repr__(self):
+        return "Frame(index=%d, t=%r, cpd=%r, n=%d)" % (self.index, self.t, self.cpd,
+                                                        len(self.bodies))
+
+    def species_names(self):
+        """The species name of every body ('rod' for rods)."""
+        names = {k: v[2] for k, v in self._shapes.items()}
+        return np.array([names.get(s, "rod") for s in self.species])
+
+    def disks(self):
+        """Every disk of every body in body order (a dimer gives its two), with the engine's
+        formulas (hd_kin_disk_pos, hd_kin_disk_vel): body, species, x, y, vx, vy (rotation
+        included), mass, diameter.  The same numbers as `haff export xyz --label frames`, to the
+        last digit.  A rod is one disk of diameter 1 (its mass is NaN here: see the scene)."""
+        out = []
+        b = self.bodies
+        for i in range(len(b)):
+            x, y, phi = float(b["x"][i]), float(b["y"][i]), float(b["phi"][i])
+            vx, vy, om = float(b["vx"][i]), float(b["vy"][i]), float(b["omega"][i])
+            s = int(self.species[i])
+            if s not in self._shapes:
+                out.append((i, s, x, y, vx, vy, math.nan, 1.0))
+                continue
+            tag, o, _ = self._shapes[s]
+            if tag == "disk":
+                out.append((i, s, x, y, vx, vy, o[0][3], o[0][2]))
+                continue
+            sn, cs = math.sin(phi), math.cos(phi)
+            for ox, oy, d, m in o:
+                if tag == "dimer":
+                    hw = ox * om
+                    out.append((i, s, x + ox * cs, y + ox * sn, vx - hw * sn, vy + hw * cs, m, d))
+                else:
+                    out.append((i, s, x + (ox * cs - oy * sn), y + (ox * sn + oy * cs),
+                                vx - om * (ox * sn + oy * cs), vy + om * (ox * cs - oy * sn),
+                                m, d))
+        return np.array(out, dtype=DISK_DTYPE)
+
+
+# ---- running haff ---------------------------------------------------------------------------
+def _haff(haff):
+    exe = haff or os.environ.get("HAFF_BIN") or shutil.which("haff")
+    if not exe:
+        raise HaffError("the haff program is not found (install it, put it on PATH, or give "
+                        "haff= or $HAFF_BIN)")
+    return exe
+
+
+def _call(args):
+    p = subprocess.run(args, capture_output=True, text=True)
+    if p.returncode != 0:
+        raise HaffError("%s: exit %d: %s" % (" ".join(args[:2]), p.returncode,
+                                              (p.stderr or p.stdout).strip()))
+    return p
+
+
+def _newest(db):
+    con = sqlite3.connect(db)
+    try:
+        return con.execute("SELECT max(id) FROM runs").fetchone()[0]
+    finally:
+        con.close()
+
+
+def run(scene, db, set=None, seed=None, haff=None):  # noqa: A002 (haff's own option name)
+    """Runs the scene file `scene` into database `db` with the installed haff (`haff run SCENE
+    -o DB --quiet [--set S.K=V]... [--seed N]`) and returns the new run's id.  set: a dict
+    {"section.key": value} or a list of "section.key=value".  HaffError on failure (the exit
+    status and haff's message; a run that collapsed or was interrupted is a failure too)."""
+    args = [_haff(haff), "run", str(scene), "-o", str(db), "--quiet"]
+    items = set.items() if isinstance(set, dict) else [s.split("=", 1) for s in (set or [])]
+    for k, v in items:
+        args += ["--set", "%s=%s" % (k, v)]
+    if seed is not None:
+        args += ["--seed", str(int(seed))]
+    _call(args)
+    return _newest(db)
+
+
+def resume(db, run=None, all=False, haff=None):  # noqa: A002
+    """Resumes an interrupted, killed or failed run of `db` (`haff resume DB [--run ID | --all]
+    --quiet`); returns the id of the run resumed (the newest run, for all=True).  HaffError on
+    failure, e.g. a run that is done (exit 2)."""
+    args = [_haff(haff), "resume", str(db), "--quiet"]
+    if run is not None:
+        args += ["--run", str(int(run))]
+    if all:
+        args.append("--all")
+    _call(args)
+    return int(run) if run is not None else _newest(db)

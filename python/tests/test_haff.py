@@ -1,0 +1,282 @@
+"""Tests of the Python module haff (python/haff), with Debian's /usr/bin/python3 (unittest).
+
+usage: HAFF_BIN=bin/haff /usr/bin/python3 python/tests/test_haff.py [-v] [TestCase...]
+tests/test_python.c runs each TestCase under `make test`.  The module under test is the source
+tree's (python/, put first on sys.path), the haff program $HAFF_BIN.
+
+TestStudy builds a study as a user would: four dimer runs (alpha 0.8, 0.95 x a 0.5, 1; 50
+dimers at area fraction 0.1 to 10 cpd, every collision logged, frames every 2 cpd) made with
+haff.run into two databases, plus a mixture of dimers, disks and triangles with frames, merged
+with `haff merge` into one; then checks the module against docs/sql.md's own SQL (<f>, D_e =
+2/<f> and K = E_tr/E_rot, to 1e-12 relative: the sums are the same numbers added in another
+order) and the decoded frames against `haff export xyz` (every disk's position and velocity,
+exactly: the export prints the shortest form that reads back as the same double).
+TestRunResume interrupts a run with SIGINT and resumes it with haff.resume.
+"""
+import math
+import os
+import re
+import signal
+import sqlite3
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+
+import numpy as np  # noqa: E402
+
+import haff  # noqa: E402
+
+HAFF = os.environ.get("HAFF_BIN") or os.path.join(ROOT, "bin", "haff")
+
+DIMERS = """[system]
+area_fraction = 0.1
+seed = 1
+[dimers]
+count = 50
+alpha = 0.9
+a = 1
+[run]
+stop_cpd = 10
+[log]
+collisions = all
+samples_every = 0.5
+frames_every = 2
+"""
+
+MIXTURE = """[system]
+box = 30 30
+seed = 5
+[dimers]
+count = 10
+a = 0.6
+[disks]
+count = 10
+sigma = 0.8
+mass = 0.5
+[species tri]
+count = 10
+shape = triangle
+[walls]
+sides = bottom top
+[run]
+stop_cpd = 4
+[log]
+collisions = all
+frames_every = 1
+"""
+
+
+def sql_of(question):
+    """The ```sql block of question N of docs/sql.md."""
+    with open(os.path.join(ROOT, "docs", "sql.md")) as f:
+        text = f.read()
+    m = re.search(r"^### %d\. .*?```sql\n(.*?)```" % question, text, re.M | re.S)
+    return m.group(1)
+
+
+def write(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def close(a, b, rel=1e-12):
+    return abs(a - b) <= rel * max(abs(a), abs(b))
+
+
+class TestStudy(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory(prefix="haff-py-")
+        d = cls.tmp.name
+        cls.scene = os.path.join(d, "dimers.ini")
+        write(cls.scene, DIMERS)
+        write(os.path.join(d, "mix.ini"), MIXTURE)
+        k = 0
+        for alpha in (0.8, 0.95):
+            for a in (0.5, 1):
+                k += 1
+                out = os.path.join(d, "a.db" if alpha == 0.8 else "b.db")
+                run = haff.run(cls.scene, out, set={"dimers.alpha": alpha, "dimers.a": a},
+                               seed=k, haff=HAFF)
+                assert run in (1, 2)
+        haff.run(os.path.join(d, "mix.ini"), os.path.join(d, "b.db"), haff=HAFF)
+        cls.path = os.path.join(d, "study.db")
+        subprocess.run([HAFF, "merge", cls.path, os.path.join(d, "a.db"),
+                        os.path.join(d, "b.db")], check=True, capture_output=True)
+        cls.db = haff.open(cls.path)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.db.close()
+        cls.tmp.cleanup()
+
+    def test_runs_typed(self):
+        runs = self.db.runs()
+        self.assertEqual([r["run"] for r in runs], [1, 2, 3, 4, 5])
+        self.assertEqual([(r["alpha"], r["a_over_d"]) for r in runs[:4]],
+                         [(0.8, 0.5), (0.8, 1.0), (0.95, 0.5), (0.95, 1.0)])
+        p = runs[0]["params"]
+        self.assertEqual(p["dimers.count"], 50.0)
+        self.assertIsInstance(p["dimers.alpha"], float)
+        self.assertEqual(p["log.collisions"], "all")
+        self.assertEqual(self.db.params(5)["species tri.count"], 10.0)
+        self.assertEqual([s["name"] for s in self.db.species(5)], ["dimer", "disk", "tri"])
+        df = self.db.runs(as_frame=True)
+        self.assertEqual(list(df.run), [1, 2, 3, 4, 5])
+
+    def test_mean_f_and_d_e_as_docs_sql(self):
+        """Question 3 of docs/sql.md (<f> per (alpha, a/d)) against the module's arrays."""
+        con = sqlite3.connect(self.path)
+        want = con.execute(sql_of(3)).fetchall()
+        con.close()
+        runs = {r["run"]: (r["alpha"], r["a_over_d"]) for r in self.db.runs()}
+        per_run = {}
+        for run in runs:
+            c = self.db.collisions(run, kinds="dimer-dimer", columns=["f"])
+            f = c["f"][~np.isnan(c["f"])]
+            if len(f):
+                per_run[run] = math.fsum(f) / len(f)
+        groups = {}
+        for run, f in per_run.items():
+            groups.setdefault(runs[run], []).append(f)
+        got = sorted(groups.items())
+        self.assertEqual(len(got), len(want))
+        for (key, fs), (alpha, aod, n, mean_f, _) in zip(got, want):
+            self.assertEqual(key, (alpha, aod))
+            self.assertEqual(len(fs), n)
+            self.assertTrue(close(sum(fs) / len(fs), mean_f), (key, sum(fs) / len(fs), mean_f))
+            self.assertTrue(close(2 / (sum(fs) / len(fs)), 2 / mean_f))  # D_e = 2/<f>
+        self.assertTrue(0.5 < want[-1][3] < 0.8)  # the paper's <f> = 0.64 for a = d
+
+    def test_k_as_docs_sql(self):
+        """Question 5 of docs/sql.md (K = E_tr/E_rot at the end of each dimer run)."""
+        con = sqlite3.connect(self.path)
+        want = con.execute(sql_of(5)).fetchall()
+        con.close()
+        self.assertEqual([w[0] for w in want], [1, 2, 3, 4])
+        s = self.db.samples()
+        for run, _, _, cpd, k in want:
+            last = s[s["run"] == run][-1]
+            self.assertEqual(last["cpd"], cpd)
+            self.assertEqual(last["e_tr"] / last["e_rot"], k)
+
+    def test_collisions_whole_chunked_frame(self):
+        c = self.db.collisions()
+        con = sqlite3.connect(self.path)
+        n, sum_de, nwall = con.execute(
+            "SELECT count(*), sum(de), sum(kind = 'dimer-wall') FROM collisions").fetchone()
+        con.close()
+        self.assertEqual(len(c), n)
+        self.assertTrue(close(math.fsum(c["de"]), sum_de, 1e-9))
+        self.assertEqual(int(np.sum(c["kind"] == haff.COLLISION_KINDS.index("dimer-wall"))), nwall)
+        parts = list(self.db.collisions(chunk=200))
+        self.assertTrue(all(len(p) <= 200 for p in parts) and len(parts) > 2, len(parts))
+        self.assertTrue(np.array_equal(np.concatenate(parts)[["run", "seq"]], c[["run", "seq"]]))
+        df = self.db.collisions(2, as_frame=True)
+        self.assertEqual(set(df.kind.astype(str)), {"dimer-dimer"})
+        self.assertTrue(np.array_equal(df.t.to_numpy(), c[c["run"] == 2]["t"]))
+        with self.assertRaises(haff.HaffError):
+            self.db.collisions(1, kinds=["dimer-dimmer"])
+
+    def test_frames_match_export_xyz(self):
+        """Every disk of every frame decoded by the module equals `haff export xyz --label
+        frames`, to the last digit; the species names too."""
+        for run in (2, 5):
+            xyz = subprocess.run([HAFF, "export", "xyz", self.path, "--run", str(run), "--label",
+                                  "frames"], check=True, capture_output=True, text=True).stdout
+            lines = xyz.splitlines()
+            frames = list(self.db.frames(run))
+            self.assertEqual(len(frames), self.db.frame_count(run))
+            self.assertGreaterEqual(len(frames), 4)
+            at = 0
+            for fr in frames:
+                n = int(lines[at])
+                head = lines[at + 1]
+                rows = [ln.split() for ln in lines[at + 2:at + 2 + n]]
+                at += 2 + n
+                self.assertEqual(float(re.search(r"Time=(\S+)", head).group(1)), fr.t)
+                d = fr.disks()
+                self.assertEqual(len(d), n)
+                names = fr.species_names()[d["body"]]
+                for k, r in enumerate(rows):
+                    self.assertEqual(tuple(float(v) for v in (r[1], r[2], r[4], r[5])),
+                                     (d["x"][k], d["y"][k], d["vx"][k], d["vy"][k]),
+                                     "run %d frame %d disk %d" % (run, fr.index, k))
+                    self.assertEqual(int(r[12]), d["body"][k])
+                    self.assertEqual(r[-1], names[k])
+                    self.assertEqual(float(r[7]), d["mass"][k])
+            self.assertEqual(at, len(lines))
+
+    def test_states_species(self):
+        st = self.db.states(5, label="initial")
+        sp = {s["idx"]: s for s in self.db.species(5)}
+        first = 0
+        for idx in sorted(sp):
+            sel = (st["body"] >= first) & (st["body"] < first + sp[idx]["count"])
+            self.assertTrue(np.all(st["species"][sel] == idx))
+            first += sp[idx]["count"]
+        self.assertEqual(first, len(st))
+
+
+class TestRunResume(unittest.TestCase):
+    def test_interrupt_and_resume(self):
+        with tempfile.TemporaryDirectory(prefix="haff-py-") as d:
+            scene = os.path.join(d, "long.ini")
+            write(scene, "[system]\narea_fraction = 0.2\nseed = 4\n[dimers]\ncount = 1000\n"
+                  "[run]\nstop_cpd = 2000\n[log]\ncollisions = none\n")
+            out = os.path.join(d, "r.db")
+            p = subprocess.Popen([HAFF, "run", scene, "-o", out, "--quiet"])
+            for _ in range(600):  # until it has committed events (a commit every second)
+                time.sleep(0.1)
+                try:
+                    con = sqlite3.connect(out)
+                    ev = con.execute("SELECT max(events) FROM runs").fetchone()[0]
+                    con.close()
+                except sqlite3.Error:
+                    ev = None
+                if ev or p.poll() is not None:
+                    break
+            p.send_signal(signal.SIGINT)
+            self.assertEqual(p.wait(), 1)  # interrupted
+            db = haff.open(out)
+            self.assertEqual(db.runs()[0]["status"], "interrupted")
+            db.close()
+            self.assertEqual(haff.resume(out, haff=HAFF), 1)
+            db = haff.open(out)
+            status, cpd = db.con.execute("SELECT status, cpd FROM runs").fetchone()
+            self.assertEqual(status, "done")
+            self.assertGreaterEqual(cpd, 2000)
+            db.close()
+            with self.assertRaises(haff.HaffError) as e:  # a done run cannot be resumed
+                haff.resume(out, run=1, haff=HAFF)
+            self.assertIn("exit 2", str(e.exception))
+
+
+class TestErrors(unittest.TestCase):
+    def test_bad_input(self):
+        with tempfile.TemporaryDirectory(prefix="haff-py-") as d:
+            with self.assertRaises(haff.HaffError):
+                haff.open(os.path.join(d, "none.db"))
+            other = os.path.join(d, "other.db")
+            con = sqlite3.connect(other)
+            con.execute("CREATE TABLE t (x)")
+            con.close()
+            with self.assertRaises(haff.HaffError) as e:
+                haff.open(other)
+            self.assertIn("not a haff database", str(e.exception))
+            scene = os.path.join(d, "bad.ini")
+            write(scene, "[dimers]\ncount = 10\nalpha = 1.5\n")
+            with self.assertRaises(haff.HaffError) as e:
+                haff.run(scene, os.path.join(d, "x.db"), haff=HAFF)
+            self.assertIn("alpha", str(e.exception))
+            self.assertIn("exit 2", str(e.exception))
+
+
+if __name__ == "__main__":
+    unittest.main()
