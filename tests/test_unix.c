@@ -266,10 +266,10 @@ static void install_man_completion(void **state) {
   char *l6 = strchr(l5, '\n'), *l7, *l8, *l9, *l10;
   assert_non_null(l6);
   *l6++ = 0;
-  assert_string_equal(l5, "--slurm --status");
+  assert_string_equal(l5, "--sbatch --slurm --status");
   assert_non_null(l7 = strchr(l6, '\n'));
   *l7++ = 0;
-  assert_string_equal(l6, "xyz");
+  assert_string_equal(l6, "xyz gsd");
   assert_non_null(l8 = strchr(l7, '\n'));
   *l8++ = 0;
   assert_string_equal(l7, "dimers.count= dimers.d= dimers.a= dimers.m= dimers.alpha= "
