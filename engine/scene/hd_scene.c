@@ -167,7 +167,7 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
   X(PSHAPE, S_SPECIES, "shape", CUSTOM(set_shape), .show = show_short_shape, .put = put_shape,       \
     .doc_def = "— (or `disks`)",                                                                     \
     .doc_range = "`disk` \\| `dimer A` \\| `linear N [S]` \\| `triangle [S]` \\| "                   \
-                 "`bent ANGLE [S]`",                                                                 \
+                 "`bent ANGLE [S]`; A, S ≥ 10⁻⁹ d",                                                  \
     .doc = "a short form (below); S, the centre spacing, defaults to `d`")                           \
   X(PD, S_SPECIES, "d", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,                \
     .put = put_sp_dm, .doc = "with `shape`: the diameter of every disk")                             \
@@ -175,7 +175,9 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
     .put = put_sp_dm, .doc = "with `shape`: the mass of every disk")                                 \
   X(PDISKS, S_SPECIES, "disks", CUSTOM(set_disks), .show = show_explicit, .put = put_disks,          \
     .doc_key = "disks = x y d m; x y d m; ...", .doc_def = "— (or `shape`)",                         \
-    .doc_range = "1 to 8 disks, d > 0, m > 0; no blank before `;`",                                  \
+    .doc_range = "1 to 8 disks, d > 0, m > 0; in one body m ≤ 10¹² × "                          \
+                 "the smallest m, d ≤ 10⁴ × the smallest d, centres that "                      \
+                 "span 0 or ≥ 10⁻⁹ × the largest d; no blank before `;`",                            \
     .doc = "instead of `shape`: each disk's centre in the body frame, diameter and mass")            \
   X(PALPHAX, S_SPECIES, "alpha_OTHER", CUSTOM(set_alpha_other), .put = put_pairs,                    \
     .doc_def = "the smaller of the two `alpha`s", .doc_range = "[0, 1]",                             \
@@ -1230,7 +1232,43 @@ static int check_box(ctx *c, int run) {
  * this relative slack (the short forms' touching disks are computed with cos and sin). */
 #define HD_TOUCH_SLACK 1e-12
 
-/* The disks of named species j from its shape, then: are they one connected body. */
+/* The physical bounds of a body that the engine's numerics need (docs/scene-keys.md): its size
+ * (the span of its disk centres: 0, a round body, or at least HD_MIN_BOND of its largest
+ * diameter, as [dimers] a), the mass ratio of its disks (HD_MAX_MASS_RATIO) and their diameter
+ * ratio (HD_MAX_DIAMETER_RATIO).  HD_OK or an error at `key` (shape or disks) saying why. */
+static int species_bounds(ctx *c, int j, int key) {
+  const hd_scene_species *sp = &c->sc->named[j];
+  int si = N_SEC + j;
+  double span = 0, dlo = INFINITY, dhi = 0, mlo = INFINITY, mhi = 0;
+  for (int a = 0; a < sp->ndisk; a++) {
+    dlo = fmin(dlo, sp->d[a]), dhi = fmax(dhi, sp->d[a]);
+    mlo = fmin(mlo, sp->m[a]), mhi = fmax(mhi, sp->m[a]);
+    for (int b = a + 1; b < sp->ndisk; b++)
+      span = fmax(span, hypot(sp->x[a] - sp->x[b], sp->y[a] - sp->y[b]));
+  }
+  if (span > 0 && !(span >= HD_MIN_BOND * dhi))
+    return FAIL_AT(c, si, key,
+                   "the disk centres span %g, less than %g of the largest diameter (%g): a body "
+                   "that small is lost in the round-off of the positions (its spin runs away and "
+                   "collisions pile up); disks that share one centre (span 0) make a round body",
+                   span, HD_MIN_BOND, HD_MIN_BOND * dhi);
+  if (!(mhi <= HD_MAX_MASS_RATIO * mlo))
+    return FAIL_AT(c, si, key,
+                   "masses from %g to %g, a ratio above %g: a light disk far from a heavy centre "
+                   "of mass spins up to sqrt(disks x ratio) times the speed of the body, and the "
+                   "contact search steps through every turn (it made no progress at 1e30)",
+                   mlo, mhi, HD_MAX_MASS_RATIO);
+  if (!(dhi <= HD_MAX_DIAMETER_RATIO * dlo))
+    return FAIL_AT(c, si, key,
+                   "diameters from %g to %g, a ratio above %g: the contact tolerances are "
+                   "relative to the smallest disk (1e-10 of it), the round-off of the disks' "
+                   "places to the largest",
+                   dlo, dhi, HD_MAX_DIAMETER_RATIO);
+  return HD_OK;
+}
+
+/* The disks of named species j from its shape, then: are they one connected body, within the
+ * bounds of species_bounds. */
 static int build_species(ctx *c, int j) {
   hd_scene_species *sp = &c->sc->named[j];
   sp_parse *p = &c->sp[j];
@@ -1290,15 +1328,14 @@ static int build_species(ctx *c, int j) {
       }
     }
   }
+  int key = has_disks ? K_PDISKS : K_PSHAPE;
   for (int b = 0; b < sp->ndisk; b++)
-    if (!seen[b]) {
-      int k = has_disks ? K_PDISKS : K_PSHAPE;
-      return FAIL_AT(c, si, k,
+    if (!seen[b])
+      return FAIL_AT(c, si, key,
                      "disk %d at (%g, %g) is not connected to disk 1: the disks of a body must "
                      "touch or overlap (centres at most (d_i + d_j)/2 apart)",
                      b + 1, sp->x[b], sp->y[b]);
-    }
-  return HD_OK;
+  return species_bounds(c, j, key);
 }
 
 /* alpha_pair: each species' own alpha on the diagonal, the smaller of the two off it, then
@@ -1712,7 +1749,7 @@ static void doc_table(int s, sbuf *b) {
   for (int k = 0; k < N_KEY; k++) {
     const key_def *kd = &keys[k];
     if (kd->sec != s) continue;
-    char def[80], range[160];
+    char def[80], range[320];
     if (kd->doc_def)
       snprintf(def, sizeof def, "%s", kd->doc_def);
     else if (kd->type == KT_BOOL || kd->type == KT_ENUM)

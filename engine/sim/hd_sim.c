@@ -98,6 +98,7 @@ static int sim_setup(hd_sim **out, const hd_scene *sc, hd_error *err) {
   gsl_rng_set(s->rng, (unsigned long)sc->seed);
   s->rebase_every = 100000;
   s->last_i = s->last_j = -1;
+  s->cut_t = INFINITY;
   *out = s;
   return HD_OK;
 }
@@ -567,7 +568,10 @@ static int verify_collision(hd_sim *s, int32_t i, int32_t j, hd_error *err) {
 
 int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
   for (long quiet = 0;; quiet++) {
-    if (quiet >= HD_SIM_BUSY_EVENTS) return HD_SIM_BUSY;
+    if (quiet >= HD_SIM_BUSY_EVENTS || s->cut) { /* (a cut: a stop was requested) */
+      s->cut = 0;
+      return HD_SIM_BUSY;
+    }
     if (s->c.events >= s->c.next_rebase) {
       rebase(s);
       s->c.next_rebase += s->rebase_every;

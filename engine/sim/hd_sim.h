@@ -135,6 +135,10 @@ typedef struct hd_sim {
   int melt;               /* set-up only: the lattice placed must be melted */
   double max_overlap;     /* verification: largest relative overlap seen */
   int32_t last_i, last_j; /* bodies of the last collision (collapse report) */
+  double cut_t;           /* during a prediction: the earliest time (relative to now) a contact
+                           * search was cut at by a stop request (HD_CA_CUT), else INFINITY */
+  int cut;                /* a prediction was cut since hd_sim_next last returned: it returns
+                           * HD_SIM_BUSY after the event, so that its caller sees the stop */
 } hd_sim;
 
 /* Builds a simulation from a scene: bodies placed and given velocities (seeded by sc->seed),
