@@ -335,6 +335,27 @@ static void huge_box_site_count(void **state) {
     fail_msg("%s", err.msg);
 }
 
+/* Issue 24 item 6: an empty box with samples, and a species of count 0 with no other body,
+ * ended `failed` with "insert sample: NOT NULL constraint failed" (the database blamed); without
+ * samples an empty box ran `done`.  Now each is refused at set-up, exit 2, one line saying so,
+ * and no database is written. */
+static void empty_scenes(void **state) {
+  (void)state;
+  if (!haff) skip();
+  static const char *const scenes[] = {
+      "[system]\nbox = 10 10\n[run]\nstop_time = 1\n[log]\nsamples_every = 0.1\n",
+      "[system]\nbox = 10 10\n[species t]\ncount = 0\nshape = triangle\n[run]\nstop_time = 1\n"
+      "[log]\nsamples_every = 0.1\n",
+      "[system]\nbox = 10 10\n[dimers]\ncount = 0\n[run]\nstop_time = 1\n"};
+  for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; i++) {
+    write_file("empty.ini", scenes[i]);
+    unlink("empty.db");
+    assert_int_equal(sh("%s run empty.ini -o empty.db", haff), 2);
+    one_line_with("empty.ini: no bodies: every count is 0");
+    assert_int_not_equal(access("empty.db", F_OK), 0);
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(stdout_write_errors),
@@ -345,6 +366,7 @@ int main(void) {
       cmocka_unit_test(unbounded_inputs_refused),
       cmocka_unit_test(scenes_that_never_end),
       cmocka_unit_test(huge_box_site_count),
+      cmocka_unit_test(empty_scenes),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -1232,6 +1232,11 @@ static int check_box(ctx *c, int run) {
  * this relative slack (the short forms' touching disks are computed with cos and sin). */
 #define HD_TOUCH_SLACK 1e-12
 
+/* Why a moment of inertia must be within [HD_MIN_INERTIA, 1 / HD_MIN_INERTIA]. */
+static const char inertia_why[] =
+    "the spin energy I w^2 / 2 and the thermal spin w^2 = T / I leave the range of doubles "
+    "(the samples' e_rot became NaN); scale the masses or lengths";
+
 /* The physical bounds of a body that the engine's numerics need (docs/scene-keys.md): its size
  * (the span of its disk centres: 0, a round body, or at least HD_MIN_BOND of its largest
  * diameter, as [dimers] a), the mass ratio of its disks (HD_MAX_MASS_RATIO) and their diameter
@@ -1258,6 +1263,16 @@ static int species_bounds(ctx *c, int j, int key) {
                    "of mass spins up to sqrt(disks x ratio) times the speed of the body, and the "
                    "contact search steps through every turn (it made no progress at 1e30)",
                    mlo, mhi, HD_MAX_MASS_RATIO);
+  double M = 0, cx = 0, cy = 0, I = 0;
+  for (int a = 0; a < sp->ndisk; a++)
+    M += sp->m[a], cx += sp->m[a] * sp->x[a], cy += sp->m[a] * sp->y[a];
+  for (int a = 0; a < sp->ndisk; a++) {
+    double ox = sp->x[a] - cx / M, oy = sp->y[a] - cy / M;
+    I += sp->m[a] * (ox * ox + oy * oy);
+  }
+  if (span > 0 && !(I >= HD_MIN_INERTIA && I <= 1 / HD_MIN_INERTIA))
+    return FAIL_AT(c, si, key, "the moment of inertia %g is outside [%g, %g]: %s", I,
+                   HD_MIN_INERTIA, 1 / HD_MIN_INERTIA, inertia_why);
   if (!(dhi <= HD_MAX_DIAMETER_RATIO * dlo))
     return FAIL_AT(c, si, key,
                    "diameters from %g to %g, a ratio above %g: the contact tolerances are "
@@ -1499,6 +1514,11 @@ static int check_all(ctx *c) {
                     "must be 0 or at least %g d = %g: a shorter bond is lost in the round-off of "
                     "the positions (a = 0 is a dimer without lever arm, a disk of mass 2m)",
                     HD_MIN_BOND, HD_MIN_BOND * sc->dimer_d);
+  double inertia = 0.5 * sc->dimer_m * sc->dimer_a * sc->dimer_a;
+  if (sc->n_dimers > 0 && sc->dimer_a > 0 &&
+      !(inertia >= HD_MIN_INERTIA && inertia <= 1 / HD_MIN_INERTIA))
+    return FAIL_KEY(c, K_DA, "the moment of inertia m a^2 / 2 = %g is outside [%g, %g]: %s",
+                    inertia, HD_MIN_INERTIA, 1 / HD_MIN_INERTIA, inertia_why);
   if ((rc = check_box(c, 1))) return rc;
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,

@@ -32,6 +32,10 @@
        * a pair of bodies are relative to their smallest disk (1e-10 of it at t = 0), the          \
        * round-off of a disk's place to the body's size (~4 d_max ulps): 1e4 keeps that below the  \
        * tolerance by 25x */
+#define HD_MIN_INERTIA                                                                             \
+  1e-250 /* a body that turns: its moment of inertia in [this, 1 / this], so that the spin energy  \
+          * and the thermal spin T / I stay within doubles (dimer 1e-155: I = 5e-311, e_rot NaN)   \
+          */
 #define HD_SCENE_MAX_LINE 4096 /* longest scene line, in bytes */
 #define HD_FRAMES_MAX_MB 1000  /* default `frames_max_mb`: 1 GB of frames */
 #define HD_FRAME_BODY_BYTES 36 /* bytes per body in a frame (db/schema.sql, table frames) */
