@@ -129,6 +129,9 @@ typedef struct hd_sim {
   gsl_rng *rng;                 /* seeded generator (initial state; stochastic rules) */
   hd_sim_clock c;               /* clocks and counters */
   int64_t rebase_every;         /* events between rebases of the time origin */
+  double rebase_e;              /* the origin is also rebased once c.t^2 e_kin > this: a typical
+                                 * body has flown HD_REBASE_TRAVEL of the smallest diameter
+                                 * since (hd_sim_queue_init; hd_sim.c, rebase) */
   int verify;                   /* check invariants at every event (slow) */
   int disks_only;         /* only [disks] bodies: disk-disk prediction without shape dispatch */
   int partial_cross;      /* pure disks, >= 3x3 cells: crossings search 3 new cells */
