@@ -994,7 +994,9 @@ static const bad_case species_bounds_bad[] = {
 
 /* Degenerate scenes (issue 24) that ended `failed` with "insert sample: NOT NULL constraint
  * failed" (the database blamed): a body whose moment of inertia underflows (dimer 1e-155 of d
- * 1e-150: I = 5e-311, e_rot NaN) is an error naming the key.  (An empty box is refused by haff
+ * 1e-150: I = 5e-311, e_rot NaN) is an error naming the key, and so is a temperature whose
+ * drawn spins or speeds overflow (1e300 with a dimer of a = 1e-9: w^2 = inf, found by the
+ * campaign of issue 24).  (An empty box is refused by haff
  * run at set-up: tests/test_cli_edges.c, empty_scenes.) */
 static const bad_case degenerate_bad[] = {
     {"[system]\narea_fraction = 0.1\n[dimers]\ncount = 20\nd = 1e-150\na = 1e-155\n" RUN, NULL,
@@ -1002,6 +1004,14 @@ static const bad_case degenerate_bad[] = {
     {"[system]\narea_fraction = 0.1\n[species t]\ncount = 20\nshape = dimer 1e-155\nd = "
      "1e-150\n" RUN,
      NULL, HD_EINPUT, "bad.ini:5:", "[species t] shape = dimer 1e-155", "moment of inertia 5e-311"},
+    {"[system]\narea_fraction = 0.1\n[species t]\ncount = 50\nshape = dimer 1e-9\n[init]\n"
+     "temperature = 1e300\n" RUN,
+     NULL, HD_EINPUT, "bad.ini:7:", "[init] temperature = 1e300",
+     "the drawn velocities leave the range of doubles (a [species] w^2 ~ T / I = inf"},
+    {"[system]\narea_fraction = 0.1\n[disks]\ncount = 50\nmass = 1e-10\n[init]\n"
+     "temperature = 1e295\n" RUN,
+     NULL, HD_EINPUT, "bad.ini:7:", "[init] temperature = 1e295",
+     "[disks] v^2 ~ T / mass = 1e+305"},
 };
 
 static void degenerate_scenes(void **state) {

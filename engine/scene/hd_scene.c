@@ -1232,6 +1232,49 @@ static int check_box(ctx *c, int run) {
  * this relative slack (the short forms' touching disks are computed with cos and sin). */
 #define HD_TOUCH_SLACK 1e-12
 
+/* The moment of inertia of a body of species sp about its centre of mass (the engine's
+ * sum m_k |o_k|^2), and its mass in *mass if not NULL. */
+static double species_inertia(const hd_scene_species *sp, double *mass) {
+  double M = 0, cx = 0, cy = 0, I = 0;
+  for (int a = 0; a < sp->ndisk; a++)
+    M += sp->m[a], cx += sp->m[a] * sp->x[a], cy += sp->m[a] * sp->y[a];
+  for (int a = 0; a < sp->ndisk; a++) {
+    double ox = sp->x[a] - cx / M, oy = sp->y[a] - cy / M;
+    I += sp->m[a] * (ox * ox + oy * oy);
+  }
+  if (mass) *mass = M;
+  return I;
+}
+
+/* [init] temperature against the range of doubles: the drawn speeds (v^2 ~ T / M), spins
+ * (w^2 ~ T / I) and the total energy (~ N T) must stay below 1e300 (temperature = 1e300 with
+ * a dimer of a = 1e-9 gave w^2 = 2e318, NaN energies that the database refused). */
+static int check_thermal(ctx *c) {
+  const hd_scene *sc = c->sc;
+  double T = sc->temperature, worst = 0;
+  const char *what = "";
+  if (sc->n_dimers > 0) {
+    worst = T / (2 * sc->dimer_m), what = "[dimers] v^2 ~ T / 2m";
+    double I = 0.5 * sc->dimer_m * sc->dimer_a * sc->dimer_a;
+    if (I > 0 && T / I > worst) worst = T / I, what = "[dimers] w^2 ~ T / I";
+  }
+  if (sc->n_disks > 0 && T / sc->disk_mass > worst)
+    worst = T / sc->disk_mass, what = "[disks] v^2 ~ T / mass";
+  for (int j = 0; j < sc->n_named; j++) {
+    if (sc->named[j].count == 0) continue;
+    double M, I = species_inertia(&sc->named[j], &M);
+    if (T / M > worst) worst = T / M, what = "a [species] v^2 ~ T / M";
+    if (I > 0 && T / I > worst) worst = T / I, what = "a [species] w^2 ~ T / I";
+  }
+  double e = T * (double)body_count(sc);
+  if (!(worst <= 1e300 && e <= 1e300))
+    return FAIL_KEY(c, K_TEMP,
+                    "the drawn velocities leave the range of doubles (%s = %g, energy N T = %g; "
+                    "at most 1e300): lower the temperature or scale the masses",
+                    what, worst, e);
+  return HD_OK;
+}
+
 /* Why a moment of inertia must be within [HD_MIN_INERTIA, 1 / HD_MIN_INERTIA]. */
 static const char inertia_why[] =
     "the spin energy I w^2 / 2 and the thermal spin w^2 = T / I leave the range of doubles "
@@ -1263,13 +1306,7 @@ static int species_bounds(ctx *c, int j, int key) {
                    "of mass spins up to sqrt(disks x ratio) times the speed of the body, and the "
                    "contact search steps through every turn (it made no progress at 1e30)",
                    mlo, mhi, HD_MAX_MASS_RATIO);
-  double M = 0, cx = 0, cy = 0, I = 0;
-  for (int a = 0; a < sp->ndisk; a++)
-    M += sp->m[a], cx += sp->m[a] * sp->x[a], cy += sp->m[a] * sp->y[a];
-  for (int a = 0; a < sp->ndisk; a++) {
-    double ox = sp->x[a] - cx / M, oy = sp->y[a] - cy / M;
-    I += sp->m[a] * (ox * ox + oy * oy);
-  }
+  double I = species_inertia(sp, NULL);
   if (span > 0 && !(I >= HD_MIN_INERTIA && I <= 1 / HD_MIN_INERTIA))
     return FAIL_AT(c, si, key, "the moment of inertia %g is outside [%g, %g]: %s", I,
                    HD_MIN_INERTIA, 1 / HD_MIN_INERTIA, inertia_why);
@@ -1519,6 +1556,7 @@ static int check_all(ctx *c) {
       !(inertia >= HD_MIN_INERTIA && inertia <= 1 / HD_MIN_INERTIA))
     return FAIL_KEY(c, K_DA, "the moment of inertia m a^2 / 2 = %g is outside [%g, %g]: %s",
                     inertia, HD_MIN_INERTIA, 1 / HD_MIN_INERTIA, inertia_why);
+  if (sc->placement != HD_PLACE_STATE && (rc = check_thermal(c))) return rc;
   if ((rc = check_box(c, 1))) return rc;
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
