@@ -386,6 +386,21 @@ static void sigterm_in_long_search(void **state) {
   }
 }
 
+/* Found by the campaign of issue 24: a body turning against a wall of alpha = 0 collided with it
+ * every 7e-11 time units at vn = -2.6e-13 (2e6 wall collisions in 15 s, time standing still);
+ * wall collisions did not count as slow ones.  Now such a train is an inelastic collapse (exit
+ * 1, status collapsed, the message names the body and the wall) after 2000 of them. */
+static void wall_collapse(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("wall0.ini", "[system]\nbox = 20 20\n[species t]\ncount = 60\n"
+                          "disks = 0 0 1 1; 0.7 0 0.5 100\nalpha = 0.1\n[walls]\n"
+                          "sides = left right bottom top\nalpha = 0\n[run]\nstop_cpd = 300\n");
+  assert_int_equal(sh("rm -f wall0.db; timeout 20 %s run wall0.ini -o wall0.db", haff), 1);
+  one_line_with("against a wall of low alpha");
+  assert_int_equal(sh("test \"$(sqlite3 wall0.db 'SELECT status FROM runs')\" = collapsed"), 0);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(stdout_write_errors),
@@ -398,6 +413,7 @@ int main(void) {
       cmocka_unit_test(huge_box_site_count),
       cmocka_unit_test(empty_scenes),
       cmocka_unit_test(sigterm_in_long_search),
+      cmocka_unit_test(wall_collapse),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -527,8 +527,10 @@ static int check_pileup(hd_sim *s, int32_t i, int32_t j, hd_error *err) {
   return HD_OK;
 }
 
-/* Collapse bookkeeping after a collision with normal relative velocity vn. */
-static int check_collapse(hd_sim *s, double vn, hd_error *err) {
+/* Collapse bookkeeping after a collision with normal relative velocity vn; a wall collision
+ * (wall = 1) adds to the run of slow collisions but never ends it (the walls' fast hits would
+ * hide a collapse of the pairs). */
+static int check_collapse(hd_sim *s, double vn, int wall, hd_error *err) {
   double mass = 0.0;
   for (int sp = 0; sp < s->nsp; sp++) mass += s->n_species[sp] * hd_shape_mass(&s->shape[sp]);
   double vth = sqrt(2.0 * fmax(s->c.e_kin, 0.0) / mass);
@@ -540,13 +542,21 @@ static int check_collapse(hd_sim *s, double vn, hd_error *err) {
       s->c.slow_run = 0;
       return HD_OK;
     }
+    if (s->last_j < 0) /* a body held against a wall (last_j = -1 - wall) */
+      return hd_error_set(err, HD_ECOLLAPSE,
+                          "inelastic collapse at t = %.17g after %lld collisions and %lld wall "
+                          "collisions: %d collisions in a row with |vn| < %g of the thermal "
+                          "speed, last of body %d with wall %d (a lasting contact: a body "
+                          "pressed or turning against a wall of low alpha)",
+                          hd_sim_time(s), (long long)s->c.collisions, (long long)s->c.wall_hits,
+                          HD_SLOW_RUN, HD_SLOW_VN, s->id[s->last_i], -1 - s->last_j);
     return hd_error_set(err, HD_ECOLLAPSE,
                         "inelastic collapse at t = %.17g after %lld collisions: %d collisions "
                         "in a row with |vn| < %g of the thermal speed, last between bodies %d "
                         "and %d",
                         hd_sim_time(s), (long long)s->c.collisions, HD_SLOW_RUN, HD_SLOW_VN,
                         s->id[s->last_i], s->id[s->last_j]);
-  } else {
+  } else if (!wall) {
     s->c.slow_run = 0;
   }
   return HD_OK;
@@ -639,7 +649,13 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
         if (rc) return rc;
       }
       hd_predict(s, i);
-      return check_pileup(s, i, -1 - w, err);
+      int prc = check_pileup(s, i, -1 - w, err);
+      if (prc || !(s->wall_alpha < 1.0)) return prc;
+      /* a train of ever slower wall collisions (a body turning against a wall of alpha ~ 0:
+       * 2e6 collisions 7e-11 apart with vn = -2.6e-13, for ever) is a collapse too */
+      s->last_i = i;
+      s->last_j = -1 - w;
+      return check_collapse(s, info.vn, 1, err);
     }
     /* pair event */
     int32_t j = bi->p_partner;
@@ -687,7 +703,7 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
     int prc = check_pileup(s, i, j, err);
     if (prc) return prc;
     if (s->alpha[bi->species][bj->species] < 1.0) {
-      int rc = check_collapse(s, ev->info.vn, err);
+      int rc = check_collapse(s, ev->info.vn, 0, err);
       if (rc) return rc;
     }
     return HD_OK;
