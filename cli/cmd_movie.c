@@ -17,6 +17,7 @@
  * Positions are wrapped into the box (a disk over an edge is cut there, not drawn twice). */
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <sqlite3.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -32,7 +33,18 @@
 #include "hd_opt.h"
 #include "hd_scene.h"
 
-/* Runs argv (a program and its arguments) with stdout to /dev/null; its exit status, or -1. */
+/* SIGINT, SIGTERM or SIGHUP while the movie is made (movie_signal): the child running is sent
+ * the same signal, the temporary folder removed, and haff movie ends with status 1 (a killed
+ * movie used to leave its haff-movie-* folder behind). */
+static volatile sig_atomic_t movie_stop = 0;
+static volatile pid_t movie_child = 0;
+static void movie_signal(int sig) {
+  movie_stop = sig;
+  if (movie_child > 0) kill(movie_child, sig);
+}
+
+/* Runs argv (a program and its arguments) with stdout to /dev/null; its exit status, 127 if it
+ * cannot be run, or -1 (killed). */
 static int run_prog(char *const argv[]) {
   pid_t pid = fork();
   if (pid < 0) return -1;
@@ -43,8 +55,13 @@ static int run_prog(char *const argv[]) {
     execvp(argv[0], argv);
     _exit(127);
   }
+  movie_child = pid;
+  if (movie_stop) kill(pid, (int)movie_stop);
   int st;
-  if (waitpid(pid, &st, 0) != pid) return -1;
+  pid_t w;
+  while ((w = waitpid(pid, &st, 0)) < 0 && errno == EINTR) continue;
+  movie_child = 0;
+  if (w != pid) return -1;
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
@@ -268,7 +285,7 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
   double reach = 5 * (m->sc.n_dimers > 0 ? m->sc.dimer_d : m->sc.disk_sigma);
   int s = 0;
   hd_framedb_frame fr;
-  while (!code && (s = hd_framedb_next(st, &fr, &err)) == 1) {
+  while (!code && !movie_stop && (s = hd_framedb_next(st, &fr, &err)) == 1) {
     double t = fr.t, cpd = fr.cpd;
     long n = fr.n;
     const unsigned char *data = fr.data;
@@ -388,8 +405,16 @@ int haff_movie_main(int argc, char **argv) {
   }
   hd_scene_defaults(&m.sc);
   int code = read_run(h, &m);
-  char tmpl[] = "/tmp/haff-movie-XXXXXX";
+  char tmpl[4200];
+  const char *tmpdir = getenv("TMPDIR"); /* the temporary directory, as mkstemp(3) users take */
+  snprintf(tmpl, sizeof tmpl, "%s/haff-movie-XXXXXX", tmpdir && *tmpdir ? tmpdir : "/tmp");
   long frames = 0;
+  struct sigaction sa, old[3];
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = movie_signal;
+  sigemptyset(&sa.sa_mask);
+  static const int sigs[3] = {SIGINT, SIGTERM, SIGHUP};
+  for (int k = 0; k < 3; k++) sigaction(sigs[k], &sa, &old[k]);
   if (!code && !mkdtemp(tmpl)) {
     fprintf(stderr, "haff movie: cannot make a temporary folder: %s\n", strerror(errno));
     code = 1;
@@ -403,30 +428,42 @@ int haff_movie_main(int argc, char **argv) {
     char gpfile[4200];
     snprintf(gpfile, sizeof gpfile, "%s/movie.gp", m.tmp);
     char *gpa[] = {"gnuplot", gpfile, NULL};
-    if (run_prog(gpa) != 0) {
-      fprintf(stderr, "haff movie: gnuplot failed on %s (is gnuplot-nox installed?)\n", gpfile);
+    int g = movie_stop ? -1 : run_prog(gpa);
+    if (g != 0 && !movie_stop) {
+      fprintf(stderr, "haff movie: gnuplot failed on %s (%s)\n", gpfile,
+              g == 127 ? "is gnuplot-nox installed?" : "see its message above");
       code = 1;
     }
   }
-  if (!code) {
+  char outarg[4200]; /* a name that starts with '-' would be read by ffmpeg as an option */
+  snprintf(outarg, sizeof outarg, "%s%s", m.outpath[0] == '-' ? "./" : "", m.outpath);
+  if (!code && !movie_stop) {
     char in[4200], fps[16];
     snprintf(in, sizeof in, "%s/f%%06d.png", m.tmp);
     snprintf(fps, sizeof fps, "%d", m.fps);
-    char *mp4[] = {
-        "ffmpeg", "-nostdin", "-y",      "-loglevel", "error",   "-framerate",      fps, "-i",
-        in,       "-c:v",     "libx264", "-pix_fmt",  "yuv420p", (char *)m.outpath, NULL};
-    char *gif[] = {"ffmpeg", "-nostdin", "-y", "-loglevel",       "error", "-framerate",
-                   fps,      "-i",       in,   (char *)m.outpath, NULL};
-    if (run_prog(m.gif ? gif : mp4) != 0) {
-      fprintf(stderr, "haff movie: ffmpeg could not write %s (is ffmpeg installed?)\n", m.outpath);
-      unlink(m.outpath); /* nothing half-written */
+    char *mp4[] = {"ffmpeg", "-nostdin", "-y",      "-loglevel", "error",   "-framerate", fps, "-i",
+                   in,       "-c:v",     "libx264", "-pix_fmt",  "yuv420p", outarg,       NULL};
+    char *gif[] = {"ffmpeg", "-nostdin", "-y", "-loglevel", "error", "-framerate",
+                   fps,      "-i",       in,   outarg,      NULL};
+    int f = run_prog(m.gif ? gif : mp4);
+    if (f != 0) {
+      if (!movie_stop)
+        fprintf(stderr, "haff movie: ffmpeg could not write %s (%s)\n", m.outpath,
+                f == 127 ? "is ffmpeg installed?" : "see its message above");
+      unlink(outarg); /* nothing half-written */
       code = 1;
     }
   }
-  if (m.tmp) {
+  if (movie_stop) {
+    fprintf(stderr, "haff movie: interrupted (signal %d): no movie written\n", (int)movie_stop);
+    code = 1;
+  }
+  if (m.tmp) { /* on every path: done, failed or interrupted */
+    movie_stop = 0;
     char *rm[] = {"rm", "-rf", (char *)m.tmp, NULL};
     run_prog(rm);
   }
+  for (int k = 0; k < 3; k++) sigaction(sigs[k], &old[k], NULL);
   if (!code)
     fprintf(stderr, "haff movie: %s: %ld frames of run %lld\n", m.outpath, frames,
             (long long)m.run);

@@ -335,6 +335,72 @@ static void huge_box_site_count(void **state) {
     fail_msg("%s", err.msg);
 }
 
+/* Issue 24 item 6: an empty box with samples, and a species of count 0 with no other body,
+ * ended `failed` with "insert sample: NOT NULL constraint failed" (the database blamed); without
+ * samples an empty box ran `done`.  Now each is refused at set-up, exit 2, one line saying so,
+ * and no database is written. */
+static void empty_scenes(void **state) {
+  (void)state;
+  if (!haff) skip();
+  static const char *const scenes[] = {
+      "[system]\nbox = 10 10\n[run]\nstop_time = 1\n[log]\nsamples_every = 0.1\n",
+      "[system]\nbox = 10 10\n[species t]\ncount = 0\nshape = triangle\n[run]\nstop_time = 1\n"
+      "[log]\nsamples_every = 0.1\n",
+      "[system]\nbox = 10 10\n[dimers]\ncount = 0\n[run]\nstop_time = 1\n"};
+  for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; i++) {
+    write_file("empty.ini", scenes[i]);
+    unlink("empty.db");
+    assert_int_equal(sh("%s run empty.ini -o empty.db", haff), 2);
+    one_line_with("empty.ini: no bodies: every count is 0");
+    assert_int_not_equal(access("empty.db", F_OK), 0);
+  }
+}
+
+/* Issue 24 item 5: a stiff case the scene allows (two dimers spinning at a rim speed 1e7 times
+ * their speed, the state file's bound) spends ~15 s in one contact search; SIGTERM used to wait
+ * for it (11 s measured, then the run ended `failed`).  The search polls the stop flag: the run
+ * stops within 3 s (measured 0.2 s; the bound allows a loaded machine), `interrupted`, and
+ * resumes (and stops again on SIGTERM the same way). */
+static void sigterm_in_long_search(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("stiff.csv", "kind,x,y,phi,vx,vy,omega\ndimer,5,5,0,1,0,2e7\n"
+                          "dimer,12,5.9999999,0,-1,0,-2e7\ndisk,20,5,0,0,0,0\n");
+  write_file("stiff.ini", "[system]\nbox = 30 30\n[dimers]\ncount = 2\n[disks]\ncount = 1\n"
+                          "[init]\nstate = stiff.csv\n[run]\nstop_events = 50\n");
+  for (int k = 0; k < 2; k++) {
+    if (k == 0) assert_int_equal(sh("rm -f stiff.db stop.txt"), 0);
+    int rc = sh("(%s %s > /dev/null 2>&1 & p=$!; sleep 2; kill -TERM $p; s=$(date +%%s.%%N); "
+                "wait $p; r=$?; e=$(date +%%s.%%N); echo \"$r $s $e\" > stop.txt)",
+                haff, k == 0 ? "run stiff.ini -o stiff.db" : "resume stiff.db");
+    assert_int_equal(rc, 0);
+    char buf[256];
+    read_file("stop.txt", buf, sizeof buf);
+    int code = -1;
+    double t0 = 0, t1 = 0;
+    assert_int_equal(sscanf(buf, "%d %lf %lf", &code, &t0, &t1), 3);
+    printf("# %s: SIGTERM answered in %.3f s, exit %d\n", k ? "resume" : "run", t1 - t0, code);
+    assert_int_equal(code, 1);
+    assert_true(t1 - t0 < 3.0);
+    assert_int_equal(sh("test \"$(sqlite3 stiff.db 'SELECT status FROM runs')\" = interrupted"), 0);
+  }
+}
+
+/* Found by the campaign of issue 24: a body turning against a wall of alpha = 0 collided with it
+ * every 7e-11 time units at vn = -2.6e-13 (2e6 wall collisions in 15 s, time standing still);
+ * wall collisions did not count as slow ones.  Now such a train is an inelastic collapse (exit
+ * 1, status collapsed, the message names the body and the wall) after 2000 of them. */
+static void wall_collapse(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("wall0.ini", "[system]\nbox = 20 20\n[species t]\ncount = 60\n"
+                          "disks = 0 0 1 1; 0.7 0 0.5 100\nalpha = 0.1\n[walls]\n"
+                          "sides = left right bottom top\nalpha = 0\n[run]\nstop_cpd = 300\n");
+  assert_int_equal(sh("rm -f wall0.db; timeout 20 %s run wall0.ini -o wall0.db", haff), 1);
+  one_line_with("against a wall of low alpha");
+  assert_int_equal(sh("test \"$(sqlite3 wall0.db 'SELECT status FROM runs')\" = collapsed"), 0);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(stdout_write_errors),
@@ -345,6 +411,9 @@ int main(void) {
       cmocka_unit_test(unbounded_inputs_refused),
       cmocka_unit_test(scenes_that_never_end),
       cmocka_unit_test(huge_box_site_count),
+      cmocka_unit_test(empty_scenes),
+      cmocka_unit_test(sigterm_in_long_search),
+      cmocka_unit_test(wall_collapse),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -20,7 +20,11 @@
 #include <sqlite3.h>
 #include <unistd.h>
 
+#include <signal.h>
+#include <time.h>
+
 #include "hd_run.h"
+#include "hd_stop.h"
 #include "hd_sim_internal.h"
 #include "test_util.h"
 
@@ -420,11 +424,124 @@ static void run_stores_species(void **state) {
   snprintf(side, sizeof side, "%s.lock", db), unlink(side);
 }
 
+/* Bodies at the physical bounds of docs/scene-keys.md (issue 24), just inside each: a mass
+ * ratio of 1e12 in one body, a dimer whose centres span 1e-9 d, a disk of 1e-4 d on the rim of
+ * a unit disk (diameter ratio 1e4).  Elastic gases of 100 bodies at area fraction 0.15, 2e4
+ * collisions (2e3 sanitized) in verification mode, the box from the sum of the disks' areas:
+ * energy conserved to 1e-9 relative (round-off
+ * of 2e4 collisions, ~1e-12), no overlap above 1e-9 of a diameter; and they make progress (a
+ * mass ratio of 1e30 made none). */
+static void bodies_at_bounds(void **state) {
+  (void)state;
+  static const struct {
+    const char *name;
+    int n;
+    double x[3], d[3], m[3];
+  } sh[] = {{"ratio_m", 2, {0, 1}, {1, 1}, {1, 1e12}},
+            {"span", 2, {0, 1e-9}, {1, 1}, {1, 1}},
+            {"ratio_d", 3, {0, 0.5, -0.5}, {1, 1e-4, 1}, {1, 1, 1}}};
+  for (size_t k = 0; k < sizeof sh / sizeof sh[0]; k++) {
+    hd_scene sc;
+    long N = 100;
+    double y[3] = {0, 0, 0};
+    test_disk_scene(&sc, 0, 0.1, 1.0, 5 + k);
+    add_species(&sc, sh[k].name, sh[k].n, sh[k].x, y, sh[k].d, sh[k].m, N, 1.0);
+    sc.box_x = sc.box_y = sqrt((double)N * sh[k].n * M_PI / 4 / 0.15); /* (disks' areas) */
+    sc.verify = 1;
+    hd_sim *s;
+    hd_error err;
+    if (hd_sim_alloc(&s, &sc, &err)) fail_msg("%s: %s", sh[k].name, err.msg);
+    double e0t, e0r, et, er;
+    hd_sim_energy(s, -1, &e0t, &e0r);
+    long n = test_size(20000, 10);
+    for (long c = 0; c < n; c++) {
+      hd_event_out ev;
+      if (hd_sim_next(s, INFINITY, &ev, &err))
+        fail_msg("%s: collision %ld: %s", sh[k].name, c, err.msg);
+    }
+    hd_sim_energy(s, -1, &et, &er);
+    double drift = fabs(et + er - e0t - e0r) / (e0t + e0r);
+    printf("# at the bound %s: %ld collisions, drift %.3g, max overlap %.3g\n", sh[k].name, n,
+           drift, s->max_overlap);
+    assert_true(drift < 1e-9);
+    assert_true(s->max_overlap < 1e-9);
+    hd_sim_free(s);
+  }
+}
+
+static double test_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void too_slow(int sig) {
+  (void)sig;
+  static const char msg[] = "stop_cuts_long_searches: no answer to the stop request in 20 s\n";
+  if (write(2, msg, sizeof msg - 1) < 0) _exit(1);
+  _exit(1);
+}
+
+/* A stop request cuts a contact search that would run for minutes (issue 24: SIGTERM took 27 s
+ * to 6 min): every body of a gas of dimers is given omega = 1e12 (a checkpoint with a huge
+ * omega, or a stiff body), and each is predicted again with the stop requested.  Each search
+ * is cut within HD_CA_POLL + 1 steps (milliseconds): the whole takes well under 2 s (before, one
+ * search ran 1e8 steps, seconds, and then reported no contact; a guard ends the test after
+ * 20 s); a cut body wakes up later to be predicted again (HD_WAKE at or after now), hd_sim_next
+ * returns at once, and the state is a valid checkpoint (restored and checked). */
+static void stop_cuts_long_searches(void **state) {
+  (void)state;
+  hd_scene sc;
+  long N = 64;
+  double x[2] = {0, 1}, y[2] = {0, 0}, d[2] = {1, 1}, m[2] = {1, 1};
+  test_disk_scene(&sc, 0, 0.1, 1.0, 9);
+  add_species(&sc, "spinner", 2, x, y, d, m, N, 1.0);
+  sc.box_x = sc.box_y = sqrt((double)N * 2 * M_PI / 4 / 0.3);
+  hd_sim *s;
+  hd_error err;
+  if (hd_sim_alloc(&s, &sc, &err)) fail_msg("%s", err.msg);
+  for (int32_t i = 0; i < s->n; i++) s->b[i].k.omega = i % 2 ? 1e12 : -1e12;
+  signal(SIGALRM, too_slow);
+  alarm(20);
+  hd_stop_requested = 1;
+  double t0 = test_now();
+  for (int32_t i = 0; i < s->n; i++) hd_predict(s, i);
+  double dt = test_now() - t0;
+  int woken = 0;
+  for (int32_t i = 0; i < s->n; i++) {
+    woken += s->b[i].c_dir == HD_WAKE;
+    assert_true(s->b[i].ev_t >= s->c.t);
+  }
+  hd_event_out ev;
+  t0 = test_now();
+  int rc = hd_sim_next(s, INFINITY, &ev, &err);
+  double dt2 = test_now() - t0;
+  hd_stop_requested = 0;
+  alarm(0);
+  printf("# stop: %d of %ld bodies cut, predictions %.3f s, next %.3f s (rc %d)\n", woken, N, dt,
+         dt2, rc);
+  assert_true(woken > 0);
+  assert_true(dt < 2.0 && dt2 < 1.0);
+  assert_true(rc == HD_SIM_BUSY || rc == HD_OK);
+  void *blob;
+  size_t nb;
+  assert_int_equal(hd_sim_checkpoint(s, &blob, &nb, &err), HD_OK);
+  hd_sim *r;
+  if (hd_sim_alloc_restore(&r, &sc, blob, nb, &err)) fail_msg("restore: %s", err.msg);
+  free(blob);
+  hd_sim_free(r);
+  hd_sim_free(s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(fast_paths),         cmocka_unit_test(checkpoint_resume),
-      cmocka_unit_test(run_stores_species), cmocka_unit_test(mixture_species),
+      cmocka_unit_test(fast_paths),
+      cmocka_unit_test(checkpoint_resume),
+      cmocka_unit_test(run_stores_species),
+      cmocka_unit_test(mixture_species),
       cmocka_unit_test(elastic_clusters),
+      cmocka_unit_test(bodies_at_bounds),
+      cmocka_unit_test(stop_cuts_long_searches),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -641,6 +641,47 @@ static void cooling_many_decades(void **state) {
   hd_sim_free(s);
 }
 
+/* Issue 24 item 11: 5 disks at area fraction 1e-9 (a box of 6.3e4 diameters) failed
+ * verification at t = 4.9e7, colliding 6.3e-9 of a diameter from contact: the time origin was
+ * rebased every 1e5 events only, so the clock grew to ~1e8 before (its round-off ~1e-8), and
+ * the discriminant of the contact time of a pair 1e4 diameters apart cancelled (~1e-16 r^2 / D).
+ * Now the origin is also rebased after a flight of 1e4 diameters and far pairs take the
+ * discriminant without cancellation: the run goes to t = 1e9 (10 collisions, the first at
+ * t ~ 4e7, and ~4e5 cell crossings: the mean free time is ~1e8) verified at every collision
+ * (contact distance and overlaps within 1e-9 of a diameter), its energy conserved to 1e-9
+ * (elastic). */
+static void dilute_precision(void **state) {
+  (void)state;
+  hd_scene sc;
+  hd_error err;
+  if (hd_scene_load_string(&sc,
+                           "[system]\narea_fraction = 1e-9\nseed = 1\n[disks]\ncount = 5\n[run]\n"
+                           "stop_time = 1e9\nverify = 1\n",
+                           "dilute.ini", NULL, 0, &err))
+    fail_msg("%s", err.msg);
+  hd_sim *s;
+  if (hd_sim_alloc(&s, &sc, &err)) fail_msg("%s", err.msg);
+  double e0t, e0r, et, er;
+  hd_sim_energy(s, -1, &e0t, &e0r);
+  long n = 0;
+  for (;;) {
+    hd_event_out ev;
+    int rc = hd_sim_next(s, 1e9, &ev, &err);
+    if (rc == HD_SIM_STOPTIME) break;
+    if (rc == HD_SIM_BUSY) continue;
+    if (rc) fail_msg("after %ld collisions: %s", n, err.msg);
+    n++;
+  }
+  hd_sim_energy(s, -1, &et, &er);
+  printf("# dilute: %ld collisions to t = 1e9, max overlap %.3g, energy drift %.3g\n", n,
+         s->max_overlap, fabs(et - e0t) / e0t);
+  assert_true(n >= 5);
+  assert_true(s->max_overlap < 1e-9);
+  assert_true(fabs(et - e0t) < 1e-9 * e0t);
+  hd_sim_free(s);
+  hd_scene_free(&sc);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(head_on),
@@ -660,6 +701,7 @@ int main(void) {
       cmocka_unit_test(haff_law),
       cmocka_unit_test(state_measures),
       cmocka_unit_test(cooling_many_decades),
+      cmocka_unit_test(dilute_precision),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

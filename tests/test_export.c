@@ -366,6 +366,34 @@ static void movie_colour_species(void **state) {
   assert_non_null(strstr(out(), "dd.mp4: 3 frames of run 1"));
 }
 
+/* Issue 24 item 12: `movie -o -x.gif` said "is ffmpeg installed?" (ffmpeg took the name for an
+ * option): now it writes ./-x.gif; a failing ffmpeg is not blamed on its installation; and a
+ * movie killed by SIGTERM while it draws (or failing) leaves no haff-movie-* folder in the
+ * temporary directory ($TMPDIR, else /tmp: the old code used /tmp whatever TMPDIR said and
+ * left its folder there when killed). */
+static void movie_failures(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("g.ini", dimers_ini);
+  run_ok("g.ini", "g.db", "--quiet --set log.frames_every=0.05 --set run.stop_cpd=10");
+  assert_int_equal(sh("rm -rf tmpd && mkdir tmpd && ls -d /tmp/haff-movie-* 2>/dev/null | wc -l "
+                      "> before.txt"),
+                   0);
+  if (sh("TMPDIR=$PWD/tmpd %s movie g.db -o -x.gif --size 200", haff)) fail_msg("%s", out());
+  assert_int_equal(sh("test -s ./-x.gif"), 0);
+  assert_int_equal(sh("TMPDIR=$PWD/tmpd %s movie g.db -o nodir/x.gif --size 200", haff), 1);
+  if (strstr(out(), "installed")) fail_msg("blamed on the installation: %s", out());
+  assert_non_null(strstr(out(), "ffmpeg could not write nodir/x.gif"));
+  /* killed while gnuplot draws its 201 frames (~seconds): status 1, no folder, no movie */
+  assert_int_equal(sh("TMPDIR=$PWD/tmpd %s movie g.db -o k.mp4 & p=$!; sleep 0.7; kill -TERM $p; "
+                      "wait $p; test $? -eq 1",
+                      haff),
+                   0);
+  assert_non_null(strstr(out(), "interrupted"));
+  assert_int_equal(sh("test -z \"$(ls tmpd)\" && test ! -e k.mp4"), 0);
+  assert_int_equal(sh("ls -d /tmp/haff-movie-* 2>/dev/null | wc -l | cmp - before.txt"), 0);
+}
+
 /* In this process (so that the ASan+UBSan build checks them too, as the other tests drive
  * bin/haff): frames by time of a mixture and by cpd of rods through hd_run_new, their count,
  * sizes and exact times, and their export. */
@@ -455,6 +483,7 @@ int main(void) {
       cmocka_unit_test(gsd_reads_every_kind_of_run),
       cmocka_unit_test(movie_of_frames),
       cmocka_unit_test(movie_colour_species),
+      cmocka_unit_test(movie_failures),
       cmocka_unit_test(frames_in_process),
   };
   return cmocka_run_group_tests(tests, setup, teardown);

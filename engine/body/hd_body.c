@@ -80,6 +80,11 @@
  * time to reach TOL_SEP; the loop stops at min(tmax, parting time).  As a guard against a
  * misuse (tmax = INFINITY for two dimers spinning in place that never touch) the loop gives up
  * after HD_CA_MAXIT steps and reports no contact.
+ *
+ * Stop requests: the loops that run a whole search (hd_predict_pair, hd_predict_wall) look at
+ * hd_stop_requested every HD_CA_POLL + 1 steps (a few ms) and, when a stop was asked for,
+ * return HD_CA_CUT with the time the search reached, a lower bound on the contact: a stiff body
+ * (a fast spinner) could keep one search going for minutes, deaf to SIGTERM (issue 24).
  */
 #include "hd_body.h"
 
@@ -87,6 +92,7 @@
 #include <stddef.h>
 
 #include "hd_disk.h"
+#include "hd_stop.h"
 
 #define TOL_C 1e-12
 #define TOL_0 1e-10
@@ -572,10 +578,15 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
   return tn <= s->tend && tn <= tmax ? 2 : 0;
 }
 
-/* CA from s->t to the end: returns 1 and (t, pair index) on a contact, 0 if none. */
+/* CA from s->t to the end: returns 1 and (t, pair index) on a contact, 0 if none, HD_CA_CUT
+ * with *tout = s->t (no contact before it) when a stop was requested during a long search. */
 static int ca_solve(hd_ca *s, double tmax, double *tout, int *pout) {
   int r;
-  while ((r = ca_advance(s, tmax, tout, pout)) == 2) continue;
+  while ((r = ca_advance(s, tmax, tout, pout)) == 2)
+    if ((s->it & HD_CA_POLL) == 0 && hd_stop_requested) {
+      *tout = s->t;
+      return HD_CA_CUT;
+    }
   return r;
 }
 
@@ -766,7 +777,13 @@ int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const 
                     double tmax, hd_contact *c) {
   hd_ca ca;
   int r = hd_ca_begin(&ca, A, sa, B, sb, tmax, NULL, c);
-  while (r == 2) r = hd_ca_step(&ca, tmax, c);
+  while (r == 2) {
+    r = hd_ca_step(&ca, tmax, c);
+    if (r == 2 && (ca.it & HD_CA_POLL) == 0 && hd_stop_requested) {
+      c->t = ca.t;
+      return HD_CA_CUT;
+    }
+  }
   return r;
 }
 
@@ -788,7 +805,12 @@ static int wall_search(const hd_ca_geom *x, double reach, double tmax, hd_contac
   int p;
   ca.g = *x;
   ca_init(&ca, t_in, t_out);
-  if (!ca_solve(&ca, tmax, &tc, &p)) return 0;
+  int r = ca_solve(&ca, tmax, &tc, &p);
+  if (r == HD_CA_CUT) {
+    c->t = tc;
+    return r;
+  }
+  if (!r) return 0;
   c->t = tc;
   c->ka = p;
   c->kb = 0;

@@ -126,9 +126,17 @@ void hd_kin_disk_vel(const hd_kin *k, const hd_shape *s, int which, double *vx, 
 /* Kinetic energy (translational + rotational) of a body. */
 double hd_kin_energy(const hd_kin *k, const hd_shape *s);
 
+/* What a search returns when a stop was requested (hd_stop.h) while it ran: it is unfinished,
+ * and c->t is the time it reached, before which there is no contact.  Searches look at the stop
+ * request every HD_CA_POLL + 1 steps (a power of two minus one: a mask of hd_ca.it); short
+ * searches, nearly all of them, never do. */
+#define HD_CA_CUT 3
+#define HD_CA_POLL 0xffffL
+
 /* Earliest time t in [0, tmax] at which bodies A and B, both given at a common time origin and B
  * already in A's periodic image, come into contact (some disk pair at distance (dA + dB)/2) while
- * approaching.  Returns 1 and fills *c if they do, 0 if not before tmax.  A pair that overlaps by
+ * approaching.  Returns 1 and fills *c if they do, 0 if not before tmax, HD_CA_CUT (c->t filled)
+ * if a stop was requested during a long search.  A pair that overlaps by
  * round-off at t = 0 while approaching gets t = 0; one that is receding (it has just collided) is
  * ignored.  Never skips a root (see hd_body.c for the method and its tolerance). */
 int hd_predict_pair(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
@@ -200,7 +208,8 @@ int hd_ca_step(hd_ca *ca, double tmax, hd_contact *c);
 int hd_predict_disks(double dx, double dy, double dvx, double dvy, double D, double vs, double tmax,
                      double *t);
 
-/* Earliest time t in [0, tmax] at which body A touches wall w while approaching it; as above. */
+/* Earliest time t in [0, tmax] at which body A touches wall w while approaching it; as above
+ * (HD_CA_CUT included). */
 int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, double tmax,
                     hd_contact *c);
 

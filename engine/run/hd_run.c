@@ -558,7 +558,16 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
   r.t0_wall = r.last_ckpt_wall = now_wall();
   *run = 0;
   signals_on();
-  int rc = r.ops->alloc(&r.s, sc, err); /* bad input fails here, before anything is written */
+  int rc = HD_OK;
+  if (sc->n_rods == 0 && hd_scene_bodies(sc) == 0)
+    /* an empty box ran "done", and ended `failed` with a database error when it took samples
+     * (NaN energies per body) */
+    rc = hd_error_set(err, HD_EINPUT,
+                      "%s%sno bodies: every count is 0: give [dimers], [disks] or a [species NAME] "
+                      "a count > 0 (an empty box has nothing to run, and no energy per body to "
+                      "sample)",
+                      sc->path, sc->path[0] ? ": " : "");
+  if (!rc) rc = r.ops->alloc(&r.s, sc, err); /* bad input fails here, before anything is written */
   if (rc) {
     signals_off();
     if (rc == HD_EINPUT && sc->path[0] && err->msg[0] == '[') {

@@ -167,7 +167,7 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
   X(PSHAPE, S_SPECIES, "shape", CUSTOM(set_shape), .show = show_short_shape, .put = put_shape,       \
     .doc_def = "— (or `disks`)",                                                                     \
     .doc_range = "`disk` \\| `dimer A` \\| `linear N [S]` \\| `triangle [S]` \\| "                   \
-                 "`bent ANGLE [S]`",                                                                 \
+                 "`bent ANGLE [S]`; A, S ≥ 10⁻⁹ d",                                                  \
     .doc = "a short form (below); S, the centre spacing, defaults to `d`")                           \
   X(PD, S_SPECIES, "d", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,                \
     .put = put_sp_dm, .doc = "with `shape`: the diameter of every disk")                             \
@@ -175,7 +175,9 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
     .put = put_sp_dm, .doc = "with `shape`: the mass of every disk")                                 \
   X(PDISKS, S_SPECIES, "disks", CUSTOM(set_disks), .show = show_explicit, .put = put_disks,          \
     .doc_key = "disks = x y d m; x y d m; ...", .doc_def = "— (or `shape`)",                         \
-    .doc_range = "1 to 8 disks, d > 0, m > 0; no blank before `;`",                                  \
+    .doc_range = "1 to 8 disks, d > 0, m > 0; in one body m ≤ 10¹² × "                          \
+                 "the smallest m, d ≤ 10⁴ × the smallest d, centres that "                      \
+                 "span 0 or ≥ 10⁻⁹ × the largest d; no blank before `;`",                            \
     .doc = "instead of `shape`: each disk's centre in the body frame, diameter and mass")            \
   X(PALPHAX, S_SPECIES, "alpha_OTHER", CUSTOM(set_alpha_other), .put = put_pairs,                    \
     .doc_def = "the smaller of the two `alpha`s", .doc_range = "[0, 1]",                             \
@@ -1230,7 +1232,95 @@ static int check_box(ctx *c, int run) {
  * this relative slack (the short forms' touching disks are computed with cos and sin). */
 #define HD_TOUCH_SLACK 1e-12
 
-/* The disks of named species j from its shape, then: are they one connected body. */
+/* The moment of inertia of a body of species sp about its centre of mass (the engine's
+ * sum m_k |o_k|^2), and its mass in *mass if not NULL. */
+static double species_inertia(const hd_scene_species *sp, double *mass) {
+  double M = 0, cx = 0, cy = 0, I = 0;
+  for (int a = 0; a < sp->ndisk; a++)
+    M += sp->m[a], cx += sp->m[a] * sp->x[a], cy += sp->m[a] * sp->y[a];
+  for (int a = 0; a < sp->ndisk; a++) {
+    double ox = sp->x[a] - cx / M, oy = sp->y[a] - cy / M;
+    I += sp->m[a] * (ox * ox + oy * oy);
+  }
+  if (mass) *mass = M;
+  return I;
+}
+
+/* [init] temperature against the range of doubles: the drawn speeds (v^2 ~ T / M), spins
+ * (w^2 ~ T / I) and the total energy (~ N T) must stay below 1e300 (temperature = 1e300 with
+ * a dimer of a = 1e-9 gave w^2 = 2e318, NaN energies that the database refused). */
+static int check_thermal(ctx *c) {
+  const hd_scene *sc = c->sc;
+  double T = sc->temperature, worst = 0;
+  const char *what = "";
+  if (sc->n_dimers > 0) {
+    worst = T / (2 * sc->dimer_m), what = "[dimers] v^2 ~ T / 2m";
+    double I = 0.5 * sc->dimer_m * sc->dimer_a * sc->dimer_a;
+    if (I > 0 && T / I > worst) worst = T / I, what = "[dimers] w^2 ~ T / I";
+  }
+  if (sc->n_disks > 0 && T / sc->disk_mass > worst)
+    worst = T / sc->disk_mass, what = "[disks] v^2 ~ T / mass";
+  for (int j = 0; j < sc->n_named; j++) {
+    if (sc->named[j].count == 0) continue;
+    double M, I = species_inertia(&sc->named[j], &M);
+    if (T / M > worst) worst = T / M, what = "a [species] v^2 ~ T / M";
+    if (I > 0 && T / I > worst) worst = T / I, what = "a [species] w^2 ~ T / I";
+  }
+  double e = T * (double)body_count(sc);
+  if (!(worst <= 1e300 && e <= 1e300))
+    return FAIL_KEY(c, K_TEMP,
+                    "the drawn velocities leave the range of doubles (%s = %g, energy N T = %g; "
+                    "at most 1e300): lower the temperature or scale the masses",
+                    what, worst, e);
+  return HD_OK;
+}
+
+/* Why a moment of inertia must be within [HD_MIN_INERTIA, 1 / HD_MIN_INERTIA]. */
+static const char inertia_why[] =
+    "the spin energy I w^2 / 2 and the thermal spin w^2 = T / I leave the range of doubles "
+    "(the samples' e_rot became NaN); scale the masses or lengths";
+
+/* The physical bounds of a body that the engine's numerics need (docs/scene-keys.md): its size
+ * (the span of its disk centres: 0, a round body, or at least HD_MIN_BOND of its largest
+ * diameter, as [dimers] a), the mass ratio of its disks (HD_MAX_MASS_RATIO) and their diameter
+ * ratio (HD_MAX_DIAMETER_RATIO).  HD_OK or an error at `key` (shape or disks) saying why. */
+static int species_bounds(ctx *c, int j, int key) {
+  const hd_scene_species *sp = &c->sc->named[j];
+  int si = N_SEC + j;
+  double span = 0, dlo = INFINITY, dhi = 0, mlo = INFINITY, mhi = 0;
+  for (int a = 0; a < sp->ndisk; a++) {
+    dlo = fmin(dlo, sp->d[a]), dhi = fmax(dhi, sp->d[a]);
+    mlo = fmin(mlo, sp->m[a]), mhi = fmax(mhi, sp->m[a]);
+    for (int b = a + 1; b < sp->ndisk; b++)
+      span = fmax(span, hypot(sp->x[a] - sp->x[b], sp->y[a] - sp->y[b]));
+  }
+  if (span > 0 && !(span >= HD_MIN_BOND * dhi))
+    return FAIL_AT(c, si, key,
+                   "the disk centres span %g, less than %g of the largest diameter (%g): a body "
+                   "that small is lost in the round-off of the positions (its spin runs away and "
+                   "collisions pile up); disks that share one centre (span 0) make a round body",
+                   span, HD_MIN_BOND, HD_MIN_BOND * dhi);
+  if (!(mhi <= HD_MAX_MASS_RATIO * mlo))
+    return FAIL_AT(c, si, key,
+                   "masses from %g to %g, a ratio above %g: a light disk far from a heavy centre "
+                   "of mass spins up to sqrt(disks x ratio) times the speed of the body, and the "
+                   "contact search steps through every turn (it made no progress at 1e30)",
+                   mlo, mhi, HD_MAX_MASS_RATIO);
+  double I = species_inertia(sp, NULL);
+  if (span > 0 && !(I >= HD_MIN_INERTIA && I <= 1 / HD_MIN_INERTIA))
+    return FAIL_AT(c, si, key, "the moment of inertia %g is outside [%g, %g]: %s", I,
+                   HD_MIN_INERTIA, 1 / HD_MIN_INERTIA, inertia_why);
+  if (!(dhi <= HD_MAX_DIAMETER_RATIO * dlo))
+    return FAIL_AT(c, si, key,
+                   "diameters from %g to %g, a ratio above %g: the contact tolerances are "
+                   "relative to the smallest disk (1e-10 of it), the round-off of the disks' "
+                   "places to the largest",
+                   dlo, dhi, HD_MAX_DIAMETER_RATIO);
+  return HD_OK;
+}
+
+/* The disks of named species j from its shape, then: are they one connected body, within the
+ * bounds of species_bounds. */
 static int build_species(ctx *c, int j) {
   hd_scene_species *sp = &c->sc->named[j];
   sp_parse *p = &c->sp[j];
@@ -1290,15 +1380,14 @@ static int build_species(ctx *c, int j) {
       }
     }
   }
+  int key = has_disks ? K_PDISKS : K_PSHAPE;
   for (int b = 0; b < sp->ndisk; b++)
-    if (!seen[b]) {
-      int k = has_disks ? K_PDISKS : K_PSHAPE;
-      return FAIL_AT(c, si, k,
+    if (!seen[b])
+      return FAIL_AT(c, si, key,
                      "disk %d at (%g, %g) is not connected to disk 1: the disks of a body must "
                      "touch or overlap (centres at most (d_i + d_j)/2 apart)",
                      b + 1, sp->x[b], sp->y[b]);
-    }
-  return HD_OK;
+  return species_bounds(c, j, key);
 }
 
 /* alpha_pair: each species' own alpha on the diagonal, the smaller of the two off it, then
@@ -1462,6 +1551,12 @@ static int check_all(ctx *c) {
                     "must be 0 or at least %g d = %g: a shorter bond is lost in the round-off of "
                     "the positions (a = 0 is a dimer without lever arm, a disk of mass 2m)",
                     HD_MIN_BOND, HD_MIN_BOND * sc->dimer_d);
+  double inertia = 0.5 * sc->dimer_m * sc->dimer_a * sc->dimer_a;
+  if (sc->n_dimers > 0 && sc->dimer_a > 0 &&
+      !(inertia >= HD_MIN_INERTIA && inertia <= 1 / HD_MIN_INERTIA))
+    return FAIL_KEY(c, K_DA, "the moment of inertia m a^2 / 2 = %g is outside [%g, %g]: %s",
+                    inertia, HD_MIN_INERTIA, 1 / HD_MIN_INERTIA, inertia_why);
+  if (sc->placement != HD_PLACE_STATE && (rc = check_thermal(c))) return rc;
   if ((rc = check_box(c, 1))) return rc;
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
     return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
@@ -1712,7 +1807,7 @@ static void doc_table(int s, sbuf *b) {
   for (int k = 0; k < N_KEY; k++) {
     const key_def *kd = &keys[k];
     if (kd->sec != s) continue;
-    char def[80], range[160];
+    char def[80], range[320];
     if (kd->doc_def)
       snprintf(def, sizeof def, "%s", kd->doc_def);
     else if (kd->type == KT_BOOL || kd->type == KT_ENUM)

@@ -18,9 +18,24 @@
                                  * engine melts a dense lattice (pi/4 for disks) */
 #define HD_MAX_COUNT 100000000L /* largest `count` of a species */
 #define HD_MIN_BOND                                                                                \
-  1e-9                         /* [dimers] a: 0 or >= this times d.  Below ~1e-15 d the two disks  \
-                                * sit within an ulp of the centre (collisions pile up); 1e-9 keeps \
-                                * the bond ~1e4 ulps long in a box of 1e3 d */
+  1e-9 /* [dimers] a: 0 or >= this times d.  Below ~1e-15 d the two disks                          \
+        * sit within an ulp of the centre (collisions pile up); 1e-9 keeps                         \
+        * the bond ~1e4 ulps long in a box of 1e3 d */
+#define HD_MAX_MASS_RATIO                                                                          \
+  1e12 /* [species] disks: largest mass over smallest in one body.  A light disk far from a heavy  \
+        * centre of mass spins up to sqrt(n ratio) times the translational speed (rim speed =      \
+        * rmax / radius of gyration); the contact search steps through the turns.  1e12 keeps it   \
+        * within the 1e7 a state file allows (measured: 1e22 took 3x the time of 1e10, 1e30 made   \
+        * no progress in 20 s) */
+#define HD_MAX_DIAMETER_RATIO                                                                      \
+  1e4 /* [species] disks: largest diameter over smallest in one body.  The contact tolerances of   \
+       * a pair of bodies are relative to their smallest disk (1e-10 of it at t = 0), the          \
+       * round-off of a disk's place to the body's size (~4 d_max ulps): 1e4 keeps that below the  \
+       * tolerance by 25x */
+#define HD_MIN_INERTIA                                                                             \
+  1e-250 /* a body that turns: its moment of inertia in [this, 1 / this], so that the spin energy  \
+          * and the thermal spin T / I stay within doubles (dimer 1e-155: I = 5e-311, e_rot NaN)   \
+          */
 #define HD_SCENE_MAX_LINE 4096 /* longest scene line, in bytes */
 #define HD_FRAMES_MAX_MB 1000  /* default `frames_max_mb`: 1 GB of frames */
 #define HD_FRAME_BODY_BYTES 36 /* bytes per body in a frame (db/schema.sql, table frames) */

@@ -16,6 +16,7 @@
 
 #include "hd_disk.h"
 #include "hd_sim_internal.h"
+#include "hd_stop.h"
 
 /* Time until body b, in cell (cx, cy), leaves it (>= 0), or INFINITY; sets b->c_dir.  A body
  * that never leaves its cell but spins gets a wake-up HD_WAKE_TURNS turns ahead instead (c_dir
@@ -45,6 +46,14 @@ static inline double crossing_time(const hd_sim *s, hd_body *b, int32_t cx, int3
   return best < 0.0 ? 0.0 : best;
 }
 
+/* max and min of doubles that are not NaN, inline (fmax and fmin are library calls) */
+static inline double dmax(double a, double b) {
+  return a > b ? a : b;
+}
+static inline double dmin(double a, double b) {
+  return a < b ? a : b;
+}
+
 /* Wall contacts of body i, if it is in an edge cell; *best is relative to now. */
 static void predict_walls(hd_sim *s, int32_t i, double horizon, double *best) {
   hd_body *b = &s->b[i];
@@ -56,7 +65,10 @@ static void predict_walls(hd_sim *s, int32_t i, double horizon, double *best) {
     if (!near[w] || !(s->walls & bit[w])) continue;
     hd_contact c;
     double lim = fmin(*best, horizon);
-    if (hd_predict_wall(&b->k, &s->shape[b->species], &s->wall[w], lim, &c) && c.t < *best) {
+    int r = hd_predict_wall(&b->k, &s->shape[b->species], &s->wall[w], lim, &c);
+    if (r == HD_CA_CUT) {
+      s->cut_t = dmin(s->cut_t, c.t);
+    } else if (r && c.t < *best) {
       *best = c.t;
       b->p_type = HD_EV_WALL;
       b->p_partner = w;
@@ -99,14 +111,6 @@ static inline double disk_contact(const hd_sim *s, const hd_body *bi, const hd_b
                                     : 0.5 * (s->shape[bi->species].d + s->shape[bj->species].d);
 }
 
-/* max and min of doubles that are not NaN, inline (fmax and fmin are library calls) */
-static inline double dmax(double a, double b) {
-  return a > b ? a : b;
-}
-static inline double dmin(double a, double b) {
-  return a < b ? a : b;
-}
-
 /* Contacts of body i with body j (shifted by sx, sy); *best relative to now. */
 static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, double sy,
                                double horizon, double *best) {
@@ -127,7 +131,10 @@ static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, dou
   kj.x += sx;
   kj.y += sy;
   hd_contact c;
-  if (hd_predict_pair(&bi->k, si, &kj, &s->shape[bj->species], lim, &c) && c.t < *best) {
+  int r = hd_predict_pair(&bi->k, si, &kj, &s->shape[bj->species], lim, &c);
+  if (r == HD_CA_CUT) {
+    s->cut_t = dmin(s->cut_t, c.t);
+  } else if (r && c.t < *best) {
     *best = c.t;
     take_pair(bi, bj, j, c.ka, c.kb, ix, iy);
   }
@@ -227,12 +234,16 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
     nc += keep;
   });
   for (int k = 0; k < nc; k++) ord[k] = k;
-  while (nc > 0) {
+  for (long steps = 1; nc > 0; steps++) {
     int k = 0; /* the pending search furthest behind */
     for (int q = 1; q < nc; q++)
       if (cs[ord[q]].t < cs[ord[k]].t) k = q;
     hd_cand *c = &cs[ord[k]];
     if (!(c->t < *best)) break;
+    if ((steps & HD_CA_POLL) == 0 && hd_stop_requested) { /* cut: no contact before c->t */
+      s->cut_t = dmin(s->cut_t, c->t);
+      break;
+    }
     const hd_body *bj = &s->b[c->j];
     double lim = dmin(*best, c->lim);
     hd_contact ct;
@@ -271,8 +282,16 @@ static void predict_full(hd_sim *s, int32_t i, int32_t skip) {
   if (s->disks_only) {
     predict_disks(s, i, cx, cy, cross, &best);
   } else {
+    s->cut_t = INFINITY;
     if (s->walls) predict_walls(s, i, cross, &best);
     predict_sorted(s, i, skip, cross, &best);
+    if (s->cut_t < best && s->cut_t < cross) {
+      /* a search cut by a stop request: no contact before cut_t is known, so the body wakes up
+       * then to be predicted again (a state as valid as any: a checkpoint of it resumes) */
+      cross = s->cut_t;
+      bi->c_dir = HD_WAKE;
+      s->cut = 1;
+    }
   }
   bi->c_t = now + cross;
   bi->p_t = now + best;

@@ -129,12 +129,19 @@ typedef struct hd_sim {
   gsl_rng *rng;                 /* seeded generator (initial state; stochastic rules) */
   hd_sim_clock c;               /* clocks and counters */
   int64_t rebase_every;         /* events between rebases of the time origin */
+  double rebase_e;              /* the origin is also rebased once c.t^2 e_kin > this: a typical
+                                 * body has flown HD_REBASE_TRAVEL of the smallest diameter
+                                 * since (hd_sim_queue_init; hd_sim.c, rebase) */
   int verify;                   /* check invariants at every event (slow) */
   int disks_only;         /* only [disks] bodies: disk-disk prediction without shape dispatch */
   int partial_cross;      /* pure disks, >= 3x3 cells: crossings search 3 new cells */
   int melt;               /* set-up only: the lattice placed must be melted */
   double max_overlap;     /* verification: largest relative overlap seen */
   int32_t last_i, last_j; /* bodies of the last collision (collapse report) */
+  double cut_t;           /* during a prediction: the earliest time (relative to now) a contact
+                           * search was cut at by a stop request (HD_CA_CUT), else INFINITY */
+  int cut;                /* a prediction was cut since hd_sim_next last returned: it returns
+                           * HD_SIM_BUSY after the event, so that its caller sees the stop */
 } hd_sim;
 
 /* Builds a simulation from a scene: bodies placed and given velocities (seeded by sc->seed),
