@@ -29,7 +29,7 @@ NDIM       ?= 900
 ALPHAS     ?= 1 0.99 0.98 0.95 0.9 0.85 0.8
 AOVERD     ?= 0.5 1 1.5
 # Tables I-II: the paper's alphas; box side TAB_LFRAC x the HCS's critical size L_c(alpha) at
-# alpha > 0.9 (at most NDIM bodies), TAB_LFRAC_LOW x L_c at alpha <= 0.9 (plots/README.md)
+# alpha >= 0.9 (at most NDIM bodies), TAB_LFRAC_LOW x L_c at alpha < 0.9 (plots/README.md)
 TAB_ALPHAS ?= 1 0.99 0.98 0.95 0.9 0.85
 TAB_LFRAC  ?= 0.7
 TAB_LFRAC_LOW ?= 0.5
@@ -63,7 +63,7 @@ FMEAN_A    ?= 0.5 1 2
 ifeq ($(PAPER),1)
 # runs (seeds 1..NRUNS) per (alpha, a/d)
 NRUNS      ?= 20
-# Tables I-II: as many body-runs per group as TAB_RUNS (alpha > 0.9) or TAB_RUNS_LOW runs of NDIM
+# Tables I-II: as many body-runs per group as TAB_RUNS (alpha >= 0.9) or TAB_RUNS_LOW runs of NDIM
 # bodies
 TAB_RUNS   ?= 40
 TAB_RUNS_LOW ?= 80
@@ -134,18 +134,18 @@ $(foreach al,$(DISK_ALPHAS),$(foreach s,$(SEEDS),$(eval $(call RUN,$(call disk_d
 
 # Tables I-II: each (alpha, a/d) in its own box inside the HCS (plots/README.md, "Boxes of the
 # tables"). At the fixed area fraction ETA (so that nu0 and chi stay those of the paper's
-# density) the box side is TAB_LFRAC (alpha > 0.9) or TAB_LFRAC_LOW x L_c(alpha), the hydrodynamic critical size of the disk
+# density) the box side is TAB_LFRAC (alpha >= 0.9) or TAB_LFRAC_LOW x L_c(alpha), the hydrodynamic critical size of the disk
 # HCS (docs/analysis.md: L_c = sqrt(2 pi D_e eta* / (1 - alpha^2)) / (n sigma chi), D_e = 2, chi
 # of Henderson), N = ETA L^2 / (area of one body in d^2), at most NDIM (all of alpha = 1, 0.99,
-# 0.98). tab_n(alpha, a/d): N, a/d = 0 for disks; tab_runs(N, alpha): TAB_RUNS (alpha > 0.9) or
+# 0.98). tab_n(alpha, a/d): N, a/d = 0 for disks; tab_runs(N, alpha): TAB_RUNS (alpha >= 0.9) or
 # TAB_RUNS_LOW x NDIM / N runs (as many body-runs as that many runs of NDIM), at least NRUNS.
-tab_n = $(shell awk 'BEGIN { al = $(1); a = $(2); eta = $(ETA); f = $(1) > 0.9 ? $(TAB_LFRAC) : $(TAB_LFRAC_LOW); cap = $(NDIM); \
+tab_n = $(shell awk 'BEGIN { al = $(1); a = $(2); eta = $(ETA); f = $(1) >= 0.9 ? $(TAB_LFRAC) : $(TAB_LFRAC_LOW); cap = $(NDIM); \
   if (al >= 1) { print cap; exit } pi = 3.14159265358979; \
   area = a == 0 ? pi / 4 : a >= 1 ? pi / 2 : pi / 2 - (0.5 * atan2(sqrt(1 - a * a), a) - a / 2 * sqrt(1 - a * a)); \
   es = 1 / ((7 - 3 * al) * (1 + al) / 8 - (1 - al * al) / 4); chi = (1 - 7 * eta / 16) / (1 - eta) ^ 2; \
   lc = sqrt(2 * pi * 2 * es / (1 - al * al)) / (4 * eta / pi * chi); \
   n = int(eta * (f * lc) ^ 2 / area); print n < cap ? n : cap }')
-tab_runs = $(shell awk 'BEGIN { r = int((($(2) > 0.9 ? $(TAB_RUNS) : $(TAB_RUNS_LOW)) * $(NDIM) + $(1) - 1) / $(1)); print (r > $(NRUNS) ? r : $(NRUNS)) }')
+tab_runs = $(shell awk 'BEGIN { r = int((($(2) >= 0.9 ? $(TAB_RUNS) : $(TAB_RUNS_LOW)) * $(NDIM) + $(1) - 1) / $(1)); print (r > $(NRUNS) ? r : $(NRUNS)) }')
 # per group: TN_a_al, TR_a_al (dimers), TN_0_al, TR_0_al (disks)
 $(foreach a,$(AOVERD),$(foreach al,$(TAB_ALPHAS),$(eval TN_$(a)_$(al) := $(call tab_n,$(al),$(a)))\
   $(eval TR_$(a)_$(al) := $(call tab_runs,$(TN_$(a)_$(al)),$(al)))))
@@ -190,7 +190,12 @@ $(1): $(2) $(HAFF) $(SCRIPTS)/merge.sh $(DATA)/config.txt
 	@echo "merge $$@ ($(words $(2)) runs)"
 	@$(SCRIPTS)/merge.sh $(HAFF) $$@ $(2)
 endef
-$(eval $(call MERGE,$(DATA)/tables.db,$(TABLE_DBS)))
+# (its thousands of inputs exceed the 128 KiB of one shell command line: a list file and xargs)
+$(DATA)/tables.db: $(TABLE_DBS) $(HAFF) $(SCRIPTS)/merge.sh $(DATA)/config.txt
+	@echo "merge $@ ($(words $(TABLE_DBS)) runs)"
+	$(file >$@.list,$(TABLE_DBS))
+	@xargs -x -s 1000000 -a $@.list $(SCRIPTS)/merge.sh $(HAFF) $@
+	@rm -f $@.list
 $(eval $(call MERGE,$(DATA)/fig23.db,$(FIG23_DBS)))
 $(eval $(call MERGE,$(DATA)/disks.db,$(DISK_DBS)))
 $(eval $(call MERGE,$(DATA)/gap.db,$(GAP_DBS)))
