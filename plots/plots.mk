@@ -33,6 +33,11 @@ ETA        ?= 0.05
 NDIM       ?= 900
 ALPHAS     ?= 1 0.99 0.98 0.95 0.9 0.85 0.8
 AOVERD     ?= 0.5 1 1.5
+# Tables I-II: the paper's alphas; box side TAB_LFRAC x the HCS's critical size L_c(alpha) at
+# alpha >= 0.9 (at most NDIM bodies), TAB_LFRAC_LOW x L_c at alpha < 0.9 (plots/README.md)
+TAB_ALPHAS ?= 1 0.99 0.98 0.95 0.9 0.85
+TAB_LFRAC  ?= 0.7
+TAB_LFRAC_LOW ?= 0.5
 # a/d near 2: a disk of another dimer fits the gap between a dimer's disks (exactly at 2d):
 # these runs (alpha = GAP_ALPHA, NRUNS seeds) show why a = 2d is not in the tables (README)
 GAP_A      ?= 1.9 2 2.1
@@ -63,6 +68,10 @@ FMEAN_A    ?= 0.5 1 2
 ifeq ($(PAPER),1)
 # runs (seeds 1..NRUNS) per (alpha, a/d)
 NRUNS      ?= 20
+# Tables I-II: as many body-runs per group as TAB_RUNS (alpha >= 0.9) or TAB_RUNS_LOW runs of NDIM
+# bodies
+TAB_RUNS   ?= 40
+TAB_RUNS_LOW ?= 80
 # runs stop at (1 - alpha^2) cpd = XMAX
 XMAX       ?= 24
 ERR_RUNS   ?= 128
@@ -72,6 +81,8 @@ FIG5_CPD   ?= 300
 MC_SAMPLES ?= 10000000
 else
 NRUNS      ?= 8
+TAB_RUNS   ?= 16
+TAB_RUNS_LOW ?= 32
 XMAX       ?= 16
 ERR_RUNS   ?= 32
 FIG6_RUNS  ?= 8
@@ -85,7 +96,7 @@ RD      := $(DATA)/runs/eta$(ETA)-n$(NDIM)-x$(XMAX)
 SEEDS   := $(shell seq 1 $(NRUNS))
 ESEEDS  := $(shell seq 1001 $$((1000 + $(ERR_RUNS))))
 COMMON  := --set system.area_fraction=$(ETA)
-CONFIG  := ETA=$(ETA) NDIM=$(NDIM) NRUNS=$(NRUNS) XMAX=$(XMAX) ALPHAS=$(ALPHAS) AOVERD=$(AOVERD) GAP_A=$(GAP_A) GAP_ALPHA=$(GAP_ALPHA) \
+CONFIG  := ETA=$(ETA) NDIM=$(NDIM) NRUNS=$(NRUNS) TAB_RUNS=$(TAB_RUNS) TAB_RUNS_LOW=$(TAB_RUNS_LOW) TAB_ALPHAS=$(TAB_ALPHAS) TAB_LFRAC=$(TAB_LFRAC) TAB_LFRAC_LOW=$(TAB_LFRAC_LOW) XMAX=$(XMAX) ALPHAS=$(ALPHAS) AOVERD=$(AOVERD) GAP_A=$(GAP_A) GAP_ALPHA=$(GAP_ALPHA) \
            LONG_ALPHA=$(LONG_ALPHA) LONG_CPD=$(LONG_CPD) \
            DISK_ALPHAS=$(DISK_ALPHAS) FIG2_ALPHAS=$(FIG2_ALPHAS) FIG2_A=$(FIG2_A) \
            ELASTIC_CPD=$(ELASTIC_CPD) ERR_ALPHA=$(ERR_ALPHA) ERR_A=$(ERR_A) ERR_RUNS=$(ERR_RUNS) \
@@ -127,6 +138,46 @@ $(foreach al,$(DISK_ALPHAS),$(foreach s,$(SEEDS),$(eval $(call RUN,$(call disk_d
   scenes/paper-disks.ini,--set disks.count=$(NDIM) --set disks.alpha=$(al) --set \
   run.stop_cpd=$(call stopcpd,$(al)) --seed $(s)))))
 
+# Tables I-II: each (alpha, a/d) in its own box inside the HCS (plots/README.md, "Boxes of the
+# tables"). At the fixed area fraction ETA (so that nu0 and chi stay those of the paper's
+# density) the box side is TAB_LFRAC (alpha >= 0.9) or TAB_LFRAC_LOW x L_c(alpha), the hydrodynamic critical size of the disk
+# HCS (docs/analysis.md: L_c = sqrt(2 pi D_e eta* / (1 - alpha^2)) / (n sigma chi), D_e = 2, chi
+# of Henderson), N = ETA L^2 / (area of one body in d^2), at most NDIM (all of alpha = 1, 0.99,
+# 0.98). tab_n(alpha, a/d): N, a/d = 0 for disks; tab_runs(N, alpha): TAB_RUNS (alpha >= 0.9) or
+# TAB_RUNS_LOW x NDIM / N runs (as many body-runs as that many runs of NDIM), at least NRUNS.
+tab_n = $(shell awk 'BEGIN { al = $(1); a = $(2); eta = $(ETA); f = $(1) >= 0.9 ? $(TAB_LFRAC) : $(TAB_LFRAC_LOW); cap = $(NDIM); \
+  if (al >= 1) { print cap; exit } pi = 3.14159265358979; \
+  area = a == 0 ? pi / 4 : a >= 1 ? pi / 2 : pi / 2 - (0.5 * atan2(sqrt(1 - a * a), a) - a / 2 * sqrt(1 - a * a)); \
+  es = 1 / ((7 - 3 * al) * (1 + al) / 8 - (1 - al * al) / 4); chi = (1 - 7 * eta / 16) / (1 - eta) ^ 2; \
+  lc = sqrt(2 * pi * 2 * es / (1 - al * al)) / (4 * eta / pi * chi); \
+  n = int(eta * (f * lc) ^ 2 / area); print n < cap ? n : cap }')
+tab_runs = $(shell awk 'BEGIN { r = int((($(2) >= 0.9 ? $(TAB_RUNS) : $(TAB_RUNS_LOW)) * $(NDIM) + $(1) - 1) / $(1)); print (r > $(NRUNS) ? r : $(NRUNS)) }')
+# per group: TN_a_al, TR_a_al (dimers), TN_0_al, TR_0_al (disks)
+$(foreach a,$(AOVERD),$(foreach al,$(TAB_ALPHAS),$(eval TN_$(a)_$(al) := $(call tab_n,$(al),$(a)))\
+  $(eval TR_$(a)_$(al) := $(call tab_runs,$(TN_$(a)_$(al)),$(al)))))
+$(foreach al,$(DISK_ALPHAS),$(eval TN_0_$(al) := $(call tab_n,$(al),0))$(eval TR_0_$(al) := $(call \
+  tab_runs,$(TN_0_$(al)),$(al))))
+# the run of seed s: in the NDIM box the grid's own run (seeds 1..NRUNS), else its own file
+tab_dimer_db = $(if $(filter $(NDIM),$(TN_$(1)_$(2))),$(call dimer_db,$(1),$(2),$(3)),$(RD)/dimers-a$(1)-al$(2)-n$(TN_$(1)_$(2))-s$(3).db)
+tab_disk_db = $(if $(filter $(NDIM),$(TN_0_$(1))),$(call disk_db,$(1),$(2)),$(RD)/disks-al$(1)-n$(TN_0_$(1))-s$(2).db)
+tab_seeds = $(if $(filter $(NDIM),$(1)),$(filter-out $(SEEDS),$(shell seq 1 $(2))),$(shell seq 1 $(2)))
+$(foreach a,$(AOVERD),$(foreach al,$(TAB_ALPHAS),$(foreach s,$(call tab_seeds,$(TN_$(a)_$(al)),$(TR_$(a)_$(al))),\
+  $(eval $(call RUN,$(call tab_dimer_db,$(a),$(al),$(s)),scenes/paper-dimers.ini,--set \
+  dimers.count=$(TN_$(a)_$(al)) --set dimers.a=$(a) --set dimers.alpha=$(al) --set \
+  run.stop_cpd=$(call stopcpd,$(al)) --seed $(s))))))
+$(foreach al,$(DISK_ALPHAS),$(foreach s,$(call tab_seeds,$(TN_0_$(al)),$(TR_0_$(al))),$(eval $(call \
+  RUN,$(call tab_disk_db,$(al),$(s)),scenes/paper-disks.ini,--set disks.count=$(TN_0_$(al)) --set \
+  disks.alpha=$(al) --set run.stop_cpd=$(call stopcpd,$(al)) --seed $(s)))))
+TABLE_DBS := $(foreach a,$(AOVERD),$(foreach al,$(TAB_ALPHAS),$(foreach s,$(shell seq 1 $(TR_$(a)_$(al))),\
+  $(call tab_dimer_db,$(a),$(al),$(s))))) $(foreach al,$(DISK_ALPHAS),$(foreach s,$(shell seq 1 \
+  $(TR_0_$(al))),$(call tab_disk_db,$(al),$(s))))
+# the box (N) and runs of every table group, a TSV on stdout (test_plots checks N against L_c)
+.PHONY: tables-boxes
+tables-boxes:
+	@printf 'species\talpha\ta_over_d\tN\truns\n'
+	@printf '%s\n' $(foreach a,$(AOVERD),$(foreach al,$(TAB_ALPHAS),dimers,$(al),$(a),$(TN_$(a)_$(al)),$(TR_$(a)_$(al)))) \
+	  $(foreach al,$(DISK_ALPHAS),disks,$(al),0,$(TN_0_$(al)),$(TR_0_$(al))) | tr , '\t'
+
 GAP_DBS   := $(foreach a,$(GAP_A),$(foreach s,$(SEEDS),$(call dimer_db,$(a),$(GAP_ALPHA),$(s))))
 $(foreach a,$(filter-out $(AOVERD),$(GAP_A)),$(foreach s,$(SEEDS),$(eval $(call RUN,$(call \
   dimer_db,$(a),$(GAP_ALPHA),$(s)),scenes/paper-dimers.ini,--set dimers.count=$(NDIM) --set \
@@ -136,7 +187,6 @@ LONG_DBS  := $(foreach s,$(SEEDS),$(RD)/long-a1-al$(LONG_ALPHA)-c$(LONG_CPD)-s$(
 $(foreach s,$(SEEDS),$(eval $(call RUN,$(RD)/long-a1-al$(LONG_ALPHA)-c$(LONG_CPD)-s$(s).db,\
   scenes/paper-dimers.ini,--set dimers.count=$(NDIM) --set dimers.alpha=$(LONG_ALPHA) --set \
   run.stop_cpd=$(LONG_CPD) --seed $(s))))
-GRID_DBS  := $(foreach a,$(AOVERD),$(foreach al,$(ALPHAS),$(foreach s,$(SEEDS),$(call dimer_db,$(a),$(al),$(s)))))
 DISK_DBS  := $(foreach al,$(DISK_ALPHAS),$(foreach s,$(SEEDS),$(call disk_db,$(al),$(s))))
 FIG23_DBS := $(foreach al,$(FIG2_ALPHAS),$(foreach s,$(SEEDS),$(call dimer_db,$(FIG2_A),$(al),$(s))))
 
@@ -146,7 +196,12 @@ $(1): $(2) $(HAFF) $(SCRIPTS)/merge.sh $(DATA)/config.txt
 	@echo "merge $$@ ($(words $(2)) runs)"
 	@$(SCRIPTS)/merge.sh $(HAFF) $$@ $(2)
 endef
-$(eval $(call MERGE,$(DATA)/tables.db,$(GRID_DBS) $(DISK_DBS)))
+# (its thousands of inputs exceed the 128 KiB of one shell command line: a list file and xargs)
+$(DATA)/tables.db: $(TABLE_DBS) $(HAFF) $(SCRIPTS)/merge.sh $(DATA)/config.txt
+	@echo "merge $@ ($(words $(TABLE_DBS)) runs)"
+	$(file >$@.list,$(TABLE_DBS))
+	@xargs -x -s 1000000 -a $@.list $(SCRIPTS)/merge.sh $(HAFF) $@
+	@rm -f $@.list
 $(eval $(call MERGE,$(DATA)/fig23.db,$(FIG23_DBS)))
 $(eval $(call MERGE,$(DATA)/disks.db,$(DISK_DBS)))
 $(eval $(call MERGE,$(DATA)/gap.db,$(GAP_DBS)))

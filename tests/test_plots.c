@@ -12,6 +12,7 @@
 #include <cmocka.h>
 #include <sqlite3.h>
 #include <stdio.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <signal.h>
@@ -29,7 +30,7 @@ static char root[512], tmp[256], haff[512];
   "NDIM=50 NRUNS=2 ALPHAS='1 0.9 0.8' AOVERD=1 GAP_A=1.5 DISK_ALPHAS=0.9 "                         \
   "FIG2_ALPHAS='0.9 0.8' ELASTIC_CPD=40 ERR_RUNS=2 ERR_CPD='20 40' FIG5_CPD=25 FMEAN_A=1 "         \
   "MC_SAMPLES=20000 XMAX=8 HCS_STABLE=50 HCS_UNSTABLE=100 HCS_CPD=20 ERR_NSTABLE=30 "              \
-  "FIG6_RUNS=2"
+  "FIG6_RUNS=2 TAB_ALPHAS='1 0.9' TAB_RUNS=2 TAB_RUNS_LOW=2"
 
 static int make(const char *flags, const char *targets, const char *log) {
   char cmd[4096];
@@ -273,6 +274,58 @@ static void merge_keeps_rows(void **state) {
   sqlite3_close(db);
 }
 
+/* The hydrodynamic critical size of the disk HCS at area fraction eta (docs/analysis.md, "Critical
+ * size of the HCS"), in units of d: L_c = sqrt(2 pi D_e eta* / (1 - alpha^2)) / (n sigma chi),
+ * D_e = 2, eta* = 1 / (nu_eta* - zeta* / 2), chi = (1 - 7 eta / 16) / (1 - eta)^2. */
+static double l_crit(double alpha, double eta) {
+  double es = 1 / ((7 - 3 * alpha) * (1 + alpha) / 8 - (1 - alpha * alpha) / 4);
+  double chi = (1 - 7 * eta / 16) / ((1 - eta) * (1 - eta));
+  return sqrt(2 * M_PI * 2 * es / (1 - alpha * alpha)) / (4 * eta / M_PI * chi);
+}
+
+/* `make -f plots/plots.mk tables-boxes` at the default parameters: every group of the paper's
+ * Tables I-II (alpha 1, 0.99, 0.98, 0.95, 0.9, 0.85 x a/d 0.5, 1, 1.5, disks at 0.95, 0.9) has a
+ * box whose side L = sqrt(N A / 0.05) (A the union area of one body in d^2) is at most 0.71 L_c
+ * (0.7 and rounding), at most 0.51 L_c at alpha < 0.9 (where 0.7 L_c carried a correlated-flow
+ * bias of 0.012-0.020 in D_e, plots/README.md), and as many body-runs as 16 runs of 900 bodies
+ * (32 at alpha < 0.9). The 900-body boxes of the old tables are 1.0-1.4 L_c at alpha <= 0.9. */
+static void table_boxes_inside_hcs(void **state) {
+  (void)state;
+  need();
+  char cmd[2048], path[400];
+  snprintf(path, sizeof path, "%s/boxes.tsv", tmp);
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory -f "
+           "plots/plots.mk OUT='%s/boxes-out' tables-boxes > '%s'",
+           root, tmp, path);
+  assert_int_equal(system(cmd), 0);
+  FILE *f = fopen(path, "r");
+  assert_non_null(f);
+  char line[256], species[16];
+  double alpha, a;
+  long n, runs;
+  int seen = 0;
+  assert_non_null(fgets(line, sizeof line, f)); /* header */
+  while (fgets(line, sizeof line, f)) {
+    assert_int_equal(sscanf(line, "%15s %lf %lf %ld %ld", species, &alpha, &a, &n, &runs), 5);
+    double area = a == 0   ? M_PI / 4
+                  : a >= 1 ? M_PI / 2
+                           : M_PI / 2 - (0.5 * acos(a) - a / 2 * sqrt(1 - a * a));
+    double l = sqrt((double)n * area / 0.05);
+    if (alpha < 1) {
+      double lim = alpha < 0.9 ? 0.51 : 0.71;
+      if (l > lim * l_crit(alpha, 0.05))
+        fail_msg("%s alpha %g a/d %g: N %ld, L %.1f d > %.2f L_c = %.1f d", species, alpha, a, n, l,
+                 lim, lim * l_crit(alpha, 0.05));
+    }
+    assert_true(n <= 900 && n >= 50);
+    assert_true((double)n * (double)runs >= (alpha < 0.9 ? 32 : 16) * 900.0);
+    seen++;
+  }
+  fclose(f);
+  assert_int_equal(seen, 6 * 3 + 2);
+}
+
 /* First line of a file, without the newline. */
 static void header(const char *file, char *buf, size_t n) {
   char path[600];
@@ -433,6 +486,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {cmocka_unit_test(pipeline_and_rebuild),
                                      cmocka_unit_test(merge_keeps_rows),
                                      cmocka_unit_test(tsv_columns),
+                                     cmocka_unit_test(table_boxes_inside_hcs),
                                      cmocka_unit_test(gnuplot_render),
                                      cmocka_unit_test(figures_png_svg_pdf_once),
                                      cmocka_unit_test(rods_pipeline_resumes),
