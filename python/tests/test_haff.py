@@ -5,9 +5,9 @@ tests/test_python.c runs each TestCase under `make test`.  The module under test
 tree's (python/, put first on sys.path), the haff program $HAFF_BIN.
 
 TestStudy builds a study as a user would: four dimer runs (alpha 0.8, 0.95 x a 0.5, 1; 50
-dimers at area fraction 0.1 to 10 cpd, every collision logged, frames every 2 cpd) made with
-haff.run into two databases, plus a mixture of dimers, disks and triangles with frames, merged
-with `haff merge` into one; then checks the module against docs/sql.md's own SQL (<f>, D_e =
+dimers at area fraction 0.1 to 10 cpd, every collision logged, frames every 2 cpd) made by
+`haff sweep` (a study, merged into its study.db), and a mixture of dimers, disks and triangles
+with frames, merged with `haff merge` into one; then checks the module against docs/sql.md's own SQL (<f>, D_e =
 2/<f> and K = E_tr/E_rot, to 1e-12 relative: the sums are the same numbers added in another
 order) and the decoded frames against `haff export xyz` (every disk's position and velocity,
 exactly: the export prints the shortest form that reads back as the same double).
@@ -97,17 +97,17 @@ class TestStudy(unittest.TestCase):
         cls.scene = os.path.join(d, "dimers.ini")
         write(cls.scene, DIMERS)
         write(os.path.join(d, "mix.ini"), MIXTURE)
-        k = 0
-        for alpha in (0.8, 0.95):
-            for a in (0.5, 1):
-                k += 1
-                out = os.path.join(d, "a.db" if alpha == 0.8 else "b.db")
-                run = haff.run(cls.scene, out, set={"dimers.alpha": alpha, "dimers.a": a},
-                               seed=k, haff=HAFF)
-                assert run in (1, 2)
+        # a real study: `haff sweep` over (alpha, a/d), merged by the sweep into its study.db,
+        # then merged once more with a mixture run (issue 28: a sweep's merged database)
+        write(os.path.join(d, "study.ini"),
+              "[sweep]\nscene = dimers.ini\nseeds = 1\n[axes]\n"
+              "dimers.alpha = 0.8 0.95\ndimers.a = 0.5 1\n")
+        subprocess.run([HAFF, "sweep", os.path.join(d, "study.ini"), "-o",
+                        os.path.join(d, "study"), "--jobs", "2", "--progress", "0"],
+                       check=True, capture_output=True)
         haff.run(os.path.join(d, "mix.ini"), os.path.join(d, "b.db"), haff=HAFF)
-        cls.path = os.path.join(d, "study.db")
-        subprocess.run([HAFF, "merge", cls.path, os.path.join(d, "a.db"),
+        cls.path = os.path.join(d, "all.db")
+        subprocess.run([HAFF, "merge", cls.path, os.path.join(d, "study", "study.db"),
                         os.path.join(d, "b.db")], check=True, capture_output=True)
         cls.db = haff.open(cls.path)
 
