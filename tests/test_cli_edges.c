@@ -364,9 +364,13 @@ static void empty_scenes(void **state) {
 static void sigterm_in_long_search(void **state) {
   (void)state;
   if (!haff) skip();
+  /* three such pairs: ~11 s of searching in all on an idle machine (one pair, ~4 s, let the
+   * resume finish before its SIGTERM at 2 s once the machine was idle) */
   write_file("stiff.csv", "kind,x,y,phi,vx,vy,omega\ndimer,5,5,0,1,0,2e7\n"
-                          "dimer,12,5.9999999,0,-1,0,-2e7\ndisk,20,5,0,0,0,0\n");
-  write_file("stiff.ini", "[system]\nbox = 30 30\n[dimers]\ncount = 2\n[disks]\ncount = 1\n"
+                          "dimer,12,5.9999999,0,-1,0,-2e7\ndimer,5,15,0,1,0,2e7\n"
+                          "dimer,12,15.9999999,0,-1,0,-2e7\ndimer,5,25,0,1,0,2e7\n"
+                          "dimer,12,25.9999999,0,-1,0,-2e7\ndisk,20,5,0,0,0,0\n");
+  write_file("stiff.ini", "[system]\nbox = 30 30\n[dimers]\ncount = 6\n[disks]\ncount = 1\n"
                           "[init]\nstate = stiff.csv\n[run]\nstop_events = 50\n");
   for (int k = 0; k < 2; k++) {
     if (k == 0) assert_int_equal(sh("rm -f stiff.db stop.txt"), 0);
