@@ -29,6 +29,10 @@ static void round_trip(const char *key, const char *value) {
   free(want);
 }
 
+static int cmp_str(const void *x, const void *y) {
+  return strcmp(*(const char *const *)x, *(const char *const *)y);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   hd_sweepfile s;
   hd_error err;
@@ -39,12 +43,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (s.nax && s.npoints) abort();
     for (int k = 0; k < s.nax; k++) {
       if (s.ax[k].n < 1 || !strchr(s.ax[k].key, '.')) abort();
+      /* none twice: sorted copies side by side (an axis may hold HD_SWEEP_MAX_VALUES values) */
+      const char **c = malloc((size_t)s.ax[k].n * sizeof *c);
+      if (!c) abort();
       for (int j = 0; j < s.ax[k].n; j++) {
         if (!s.ax[k].v[j][0]) abort();
-        for (int i = 0; i < j; i++)
-          if (!strcmp(s.ax[k].v[i], s.ax[k].v[j])) abort();
+        c[j] = s.ax[k].v[j];
         if (!strchr(s.ax[k].v[j], '"')) round_trip(s.ax[k].key, s.ax[k].v[j]);
       }
+      qsort(c, (size_t)s.ax[k].n, sizeof *c, cmp_str);
+      for (int j = 1; j < s.ax[k].n; j++)
+        if (!strcmp(c[j - 1], c[j])) abort();
+      free(c);
     }
     for (int j = 0; j < s.seeds.n; j++)
       if (!s.seeds.v[j][0] || strspn(s.seeds.v[j], "0123456789") != strlen(s.seeds.v[j])) abort();
