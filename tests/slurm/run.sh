@@ -121,6 +121,8 @@ say "slurm up on $NODE (ports $P1, $P2)"
 
 # --- the sweep ------------------------------------------------------------------------------
 cd "$T"
+# 5e6 events (~5 s a point on an idle core): a run of 1e6 (~1 s) could end before the test saw
+# its first commit (runs.events is written about once a second) and stopped it
 cat > base.ini <<'INI'
 [system]
 area_fraction = 0.1
@@ -129,7 +131,7 @@ seed = 1
 count = 1000
 alpha = 0.95
 [run]
-stop_events = 1000000
+stop_events = 5000000
 checkpoint_every = 0.2
 [log]
 collisions = none
