@@ -16,9 +16,10 @@
 /* The schema version, stored in the file as PRAGMA user_version: 0 for the files made before it
  * was kept; 2 adds runs.cpd, the provenance and frames tables, the state measures of samples and
  * the views params and run_summary; 3 the species tables; 4 how each run was made
- * (runs.git_commit ... sweep_point), the view run_species and states.species (db/README.md lists them).  A file
- * opened for writing (hd_db_open, hd_db_open_existing) is brought up to it; the change is additive,
- * so files of every version stay readable.  A writer refuses a file of a newer version. */
+ * (runs.git_commit ... sweep_point), the view run_species and states.species (db/README.md lists
+ * them).  A file opened for writing (hd_db_open, hd_db_open_existing) is brought up to it; the
+ * change is additive, so files of every version stay readable.  A writer refuses a file of a newer
+ * version. */
 #define HD_DB_SCHEMA_VERSION 4
 
 typedef struct hd_db hd_db;

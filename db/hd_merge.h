@@ -10,14 +10,14 @@
  * ":memory:", "file:..."; "./NAME" is the file), a write-protected OUT, a file that is not a
  * haff database, is of a newer schema version or fails PRAGMA integrity_check, OUT or an input
  * being written by a run (its DB.lock held), and a run whose identity (scene text, seed,
- * commit: runs.git_commit, "unknown" when NULL or not kept) is already in OUT or in an input merged before it.  No SQL is built from a name
- * found in a file: haff's per-run tables (hd_db_run_tables) are copied with the columns of
- * haff's own schema that the input has; a user's table with a run column only when its name
- * and its columns' are plain identifiers (else the merge is refused), created in OUT from its
- * columns and their affinities (its definition's text is never run).  SIGINT and SIGTERM stop
- * the merge (HD_EINTR) with its temporary file removed.  OUT keeps its file mode.  Atomic: the
- * merge is built in a temporary file beside OUT (a copy of OUT when it exists) that is renamed over
- * OUT at the end, so a merge that fails or is killed leaves OUT as it was. */
+ * commit: runs.git_commit, "unknown" when NULL or not kept) is already in OUT or in an input merged
+ * before it.  No SQL is built from a name found in a file: haff's per-run tables (hd_db_run_tables)
+ * are copied with the columns of haff's own schema that the input has; a user's table with a run
+ * column only when its name and its columns' are plain identifiers (else the merge is refused),
+ * created in OUT from its columns and their affinities (its definition's text is never run). SIGINT
+ * and SIGTERM stop the merge (HD_EINTR) with its temporary file removed.  OUT keeps its file mode.
+ * Atomic: the merge is built in a temporary file beside OUT (a copy of OUT when it exists) that is
+ * renamed over OUT at the end, so a merge that fails or is killed leaves OUT as it was. */
 #ifndef HD_MERGE_H
 #define HD_MERGE_H
 

@@ -483,13 +483,10 @@ static void report_page_in_chromium(void **state) {
 }
 
 int main(void) {
-  const struct CMUnitTest tests[] = {cmocka_unit_test(pipeline_and_rebuild),
-                                     cmocka_unit_test(merge_keeps_rows),
-                                     cmocka_unit_test(tsv_columns),
-                                     cmocka_unit_test(table_boxes_inside_hcs),
-                                     cmocka_unit_test(gnuplot_render),
-                                     cmocka_unit_test(figures_png_svg_pdf_once),
-                                     cmocka_unit_test(rods_pipeline_resumes),
-                                     cmocka_unit_test(report_page_in_chromium)};
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(pipeline_and_rebuild),  cmocka_unit_test(merge_keeps_rows),
+      cmocka_unit_test(tsv_columns),           cmocka_unit_test(table_boxes_inside_hcs),
+      cmocka_unit_test(gnuplot_render),        cmocka_unit_test(figures_png_svg_pdf_once),
+      cmocka_unit_test(rods_pipeline_resumes), cmocka_unit_test(report_page_in_chromium)};
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -219,7 +219,8 @@ static void run_summary_named_species(void **state) {
   assert_non_null(fit);
   sqlite3 *h = open_db("shapes.db");
   static const char *const want[3] = {"shapes:dimers+tri+asym 600 200 NULL",
-                                      "shapes:tri+rod3 50 NULL NULL", "shapes:tri+rod3 50 NULL 0.9"};
+                                      "shapes:tri+rod3 50 NULL NULL",
+                                      "shapes:tri+rod3 50 NULL 0.9"};
   for (int run = 1; run <= 3; run++) {
     char sql[300], t[200], label[100];
     snprintf(sql, sizeof sql,
@@ -389,9 +390,11 @@ static void sql_doc_questions(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(params_view),       cmocka_unit_test(run_summary_area_fraction),
+      cmocka_unit_test(params_view),
+      cmocka_unit_test(run_summary_area_fraction),
       cmocka_unit_test(run_summary_named_species),
-      cmocka_unit_test(schema_upgrade),    cmocka_unit_test(queries_use_indexes),
+      cmocka_unit_test(schema_upgrade),
+      cmocka_unit_test(queries_use_indexes),
       cmocka_unit_test(sql_doc_questions),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
