@@ -83,6 +83,15 @@ int haff_export_main(int argc, char **argv) {
       return 2;
     }
     outpath = gsdpath;
+    /* the derived name escapes hd_opt_parse's check of -o: the same rule here (a DB.gsd that
+     * links to DB) */
+    if (hd_path_overwrites(outpath, path)) {
+      fprintf(stderr,
+              "haff export: %s would overwrite the input %s: refused, nothing written "
+              "(give -o FILE)\n",
+              outpath, path);
+      return 2;
+    }
   }
   hd_db *db = NULL;
   hd_error err;

@@ -57,11 +57,14 @@ static int same_bytes(const char *a, const char *b) {
 static void output_is_not_input(void **state) {
   (void)state;
   if (!haff) skip();
-  assert_int_equal(sh("cp d.db keep.db && ln -sf d.db link.db && ln -f d.db hard.db"), 0);
+  assert_int_equal(sh("cp d.db keep.db && ln -sf d.db link.db && ln -f d.db hard.db && "
+                      "ln -sf d.db d.gsd"),
+                   0);
   static const char *const cmds[] = {"haff-fit d.db -o d.db",
                                      "energy d.db -o d.db",
                                      "export xyz d.db -o d.db",
                                      "export xyz d.db --output link.db",
+                                     "export gsd d.db", /* its default d.gsd links to d.db */
                                      "haff-fit link.db -o d.db",
                                      "energy d.db -o hard.db",
                                      "table1 d.db -o ./link.db",
@@ -83,6 +86,7 @@ static void output_is_not_input(void **state) {
         exists("e.db"))
       fail_msg("haff %s wrote a file", cmds[k]);
   }
+  assert_int_equal(sh("rm d.gsd"), 0);
   /* and an output that is another file goes on */
   assert_int_equal(sh("%s energy link.db -o e.tsv", haff), 0);
   assert_true(same_bytes("d.db", "keep.db"));
