@@ -81,7 +81,7 @@ LIB     := $(BUILD)/libhaff.a
 SOLIB   := $(BUILD)/libhaff.so
 DEPS_STAMP := $(BUILD)/.deps-ok
 
-.PHONY: all deps test test-unit check-layers fuzz demo bench plots clean help format install uninstall scene-keys
+.PHONY: all deps test test-unit check-layers fuzz demo bench plots clean help format install uninstall scene-keys schema
 all: bin/haff $(SOLIB) $(BUILD)/haff.1
 
 help:
@@ -93,6 +93,7 @@ help:
 	@echo "make fuzz    libFuzzer on the parsers (tests/fuzz/fuzz_*.c), FUZZ_TIME s each"
 	@echo "make demo    run the demo scene and print what it logged"
 	@echo "make scene-keys  rewrite the key tables of docs/scene-keys.md from the key table"
+	@echo "make schema  rewrite the collisions table of db/schema.sql from its column table"
 	@echo "make bench   benchmarks -> bench/results.md"
 	@echo "make plots   the papers' figures (PNG, SVG, PDF) and tables -> plots/out/, all on plots/out/index.html"
 	@echo "make install PREFIX=/usr/local DESTDIR=   bin/haff, man page haff(1), bash completion,"
@@ -248,6 +249,11 @@ build-fuzz/tests/fuzz/%: tests/fuzz/%.c $(LIB)
 # tests/test_scene.c fails when they differ.
 scene-keys: $(BUILD)/tests/gen_scene_keys
 	@$< docs/scene-keys.md
+
+# The CREATE TABLE of collisions in db/schema.sql comes from the column table (db/hd_db.h,
+# HD_COLLISION_COLUMNS); tests/test_db.c fails when they differ.
+schema: $(BUILD)/tests/gen_schema
+	@$< db/schema.sql
 
 demo: bin/haff
 	@scenes/demo.sh

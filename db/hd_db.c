@@ -82,6 +82,17 @@ static void writer_stop(hd_db *db);
 #define HD_DB_QCAP 4096 /* rows per buffer handed to the writer */
 #define HD_DB_GROUP 32  /* collisions per multi-row INSERT */
 
+/* The columns of `collisions` (HD_COLLISION_COLUMNS, hd_db.h) as data. */
+static const struct coll_col {
+  const char *name, *sqltype, *doc;
+  int scope, since;
+} coll_cols[] = {
+#define COLL_COL(name, ctype, bind, sqltype, scope, since, doc) {#name, sqltype, doc, scope, since},
+    HD_COLLISION_COLUMNS(COLL_COL)
+#undef COLL_COL
+};
+#define COLL_NCOL (sizeof coll_cols / sizeof *coll_cols)
+
 static const char *const coll_kind_names[] = {"dimer-dimer", "dimer-disk", "disk-disk",
                                               "dimer-wall",  "disk-wall",  "rod-rod",
                                               "body-body",   "body-wall"};
@@ -159,22 +170,27 @@ static int prepare(hd_db *db, sqlite3_stmt **st, const char *sql, hd_error *err)
   return HD_OK;
 }
 
-/* The columns of a 2D collision row (the first 13 of an INSERT INTO collisions). */
-#define HD_COLL_COLS "run, seq, t, kind, i, j, disk_i, disk_j, theta_i, theta_j, f, de, vn"
-
-/* Prepares "INSERT INTO collisions (cols) VALUES (?,...),..." with HD_DB_GROUP rows of ncol
- * parameters each, numbered in order. */
-static int prepare_group(hd_db *db, sqlite3_stmt **st, const char *cols, int ncol, hd_error *err) {
-  char sql[64 + 256 + HD_DB_GROUP * (2 * 17 + 3)];
-  int len = snprintf(sql, 320, "INSERT INTO collisions (%s) VALUES ", cols);
-  for (int k = 0; k < HD_DB_GROUP; k++)
+/* Prepares "INSERT INTO collisions (run, ...) VALUES (?,...),..." for `rows` rows of every
+ * column of HD_COLLISION_COLUMNS, or (twod) of those but the rod-rod ones (left NULL), the
+ * parameters numbered in order (bind_collision). */
+static int prepare_coll(hd_db *db, sqlite3_stmt **st, int rows, int twod, hd_error *err) {
+  sqlite3_str *q = sqlite3_str_new(db->db);
+  int ncol = 1;
+  sqlite3_str_appendall(q, "INSERT INTO collisions (run");
+  for (size_t c = 0; c < COLL_NCOL; c++)
+    if (!twod || coll_cols[c].scope != HD_COLL_ROD) {
+      sqlite3_str_appendf(q, ", %s", coll_cols[c].name);
+      ncol++;
+    }
+  sqlite3_str_appendall(q, ") VALUES ");
+  for (int k = 0; k < rows; k++)
     for (int c = 0; c < ncol; c++)
-      len += snprintf(sql + len, sizeof sql - (size_t)len, "%s?%s",
-                      c   ? ","
-                      : k ? ",("
-                          : "(",
-                      c == ncol - 1 ? ")" : "");
-  return prepare(db, st, sql, err);
+      sqlite3_str_appendall(q, c ? (c == ncol - 1 ? ",?)" : ",?") : (k ? ",(?" : "(?"));
+  char *sql = sqlite3_str_finish(q);
+  if (!sql) return hd_error_set(err, HD_ENOMEM, "%s: out of memory", db->path);
+  int rc = prepare(db, st, sql, err);
+  sqlite3_free(sql);
+  return rc;
 }
 
 static void finalize_all(hd_db *db) {
@@ -252,11 +268,51 @@ static const struct {
     {"states", "species", "INTEGER"}, /* 4: the body's species.idx (NULL for rods) */
 };
 
-/* Whether table.column is one of added_columns (an older haff file may lack it). */
-static int added_column(const char *table, const char *column) {
-  for (size_t k = 0; k < sizeof added_columns / sizeof *added_columns; k++)
-    if (!strcmp(added_columns[k].table, table) && !strcmp(added_columns[k].column, column))
+/* The k-th column that a later schema version added to a table older files have: those of
+ * added_columns, then the collisions columns of HD_COLLISION_COLUMNS with a `since`.  Sets
+ * *table, *column and *decl and returns 1; returns 0 past the last. */
+static int added_at(size_t k, const char **table, const char **column, const char **decl) {
+  size_t na = sizeof added_columns / sizeof *added_columns;
+  if (k < na) {
+    *table = added_columns[k].table, *column = added_columns[k].column;
+    *decl = added_columns[k].decl;
+    return 1;
+  }
+  for (size_t c = 0; c < COLL_NCOL; c++)
+    if (coll_cols[c].since > 0 && k == na++) {
+      *table = "collisions", *column = coll_cols[c].name, *decl = coll_cols[c].sqltype;
       return 1;
+    }
+  return 0;
+}
+
+char *hd_db_collisions_create_sql(void) {
+  sqlite3_str *q = sqlite3_str_new(NULL);
+  sqlite3_str_appendall(q, "CREATE TABLE IF NOT EXISTS collisions (\n"
+                           "  run     INTEGER NOT NULL REFERENCES runs(id),\n");
+  for (size_t c = 0; c < COLL_NCOL; c++) {
+    const struct coll_col *k = &coll_cols[c];
+    int len = sqlite3_str_length(q);
+    sqlite3_str_appendf(q, "  %-7s %s%s", k->name, k->sqltype, c + 1 < COLL_NCOL ? "," : "");
+    if (*k->doc) { /* the comments from the 31st character of the line (db/schema.sql) */
+      int w = sqlite3_str_length(q) - len;
+      sqlite3_str_appendchar(q, w < 29 ? 30 - w : 1, ' ');
+      sqlite3_str_appendf(q, "-- %s", k->doc);
+    }
+    sqlite3_str_appendchar(q, 1, '\n');
+  }
+  sqlite3_str_appendall(q, ");\n");
+  char *sql = sqlite3_str_finish(q), *out = sql ? strdup(sql) : NULL;
+  sqlite3_free(sql);
+  return out;
+}
+
+/* Whether table.column is one that a later schema version added (added_at: an older haff file
+ * may lack it). */
+static int added_column(const char *table, const char *column) {
+  const char *t, *c, *d;
+  for (size_t k = 0; added_at(k, &t, &c, &d); k++)
+    if (!strcmp(t, table) && !strcmp(c, column)) return 1;
   return 0;
 }
 
@@ -352,7 +408,7 @@ static int column_missing(sqlite3 *h, const char *table, const char *column) {
 /* Applies db/schema.sql (every statement IF NOT EXISTS) and brings a file of an older schema
  * version (PRAGMA user_version below HD_DB_SCHEMA_VERSION; 0 for files made before it was
  * kept) up to this one, under the write lock so that two processes upgrading at once end the
- * same: the columns of added_columns that its tables lack are added (old rows read NULL), the
+ * same: the columns of added_at that its tables lack are added (old rows read NULL), the
  * views are dropped to be made again as this version defines them, and the version is
  * stamped; so is a file of this version that lacks some of them (made by an earlier build of
  * it, before runs.hcs_* were added).  Additive only: every older file stays readable, and older
@@ -366,9 +422,9 @@ static int schema_apply(hd_db *db, hd_error *err) {
                         "%s: schema version %d is newer than this haff's (%d): use a newer haff",
                         db->path, v, HD_DB_SCHEMA_VERSION);
   int missing = 0; /* a file of this version from a build before the last added columns */
-  for (size_t k = 0; v == HD_DB_SCHEMA_VERSION && k < sizeof added_columns / sizeof *added_columns;
-       k++) {
-    int m = column_missing(db->db, added_columns[k].table, added_columns[k].column);
+  const char *table, *column, *decl;
+  for (size_t k = 0; v == HD_DB_SCHEMA_VERSION && added_at(k, &table, &column, &decl); k++) {
+    int m = column_missing(db->db, table, column);
     if (m < 0) return sql_error(db, err, "read the schema");
     missing |= m;
   }
@@ -380,12 +436,11 @@ static int schema_apply(hd_db *db, hd_error *err) {
   if (sqlite3_exec(db->db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK)
     return sql_error(db, err, "upgrade the schema");
   int rc = HD_OK;
-  for (size_t k = 0; !rc && k < sizeof added_columns / sizeof *added_columns; k++) {
-    int m = column_missing(db->db, added_columns[k].table, added_columns[k].column);
+  for (size_t k = 0; !rc && added_at(k, &table, &column, &decl); k++) {
+    int m = column_missing(db->db, table, column);
     char sql[256];
-    /* names of added_columns[], this file's constants (a name cannot be a bound parameter) */
-    snprintf(sql, sizeof sql, "ALTER TABLE %s ADD COLUMN %s %s", added_columns[k].table,
-             added_columns[k].column, added_columns[k].decl);
+    /* names of added_at, this program's constants (a name cannot be a bound parameter) */
+    snprintf(sql, sizeof sql, "ALTER TABLE %s ADD COLUMN %s %s", table, column, decl);
     if (m < 0 || (m && sqlite3_exec(db->db, sql, NULL, NULL, NULL) != SQLITE_OK))
       rc = sql_error(db, err, "upgrade the schema");
   }
@@ -470,17 +525,11 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
                  "INSERT INTO runs (scene, seed, status, started, version) VALUES "
                  "(?1, ?2, 'running', strftime('%Y-%m-%dT%H:%M:%SZ','now'), ?3)",
                  err);
-  if (!rc)
-    rc = prepare(db, &db->ins_coll,
-                 "INSERT INTO collisions (run, seq, t, kind, i, j, disk_i, disk_j, "
-                 "theta_i, theta_j, f, de, vn, eps, e_tr, tb_i, tb_j) VALUES "
-                 "(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, "
-                 "?17)",
-                 err);
-  if (!rc) /* the same, HD_DB_GROUP rows per statement (parameters numbered in order) */
-    rc = prepare_group(db, &db->ins_coll_k, HD_COLL_COLS ", eps, e_tr, tb_i, tb_j", 17, err);
+  if (!rc) rc = prepare_coll(db, &db->ins_coll, 1, 0, err);
+  if (!rc) /* the same, HD_DB_GROUP rows per statement */
+    rc = prepare_coll(db, &db->ins_coll_k, HD_DB_GROUP, 0, err);
   if (!rc) /* 2D collisions: the rod columns are left to their default, NULL */
-    rc = prepare_group(db, &db->ins_coll2_k, HD_COLL_COLS, 13, err);
+    rc = prepare_coll(db, &db->ins_coll2_k, HD_DB_GROUP, 1, err);
   if (!rc)
     rc = prepare(db, &db->ins_sample,
                  "INSERT INTO samples (run, t, collisions, cpd, e_tr, e_rot, e_tr_dimer, "
@@ -751,37 +800,41 @@ static int batch_step(hd_db *db, sqlite3_stmt *st, hd_error *err, const char *wh
   return HD_OK;
 }
 
-/* Binds the 2D columns of collision row r at parameters base+1 .. base+13 of st. */
-static void bind_collision_2d(sqlite3_stmt *st, int base, int64_t run, const hd_collision_row *r) {
-  sqlite3_bind_int64(st, base + 1, run);
-  sqlite3_bind_int64(st, base + 2, r->seq);
-  bind_real(st, base + 3, r->t);
-  sqlite3_bind_text(st, base + 4, hd_coll_kind_name(r->kind), -1, SQLITE_STATIC);
-  sqlite3_bind_int64(st, base + 5, r->i);
-  sqlite3_bind_int64(st, base + 6, r->j);
-  sqlite3_bind_int(st, base + 7, r->disk_i);
-  sqlite3_bind_int(st, base + 8, r->disk_j);
-  bind_real(st, base + 9, r->theta_i);
-  bind_real(st, base + 10, r->theta_j);
-  bind_real(st, base + 11, r->f);
-  bind_real(st, base + 12, r->de);
-  bind_real(st, base + 13, r->vn);
+/* Binds value v at parameter i of st, or NULL when !keep (the bind kinds of
+ * HD_COLLISION_COLUMNS). */
+static void bind_INT64(sqlite3_stmt *st, int i, int64_t v, int keep) {
+  keep ? sqlite3_bind_int64(st, i, v) : sqlite3_bind_null(st, i);
+}
+static void bind_INT(sqlite3_stmt *st, int i, int v, int keep) {
+  keep ? sqlite3_bind_int(st, i, v) : sqlite3_bind_null(st, i);
+}
+static void bind_REAL(sqlite3_stmt *st, int i, double v, int keep) {
+  bind_real(st, i, keep ? v : NAN);
+}
+static void bind_KIND(sqlite3_stmt *st, int i, hd_coll_kind v, int keep) {
+  keep ? sqlite3_bind_text(st, i, hd_coll_kind_name(v), -1, SQLITE_STATIC)
+       : sqlite3_bind_null(st, i);
 }
 
-/* Binds a whole collision row, the rod columns too, at parameters base+1 .. base+17. */
-static void bind_collision(sqlite3_stmt *st, int base, int64_t run, const hd_collision_row *r) {
-  bind_collision_2d(st, base, run, r);
-  int rod = r->kind == HD_CK_ROD_ROD;
-  bind_real(st, base + 14, rod ? r->eps : NAN);
-  bind_real(st, base + 15, rod ? r->e_tr : NAN);
-  bind_real(st, base + 16, rod ? r->tb_i : NAN);
-  bind_real(st, base + 17, rod ? r->tb_j : NAN);
+/* Binds run and collision row r at parameters base+1, base+2, ... of st, in the order of
+ * prepare_coll (twod: without the rod-rod columns); a column of another scope than r's kind is
+ * bound NULL.  Returns the number of parameters bound. */
+static int bind_collision(sqlite3_stmt *st, int base, int64_t run, const hd_collision_row *r,
+                          int twod) {
+  int p = base, rod = r->kind == HD_CK_ROD_ROD;
+  sqlite3_bind_int64(st, ++p, run);
+#define COLL_BIND(name, ctype, bind, sqltype, scope, since, doc)                                   \
+  if (!twod || (scope) != HD_COLL_ROD)                                                             \
+    bind_##bind(st, ++p, r->name, (scope) == HD_COLL_ALL || ((scope) == HD_COLL_ROD) == rod);
+  HD_COLLISION_COLUMNS(COLL_BIND)
+#undef COLL_BIND
+  return p - base;
 }
 
 static int put_collision(hd_db *db, int64_t run, const hd_collision_row *r, hd_error *err) {
   int rc = batch_begin(db, err);
   if (rc) return rc;
-  bind_collision(db->ins_coll, 0, run, r);
+  bind_collision(db->ins_coll, 0, run, r, 0);
   return batch_step(db, db->ins_coll, err, "insert collision");
 }
 
@@ -792,10 +845,8 @@ static int put_collision_group(hd_db *db, const rec *g, hd_error *err) {
   int rods = 0;
   for (int k = 0; k < HD_DB_GROUP; k++) rods |= g[k].u.c.kind == HD_CK_ROD_ROD;
   sqlite3_stmt *st = rods ? db->ins_coll_k : db->ins_coll2_k;
-  if (rods)
-    for (int k = 0; k < HD_DB_GROUP; k++) bind_collision(st, 17 * k, g[k].run, &g[k].u.c);
-  else
-    for (int k = 0; k < HD_DB_GROUP; k++) bind_collision_2d(st, 13 * k, g[k].run, &g[k].u.c);
+  for (int k = 0, base = 0; k < HD_DB_GROUP; k++)
+    base += bind_collision(st, base, g[k].run, &g[k].u.c, !rods);
   if (sqlite3_step(st) != SQLITE_DONE) return batch_fail(db, st, err, "insert collisions");
   sqlite3_reset(st);
   db->pending += HD_DB_GROUP;

@@ -41,20 +41,55 @@ typedef enum hd_coll_kind {
 /* The text of a collision kind. */
 const char *hd_coll_kind_name(hd_coll_kind k);
 
-/* One row of `collisions`. NaN doubles are stored as NULL. */
+/* The columns of `collisions` after `run`, in order: the one table that makes the struct
+ * hd_collision_row, the INSERT statements and their binds (hd_db.c) and the CREATE TABLE of
+ * db/schema.sql with its column comments (`make schema` writes it; tests/test_db.c checks it).
+ * Adding a column is a row here and the code that fills the field (docs/architecture.md, "How
+ * to add a collisions column").  X(name, ctype, bind, sqltype, scope, since, doc):
+ *   ctype    the field's C type;  bind: how it is bound: INT64, INT, REAL (NaN -> NULL) or KIND
+ *            (hd_coll_kind, stored as its text);
+ *   sqltype  the column's type and constraints in the CREATE TABLE;
+ *   scope    HD_COLL_ALL: bound for every kind; HD_COLL_ROD: rod-rod rows only (NULL for the
+ *            other kinds whatever the field holds, and not in the 2D insert);  HD_COLL_2D: NULL
+ *            in rod-rod rows;
+ *   since    the schema version that added it (0: in every file; a later one is added to the
+ *            collisions of an older file with ALTER TABLE, old rows NULL, so it cannot be NOT
+ *            NULL; bump HD_DB_SCHEMA_VERSION with it);
+ *   doc      the field's meaning, the column's comment in db/schema.sql ("" for none). */
+#define HD_COLLISION_COLUMNS(X)                                                                    \
+  X(seq, int64_t, INT64, "INTEGER NOT NULL", HD_COLL_ALL, 0,                                       \
+    "1, 2, ... within the run (all collisions count, logged or not)")                              \
+  X(t, double, REAL, "REAL NOT NULL", HD_COLL_ALL, 0, "time")                                      \
+  X(kind, hd_coll_kind, KIND, "TEXT NOT NULL", HD_COLL_ALL, 0, "collision kind (the list above)")  \
+  X(i, int64_t, INT64, "INTEGER NOT NULL", HD_COLL_ALL, 0, "body (0-based)")                       \
+  X(j, int64_t, INT64, "INTEGER NOT NULL", HD_COLL_ALL, 0, "body, or -1 - wall for a wall")        \
+  X(disk_i, int, INT, "INTEGER", HD_COLL_ALL, 0, "the touching disk of i (0 for a disk)")          \
+  X(disk_j, int, INT, "INTEGER", HD_COLL_ALL, 0, "the touching disk of j (-1 for a wall)")         \
+  X(theta_i, double, REAL, "REAL", HD_COLL_ALL, 0, "contact angle of i (NULL when not defined)")   \
+  X(theta_j, double, REAL, "REAL", HD_COLL_ALL, 0, "contact angle of j")                           \
+  X(f, double, REAL, "REAL", HD_COLL_ALL, 0, "orientation factor mu_eff/m")                        \
+  X(de, double, REAL, "REAL", HD_COLL_ALL, 0, "kinetic energy after minus before")                 \
+  X(vn, double, REAL, "REAL", HD_COLL_ALL, 0, "normal relative velocity before (< 0)")             \
+  X(eps, double, REAL, "REAL", HD_COLL_ROD, 0, "rods: coefficient of restitution drawn")           \
+  X(e_tr, double, REAL, "REAL", HD_COLL_ROD, 0,                                                    \
+    "rods: translational energy of the relative motion")                                           \
+  X(tb_i, double, REAL, "REAL", HD_COLL_ROD, 0, "rods: bath temperature of i after the collision") \
+  X(tb_j, double, REAL, "REAL", HD_COLL_ROD, 0, "rods: bath temperature of j after the collision")
+
+/* The scope of a collisions column (HD_COLLISION_COLUMNS). */
+enum { HD_COLL_ALL, HD_COLL_ROD, HD_COLL_2D };
+
+/* One row of `collisions`: a field per column of HD_COLLISION_COLUMNS, in its order, meaning
+ * what its doc says (build it with designated initialisers).  NaN doubles are stored as NULL. */
 typedef struct hd_collision_row {
-  int64_t seq; /* 1, 2, ... collision number within the run */
-  double t;    /* time */
-  hd_coll_kind kind;
-  int64_t i, j;            /* bodies (0-based); j < 0 for a wall */
-  int disk_i, disk_j;      /* which disk of each (0/1; 0 for a disk; -1 for a wall) */
-  double theta_i, theta_j; /* contact angles, NaN when not defined */
-  double f, de, vn;        /* orientation factor, energy change, normal relative velocity */
-  /* rod-rod only (stored as NULL for the other kinds, whatever their value): */
-  double eps;        /* coefficient of restitution drawn */
-  double e_tr;       /* energy of the relative motion before, mu u^2 / 2 */
-  double tb_i, tb_j; /* bath temperatures of rods i and j after the collision */
+#define HD_COLL_FIELD(name, ctype, bind, sqltype, scope, since, doc) ctype name;
+  HD_COLLISION_COLUMNS(HD_COLL_FIELD)
+#undef HD_COLL_FIELD
 } hd_collision_row;
+
+/* The CREATE TABLE statement of `collisions` that HD_COLLISION_COLUMNS gives, as db/schema.sql
+ * holds it (from "CREATE TABLE" to ");\n"), malloc'd; NULL when out of memory. */
+char *hd_db_collisions_create_sql(void);
 
 /* One row of `samples` (energies per particle). */
 typedef struct hd_sample_row {

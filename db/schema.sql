@@ -91,21 +91,21 @@ CREATE TABLE IF NOT EXISTS provenance (
 CREATE TABLE IF NOT EXISTS collisions (
   run     INTEGER NOT NULL REFERENCES runs(id),
   seq     INTEGER NOT NULL,   -- 1, 2, ... within the run (all collisions count, logged or not)
-  t       REAL NOT NULL,
-  kind    TEXT NOT NULL,
-  i       INTEGER NOT NULL,
-  j       INTEGER NOT NULL,
-  disk_i  INTEGER,
-  disk_j  INTEGER,
-  theta_i REAL,
-  theta_j REAL,
-  f       REAL,
-  de      REAL,
-  vn      REAL,
+  t       REAL NOT NULL,      -- time
+  kind    TEXT NOT NULL,      -- collision kind (the list above)
+  i       INTEGER NOT NULL,   -- body (0-based)
+  j       INTEGER NOT NULL,   -- body, or -1 - wall for a wall
+  disk_i  INTEGER,            -- the touching disk of i (0 for a disk)
+  disk_j  INTEGER,            -- the touching disk of j (-1 for a wall)
+  theta_i REAL,               -- contact angle of i (NULL when not defined)
+  theta_j REAL,               -- contact angle of j
+  f       REAL,               -- orientation factor mu_eff/m
+  de      REAL,               -- kinetic energy after minus before
+  vn      REAL,               -- normal relative velocity before (< 0)
   eps     REAL,               -- rods: coefficient of restitution drawn
   e_tr    REAL,               -- rods: translational energy of the relative motion
-  tb_i    REAL,               -- rods: bath temperatures after the collision
-  tb_j    REAL
+  tb_i    REAL,               -- rods: bath temperature of i after the collision
+  tb_j    REAL                -- rods: bath temperature of j after the collision
 );
 
 -- Energies per body every [log] samples_every cpd.  cpd = 2 * pair collisions / N.

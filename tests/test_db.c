@@ -112,22 +112,22 @@ static void assert_integrity_ok(const char *path) {
 }
 
 static hd_collision_row coll(int64_t seq) {
-  hd_collision_row r = {seq,
-                        0.01 * (double)seq,
-                        HD_CK_DIMER_DIMER,
-                        seq % 7,
-                        seq % 5 + 7,
-                        0,
-                        1,
-                        0.25,
-                        -0.5,
-                        0.7,
-                        -0.01,
-                        -0.3,
-                        NAN,
-                        NAN,
-                        NAN,
-                        NAN};
+  hd_collision_row r = {.seq = seq,
+                        .t = 0.01 * (double)seq,
+                        .kind = HD_CK_DIMER_DIMER,
+                        .i = seq % 7,
+                        .j = seq % 5 + 7,
+                        .disk_i = 0,
+                        .disk_j = 1,
+                        .theta_i = 0.25,
+                        .theta_j = -0.5,
+                        .f = 0.7,
+                        .de = -0.01,
+                        .vn = -0.3,
+                        .eps = NAN,
+                        .e_tr = NAN,
+                        .tb_i = NAN,
+                        .tb_j = NAN};
   return r;
 }
 
@@ -152,22 +152,22 @@ static void round_trip(void **state) {
 
   /* every collision kind once, with NaN in theta_j, f and vn for some */
   for (int k = 0; k <= HD_CK_ROD_ROD; k++) {
-    hd_collision_row r = {k + 1,
-                          0.5 + k,
-                          (hd_coll_kind)k,
-                          k,
-                          k == 3 ? -2 : k + 1,
-                          k % 2,
-                          -1,
-                          0.125 * k,
-                          k % 2 ? NAN : -0.25,
-                          k == 2 ? NAN : 0.6,
-                          -0.5 * k,
-                          k == 4 ? NAN : -1.0,
-                          0.5,
-                          1.0,
-                          2.0,
-                          3.0};
+    hd_collision_row r = {.seq = k + 1,
+                          .t = 0.5 + k,
+                          .kind = (hd_coll_kind)k,
+                          .i = k,
+                          .j = k == 3 ? -2 : k + 1,
+                          .disk_i = k % 2,
+                          .disk_j = -1,
+                          .theta_i = 0.125 * k,
+                          .theta_j = k % 2 ? NAN : -0.25,
+                          .f = k == 2 ? NAN : 0.6,
+                          .de = -0.5 * k,
+                          .vn = k == 4 ? NAN : -1.0,
+                          .eps = 0.5,
+                          .e_tr = 1.0,
+                          .tb_i = 2.0,
+                          .tb_j = 3.0};
     assert_int_equal(hd_db_log_collision(db, run, &r, &err), HD_OK);
   }
   hd_sample_row s = {1.25, 42, 0.84, 0.75, 0.5, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
@@ -1044,6 +1044,103 @@ static void queries(void **state) {
 }
 
 /* ---------------------------------------------------------------------------------------- */
+/* the collisions column table (HD_COLLISION_COLUMNS) */
+
+/* The value of column c in collision row k of every_collision_column_round_trips, by the bind
+ * kind of the column: distinct in every row and column; row 40 is the rod-rod one. */
+static int64_t coll_val_INT64(int k, int c) {
+  return 1000 * k + c;
+}
+static int coll_val_INT(int k, int c) {
+  return 1000 * k + c;
+}
+static double coll_val_REAL(int k, int c) {
+  return 1000.0 * k + c + 0.25;
+}
+static hd_coll_kind coll_val_KIND(int k, int c) {
+  (void)c;
+  return k == 40 ? HD_CK_ROD_ROD : (hd_coll_kind)(k % 5);
+}
+
+/* Every column of HD_COLLISION_COLUMNS goes from its field into its column through each of the
+ * three inserts of hd_db.c (HD_DB_GROUP = 32 2D rows at once, 32 rows with a rod-rod one, then a
+ * row alone), and is NULL where its scope says (a rod-rod column in a 2D row, a 2D column in a
+ * rod-rod row): a column added to the table is tested here without an edit. */
+static void every_collision_column_round_trips(void **state) {
+  fixture *fx = *state;
+  hd_error err;
+  hd_db *db = open_ok(fx->path);
+  int64_t run = begin_run(db, "[system]\nbox = 3 4\n", 1);
+  enum { NROW = 2 * 32 + 1 };
+  for (int k = 0; k < NROW; k++) {
+    hd_collision_row r;
+    memset(&r, 0, sizeof r);
+    int c = 0;
+#define COLL_SET(name, ctype, bind, sqltype, scope, since, doc) r.name = coll_val_##bind(k, c++);
+    HD_COLLISION_COLUMNS(COLL_SET)
+#undef COLL_SET
+    assert_int_equal(hd_db_log_collision(db, run, &r, &err), HD_OK);
+  }
+  close_ok(db);
+
+  sqlite3 *h = NULL;
+  assert_int_equal(sqlite3_open_v2(fx->path, &h, SQLITE_OPEN_READONLY, NULL), SQLITE_OK);
+  int c = 0, ncol = 0;
+#define COLL_CHECK(name, ctype, bind, sqltype, scope, since, doc)                                  \
+  do {                                                                                             \
+    sqlite3_stmt *q = NULL;                                                                        \
+    assert_int_equal(sqlite3_prepare_v2(h, "SELECT " #name ", run FROM collisions ORDER BY rowid", \
+                                        -1, &q, NULL),                                             \
+                     SQLITE_OK);                                                                   \
+    for (int k = 0; k < NROW; k++) {                                                               \
+      assert_int_equal(sqlite3_step(q), SQLITE_ROW);                                               \
+      assert_int_equal(sqlite3_column_int64(q, 1), run);                                           \
+      int rod = coll_val_KIND(k, 0) == HD_CK_ROD_ROD;                                              \
+      int keep = (scope) == HD_COLL_ALL || ((scope) == HD_COLL_ROD) == rod;                        \
+      if (!keep) {                                                                                 \
+        if (sqlite3_column_type(q, 0) != SQLITE_NULL)                                              \
+          fail_msg("collisions.%s of row %d (kind %s): not NULL", #name, k,                        \
+                   hd_coll_kind_name(coll_val_KIND(k, 0)));                                        \
+      } else if (!strcmp(#bind, "KIND")) {                                                         \
+        assert_string_equal((const char *)sqlite3_column_text(q, 0),                               \
+                            hd_coll_kind_name(coll_val_KIND(k, c)));                               \
+      } else if (sqlite3_column_double(q, 0) != (double)coll_val_##bind(k, c)) {                   \
+        fail_msg("collisions.%s of row %d: %.17g, want %.17g", #name, k,                           \
+                 sqlite3_column_double(q, 0), (double)coll_val_##bind(k, c));                      \
+      }                                                                                            \
+    }                                                                                              \
+    assert_int_equal(sqlite3_step(q), SQLITE_DONE);                                                \
+    sqlite3_finalize(q);                                                                           \
+    c++;                                                                                           \
+  } while (0);
+  HD_COLLISION_COLUMNS(COLL_CHECK)
+#undef COLL_CHECK
+  /* and the table has no column the column table lacks: run, then its columns */
+  ncol = (int)q_int(h, "SELECT count(*) FROM pragma_table_info('collisions')");
+  assert_int_equal(ncol, 1 + c);
+  sqlite3_close(h);
+}
+
+/* db/schema.sql holds the CREATE TABLE of collisions that HD_COLLISION_COLUMNS gives, column
+ * comments and all (`make schema` rewrites it). */
+static void schema_sql_collisions_is_the_column_table(void **state) {
+  (void)state;
+  FILE *f = fopen("db/schema.sql", "rb");
+  assert_non_null(f);
+  static char sql[1 << 16];
+  size_t n = fread(sql, 1, sizeof sql - 1, f);
+  fclose(f);
+  sql[n] = '\0';
+  char *gen = hd_db_collisions_create_sql();
+  assert_non_null(gen);
+  if (!strstr(sql, gen))
+    fail_msg("db/schema.sql is not what the column table gives: run make schema; the table gives\n"
+             "%s",
+             gen);
+  free(gen);
+}
+
+/* ---------------------------------------------------------------------------------------- */
 /* haff export xyz */
 
 static char *slurp(const char *path) {
@@ -1215,6 +1312,8 @@ static void export_xyz(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup_teardown(round_trip, setup, teardown),
+      cmocka_unit_test_setup_teardown(every_collision_column_round_trips, setup, teardown),
+      cmocka_unit_test(schema_sql_collisions_is_the_column_table),
       cmocka_unit_test_setup_teardown(nan_in_not_null_column, setup, teardown),
       cmocka_unit_test_setup_teardown(batches_and_kill9, setup, teardown),
       cmocka_unit_test_setup_teardown(checkpoint_with_its_rows, setup, teardown),

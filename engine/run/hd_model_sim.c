@@ -24,22 +24,18 @@ static int m_next(void *m, double t_stop, hd_collision_row *row, hd_error *err) 
   int rc = hd_sim_next(m, t_stop, &ev, err);
   if (rc) return rc;
   const hd_sim *s = m;
-  *row = (hd_collision_row){0,
-                            ev.t,
-                            (hd_coll_kind)ev.kind,
-                            s->id[ev.i],
-                            ev.j >= 0 ? s->id[ev.j] : ev.j,
-                            ev.ka,
-                            ev.kb,
-                            ev.info.theta_i,
-                            ev.info.theta_j,
-                            ev.info.f,
-                            ev.info.de,
-                            ev.info.vn,
-                            NAN,
-                            NAN,
-                            NAN,
-                            NAN};
+  /* seq is the store's; the rod-rod columns (eps ... tb_j) are stored NULL for these kinds */
+  *row = (hd_collision_row){.t = ev.t,
+                            .kind = (hd_coll_kind)ev.kind,
+                            .i = s->id[ev.i],
+                            .j = ev.j >= 0 ? s->id[ev.j] : ev.j,
+                            .disk_i = ev.ka,
+                            .disk_j = ev.kb,
+                            .theta_i = ev.info.theta_i,
+                            .theta_j = ev.info.theta_j,
+                            .f = ev.info.f,
+                            .de = ev.info.de,
+                            .vn = ev.info.vn};
   return HD_OK;
 }
 

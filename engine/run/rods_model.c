@@ -46,8 +46,21 @@ static int m_next(void *m, double t_stop, hd_collision_row *row, hd_error *err) 
   hd_rods_event ev;
   int rc = hd_rods_next(m, t_stop, &ev, err);
   if (rc) return rc;
-  *row = (hd_collision_row){0,   ev.t, HD_CK_ROD_ROD, ev.i, ev.j,   -1,      -1,      NAN,
-                            NAN, NAN,  ev.de,         ev.u, ev.eps, ev.e_tr, ev.tb_i, ev.tb_j};
+  *row = (hd_collision_row){.t = ev.t, /* seq is the store's */
+                            .kind = HD_CK_ROD_ROD,
+                            .i = ev.i,
+                            .j = ev.j,
+                            .disk_i = -1,
+                            .disk_j = -1,
+                            .theta_i = NAN,
+                            .theta_j = NAN,
+                            .f = NAN,
+                            .de = ev.de,
+                            .vn = ev.u,
+                            .eps = ev.eps,
+                            .e_tr = ev.e_tr,
+                            .tb_i = ev.tb_i,
+                            .tb_j = ev.tb_j};
   return HD_OK;
 }
 
