@@ -93,6 +93,17 @@ class Database:
                 "PRAGMA table_info(%s)" % table)}
         return column in self._columns[table]
 
+    def _spec(self, table, spec):
+        """spec and, after it, the file's columns of table that spec lacks (a column added to
+        the table later, e.g. one of db/hd_db.h's HD_COLLISION_COLUMNS): INTEGER as i8 (NULL
+        -1), REAL as f8 (NULL NaN), other types as text."""
+        out = dict(spec)
+        for r in self.con.execute("PRAGMA table_info(%s)" % table):
+            if r[1] not in out and r[1] != "run":
+                t = (r[2] or "").upper()
+                out[r[1]] = "i8" if t.startswith("INT") else "f8" if t.startswith("REAL") else "U64"
+        return out
+
     def _select(self, table, columns, spec):
         """SQL expressions and dtype for columns of table (a missing column reads NULL)."""
         exprs, fields = [], []
@@ -187,13 +198,15 @@ class Database:
         """The collisions of a run (or of every run, with a "run" field), in (run, seq) order,
         as a numpy structured array: seq, t, kind (a code: COLLISION_KINDS[kind]; a DataFrame
         has it as a Categorical), i, j, disk_i, disk_j (-1 for NULL), theta_i, theta_j, f, de,
-        vn, eps, e_tr, tb_i, tb_j (NaN for NULL).  kinds: only these kinds (names); columns:
+        vn, eps, e_tr, tb_i, tb_j (NaN for NULL), then any column the file has besides (a later
+        one: INTEGER as i8, -1 for NULL, REAL as f8).  kinds: only these kinds (names); columns:
         only these fields.  chunk=N: an iterator over arrays (or DataFrames) of at most N rows,
         for files larger than memory.  Reads ~3x faster than pandas.read_sql (docs/python.md)."""
-        cols = list(columns or _COLLISION_COLUMNS)
+        spec = self._spec("collisions", _COLLISION_COLUMNS)
+        cols = list(columns or spec)
         if run is None and "run" not in cols:
             cols = ["run"] + cols
-        spec = dict(_COLLISION_COLUMNS, run="i8")
+        spec["run"] = "i8"
         exprs, dtype = self._select("collisions", cols, spec)
         where, args = self._runs_where(run)
         if kinds:
