@@ -1155,7 +1155,7 @@ static char *slurp(const char *path) {
 
 /* states.species (schema version 4, issue 28): each body's species.idx is stored (NULL for a
  * rod); a file of version 3 (states without the column, one row) opened for writing gets the
- * column, its old row reads NULL, new rows carry their species, and user_version is 4. */
+ * column, its old row reads NULL, new rows carry their species, and user_version is this haff's. */
 static void states_species(void **state) {
   fixture *fx = *state;
   sqlite3 *h = NULL;
@@ -1189,7 +1189,7 @@ static void states_species(void **state) {
                    SQLITE_OK);
   assert_int_equal(sqlite3_step(q), SQLITE_ROW);
   assert_string_equal((const char *)sqlite3_column_text(q, 0), "null 3 1 null");
-  assert_int_equal(sqlite3_column_int(q, 1), 4);
+  assert_int_equal(sqlite3_column_int(q, 1), HD_DB_SCHEMA_VERSION);
   sqlite3_finalize(q);
   sqlite3_close(h);
 }
