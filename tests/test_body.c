@@ -51,13 +51,13 @@ static int ndisks(const hd_shape *s) {
   return s->n;
 }
 
-/* The same shape for the general code (HD_SHAPE_CLUSTER): its disks as given. */
+/* The same shape for the general code (HD_KIND_BODY): its disks as given. */
 static hd_shape general(const hd_shape *s) {
   hd_shape g;
   double x[HD_MAX_BODY_DISKS], y[HD_MAX_BODY_DISKS];
   for (int k = 0; k < s->n; k++) x[k] = s->ox[k], y[k] = s->oy[k];
   assert_int_equal(hd_shape_cluster(&g, s->n, x, y, s->dk, s->mk, 0), 0);
-  assert_int_equal(g.tag, HD_SHAPE_CLUSTER);
+  assert_int_equal(g.tag, HD_KIND_BODY);
   return g;
 }
 
@@ -79,11 +79,11 @@ static hd_shape dimer_asym(void);
 static void ref_pos(const hd_kin *b, const hd_shape *s, int k, double t, double *x, double *y) {
   *x = b->x + b->vx * t;
   *y = b->y + b->vy * t;
-  if (s->tag == HD_SHAPE_DIMER) {
+  if (s->tag == HD_KIND_DIMER) {
     double g = (k ? 0.5 : -0.5) * s->a, ang = b->phi + b->omega * t;
     *x += g * cos(ang);
     *y += g * sin(ang);
-  } else if (s->tag == HD_SHAPE_CLUSTER) { /* the offset turned by the angle */
+  } else if (s->tag == HD_KIND_BODY) { /* the offset turned by the angle */
     double ang = b->phi + b->omega * t;
     *x += s->ox[k] * cos(ang) - s->oy[k] * sin(ang);
     *y += s->ox[k] * sin(ang) + s->oy[k] * cos(ang);
@@ -93,11 +93,11 @@ static void ref_pos(const hd_kin *b, const hd_shape *s, int k, double t, double 
 static void ref_vel(const hd_kin *b, const hd_shape *s, int k, double *vx, double *vy) {
   *vx = b->vx;
   *vy = b->vy;
-  if (s->tag == HD_SHAPE_DIMER) {
+  if (s->tag == HD_KIND_DIMER) {
     double g = (k ? 0.5 : -0.5) * s->a * b->omega;
     *vx -= g * sin(b->phi);
     *vy += g * cos(b->phi);
-  } else if (s->tag == HD_SHAPE_CLUSTER) { /* omega x the turned offset */
+  } else if (s->tag == HD_KIND_BODY) { /* omega x the turned offset */
     double c = cos(b->phi), sn = sin(b->phi);
     *vx -= b->omega * (s->ox[k] * sn + s->oy[k] * c);
     *vy += b->omega * (s->ox[k] * c - s->oy[k] * sn);
@@ -318,8 +318,8 @@ static void random_contact(gsl_rng *r, const hd_shape *sa, const hd_shape *sb, d
                 gsl_ran_gaussian(r, 1),
                 unif(r, -M_PI, M_PI),
                 gsl_ran_gaussian(r, wsc)};
-    if (sa->tag == HD_SHAPE_DISK) a.phi = a.omega = 0.0;
-    if (sb->tag == HD_SHAPE_DISK) b.phi = b.omega = 0.0;
+    if (sa->tag == HD_KIND_DISK) a.phi = a.omega = 0.0;
+    if (sb->tag == HD_KIND_DISK) b.phi = b.omega = 0.0;
     int i = (int)gsl_rng_uniform_int(r, (unsigned long)ndisks(sa));
     int j = (int)gsl_rng_uniform_int(r, (unsigned long)ndisks(sb));
     double D = 0.5 * (sa->dk[i] + sb->dk[j]);
@@ -386,13 +386,13 @@ static double paper_de(const hd_kin *A, const hd_shape *sa, const hd_kin *B, con
   double r13x = r1x - r3x, r13y = r1y - r3y, r12x = r1x - r2x, r12y = r1y - r2y;
   double r34x = r3x - r4x, r34y = r3y - r4y, d2 = r13x * r13x + r13y * r13y;
   double g = (v3x - v1x) * r13x + (v3y - v1y) * r13y, l = 1.0 - alpha * alpha;
-  if (sa->tag == HD_SHAPE_DIMER && sb->tag == HD_SHAPE_DIMER) { /* eq. 19 (equal m, a) */
-    if (sa->a != sb->a || sa->m != sb->m) return NAN;           /* not in the paper */
+  if (sa->tag == HD_KIND_DIMER && sb->tag == HD_KIND_DIMER) { /* eq. 19 (equal m, a) */
+    if (sa->a != sb->a || sa->m != sb->m) return NAN;         /* not in the paper */
     double a2 = sa->a * sa->a, x = r13x * r12x + r13y * r12y, y = r13x * r34x + r13y * r34y;
     return -sa->m * l / (4 * d2) * g * g / (1 - (x * x + y * y) / (4 * a2 * d2));
   }
-  if (sa->tag == HD_SHAPE_DIMER || sb->tag == HD_SHAPE_DIMER) { /* eq. 23, C^2 = d2 */
-    const hd_shape *sd = sa->tag == HD_SHAPE_DIMER ? sa : sb, *sk = sd == sa ? sb : sa;
+  if (sa->tag == HD_KIND_DIMER || sb->tag == HD_KIND_DIMER) { /* eq. 23, C^2 = d2 */
+    const hd_shape *sd = sa->tag == HD_KIND_DIMER ? sa : sb, *sk = sd == sa ? sb : sa;
     double x = sd == sa ? -(r13x * r12x + r13y * r12y) : (r13x * r34x + r13y * r34y);
     return -sd->m * l / (2 * d2) * g * g / (1 + sd->m / sk->m - x * x / (2 * sd->a * sd->a * d2));
   }
@@ -415,7 +415,7 @@ static double ref_vn(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const
 /* Outward axis angle test: cos and sin of theta against e.n, e x n from the disk positions. */
 static void check_theta(const hd_kin *k, const hd_shape *s, int kk, double nx, double ny, double th,
                         double D) {
-  if (s->tag != HD_SHAPE_DIMER) {
+  if (s->tag != HD_KIND_DIMER) {
     assert_true(isnan(th));
     return;
   }
@@ -480,17 +480,17 @@ static void check_pair_collision(gsl_rng *r, const hd_shape *sa, const hd_shape 
   check_theta(&A, sa, ka, nx, ny, in.theta_i, D);
   check_theta(&B, sb, kb, -nx, -ny, in.theta_j, D);
   double f;
-  if (sa->tag == HD_SHAPE_DIMER && sb->tag == HD_SHAPE_DIMER) {
+  if (sa->tag == HD_KIND_DIMER && sb->tag == HD_KIND_DIMER) {
     /* eq. 36 for equal disk masses; in general mu/m_A = 1/((1 + s_i^2)/2 + (1 + s_j^2) m_A/(2 m_B))
      */
     double ci = cos(in.theta_i), cj = cos(in.theta_j), si = sin(in.theta_i), sj = sin(in.theta_j);
     f = 1.0 / (2.0 - (ci * ci + cj * cj) / 2.0); /* eq. 36 */
     assert_true(fabs(2.0 / (2.0 + si * si + sj * sj) - f) <= 1e-14);
     if (sa->m != sb->m) f = 1.0 / ((1 + si * si) / 2 + (1 + sj * sj) * sa->m / (2 * sb->m));
-  } else if (sa->tag == HD_SHAPE_DIMER) {
+  } else if (sa->tag == HD_KIND_DIMER) {
     double c = cos(in.theta_i);
     f = 1.0 / (1.0 + sa->m / Mb - c * c / 2);
-  } else if (sb->tag == HD_SHAPE_DIMER) {
+  } else if (sb->tag == HD_KIND_DIMER) {
     double c = cos(in.theta_j);
     f = 1.0 / (1.0 + sb->m / Ma - c * c / 2);
   } else {
@@ -541,7 +541,7 @@ static void collide_tiny_bond(void **state) {
     const hd_shape *sa = &dm, *sb = k % 2 ? &dk : &dm;
     /* a contact of disk ka of A with disk kb of B along a random direction (random_contact
      * would refuse it: the other disk of a tiny dimer touches too) */
-    int ka = k % 4 < 2, kb = sb->tag == HD_SHAPE_DIMER && k % 3 == 0;
+    int ka = k % 4 < 2, kb = sb->tag == HD_KIND_DIMER && k % 3 == 0;
     hd_kin A = {0,
                 0,
                 gsl_ran_gaussian(r, 1),
@@ -554,7 +554,7 @@ static void collide_tiny_bond(void **state) {
                 gsl_ran_gaussian(r, 1),
                 unif(r, -M_PI, M_PI),
                 gsl_ran_gaussian(r, 1)};
-    if (sb->tag == HD_SHAPE_DISK) B.phi = B.omega = 0.0;
+    if (sb->tag == HD_KIND_DISK) B.phi = B.omega = 0.0;
     double ang = unif(r, -M_PI, M_PI), D = 0.5 * (sa->d + sb->d), pax, pay, obx, oby;
     ref_pos(&A, sa, ka, 0.0, &pax, &pay);
     ref_pos(&B, sb, kb, 0.0, &obx, &oby);
@@ -618,7 +618,7 @@ static void collide_walls(void **state) {
                     gsl_ran_gaussian(r, 1),
                     unif(r, -M_PI, M_PI),
                     gsl_ran_gaussian(r, a < 0.01 ? 1e3 : 2.0)};
-        if (s.tag == HD_SHAPE_DISK) A.phi = A.omega = 0;
+        if (s.tag == HD_KIND_DISK) A.phi = A.omega = 0;
         int ka = (int)gsl_rng_uniform_int(r, (unsigned long)ndisks(&s));
         /* put disk ka on the wall and keep the other one inside */
         double x, y, o = unif(r, -10, 10);
@@ -628,7 +628,7 @@ static void collide_walls(void **state) {
           A.y += want - y, A.x += o;
         else
           A.x += want - x, A.y += o;
-        if (s.tag == HD_SHAPE_DIMER) {
+        if (s.tag == HD_KIND_DIMER) {
           ref_pos(&A, &s, 1 - ka, 0, &x, &y);
           if (w.normal * ((w.axis ? y : x) - want) < 0) continue;
         }
@@ -661,7 +661,7 @@ static void collide_walls(void **state) {
         assert_true(fabs(v1n1 + al * v1n) <= 1e-12 * vs);
         assert_true(fabs(in.vn - v1n) <= 1e-12 * vs);
         double E0 = ref_ke(&A, &s), E1 = ref_ke(&A1, &s), de;
-        if (s.tag == HD_SHAPE_DIMER) {
+        if (s.tag == HD_KIND_DIMER) {
           /* r12 from the disk positions of A moved to the origin (no round-off of |x| ~ 20
            * against a = 1e-3) */
           double c1x, c1y, c2x, c2y, c;
@@ -685,7 +685,7 @@ static void collide_walls(void **state) {
         double ha = 0.5 * s.a;
         assert_true(fabs(A1.vx - A2.vx) <= 1e-12 * vs && fabs(A1.vy - A2.vy) <= 1e-12 * vs);
         assert_true(ha * fabs(A1.omega - A2.omega) <= 1e-12 * vs);
-        if (s.tag == HD_SHAPE_DIMER) {
+        if (s.tag == HD_KIND_DIMER) {
           double nx = w.axis ? 0 : -w.normal, ny = w.axis ? -w.normal : 0;
           check_theta(&A, &s, ka, nx, ny, in.theta_i, 1e300);
         }
@@ -763,8 +763,8 @@ static void random_approach(gsl_rng *r, const hd_shape *sa, const hd_shape *sb, 
                 -sin(ang) + 0.5 * gsl_ran_gaussian(r, 1),
                 unif(r, -M_PI, M_PI),
                 wb * gsl_ran_gaussian(r, 1)};
-  if (sa->tag == HD_SHAPE_DISK) A->phi = A->omega = 0;
-  if (sb->tag == HD_SHAPE_DISK) B->phi = B->omega = 0;
+  if (sa->tag == HD_KIND_DISK) A->phi = A->omega = 0;
+  if (sb->tag == HD_KIND_DISK) B->phi = B->omega = 0;
 }
 
 typedef struct pclass {
@@ -1135,7 +1135,7 @@ static void predict_walls(void **state) {
                   gsl_ran_gaussian(r, 1),
                   unif(r, -M_PI, M_PI),
                   ws[iw] * gsl_ran_gaussian(r, 1)};
-      if (s.tag == HD_SHAPE_DISK) A.phi = A.omega = 0;
+      if (s.tag == HD_KIND_DISK) A.phi = A.omega = 0;
       double gap = unif(r, 0.01, iw == 2 ? 0.3 : 1.5) + hd_shape_radius(&s);
       if (w.axis)
         A.y = w.pos + w.normal * gap;
@@ -1207,8 +1207,8 @@ static hd_shape dimer_asym(void) {
 static void cluster_shapes(void **state) {
   (void)state;
   hd_shape l = trimer_linear(), b = trimer_bent(), t = trimer_triangle(), a = dimer_asym();
-  assert_int_equal(l.tag, HD_SHAPE_CLUSTER);
-  assert_int_equal(a.tag, HD_SHAPE_CLUSTER);
+  assert_int_equal(l.tag, HD_KIND_BODY);
+  assert_int_equal(a.tag, HD_KIND_BODY);
   /* by definition: total mass, centre of mass at the origin, I = sum m |o|^2 */
   assert_true(l.mass == 3.0 && fabs(l.inertia - 2.0) <= 1e-15 && fabs(l.radius - 1.5) <= 1e-15);
   assert_true(fabs(t.inertia - 1.0) <= 1e-15); /* 3 (1/sqrt 3)^2 */
@@ -1222,11 +1222,11 @@ static void cluster_shapes(void **state) {
   /* the fast tags: a disk, an equal dimer on the x axis (any origin) */
   const double x1[] = {3.0}, y1[] = {-2.0}, d1[] = {1.3}, m1[] = {2.0};
   hd_shape k = cluster(1, x1, y1, d1, m1);
-  assert_int_equal(k.tag, HD_SHAPE_DISK);
+  assert_int_equal(k.tag, HD_KIND_DISK);
   assert_true(k.d == 1.3 && k.m == 2.0 && k.mass == 2.0 && k.inertia == 0.0);
   const double x2[] = {0.0, 1.5}, y2[] = {0, 0}, d2[] = {1, 1}, m2[] = {1, 1};
   hd_shape e = cluster(2, x2, y2, d2, m2), ref = dimer(1, 1.5, 1);
-  assert_int_equal(e.tag, HD_SHAPE_DIMER);
+  assert_int_equal(e.tag, HD_KIND_DIMER);
   assert_true(e.a == 1.5 && e.inertia == ref.inertia && e.radius == ref.radius);
   /* out of range */
   const double d0[] = {0.0}, mn[] = {-1.0};
@@ -1241,7 +1241,7 @@ static int same_or_nan(double a, double b, double tol) {
   return (isnan(a) && isnan(b)) || fabs(a - b) <= tol;
 }
 
-/* The general code (HD_SHAPE_CLUSTER) against the paper's formulas (eq. 13-26, the fast paths)
+/* The general code (HD_KIND_BODY) against the paper's formulas (eq. 13-26, the fast paths)
  * for disks and equal dimers: the same collisions (velocities, angles, f, dE, vn) to 1e-12 of
  * their scale, with walls too, and the same contacts predicted (same disks, times to 1e-12
  * relative: both polish the root to round-off; a search stopped at a grazing gap <= 1e-12 d

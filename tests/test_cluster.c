@@ -106,7 +106,7 @@ static void elastic_clusters(void **state) {
     hd_sim *s;
     hd_error err;
     if (hd_sim_alloc(&s, &sc, &err)) fail_msg("%s", err.msg);
-    assert_int_equal(s->shape[HD_SP_NAMED].tag, HD_SHAPE_CLUSTER);
+    assert_int_equal(s->shape[HD_SP_NAMED].tag, HD_KIND_BODY);
     assert_int_equal(s->n, N);
     double e0t, e0r;
     hd_sim_energy(s, -1, &e0t, &e0r);
@@ -180,8 +180,8 @@ static void mixture_species(void **state) {
     assert_int_equal(s->nsp, 4);
     assert_int_equal(s->n, 500);
     assert_false(s->disks_only);
-    assert_int_equal(s->shape[0].tag, HD_SHAPE_DIMER);
-    assert_int_equal(s->shape[1].tag, HD_SHAPE_DISK);
+    assert_int_equal(s->shape[0].tag, HD_KIND_DIMER);
+    assert_int_equal(s->shape[1].tag, HD_KIND_DISK);
     for (int32_t i = 0; i < s->n; i++) { /* user numbers by species, in order */
       int32_t id = s->id[i], sp = s->b[i].species;
       int32_t want = id < 150 ? 0 : id < 300 ? 1 : id < 400 ? 2 : 3;
@@ -248,7 +248,7 @@ static void mixture_species(void **state) {
 }
 
 /* Scenes without named species keep their fast paths: disks only (disks_only, the closed-form
- * walk of cells) and dimers (the paper's formulas, HD_SHAPE_DIMER); a named species that is one
+ * walk of cells) and dimers (the paper's formulas, HD_KIND_DIMER); a named species that is one
  * disk or an equal dimer on the x axis gets the fast tag too. */
 static void fast_paths(void **state) {
   (void)state;
@@ -257,20 +257,20 @@ static void fast_paths(void **state) {
   hd_error err;
   test_disk_scene(&sc, 100, 0.2, 0.9, 1);
   assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
-  assert_true(s->disks_only && s->nsp == 2 && s->shape[HD_SP_DISK].tag == HD_SHAPE_DISK);
+  assert_true(s->disks_only && s->nsp == 2 && s->shape[HD_SP_DISK].tag == HD_KIND_DISK);
   hd_sim_free(s);
   test_disk_scene(&sc, 0, 0.2, 0.9, 1);
   sc.n_dimers = 50;
   sc.box_x = sc.box_y = 30;
   assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
-  assert_true(!s->disks_only && s->shape[HD_SP_DIMER].tag == HD_SHAPE_DIMER);
+  assert_true(!s->disks_only && s->shape[HD_SP_DIMER].tag == HD_KIND_DIMER);
   hd_sim_free(s);
   const double x[] = {0, 1}, y[] = {0, 0}, d[] = {1, 1}, m[] = {1, 1};
   add_species(&sc, "dumbbell", 2, x, y, d, m, 10, 0.9);
   add_species(&sc, "ball", 1, x, y, d, m, 10, 0.9);
   assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
-  assert_int_equal(s->shape[2].tag, HD_SHAPE_DIMER);
-  assert_int_equal(s->shape[3].tag, HD_SHAPE_DISK);
+  assert_int_equal(s->shape[2].tag, HD_KIND_DIMER);
+  assert_int_equal(s->shape[3].tag, HD_KIND_DISK);
   assert_true(s->n == 70 && !s->disks_only);
   hd_sim_free(s);
   /* a species the engine cannot build: HD_EINPUT naming it */

@@ -334,7 +334,7 @@ static void walls_keep_inside(void **state) {
         hd_kin kk;
         hd_sim_body_now(s, ids[q], &kk);
         const hd_shape *sh = &s->shape[s->b[ids[q]].species];
-        for (int dsk = 0; dsk < (sh->tag == HD_SHAPE_DIMER ? 2 : 1); dsk++) {
+        for (int dsk = 0; dsk < (sh->tag == HD_KIND_DIMER ? 2 : 1); dsk++) {
           double x, y;
           hd_kin_disk_pos(&kk, sh, dsk, &x, &y);
           double r = 0.5 * sh->d * (1 - 1e-9);
@@ -353,7 +353,7 @@ static void walls_keep_inside(void **state) {
     hd_kin kk;
     hd_sim_body_now(s, i, &kk);
     const hd_shape *sh = &s->shape[s->b[i].species];
-    for (int dsk = 0; dsk < (sh->tag == HD_SHAPE_DIMER ? 2 : 1); dsk++) {
+    for (int dsk = 0; dsk < (sh->tag == HD_KIND_DIMER ? 2 : 1); dsk++) {
       double x, y;
       hd_kin_disk_pos(&kk, sh, dsk, &x, &y);
       double r = 0.5 * sh->d * (1 - 1e-9);

@@ -102,7 +102,7 @@
 
 void hd_shape_disk(hd_shape *s, double d, double m) {
   *s = (hd_shape){0};
-  s->tag = HD_SHAPE_DISK;
+  s->tag = HD_KIND_DISK;
   s->n = 1;
   s->d = s->dk[0] = d;
   s->m = s->mk[0] = m;
@@ -114,7 +114,7 @@ void hd_shape_disk(hd_shape *s, double d, double m) {
 
 void hd_shape_dimer(hd_shape *s, double d, double a, double m) {
   *s = (hd_shape){0};
-  s->tag = HD_SHAPE_DIMER;
+  s->tag = HD_KIND_DIMER;
   s->n = 2;
   s->d = s->dk[0] = s->dk[1] = d;
   s->a = a;
@@ -142,7 +142,7 @@ int hd_shape_cluster(hd_shape *s, int n, const double *x, const double *y, const
   cx /= M;
   cy /= M;
   hd_shape c = {0};
-  c.tag = HD_SHAPE_CLUSTER;
+  c.tag = HD_KIND_BODY;
   c.n = n;
   c.mass = M;
   c.m = m[0];
@@ -198,7 +198,7 @@ void hd_kin_advance(hd_kin *k, double dt) {
 
 /* Half bond length of a shape (0 for a disk body). */
 static double half_a(const hd_shape *s) {
-  return s->tag == HD_SHAPE_DIMER ? 0.5 * s->a : 0.0;
+  return s->tag == HD_KIND_DIMER ? 0.5 * s->a : 0.0;
 }
 
 /* Sign of disk `which` along the axis: -1 for disk 0, +1 for disk 1. */
@@ -207,7 +207,7 @@ static double disk_sign(int which) {
 }
 
 void hd_kin_disk_pos(const hd_kin *k, const hd_shape *s, int which, double *px, double *py) {
-  if (s->tag == HD_SHAPE_CLUSTER) {
+  if (s->tag == HD_KIND_BODY) {
     double sn, cs, ox = s->ox[which], oy = s->oy[which];
     sincos(k->phi, &sn, &cs);
     *px = k->x + (ox * cs - oy * sn);
@@ -227,7 +227,7 @@ void hd_kin_disk_pos(const hd_kin *k, const hd_shape *s, int which, double *px, 
 }
 
 void hd_kin_disk_vel(const hd_kin *k, const hd_shape *s, int which, double *vx, double *vy) {
-  if (s->tag == HD_SHAPE_CLUSTER) {
+  if (s->tag == HD_KIND_BODY) {
     double sn, cs, ox = s->ox[which], oy = s->oy[which];
     sincos(k->phi, &sn, &cs);
     *vx = k->vx - k->omega * (ox * sn + oy * cs);
@@ -248,7 +248,7 @@ void hd_kin_disk_vel(const hd_kin *k, const hd_shape *s, int which, double *vx, 
 
 double hd_kin_energy(const hd_kin *k, const hd_shape *s) {
   double e = 0.5 * hd_shape_mass(s) * (k->vx * k->vx + k->vy * k->vy);
-  if (s->tag != HD_SHAPE_DISK) e += 0.5 * hd_shape_inertia(s) * k->omega * k->omega;
+  if (s->tag != HD_KIND_DISK) e += 0.5 * hd_shape_inertia(s) * k->omega * k->omega;
   return e;
 }
 
@@ -697,7 +697,7 @@ static int ca_begin_general(hd_ca *ca, const hd_kin *A, const hd_shape *sa, cons
 
 int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
                 double tmax, const double *sca, hd_contact *c) {
-  if (sa->tag == HD_SHAPE_CLUSTER || sb->tag == HD_SHAPE_CLUSTER)
+  if (sa->tag == HD_KIND_BODY || sb->tag == HD_KIND_BODY)
     return ca_begin_general(ca, A, sa, B, sb, tmax, sca, c);
   hd_ca_geom *x = &ca->g;
   x->wall = 0;
@@ -870,7 +870,7 @@ static int predict_wall_general(const hd_kin *A, const hd_shape *sa, const hd_wa
 
 int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, double tmax,
                     hd_contact *c) {
-  if (sa->tag == HD_SHAPE_CLUSTER) return predict_wall_general(A, sa, w, tmax, c);
+  if (sa->tag == HD_KIND_BODY) return predict_wall_general(A, sa, w, tmax, c);
   hd_ca_geom x;
   x.wall = 1;
   x.sha = x.shb = NULL;

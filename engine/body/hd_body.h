@@ -22,30 +22,29 @@
 
 #define HD_MAX_BODY_DISKS 8 /* disks in one rigid body (the same as hd_scene.h's) */
 
-/* The kind of a body in a state file row (hd_state_row.kind) and in the states table: what the
- * shorthand sections [dimers] and [disks] make.  The engine does not switch on it: a species is
- * an hd_shape (below). */
+/* The kind of a body: the one enumeration of kinds in every layer.  As a shape's tag (hd_shape,
+ * derived by the constructors below) it is the fast path the shape takes: the paper's formulas
+ * and the closed forms for disks and equal dimers, the general rigid-body code for every other
+ * cluster (which gives the same results to round-off: tests/test_body.c).  As a species' kind
+ * it is what the section made, stored as states.kind ('disk', 'dimer', 'body', 'rod') and in a
+ * state file row (hd_state_row.kind); a pair of kinds gives a collision's kind (hd_coll_kind).
+ * The values of DISK, DIMER and BODY are those of the shape tag in a checkpoint blob. */
 typedef enum hd_kind {
-  HD_KIND_DISK = 0, /* one hard disk */
-  HD_KIND_DIMER = 1 /* two hard disks on a rigid bond */
+  HD_KIND_DISK = 0,  /* one hard disk ([disks]; tag: one disk) */
+  HD_KIND_DIMER = 1, /* two hard disks on a rigid bond ([dimers]; tag: two equal disks (same d,
+                      * m) at (-+a/2, 0) in the body frame) */
+  HD_KIND_BODY = 2,  /* any other rigid cluster of disks (a [species NAME]; tag: the general
+                      * code) */
+  HD_KIND_ROD = 3    /* a rod of the 1D ring ([rods]) */
 } hd_kind;
-
-/* The fast path a shape takes, derived from its disks by the constructors below: the paper's
- * formulas and the closed forms for disks and equal dimers, the general rigid-body code for
- * everything else (which gives the same results to round-off: tests/test_body.c). */
-typedef enum hd_shape_tag {
-  HD_SHAPE_DISK = 0,   /* one disk */
-  HD_SHAPE_DIMER = 1,  /* two equal disks (same d, m) at (-+a/2, 0) in the body frame */
-  HD_SHAPE_CLUSTER = 2 /* any other cluster: the general code */
-} hd_shape_tag;
 
 /* The shape and mass of a body species. */
 typedef struct hd_shape {
-  hd_shape_tag tag; /* the fast path (derived) */
-  int n;            /* disks, 1 .. HD_MAX_BODY_DISKS */
-  double d;         /* DISK, DIMER: diameter of each disk; CLUSTER: the largest diameter */
-  double a;         /* DIMER: bond length, centre to centre, >= 0; else 0 */
-  double m;         /* DISK, DIMER: mass of each disk (a dimer weighs 2m); CLUSTER: disk 0's */
+  hd_kind tag; /* the fast path (derived): HD_KIND_DISK, HD_KIND_DIMER or HD_KIND_BODY */
+  int n;       /* disks, 1 .. HD_MAX_BODY_DISKS */
+  double d;    /* DISK, DIMER: diameter of each disk; BODY: the largest diameter */
+  double a;    /* DIMER: bond length, centre to centre, >= 0; else 0 */
+  double m;    /* DISK, DIMER: mass of each disk (a dimer weighs 2m); BODY: disk 0's */
   double ox[HD_MAX_BODY_DISKS], oy[HD_MAX_BODY_DISKS]; /* disk centres minus the centre of
                                                         * mass, body frame */
   double dk[HD_MAX_BODY_DISKS], mk[HD_MAX_BODY_DISKS]; /* diameters and masses of the disks */

@@ -17,7 +17,7 @@
  * The products with r12 = a e_A enter as e_A alone (r13.r12 / a): the formulas divide (r13.r12)^2
  * by a^2, which for a < 1e-154 underflowed to 0/0. A pair that is not approaching (normal velocity
  * >= 0) is left unchanged. tests/test_body.c checks every rule against the generic impulse rule of
- * hd_body_impulse.c.  A pair with a general cluster (HD_SHAPE_CLUSTER) takes that generic rule. */
+ * hd_body_impulse.c.  A pair with a general cluster (HD_KIND_BODY) takes that generic rule. */
 #include "hd_body.h"
 #include "hd_body_impulse.h"
 
@@ -69,9 +69,9 @@ static int collide_disks(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shap
 
 int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
                     double alpha, hd_collision_info *info) {
-  if (sa->tag == HD_SHAPE_DISK && sb->tag == HD_SHAPE_DISK)
+  if (sa->tag == HD_KIND_DISK && sb->tag == HD_KIND_DISK)
     return collide_disks(A, sa, B, sb, alpha, info);
-  if (sa->tag == HD_SHAPE_CLUSTER || sb->tag == HD_SHAPE_CLUSTER)
+  if (sa->tag == HD_KIND_BODY || sb->tag == HD_KIND_BODY)
     return hd_impulse_pair(A, sa, B, sb, ka, kb, alpha, info); /* the general rule */
   if (info) hd_pair_info(A, sa, B, sb, ka, kb, alpha, info);
   hd_side a, b;
@@ -125,7 +125,7 @@ int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb
 
 int hd_collide_wall(hd_kin *A, const hd_shape *sa, int ka, const hd_wall *w, double alpha,
                     hd_collision_info *info) {
-  if (sa->tag == HD_SHAPE_CLUSTER) return hd_impulse_wall(A, sa, ka, w, alpha, info);
+  if (sa->tag == HD_KIND_BODY) return hd_impulse_wall(A, sa, ka, w, alpha, info);
   if (info) hd_wall_info(A, sa, ka, w, alpha, info);
   hd_side a;
   hd_side_of(A, sa, ka, &a);

@@ -14,7 +14,7 @@ void hd_side_of(const hd_kin *k, const hd_shape *s, int which, hd_side *o) {
   o->mass = hd_shape_mass(s);
   o->inertia = hd_shape_inertia(s);
   o->gen = 0;
-  if (s->tag == HD_SHAPE_CLUSTER) {
+  if (s->tag == HD_KIND_BODY) {
     double sn, cs, bx = s->ox[which], by = s->oy[which];
     sincos(k->phi, &sn, &cs);
     o->m = s->mk[which];
@@ -31,7 +31,7 @@ void hd_side_of(const hd_kin *k, const hd_shape *s, int which, hd_side *o) {
     return;
   }
   o->m = s->m;
-  if (s->tag != HD_SHAPE_DIMER) {
+  if (s->tag != HD_KIND_DIMER) {
     o->ex = o->ey = o->ox = o->oy = 0.0;
     o->vx = k->vx;
     o->vy = k->vy;

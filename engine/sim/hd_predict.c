@@ -118,7 +118,7 @@ static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, dou
   const double dtj = s->c.t - bj->t;
   const hd_shape *si = &s->shape[bi->species];
   int ix = (sx > 0) - (sx < 0), iy = (sy > 0) - (sy < 0);
-  if (si->tag == HD_SHAPE_DISK && s->shape[bj->species].tag == HD_SHAPE_DISK) {
+  if (si->tag == HD_KIND_DISK && s->shape[bj->species].tag == HD_KIND_DISK) {
     predict_disk_pair(s, bi, j, sx, sy, ix, iy, disk_contact(s, bi, bj), best);
     return;
   }
@@ -194,7 +194,7 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
   const hd_shape *si = &s->shape[bi->species];
   const double *rad = s->reach; /* enclosing radii, widened */
   const double rad_i = rad[bi->species];
-  const int i_disk = si->tag == HD_SHAPE_DISK; /* (locals: the stores below may alias s) */
+  const int i_disk = si->tag == HD_KIND_DISK; /* (locals: the stores below may alias s) */
   hd_cand cs[HD_MAX_CAND];
   int nc = 0, ord[HD_MAX_CAND];
   double sca[2]; /* sin and cos of i's orientation, shared by its searches */
@@ -202,7 +202,7 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
   HD_FOR_NEIGHBOURS(s, bi->cell, {
     if (j == i || j == skip) continue;
     const hd_body *bj = &s->b[j];
-    if (i_disk && s->shape[bj->species].tag == HD_SHAPE_DISK) {
+    if (i_disk && s->shape[bj->species].tag == HD_KIND_DISK) {
       predict_disk_pair(s, bi, j, sx, sy, (sx > 0) - (sx < 0), (sy > 0) - (sy < 0),
                         disk_contact(s, bi, bj), best);
       continue;

@@ -113,7 +113,7 @@ typedef struct hd_sim {
   int32_t *id;                       /* id[i]: the user's number of body i (dimers first, then
                                         disks, then each named species, as created); stable
                                         while b is re-sorted */
-  hd_shape shape[HD_MAX_SPECIES];    /* shapes by species (HD_SHAPE_* tag derived) */
+  hd_shape shape[HD_MAX_SPECIES];    /* shapes by species (HD_KIND_* tag derived) */
   char sp_name[HD_MAX_SPECIES][HD_SPECIES_NAME_MAX]; /* species names: "dimer", "disk", NAME */
   double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES];      /* pair restitution by species */
   double reach[HD_MAX_SPECIES]; /* enclosing radius of each species widened by 1e-9 (the
