@@ -257,8 +257,7 @@ static int gsd_emit(void *ctx, const hd_export_geom *g, const hd_export_frame *f
   gsd_out *w = ctx;
   long n = f->n; /* particles: the bodies, then the disks of rigid ones */
   for (long i = 0; i < f->n; i++)
-    if (f->kind[i] != HD_DB_KIND_ROD &&
-        type_rigid(g, hd_export_body_type(g, f->body[i], f->kind[i])))
+    if (f->kind[i] != HD_KIND_ROD && type_rigid(g, hd_export_body_type(g, f->body[i], f->kind[i])))
       n += hd_export_body_disks(g, f->body[i], f->kind[i]);
   if (n > INT32_MAX) {
     fprintf(stderr, "haff export: a frame of %ld particles is past GSD's int32 body ids\n", n);
@@ -269,7 +268,7 @@ static int gsd_emit(void *ctx, const hd_export_geom *g, const hd_export_frame *f
   for (long i = 0; i < f->n; i++) {
     const hd_kin *k = &f->kin[i];
     int kind = f->kind[i], t = hd_export_body_type(g, f->body[i], kind);
-    if (kind == HD_DB_KIND_ROD) {
+    if (kind == HD_KIND_ROD) {
       particle(w, g, i, (uint32_t)t, hd_export_rod_mass(g, f->body[i]), 1.0, -1, 0, k->x, 0, k->vx,
                0, 0, k->omega, 0);
       continue;

@@ -43,7 +43,7 @@ const hd_shape *hd_export_body_shape(const hd_export_geom *g, long long body, in
 }
 
 int hd_export_body_disks(const hd_export_geom *g, long long body, int kind) {
-  return kind == HD_DB_KIND_ROD ? 1 : hd_export_body_shape(g, body, kind)->n;
+  return kind == HD_KIND_ROD ? 1 : hd_export_body_shape(g, body, kind)->n;
 }
 
 int hd_export_body_type(const hd_export_geom *g, long long body, int kind) {
@@ -57,8 +57,8 @@ int hd_export_body_type(const hd_export_geom *g, long long body, int kind) {
 static int kind_of(const char *kind) {
   return !kind                    ? HD_KIND_DISK
          : !strcmp(kind, "dimer") ? HD_KIND_DIMER
-         : !strcmp(kind, "rod")   ? HD_DB_KIND_ROD
-         : !strcmp(kind, "body")  ? HD_DB_KIND_BODY
+         : !strcmp(kind, "rod")   ? HD_KIND_ROD
+         : !strcmp(kind, "body")  ? HD_KIND_BODY
                                   : HD_KIND_DISK;
 }
 
@@ -96,10 +96,10 @@ static void put_body(FILE *out, const hd_export_geom *g, long long body, int kin
   const hd_shape *sh = hd_export_body_shape(g, body, kind);
   int type = hd_export_body_type(g, body, kind);
   const char *species = g->type_elem[type];
-  int disks = hd_export_body_disks(g, body, kind), turns = kind != HD_DB_KIND_ROD && sh->n > 1;
+  int disks = hd_export_body_disks(g, body, kind), turns = kind != HD_KIND_ROD && sh->n > 1;
   for (int j = 0; j < disks; j++) {
     double x = k->x, y = k->y, vx = k->vx, vy = k->vy, m = 0, r = 0.5;
-    if (kind == HD_DB_KIND_ROD) {
+    if (kind == HD_KIND_ROD) {
       m = hd_export_rod_mass(g, body);
     } else { /* the engine's disk positions and velocities */
       m = sh->mk[j], r = 0.5 * sh->dk[j];

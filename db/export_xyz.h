@@ -26,7 +26,7 @@ typedef struct hd_export_geom {
 } hd_export_geom;
 
 /* One frame of a run handed to an hd_export_emit: n bodies (body numbers, kinds HD_KIND_DISK,
- * HD_KIND_DIMER, HD_DB_KIND_ROD or HD_DB_KIND_BODY, and states), valid during the call. */
+ * HD_KIND_DIMER, HD_KIND_ROD or HD_KIND_BODY, and states), valid during the call. */
 typedef struct hd_export_frame {
   const char *label;     /* initial, frames, velocities, checkpoint, final */
   double t, cpd;         /* its time and cpd (cpd valid when has_cpd) */

@@ -102,21 +102,6 @@ const char *hd_coll_kind_name(hd_coll_kind k) {
   return coll_kind_names[k];
 }
 
-const char *hd_db_kind_name(int kind) {
-  switch (kind) {
-  case 0:
-    return "disk";
-  case 1:
-    return "dimer";
-  case HD_DB_KIND_ROD:
-    return "rod";
-  case HD_DB_KIND_BODY:
-    return "body";
-  default:
-    return NULL;
-  }
-}
-
 /* ---------------------------------------------------------------------------------------- */
 /* errors */
 
@@ -898,14 +883,14 @@ static int put_state(hd_db *db, int64_t run, const char *label, const hd_state_r
   bind_real(st, 3, r->t);
   bind_real(st, 4, r->cpd);
   sqlite3_bind_int64(st, 5, r->body);
-  sqlite3_bind_text(st, 6, hd_db_kind_name(r->kind), -1, SQLITE_STATIC);
+  sqlite3_bind_text(st, 6, hd_kind_name(r->kind), -1, SQLITE_STATIC);
   bind_real(st, 7, r->x);
   bind_real(st, 8, r->y);
   bind_real(st, 9, r->phi);
   bind_real(st, 10, r->vx);
   bind_real(st, 11, r->vy);
   bind_real(st, 12, r->omega);
-  if (r->kind == HD_DB_KIND_ROD || r->species < 0)
+  if (r->kind == HD_KIND_ROD || r->species < 0)
     sqlite3_bind_null(st, 13);
   else
     sqlite3_bind_int(st, 13, r->species);
@@ -1117,7 +1102,7 @@ int hd_db_log_state(hd_db *db, int64_t run, const char *label, const hd_state_re
                     hd_error *err) {
   int rc = check_db(db, err);
   if (rc) return rc;
-  if (!hd_db_kind_name(r->kind))
+  if (!hd_kind_name(r->kind))
     return hd_error_set(err, HD_EINPUT, "%s: insert state: unknown body kind %d", db->path,
                         r->kind);
   const char *lab = label ? state_label(label) : NULL;

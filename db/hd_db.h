@@ -104,17 +104,11 @@ typedef struct hd_sample_row {
   double flow_frac, flow_chaos, count_var, s_rho, s_perp, s_par;
 } hd_sample_row;
 
-/* Body kinds in hd_state_rec.kind, stored as states.kind text: HD_KIND_DISK = 0 'disk',
- * HD_KIND_DIMER = 1 'dimer' (hd_body.h) and 2 'rod' (rod runs). */
-#define HD_DB_KIND_ROD 2
-/* A body of a named species (`[species NAME]`), stored as 'body'. */
-#define HD_DB_KIND_BODY 3
-
 /* One row of `states`. */
 typedef struct hd_state_rec {
   double t;
   int64_t body;
-  int kind; /* HD_KIND_DISK 0, HD_KIND_DIMER 1, HD_DB_KIND_ROD 2, HD_DB_KIND_BODY 3 */
+  int kind; /* an hd_kind (hd_body.h), stored as states.kind text (hd_kind_name) */
   double x, y, phi, vx, vy, omega;
   double cpd;  /* collisions per particle at t (states.cpd); NaN is stored as NULL */
   int species; /* the body's species.idx (states.species, schema version 4): 0 [dimers], 1
@@ -138,9 +132,6 @@ typedef struct hd_species_sample {
   double e_tr;  /* translational energy per body of the species */
   double e_rot; /* rotational energy per body of the species */
 } hd_species_sample;
-
-/* The text of a body kind ("disk", "dimer", "rod", "body"), or NULL for an unknown kind. */
-const char *hd_db_kind_name(int kind);
 
 /* The status for an SQLite result code (primary or extended) of a failed call: HD_EINPUT for a
  * damaged or foreign file (SQLITE_CORRUPT "malformed", SQLITE_NOTADB: bad input, exit 2),

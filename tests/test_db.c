@@ -174,7 +174,7 @@ static void round_trip(void **state) {
   assert_int_equal(hd_db_log_sample(db, run, &s, &err), HD_OK);
   hd_state_rec st0 = {0.0, 0, 1, 1.5, 2.5, -0.5, 0.1, 0.2, 3.0, NAN, 0};
   hd_state_rec st1 = {2.0, 1, 0, 0.5, 0.25, 0.0, -0.1, 0.3, 0.0, 1.5, 1};
-  hd_state_rec st2 = {2.0, 2, HD_DB_KIND_ROD, 7.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.5, -1};
+  hd_state_rec st2 = {2.0, 2, HD_KIND_ROD, 7.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.5, -1};
   assert_int_equal(hd_db_log_state(db, run, "initial", &st0, &err), HD_OK);
   assert_int_equal(hd_db_log_state(db, run, "final", &st1, &err), HD_OK);
   assert_int_equal(hd_db_log_state(db, run, "final", &st2, &err), HD_OK);
@@ -1172,9 +1172,9 @@ static void states_species(void **state) {
   hd_db *db = open_ok(fx->path);
   hd_error err;
   hd_error_clear(&err);
-  hd_state_rec named = {1.0, 7, HD_DB_KIND_BODY, 1, 2, 0.5, 0, 0, 0, 0.1, 3};
+  hd_state_rec named = {1.0, 7, HD_KIND_BODY, 1, 2, 0.5, 0, 0, 0, 0.1, 3};
   hd_state_rec disk = {1.0, 3, HD_KIND_DISK, 1, 2, 0, 0, 0, 0, 0.1, 1};
-  hd_state_rec rod = {1.0, 0, HD_DB_KIND_ROD, 1, 0, 0, 0, 0, 0, 0.1, 5};
+  hd_state_rec rod = {1.0, 0, HD_KIND_ROD, 1, 0, 0, 0, 0, 0, 0.1, 5};
   assert_int_equal(hd_db_log_state(db, 1, "final", &named, &err), HD_OK);
   assert_int_equal(hd_db_log_state(db, 1, "final", &disk, &err), HD_OK);
   assert_int_equal(hd_db_log_state(db, 1, "final", &rod, &err), HD_OK);

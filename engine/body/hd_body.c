@@ -100,6 +100,14 @@
 #define VTOL HD_DISK_VTOL
 #define HD_CA_MAXIT 100000000L
 
+const char *hd_kind_name(int kind) {
+  static const char *const name[] = {[HD_KIND_DISK] = "disk",
+                                     [HD_KIND_DIMER] = "dimer",
+                                     [HD_KIND_BODY] = "body",
+                                     [HD_KIND_ROD] = "rod"};
+  return kind >= 0 && kind < (int)(sizeof name / sizeof *name) ? name[kind] : NULL;
+}
+
 void hd_shape_disk(hd_shape *s, double d, double m) {
   *s = (hd_shape){0};
   s->tag = HD_KIND_DISK;

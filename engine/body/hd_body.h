@@ -38,6 +38,10 @@ typedef enum hd_kind {
   HD_KIND_ROD = 3    /* a rod of the 1D ring ([rods]) */
 } hd_kind;
 
+/* The text of a kind as states.kind stores it ("disk", "dimer", "body", "rod"), or NULL for
+ * another value. */
+const char *hd_kind_name(int kind);
+
 /* The shape and mass of a body species. */
 typedef struct hd_shape {
   hd_kind tag; /* the fast path (derived): HD_KIND_DISK, HD_KIND_DIMER or HD_KIND_BODY */

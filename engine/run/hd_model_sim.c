@@ -86,10 +86,10 @@ static void m_sample(const void *m, hd_sample_row *row) {
                          q.s_par};
 }
 
-/* states.kind of body i: HD_KIND_DIMER, HD_KIND_DISK, or HD_DB_KIND_BODY for a named species. */
+/* states.kind of body i: HD_KIND_DIMER, HD_KIND_DISK, or HD_KIND_BODY for a named species. */
 static int body_kind(const hd_sim *s, int32_t i) {
   int sp = s->b[i].species;
-  return sp == HD_SP_DIMER ? HD_KIND_DIMER : sp == HD_SP_DISK ? HD_KIND_DISK : HD_DB_KIND_BODY;
+  return sp == HD_SP_DIMER ? HD_KIND_DIMER : sp == HD_SP_DISK ? HD_KIND_DISK : HD_KIND_BODY;
 }
 
 static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label, hd_error *err) {

@@ -99,7 +99,7 @@ static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label
   hd_rods_positions(r, x);
   int rc = HD_OK;
   for (long i = 0; i < r->p.n && !rc; i++) {
-    hd_state_rec rec = {r->t,    i,   HD_DB_KIND_ROD,   x[i],     NAN, NAN,
+    hd_state_rec rec = {r->t,    i,   HD_KIND_ROD,      x[i],     NAN, NAN,
                         r->v[i], NAN, hd_rods_tb(r, i), m_cpd(m), -1};
     rc = hd_db_log_state(db, run, label, &rec, err);
   }
@@ -113,7 +113,7 @@ static int m_states(const void *m, hd_state_rec *out, hd_error *err) {
   if (!x) return hd_error_set(err, HD_ENOMEM, "rods: out of memory");
   hd_rods_positions(r, x);
   for (long i = 0; i < r->p.n; i++)
-    out[i] = (hd_state_rec){r->t,    i, HD_DB_KIND_ROD,   x[i],     0.0, 0.0,
+    out[i] = (hd_state_rec){r->t,    i, HD_KIND_ROD,      x[i],     0.0, 0.0,
                             r->v[i], 0, hd_rods_tb(r, i), m_cpd(m), -1};
   free(x);
   return HD_OK;
