@@ -93,15 +93,6 @@ static const struct coll_col {
 };
 #define COLL_NCOL (sizeof coll_cols / sizeof *coll_cols)
 
-static const char *const coll_kind_names[] = {"dimer-dimer", "dimer-disk", "disk-disk",
-                                              "dimer-wall",  "disk-wall",  "rod-rod",
-                                              "body-body",   "body-wall"};
-
-const char *hd_coll_kind_name(hd_coll_kind k) {
-  if ((int)k < 0 || (size_t)k >= sizeof coll_kind_names / sizeof coll_kind_names[0]) return "?";
-  return coll_kind_names[k];
-}
-
 /* ---------------------------------------------------------------------------------------- */
 /* errors */
 
@@ -806,7 +797,7 @@ static void bind_KIND(sqlite3_stmt *st, int i, hd_coll_kind v, int keep) {
  * bound NULL.  Returns the number of parameters bound. */
 static int bind_collision(sqlite3_stmt *st, int base, int64_t run, const hd_collision_row *r,
                           int twod) {
-  int p = base, rod = r->kind == HD_CK_ROD_ROD;
+  int p = base, rod = r->kind == hd_coll_kind_of(HD_KIND_ROD, HD_KIND_ROD);
   sqlite3_bind_int64(st, ++p, run);
 #define COLL_BIND(name, ctype, bind, sqltype, scope, since, doc)                                   \
   if (!twod || (scope) != HD_COLL_ROD)                                                             \
@@ -828,7 +819,8 @@ static int put_collision_group(hd_db *db, const rec *g, hd_error *err) {
   int rc = batch_begin(db, err);
   if (rc) return rc;
   int rods = 0;
-  for (int k = 0; k < HD_DB_GROUP; k++) rods |= g[k].u.c.kind == HD_CK_ROD_ROD;
+  for (int k = 0; k < HD_DB_GROUP; k++)
+    rods |= g[k].u.c.kind == hd_coll_kind_of(HD_KIND_ROD, HD_KIND_ROD);
   sqlite3_stmt *st = rods ? db->ins_coll_k : db->ins_coll2_k;
   for (int k = 0, base = 0; k < HD_DB_GROUP; k++)
     base += bind_collision(st, base, g[k].run, &g[k].u.c, !rods);

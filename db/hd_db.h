@@ -25,29 +25,13 @@
 typedef struct hd_db hd_db;
 typedef struct sqlite3 sqlite3; /* the same typedef as <sqlite3.h> (C11 allows the repeat) */
 
-/* Collision kinds, as stored in collisions.kind (text). */
-typedef enum hd_coll_kind {
-  HD_CK_DIMER_DIMER = 0, /* "dimer-dimer" */
-  HD_CK_DIMER_DISK = 1,  /* "dimer-disk" (i is the dimer) */
-  HD_CK_DISK_DISK = 2,   /* "disk-disk" */
-  HD_CK_DIMER_WALL = 3,  /* "dimer-wall" (j = -1 - wall index) */
-  HD_CK_DISK_WALL = 4,   /* "disk-wall" */
-  HD_CK_ROD_ROD = 5,     /* "rod-rod" */
-  HD_CK_BODY_BODY = 6,   /* "body-body": a pair with a body of a named species (i of the lower
-                          * species index) */
-  HD_CK_BODY_WALL = 7    /* "body-wall": a body of a named species against a wall */
-} hd_coll_kind;
-
-/* The text of a collision kind. */
-const char *hd_coll_kind_name(hd_coll_kind k);
-
 /* The columns of `collisions` after `run`, in order: the one table that makes the struct
  * hd_collision_row, the INSERT statements and their binds (hd_db.c) and the CREATE TABLE of
  * db/schema.sql with its column comments (`make schema` writes it; tests/test_db.c checks it).
  * Adding a column is a row here and the code that fills the field (docs/architecture.md, "How
  * to add a collisions column").  X(name, ctype, bind, sqltype, scope, since, doc):
  *   ctype    the field's C type;  bind: how it is bound: INT64, INT, REAL (NaN -> NULL) or KIND
- *            (hd_coll_kind, stored as its text);
+ *            (hd_coll_kind, hd_body.h, stored as its text);
  *   sqltype  the column's type and constraints in the CREATE TABLE;
  *   scope    HD_COLL_ALL: bound for every kind; HD_COLL_ROD: rod-rod rows only (NULL for the
  *            other kinds whatever the field holds, and not in the 2D insert);  HD_COLL_2D: NULL

@@ -1490,11 +1490,49 @@ static void predict_near_miss(void **state) {
   assert_false(got); /* nor the disk that has just collided, which recedes */
 }
 
+/* A collision's kind follows from its partners' kinds (hd_coll_kind_of): every pair of body
+ * kinds and a body with a wall gives the log's text, "A-B" of the kinds' names, with a body of a
+ * named species (HD_KIND_BODY) making body-body or body-wall and a dimer with a disk dimer-disk
+ * whichever is i; the paper's six kinds keep their texts. */
+static void coll_kind_of_kinds(void **state) {
+  (void)state;
+  const hd_kind body[] = {HD_KIND_DISK, HD_KIND_DIMER, HD_KIND_BODY, HD_KIND_ROD};
+  for (size_t x = 0; x < 4; x++)
+    for (size_t y = 0; y <= 4; y++) {
+      hd_kind a = body[x], b = y < 4 ? body[y] : HD_KIND_WALL;
+      if ((a == HD_KIND_ROD) != (b == HD_KIND_ROD)) continue; /* rods meet rods only */
+      hd_kind wa = a, wb = b;
+      if (a == HD_KIND_BODY || b == HD_KIND_BODY)
+        wa = HD_KIND_BODY, wb = b == HD_KIND_WALL ? HD_KIND_WALL : HD_KIND_BODY;
+      else if (a == HD_KIND_DISK && b == HD_KIND_DIMER)
+        wa = HD_KIND_DIMER, wb = HD_KIND_DISK;
+      char want[32];
+      snprintf(want, sizeof want, "%s-%s", hd_kind_name(wa), hd_kind_name(wb));
+      if (a == HD_KIND_ROD && b == HD_KIND_WALL) continue;
+      assert_string_equal(hd_coll_kind_name(hd_coll_kind_of(a, b)), want);
+      assert_int_equal(hd_coll_kind_of(a, b), hd_coll_kind_of(wa, wb));
+    }
+  static const struct {
+    hd_kind a, b;
+    const char *name;
+  } paper[] = {
+      {HD_KIND_DIMER, HD_KIND_DIMER, "dimer-dimer"}, {HD_KIND_DISK, HD_KIND_DIMER, "dimer-disk"},
+      {HD_KIND_DISK, HD_KIND_DISK, "disk-disk"},     {HD_KIND_DIMER, HD_KIND_WALL, "dimer-wall"},
+      {HD_KIND_DISK, HD_KIND_WALL, "disk-wall"},     {HD_KIND_ROD, HD_KIND_ROD, "rod-rod"},
+      {HD_KIND_DIMER, HD_KIND_BODY, "body-body"},    {HD_KIND_BODY, HD_KIND_WALL, "body-wall"}};
+  for (size_t k = 0; k < sizeof paper / sizeof *paper; k++)
+    assert_string_equal(hd_coll_kind_name(hd_coll_kind_of(paper[k].a, paper[k].b)), paper[k].name);
+  assert_string_equal(hd_coll_kind_name(hd_coll_kind_of(HD_KIND_ROD, HD_KIND_WALL)), "?");
+  assert_string_equal(hd_coll_kind_name(-1), "?");
+  assert_null(hd_kind_name(HD_NKINDS));
+}
+
 int main(void) {
   gsl_set_error_handler_off();
   if (getenv("HAFF_TEST_FILTER")) cmocka_set_test_filter(getenv("HAFF_TEST_FILTER"));
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(shapes),
+      cmocka_unit_test(coll_kind_of_kinds),
       cmocka_unit_test(free_flight),
       cmocka_unit_test(collide_by_hand),
       cmocka_unit_test(collide_pairs),

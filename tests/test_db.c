@@ -111,10 +111,21 @@ static void assert_integrity_ok(const char *path) {
   sqlite3_close(h);
 }
 
+/* The collision kinds of the paper's runs (dimers, disks, walls, rods) by number 0 .. 5:
+ * dimer-dimer, dimer-disk, disk-disk, dimer-wall, disk-wall, rod-rod. */
+enum { NCK = 6, CK_ROD = 5 };
+static hd_coll_kind ck(int k) {
+  static const hd_kind a[NCK] = {HD_KIND_DIMER, HD_KIND_DIMER, HD_KIND_DISK,
+                                 HD_KIND_DIMER, HD_KIND_DISK,  HD_KIND_ROD};
+  static const hd_kind b[NCK] = {HD_KIND_DIMER, HD_KIND_DISK, HD_KIND_DISK,
+                                 HD_KIND_WALL,  HD_KIND_WALL, HD_KIND_ROD};
+  return hd_coll_kind_of(a[k], b[k]);
+}
+
 static hd_collision_row coll(int64_t seq) {
   hd_collision_row r = {.seq = seq,
                         .t = 0.01 * (double)seq,
-                        .kind = HD_CK_DIMER_DIMER,
+                        .kind = ck(0),
                         .i = seq % 7,
                         .j = seq % 5 + 7,
                         .disk_i = 0,
@@ -151,10 +162,10 @@ static void round_trip(void **state) {
   assert_int_equal(hd_db_run_box(db, run, 3.0, 4.0, &err), HD_OK);
 
   /* every collision kind once, with NaN in theta_j, f and vn for some */
-  for (int k = 0; k <= HD_CK_ROD_ROD; k++) {
+  for (int k = 0; k < NCK; k++) {
     hd_collision_row r = {.seq = k + 1,
                           .t = 0.5 + k,
-                          .kind = (hd_coll_kind)k,
+                          .kind = ck(k),
                           .i = k,
                           .j = k == 3 ? -2 : k + 1,
                           .disk_i = k % 2,
@@ -223,12 +234,12 @@ static void round_trip(void **state) {
                                       "ORDER BY seq",
                                       -1, &q, NULL),
                    SQLITE_OK);
-  for (int k = 0; k <= HD_CK_ROD_ROD; k++) {
+  for (int k = 0; k < NCK; k++) {
     assert_int_equal(sqlite3_step(q), SQLITE_ROW);
     assert_int_equal(sqlite3_column_int64(q, 0), k + 1);
     assert_true(sqlite3_column_double(q, 1) == 0.5 + k);
     assert_string_equal((const char *)sqlite3_column_text(q, 2), kinds[k]);
-    assert_string_equal(hd_coll_kind_name((hd_coll_kind)k), kinds[k]);
+    assert_string_equal(hd_coll_kind_name(ck(k)), kinds[k]);
     assert_int_equal(sqlite3_column_int64(q, 3), k);
     assert_int_equal(sqlite3_column_int64(q, 4), k == 3 ? -2 : k + 1);
     assert_int_equal(sqlite3_column_int(q, 5), k % 2);
@@ -249,7 +260,7 @@ static void round_trip(void **state) {
       assert_true(sqlite3_column_double(q, 11) == -1.0);
     /* rod columns: stored for rod-rod only, NULL for the other kinds */
     for (int c = 12; c < 16; c++)
-      if (k == HD_CK_ROD_ROD)
+      if (k == CK_ROD)
         assert_true(sqlite3_column_double(q, c) == (c == 12 ? 0.5 : c - 12.0));
       else
         assert_int_equal(sqlite3_column_type(q, c), SQLITE_NULL);
@@ -885,26 +896,26 @@ static void fill_query_db(const char *path, qdata *q) {
     assert_non_null(q->f[r]);
     for (int64_t s = 1; s <= ncoll[r]; s++) {
       hd_collision_row c = coll(s);
-      c.kind = (hd_coll_kind)gsl_rng_uniform_int(rng, 6);
+      int kk = (int)gsl_rng_uniform_int(rng, NCK);
+      c.kind = ck(kk);
       /* theta uniform in (-2pi/3, 2pi/3] for dimers, NaN for others; some exactly +-pi/bin
        * edges are avoided by the random draw */
-      int has_i =
-          c.kind == HD_CK_DIMER_DIMER || c.kind == HD_CK_DIMER_DISK || c.kind == HD_CK_DIMER_WALL;
+      int has_i = kk == 0 || kk == 1 || kk == 3; /* dimer-dimer, dimer-disk, dimer-wall */
       c.theta_i = has_i ? (2 * gsl_rng_uniform(rng) - 1) * 2 * M_PI / 3 : NAN;
       if (has_i && s % 97 == 0) c.theta_i = M_PI; /* the closed end of the last bin */
-      c.theta_j = c.kind == HD_CK_DIMER_DIMER ? (2 * gsl_rng_uniform(rng) - 1) * 2 * M_PI / 3 : NAN;
-      if (c.kind == HD_CK_DIMER_DIMER) {
+      c.theta_j = kk == 0 ? (2 * gsl_rng_uniform(rng) - 1) * 2 * M_PI / 3 : NAN;
+      if (kk == 0) {
         double ci = cos(c.theta_i), cj = cos(c.theta_j);
         c.f = 1.0 / (2.0 - (ci * ci + cj * cj) / 2.0);
         q->f[r][q->nf[r]++] = c.f;
       } else {
-        c.f = c.kind == HD_CK_DISK_DISK ? 0.5 : NAN;
+        c.f = kk == 2 ? 0.5 : NAN;
       }
       c.de = -gsl_rng_uniform(rng);
       assert_int_equal(hd_db_log_collision(db, run, &c, &err), HD_OK);
       q->n_coll[r]++;
-      q->kind_n[r][c.kind]++;
-      q->kind_de[r][c.kind] += c.de;
+      q->kind_n[r][kk]++;
+      q->kind_de[r][kk] += c.de;
       if (has_i) {
         q->hist[r][(s - 1) / Q_BLOCK][bin_of(c.theta_i)]++;
         q->hist_all[r][bin_of(c.theta_i)]++;
@@ -1006,7 +1017,7 @@ static void queries(void **state) {
     int run = (int)val(&r, row, "run") - 1;
     const char *kind = r.txt[(long)row * r.ncol + col(&r, "kind")];
     int k = 0;
-    while (k < 6 && strcmp(hd_coll_kind_name((hd_coll_kind)k), kind)) k++;
+    while (k < 6 && strcmp(hd_coll_kind_name(ck(k)), kind)) k++;
     assert_true(k < 6);
     assert_int_equal((long)val(&r, row, "n"), q.kind_n[run][k]);
     assert_close(val(&r, row, "fraction"), (double)q.kind_n[run][k] / (double)q.n_coll[run], 1e-15);
@@ -1059,7 +1070,7 @@ static double coll_val_REAL(int k, int c) {
 }
 static hd_coll_kind coll_val_KIND(int k, int c) {
   (void)c;
-  return k == 40 ? HD_CK_ROD_ROD : (hd_coll_kind)(k % 5);
+  return ck(k == 40 ? CK_ROD : k % 5);
 }
 
 /* Every column of HD_COLLISION_COLUMNS goes from its field into its column through each of the
@@ -1095,7 +1106,7 @@ static void every_collision_column_round_trips(void **state) {
     for (int k = 0; k < NROW; k++) {                                                               \
       assert_int_equal(sqlite3_step(q), SQLITE_ROW);                                               \
       assert_int_equal(sqlite3_column_int64(q, 1), run);                                           \
-      int rod = coll_val_KIND(k, 0) == HD_CK_ROD_ROD;                                              \
+      int rod = coll_val_KIND(k, 0) == ck(CK_ROD);                                                 \
       int keep = (scope) == HD_COLL_ALL || ((scope) == HD_COLL_ROD) == rod;                        \
       if (!keep) {                                                                                 \
         if (sqlite3_column_type(q, 0) != SQLITE_NULL)                                              \

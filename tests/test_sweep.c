@@ -457,7 +457,7 @@ static void merge_library(void **state) {
       for (int k = 1; k <= 50 * (r + 1); k++) {
         hd_collision_row row = {.seq = k,
                                 .t = k,
-                                .kind = HD_CK_DISK_DISK,
+                                .kind = hd_coll_kind_of(HD_KIND_DISK, HD_KIND_DISK),
                                 .i = 0,
                                 .j = 1,
                                 .theta_i = NAN,

@@ -104,8 +104,21 @@ const char *hd_kind_name(int kind) {
   static const char *const name[] = {[HD_KIND_DISK] = "disk",
                                      [HD_KIND_DIMER] = "dimer",
                                      [HD_KIND_BODY] = "body",
-                                     [HD_KIND_ROD] = "rod"};
+                                     [HD_KIND_ROD] = "rod",
+                                     [HD_KIND_WALL] = "wall"};
   return kind >= 0 && kind < (int)(sizeof name / sizeof *name) ? name[kind] : NULL;
+}
+
+const char *hd_coll_kind_name(hd_coll_kind k) {
+  /* the texts of the pairs hd_coll_kind_of makes: hd_kind_name(A) "-" hd_kind_name(B)
+   * (tests/test_body.c, coll_kind_of_kinds, checks them) */
+  static const char *const name[HD_NKINDS][HD_NKINDS] = {
+      [HD_KIND_DIMER][HD_KIND_DIMER] = "dimer-dimer", [HD_KIND_DIMER][HD_KIND_DISK] = "dimer-disk",
+      [HD_KIND_DISK][HD_KIND_DISK] = "disk-disk",     [HD_KIND_DIMER][HD_KIND_WALL] = "dimer-wall",
+      [HD_KIND_DISK][HD_KIND_WALL] = "disk-wall",     [HD_KIND_ROD][HD_KIND_ROD] = "rod-rod",
+      [HD_KIND_BODY][HD_KIND_BODY] = "body-body",     [HD_KIND_BODY][HD_KIND_WALL] = "body-wall"};
+  const char *s = k >= 0 && k < HD_NKINDS * HD_NKINDS ? name[k / HD_NKINDS][k % HD_NKINDS] : NULL;
+  return s ? s : "?";
 }
 
 void hd_shape_disk(hd_shape *s, double d, double m) {

@@ -35,12 +35,34 @@ typedef enum hd_kind {
                       * m) at (-+a/2, 0) in the body frame) */
   HD_KIND_BODY = 2,  /* any other rigid cluster of disks (a [species NAME]; tag: the general
                       * code) */
-  HD_KIND_ROD = 3    /* a rod of the 1D ring ([rods]) */
+  HD_KIND_ROD = 3,   /* a rod of the 1D ring ([rods]) */
+  HD_KIND_WALL = 4   /* a wall, as the partner of a collision (no body is of this kind) */
 } hd_kind;
+#define HD_NKINDS 5 /* kinds, HD_KIND_WALL included */
 
-/* The text of a kind as states.kind stores it ("disk", "dimer", "body", "rod"), or NULL for
- * another value. */
+/* The text of a kind as states.kind stores it ("disk", "dimer", "body", "rod"; "wall"), or NULL
+ * for another value. */
 const char *hd_kind_name(int kind);
+
+/* The kind of a collision: the pair of its partners' kinds, a * HD_NKINDS + b (body i of kind a,
+ * j of kind b or HD_KIND_WALL), as hd_coll_kind_of makes it; stored as collisions.kind text,
+ * "A-B" (hd_coll_kind_name). */
+typedef int hd_coll_kind;
+
+/* The collision kind of a body of kind a (i) with one of kind b (j; HD_KIND_WALL for a wall), as
+ * the log keeps it: a pair with a BODY (a named species) is body-body, or body-wall; a dimer and
+ * a disk are dimer-disk whichever is i; else A-B.  The kinds a pair of rods, disks or dimers give
+ * the paper's names: dimer-dimer, dimer-disk, disk-disk, dimer-wall, disk-wall, rod-rod. */
+static inline hd_coll_kind hd_coll_kind_of(hd_kind a, hd_kind b) {
+  if (a == HD_KIND_BODY || b == HD_KIND_BODY)
+    a = HD_KIND_BODY, b = b == HD_KIND_WALL ? HD_KIND_WALL : HD_KIND_BODY;
+  else if (a == HD_KIND_DISK && b == HD_KIND_DIMER)
+    a = HD_KIND_DIMER, b = HD_KIND_DISK;
+  return (hd_coll_kind)(a * HD_NKINDS + b);
+}
+
+/* The text of a collision kind ("dimer-disk", ...), "?" for a pair hd_coll_kind_of never makes. */
+const char *hd_coll_kind_name(hd_coll_kind k);
 
 /* The shape and mass of a body species. */
 typedef struct hd_shape {

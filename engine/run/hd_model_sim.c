@@ -26,7 +26,7 @@ static int m_next(void *m, double t_stop, hd_collision_row *row, hd_error *err) 
   const hd_sim *s = m;
   /* seq is the store's; the rod-rod columns (eps ... tb_j) are stored NULL for these kinds */
   *row = (hd_collision_row){.t = ev.t,
-                            .kind = (hd_coll_kind)ev.kind,
+                            .kind = ev.kind,
                             .i = s->id[ev.i],
                             .j = ev.j >= 0 ? s->id[ev.j] : ev.j,
                             .disk_i = ev.ka,
@@ -86,10 +86,9 @@ static void m_sample(const void *m, hd_sample_row *row) {
                          q.s_par};
 }
 
-/* states.kind of body i: HD_KIND_DIMER, HD_KIND_DISK, or HD_KIND_BODY for a named species. */
+/* states.kind of body i: its species' kind (hd_sim.sp_kind). */
 static int body_kind(const hd_sim *s, int32_t i) {
-  int sp = s->b[i].species;
-  return sp == HD_SP_DIMER ? HD_KIND_DIMER : sp == HD_SP_DISK ? HD_KIND_DISK : HD_KIND_BODY;
+  return s->sp_kind[s->b[i].species];
 }
 
 static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label, hd_error *err) {

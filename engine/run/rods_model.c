@@ -47,7 +47,7 @@ static int m_next(void *m, double t_stop, hd_collision_row *row, hd_error *err) 
   int rc = hd_rods_next(m, t_stop, &ev, err);
   if (rc) return rc;
   *row = (hd_collision_row){.t = ev.t, /* seq is the store's */
-                            .kind = HD_CK_ROD_ROD,
+                            .kind = hd_coll_kind_of(HD_KIND_ROD, HD_KIND_ROD),
                             .i = ev.i,
                             .j = ev.j,
                             .disk_i = -1,

@@ -41,6 +41,8 @@ static int species_setup(hd_sim *s, const hd_scene *sc, hd_error *err) {
   hd_shape_disk(&s->shape[HD_SP_DISK], sc->disk_sigma, sc->disk_mass);
   snprintf(s->sp_name[HD_SP_DIMER], sizeof s->sp_name[0], "dimer");
   snprintf(s->sp_name[HD_SP_DISK], sizeof s->sp_name[0], "disk");
+  s->sp_kind[HD_SP_DIMER] = HD_KIND_DIMER;
+  s->sp_kind[HD_SP_DISK] = HD_KIND_DISK;
   s->alpha[HD_SP_DIMER][HD_SP_DIMER] = sc->dimer_alpha;
   s->alpha[HD_SP_DISK][HD_SP_DISK] = sc->disk_alpha;
   s->alpha[HD_SP_DIMER][HD_SP_DISK] = s->alpha[HD_SP_DISK][HD_SP_DIMER] = sc->disk_alpha_dimer;
@@ -55,6 +57,7 @@ static int species_setup(hd_sim *s, const hd_scene *sc, hd_error *err) {
                           sp->line, sp->name);
     s->n_species[i] = (int32_t)sp->count;
     snprintf(s->sp_name[i], sizeof s->sp_name[0], "%.31s", sp->name);
+    s->sp_kind[i] = HD_KIND_BODY;
     s->alpha[i][i] = sp->alpha;
     for (int j = 0; j < i; j++) {
       double a = sc->alpha_pair[i][j];
@@ -490,16 +493,10 @@ static void rebase(hd_sim *s) {
   hd_sim_sort(s); /* also rebuilds the queue, whose order rounding may have changed */
 }
 
-/* hd_coll_kind of a collision of i with j (j < 0: a wall): the paper's five kinds for dimers
- * and disks, 6 (body-body) and 7 (body-wall) when a named species takes part. */
-static int collision_kind(const hd_sim *s, int32_t i, int32_t j) {
-  if (s->b[i].species >= HD_SP_NAMED || (j >= 0 && s->b[j].species >= HD_SP_NAMED))
-    return j < 0 ? 7 : 6;
-  int di = s->b[i].species == HD_SP_DIMER, dj = j >= 0 && s->b[j].species == HD_SP_DIMER;
-  if (j < 0) return di ? 3 : 4;
-  if (di && dj) return 0;
-  if (di || dj) return 1;
-  return 2;
+/* The kind of a collision of i with j (j < 0: a wall): of the kinds of their species. */
+static hd_coll_kind collision_kind(const hd_sim *s, int32_t i, int32_t j) {
+  return hd_coll_kind_of(s->sp_kind[s->b[i].species],
+                         j < 0 ? HD_KIND_WALL : s->sp_kind[s->b[j].species]);
 }
 
 /* Pile-up bookkeeping after any collision: HD_PILEUP collisions in a row, each less than

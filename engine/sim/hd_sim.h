@@ -95,8 +95,7 @@ typedef struct hd_sim_clock {
 /* What one collision did, for the log. */
 typedef struct hd_event_out {
   double t;               /* absolute time */
-  int kind;               /* hd_coll_kind (hd_db.h numbering: 0 dimer-dimer ... 4 disk-wall,
-                           * 6 body-body, 7 body-wall for a pair with a named species) */
+  hd_coll_kind kind;      /* of the partners' species kinds (hd_sim.sp_kind, hd_coll_kind_of) */
   int32_t i, j;           /* bodies; j = -1 - wall index for a wall */
   int ka, kb;             /* touching disks (kb = -1 for a wall) */
   hd_collision_info info; /* angles, f, de, vn */
@@ -115,7 +114,10 @@ typedef struct hd_sim {
                                         while b is re-sorted */
   hd_shape shape[HD_MAX_SPECIES];    /* shapes by species (HD_KIND_* tag derived) */
   char sp_name[HD_MAX_SPECIES][HD_SPECIES_NAME_MAX]; /* species names: "dimer", "disk", NAME */
-  double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES];      /* pair restitution by species */
+  hd_kind sp_kind[HD_MAX_SPECIES]; /* the kind of each species' bodies in the log (states.kind,
+                                    * collisions.kind): HD_KIND_DIMER, HD_KIND_DISK, HD_KIND_BODY
+                                    * for a named species whatever its shape */
+  double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* pair restitution by species */
   double reach[HD_MAX_SPECIES]; /* enclosing radius of each species widened by 1e-9 (the
                                  * neighbour filter of hd_predict.c) */
   double wall_alpha;            /* body-wall restitution */

@@ -44,7 +44,8 @@ static void make_db(const char *path, int seed) {
   if (hd_db_open(&db, path, &err) ||
       hd_db_run_begin(db, scene, (unsigned long long)seed, "fuzz", &run, &err))
     abort();
-  hd_collision_row c = {.seq = 1, .t = 0.5, .kind = HD_CK_DISK_DISK, .j = 1, .f = 0.5};
+  hd_collision_row c = {
+      .seq = 1, .t = 0.5, .kind = hd_coll_kind_of(HD_KIND_DISK, HD_KIND_DISK), .j = 1, .f = 0.5};
   hd_sample_row s = {.t = 1, .cpd = 1, .e_tr = 1, .e_rot = 0};
   hd_species_rec sp = {2, "tri", "0 0 1 1", 2, 1, 0};
   hd_species_sample ss = {1, 2, 1, 0};
