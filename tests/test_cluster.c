@@ -106,7 +106,7 @@ static void elastic_clusters(void **state) {
     hd_sim *s;
     hd_error err;
     if (hd_sim_alloc(&s, &sc, &err)) fail_msg("%s", err.msg);
-    assert_int_equal(s->shape[HD_SP_NAMED].tag, HD_KIND_BODY);
+    assert_int_equal(s->shape[2].tag, HD_KIND_BODY); /* the first [species NAME] */
     assert_int_equal(s->n, N);
     double e0t, e0r;
     hd_sim_energy(s, -1, &e0t, &e0r);
@@ -257,13 +257,13 @@ static void fast_paths(void **state) {
   hd_error err;
   test_disk_scene(&sc, 100, 0.2, 0.9, 1);
   assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
-  assert_true(s->disks_only && s->nsp == 2 && s->shape[HD_SP_DISK].tag == HD_KIND_DISK);
+  assert_true(s->disks_only && s->nsp == 2 && s->shape[1].tag == HD_KIND_DISK);
   hd_sim_free(s);
   test_disk_scene(&sc, 0, 0.2, 0.9, 1);
   sc.n_dimers = 50;
   sc.box_x = sc.box_y = 30;
   assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
-  assert_true(!s->disks_only && s->shape[HD_SP_DIMER].tag == HD_KIND_DIMER);
+  assert_true(!s->disks_only && s->shape[0].tag == HD_KIND_DIMER);
   hd_sim_free(s);
   const double x[] = {0, 1}, y[] = {0, 0}, d[] = {1, 1}, m[] = {1, 1};
   add_species(&sc, "dumbbell", 2, x, y, d, m, 10, 0.9);

@@ -382,8 +382,8 @@ static void mixture_equipartition(void **state) {
     if (hd_sim_next(s, INFINITY, &ev, &err)) fail_msg("%s", err.msg);
     if (k >= n / 2 && k % 200 == 0) {
       double dt, dr, st, sr;
-      hd_sim_energy(s, HD_SP_DIMER, &dt, &dr);
-      hd_sim_energy(s, HD_SP_DISK, &st, &sr);
+      hd_sim_energy(s, 0, &dt, &dr); /* species 0: [dimers], 1: [disks] */
+      hd_sim_energy(s, 1, &st, &sr);
       sum_dt += dt / 300.0, sum_dr += 2 * dr / 300.0, sum_st += st / 300.0; /* each in units of T */
       m++;
     }

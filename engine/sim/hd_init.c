@@ -6,6 +6,7 @@
 
 #include <gsl/gsl_randist.h>
 
+#include "hd_scene_species.h"
 #include "hd_sim_internal.h"
 #include "hd_stop.h"
 
@@ -81,16 +82,21 @@ static int place_random(hd_sim *s) {
 static int place_dense_lattice(hd_sim *s, hd_error *err) {
   const double eps = 1.0 + 1e-9;
   double ex, ey;
-  int only_dimers = s->n_species[HD_SP_DISK] == 0;
-  for (int sp = HD_SP_NAMED; sp < s->nsp; sp++) only_dimers &= s->n_species[sp] == 0;
-  if (only_dimers) {
-    ex = (s->shape[HD_SP_DIMER].a + s->shape[HD_SP_DIMER].d) * eps;
-    ey = s->shape[HD_SP_DIMER].d * eps;
-  } else {
-    double w = fmax(s->n_species[HD_SP_DIMER] ? 2.0 * hd_shape_radius(&s->shape[HD_SP_DIMER]) : 0.0,
-                    s->shape[HD_SP_DISK].d);
-    for (int sp = HD_SP_NAMED; sp < s->nsp; sp++)
-      if (s->n_species[sp]) w = fmax(w, 2.0 * hd_shape_radius(&s->shape[sp]));
+  int dimers = -1; /* the [dimers] species, if it is the only one with bodies */
+  for (int sp = 0; sp < s->nsp; sp++)
+    if (s->sp_kind[sp] == HD_KIND_DIMER) dimers = sp;
+  for (int sp = 0; sp < s->nsp; sp++)
+    if (sp != dimers && s->n_species[sp]) dimers = -2;
+  if (dimers >= 0) {
+    ex = (s->shape[dimers].a + s->shape[dimers].d) * eps;
+    ey = s->shape[dimers].d * eps;
+  } else { /* the largest body present, and the [disks] diameter in any case */
+    double w = 0.0;
+    for (int sp = 0; sp < s->nsp; sp++)
+      if (s->sp_kind[sp] == HD_KIND_DISK)
+        w = fmax(w, s->shape[sp].d);
+      else if (s->n_species[sp])
+        w = fmax(w, 2.0 * hd_shape_radius(&s->shape[sp]));
     ex = ey = w * eps;
   }
   /* sites along each edge, in double (box = 1 1e300 overflowed an int32 cast); a row needs
@@ -198,9 +204,9 @@ static int check_spins(const hd_sim *s, const hd_state_row *rows, long n, const 
                           "%s:%ld: column 4 (phi) = %g: an angle beyond +-%g rad is not resolved "
                           "(give it in (-pi, pi])",
                           sc->state_file, rows[r].line, rows[r].phi, HD_MAX_PHI);
-    double rim = fabs(rows[r].omega) * (rows[r].species == HD_SP_DIMER
-                                            ? 0.5 * sc->dimer_a
-                                            : hd_shape_radius(&s->shape[rows[r].species]));
+    const hd_shape *sh = &s->shape[rows[r].species];
+    double rim = fabs(rows[r].omega) *
+                 (s->sp_kind[rows[r].species] == HD_KIND_DIMER ? 0.5 * sh->a : hd_shape_radius(sh));
     if (vmax > 0.0 && rim > HD_MAX_SPIN_RATIO * vmax)
       return hd_error_set(err, HD_EINPUT,
                           "%s:%ld: column 7 (omega) = %g: the rim speed |omega| a/2 = %g is more "
@@ -235,12 +241,16 @@ static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
                         "[dimers]/[disks] count say %ld and %ld",
                         sc->state_file, cnt[0], cnt[1], sc->n_dimers, sc->n_disks);
   }
-  for (int sp = HD_SP_NAMED; sp < s->nsp; sp++)
-    if (sc->named[sp - HD_SP_NAMED].count && sc->named[sp - HD_SP_NAMED].count != cnt[sp]) {
-      free(rows);
-      return hd_error_set(err, HD_EINPUT,
-                          "%s: holds %d bodies of species %s but its [species] count says %ld",
-                          sc->state_file, cnt[sp], s->sp_name[sp], sc->named[sp - 2].count);
+  for (int sp = 0; sp < s->nsp; sp++)
+    if (s->sp_kind[sp] == HD_KIND_BODY) {
+      hd_scene_sp q;
+      hd_scene_species_get(sc, sp, &q);
+      if (q.count && q.count != cnt[sp]) {
+        free(rows);
+        return hd_error_set(err, HD_EINPUT,
+                            "%s: holds %d bodies of species %s but its [species] count says %ld",
+                            sc->state_file, cnt[sp], s->sp_name[sp], q.count);
+      }
     }
   s->n = 0;
   for (int sp = 0; sp < s->nsp; sp++) s->n_species[sp] = cnt[sp], s->n += cnt[sp];

@@ -152,7 +152,7 @@ static inline void commit(hd_sim *s, int32_t i) {
 static void predict_disks(hd_sim *s, int32_t i, int32_t cx, int32_t cy, double cross,
                           double *best) {
   hd_body *bi = &s->b[i];
-  const double D = s->shape[HD_SP_DISK].d;
+  const double D = s->disks_d;
   int32_t c = bi->cell, ncx = s->ncx;
   if (cx >= 1 && cx < ncx - 1 && cy >= 1 && cy < s->ncy - 1) {
     const int32_t *head = s->head;
@@ -322,7 +322,7 @@ static inline int32_t cell_beyond(int32_t c, int dir, int32_t dist, int32_t ncx)
 static int predict_after_crossing(hd_sim *s, int32_t i) {
   hd_body *bi = &s->b[i];
   if (bi->p_type == HD_EV_PAIR && s->b[bi->p_partner].ncoll != bi->p_pcount) return 0;
-  const double now = s->c.t, D = s->shape[HD_SP_DISK].d;
+  const double now = s->c.t, D = s->disks_d;
   int dir = bi->c_dir;
   int32_t c = bi->cell, ncx = s->ncx, cx, cy;
   hd_body_cxy(s, bi, &cx, &cy);

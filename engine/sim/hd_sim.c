@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "hd_mem.h"
+#include "hd_scene_species.h"
 #include "hd_sim_internal.h"
 #include "hd_stop.h"
 
@@ -25,47 +26,36 @@
 static const hd_wall default_walls[4] = {
     {0, 0.0, +1.0}, {0, 0.0, -1.0}, {1, 0.0, +1.0}, {1, 0.0, -1.0}};
 
-/* The species table from the scene: [dimers] (0), [disks] (1), then each `[species NAME]`
- * section (2, 3, ...), with the pair restitutions.  The pair (dimers, disks) takes [disks]
- * alpha_dimer; a pair with a named species takes sc->alpha_pair.  HD_EINPUT for a named species
+/* The species table from the scene's (hd_scene_species.h: [dimers] 0, [disks] 1, then each
+ * `[species NAME]` section 2, 3, ...), with the pair restitutions (hd_scene_pair_alpha).
+ * HD_EINPUT for a named species
  * the engine cannot build (the scene's loader checks the same: this guards a scene filled by
  * hand). */
 static int species_setup(hd_sim *s, const hd_scene *sc, hd_error *err) {
   if (sc->n_named < 0 || sc->n_named > HD_MAX_SPECIES - 2)
     return hd_error_set(err, HD_EINPUT, "scene: %d [species] sections, at most %d", sc->n_named,
                         HD_MAX_SPECIES - 2);
-  s->nsp = 2 + sc->n_named;
-  s->n_species[HD_SP_DIMER] = (int32_t)sc->n_dimers;
-  s->n_species[HD_SP_DISK] = (int32_t)sc->n_disks;
-  hd_shape_dimer(&s->shape[HD_SP_DIMER], sc->dimer_d, sc->dimer_a, sc->dimer_m);
-  hd_shape_disk(&s->shape[HD_SP_DISK], sc->disk_sigma, sc->disk_mass);
-  snprintf(s->sp_name[HD_SP_DIMER], sizeof s->sp_name[0], "dimer");
-  snprintf(s->sp_name[HD_SP_DISK], sizeof s->sp_name[0], "disk");
-  s->sp_kind[HD_SP_DIMER] = HD_KIND_DIMER;
-  s->sp_kind[HD_SP_DISK] = HD_KIND_DISK;
-  s->alpha[HD_SP_DIMER][HD_SP_DIMER] = sc->dimer_alpha;
-  s->alpha[HD_SP_DISK][HD_SP_DISK] = sc->disk_alpha;
-  s->alpha[HD_SP_DIMER][HD_SP_DISK] = s->alpha[HD_SP_DISK][HD_SP_DIMER] = sc->disk_alpha_dimer;
-  for (int k = 0; k < sc->n_named; k++) {
-    const hd_scene_species *sp = &sc->named[k];
-    int i = HD_SP_NAMED + k;
-    if (sp->count < 0 || sp->count > HD_MAX_COUNT ||
-        hd_shape_cluster(&s->shape[i], sp->ndisk, sp->x, sp->y, sp->d, sp->m, 1) ||
-        !(sp->alpha >= 0.0 && sp->alpha <= 1.0))
+  s->nsp = hd_scene_nspecies(sc);
+  for (int i = 0; i < s->nsp; i++) {
+    hd_scene_sp sp;
+    int bad = hd_scene_species_get(sc, i, &sp);
+    if (sp.kind == HD_KIND_BODY &&
+        (bad || sp.count < 0 || sp.count > HD_MAX_COUNT || !(sp.alpha >= 0.0 && sp.alpha <= 1.0)))
       return hd_error_set(err, HD_EINPUT,
-                          "scene:%ld: [species %.31s]: count, disks or alpha out of range",
-                          sp->line, sp->name);
-    s->n_species[i] = (int32_t)sp->count;
-    snprintf(s->sp_name[i], sizeof s->sp_name[0], "%.31s", sp->name);
-    s->sp_kind[i] = HD_KIND_BODY;
-    s->alpha[i][i] = sp->alpha;
+                          "scene:%ld: [species %.31s]: count, disks or alpha out of range", sp.line,
+                          sp.name);
+    s->n_species[i] = (int32_t)sp.count;
+    s->shape[i] = sp.shape;
+    snprintf(s->sp_name[i], sizeof s->sp_name[0], "%.31s", sp.name);
+    s->sp_kind[i] = sp.kind;
+    s->alpha[i][i] = sp.alpha;
     for (int j = 0; j < i; j++) {
-      double a = sc->alpha_pair[i][j];
-      if (!(a >= 0.0 && a <= 1.0))
+      double a = hd_scene_pair_alpha(sc, i, j);
+      if (sp.kind == HD_KIND_BODY && !(a >= 0.0 && a <= 1.0))
         return hd_error_set(err, HD_EINPUT,
                             "scene:%ld: [species %.31s] alpha with species %d = %g: must be in "
                             "[0, 1]",
-                            sp->line, sp->name, j, a);
+                            sp.line, sp.name, j, a);
       s->alpha[i][j] = s->alpha[j][i] = a;
     }
   }
@@ -141,7 +131,10 @@ int hd_sim_queue_init(hd_sim *s, hd_error *err) {
       s->n > 0 ? 0.5 * M * (HD_REBASE_TRAVEL * dmin) * (HD_REBASE_TRAVEL * dmin) : INFINITY;
   s->disks_only = 1; /* only [disks] bodies */
   for (int sp = 0; sp < s->nsp; sp++)
-    if (sp != HD_SP_DISK && s->n_species[sp] > 0) s->disks_only = 0;
+    if (s->sp_kind[sp] == HD_KIND_DISK)
+      s->disks_d = s->shape[sp].d;
+    else if (s->n_species[sp] > 0)
+      s->disks_only = 0;
   s->partial_cross = s->disks_only && s->ncx >= 3 && s->ncy >= 3;
   return HD_OK;
 }

@@ -21,11 +21,6 @@
 #include "hd_queue.h"
 #include "hd_scene.h"
 
-/* Species index of a body (its shape is sim->shape[species]): [dimers] is 0, [disks] 1, the
- * scene's `[species NAME]` sections 2, 3, ... (hd_scene.named[species - 2]), up to
- * HD_MAX_SPECIES (hd_scene.h). */
-enum { HD_SP_DIMER = 0, HD_SP_DISK = 1, HD_SP_NAMED = 2 };
-
 /* Event types. */
 enum { HD_EV_NONE = 0, HD_EV_PAIR = 1, HD_EV_CELL = 2, HD_EV_WALL = 3 };
 /* c_dir of a body that never leaves its cell but spins (a dimer with V = 0 exactly, e.g. from a
@@ -41,7 +36,7 @@ typedef struct hd_body {
   /* first cache line: what a neighbour's prediction reads */
   double t;        /* time of the state k */
   hd_kin k;        /* centre of mass, velocity, orientation, angular velocity at t */
-  int32_t species; /* index into hd_sim.shape (HD_SP_DIMER, HD_SP_DISK, HD_SP_NAMED + k) */
+  int32_t species; /* index into hd_sim.shape: the scene's species (hd_scene_species.h) */
   int32_t next;    /* next body in the cell's list, -1 at the end */
   /* second cache line */
   double ev_t;       /* min(p_t, c_t): time of the next event (INFINITY if none) */
@@ -136,6 +131,7 @@ typedef struct hd_sim {
                                  * since (hd_sim_queue_init; hd_sim.c, rebase) */
   int verify;                   /* check invariants at every event (slow) */
   int disks_only;         /* only [disks] bodies: disk-disk prediction without shape dispatch */
+  double disks_d;         /* the diameter of the [disks] species (HD_KIND_DISK) */
   int partial_cross;      /* pure disks, >= 3x3 cells: crossings search 3 new cells */
   int melt;               /* set-up only: the lattice placed must be melted */
   double max_overlap;     /* verification: largest relative overlap seen */
