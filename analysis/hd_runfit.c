@@ -195,14 +195,16 @@ int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *n
     hd_group *g = NULL;
     for (size_t j = 0; j < *ng && !g; j++) {
       const hd_group *q = &(*groups)[j];
-      if (q->species == r->species && q->walls == r->walls && !strcmp(q->label, r->label) &&
-          abs_eq(q->alpha, r->alpha) && abs_eq(q->a_over_d, r->a_over_d) && q->nbodies == r->n &&
-          rel_eq(q->d, r->d) && rel_eq(q->m, r->m) && rel_eq(q->density, r->density))
+      if (q->species == r->species && q->mixture == r->mixture && q->walls == r->walls &&
+          !strcmp(q->label, r->label) && abs_eq(q->alpha, r->alpha) &&
+          abs_eq(q->a_over_d, r->a_over_d) && q->nbodies == r->n && rel_eq(q->d, r->d) &&
+          rel_eq(q->m, r->m) && rel_eq(q->density, r->density))
         g = &(*groups)[j];
     }
     if (!g) {
       g = &(*groups)[(*ng)++];
-      g->species = r->species, g->walls = r->walls, g->alpha = r->alpha, g->a_over_d = r->a_over_d;
+      g->species = r->species, g->mixture = r->mixture, g->walls = r->walls, g->alpha = r->alpha;
+      g->a_over_d = r->a_over_d;
       snprintf(g->label, sizeof g->label, "%s", r->label);
       g->nbodies = r->n, g->density = r->density, g->d = r->d, g->m = r->m;
       g->idx = malloc(n * sizeof *g->idx);

@@ -97,6 +97,7 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
  * different ensembles); they now form groups of their own with the same (alpha, a/d) label. */
 typedef struct hd_group {
   int species;                  /* hd_run_info.species of its runs */
+  int mixture;                  /* and their mixture flag */
   int walls;                    /* and their walls flag */
   char label[HD_ANA_LABEL_MAX]; /* and their label (hd_run_info.label) */
   double alpha, a_over_d;

@@ -17,13 +17,14 @@ int hd_ana_open(sqlite3 **db, const char *path, hd_error *err) {
   return rc;
 }
 
-const char *hd_ana_species_name(int species, int walls) {
-  static const char *const name[5][2] = {{"dimers", "dimers+walls"},
-                                         {"disks", "disks+walls"},
-                                         {"other", "other+walls"},
-                                         {"dimers+disks", "dimers+disks+walls"},
-                                         {"shapes", "shapes+walls"}};
-  return species >= 0 && species < 5 ? name[species][walls != 0] : "other";
+const char *hd_ana_species_name(int kind, int mixture, int walls) {
+  static const char *const name[HD_NKINDS][2] = {[HD_KIND_DIMER] = {"dimers", "dimers+walls"},
+                                                 [HD_KIND_DISK] = {"disks", "disks+walls"},
+                                                 [HD_KIND_BODY] = {"shapes", "shapes+walls"},
+                                                 [HD_KIND_ROD] = {"other", "other+walls"},
+                                                 [HD_KIND_WALL] = {"other", "other+walls"}};
+  if (kind == HD_KIND_DIMER && mixture) return walls ? "dimers+disks+walls" : "dimers+disks";
+  return kind >= 0 && kind < HD_NKINDS ? name[kind][walls != 0] : "other";
 }
 
 /* A scene with named species (issue 18): the gas as a whole.  ri->label names the present
@@ -68,32 +69,33 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
   hd_scene_free(&sc);
   int named = 0;
   for (int k = 0; k < sc.n_named; k++) named |= sc.named[k].count > 0;
-  ri->rotates = 0;
+  ri->rotates = 0, ri->mixture = 0;
   ri->walls = sc.walls != 0;
   if (named) {
-    ri->species = HD_ANA_SHAPES;
+    ri->species = HD_KIND_BODY;
     ri->n = 0;
     parse_shapes(&sc, ri);
   } else if (sc.n_dimers > 0) {
-    ri->species = sc.n_disks > 0 ? HD_ANA_MIXTURE : HD_ANA_DIMERS;
+    ri->species = HD_KIND_DIMER, ri->mixture = sc.n_disks > 0;
     ri->n = sc.n_dimers;
     ri->alpha = sc.dimer_alpha, ri->a = sc.dimer_a, ri->d = sc.dimer_d, ri->m = sc.dimer_m;
     ri->mass = 2.0 * sc.dimer_m;
     ri->a_over_d = sc.dimer_a / sc.dimer_d;
     ri->rotates = 1;
   } else if (sc.n_disks > 0) {
-    ri->species = HD_ANA_DISKS;
+    ri->species = HD_KIND_DISK;
     ri->n = sc.n_disks;
     ri->alpha = sc.disk_alpha, ri->a = 0, ri->d = sc.disk_sigma, ri->m = sc.disk_mass;
     ri->mass = sc.disk_mass;
     ri->a_over_d = 0;
   } else {
-    ri->species = HD_ANA_OTHER;
+    ri->species = HD_KIND_ROD;
     ri->n = 0, ri->alpha = 1, ri->a = 0, ri->d = 1, ri->m = 1, ri->mass = 1, ri->a_over_d = 0;
   }
-  if (ri->species != HD_ANA_SHAPES) {
+  if (ri->species != HD_KIND_BODY) {
     ri->alpha_lo = ri->alpha_hi = ri->alpha;
-    snprintf(ri->label, sizeof ri->label, "%s", hd_ana_species_name(ri->species, ri->walls));
+    snprintf(ri->label, sizeof ri->label, "%s",
+             hd_ana_species_name(ri->species, ri->mixture, ri->walls));
   }
   /* the box as given, or derived from area_fraction over every body (hd_scene_covered_area) */
   ri->box_x = sc.box_x, ri->box_y = sc.box_y, ri->area_fraction = sc.area_fraction;

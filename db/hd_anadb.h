@@ -8,46 +8,40 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "hd_body.h"
 #include "hd_error.h"
-
-/* Species a run is analysed as. */
-enum {
-  HD_ANA_DIMERS = 0,
-  HD_ANA_DISKS = 1,
-  HD_ANA_OTHER = 2,
-  HD_ANA_MIXTURE = 3,
-  HD_ANA_SHAPES = 4
-};
 
 /* Length of hd_run_info.label (and hd_group.label), the terminating NUL included. */
 #define HD_ANA_LABEL_MAX 96
 
-/* The species' label in tables: dimers, disks, dimers+disks (a mixture), shapes (named species:
- * hd_run_info.label names them) or other, with +walls when the box has walls. */
-const char *hd_ana_species_name(int species, int walls);
+/* The label in tables of what a run is analysed as (hd_run_info.species, .mixture): dimers,
+ * disks, dimers+disks (a mixture), shapes (named species: hd_run_info.label names them) or
+ * other (rods), with +walls when the box has walls. */
+const char *hd_ana_species_name(int kind, int mixture, int walls);
 
 /* One run and the scene parameters the analysis needs (parsed from runs.scene). */
 typedef struct hd_run_info {
   int64_t id;
   char status[16]; /* runs.status */
   unsigned long long seed;
-  int species; /* HD_ANA_SHAPES if a [species NAME] section has count > 0 (the gas as a
-                  whole: every body, whatever its shape), else HD_ANA_DIMERS if [dimers]
-                  count > 0 (HD_ANA_MIXTURE with [disks] count > 0 too: analysed through
-                  its dimers), else HD_ANA_DISKS if [disks] count > 0, else HD_ANA_OTHER
-                  (rods) */
+  int species; /* the kind the run is analysed as (hd_kind): HD_KIND_BODY if a [species NAME]
+                  section has count > 0 (the gas as a whole: every body, whatever its shape),
+                  else HD_KIND_DIMER if [dimers] count > 0 (with mixture set if [disks]
+                  count > 0 too: analysed through its dimers), else HD_KIND_DISK if [disks]
+                  count > 0, else HD_KIND_ROD (a rods run, or no bodies) */
+  int mixture; /* 1: HD_KIND_DIMER of a [dimers]-[disks] mixture */
   int walls;   /* [walls] sides given: not the periodic box of the papers */
-  char label[HD_ANA_LABEL_MAX]; /* what tables print: hd_ana_species_name, or for HD_ANA_SHAPES
+  char label[HD_ANA_LABEL_MAX]; /* what tables print: hd_ana_species_name, or for HD_KIND_BODY
                                    "shapes:" and the present species' names joined by '+' in
                                    scene order ("shapes:dimers+tri"), then "+walls" if walls */
   int rotates;                  /* 1 if some body has more than one disk (E_rot and K exist) */
-  long n;                       /* bodies of that species (HD_ANA_SHAPES: of every species) */
+  long n;                       /* bodies of that species (HD_KIND_BODY: of every species) */
   double alpha;              /* its restitution with itself ([dimers] or [disks] alpha, default 1);
-                                HD_ANA_SHAPES: the one restitution of every pair of present species,
+                                HD_KIND_BODY: the one restitution of every pair of present species,
                                 NaN when they differ (eq. 31 has no single alpha then) */
   double alpha_lo, alpha_hi; /* the smallest and largest restitution of a pair of present
-                                species (alpha_lo = alpha_hi = alpha but for HD_ANA_SHAPES) */
-  double a, d;          /* bond length and disk diameter (disks: a = 0, d = sigma; HD_ANA_SHAPES:
+                                species (alpha_lo = alpha_hi = alpha but for HD_KIND_BODY) */
+  double a, d;          /* bond length and disk diameter (disks: a = 0, d = sigma; HD_KIND_BODY:
                            0 and NaN) */
   double m;             /* disk mass ([dimers] m or [disks] mass, default 1; shapes: NaN) */
   double mass;          /* body mass: 2 m for a dimer, m for a disk (shapes: NaN, so no Enskog

@@ -143,7 +143,7 @@ int hd_cli_fits(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit 
   }
   size_t m = 0;
   for (size_t i = 0; i < nr; i++) {
-    if (runs[i].species == HD_ANA_OTHER) continue;
+    if (runs[i].species == HD_KIND_ROD) continue;
     int rc = hd_run_fit_do(*db, &runs[i], &a->fit, &(*fits)[m], &err);
     /* skip short runs in an ensemble, say so; not a damaged database (SQLite's "malformed",
      * bad input too, for the whole file) */
@@ -263,7 +263,8 @@ const char *hd_cli_window_name(int window) {
 /* Whether group g is in the papers' tables: one species in a periodic box, dimers (and disks
  * when with_disks: Table I's reference; Table II's K needs rotation). */
 int hd_cli_in_table(const hd_group *g, int with_disks) {
-  return !g->walls && (g->species == HD_ANA_DIMERS || (with_disks && g->species == HD_ANA_DISKS));
+  return !g->walls && ((g->species == HD_KIND_DIMER && !g->mixture) ||
+                       (with_disks && g->species == HD_KIND_DISK));
 }
 
 /* How many of the groups g[0..ng) are in the table; says on stderr which are left out for not
@@ -273,7 +274,7 @@ size_t hd_cli_table_groups(const char *cmd, const hd_group *g, size_t ng, int wi
   for (size_t j = 0; j < ng; j++) {
     if (hd_cli_in_table(&g[j], with_disks))
       in++;
-    else if (g[j].species != HD_ANA_DISKS || g[j].walls) /* not the disks table2 has no use for */
+    else if (g[j].species != HD_KIND_DISK || g[j].walls) /* not the disks table2 has no use for */
       fprintf(stderr,
               "haff %s: note: left out %zu run%s of %s (alpha %g a/d %g): the table is for one "
               "species in a periodic box; haff-fit --alpha-group fits them\n",

@@ -36,9 +36,10 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
             ri->a_over_d, m, hd_cli_num("%.6g", De, 0), hd_cli_num("%.6g", nu, 0),
             nfit == 0 && nshort ? " flag=short" : "");
     /* header: column 1's name is the block's legend title (gnuplot: title columnheader(1)) */
-    if (ri->species == HD_ANA_DIMERS && !ri->walls) /* the papers' case: the legend as before */
+    if (ri->species == HD_KIND_DIMER && !ri->mixture &&
+        !ri->walls) /* the papers' case: the legend as before */
       fprintf(out, "alpha=%g a/d=%g (%zu runs)", al, ri->a_over_d, m);
-    else if (ri->species == HD_ANA_DISKS && !ri->walls)
+    else if (ri->species == HD_KIND_DISK && !ri->walls)
       fprintf(out, "disks alpha=%g (%zu runs)", al, m);
     else
       fprintf(out, "%s alpha=%g a/d=%g (%zu runs)", ri->label, al, ri->a_over_d, m);

@@ -14,7 +14,7 @@ static void stat_line(FILE *out, size_t s, const hd_snapshot *sn, const char *va
           var, v->n, v->scale, v->kurt, v->a2, v->a2_err, v->ks_d, v->ks_p);
 }
 
-/* Says on stderr why a run of named species (hd_run_info.species HD_ANA_SHAPES) is refused. */
+/* Says on stderr why a run of named species (hd_run_info.species HD_KIND_BODY) is refused. */
 static void refuse_shapes(const char *cmd, const hd_run_info *ri) {
   fprintf(stderr,
           "haff %s: run %lld has named species (%s): veldist reads one species, [dimers] or "
@@ -32,7 +32,8 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
   int rc = hd_cli_fits(a, cmd, &db, &fits, &n);
   if (rc) return rc;
   int bins = a->bins ? a->bins : 40, species = fits[0].info.species;
-  if (species == HD_ANA_SHAPES) {
+  int mixture = fits[0].info.mixture;
+  if (species == HD_KIND_BODY) {
     refuse_shapes(cmd, &fits[0].info);
     free(fits);
     hd_ana_close(db);
@@ -48,11 +49,11 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
   hd_error err;
   for (size_t r = 0; r < n && !rc; r++) {
     const hd_run_fit *f = &fits[r];
-    if (f->info.species != species) {
+    if (f->info.species != species || f->info.mixture != mixture) {
       other++;
       continue;
     }
-    int dimers = species != HD_ANA_DISKS;
+    int dimers = species != HD_KIND_DISK;
     hd_snapshot *sn;
     size_t ns, used = 0;
     if (hd_ana_snapshots(db, f->info.id, a->label, dimers ? "dimer" : "disk", &sn, &ns, &err)) {
@@ -137,13 +138,13 @@ int haff_veldist_main(int argc, char **argv) {
   }
   rc = hd_cli_one_run(&haff_veldist_spec, argc, argv, &a, &db, &ri);
   if (rc) return rc < 0 ? 0 : rc;
-  if (ri.species == HD_ANA_OTHER) {
+  if (ri.species == HD_KIND_ROD) {
     hd_ana_close(db);
     fprintf(stderr, "haff %s: run %lld is a rods run: see haff rods-veldist\n", argv[0],
             (long long)a.run);
     return 2;
   }
-  if (ri.species == HD_ANA_SHAPES) {
+  if (ri.species == HD_KIND_BODY) {
     hd_ana_close(db);
     refuse_shapes(argv[0], &ri);
     return 2;
@@ -152,7 +153,7 @@ int haff_veldist_main(int argc, char **argv) {
   hd_error err;
   size_t ns;
   hd_snapshot *sn;
-  int dimers = ri.species != HD_ANA_DISKS;
+  int dimers = ri.species != HD_KIND_DISK;
   rc = hd_ana_snapshots(db, a.run, a.label, dimers ? "dimer" : "disk", &sn, &ns, &err);
   hd_ana_close(db);
   if (rc) return hd_cli_fail(argv[0], &err);
