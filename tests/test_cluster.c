@@ -117,7 +117,7 @@ static void elastic_clusters(void **state) {
       hd_event_out ev;
       if (hd_sim_next(s, INFINITY, &ev, &err))
         fail_msg("%s: collision %ld: %s", shape_name[which], k, err.msg);
-      assert_int_equal(ev.kind, 6);
+      assert_int_equal(ev.kind, hd_coll_kind_of(HD_KIND_BODY, HD_KIND_BODY));
       assert_true(isfinite(ev.info.f) && ev.info.f > 0 && ev.info.vn < 0);
       const hd_shape *sh = &s->shape[s->b[ev.i].species];
       musum += ev.info.f * sh->mk[ev.ka] * ev.info.vn * ev.info.vn; /* m_ref: i's disk */
@@ -190,16 +190,21 @@ static void mixture_species(void **state) {
     assert_true(s->alpha[2][3] == (inel ? 0.5 : 1.0) && s->alpha[0][1] == 1.0);
     double e0t, e0r;
     hd_sim_energy(s, -1, &e0t, &e0r);
-    long nc = test_size(inel ? 20000 : 200000, 10), kinds[8] = {0};
+    long nc = test_size(inel ? 20000 : 200000, 10), kinds[HD_NKINDS * HD_NKINDS] = {0};
+    const hd_coll_kind DD = hd_coll_kind_of(HD_KIND_DIMER, HD_KIND_DIMER),
+                       DK = hd_coll_kind_of(HD_KIND_DIMER, HD_KIND_DISK),
+                       KK = hd_coll_kind_of(HD_KIND_DISK, HD_KIND_DISK),
+                       BB = hd_coll_kind_of(HD_KIND_BODY, HD_KIND_BODY);
     double T[4][2] = {{0}}, lost = 0;
     long nT = 0;
     for (long k = 0; k < nc; k++) {
       hd_event_out ev;
       if (hd_sim_next(s, INFINITY, &ev, &err)) fail_msg("collision %ld: %s", k, err.msg);
+      assert_true(ev.kind >= 0 && ev.kind < HD_NKINDS * HD_NKINDS);
       kinds[ev.kind]++;
       int si = s->b[ev.i].species, sj = s->b[ev.j].species;
       assert_true(si <= sj); /* the lower species first */
-      if (si >= 2 || sj >= 2) assert_int_equal(ev.kind, 6);
+      if (si >= 2 || sj >= 2) assert_int_equal(ev.kind, BB);
       if (inel && si == 2 && sj == 3) {
         const hd_shape *sh = &s->shape[si];
         double mu = ev.info.f * sh->mk[ev.ka];
@@ -224,15 +229,15 @@ static void mixture_species(void **state) {
     hd_sim_momentum(s, &px, &py);
     double e0 = e0t + e0r, e1 = et + er;
     printf("# mixture%s: kinds %ld %ld %ld %ld, energy %.6g -> %.6g (booked loss %.6g)\n",
-           inel ? " (alpha 0.5 between the named)" : "", kinds[0], kinds[1], kinds[2], kinds[6], e0,
-           e1, lost);
+           inel ? " (alpha 0.5 between the named)" : "", kinds[DD], kinds[DK], kinds[KK], kinds[BB],
+           e0, e1, lost);
     assert_true(hypot(px, py) < 1e-12 * sqrt(500.0));
     assert_true(s->max_overlap < 1e-9);
     if (inel) {
       assert_true(lost < 0 && fabs(e1 - e0 - lost) <= 1e-9 * e0);
     } else {
       assert_true(fabs(e1 - e0) < 1e-9 * e0);
-      assert_true(kinds[0] > 0 && kinds[1] > 0 && kinds[2] > 0 && kinds[6] > 0);
+      assert_true(kinds[DD] > 0 && kinds[DK] > 0 && kinds[KK] > 0 && kinds[BB] > 0);
       double T0 = T[0][0] / (double)nT;
       printf("# mixture: T dimer tr %.4f rot %.4f, disk tr %.4f, trimer tr %.4f rot %.4f, "
              "triangle tr %.4f rot %.4f\n",

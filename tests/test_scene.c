@@ -22,6 +22,7 @@
 
 #include "hd_body.h"
 #include "hd_scene.h"
+#include "hd_scene_species.h"
 #include "hd_sim.h"
 #include "test_util.h"
 
@@ -1334,8 +1335,41 @@ static void rods_bad(void **state) {
   }
 }
 
+/* The scene's species as one table (hd_scene_species.h): [dimers] is species 0 and [disks]
+ * species 1 with their kinds, names, counts, restitutions and shapes, each [species NAME] 2, 3,
+ * ... of kind body whatever its shape; the pair restitutions as the scene gives them. */
+static void species_table(void **state) {
+  (void)state;
+  hd_scene sc;
+  hd_error e;
+  const char *text =
+      "[system]\nbox = 40 40\n[run]\nstop_events = 10\n"
+      "[dimers]\ncount = 3\na = 0.5\nalpha = 0.9\n"
+      "[disks]\ncount = 4\nsigma = 1.5\nalpha = 0.8\nalpha_dimer = 0.7\n"
+      "[species pair]\ncount = 5\nshape = dimer 1\nalpha = 0.6\nalpha_disks = 0.55\n";
+  assert_int_equal(hd_scene_load_string(&sc, text, "sp.ini", NULL, 0, &e), HD_OK);
+  assert_int_equal(hd_scene_nspecies(&sc), 3);
+  hd_scene_sp sp[3];
+  for (int k = 0; k < 3; k++) assert_int_equal(hd_scene_species_get(&sc, k, &sp[k]), 0);
+  assert_true(sp[0].kind == HD_KIND_DIMER && !strcmp(sp[0].name, "dimer") && sp[0].count == 3);
+  assert_true(sp[0].alpha == 0.9 && sp[0].shape.tag == HD_KIND_DIMER && sp[0].shape.a == 0.5);
+  assert_true(sp[1].kind == HD_KIND_DISK && !strcmp(sp[1].name, "disk") && sp[1].count == 4);
+  assert_true(sp[1].alpha == 0.8 && sp[1].shape.tag == HD_KIND_DISK && sp[1].shape.d == 1.5);
+  /* a named species shaped as a dimer: the dimer's fast tag, but of kind body in the log */
+  assert_true(sp[2].kind == HD_KIND_BODY && !strcmp(sp[2].name, "pair") && sp[2].count == 5);
+  assert_true(sp[2].alpha == 0.6 && sp[2].shape.tag == HD_KIND_DIMER && sp[2].line == 14);
+  assert_true(hd_scene_pair_alpha(&sc, 0, 1) == 0.7 && hd_scene_pair_alpha(&sc, 1, 0) == 0.7);
+  assert_true(hd_scene_pair_alpha(&sc, 2, 1) == 0.55 && hd_scene_pair_alpha(&sc, 1, 2) == 0.55);
+  assert_true(hd_scene_pair_alpha(&sc, 2, 0) == 0.6); /* the smaller of 0.6 and 0.9 */
+  assert_true(hd_scene_pair_alpha(&sc, 2, 2) == 0.6);
+  assert_int_equal(hd_scene_species_get(&sc, 3, &sp[0]), -1);
+  assert_int_equal(hd_scene_species_get(&sc, -1, &sp[0]), -1);
+  hd_scene_free(&sc);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
+      cmocka_unit_test(species_table),
       cmocka_unit_test(good_scene_values),
       cmocka_unit_test(defaults_and_absent_sections),
       cmocka_unit_test(dimer_area_exact),
