@@ -346,6 +346,54 @@ static void species_rotating(void **state) {
   assert_string_equal(f[7], "blocks"); /* one run */
 }
 
+/* The figure of `make plots` (plots/species.mk on its own, tiny: 50 + 50 disks, two seeds to 15
+ * cpd, mass ratios 1 and 2, alpha 0.8 and 0.9): the data file holds a block per alpha with the
+ * theory of hd_mixture_hcs, and gnuplot draws PNG, SVG and PDF without a word on stderr. */
+static void species_figure(void **state) {
+  (void)state;
+  if (!haff || system("command -v gnuplot >/dev/null 2>&1") != 0) skip();
+  char root[512];
+  snprintf(root, sizeof root, "%s", haff);
+  for (int k = 0; k < 2; k++) { /* HAFF_BIN = ROOT/bin/haff */
+    char *sl = strrchr(root, '/');
+    if (!sl) skip();
+    *sl = 0;
+  }
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -f "
+           "plots/species.mk OUT='%s/pout' HAFF='%s' SP_MASSES='1 2' SP_ALPHAS='0.8 0.9' "
+           "SP_SEEDS='1 2' SP_N=50 SP_CPD=15 '%s/pout/species.png' > '%s/make.log' 2>&1",
+           root, dir, haff, dir, dir);
+  if (system(cmd) != 0) {
+    char log[4096];
+    read_file("make.log", log, sizeof log);
+    fail_msg("make -f plots/species.mk failed:\n%s", log);
+  }
+  char log[8192], tsv[4096];
+  read_file("make.log", log, sizeof log);
+  assert_null(strstr(log, "warning")), assert_null(strstr(log, "rror"));
+  read_file("pout/data/species.tsv", tsv, sizeof tsv);
+  double r[2], m, al, tl, tle, thl, th, the, thh;
+  const char *p = strstr(tsv, "\n2\t0.8\t");
+  assert_non_null(p);
+  assert_int_equal(
+      sscanf(p + 1, "%lf %lf %lf %lf %lf %lf %lf %lf", &m, &al, &tl, &tle, &thl, &th, &the, &thh),
+      8);
+  double hl = heavy_over_light(2, 1, 0.8, 2, r); /* equal sizes: no chi dependence */
+  assert_near(thh / thl, hl, 1e-4);
+  assert_near(0.5 * (tl + th), 1, 1e-5);
+  assert_non_null(strstr(tsv, "\n\n\n1\t0.9\t")); /* the second alpha's block */
+  const char *ext[3] = {"png", "svg", "pdf"}, *magic[3] = {"PNG", "<svg", "%PDF"};
+  for (int e = 0; e < 3; e++) {
+    char name[64], buf[4096];
+    snprintf(name, sizeof name, "pout/species.%s", ext[e]);
+    read_file(name, buf, sizeof buf);
+    assert_true(strlen(buf) > 3);
+    assert_non_null(strstr(e == 0 ? buf + 1 : buf, magic[e]));
+  }
+}
+
 static int setup(void **state) {
   (void)state;
   test_cli_find_haff();
@@ -362,6 +410,7 @@ int main(void) {
       cmocka_unit_test(mixture_one_species), cmocka_unit_test(mixture_ratio_values),
       cmocka_unit_test(mixture_rates_equal), cmocka_unit_test(mixture_bad_input),
       cmocka_unit_test(species_ratio_runs),  cmocka_unit_test(species_rotating),
+      cmocka_unit_test(species_figure),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
