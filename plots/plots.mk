@@ -111,11 +111,12 @@ TABLES  := $(OUT)/table1.tsv $(OUT)/table1.md $(OUT)/table2.tsv $(OUT)/table2.md
            $(OUT)/fmean_vs_engine.tsv
 .PHONY: plots plots-clean
 plots: $(foreach f,$(PAPER_FIGS),$(OUT)/$(f).png $(OUT)/$(f).svg $(OUT)/$(f).pdf) $(TABLES) \
-       $(OUT)/README.md fmean-plots rods-plots shapes-plots $(OUT)/index.html
+       $(OUT)/README.md fmean-plots rods-plots shapes-plots species-plots $(OUT)/index.html
 
 FMEAN_T1 := $(OUT)/table1.tsv
 include plots/fmean.mk
 include plots/shapes.mk
+include plots/species.mk
 include plots/rods.mk
 
 # stop_cpd for alpha $(1): (1 - alpha^2) cpd = XMAX, ELASTIC_CPD at alpha = 1
@@ -332,12 +333,12 @@ $(OUT)/README.md: plots/README.md $(SCRIPTS)/readme.sh $(TABLES) $(DATA)/fits.ts
 # --- plots/out/index.html: every figure and Tables I-II on one self-contained page -----------
 # (plots/scripts/report.py: figures inline as data: URIs, captions with what was run, read from
 # the run databases below, the paper's tables beside this build's, provenance)
-REPORT_FIGS := fig1 fig2 fig3 fig4 fig5 fig6 hcs errcost shapes fmean $(FIGS:%=rods-%)
+REPORT_FIGS := fig1 fig2 fig3 fig4 fig5 fig6 hcs errcost shapes species fmean $(FIGS:%=rods-%)
 REPORT_DBS  := fig1=$(RD)/fig1.db fig2=$(DATA)/fig23.db fig2=$(DATA)/disks.db fig3=$(DATA)/fig23.db \
   fig5=$(DATA)/fig5.db fig6=$(RD)/fig6.db fig6=$(DATA)/fig6all.db \
   $(foreach n,$(HCS_STABLE) $(HCS_UNSTABLE),hcs=$(RD)/hcs-al$(HCS_ALPHA)-n$(n).db) \
   $(foreach c,$(ERR_CPD),errcost=$(DATA)/err-c$(c).db errcost=$(DATA)/err-n$(ERR_NSTABLE)-c$(c).db) \
-  fmean=$(DATA)/tables.db \
+  fmean=$(DATA)/tables.db $(foreach m,$(SP_MASSES),$(foreach al,$(SP_ALPHAS),species=$(call sp_db,$(m),$(al)))) \
   $(foreach f,energy collisions,rods-$(f)=$(RODS_DIR)/rods-stochastic.db \
     rods-$(f)=$(RODS_DIR)/rods-constant.db rods-$(f)=$(RODS_DIR)/rods-50.db) \
   rods-damped=$(RODS_DIR)/rods-damped.db rods-damped50=$(RODS_DIR)/rods-damped50.db \

@@ -21,6 +21,10 @@ const hd_optdef hd_cli_opts[] = {
     HD_OPT_FLAG("all", 0, hd_cli_args, all, "every finished run (the default)", .set = HD_OPT_ALL),
     HD_OPT_FLAG("alpha-group", 0, hd_cli_args, group, "one line per (alpha, a/d) group",
                 .set = HD_OPT_GROUP),
+    HD_OPT_FLAG("by-species", 0, hd_cli_args, by_species,
+                "one row per species of each ensemble of runs (same species, restitutions,\n"
+                "box): T_i/T over the HCS window and Garzo-Dufty's value (docs/analysis.md)",
+                .set = HD_OPT_SPECIES),
     HD_OPT_FLAG("md", 0, hd_cli_args, md, "a Markdown table instead of TSV", .set = HD_OPT_MD),
     HD_OPT_FLAG("keep-flagged", 0, hd_cli_args, keep_flagged,
                 "keep the groups flagged inhomogeneous or short (left out by default)",

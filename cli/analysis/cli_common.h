@@ -12,16 +12,17 @@
 
 /* Options an analysis subcommand may accept (bits of hd_optspec.allowed, hd_optdef.set). */
 enum {
-  HD_OPT_RUN = 1,     /* --run ID */
-  HD_OPT_ALL = 2,     /* --all */
-  HD_OPT_FIT = 4,     /* --no-detect --thr X --min-coll N --cpd-max X --cpd-skip X --s-end X
-                       * --s-flag X --min-window X */
-  HD_OPT_MD = 8,      /* --md --keep-flagged (the tables) */
-  HD_OPT_GROUP = 16,  /* --alpha-group */
-  HD_OPT_BLOCK = 32,  /* --block N --fmean */
-  HD_OPT_BINS = 64,   /* --bins N */
-  HD_OPT_STATS = 128, /* --stats --label L --range X */
-  HD_OPT_KCI = 256    /* --k-ci ac|ols|runs --cpd-min-k X (the K fit's options) */
+  HD_OPT_RUN = 1,      /* --run ID */
+  HD_OPT_ALL = 2,      /* --all */
+  HD_OPT_FIT = 4,      /* --no-detect --thr X --min-coll N --cpd-max X --cpd-skip X --s-end X
+                        * --s-flag X --min-window X */
+  HD_OPT_MD = 8,       /* --md --keep-flagged (the tables) */
+  HD_OPT_GROUP = 16,   /* --alpha-group */
+  HD_OPT_BLOCK = 32,   /* --block N --fmean */
+  HD_OPT_BINS = 64,    /* --bins N */
+  HD_OPT_STATS = 128,  /* --stats --label L --range X */
+  HD_OPT_KCI = 256,    /* --k-ci ac|ols|runs --cpd-min-k X (the K fit's options) */
+  HD_OPT_SPECIES = 512 /* --by-species (haff-fit, energy: cli_species.c) */
 };
 
 /* Parsed arguments. */
@@ -43,6 +44,7 @@ typedef struct hd_cli_args {
   const char *label; /* --label [velocities] */
   double range;      /* --range X [5]: histogram of scaled velocities on [-X, X] */
   hd_kmode kmode;    /* --k-ci [ac] */
+  int by_species;    /* --by-species: one row per species of each ensemble (cli_species.c) */
 } hd_cli_args;
 
 /* The options of every analysis subcommand (a spec's `allowed` says which apply): the table

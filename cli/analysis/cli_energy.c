@@ -3,6 +3,7 @@
 #include <stdlib.h>
 
 #include "cli_common.h"
+#include "cli_species.h"
 #include "haff.h"
 
 /* Writes one block: the sample-by-sample mean over the runs idx[0..m-1] (truncated to the
@@ -72,9 +73,9 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
 }
 
 const hd_optspec haff_energy_spec = {
-    HD_CLI_SPEC("energy", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT),
+    HD_CLI_SPEC("energy", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_SPECIES),
     .head =
-        "usage: haff energy DB [--run ID | --all] [fit options] [-o FILE]\n"
+        "usage: haff energy DB [--run ID | --all] [--by-species] [fit options] [-o FILE]\n"
         "Energy per body and collisions per particle against time, for Figs. 2 and 3: one block\n"
         "per run (--run) or per (alpha, a/d) group averaged sample by sample (--all, default),\n"
         "blocks separated by two blank lines, each headed by '# species alpha=.. a_over_d=.. ...'\n"
@@ -83,12 +84,19 @@ const hd_optspec haff_energy_spec = {
         "         haff_E_over_E0=(E_s/E0)/(1+gamma nu0 (t-t_s))^2 x_eq31=(1-alpha^2)(cpd_s+eq.(31) "
         "at\n"
         "         t-t_s) homog (1 if fitted); t_s, cpd_s, E_s: the HCS window's start (nu0: "
-        "there)\n"};
+        "there)\n"
+        "--by-species: instead, per ensemble of runs of the same species (haff-fit --by-species)\n"
+        "one block per species, '# group=G run=ID runs=R species=NAME N=.. T_ratio_theory=..',\n"
+        "averaged over the runs sample by sample: t cpd e_tr e_rot T_ratio=e_tr/T K=e_tr/e_rot\n"
+        "hcs (1 inside every run's HCS window); T = sum_j x_j e_tr_j\n"};
 
 int haff_energy_main(int argc, char **argv) {
   hd_cli_args a;
+  int rc = hd_cli_parse(&haff_energy_spec, argc, argv, &a);
+  if (rc) return rc < 0 ? 0 : rc;
+  if (a.by_species) return hd_cli_species_energy(&a, argv[0]);
   hd_cli_set s;
-  int rc = hd_cli_groups(&haff_energy_spec, argc, argv, &a, &s);
+  rc = hd_cli_groups(&haff_energy_spec, argc, argv, &a, &s);
   if (rc) return rc < 0 ? 0 : rc;
   hd_error err;
   FILE *out = hd_cli_out(&a);

@@ -4,12 +4,14 @@
 #include <string.h>
 
 #include "cli_common.h"
+#include "cli_species.h"
 #include "haff.h"
 
 const hd_optspec haff_fit_spec = {
-    HD_CLI_SPEC("haff-fit", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP),
+    HD_CLI_SPEC("haff-fit", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP | HD_OPT_SPECIES),
     .head =
-        "usage: haff haff-fit DB [--run ID | --all] [--alpha-group] [fit options] [-o FILE]\n"
+        "usage: haff haff-fit DB [--run ID | --all] [--alpha-group | --by-species] [fit options]\n"
+        "       [-o FILE]\n"
         "Fits eq. (31) tau(t) = ln(1 + gamma nu0 t)/gamma, gamma = (1-alpha^2)/(2 D_e), to the\n"
         "HCS window of each run (tau = cpd counted from the window's start): after the initial\n"
         "transient (--cpd-skip), up to where the state measures (s_perp) or the collision rate\n"
@@ -29,12 +31,22 @@ const hd_optspec haff_fit_spec = {
         "exit 2 when none can.  flag 'short' (per run; per group when most of its runs are): the\n"
         "window has < 10 samples or E decays by less than a factor e over it; eq. (31) is not\n"
         "constrained there, and groups leave such runs out.  A missing value, or a systematic\n"
-        "term not resolved from its noise, is printed empty (never nan or 0).\n"};
+        "term not resolved from its noise, is printed empty (never nan or 0).\n"
+        "--by-species: instead, one row per species of each ensemble of runs (the same species,\n"
+        "counts, masses, sizes, restitutions and box; --run: that run alone): group run runs\n"
+        "species N T_ratio T_ratio_err err_from T_ratio_theory K K_err mass sigma alpha cpd_start\n"
+        "cpd_end.  T_ratio = <T_i/T> over each run's HCS window, T = sum_j x_j T_j the mixture's\n"
+        "translational temperature (x_j = N_j/N; T_i = e_tr of species i), mean over the runs;\n"
+        "T_ratio_err its standard error over the runs (err_from 'runs') or, for one run, over 8\n"
+        "blocks of its window ('blocks'); T_ratio_theory Garzo-Dufty's HCS of smooth disks in the\n"
+        "Maxwellian approximation, d = 2 (empty unless every species is one disk and the box is\n"
+        "periodic); K = <e_tr/e_rot> of a rotating species likewise (docs/analysis.md).\n"};
 
 int haff_fit_main(int argc, char **argv) {
   hd_cli_args a;
   int rc = hd_cli_parse(&haff_fit_spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
+  if (a.by_species) return hd_cli_species_fit(&a, argv[0]);
   sqlite3 *db;
   hd_run_fit *fits;
   size_t n;

@@ -72,6 +72,13 @@ CAPTIONS = {
                "m<sub>ref</sub>: the mass of the touching disk (docs/contract.md); asym: a dimer of "
                "a disk d = 1, m = 1 and a disk d = 0.5, m = 0.3, 0.8 d apart. The right panel shows "
                "engine − MC with the combined error. " + U_DIMER),
+    "species": ("species", "Binary mixtures of smooth disks (equal sizes, light m = 1): each "
+                "species' temperature over the mixture's, T<sub>i</sub>/T with T = x<sub>l</sub>"
+                "T<sub>l</sub> + x<sub>h</sub>T<sub>h</sub>, averaged over each run's HCS window "
+                "(<code>haff haff-fit --by-species</code>; error bars: standard error over the "
+                "seeds), against Garzó and Dufty's homogeneous cooling state in the Maxwellian "
+                "approximation for d = 2 (lines; docs/analysis.md). Right: run over theory − 1, "
+                "the ±3 % band shaded. " + U_DIMER),
     "fmean": ("fmean", "⟨f⟩(a/d) and D<sub>e</sub>(a/d) of the three contact models (Monte Carlo, "
               "error bars: standard error), with Table I of the paper and haff's own fitted "
               "D<sub>e</sub> (table1.tsv, ± standard error over the runs). " + U_DIMER),
@@ -210,7 +217,8 @@ def run_summary(paths):
     eta = fmt_set(key("system", "area_fraction"))
     if eta:
         parts.append("area fraction η = " + eta)
-    al = fmt_set(key("dimers", "alpha") + key("disks", "alpha"))
+    al = fmt_set(key("dimers", "alpha") + key("disks", "alpha") +
+                 [v for s in spec for v in key("species " + s, "alpha")])
     if al:
         parts.append("α = " + al)
     a = fmt_set(key("dimers", "a"))

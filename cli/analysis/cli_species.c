@@ -1,0 +1,172 @@
+/* cli_species: the per-species analysis of mixtures, `--by-species` (hd_species). */
+#include "cli_species.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hd_species.h"
+
+/* hd_cli_fits, then the ensembles (hd_species_groups).  Exit code; on 0 *db, *fits, *g are
+ * the caller's to free. */
+static int load(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits,
+                hd_species_group **g, size_t *ng) {
+  size_t n;
+  int rc = hd_cli_fits(a, cmd, db, fits, &n);
+  if (rc) return rc;
+  hd_error err;
+  if (hd_species_groups(*db, *fits, n, g, ng, &err)) {
+    free(*fits), hd_ana_close(*db);
+    return hd_cli_fail(cmd, &err);
+  }
+  if (*ng == 0) {
+    free(*fits), hd_ana_close(*db), hd_species_groups_free(*g, *ng);
+    fprintf(stderr, "haff %s: no run with species (rods have none)\n", cmd);
+    return 2;
+  }
+  for (size_t j = 0; j < *ng; j++) {
+    const hd_species_group *q = &(*g)[j];
+    if (q->used == 0)
+      fprintf(stderr, "haff %s: run %lld and its ensemble: no per-species samples in the window\n",
+              cmd, (long long)(*fits)[q->idx[0]].info.id);
+  }
+  return 0;
+}
+
+int hd_cli_species_fit(const hd_cli_args *a, const char *cmd) {
+  sqlite3 *db;
+  hd_run_fit *fits;
+  hd_species_group *g;
+  size_t ng;
+  int rc = load(a, cmd, &db, &fits, &g, &ng);
+  if (rc) return rc;
+  FILE *out = hd_cli_out(a);
+  if (out) {
+    fprintf(out, "group\trun\truns\tspecies\tN\tT_ratio\tT_ratio_err\terr_from\tT_ratio_theory\t"
+                 "K\tK_err\tmass\tsigma\talpha\tcpd_start\tcpd_end\n");
+    for (size_t j = 0; j < ng; j++) {
+      const hd_species_group *q = &g[j];
+      if (q->why[0])
+        fprintf(stderr, "haff %s: group %zu: no T_ratio_theory: %s\n", cmd, j + 1, q->why);
+      for (int i = 0; i < q->mix.k; i++) {
+        const hd_species_row *w = &q->row[i];
+        const hd_ana_sp *p = &q->mix.sp[i];
+#define N(fmt, x) hd_cli_num(fmt, x, 0)
+        fprintf(out, "%zu\t%lld\t%zu\t%s\t%ld\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n", j + 1,
+                (long long)fits[q->idx[0]].info.id, q->used, p->name, p->count,
+                N("%.6g", w->T_ratio), N("%.3g", w->T_ratio_err),
+                q->used == 0  ? ""
+                : q->err_runs ? "runs"
+                              : "blocks",
+                N("%.6g", w->T_ratio_theory), N("%.6g", w->K), N("%.3g", w->K_err),
+                N("%.6g", p->mass), N("%.6g", p->sigma), N("%g", q->mix.alpha[i * q->mix.k + i]),
+                N("%.4g", q->cpd_start), N("%.4g", q->cpd_end));
+#undef N
+      }
+    }
+    rc = hd_cli_close(out, a);
+  } else {
+    rc = 1;
+  }
+  size_t used = 0;
+  for (size_t j = 0; j < ng; j++) used += g[j].used;
+  hd_species_groups_free(g, ng), free(fits), hd_ana_close(db);
+  if (!rc && used == 0) {
+    fprintf(stderr, "haff %s: no run had per-species samples in its window\n", cmd);
+    return 2;
+  }
+  return rc;
+}
+
+/* One run's per-species series with the cpd of each frame (NaN where samples has no row at
+ * that t) and whether the frame is in the run's window. */
+typedef struct run_series {
+  hd_ana_spseries s;
+  double *cpd;
+} run_series;
+
+static int read_run(sqlite3 *db, const hd_run_fit *f, const hd_ana_mix *mix, run_series *r,
+                    hd_error *err) {
+  memset(r, 0, sizeof *r);
+  int rc = hd_ana_spseries_read(db, f->info.id, mix, &r->s, err);
+  if (rc) return rc;
+  hd_series smp;
+  if ((rc = hd_ana_samples(db, f->info.id, &smp, err))) return hd_ana_spseries_free(&r->s), rc;
+  r->cpd = malloc((r->s.n ? r->s.n : 1) * sizeof *r->cpd);
+  if (!r->cpd) rc = hd_error_set(err, HD_ENOMEM, "out of memory");
+  for (size_t i = 0, q = 0; !rc && i < r->s.n; i++) { /* both by t */
+    while (q < smp.n && smp.t[q] < r->s.t[i]) q++;
+    r->cpd[i] = q < smp.n && smp.t[q] == r->s.t[i] ? smp.cpd[q] : NAN;
+  }
+  hd_series_free(&smp);
+  if (rc) hd_ana_spseries_free(&r->s), free(r->cpd), r->cpd = NULL;
+  return rc;
+}
+
+/* The blocks of group q (one per species), the first one's separator after `first`. */
+static int write_group(FILE *out, sqlite3 *db, const hd_run_fit *fits, const hd_species_group *q,
+                       size_t gi, int *first, hd_error *err) {
+  size_t n = q->n, k = (size_t)q->mix.k, len = (size_t)-1;
+  run_series *r = calloc(n, sizeof *r);
+  if (!r) return hd_error_set(err, HD_ENOMEM, "out of memory");
+  int rc = HD_OK;
+  for (size_t i = 0; i < n && !rc; i++) {
+    rc = read_run(db, &fits[q->idx[i]], &q->mix, &r[i], err);
+    if (!rc && r[i].s.n < len) len = r[i].s.n;
+  }
+  if (!rc && len > 0 && len != (size_t)-1) {
+    long N = 0;
+    for (size_t j = 0; j < k; j++) N += q->mix.sp[j].count;
+    for (size_t j = 0; j < k; j++) {
+      const hd_ana_sp *p = &q->mix.sp[j];
+      if (!*first) fprintf(out, "\n\n");
+      *first = 0;
+      fprintf(out, "# group=%zu run=%lld runs=%zu species=%s N=%ld T_ratio_theory=%s\n", gi + 1,
+              (long long)fits[q->idx[0]].info.id, n, p->name, p->count,
+              hd_cli_num("%.6g", q->row[j].T_ratio_theory, 0));
+      fprintf(out, "%s (%zu runs)\tcpd\te_tr\te_rot\tT_ratio\tK\thcs\n", p->name, n);
+      for (size_t f = 0; f < len; f++) {
+        double t = 0, cpd = 0, et = 0, er = 0, tr = 0;
+        int in = 1;
+        for (size_t i = 0; i < n; i++) {
+          const hd_ana_spseries *s = &r[i].s;
+          const hd_run_fit *fi = &fits[q->idx[i]];
+          double Tm = 0;
+          for (size_t l = 0; l < k; l++)
+            Tm += (double)q->mix.sp[l].count / (double)N * s->e_tr[f * k + l];
+          t += s->t[f], cpd += r[i].cpd[f], et += s->e_tr[f * k + j], er += s->e_rot[f * k + j];
+          tr += s->e_tr[f * k + j] / Tm;
+          in &= s->t[f] >= fi->t_start && s->t[f] <= fi->t_end;
+        }
+        double m = (double)n;
+        fprintf(out, "%.8g\t%s\t%.8g\t%.8g\t%.8g\t%s\t%d\n", t / m, hd_cli_num("%.8g", cpd / m, 0),
+                et / m, er / m, tr / m, hd_cli_num("%.8g", p->rotates && er > 0 ? et / er : NAN, 0),
+                in);
+      }
+    }
+  }
+  for (size_t i = 0; i < n; i++) hd_ana_spseries_free(&r[i].s), free(r[i].cpd);
+  free(r);
+  return rc;
+}
+
+int hd_cli_species_energy(const hd_cli_args *a, const char *cmd) {
+  sqlite3 *db;
+  hd_run_fit *fits;
+  hd_species_group *g;
+  size_t ng;
+  int rc = load(a, cmd, &db, &fits, &g, &ng);
+  if (rc) return rc;
+  FILE *out = hd_cli_out(a);
+  hd_error err;
+  int first = 1;
+  rc = out ? 0 : 1;
+  for (size_t j = 0; out && j < ng && !rc; j++)
+    if (write_group(out, db, fits, &g[j], j, &first, &err)) rc = hd_cli_fail(cmd, &err);
+  if (out) {
+    int c = hd_cli_close(out, a);
+    if (!rc) rc = c;
+  }
+  hd_species_groups_free(g, ng), free(fits), hd_ana_close(db);
+  return rc;
+}
