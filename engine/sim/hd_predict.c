@@ -15,7 +15,6 @@
 #include <math.h>
 
 #include "hd_disk.h"
-#include "hd_disk_batch.h"
 #include "hd_sim_internal.h"
 #include "hd_stop.h"
 
@@ -106,56 +105,6 @@ static inline void predict_disk_pair(const hd_sim *s, hd_body *bi, int32_t j, do
   }
 }
 
-#ifndef HD_PREDICT_BATCH
-#define HD_PREDICT_BATCH 1
-#endif
-
-/* The contacts of bi (body i) with the bodies of the interior cells cell[0..ncell) but i, as
- * predict_disk_pair would find them one by one in that order (the same times, bit for bit, and
- * of equal times the first), in batches: each batch's relative positions and velocities are
- * gathered into small arrays and their contact times computed two at a time
- * (hd_disk_contact_batch); the lanes the batch leaves to the scalar form take it. */
-static void predict_disk_cells(hd_sim *s, hd_body *bi, int32_t i, const int32_t *cell, int ncell,
-                               double D, double *best) {
-  const double now = s->c.t, xi = bi->k.x, yi = bi->k.y, vxi = bi->k.vx, vyi = bi->k.vy;
-  double rx[HD_DISK_BATCH], ry[HD_DISK_BATCH], vx[HD_DISK_BATCH], vy[HD_DISK_BATCH],
-      t[HD_DISK_BATCH];
-  int32_t jj[HD_DISK_BATCH];
-  int n = 0, cc = 0;
-  int32_t j = ncell > 0 ? s->head[cell[0]] : -1;
-  for (;;) {
-    while (j < 0 && ++cc < ncell) j = s->head[cell[cc]];
-    int last = j < 0;
-    if (!last && j != i) {
-      const hd_body *bj = &s->b[j];
-      const double dtj = now - bj->t;
-      /* as predict_disk_pair with the shift 0.0 (added: it turns -0.0 into 0.0) */
-      rx[n] = bj->k.x + bj->k.vx * dtj + 0.0 - xi;
-      ry[n] = bj->k.y + bj->k.vy * dtj + 0.0 - yi;
-      vx[n] = bj->k.vx - vxi;
-      vy[n] = bj->k.vy - vyi;
-      jj[n++] = j;
-    }
-    if (!last) j = s->b[j].next;
-    if (n == HD_DISK_BATCH || (last && n > 0)) {
-      if (n & 1) rx[n] = ry[n] = vx[n] = vy[n] = 0.0; /* the pad lane */
-      uint64_t odd = hd_disk_contact_batch(n, rx, ry, vx, vy, D, t);
-      int kb = -1;
-      for (int k = 0; k < n; k++) {
-        if (odd >> k & 1) {
-          const hd_body *bj = &s->b[jj[k]];
-          double vs = fabs(vxi) + fabs(vyi) + fabs(bj->k.vx) + fabs(bj->k.vy);
-          t[k] = hd_disk_contact_time(rx[k], ry[k], vx[k], vy[k], D, vs);
-        }
-        if (t[k] < *best) *best = t[k], kb = k;
-      }
-      if (kb >= 0) take_pair(bi, &s->b[jj[kb]], jj[kb], 0, 0, 0, 0);
-      n = 0;
-    }
-    if (last) return;
-  }
-}
-
 /* Contact distance of two disk bodies (the diameter of a species with itself). */
 static inline double disk_contact(const hd_sim *s, const hd_body *bi, const hd_body *bj) {
   return bi->species == bj->species ? s->shape[bi->species].d
@@ -206,12 +155,6 @@ static void predict_disks(hd_sim *s, int32_t i, int32_t cx, int32_t cy, double c
   const double D = s->shape[HD_SP_DISK].d;
   int32_t c = bi->cell, ncx = s->ncx;
   if (cx >= 1 && cx < ncx - 1 && cy >= 1 && cy < s->ncy - 1) {
-    if (HD_PREDICT_BATCH) {
-      int32_t cell[9];
-      for (int k = 0; k < 9; k++) cell[k] = c + (k / 3 - 1) * ncx + k % 3 - 1;
-      predict_disk_cells(s, bi, i, cell, 9, D, best);
-      return;
-    }
     const int32_t *head = s->head;
     for (int32_t row = c - ncx; row <= c + ncx; row += ncx)
       for (int32_t cc = row - 1; cc <= row + 1; cc++)
@@ -389,13 +332,9 @@ static int predict_after_crossing(hd_sim *s, int32_t i) {
   if (cx >= 1 && cx < ncx - 1 && cy >= 1 && cy < s->ncy - 1) { /* interior: index offsets */
     int32_t mid = cell_beyond(c, dir, 1, ncx);                 /* the new cell straight ahead */
     int32_t along = dir < 2 ? ncx : 1;                         /* along the new column or row */
-    if (HD_PREDICT_BATCH) {
-      int32_t cell[3] = {mid - along, mid, mid + along};
-      predict_disk_cells(s, bi, i, cell, 3, D, &best);
-    } else
-      for (int32_t cc = mid - along; cc <= mid + along; cc += along)
-        for (int32_t j = s->head[cc]; j >= 0; j = s->b[j].next)
-          predict_disk_pair(s, bi, j, 0.0, 0.0, 0, 0, D, &best);
+    for (int32_t cc = mid - along; cc <= mid + along; cc += along)
+      for (int32_t j = s->head[cc]; j >= 0; j = s->b[j].next)
+        predict_disk_pair(s, bi, j, 0.0, 0.0, 0, 0, D, &best);
     bi->c_t = now + cross;
     bi->p_t = now + best;
     commit(s, i);
