@@ -2,7 +2,9 @@
  * usage: bench_engine KIND N ETA LOG [COLLISIONS (default max(2N, 2e6))]   KIND disk|dimer|trimer
  * (a linear trimer of touching unit disks, a named species: the general cluster code), LOG 0|1
  * (every collision to an SQLite file in $TMPDIR).  Prints one TSV line: kind n eta log collisions
- * seconds coll_per_s events_per_s stale_fraction Under `valgrind --tool=callgrind
+ * seconds coll_per_s events_per_s stale_fraction cpu_ns_per_coll (the simulation thread's CPU
+ * time of the timed loop per collision: on a loaded machine steadier than the wall clock).  Under
+ * `valgrind --tool=callgrind
  * --instr-atstart=no` only the timed loop is counted (bench_callgrind.h). */
 #include <math.h>
 #include <stdio.h>
@@ -87,7 +89,7 @@ int main(int argc, char **argv) {
   /* warm up: 1 cpd melts the lattice and fills the caches */
   for (long k = 0; k < n / 2; k++) ops->next(s, INFINITY, &row, &err);
   int64_t e0 = s->c.events;
-  double t0 = bench_now();
+  double t0 = bench_now(), c0 = bench_cpu();
   BENCH_CG_START();
   for (long k = 1; k <= ncoll; k++) {
     if (ops->next(s, INFINITY, &row, &err)) {
@@ -102,10 +104,10 @@ int main(int argc, char **argv) {
   }
   BENCH_CG_STOP();
   if (db && hd_db_commit(db, &err)) return 1;
-  double dt = bench_now() - t0;
-  printf("%s\t%ld\t%.2f\t%d\t%ld\t%.3f\t%.4g\t%.4g\t%.3f\n", argv[1], n, eta, log, ncoll, dt,
+  double dt = bench_now() - t0, dc = bench_cpu() - c0;
+  printf("%s\t%ld\t%.2f\t%d\t%ld\t%.3f\t%.4g\t%.4g\t%.3f\t%.1f\n", argv[1], n, eta, log, ncoll, dt,
          (double)ncoll / dt, (double)(s->c.events - e0) / dt,
-         (double)s->c.stale / (double)(s->c.events - e0));
+         (double)s->c.stale / (double)(s->c.events - e0), 1e9 * dc / (double)ncoll);
   if (db) {
     hd_db_close(db, &err);
     unlink(path);

@@ -1,4 +1,5 @@
-/* What the two benchmark programs share: a monotonic clock and checked command-line numbers. */
+/* What the two benchmark programs share: a monotonic clock, the thread's CPU clock and checked
+ * command-line numbers. */
 #ifndef BENCH_UTIL_H
 #define BENCH_UTIL_H
 
@@ -11,6 +12,14 @@
 static inline double bench_now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* CPU seconds of the calling thread (for differences only): what a loaded machine's other
+ * jobs take from the wall clock does not count. */
+static inline double bench_cpu(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 

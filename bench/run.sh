@@ -12,8 +12,9 @@ out=bench/results.md
 raw=$(mktemp)
 ns="1000 10000 100000 1000000"
 [ "${BENCH_QUICK:-0}" = 1 ] && ns="1000 10000"
-# each row is the best of REPS runs (2 at N = 1e6): the machine is a shared VM whose speed
-# drifts by up to 30 % between runs; the best run is the one least disturbed
+# each row is the best of REPS runs (2 at N = 1e6), by the simulation thread's CPU time of the
+# timed loop: the machine is a shared VM whose speed drifts by up to 30 % between runs, and on a
+# loaded machine the wall clock counts the other jobs too; the best run is the least disturbed
 reps=${BENCH_REPS:-3}
 run() { # kind n eta log
   echo "bench: $*" >&2
@@ -24,7 +25,7 @@ run() { # kind n eta log
   for r in $(seq "$n"); do
     local line
     line=$(taskset -c $cores "$bin" "$@" 2>/dev/null || "$bin" "$@")
-    if [ -z "$best" ] || awk -v a="$line" -v b="$best" 'BEGIN { split(a, x, "\t"); split(b, y, "\t"); exit !(x[7] > y[7]) }'; then
+    if [ -z "$best" ] || awk -v a="$line" -v b="$best" 'BEGIN { split(a, x, "\t"); split(b, y, "\t"); exit !(x[10] < y[10]) }'; then
       best=$line
     fi
   done
@@ -37,12 +38,15 @@ run() { # kind n eta log
 # instructions per collision of an unlogged run (column instr/coll): from the hardware counters
 # where the machine has them (perf stat, the difference of runs of 2C and C collisions), else
 # from callgrind over C collisions of the timed loop alone (bench_callgrind.h: exact and
-# repeatable on a loaded machine, ~50x slower); C = BENCH_ICOLL [1e5]; BENCH_INSTR=0: none
-icoll=${BENCH_ICOLL:-100000}
+# repeatable on a loaded machine, ~50x slower); C = BENCH_ICOLL [1e5] for disks, C / 5 for
+# dimers and trimers (6-10x the instructions of a disk: ~20 s each); BENCH_INSTR=0: none
+icoll0=${BENCH_ICOLL:-100000}
 counters=0
 perf stat -x, -e instructions true 2>&1 >/dev/null | grep -q '^[0-9]' && counters=1
 instr() { # kind n eta
   [ "${BENCH_INSTR:-1}" = 1 ] || { echo "-"; return; }
+  local icoll=$icoll0
+  [ "$1" = disk ] || icoll=$((icoll0 / 5))
   if [ $counters = 1 ]; then
     local a b
     a=$(perf stat -x, -e instructions "$bin" "$1" "$2" "$3" 0 "$icoll" 2>&1 >/dev/null | awk -F, '/instructions/{print $1}')
@@ -88,21 +92,26 @@ cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')
   echo "timed over max(2e6, 2N) collisions after a warm-up of N/2 collisions, best of $reps runs (2 at N = 1e6) (disks at 0.45 start"
   echo "from a lattice, the others from random placement); logging = every collision to SQLite (\`[log] collisions = all\`)."
   echo
-  echo "| kind | N | area fraction | logging | collisions/s | events/s | stale events | logged/unlogged | vs N = 1e3 | instr/coll |"
-  echo "|---|---|---|---|---|---|---|---|---|---|"
+  echo "| kind | N | area fraction | logging | collisions/s | events/s | stale events | logged/unlogged | vs N = 1e3 | CPU ns/coll | CPU vs N = 1e3 | instr/coll |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
   awk -F'\t' '
-    { key=$1 FS $3; r[$1 FS $2 FS $3 FS $4]=$7; if ($2==1000) base[$1 FS $3 FS $4]=$7; rows[NR]=$0 }
+    { r[$1 FS $2 FS $3 FS $4]=$7; if ($2==1000) { base[$1 FS $3 FS $4]=$7; cbase[$1 FS $3 FS $4]=$10 }
+      rows[NR]=$0 }
     END { for (k=1; k<=NR; k++) { split(rows[k], f, FS);
-      un=r[f[1] FS f[2] FS f[3] FS 0]; b=base[f[1] FS f[3] FS f[4]];
-      printf "| %s | %d | %.2f | %s | %.3g | %.3g | %.1f%% | %s | %.2f | %s |\n", f[1], f[2], f[3],
+      un=r[f[1] FS f[2] FS f[3] FS 0]; b=base[f[1] FS f[3] FS f[4]]; cb=cbase[f[1] FS f[3] FS f[4]];
+      printf "| %s | %d | %.2f | %s | %.3g | %.3g | %.1f%% | %s | %.2f | %.0f | %.2f | %s |\n", f[1], f[2], f[3],
         f[4]==1 ? "every collision" : "off", f[7], f[8], 100*f[9],
-        f[4]==1 ? sprintf("%.0f%%", 100*f[7]/un) : "", b/f[7], f[10] == "-" ? "" : f[10] } }' "$raw"
+        f[4]==1 ? sprintf("%.0f%%", 100*f[7]/un) : "", b/f[7], f[10], f[10]/cb, f[11] == "-" ? "" : f[11] } }' "$raw"
   echo
-  echo "\"vs N = 1e3\": slowdown factor against N = 1000 at the same kind, fraction and logging."
+  echo "\"vs N = 1e3\": slowdown factor (wall clock) against N = 1000 at the same kind, fraction and logging."
+  echo "\"CPU ns/coll\": the simulation thread's CPU time of the timed loop per collision (the database's"
+  echo "writer thread not counted); \"CPU vs N = 1e3\": its ratio to N = 1000's (issue 27's target for disks"
+  echo "at N = 1e6, unlogged: at most 1.5)."
+
   if [ $counters = 1 ]; then
-    echo "\"instr/coll\": instructions per collision (hardware counters, runs of $((2 * icoll)) and $icoll collisions)."
+    echo "\"instr/coll\": instructions per collision (hardware counters, runs of 2C and C collisions, C = $icoll0 for disks, $((icoll0 / 5)) for dimers and trimers)."
   else
-    echo "\"instr/coll\": instructions per collision of the timed loop (callgrind, $icoll collisions; no hardware counters here)."
+    echo "\"instr/coll\": instructions per collision of the timed loop (callgrind, $icoll0 collisions of disks, $((icoll0 / 5)) of dimers and trimers; no hardware counters here)."
   fi
   echo "Which change moved which row: bench/issue27-ab.md (the A/B measurements of issue 27)."
   echo
