@@ -267,7 +267,8 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
                           .cpd_start = nan,
                           .cpd_end = nan,
                           .s_perp = nan,
-                          .flow_excess = nan};
+                          .flow_excess = nan,
+                          .flow_resolved = nan};
     return;
   }
   double *D = v, *nu = v + n, *ra = v + 2 * n, *Ds = v + 3 * n, *dh = v + 4 * n, *de = v + 5 * n,
@@ -307,8 +308,11 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
   out->sys_est = excess(tmp, s);
   hd_ensemble_mean(sp, mp, &out->s_perp, &tmp);
   hd_ensemble_mean(fx, mf, &tmp, &s);
-  out->sys_box = mf && !isnan(out->D_e) ? out->D_e * fmax(0, tmp) : NAN;
   out->flow_excess = mf ? tmp : NAN;
+  /* the flow excess counts where its noise does not explain it (|fx| > 2 se), as every other
+   * term: D_e max(0, fx) printed 0 for a group whose fx was below 0 within its noise */
+  out->flow_resolved = mf ? copysign(excess(tmp, s), tmp) : NAN;
+  out->sys_box = isnan(out->D_e) ? NAN : out->D_e * fabs(out->flow_resolved);
   double terms[3] = {out->sys_window, out->sys_est, out->sys_box};
   out->D_e_sys = quad_sum(terms, 3);
   out->flagged = out->measured && ((mp && out->s_perp > o->s_flag) || 2 * out->ended > m)
@@ -340,7 +344,7 @@ void hd_k_sys_do(const hd_run_fit *fits, const size_t *idx, size_t n, const doub
     out->win[0] = out->win[1] = NAN;
   }
   free(d);
-  double f = isnan(fx) ? NAN : fmax(0, fx); /* no state measures: not measured */
+  double f = fabs(fx); /* NaN: not resolved, or no state measures: not measured */
   out->box[0] = isnan(a[0]) ? NAN : fabs(a[0] + 1) * f;
   out->box[1] = isnan(a[1]) ? NAN : fabs(a[1]) * f;
   for (int j = 0; j < 2; j++) {

@@ -124,7 +124,8 @@ typedef struct hd_group_fit {
   double D_e_slope, D_e_slope_err; /* the slope of ln E against cpd */
   double sys_window;         /* half the drift D_e(second half) - D_e(first half), less its noise */
   double sys_est;            /* |eq. (31) - slope| less its noise */
-  double sys_box;            /* D_e times the mean excess flow energy fraction (state measures) */
+  double sys_box;            /* D_e |flow_resolved|: the correlated flow's bias (NaN when the
+                              * flow excess is not resolved, or without state measures) */
   double D_e_sys;            /* sqrt of the sum of the three squares (NaN terms count 0) */
   double cpd_start, cpd_end; /* mean window */
   double s_perp;             /* mean window s_perp (NaN without state measures) */
@@ -135,6 +136,9 @@ typedef struct hd_group_fit {
   size_t n_short;            /* runs left out for a short window (hd_run_fit.short_window) */
   int measured;              /* 1 if the runs carry state measures (else no flag can be given) */
   double flow_excess;        /* mean window flow_frac - flow_chaos (NaN without state measures) */
+  double flow_resolved;      /* its part that its standard error se does not explain:
+                              * sign(fx) sqrt(fx^2 - se^2) when |fx| > 2 se, else NaN (not
+                              * resolved from zero, so sys_box and K's box are not measured) */
 } hd_group_fit;
 
 /* hd_group_fit.flagged bits. */
@@ -163,13 +167,14 @@ typedef struct hd_k_sys {
   size_t mh;     /* runs with both half-window K fits */
   double win[2]; /* half the mean (second half - first half) of a0 and of a1 over the runs, less
                   * its noise; NaN when the noise explains it (not measured) */
-  double box[2]; /* correlated flow counted in e_tr: (a0 + 1) fx and |a1| fx, fx = the group's
-                  * mean flow excess (0 when < 0; NaN without state measures) */
+  double box[2]; /* correlated flow counted in e_tr: |a0 + 1| |fx| and |a1| |fx|, fx = the
+                  * group's resolved flow excess (hd_group_fit.flow_resolved; NaN when it is
+                  * not resolved or there are no state measures: not measured) */
   double sys[2]; /* sqrt(win^2 + box^2) over the terms measured; NaN if neither was */
 } hd_k_sys;
 
 /* Fills *out from the runs fits[idx[0..n)] (their K_half fits), the combined a0, a1 (a[0],
- * a[1]) and the group's flow excess fx (hd_group_fit.flow_excess). */
+ * a[1]) and the group's resolved flow excess fx (hd_group_fit.flow_resolved, NaN if none). */
 void hd_k_sys_do(const hd_run_fit *fits, const size_t *idx, size_t n, const double a[2], double fx,
                  hd_k_sys *out);
 

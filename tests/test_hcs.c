@@ -93,6 +93,22 @@ static void group_errors(void **state) {
   f[2].hcs.ended = 0;
   hd_group_fit_do(f, &g, &o, &q);
   assert_true(!q.flagged && q.ended == 2);
+  /* a flow excess within its noise (mean -1.25e-4, se 8e-4) is not measured: no box term (it
+   * was D_e max(0, fx) = 0, and D_e_sys 0 when nothing else was measured: issue 25) */
+  const double fxn[4] = {-0.001, 0.001, -0.002, 0.0015};
+  for (int k = 0; k < 4; k++) {
+    f[k].hcs.s_perp = 1, f[k].hcs.ended = 0, f[k].hcs.flow_excess = fxn[k];
+    f[k].D_e_slope = f[k].haff.D_e + (k % 2 ? 0.01 : -0.01), f[k].D_e_half[1] = 3.00;
+  }
+  hd_group_fit_do(f, &g, &o, &q);
+  printf("# unresolved flow: fx %.3g resolved %g box %g sys %g\n", q.flow_excess, q.flow_resolved,
+         q.sys_box, q.D_e_sys);
+  assert_true(q.measured && !q.flagged && fabs(q.flow_excess + 1.25e-4) < 1e-12);
+  assert_true(isnan(q.flow_resolved) && isnan(q.sys_box) && isnan(q.D_e_sys));
+  for (int k = 0; k < 4; k++) f[k].hcs.flow_excess = -0.01 - 0.001 * k; /* resolved, below 0 */
+  hd_group_fit_do(f, &g, &o, &q);
+  assert_true(q.flow_resolved < -0.01 && fabs(q.sys_box - q.D_e * -q.flow_resolved) < 1e-12);
+  assert_true(q.D_e_sys == q.sys_box);
   for (int k = 0; k < 4; k++) f[k].hcs.have = 0; /* no measures: no box term, no flag */
   hd_group_fit_do(f, &g, &o, &q);
   assert_true(!q.measured && !q.flagged && isnan(q.sys_box)); /* not measured: NaN, not 0 */
@@ -354,8 +370,9 @@ static void schema_same_version(void **state) {
 
 /* hd_k_sys_do on three made-up runs: a0 of the halves 2.00 and 2.10 (drift 0.1: win 0.05), a1
  * 0.001 and 0.003 (win 0.001), in every run, so with no scatter; flow excess 0.01 with a0 = 2,
- * a1 = 0.002: box (2 + 1) 0.01 = 0.03 and 0.002 * 0.01 = 2e-5.  A run without half fits is not
- * counted; a negative or NaN flow excess gives no box term. */
+ * a1 = 0.002: box (2 + 1) 0.01 = 0.03 and 0.002 * 0.01 = 2e-5, the same for a resolved -0.01.
+ * A run without half fits is not counted; a NaN flow excess (not resolved) gives no box term,
+ * and no term at all gives NaN sums (printed empty), not 0. */
 static void k_sys(void **state) {
   (void)state;
   hd_run_fit f[3];
@@ -377,10 +394,15 @@ static void k_sys(void **state) {
   assert_true(fabs(q.win[0] - 0.05) < 1e-12 && fabs(q.win[1] - 0.001) < 1e-12);
   assert_true(fabs(q.box[0] - 0.03) < 1e-12 && fabs(q.box[1] - 2e-5) < 1e-15);
   assert_true(fabs(q.sys[0] - hypot(0.05, 0.03)) < 1e-12);
+  /* a resolved excess below molecular chaos biases K as much the other way: measured, not a
+   * clipped 0 (issue 25) */
   hd_k_sys_do(f, idx, 3, a, -0.01, &q);
-  assert_true(q.box[0] == 0 && q.box[1] == 0 && fabs(q.sys[0] - 0.05) < 1e-12);
-  hd_k_sys_do(f, idx, 3, a, NAN, &q);
-  assert_true(isnan(q.box[0]) && fabs(q.sys[0] - 0.05) < 1e-12); /* no measures: not 0 */
+  assert_true(fabs(q.box[0] - 0.03) < 1e-12 && fabs(q.box[1] - 2e-5) < 1e-15);
+  hd_k_sys_do(f, idx, 3, a, NAN, &q); /* not resolved, or no measures: not measured, not 0 */
+  assert_true(isnan(q.box[0]) && isnan(q.box[1]) && fabs(q.sys[0] - 0.05) < 1e-12);
+  for (int k = 0; k < 3; k++) f[k].K_half[1].a0 = 2.00, f[k].K_half[1].a1 = 0.001;
+  hd_k_sys_do(f, idx, 3, a, NAN, &q); /* no term measured: the sums are not measured either */
+  assert_true(isnan(q.sys[0]) && isnan(q.sys[1]));
 }
 
 /* Writes a dimer run (N = 900, a = d = 1, box 100 x 100, alpha) that follows Haff's law with

@@ -47,7 +47,7 @@ int haff_table2_main(int argc, char **argv) {
     }
     hd_k_sys ks;
     double a01[2] = {r[0], r[3]};
-    hd_k_sys_do(s.fits, s.g[j].idx, s.g[j].n, a01, q.flow_excess, &ks);
+    hd_k_sys_do(s.fits, s.g[j].idx, s.g[j].n, a01, q.flow_resolved, &ks);
 #define N(fmt, x) hd_cli_num(fmt, x, a.md)
     if (a.md)
       fprintf(out, "| %g | %g | %.4f | [%.4f, %.4f] | %s | %.3e | [%.3e, %.3e] | %s |\n",

@@ -36,12 +36,15 @@ echo "D_e ± stat ± sys on each run's HCS window (cpd), the window's mean s_per
 echo "energy over molecular chaos) and the flag; Tables I and II leave the flagged groups out"
 echo "(docs/analysis.md, \"Errors of D_e\")."
 echo
-awk -F '\t' 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i
+# (an empty cell, a value missing or not measured, prints — and not awk's 0)
+awk -F '\t' 'function v(f, x) { return x == "" ? "—" : sprintf(f, x) }
+             NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i
                        print "| species | α | a/d | N | runs | D_e | ± stat | ± sys | window (cpd) | s_perp | flag |"
                        print "|---|---|---|---|---|---|---|---|---|---|---|"; next }
-             { printf "| %s | %s | %s | %s | %s | %.4f | %.2g | %.2g | %.0f–%.0f | %.3g | %s |\n", $c["species"],
-                      $c["alpha"], $c["a_over_d"], $c["n"], $c["runs"], $c["D_e"], $c["D_e_err"],
-                      $c["D_e_sys"], $c["cpd_start"], $c["cpd_end"], $c["s_perp"], $c["flag"] }' \
+             { printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s–%s | %s | %s |\n", $c["species"],
+                      $c["alpha"], $c["a_over_d"], $c["n"], $c["runs"], v("%.4f", $c["D_e"]),
+                      v("%.2g", $c["D_e_err"]), v("%.2g", $c["D_e_sys"]), v("%.0f", $c["cpd_start"]),
+                      v("%.0f", $c["cpd_end"]), v("%.3g", $c["s_perp"]), $c["flag"] }' \
   "$data/fits-groups.tsv"
 echo
 echo "### Table II (\`table2.tsv\`): K = E_tr/E_rot = a0 + a1 τ, 99 % intervals"

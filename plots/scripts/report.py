@@ -279,8 +279,9 @@ def table1_html(rows):
                                                           if ad == 0 else None)
         seen.add((round(ad, 3), round(al, 3)))
         de = pm(num(r["D_e"]), num(r["D_e_err"]))
-        if de != "—":
-            de += " ± %.4f" % num(r["D_e_sys"])
+        if de != "—":  # a systematic error not measured is empty: "—", never nan
+            sys = num(r["D_e_sys"])
+            de += " ± %.4f" % sys if sys == sys else " ± —"
         h.append("<tr><td>%g</td><td>%g</td><td>%s</td><td>%s</td><td>%s</td>"
                  "<td>%s</td><td>%s</td><td>%s</td></tr>" % (
                      ad, al, E(r["runs"]), de,
