@@ -795,8 +795,8 @@ static void bind_KIND(sqlite3_stmt *st, int i, hd_coll_kind v, int keep) {
 /* Binds run and collision row r at parameters base+1, base+2, ... of st, in the order of
  * prepare_coll (twod: without the rod-rod columns); a column of another scope than r's kind is
  * bound NULL.  Returns the number of parameters bound. */
-static int bind_collision(sqlite3_stmt *st, int base, int64_t run, const hd_collision_row *r,
-                          int twod) {
+static inline int bind_collision(sqlite3_stmt *st, int base, int64_t run, const hd_collision_row *r,
+                                 int twod) {
   int p = base, rod = r->kind == hd_coll_kind_of(HD_KIND_ROD, HD_KIND_ROD);
   sqlite3_bind_int64(st, ++p, run);
 #define COLL_BIND(name, ctype, bind, sqltype, scope, since, doc)                                   \
@@ -822,8 +822,12 @@ static int put_collision_group(hd_db *db, const rec *g, hd_error *err) {
   for (int k = 0; k < HD_DB_GROUP; k++)
     rods |= g[k].u.c.kind == hd_coll_kind_of(HD_KIND_ROD, HD_KIND_ROD);
   sqlite3_stmt *st = rods ? db->ins_coll_k : db->ins_coll2_k;
-  for (int k = 0, base = 0; k < HD_DB_GROUP; k++)
-    base += bind_collision(st, base, g[k].run, &g[k].u.c, !rods);
+  if (rods) /* (two loops: bind_collision is specialised for each) */
+    for (int k = 0, base = 0; k < HD_DB_GROUP; k++)
+      base += bind_collision(st, base, g[k].run, &g[k].u.c, 0);
+  else
+    for (int k = 0, base = 0; k < HD_DB_GROUP; k++)
+      base += bind_collision(st, base, g[k].run, &g[k].u.c, 1);
   if (sqlite3_step(st) != SQLITE_DONE) return batch_fail(db, st, err, "insert collisions");
   sqlite3_reset(st);
   db->pending += HD_DB_GROUP;

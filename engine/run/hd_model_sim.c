@@ -25,7 +25,8 @@ static int m_next(void *m, double t_stop, hd_collision_row *row, hd_error *err) 
   if (rc) return rc;
   const hd_sim *s = m;
   /* seq is the store's; the rod-rod columns (eps ... tb_j) are stored NULL for these kinds */
-  *row = (hd_collision_row){.t = ev.t,
+  *row = (hd_collision_row){.seq = 0,
+                            .t = ev.t,
                             .kind = ev.kind,
                             .i = s->id[ev.i],
                             .j = ev.j >= 0 ? s->id[ev.j] : ev.j,
@@ -35,7 +36,11 @@ static int m_next(void *m, double t_stop, hd_collision_row *row, hd_error *err) 
                             .theta_j = ev.info.theta_j,
                             .f = ev.info.f,
                             .de = ev.info.de,
-                            .vn = ev.info.vn};
+                            .vn = ev.info.vn,
+                            .eps = NAN,
+                            .e_tr = NAN,
+                            .tb_i = NAN,
+                            .tb_j = NAN};
   return HD_OK;
 }
 

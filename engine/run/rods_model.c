@@ -46,7 +46,8 @@ static int m_next(void *m, double t_stop, hd_collision_row *row, hd_error *err) 
   hd_rods_event ev;
   int rc = hd_rods_next(m, t_stop, &ev, err);
   if (rc) return rc;
-  *row = (hd_collision_row){.t = ev.t, /* seq is the store's */
+  *row = (hd_collision_row){.seq = 0, /* the store's */
+                            .t = ev.t,
                             .kind = hd_coll_kind_of(HD_KIND_ROD, HD_KIND_ROD),
                             .i = ev.i,
                             .j = ev.j,

@@ -59,6 +59,11 @@ static int species_setup(hd_sim *s, const hd_scene *sc, hd_error *err) {
       s->alpha[i][j] = s->alpha[j][i] = a;
     }
   }
+  for (int i = 0; i < s->nsp; i++) {
+    for (int j = 0; j < s->nsp; j++)
+      s->pair_kind[i][j] = hd_coll_kind_of(s->sp_kind[i], s->sp_kind[j]);
+    s->pair_kind[i][HD_MAX_SPECIES] = hd_coll_kind_of(s->sp_kind[i], HD_KIND_WALL);
+  }
   int64_t n = 0;
   for (int i = 0; i < s->nsp; i++) n += s->n_species[i];
   for (int i = 0; i < s->nsp; i++) s->reach[i] = hd_shape_radius(&s->shape[i]) * (1.0 + 1e-9);
@@ -487,10 +492,9 @@ static void rebase(hd_sim *s) {
   hd_sim_sort(s); /* also rebuilds the queue, whose order rounding may have changed */
 }
 
-/* The kind of a collision of i with j (j < 0: a wall): of the kinds of their species. */
+/* The kind of a collision of i with j (j < 0: a wall): of their species (hd_sim.pair_kind). */
 static hd_coll_kind collision_kind(const hd_sim *s, int32_t i, int32_t j) {
-  return hd_coll_kind_of(s->sp_kind[s->b[i].species],
-                         j < 0 ? HD_KIND_WALL : s->sp_kind[s->b[j].species]);
+  return s->pair_kind[s->b[i].species][j < 0 ? HD_MAX_SPECIES : s->b[j].species];
 }
 
 /* Pile-up bookkeeping after any collision: HD_PILEUP collisions in a row, each less than
