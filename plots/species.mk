@@ -53,3 +53,6 @@ $(OUT)/data/species.tsv: $(foreach m,$(SP_MASSES),$(foreach al,$(SP_ALPHAS),$(ca
 
 $(OUT)/species.png $(OUT)/species.svg $(OUT)/species.pdf &: $(OUT)/data/species.tsv plots/species.gp plots/style.gp
 	$(GNUPLOT) -e "in='$<'; alphas='$(SP_ALPHAS)'; n=$(SP_N); eta=$(SP_ETA); seeds=$(words $(SP_SEEDS)); outbase='$(OUT)/species'" plots/species.gp
+
+# plots/out/README.md lists this build's numbers (plots/scripts/readme.sh)
+$(OUT)/README.md: $(OUT)/data/species.tsv

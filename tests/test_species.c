@@ -347,7 +347,8 @@ static void species_ratio_runs(void **state) {
   assert_near(r1, e1 / (0.5 * (e1 + e2)), 1e-7);
 }
 
-/* A run of dimers (rotating): K per species, no theory (stderr says why). */
+/* A run of dimers and disks: K of the rotating species, no theory (stderr says why); bad
+ * usage of --by-species. */
 static void species_rotating(void **state) {
   (void)state;
   if (!haff) skip();
@@ -355,6 +356,8 @@ static void species_rotating(void **state) {
                         "[disks]\ncount = 100\nalpha = 0.9\n[run]\nstop_cpd = 20\n[log]\n"
                         "samples_every = 0.5\n");
   assert_int_equal(sh("%s run dim.ini -o dim.db", haff), 0);
+  assert_int_equal(sh("%s haff-fit dim.db --by-species --alpha-group", haff), 2); /* bad usage */
+  assert_int_equal(sh("%s table1 dim.db --by-species", haff), 2);
   assert_int_equal(sh("%s haff-fit dim.db --by-species -o dim.tsv", haff), 0);
   char buf[4096], err[4096];
   read_file("dim.tsv", buf, sizeof buf);

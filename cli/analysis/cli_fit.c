@@ -46,6 +46,13 @@ int haff_fit_main(int argc, char **argv) {
   hd_cli_args a;
   int rc = hd_cli_parse(&haff_fit_spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
+  if (a.by_species && a.group) {
+    fprintf(stderr,
+            "haff %s: --by-species and --alpha-group exclude each other (--by-species "
+            "groups the runs of one ensemble itself)\n",
+            argv[0]);
+    return 2;
+  }
   if (a.by_species) return hd_cli_species_fit(&a, argv[0]);
   sqlite3 *db;
   hd_run_fit *fits;

@@ -100,3 +100,15 @@ echo
 echo "### Fig. 6: velocity statistics per snapshot (\`data/veldist_stats.tsv\`)"
 echo
 tsv2md "$data/veldist_stats.tsv"
+if [ -f "$data/species.tsv" ]; then
+  echo
+  echo "### Binary disk mixtures: T_i/T against the mass ratio (\`data/species.tsv\`, \`species.png\`)"
+  echo
+  echo "Runs (\`haff haff-fit --by-species\`, ± standard error over the seeds) against Garzó–Dufty's"
+  echo "Maxwellian approximation for d = 2 (docs/analysis.md, \"Mixtures: the temperature ratio\")."
+  echo
+  awk -F '\t' 'BEGIN { print "| m_h/m_l | α | T_light/T | theory | T_heavy/T | theory | T_h/T_l | theory |"
+                       print "|---|---|---|---|---|---|---|---|" }
+               NF == 8 && $1 ~ /^[0-9.]+$/ { printf "| %s | %s | %.4f ± %.4f | %.4f | %.4f ± %.4f | %.4f | %.4f | %.4f |\n",
+                 $1, $2, $3, $4, $5, $6, $7, $8, $6 / $3, $8 / $5 }' "$data/species.tsv"
+fi
