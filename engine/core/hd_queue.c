@@ -135,11 +135,16 @@ static inline int place_in(hd_queue *q, double t, int32_t id, int64_t b) {
 static int redistribute(hd_queue *q) {
   int32_t n = q->novf, kept = 0;
   for (int32_t r = 0; r < n; r++) {
-    /* the key of an entry 16 ahead (at N = 10^6 a miss each), read only for entries that
-     * come into the year: one beyond it stays without its key read (a stale one is dropped
-     * when it comes in) */
-    if (r + 16 < n && bucket_of(q, q->ovf[r + 16].t) < q->cur + q->nb)
-      __builtin_prefetch(&q->key[(int64_t)q->ovf[r + 16].id * q->kstride]);
+    /* for an entry 16 ahead that comes into the year, its key and its bucket's block (at
+     * N = 10^6 a miss each, the block's read when the entry is placed): one beyond the year
+     * stays without its key read (a stale one is dropped when it comes in) */
+    if (r + 16 < n) {
+      int64_t b16 = bucket_of(q, q->ovf[r + 16].t);
+      if (b16 < q->cur + q->nb) {
+        __builtin_prefetch(&q->key[(int64_t)q->ovf[r + 16].id * q->kstride]);
+        __builtin_prefetch(&q->blk[b16 & (q->nb - 1)], 1);
+      }
+    }
     hd_qentry e = q->ovf[r];
     int64_t b = bucket_of(q, e.t);
     if (b >= q->cur + q->nb)

@@ -416,14 +416,16 @@ void hd_predict_prefetch_setup(hd_sim *s) {
 }
 
 /* Prefetches the first body of each cell of walk `kind` about cell c (stage 0 of the far hint:
- * the list heads are in the caches by then). */
-static inline void prefetch_walk(const hd_sim *s, int32_t c, int kind) {
-  const int32_t *h = s->head + c, *w = s->pf_walk[kind];
-  for (int32_t k = 0, n = s->pf_nwalk[kind]; k < n; k++) {
-    int32_t j = h[w[k]];
-    if (j >= 0) __builtin_prefetch(&s->b[j]);
-  }
-}
+ * the list heads are in the caches by then).  A macro, as HD_PREFETCH_BODY: a static function
+ * that only prefetches had its calls deleted. */
+#define HD_PREFETCH_WALK(s, c, kind)                                                               \
+  do {                                                                                             \
+    const int32_t *h_ = (s)->head + (c), *w_ = (s)->pf_walk[(kind)];                               \
+    for (int32_t k_ = 0, n_ = (s)->pf_nwalk[(kind)]; k_ < n_; k_++) {                              \
+      int32_t j_ = h_[w_[k_]];                                                                     \
+      if (j_ >= 0) __builtin_prefetch(&(s)->b[j_]);                                                \
+    }                                                                                              \
+  } while (0)
 
 void hd_predict_prefetch_far(void *ctx, int32_t i, int stage, int64_t bucket) {
   hd_sim *s = ctx;
@@ -438,7 +440,7 @@ void hd_predict_prefetch_far(void *ctx, int32_t i, int stage, int64_t bucket) {
      * entry (an entry that came into the bucket since stage 1 was just predicted: its cells
      * are in the caches) */
     if (!p->done)
-      for (int32_t k = 0; k < p->n; k++) prefetch_walk(s, p->cell[k], p->kind[k]);
+      for (int32_t k = 0; k < p->n; k++) HD_PREFETCH_WALK(s, p->cell[k], p->kind[k]);
     p->done = 1;
     return;
   }
@@ -462,7 +464,7 @@ void hd_predict_prefetch_far(void *ctx, int32_t i, int stage, int64_t bucket) {
   if (cx < 2 || cx >= ncx - 2 || cy < 2 || cy >= s->ncy - 2) return;
   int kind = b->c_t <= b->p_t && s->partial_cross && b->c_dir != HD_WAKE ? b->c_dir : 4;
   if (stage == 0) {
-    prefetch_walk(s, c, kind);
+    HD_PREFETCH_WALK(s, c, kind);
     return;
   }
   const int32_t *h = s->head + c, *w = s->pf_head[kind];
