@@ -166,13 +166,12 @@ static void hint(hd_queue *q) {
   int32_t mask = q->nb - 1;
   __builtin_prefetch(&q->blk[(q->cur + ahead[q->pf_stages - 1] + 1) & mask]);
   for (int stage = q->pf_stages - 1; stage >= 0; stage--) {
-    int64_t b = q->cur + ahead[stage];
-    const hd_qblock *x = &q->blk[b & mask];
+    const hd_qblock *x = &q->blk[(q->cur + ahead[stage]) & mask];
     for (int32_t k = 0; k < x->n; k++)
       /* the first stage brings the key in (the engine's is on the body it prefetches); the
        * later ones skip an entry gone stale since */
       if (stage == q->pf_stages - 1 || key_of(q, x->id[k]) == x->t[k])
-        q->pf(q->pf_ctx, x->id[k], stage, b);
+        q->pf(q->pf_ctx, x->id[k], stage);
   }
 }
 
