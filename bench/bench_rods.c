@@ -17,14 +17,6 @@
 #include "bench_util.h"
 #include "rods.h"
 
-/* CPU seconds of this thread (for differences only): a loaded machine's wall clock counts the
- * other processes' time too. */
-static double cpu_now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 int main(int argc, char **argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: bench_rods CKPT [COLLISIONS [N T0]]\n");
@@ -81,7 +73,7 @@ int main(int argc, char **argv) {
     if (r->table) hd_rods_table_eps(r, r->table->beta_min * pow(10, -0.25 * j));
   for (long k = 0; k < ncoll / 2; k++)
     if (hd_rods_next(r, INFINITY, &ev, &err)) goto fail;
-  double ts = r->t, w0 = bench_now(), c0 = cpu_now();
+  double ts = r->t, w0 = bench_now(), c0 = bench_cpu();
   BENCH_CG_START();
   double check = 0; /* the sum of eps drawn: equal in builds meant to be exact */
   for (long k = 0; k < ncoll; k++) {
@@ -89,7 +81,7 @@ int main(int argc, char **argv) {
     check += ev.eps;
   }
   BENCH_CG_STOP();
-  double dt = bench_now() - w0, dc = cpu_now() - c0;
+  double dt = bench_now() - w0, dc = bench_cpu() - c0;
   printf("%ld\t%.6g\t%ld\t%.3f\t%.3f\t%.4g\t%.17g\t%.17g\n", n, ts, ncoll, dt, dc,
          (double)ncoll / dc, r->t, check);
   hd_rods_free(r);

@@ -437,79 +437,6 @@ static void prefetch_hints_change_nothing(void **state) {
   }
 }
 
-/* The far prefetch hint's plan (issue 27 item 2): at stage 1 each entry of a bucket notes its
- * body's cell and walk, and the walk's cells are those the body's next event reads: the 3x3
- * block around it, or for a crossing its own cell and the 3 cells two beyond it across the face
- * (which become adjacent once it has crossed); stage 0 of that bucket walks the plan once; a
- * later bucket of the same parity starts a new plan, and a bucket without one leaves the plans
- * alone.  Checked for every interior body of a disk gas after 20000 events (both kinds of walk
- * occur). */
-static void prefetch_far_plan(void **state) {
-  (void)state;
-  hd_scene sc;
-  test_disk_scene(&sc, 3000, 0.3, 0.9, 7);
-  hd_sim *s;
-  hd_error err;
-  assert_int_equal(hd_sim_alloc(&s, &sc, &err), HD_OK);
-  for (long k = 0; k < 20000; k++) {
-    hd_event_out ev;
-    if (hd_sim_next(s, INFINITY, &ev, &err)) fail_msg("event %ld: %s", k, err.msg);
-  }
-  int64_t bucket = 1000;
-  int seen[5] = {0, 0, 0, 0, 0};
-  for (int32_t i = 0; i < s->n; i++) {
-    hd_pf_plan *p = &s->pf_plan[bucket & 1];
-    if (p->bucket == bucket && p->n == HD_PF_PLAN) bucket += 2, p = &s->pf_plan[bucket & 1];
-    const hd_body *b = &s->b[i];
-    int32_t cx, cy;
-    hd_body_cxy(s, b, &cx, &cy);
-    int32_t n0 = p->bucket == bucket ? p->n : 0;
-    hd_predict_prefetch_far(s, i, 1, bucket);
-    assert_true(p->bucket == bucket && p->done == 0);
-    if (cx < 2 || cx >= s->ncx - 2 || cy < 2 || cy >= s->ncy - 2) { /* left to the caches */
-      assert_int_equal(p->n, n0);
-      continue;
-    }
-    assert_int_equal(p->n, n0 + 1);
-    assert_int_equal(p->cell[n0], b->cell);
-    int kind = p->kind[n0];
-    assert_int_equal(kind, b->c_t <= b->p_t && b->c_dir != HD_WAKE ? b->c_dir : 4);
-    seen[kind]++;
-    /* the cells the event reads, as (column, row) */
-    int32_t want[9][2], nw = 0;
-    if (kind == 4) {
-      for (int dy = -1; dy <= 1; dy++)
-        for (int dx = -1; dx <= 1; dx++) want[nw][0] = cx + dx, want[nw++][1] = cy + dy;
-    } else {
-      want[nw][0] = cx, want[nw++][1] = cy;
-      for (int k = -1; k <= 1; k++) {
-        int32_t x = kind == 0 ? cx + 2 : kind == 1 ? cx - 2 : cx + k;
-        int32_t y = kind == 2 ? cy + 2 : kind == 3 ? cy - 2 : cy + k;
-        want[nw][0] = x, want[nw++][1] = y;
-      }
-    }
-    assert_int_equal(s->pf_nwalk[kind], nw);
-    for (int k = 0; k < nw; k++) {
-      int32_t c = b->cell + s->pf_walk[kind][k], found = 0;
-      for (int m = 0; m < nw; m++) found += want[m][0] == c % s->ncx && want[m][1] == c / s->ncx;
-      assert_int_equal(found, 1);
-      for (int m = 0; m < k; m++) assert_true(s->pf_walk[kind][m] != s->pf_walk[kind][k]);
-    }
-  }
-  assert_true(seen[4] > 0 && seen[0] + seen[1] + seen[2] + seen[3] > 0);
-  hd_pf_plan *p = &s->pf_plan[bucket & 1], *q = &s->pf_plan[(bucket + 1) & 1];
-  int32_t n = p->n;
-  assert_true(n > 0);
-  hd_predict_prefetch_far(s, 0, 0, bucket); /* stage 0 walks the plan, once */
-  assert_true(p->done == 1 && p->n == n && p->bucket == bucket);
-  int64_t qb = q->bucket;
-  hd_predict_prefetch_far(s, 0, 0, bucket + 1); /* no plan for it: the plans stay */
-  assert_true(q->bucket == qb && p->bucket == bucket && p->done == 1);
-  hd_predict_prefetch_far(s, 0, 1, bucket + 2); /* the same parity, later: a new plan */
-  assert_true(p->bucket == bucket + 2 && p->done == 0 && p->n <= 1);
-  hd_sim_free(s);
-}
-
 /* Near jamming: 1000 elastic disks at area fraction 0.72 (a melted lattice; hard disks freeze
  * near 0.70), 2e5 collisions in verification mode: energy drift < 1e-10, no overlap, and the
  * melt left no overlap and a Maxwellian start (exact T). */
@@ -768,7 +695,6 @@ int main(void) {
       cmocka_unit_test(lattice_fits_scene_check),
       cmocka_unit_test(near_jamming),
       cmocka_unit_test(prefetch_hints_change_nothing),
-      cmocka_unit_test(prefetch_far_plan),
       cmocka_unit_test(elastic_conservation),
       cmocka_unit_test(enskog_rate),
       cmocka_unit_test(maxwellian),

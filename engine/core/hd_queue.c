@@ -135,11 +135,16 @@ static inline int place_in(hd_queue *q, double t, int32_t id, int64_t b) {
 static int redistribute(hd_queue *q) {
   int32_t n = q->novf, kept = 0;
   for (int32_t r = 0; r < n; r++) {
-    /* the key of an entry 16 ahead (at N = 10^6 a miss each), read only for entries that
-     * come into the year: one beyond it stays without its key read (a stale one is dropped
-     * when it comes in) */
-    if (r + 16 < n && bucket_of(q, q->ovf[r + 16].t) < q->cur + q->nb)
-      __builtin_prefetch(&q->key[(int64_t)q->ovf[r + 16].id * q->kstride]);
+    /* for an entry 16 ahead that comes into the year, its key and its bucket's block (at
+     * N = 10^6 a miss each, the block's read when the entry is placed): one beyond the year
+     * stays without its key read (a stale one is dropped when it comes in) */
+    if (r + 16 < n) {
+      int64_t b16 = bucket_of(q, q->ovf[r + 16].t);
+      if (b16 < q->cur + q->nb) {
+        __builtin_prefetch(&q->key[(int64_t)q->ovf[r + 16].id * q->kstride]);
+        __builtin_prefetch(&q->blk[b16 & (q->nb - 1)], 1);
+      }
+    }
     hd_qentry e = q->ovf[r];
     int64_t b = bucket_of(q, e.t);
     if (b >= q->cur + q->nb)
@@ -161,13 +166,12 @@ static void hint(hd_queue *q) {
   int32_t mask = q->nb - 1;
   __builtin_prefetch(&q->blk[(q->cur + ahead[q->pf_stages - 1] + 1) & mask]);
   for (int stage = q->pf_stages - 1; stage >= 0; stage--) {
-    int64_t b = q->cur + ahead[stage];
-    const hd_qblock *x = &q->blk[b & mask];
+    const hd_qblock *x = &q->blk[(q->cur + ahead[stage]) & mask];
     for (int32_t k = 0; k < x->n; k++)
       /* the first stage brings the key in (the engine's is on the body it prefetches); the
        * later ones skip an entry gone stale since */
       if (stage == q->pf_stages - 1 || key_of(q, x->id[k]) == x->t[k])
-        q->pf(q->pf_ctx, x->id[k], stage, b);
+        q->pf(q->pf_ctx, x->id[k], stage);
   }
 }
 

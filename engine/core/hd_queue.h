@@ -67,13 +67,9 @@ typedef struct hd_qpend {
 /* A hint from the queue to its user: body i's event is 1 (stage 0), 2 (stage 1) or, with three
  * stages, 4 (stage 2) buckets ahead of the current one; each entry is hinted at every stage,
  * the highest first, so that what processing it will read can be prefetched in steps (for
- * example its body, then its cells, then their bodies).  bucket is the index of the entry's
- * bucket (consecutive buckets have consecutive indices; a rebuild numbers them afresh), so
- * that a hint may keep what it worked out for a bucket at one stage and use it at the next
- * (the queue moves one bucket at a time: stage 1 of bucket b at one advance, its stage 0 at the
- * next, unless the queue jumped or was rebuilt in between).  It must not change the queue.  The
+ * example its body, then its cells, then their bodies).  It must not change the queue.  The
  * entry may be stale (the body's time changed since): the hint is then useless, not wrong. */
-typedef void (*hd_queue_prefetch_fn)(void *ctx, int32_t i, int stage, int64_t bucket);
+typedef void (*hd_queue_prefetch_fn)(void *ctx, int32_t i, int stage);
 
 /* The queue.  Fields are private to hd_queue.c. */
 typedef struct hd_queue {

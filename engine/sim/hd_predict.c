@@ -396,50 +396,18 @@ void hd_predict_crossed(hd_sim *s, int32_t i, int wrapped) {
     }                                                                                              \
   } while (0)
 
-void hd_predict_prefetch_setup(hd_sim *s) {
-  int32_t ncx = s->ncx;
-  for (int dir = 0; dir < 4; dir++) { /* a crossing: its own cell, the 3 that become adjacent */
-    int32_t mid = cell_beyond(0, dir, 2, ncx), along = dir < 2 ? ncx : 1;
-    int32_t w[4] = {0, mid - along, mid, mid + along};
-    for (int k = 0; k < 4; k++) s->pf_walk[dir][k] = s->pf_head[dir][k] = w[k];
-    /* and hd_cells_insert_xy writes the head of the cell entered */
-    s->pf_head[dir][4] = cell_beyond(0, dir, 1, ncx);
-    s->pf_nwalk[dir] = 4;
-    s->pf_nhead[dir] = 5;
-  }
-  for (int k = 0; k < 9; k++) s->pf_walk[4][k] = (k / 3 - 1) * ncx + k % 3 - 1;
-  for (int k = 0; k < 3; k++) /* the 3 rows of 3 list heads (each on one line, or two) */
-    s->pf_head[4][2 * k] = (k - 1) * ncx - 1, s->pf_head[4][2 * k + 1] = (k - 1) * ncx + 1;
-  s->pf_nwalk[4] = 9;
-  s->pf_nhead[4] = 6;
-  s->pf_plan[0].bucket = s->pf_plan[1].bucket = INT64_MIN;
-}
+/* Prefetches the first line of body j (the first of a cell's list), if any. */
+#define HD_PREFETCH_FIRST(s, j)                                                                    \
+  do {                                                                                             \
+    int32_t j_ = (j);                                                                              \
+    if (j_ >= 0) __builtin_prefetch(&(s)->b[j_]);                                                  \
+  } while (0)
 
-/* Prefetches the first body of each cell of walk `kind` about cell c (stage 0 of the far hint:
- * the list heads are in the caches by then). */
-static inline void prefetch_walk(const hd_sim *s, int32_t c, int kind) {
-  const int32_t *h = s->head + c, *w = s->pf_walk[kind];
-  for (int32_t k = 0, n = s->pf_nwalk[kind]; k < n; k++) {
-    int32_t j = h[w[k]];
-    if (j >= 0) __builtin_prefetch(&s->b[j]);
-  }
-}
-
-void hd_predict_prefetch_far(void *ctx, int32_t i, int stage, int64_t bucket) {
-  hd_sim *s = ctx;
+void hd_predict_prefetch_far(void *ctx, int32_t i, int stage) {
+  const hd_sim *s = ctx;
   const hd_body *b = &s->b[i];
   if (stage == 2) { /* 4 buckets ahead: the body itself */
     HD_PREFETCH_BODY(b);
-    return;
-  }
-  hd_pf_plan *p = &s->pf_plan[bucket & 1];
-  if (stage == 0 && p->bucket == bucket) {
-    /* 1 ahead: the first body of every cell stage 1 found for this bucket, all at its first
-     * entry (an entry that came into the bucket since stage 1 was just predicted: its cells
-     * are in the caches) */
-    if (!p->done)
-      for (int32_t k = 0; k < p->n; k++) prefetch_walk(s, p->cell[k], p->kind[k]);
-    p->done = 1;
     return;
   }
   if (stage == 1) { /* 2 ahead: its partner (and the rows that name a pair) */
@@ -448,33 +416,55 @@ void hd_predict_prefetch_far(void *ctx, int32_t i, int stage, int64_t bucket) {
       __builtin_prefetch(&s->id[i]);
       __builtin_prefetch(&s->id[b->p_partner]);
     }
-    if (p->bucket != bucket) p->bucket = bucket, p->n = 0, p->done = 0;
   }
   /* The cells whose lists body b's next event will walk (cells at least two from the edge
    * only; otherwise the event is left to the caches): for a crossing the current cell (its
-   * list loses b) and the 3 cells that become adjacent, else the 3x3 block (the walks of
-   * hd_sim.pf_walk).  Stage 1 prefetches their list heads and notes the body's cell and walk
-   * in the bucket's plan, which stage 0 walks: each body's cells are worked out once (working
-   * them out at both stages, for every entry, was ~1/6 of a collision's instructions at
-   * N = 10^6).  Stage 0 without a plan (the queue jumped or was rebuilt since) works them out
-   * itself. */
+   * list loses b) and the 3 cells that become adjacent, else the 3x3 block.  Walked in place,
+   * no list built, and written out cell by cell (gcc -O2 does not unroll the loops, which
+   * cost twice the instructions): the hint runs for every entry at two stages. */
   int32_t c = b->cell, ncx = s->ncx, cy = b->cy, cx = c - cy * ncx;
   if (cx < 2 || cx >= ncx - 2 || cy < 2 || cy >= s->ncy - 2) return;
-  int kind = b->c_t <= b->p_t && s->partial_cross && b->c_dir != HD_WAKE ? b->c_dir : 4;
-  if (stage == 0) {
-    prefetch_walk(s, c, kind);
+  const int32_t *head = s->head;
+  if (b->c_t <= b->p_t && s->partial_cross && b->c_dir != HD_WAKE) {
+    int dir = b->c_dir;
+    int32_t mid = cell_beyond(c, dir, 2, ncx), along = dir < 2 ? ncx : 1;
+    if (stage == 1) { /* the list heads: its cell, the 3 that become adjacent, the one entered */
+      __builtin_prefetch(&head[c]);
+      __builtin_prefetch(&head[mid - along]);
+      __builtin_prefetch(&head[mid]);
+      __builtin_prefetch(&head[mid + along]);
+      __builtin_prefetch(&head[cell_beyond(c, dir, 1, ncx)], 1); /* hd_cells_insert_xy */
+      return;
+    }
+    /* 1 ahead: the line of a neighbour that a prediction reads */
+    HD_PREFETCH_FIRST(s, head[c]);
+    HD_PREFETCH_FIRST(s, head[mid - along]);
+    HD_PREFETCH_FIRST(s, head[mid]);
+    HD_PREFETCH_FIRST(s, head[mid + along]);
     return;
   }
-  const int32_t *h = s->head + c, *w = s->pf_head[kind];
-  for (int32_t k = 0, n = s->pf_nhead[kind]; k < n; k++) __builtin_prefetch(h + w[k]);
-  if (p->n < HD_PF_PLAN) { /* (a crowded bucket: the rest without stage 0) */
-    p->cell[p->n] = c;
-    p->kind[p->n++] = (int8_t)kind;
+  const int32_t *r0 = head + c - ncx, *r1 = head + c, *r2 = head + c + ncx;
+  if (stage == 1) { /* the 3 rows of 3 list heads (each on one line, or two) */
+    __builtin_prefetch(r0 - 1);
+    __builtin_prefetch(r0 + 1);
+    __builtin_prefetch(r1 - 1);
+    __builtin_prefetch(r1 + 1);
+    __builtin_prefetch(r2 - 1);
+    __builtin_prefetch(r2 + 1);
+    return;
   }
+  HD_PREFETCH_FIRST(s, r0[-1]);
+  HD_PREFETCH_FIRST(s, r0[0]);
+  HD_PREFETCH_FIRST(s, r0[1]);
+  HD_PREFETCH_FIRST(s, r1[-1]);
+  HD_PREFETCH_FIRST(s, r1[0]);
+  HD_PREFETCH_FIRST(s, r1[1]);
+  HD_PREFETCH_FIRST(s, r2[-1]);
+  HD_PREFETCH_FIRST(s, r2[0]);
+  HD_PREFETCH_FIRST(s, r2[1]);
 }
 
-void hd_predict_prefetch_near(void *ctx, int32_t i, int stage, int64_t bucket) {
-  (void)bucket;
+void hd_predict_prefetch_near(void *ctx, int32_t i, int stage) {
   const hd_sim *s = ctx;
   const hd_body *b = &s->b[i];
   if (stage == 1) { /* 2 buckets ahead: the body itself */

@@ -118,7 +118,6 @@ int hd_sim_queue_init(hd_sim *s, hd_error *err) {
    * N = 1e5 and 1e6); below that its own cost wins.  Past the last level, the neighbours'
    * bodies too (+16 % at N = 1e6); within it that costs more than it saves (-8 % at 1e5). */
   size_t bytes = (size_t)s->n * sizeof(hd_body);
-  hd_predict_prefetch_setup(s);
   if (bytes > HD_PREFETCH_FAR_BYTES)
     hd_queue_set_prefetch(s->q, hd_predict_prefetch_far, s, 3);
   else if (bytes > HD_PREFETCH_BYTES)

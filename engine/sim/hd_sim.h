@@ -96,19 +96,6 @@ typedef struct hd_event_out {
   hd_collision_info info; /* angles, f, de, vn */
 } hd_event_out;
 
-/* What the far prefetch hint (hd_predict_prefetch_far) found at its stage 1 for the entries of
- * one bucket, kept for its stage 0 (one advance of the queue later), which then walks those
- * cells without working them out again: per entry a cell and the kind of its walk (0-3: a
- * crossing through that face, 4: the 3x3 block). */
-#define HD_PF_PLAN 64
-typedef struct hd_pf_plan {
-  int64_t bucket;           /* the queue's bucket it is for (INT64_MIN: none) */
-  int32_t n;                /* entries in cell[] and kind[] */
-  int32_t done;             /* stage 0 has walked them */
-  int32_t cell[HD_PF_PLAN]; /* the entry's body's cell */
-  int8_t kind[HD_PF_PLAN];  /* the walk: a row of hd_sim.pf_walk */
-} hd_pf_plan;
-
 /* The simulation. */
 typedef struct hd_sim {
   int32_t n;             /* bodies */
@@ -155,14 +142,6 @@ typedef struct hd_sim {
   int32_t last_i, last_j; /* bodies of the last collision (collapse report) */
   double cut_t;           /* during a prediction: the earliest time (relative to now) a contact
                            * search was cut at by a stop request (HD_CA_CUT), else INFINITY */
-  hd_pf_plan pf_plan[2];  /* the far prefetch hint's cells, by bucket parity (not state: a
-                           * hint only, never read by the physics) */
-  int32_t pf_walk[5][9];  /* the far hint's walks: offsets from a body's cell of the cells its
-                           * next event reads (rows 0-3: after a crossing through that face,
-                           * its own and the 3 that become adjacent; 4: the 3x3 block) */
-  int32_t pf_nwalk[5];    /* cells in each walk */
-  int32_t pf_head[5][6];  /* offsets of the list heads stage 1 prefetches (a line holds 16) */
-  int32_t pf_nhead[5];    /* list heads in each */
   int cut;                /* a prediction was cut since hd_sim_next last returned: it returns
                            * HD_SIM_BUSY after the event, so that its caller sees the stop */
 } hd_sim;

@@ -36,10 +36,8 @@ void hd_predict_after_pair(hd_sim *s, int32_t i, int32_t j);
  * 3 new ones and its own), its partner and, for a collision, both bodies' entries of id[] (the
  * collision's row names them: 2 misses per collision at N = 1e6), then the first body of each
  * of those cells. */
-/* Sets up the far hint's walks (hd_sim.pf_walk, pf_head) for the cell grid, and no plan. */
-void hd_predict_prefetch_setup(hd_sim *s);
-void hd_predict_prefetch_near(void *ctx, int32_t i, int stage, int64_t bucket);
-void hd_predict_prefetch_far(void *ctx, int32_t i, int stage, int64_t bucket);
+void hd_predict_prefetch_near(void *ctx, int32_t i, int stage);
+void hd_predict_prefetch_far(void *ctx, int32_t i, int stage);
 /* Predicts body i's events after it crossed a cell face (wrapped: through the box edge). */
 void hd_predict_crossed(hd_sim *s, int32_t i, int wrapped);
 
