@@ -25,7 +25,7 @@ echo "rotating dimers (\`haff mc rate\`: 1.643, 2.090, 2.608 at a/d = 0.5, 1, 1.
 echo "g(area fraction)/g(η); it is 1 where runs and theory agree (docs/mc-rate.md). The paper's"
 echo "1.07–1.50 trend in a/d is reproduced by no convention (docs/analysis.md, \"ν0\")."
 echo
-echo "Each row's box: its N bodies at the area fraction shown, 0.7 L_c (0.5 L_c at α < 0.95) of the"
+echo "Each row's box: its N bodies at the area fraction shown, 0.7 L_c (0.5 L_c at α < 0.9, and α = 0.9 a/d = 1.5) of the"
 echo "HCS or at most NDIM (\"Boxes of the tables\" above; \`make -f plots/plots.mk tables-boxes\`)."
 echo
 cat "$out/table1.md"
