@@ -2,6 +2,7 @@
 #include "hd_runfit.h"
 
 #include <gsl/gsl_cdf.h>
+#include <gsl/gsl_sort_double.h>
 #include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdio.h>
@@ -21,6 +22,7 @@ hd_fit_opts hd_fit_opts_defaults(void) {
   o.s_flag = 2.5;
   o.min_window = 40;
   o.stored = 1;
+  o.reject_z = HD_FIT_REJECT_Z;
   return o;
 }
 
@@ -241,15 +243,46 @@ static double quad_sum(const double *t, int n) {
 }
 
 const char *hd_group_flag_name(int flagged) {
-  static const char *const names[4] = {"", "inhomogeneous", "short", "inhomogeneous,short"};
-  return names[flagged & 3];
+  static const char *const names[8] = {
+      "",         "inhomogeneous",          "short",          "inhomogeneous,short",
+      "outliers", "inhomogeneous,outliers", "short,outliers", "inhomogeneous,short,outliers"};
+  return names[flagged & 7];
+}
+
+size_t hd_group_outliers(const hd_run_fit *fits, const hd_group *g, const hd_fit_opts *o,
+                         unsigned char *out, size_t *tested) {
+  size_t n = g->n, m = 0, rej = 0;
+  if (tested) *tested = 0;
+  memset(out, 0, n);
+  double *D = malloc(2 * (n ? n : 1) * sizeof *D);
+  if (!D) return 0; /* no test: every run stays in (its scatter stays in the error) */
+  for (size_t k = 0; k < n; k++) {
+    const hd_run_fit *f = &fits[g->idx[k]];
+    if (f->haff_ok && !f->short_window && !isnan(f->haff.D_e)) D[m++] = f->haff.D_e;
+  }
+  if (o->reject_z > 0 && m >= HD_FIT_REJECT_MIN) {
+    double s = gsl_stats_mad(D, 1, m, D + n); /* 1.4826 MAD */
+    gsl_sort(D, 1, m);
+    double med = gsl_stats_median_from_sorted_data(D, 1, m);
+    if (s > 0) {
+      if (tested) *tested = m;
+      for (size_t k = 0; k < n; k++) {
+        const hd_run_fit *f = &fits[g->idx[k]];
+        if (f->haff_ok && !f->short_window && !isnan(f->haff.D_e) &&
+            fabs(f->haff.D_e - med) > o->reject_z * s)
+          out[k] = 1, rej++;
+      }
+    }
+  }
+  free(D);
+  return rej;
 }
 
 void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opts *o,
                      hd_group_fit *out) {
   memset(out, 0, sizeof *out);
   size_t n = g->n;
-  double *v = malloc(10 * (n ? n : 1) * sizeof *v);
+  double *v = malloc(11 * (n ? n : 1) * sizeof *v);
   if (!v) { /* every number NaN: the caller prints them as such */
     double nan = NAN;
     *out = (hd_group_fit){.D_e = nan,
@@ -273,7 +306,9 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
   }
   double *D = v, *nu = v + n, *ra = v + 2 * n, *Ds = v + 3 * n, *dh = v + 4 * n, *de = v + 5 * n,
          *c0 = v + 6 * n, *c1 = v + 7 * n, *sp = v + 8 * n, *fx = v + 9 * n;
-  size_t m = 0, ms = 0, mh = 0, me = 0, mp = 0, mf = 0;
+  size_t m = 0, ms = 0, mh = 0, me = 0, mp = 0, mf = 0, tested = 0;
+  unsigned char *rej = (unsigned char *)(v + 10 * n); /* the outlier rule's verdicts */
+  out->n_rejected = hd_group_outliers(fits, g, o, rej, &tested);
   for (size_t k = 0; k < n; k++) {
     const hd_run_fit *f = &fits[g->idx[k]];
     if (f->hcs.have) out->measured = 1;
@@ -282,6 +317,7 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
       out->n_short++;
       continue;
     }
+    if (rej[k]) continue; /* a burst the HCS does not have (HD_FIT_REJECT_Z) */
     D[m] = f->haff.D_e, nu[m] = f->haff.nu0, ra[m] = f->ratio;
     c0[m] = f->cpd_start, c1[m++] = f->cpd_end;
     if (f->slope_ok) Ds[ms++] = f->D_e_slope, de[me++] = f->haff.D_e - f->D_e_slope;
@@ -320,6 +356,8 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
                      : 0;
   if (out->n_short && (m == 0 || 2 * out->n_short > m + out->n_short))
     out->flagged |= HD_FLAG_SHORT;
+  if (out->n_rejected && (double)out->n_rejected > HD_FIT_REJECT_FLAG * (double)tested)
+    out->flagged |= HD_FLAG_OUTLIERS;
   free(v);
 }
 

@@ -34,10 +34,14 @@ NDIM       ?= 900
 ALPHAS     ?= 1 0.99 0.98 0.95 0.9 0.85 0.8
 AOVERD     ?= 0.5 1 1.5
 # Tables I-II: the paper's alphas; box side TAB_LFRAC x the HCS's critical size L_c(alpha) at
-# alpha >= 0.9 (at most NDIM bodies), TAB_LFRAC_LOW x L_c at alpha < 0.9 (plots/README.md)
+# alpha >= TAB_ALPHA_LOW (at most NDIM bodies), TAB_LFRAC_LOW x L_c below it and for the
+# ALPHA:A groups of TAB_LOW: the largest of the two boxes whose measured total error of D_e is
+# <= 0.015 (plots/README.md, "Boxes of the tables": at 0.7 L_c alpha 0.9, a/d 1.5 had 0.017)
 TAB_ALPHAS ?= 1 0.99 0.98 0.95 0.9 0.85
 TAB_LFRAC  ?= 0.7
 TAB_LFRAC_LOW ?= 0.5
+TAB_ALPHA_LOW ?= 0.9
+TAB_LOW    ?= 0.9:1.5
 # a/d near 2: a disk of another dimer fits the gap between a dimer's disks (exactly at 2d):
 # these runs (alpha = GAP_ALPHA, NRUNS seeds) show why a = 2d is not in the tables (README)
 GAP_A      ?= 1.9 2 2.1
@@ -68,8 +72,8 @@ FMEAN_A    ?= 0.5 1 2
 ifeq ($(PAPER),1)
 # runs (seeds 1..NRUNS) per (alpha, a/d)
 NRUNS      ?= 20
-# Tables I-II: as many body-runs per group as TAB_RUNS (alpha >= 0.9) or TAB_RUNS_LOW runs of NDIM
-# bodies
+# Tables I-II: as many body-runs per group as TAB_RUNS (alpha >= TAB_ALPHA_LOW, not in TAB_LOW) or
+# TAB_RUNS_LOW runs of NDIM bodies
 TAB_RUNS   ?= 40
 TAB_RUNS_LOW ?= 80
 # runs stop at (1 - alpha^2) cpd = XMAX
@@ -96,7 +100,7 @@ RD      := $(DATA)/runs/eta$(ETA)-n$(NDIM)-x$(XMAX)
 SEEDS   := $(shell seq 1 $(NRUNS))
 ESEEDS  := $(shell seq 1001 $$((1000 + $(ERR_RUNS))))
 COMMON  := --set system.area_fraction=$(ETA)
-CONFIG  := ETA=$(ETA) NDIM=$(NDIM) NRUNS=$(NRUNS) TAB_RUNS=$(TAB_RUNS) TAB_RUNS_LOW=$(TAB_RUNS_LOW) TAB_ALPHAS=$(TAB_ALPHAS) TAB_LFRAC=$(TAB_LFRAC) TAB_LFRAC_LOW=$(TAB_LFRAC_LOW) XMAX=$(XMAX) ALPHAS=$(ALPHAS) AOVERD=$(AOVERD) GAP_A=$(GAP_A) GAP_ALPHA=$(GAP_ALPHA) \
+CONFIG  := ETA=$(ETA) NDIM=$(NDIM) NRUNS=$(NRUNS) TAB_RUNS=$(TAB_RUNS) TAB_RUNS_LOW=$(TAB_RUNS_LOW) TAB_ALPHAS=$(TAB_ALPHAS) TAB_LFRAC=$(TAB_LFRAC) TAB_LFRAC_LOW=$(TAB_LFRAC_LOW) TAB_ALPHA_LOW=$(TAB_ALPHA_LOW) TAB_LOW=$(TAB_LOW) XMAX=$(XMAX) ALPHAS=$(ALPHAS) AOVERD=$(AOVERD) GAP_A=$(GAP_A) GAP_ALPHA=$(GAP_ALPHA) \
            LONG_ALPHA=$(LONG_ALPHA) LONG_CPD=$(LONG_CPD) \
            DISK_ALPHAS=$(DISK_ALPHAS) FIG2_ALPHAS=$(FIG2_ALPHAS) FIG2_A=$(FIG2_A) \
            ELASTIC_CPD=$(ELASTIC_CPD) ERR_ALPHA=$(ERR_ALPHA) ERR_A=$(ERR_A) ERR_RUNS=$(ERR_RUNS) \
@@ -141,23 +145,24 @@ $(foreach al,$(DISK_ALPHAS),$(foreach s,$(SEEDS),$(eval $(call RUN,$(call disk_d
 
 # Tables I-II: each (alpha, a/d) in its own box inside the HCS (plots/README.md, "Boxes of the
 # tables"). At the fixed area fraction ETA (so that nu0 and chi stay those of the paper's
-# density) the box side is TAB_LFRAC (alpha >= 0.9) or TAB_LFRAC_LOW x L_c(alpha), the hydrodynamic critical size of the disk
+# density) the box side is TAB_LFRAC (alpha >= TAB_ALPHA_LOW, not in TAB_LOW) or TAB_LFRAC_LOW x L_c(alpha), the hydrodynamic critical size of the disk
 # HCS (docs/analysis.md: L_c = sqrt(2 pi D_e eta* / (1 - alpha^2)) / (n sigma chi), D_e = 2, chi
 # of Henderson), N = ETA L^2 / (area of one body in d^2), at most NDIM (all of alpha = 1, 0.99,
-# 0.98). tab_n(alpha, a/d): N, a/d = 0 for disks; tab_runs(N, alpha): TAB_RUNS (alpha >= 0.9) or
+# 0.98). tab_n(alpha, a/d): N, a/d = 0 for disks; tab_runs(N, alpha, a/d): TAB_RUNS (alpha >= TAB_ALPHA_LOW, not in TAB_LOW) or
 # TAB_RUNS_LOW x NDIM / N runs (as many body-runs as that many runs of NDIM), at least NRUNS.
-tab_n = $(shell awk 'BEGIN { al = $(1); a = $(2); eta = $(ETA); f = $(1) >= 0.9 ? $(TAB_LFRAC) : $(TAB_LFRAC_LOW); cap = $(NDIM); \
+tab_low = $(if $(filter $(1):$(2),$(TAB_LOW)),1,0)
+tab_n = $(shell awk 'BEGIN { al = $(1); a = $(2); eta = $(ETA); f = $(1) >= $(TAB_ALPHA_LOW) && !$(call tab_low,$(1),$(2)) ? $(TAB_LFRAC) : $(TAB_LFRAC_LOW); cap = $(NDIM); \
   if (al >= 1) { print cap; exit } pi = 3.14159265358979; \
   area = a == 0 ? pi / 4 : a >= 1 ? pi / 2 : pi / 2 - (0.5 * atan2(sqrt(1 - a * a), a) - a / 2 * sqrt(1 - a * a)); \
   es = 1 / ((7 - 3 * al) * (1 + al) / 8 - (1 - al * al) / 4); chi = (1 - 7 * eta / 16) / (1 - eta) ^ 2; \
   lc = sqrt(2 * pi * 2 * es / (1 - al * al)) / (4 * eta / pi * chi); \
   n = int(eta * (f * lc) ^ 2 / area); print n < cap ? n : cap }')
-tab_runs = $(shell awk 'BEGIN { r = int((($(2) >= 0.9 ? $(TAB_RUNS) : $(TAB_RUNS_LOW)) * $(NDIM) + $(1) - 1) / $(1)); print (r > $(NRUNS) ? r : $(NRUNS)) }')
+tab_runs = $(shell awk 'BEGIN { r = int((($(2) >= $(TAB_ALPHA_LOW) && !$(call tab_low,$(2),$(3)) ? $(TAB_RUNS) : $(TAB_RUNS_LOW)) * $(NDIM) + $(1) - 1) / $(1)); print (r > $(NRUNS) ? r : $(NRUNS)) }')
 # per group: TN_a_al, TR_a_al (dimers), TN_0_al, TR_0_al (disks)
 $(foreach a,$(AOVERD),$(foreach al,$(TAB_ALPHAS),$(eval TN_$(a)_$(al) := $(call tab_n,$(al),$(a)))\
-  $(eval TR_$(a)_$(al) := $(call tab_runs,$(TN_$(a)_$(al)),$(al)))))
+  $(eval TR_$(a)_$(al) := $(call tab_runs,$(TN_$(a)_$(al)),$(al),$(a)))))
 $(foreach al,$(DISK_ALPHAS),$(eval TN_0_$(al) := $(call tab_n,$(al),0))$(eval TR_0_$(al) := $(call \
-  tab_runs,$(TN_0_$(al)),$(al))))
+  tab_runs,$(TN_0_$(al)),$(al),0)))
 # the run of seed s: in the NDIM box the grid's own run (seeds 1..NRUNS), else its own file
 tab_dimer_db = $(if $(filter $(NDIM),$(TN_$(1)_$(2))),$(call dimer_db,$(1),$(2),$(3)),$(RD)/dimers-a$(1)-al$(2)-n$(TN_$(1)_$(2))-s$(3).db)
 tab_disk_db = $(if $(filter $(NDIM),$(TN_0_$(1))),$(call disk_db,$(1),$(2)),$(RD)/disks-al$(1)-n$(TN_0_$(1))-s$(2).db)
@@ -242,10 +247,11 @@ $(DATA)/band_disks.tsv: $(DATA)/disks.db $(SCRIPTS)/energy_band.py
 	$(SCRIPTS)/energy_band.py $< disks > $@
 $(OUT)/fig2.png $(OUT)/fig2.svg $(OUT)/fig2.pdf: $(OUT)/fig2.%: $(DATA)/energy.tsv $(DATA)/band.tsv $(DATA)/band_disks.tsv plots/fig2.gp $(STYLE)
 	$(GNUPLOT) -e "in='$<'; band='$(DATA)/band.tsv'; bandref='$(DATA)/band_disks.tsv'; out='$@'" plots/fig2.gp
-# Fig. 3 marks the groups the tables flag (fits-groups.tsv's last column)
+# Fig. 3 marks the groups the tables flag (fits-groups.tsv's column flag)
 $(OUT)/fig3.png $(OUT)/fig3.svg $(OUT)/fig3.pdf: $(OUT)/fig3.%: $(DATA)/energy.tsv $(DATA)/fits-groups.tsv plots/fig3.gp $(STYLE)
-	$(GNUPLOT) -e "in='$<'; out='$@'; flagged='$$(awk -F'\t' 'NR > 1 && $$2 == $(FIG2_A) && \
-	  $$NF != "" { printf "%s ", $$1 }' $(DATA)/fits-groups.tsv)'" plots/fig3.gp
+	$(GNUPLOT) -e "in='$<'; out='$@'; flagged='$$(awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) \
+	  if ($$i == "flag") c = i; next } $$2 == $(FIG2_A) && $$c != "" { printf "%s ", $$1 }' \
+	  $(DATA)/fits-groups.tsv)'" plots/fig3.gp
 
 # --- Fig. 1: 400 dimers, a = d, alpha = 0.95 -----------------------------------------------
 $(eval $(call RUN,$(RD)/fig1.db,scenes/paper-fig1.ini,--seed 1))

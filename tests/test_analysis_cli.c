@@ -273,8 +273,9 @@ static void table1(void **state) {
   char head[256];
   assert_non_null(fgets(head, sizeof head, f));
   fclose(f);
-  assert_string_equal(head, "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\tD_e_sys\t"
-                            "cpd_start\tcpd_end\tflag\tN\tarea_fraction\tnu_kt\tnu_kt_err\n");
+  assert_string_equal(head,
+                      "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\tD_e_sys\t"
+                      "cpd_start\tcpd_end\tflag\tN\tarea_fraction\tnu_kt\tnu_kt_err\trejected\n");
   int n = read_rows(out, rows, 10, 1);
   assert_int_equal(n, 3);
   int seen = 0;

@@ -666,6 +666,145 @@ static void short_window(void **state) {
   assert_string_equal(hd_group_flag_name(HD_FLAG_SHORT | HD_FLAG_INHOMOG), "inhomogeneous,short");
 }
 
+/* Writes a dimer run (N = 900, a = d, box 100 x 100, alpha) that follows Haff's law with D_e =
+ * De from cpd 0 to 100 (a sample every 0.5), and from cpd `burst` on a near-collapse burst: the
+ * collisions race on (cpd to 100 within 1e-3 time units) with E frozen, as in the default
+ * build's run of seed 27 at alpha = 0.9, a/d = 1.5 (cpd 56 to 84 at t = 613.7).  burst >= 100:
+ * none. */
+static void add_haff_run(hd_db *db, double alpha, double De, double burst, unsigned long seed) {
+  char scene[200];
+  snprintf(scene, sizeof scene,
+           "[system]\nbox = 100 100\n[dimers]\ncount = 900\nalpha = %g\na = 1\nd = 1\n", alpha);
+  hd_error err;
+  int64_t run;
+  assert_int_equal(hd_db_run_begin(db, scene, seed, "test", &run, &err), HD_OK);
+  assert_int_equal(hd_db_run_box(db, run, 100, 100, &err), HD_OK);
+  double g = 1 - alpha * alpha, t = 0, Eb = NAN;
+  for (int k = 0; k <= 200; k++) {
+    double cpd = 0.5 * k, E = exp(-g * cpd / De);
+    if (cpd > burst) {
+      if (isnan(Eb)) Eb = exp(-g * (cpd - 0.5) / De);
+      E = Eb, t += 1e-5;
+    } else if (k > 0) {
+      t += 0.5 / (0.3 * exp(-g * (cpd - 0.25) / (2 * De)));
+    }
+    hd_sample_row row = {
+        t, (int64_t)(450 * cpd), cpd, E * 2 / 3, E / 3, NAN, NAN, NAN, 0.05, 0.05, 1, 1, 1, 1};
+    assert_int_equal(hd_db_log_sample(db, run, &row, &err), HD_OK);
+  }
+  assert_int_equal(hd_db_run_hcs(db, run, &err), HD_OK);
+  assert_int_equal(hd_db_run_status(db, run, "done", 1, 0.0, &err), HD_OK);
+}
+
+/* The outlier rule (issue 25: one run in 65 of the default build's alpha = 0.9, a/d = 1.5 group
+ * had a near-collapse burst, D_e 11.2 against 3.04, and raised the group's standard error from
+ * 0.015 to 0.127).  Made-up fits: 20 runs D_e = 3 +- 0.05 and one at 11.2: the rule rejects it,
+ * the group's D_e and error are those of the 20 (without the rule, o.reject_z = 0: 3.39 +- 0.39);
+ * 3 bursts of 23 are more than 1 in 10: flagged `outliers`; 4 runs are too few to test.  A
+ * normal sample of 2000 runs (fixed seed) loses none (z = 6: a probability 2e-9 per run).  Then
+ * real rows: haff-fit flags the burst run `outlier`, its group counts it in `rejected`, and
+ * table1 prints the group unflagged with the error of the healthy runs. */
+static void outlier_runs(void **state) {
+  (void)state;
+  enum { NR = 2000 };
+  static hd_run_fit f[NR];
+  static size_t idx[NR];
+  memset(f, 0, sizeof f);
+  double sum = 0, ss = 0;
+  for (int k = 0; k < 21; k++) {
+    idx[k] = (size_t)k;
+    f[k].haff_ok = 1;
+    f[k].haff.D_e = k < 20 ? 3 + 0.05 * sin(1.7 * k) : 11.2;
+    if (k < 20) sum += f[k].haff.D_e, ss += f[k].haff.D_e * f[k].haff.D_e;
+  }
+  double mean = sum / 20, se = sqrt((ss - 20 * mean * mean) / 19 / 20);
+  hd_group g = {0};
+  g.n = 21, g.idx = idx;
+  hd_fit_opts o = hd_fit_opts_defaults();
+  hd_group_fit q;
+  hd_group_fit_do(f, &g, &o, &q);
+  printf("# outlier rule: D_e %.4f +- %.4f, %zu rejected of %zu\n", q.D_e, q.D_e_err, q.n_rejected,
+         g.n);
+  assert_true(q.n_rejected == 1 && q.m == 20 && !q.flagged);
+  assert_true(fabs(q.D_e - mean) < 1e-12 && fabs(q.D_e_err - se) < 1e-12);
+  o.reject_z = 0; /* no rule: the burst dominates the error */
+  hd_group_fit_do(f, &g, &o, &q);
+  printf("# no rule: D_e %.4f +- %.4f\n", q.D_e, q.D_e_err);
+  assert_true(q.n_rejected == 0 && q.m == 21 && q.D_e_err > 0.3);
+  o = hd_fit_opts_defaults();
+  for (int k = 21; k < 23; k++) idx[k] = (size_t)k, f[k].haff_ok = 1, f[k].haff.D_e = 9 + k;
+  g.n = 23;
+  hd_group_fit_do(f, &g, &o, &q);
+  assert_true(q.n_rejected == 3 && q.flagged == HD_FLAG_OUTLIERS);
+  assert_string_equal(hd_group_flag_name(q.flagged), "outliers");
+  g.n = 4, f[3].haff.D_e = 11.2; /* too few runs to test: kept, in the error */
+  hd_group_fit_do(f, &g, &o, &q);
+  assert_true(q.n_rejected == 0 && q.m == 4);
+  unsigned long x = 12345; /* a normal sample (Box-Muller on an LCG, fixed seed) */
+  for (int k = 0; k < NR; k += 2) {
+    double u[2];
+    for (int j = 0; j < 2; j++) {
+      x = x * 6364136223846793005UL + 1442695040888963407UL;
+      u[j] = ((double)(x >> 11) + 0.5) / 9007199254740992.0;
+    }
+    double r = sqrt(-2 * log(u[0]));
+    idx[k] = (size_t)k, idx[k + 1] = (size_t)k + 1;
+    f[k].haff_ok = f[k + 1].haff_ok = 1;
+    f[k].haff.D_e = 3 + 0.1 * r * cos(2 * M_PI * u[1]);
+    f[k + 1].haff.D_e = 3 + 0.1 * r * sin(2 * M_PI * u[1]);
+  }
+  g.n = NR;
+  hd_group_fit_do(f, &g, &o, &q);
+  assert_true(q.n_rejected == 0 && q.m == NR);
+  /* real rows through haff-fit and table1 */
+  char path[400], out[400];
+  snprintf(path, sizeof path, "%s/burst.db", dir);
+  snprintf(out, sizeof out, "%s/burst.tsv", dir);
+  hd_db *db;
+  hd_error err;
+  assert_int_equal(hd_db_open(&db, path, &err), HD_OK);
+  for (unsigned long k = 0; k < 12; k++) add_haff_run(db, 0.9, 3 + 0.001 * (double)k, 1000, k + 1);
+  add_haff_run(db, 0.9, 3.0055, 92, 13);
+  assert_int_equal(hd_db_close(db, &err), HD_OK);
+  char *av[] = {"haff-fit", path, "-o", out, NULL};
+  assert_int_equal(haff_fit_main(4, av), 0);
+  char buf[8192];
+  FILE *fp = fopen(out, "r");
+  assert_non_null(fp);
+  size_t nb = fread(buf, 1, sizeof buf - 1, fp);
+  buf[nb] = 0;
+  fclose(fp);
+  char *last = buf + nb - 1; /* the burst run is the last row */
+  while (last > buf && last[-1] != '\n') last--;
+  printf("# burst run: %s", last);
+  assert_non_null(strstr(last, "\toutlier\n"));
+  int nout = 0; /* only it */
+  for (char *p = buf; (p = strstr(p, "\toutlier\n")); p++) nout++;
+  assert_int_equal(nout, 1);
+  char *ag[] = {"haff-fit", path, "--alpha-group", "-o", out, NULL};
+  assert_int_equal(haff_fit_main(5, ag), 0);
+  grow gr[2];
+  assert_int_equal(read_groups(out, gr, 2), 1);
+  printf("# group: D_e %.4f +- %.4f flag '%s'\n", gr[0].D, gr[0].err, gr[0].flag);
+  assert_true(gr[0].n == 900 && gr[0].flag[0] == 0 && gr[0].err < 0.01);
+  assert_true(fabs(gr[0].D - 3.0055) < 0.001); /* the 12 healthy runs: 3 + 0.001 k */
+  fp = fopen(out, "r");
+  nb = fread(buf, 1, sizeof buf - 1, fp);
+  buf[nb] = 0;
+  fclose(fp);
+  assert_non_null(strstr(buf, "\tflag\trejected\n"));
+  assert_true(nb > 3 && !strcmp(buf + nb - 3, "\t1\n")); /* one run rejected */
+  char *t1[] = {"table1", path, "-o", out, NULL};
+  assert_int_equal(haff_table1_main(4, t1), 0);
+  fp = fopen(out, "r");
+  nb = fread(buf, 1, sizeof buf - 1, fp);
+  buf[nb] = 0;
+  fclose(fp);
+  printf("# table1: %s", buf);
+  assert_non_null(strstr(buf, "\tnu_kt_err\trejected\n0.9\t1\t"));
+  assert_true(!strcmp(buf + nb - 3, "\t1\n"));
+}
+
 static int setup(void **state) {
   (void)state;
   return test_cli_mkdtemp("hcs");
@@ -682,7 +821,7 @@ int main(void) {
       cmocka_unit_test(schema_upgrade), cmocka_unit_test(schema_same_version),
       cmocka_unit_test(stored_window),  cmocka_unit_test(k_sys),
       cmocka_unit_test(table2_sys),     cmocka_unit_test(acceptance_cheap),
-      cmocka_unit_test(short_window),
+      cmocka_unit_test(short_window),   cmocka_unit_test(outlier_runs),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -301,11 +301,17 @@ int hd_cli_flagged_out(const char *cmd, const hd_group *g, const hd_group_fit *q
             "haff %s: note: left out alpha %g a/d %g N %ld: inhomogeneous (window mean s_perp "
             "%.3g, %zu of %zu runs left the HCS early); --keep-flagged keeps it\n",
             cmd, g->alpha, g->a_over_d, g->nbodies, q->s_perp, q->ended, q->m);
-  else
+  else if (q->flagged & HD_FLAG_SHORT)
     fprintf(stderr,
             "haff %s: note: left out alpha %g a/d %g N %ld: short (%zu of %zu runs have a window "
             "too short for eq. (31)); --keep-flagged keeps it\n",
             cmd, g->alpha, g->a_over_d, g->nbodies, q->n_short, q->n_short + q->m);
+  else
+    fprintf(stderr,
+            "haff %s: note: left out alpha %g a/d %g N %ld: outliers (%zu of %zu runs rejected, "
+            "more than %g of them: the box's bursts are not rare); --keep-flagged keeps it\n",
+            cmd, g->alpha, g->a_over_d, g->nbodies, q->n_rejected, q->n_rejected + q->m,
+            HD_FIT_REJECT_FLAG);
   return 1;
 }
 
@@ -320,6 +326,14 @@ void hd_cli_one_run_note(const char *cmd, const hd_group *g, size_t m) {
 }
 
 void hd_cli_short_note(const char *cmd, const hd_group *g, const hd_group_fit *q) {
+  if (q->n_rejected)
+    fprintf(stderr,
+            "haff %s: note: alpha %g a/d %g N %ld: rejected %zu run%s whose D_e is more than %g "
+            "robust standard deviations from the group's median (near-collapse bursts; "
+            "haff-fit flags them `outlier`, docs/analysis.md \"Outlier runs\")%s\n",
+            cmd, g->alpha, g->a_over_d, g->nbodies, q->n_rejected, q->n_rejected == 1 ? "" : "s",
+            HD_FIT_REJECT_Z,
+            q->flagged & HD_FLAG_OUTLIERS ? ": the group is flagged outliers" : "");
   if (q->n_short)
     fprintf(stderr,
             "haff %s: note: alpha %g a/d %g N %ld: left out %zu run%s whose window is too short "

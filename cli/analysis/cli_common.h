@@ -116,11 +116,12 @@ int hd_cli_in_table(const hd_group *g, int with_disks);
  * being the papers' case (a mixture, walls) and where they are fitted. */
 size_t hd_cli_table_groups(const char *cmd, const hd_group *g, size_t ng, int with_disks);
 
-/* Whether a table leaves group g out for being flagged inhomogeneous (not with keep); says so on
- * stderr, and that a group without state measures could not be checked. */
+/* Whether a table leaves group g out for being flagged (inhomogeneous, short, outliers; not with
+ * keep); says so on stderr, and that a group without state measures could not be checked. */
 int hd_cli_flagged_out(const char *cmd, const hd_group *g, const hd_group_fit *q, int keep);
 
-/* Says on stderr how many of group g's runs q left out for a short window (none: nothing). */
+/* Says on stderr how many of group g's runs q left out for a short window, and how many it
+ * rejected as outliers (none: nothing). */
 void hd_cli_short_note(const char *cmd, const hd_group *g, const hd_group_fit *q);
 
 /* x printed with the printf format fmt (one double conversion), or, when x is NaN, "" (tsv) or

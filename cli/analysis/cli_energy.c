@@ -6,12 +6,19 @@
 #include "cli_species.h"
 #include "haff.h"
 
-/* Writes one block: the sample-by-sample mean over the runs idx[0..m-1] (truncated to the
- * shortest) with the Haff and eq. (31) curves of the mean fitted D_e and nu0. */
-static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const size_t *idx, size_t m,
-                       int first, hd_error *err) {
+/* Writes one block: the sample-by-sample mean over the runs of group grp (truncated to the
+ * shortest) with the Haff and eq. (31) curves of the mean fitted D_e and nu0 (of the runs whose
+ * window is not short and that the outlier rule of o keeps). */
+static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const hd_group *grp,
+                       const hd_fit_opts *o, int first, hd_error *err) {
+  const size_t *idx = grp->idx, m = grp->n;
   hd_series *s = calloc(m, sizeof *s);
-  if (!s) return hd_error_set(err, HD_ENOMEM, "out of memory");
+  unsigned char *rej = malloc(m ? m : 1);
+  if (!s || !rej) {
+    free(s), free(rej);
+    return hd_error_set(err, HD_ENOMEM, "out of memory");
+  }
+  hd_group_outliers(fits, grp, o, rej, NULL); /* their D_e is left out as in table1 */
   int rc = HD_OK;
   size_t len = (size_t)-1, homog = (size_t)-1, nfit = 0, nshort = 0, i0 = 0;
   double De = 0, nu = 0;
@@ -22,7 +29,7 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
     if (s[k].n < len) len = s[k].n;
     if (f->n_used < homog) homog = f->n_used;
     if (f->n_start > i0) i0 = f->n_start; /* the latest window start of the runs */
-    if (f->haff_ok && !f->short_window) De += f->haff.D_e, nu += f->haff.nu0, nfit++;
+    if (f->haff_ok && !f->short_window && !rej[k]) De += f->haff.D_e, nu += f->haff.nu0, nfit++;
     nshort += f->short_window != 0;
   }
   if (rc == HD_OK) {
@@ -68,7 +75,7 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
     }
   }
   for (size_t k = 0; k < m; k++) hd_series_free(&s[k]);
-  free(s);
+  free(s), free(rej);
   return rc;
 }
 
@@ -102,7 +109,7 @@ int haff_energy_main(int argc, char **argv) {
   FILE *out = hd_cli_out(&a);
   rc = out ? 0 : 1;
   for (size_t j = 0; out && j < s.ng && !rc; j++)
-    if (write_block(out, s.db, s.fits, s.g[j].idx, s.g[j].n, j == 0, &err))
+    if (write_block(out, s.db, s.fits, &s.g[j], &a.fit, j == 0, &err))
       rc = hd_cli_fail(argv[0], &err);
   hd_cli_groups_free(&s);
   if (out) {

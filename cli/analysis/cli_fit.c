@@ -30,8 +30,11 @@ const hd_optspec haff_fit_spec = {
         "note;\n"
         "exit 2 when none can.  flag 'short' (per run; per group when most of its runs are): the\n"
         "window has < 10 samples or E decays by less than a factor e over it; eq. (31) is not\n"
-        "constrained there, and groups leave such runs out.  A missing value, or a systematic\n"
-        "term not resolved from its noise, is printed empty (never nan or 0).\n"
+        "constrained there, and groups leave such runs out.  flag 'outlier' (per run): its D_e is\n"
+        "more than 6 robust standard deviations from its group's median (a near-collapse burst);\n"
+        "groups leave it out and count it in 'rejected', and are flagged 'outliers' when more\n"
+        "than 1 in 10 of their runs are.  A missing value, or a systematic term not resolved\n"
+        "from its noise, is printed empty (never nan or 0).\n"
         "--by-species: instead, one row per species of each ensemble of runs (the same species,\n"
         "counts, masses, sizes, restitutions and box; --run: that run alone): group run runs\n"
         "species N T_ratio T_ratio_err err_from T_ratio_theory K K_err mass sigma alpha cpd_start\n"
@@ -70,6 +73,22 @@ int haff_fit_main(int argc, char **argv) {
                  "D_e_fit_err\tnu0_eff\tnu0_eff_fit_err\tnu0_enskog\tratio\tratio_fit_err\t"
                  "chi2_dof\tcpd_start\tD_e_slope\tD_e_slope_err\ts_perp\tflow_excess\t"
                  "hcs_ended\twindow\tdecay\tflag\n");
+    /* each run's verdict under its group's outlier rule (hd_group_outliers) */
+    unsigned char *rej = calloc(n ? n : 1, 1), *rk = malloc(n ? n : 1);
+    hd_group *g = NULL;
+    size_t ng = 0, nrej = 0;
+    hd_error err;
+    if (!rej || !rk || hd_group_runs(fits, n, &g, &ng, &err)) {
+      free(rej), free(rk), free(fits), hd_ana_close(db), hd_cli_close(out, &a);
+      return rej && rk ? hd_cli_fail(argv[0], &err)
+                       : (fprintf(stderr, "haff %s: out of memory\n", argv[0]), 1);
+    }
+    for (size_t j = 0; j < ng; j++) {
+      nrej += hd_group_outliers(fits, &g[j], &a.fit, rk, NULL);
+      for (size_t k = 0; k < g[j].n; k++) rej[g[j].idx[k]] = rk[k];
+    }
+    hd_groups_free(g, ng);
+    free(rk);
     size_t nshort = 0;
     for (size_t i = 0; i < n; i++) {
       const hd_run_fit *f = &fits[i];
@@ -90,8 +109,19 @@ int haff_fit_main(int argc, char **argv) {
               N("%.6g", f->D_e_slope), N("%.3g", f->D_e_slope_err),
               N("%.4g", f->hcs.have ? f->hcs.s_perp : nan),
               N("%.4g", f->hcs.have ? f->hcs.flow_excess : nan), f->hcs.ended,
-              hd_cli_window_name(f->window), N("%.3g", f->decay), f->short_window ? "short" : "");
+              hd_cli_window_name(f->window), N("%.3g", f->decay),
+              f->short_window ? "short"
+              : rej[i]        ? "outlier"
+                              : "");
     }
+    free(rej);
+    if (nrej)
+      fprintf(stderr,
+              "haff %s: note: %zu run%s flagged outlier: D_e more than %g robust standard "
+              "deviations (1.4826 MAD) from the median of its group (same alpha, a/d, N, "
+              "density): a near-collapse burst (docs/analysis.md, \"Outlier runs\"); the groups "
+              "leave them out\n",
+              argv[0], nrej, nrej == 1 ? "" : "s", HD_FIT_REJECT_Z);
     if (nshort)
       fprintf(stderr,
               "haff %s: note: %zu run%s flagged short: the window has fewer than %d samples or E "
@@ -110,7 +140,7 @@ int haff_fit_main(int argc, char **argv) {
     hd_cli_groups_warn(argv[0], g, ng);
     fprintf(out, "alpha\ta_over_d\tspecies\truns\tD_e\tD_e_err\tnu0_eff\tnu0_eff_err\tratio\t"
                  "ratio_err\tn\tcpd_start\tcpd_end\tD_e_slope\tD_e_slope_err\tD_e_sys\t"
-                 "sys_window\tsys_estimator\tsys_box\ts_perp\tflag\n");
+                 "sys_window\tsys_estimator\tsys_box\ts_perp\tflag\trejected\n");
     for (size_t j = 0; j < ng; j++) {
       hd_group_fit q;
       hd_group_fit_do(fits, &g[j], &a.fit, &q);
@@ -119,13 +149,13 @@ int haff_fit_main(int argc, char **argv) {
 #define N(fmt, x) hd_cli_num(fmt, x, 0)
       fprintf(out,
               "%s\t%s\t%s\t%zu\t%s\t%s\t%s\t%s\t%s\t%s\t%ld\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%"
-              "s\n",
+              "s\t%zu\n",
               N("%g", g[j].alpha), N("%g", g[j].a_over_d), g[j].label, q.m, N("%.6g", q.D_e),
               N("%.3g", q.D_e_err), N("%.6g", q.nu0), N("%.3g", q.nu0_err), N("%.6g", q.ratio),
               N("%.3g", q.ratio_err), g[j].nbodies, N("%.4g", q.cpd_start), N("%.4g", q.cpd_end),
               N("%.6g", q.D_e_slope), N("%.3g", q.D_e_slope_err), N("%.3g", q.D_e_sys),
               N("%.3g", q.sys_window), N("%.3g", q.sys_est), N("%.3g", q.sys_box),
-              N("%.4g", q.s_perp), hd_group_flag_name(q.flagged));
+              N("%.4g", q.s_perp), hd_group_flag_name(q.flagged), q.n_rejected);
 #undef N
     }
     hd_groups_free(g, ng);

@@ -41,14 +41,16 @@ const hd_optspec haff_table1_spec = {
         "error\n"
         "over the runs (empty when a group has one run).  a_over_d = 0: hard disks.\n"
         "Columns: alpha a_over_d D_e D_e_err ratio ratio_err runs D_e_sys cpd_start cpd_end flag\n"
-        "N area_fraction nu_kt nu_kt_err\n"
+        "N area_fraction nu_kt nu_kt_err rejected\n"
         "(ratio = nu0_eff/nu0, as in haff-fit: nu0 of eq. 29 with the number density of the\n"
         "bodies, sigma = d, the body mass (2m for a dimer), g(eta) at the reference disks'\n"
         "eta = pi n d^2/4, and the translational temperature at the window's start averaged\n"
         "over its samples; D_e_sys the systematic error, cpd_* the mean HCS window; N bodies,\n"
         "area_fraction the area they cover; nu_kt = ratio over its theory: the molecular-chaos\n"
         "rate of haff mc rate at a/d times g(area_fraction) / g(eta), 1 where theory and runs\n"
-        "agree; groups flagged inhomogeneous or short are left out, with a note)\n"};
+        "agree; groups flagged inhomogeneous, short or outliers are left out, with a note;\n"
+        "rejected: runs left out as outliers, D_e more than 6 robust standard deviations from\n"
+        "the group's median: near-collapse bursts, docs/analysis.md)\n"};
 
 int haff_table1_main(int argc, char **argv) {
   hd_cli_args a;
@@ -59,11 +61,11 @@ int haff_table1_main(int argc, char **argv) {
   if (rc) return rc < 0 ? 0 : rc;
   if (a.md)
     fprintf(out, "| α | a/d | D_e | ±stat | ±sys | ν0_eff/ν0 | ±Δ | runs | cpd window | flag | N | "
-                 "area fraction | ν0_eff/ν_kt | ±Δ |\n"
-                 "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                 "area fraction | ν0_eff/ν_kt | ±Δ | rejected |\n"
+                 "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   else
     fprintf(out, "alpha\ta_over_d\tD_e\tD_e_err\tratio\tratio_err\truns\tD_e_sys\tcpd_start\t"
-                 "cpd_end\tflag\tN\tarea_fraction\tnu_kt\tnu_kt_err\n");
+                 "cpd_end\tflag\tN\tarea_fraction\tnu_kt\tnu_kt_err\trejected\n");
   for (size_t j = 0; j < s.ng; j++) {
     if (!hd_cli_in_table(&s.g[j], 1)) continue;
     hd_group_fit q;
@@ -78,18 +80,20 @@ int haff_table1_main(int argc, char **argv) {
     double eta = M_PI * gj->density * gj->d * gj->d / 4;
     double kt = rate_theory(gj->a_over_d) * hd_enskog_g2d(phi) / hd_enskog_g2d(eta);
     if (a.md)
-      fprintf(out,
-              "| %g | %g | %s | %s | %s | %s | %s | %zu | %.0f–%.0f | %s | %ld | %s | %s | %s |\n",
-              gj->alpha, gj->a_over_d, N("%.4f", q.D_e), N("%.2g", q.D_e_err), N("%.2g", q.D_e_sys),
-              N("%.4f", q.ratio), N("%.2g", q.ratio_err), q.m, q.cpd_start, q.cpd_end,
-              hd_group_flag_name(q.flagged), gj->nbodies, N("%.3g", phi), N("%.4f", q.ratio / kt),
-              N("%.2g", q.ratio_err / kt));
+      fprintf(
+          out,
+          "| %g | %g | %s | %s | %s | %s | %s | %zu | %.0f–%.0f | %s | %ld | %s | %s | %s | %zu "
+          "|\n",
+          gj->alpha, gj->a_over_d, N("%.4f", q.D_e), N("%.2g", q.D_e_err), N("%.2g", q.D_e_sys),
+          N("%.4f", q.ratio), N("%.2g", q.ratio_err), q.m, q.cpd_start, q.cpd_end,
+          hd_group_flag_name(q.flagged), gj->nbodies, N("%.3g", phi), N("%.4f", q.ratio / kt),
+          N("%.2g", q.ratio_err / kt), q.n_rejected);
     else
-      fprintf(out, "%g\t%g\t%s\t%s\t%s\t%s\t%zu\t%s\t%s\t%s\t%s\t%ld\t%s\t%s\t%s\n", gj->alpha,
+      fprintf(out, "%g\t%g\t%s\t%s\t%s\t%s\t%zu\t%s\t%s\t%s\t%s\t%ld\t%s\t%s\t%s\t%zu\n", gj->alpha,
               gj->a_over_d, N("%.6g", q.D_e), N("%.3g", q.D_e_err), N("%.6g", q.ratio),
               N("%.3g", q.ratio_err), q.m, N("%.3g", q.D_e_sys), N("%.4g", q.cpd_start),
               N("%.4g", q.cpd_end), hd_group_flag_name(q.flagged), gj->nbodies, N("%.4g", phi),
-              N("%.5g", q.ratio / kt), N("%.3g", q.ratio_err / kt));
+              N("%.5g", q.ratio / kt), N("%.3g", q.ratio_err / kt), q.n_rejected);
 #undef N
   }
   hd_cli_groups_free(&s);

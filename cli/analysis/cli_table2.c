@@ -15,7 +15,8 @@ const hd_optspec haff_table2_spec = {
         "homogeneous part of each dimer run, with 99% Student-t intervals, per (alpha, a/d).\n"
         "Columns: alpha a_over_d a0 a0_lo a0_hi a1 a1_lo a1_hi a0_sys a1_sys\n"
         "(*_sys: systematic errors, from the fits on the window's two halves and the correlated\n"
-        "flow the state measures see; docs/analysis.md, \"Errors of K\")\n"};
+        "flow the state measures see; docs/analysis.md, \"Errors of K\"; empty when not\n"
+        "measured.  Runs that table1 rejects as near-collapse outliers are left out of K too)\n"};
 
 int haff_table2_main(int argc, char **argv) {
   hd_cli_args a;
@@ -38,8 +39,22 @@ int haff_table2_main(int argc, char **argv) {
     hd_group_fit q;
     hd_group_fit_do(s.fits, &s.g[j], &a.fit, &q);
     if (hd_cli_flagged_out(argv[0], &s.g[j], &q, a.keep_flagged)) continue;
+    /* K without the runs the outlier rule rejected (a near-collapse burst is not in the HCS:
+     * hd_group_outliers); a short window is eq. (31)'s limit, not the linear K fit's */
+    size_t *use = malloc((s.g[j].n ? s.g[j].n : 1) * sizeof *use), nu = 0;
+    unsigned char *rk = malloc(s.g[j].n ? s.g[j].n : 1);
+    if (!use || !rk) {
+      free(use), free(rk), hd_cli_groups_free(&s), hd_cli_close(out, &a);
+      fprintf(stderr, "haff %s: out of memory\n", argv[0]);
+      return 1;
+    }
+    hd_group_outliers(s.fits, &s.g[j], &a.fit, rk, NULL);
+    for (size_t k = 0; k < s.g[j].n; k++)
+      if (!rk[k]) use[nu++] = s.g[j].idx[k];
+    free(rk);
     double r[6];
-    if (hd_combine_k(s.fits, s.g[j].idx, s.g[j].n, a.kmode, a.fit.level, r, &err)) {
+    if (hd_combine_k(s.fits, use, nu, a.kmode, a.fit.level, r, &err)) {
+      free(use);
       fprintf(stderr, "haff %s: alpha %g a/d %g: %s\n", argv[0], s.g[j].alpha, s.g[j].a_over_d,
               err.msg);
       bad = 2;
@@ -47,7 +62,8 @@ int haff_table2_main(int argc, char **argv) {
     }
     hd_k_sys ks;
     double a01[2] = {r[0], r[3]};
-    hd_k_sys_do(s.fits, s.g[j].idx, s.g[j].n, a01, q.flow_resolved, &ks);
+    hd_k_sys_do(s.fits, use, nu, a01, q.flow_resolved, &ks);
+    free(use);
 #define N(fmt, x) hd_cli_num(fmt, x, a.md)
     if (a.md)
       fprintf(out, "| %g | %g | %.4f | [%.4f, %.4f] | %s | %.3e | [%.3e, %.3e] | %s |\n",

@@ -25,7 +25,7 @@ echo "rotating dimers (\`haff mc rate\`: 1.643, 2.090, 2.608 at a/d = 0.5, 1, 1.
 echo "g(area fraction)/g(η); it is 1 where runs and theory agree (docs/mc-rate.md). The paper's"
 echo "1.07–1.50 trend in a/d is reproduced by no convention (docs/analysis.md, \"ν0\")."
 echo
-echo "Each row's box: its N bodies at the area fraction shown, 0.7 L_c (0.5 L_c at α < 0.9) of the"
+echo "Each row's box: its N bodies at the area fraction shown, 0.7 L_c (0.5 L_c at α < 0.9, and α = 0.9 a/d = 1.5) of the"
 echo "HCS or at most NDIM (\"Boxes of the tables\" above; \`make -f plots/plots.mk tables-boxes\`)."
 echo
 cat "$out/table1.md"
@@ -33,18 +33,18 @@ echo
 echo "### Inside the HCS's validity? Every (α, a/d) group (\`data/fits-groups.tsv\`)"
 echo
 echo "D_e ± stat ± sys on each run's HCS window (cpd), the window's mean s_perp (the shear modes'"
-echo "energy over molecular chaos) and the flag; Tables I and II leave the flagged groups out"
-echo "(docs/analysis.md, \"Errors of D_e\")."
+echo "energy over molecular chaos), the flag and the runs rejected as near-collapse outliers; Tables"
+echo "I and II leave the flagged groups out (docs/analysis.md, \"Errors of D_e\", \"Outlier runs\")."
 echo
 # (an empty cell, a value missing or not measured, prints — and not awk's 0)
 awk -F '\t' 'function v(f, x) { return x == "" ? "—" : sprintf(f, x) }
              NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i
-                       print "| species | α | a/d | N | runs | D_e | ± stat | ± sys | window (cpd) | s_perp | flag |"
-                       print "|---|---|---|---|---|---|---|---|---|---|---|"; next }
-             { printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s–%s | %s | %s |\n", $c["species"],
+                       print "| species | α | a/d | N | runs | D_e | ± stat | ± sys | window (cpd) | s_perp | flag | rejected |"
+                       print "|---|---|---|---|---|---|---|---|---|---|---|---|"; next }
+             { printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s–%s | %s | %s | %s |\n", $c["species"],
                       $c["alpha"], $c["a_over_d"], $c["n"], $c["runs"], v("%.4f", $c["D_e"]),
                       v("%.2g", $c["D_e_err"]), v("%.2g", $c["D_e_sys"]), v("%.0f", $c["cpd_start"]),
-                      v("%.0f", $c["cpd_end"]), v("%.3g", $c["s_perp"]), $c["flag"] }' \
+                      v("%.0f", $c["cpd_end"]), v("%.3g", $c["s_perp"]), $c["flag"], $c["rejected"] }' \
   "$data/fits-groups.tsv"
 echo
 echo "### Table II (\`table2.tsv\`): K = E_tr/E_rot = a0 + a1 τ, 99 % intervals"
