@@ -25,6 +25,43 @@
 static const hd_wall default_walls[4] = {
     {0, 0.0, +1.0}, {0, 0.0, -1.0}, {1, 0.0, +1.0}, {1, 0.0, -1.0}};
 
+/* Which pairs take the rough rule: beta > -1 or a species whose disks have inertia (q > 0). */
+static void rough_flags(hd_sim *s) {
+  for (int i = 0; i < s->nsp; i++) {
+    for (int j = 0; j < s->nsp; j++)
+      s->rough[i][j] = s->beta[i][j] > -1.0 || s->spin_q[i] > 0.0 || s->spin_q[j] > 0.0;
+    s->wall_rough[i] = s->wall_beta > -1.0 || s->spin_q[i] > 0.0;
+  }
+}
+
+/* Rough bodies (issue 29): each species' q (the disks' own inertia, hd_shape_set_q) and the
+ * tangential restitutions.  A scene whose `rough` is 0 (none of its beta keys above -1, or a
+ * scene filled in code with zeros) is smooth: beta = -1 everywhere. */
+static int rough_setup(hd_sim *s, const hd_scene *sc, hd_error *err) {
+  for (int i = 0; i < s->nsp; i++) {
+    double q = i == HD_SP_DIMER ? sc->dimer_q : i == HD_SP_DISK ? sc->disk_q : sc->named[i - 2].q;
+    if (hd_shape_set_q(&s->shape[i], q))
+      return hd_error_set(err, HD_EINPUT, "scene: species %s: q = %g: must be in [0, 1]",
+                          s->sp_name[i], q);
+    s->spin_q[i] = q;
+    for (int j = 0; j < s->nsp; j++) {
+      double b = sc->rough ? sc->beta_pair[i][j] : -1.0;
+      if (!(b >= -1.0 && b <= 1.0) || b != (sc->rough ? sc->beta_pair[j][i] : -1.0))
+        return hd_error_set(err, HD_EINPUT,
+                            "scene: beta of species %s with %s = %g: must be in [-1, 1] and "
+                            "symmetric",
+                            s->sp_name[i], s->sp_name[j], b);
+      s->beta[i][j] = b;
+    }
+  }
+  s->wall_beta = sc->rough ? sc->wall_beta : -1.0;
+  if (!(s->wall_beta >= -1.0 && s->wall_beta <= 1.0))
+    return hd_error_set(err, HD_EINPUT, "scene: [walls] beta = %g: must be in [-1, 1]",
+                        s->wall_beta);
+  rough_flags(s);
+  return HD_OK;
+}
+
 /* The species table from the scene: [dimers] (0), [disks] (1), then each `[species NAME]`
  * section (2, 3, ...), with the pair restitutions.  The pair (dimers, disks) takes [disks]
  * alpha_dimer; a pair with a named species takes sc->alpha_pair.  HD_EINPUT for a named species
@@ -66,6 +103,8 @@ static int species_setup(hd_sim *s, const hd_scene *sc, hd_error *err) {
       s->alpha[i][j] = s->alpha[j][i] = a;
     }
   }
+  int rc = rough_setup(s, sc, err);
+  if (rc) return rc;
   int64_t n = 0;
   for (int i = 0; i < s->nsp; i++) n += s->n_species[i];
   for (int i = 0; i < s->nsp; i++) s->reach[i] = hd_shape_radius(&s->shape[i]) * (1.0 + 1e-9);
@@ -158,10 +197,14 @@ static void start(hd_sim *s) {
  * collisions per body, then fresh Maxwellian velocities and the clocks back to zero. */
 static int melt(hd_sim *s, const hd_scene *sc, hd_error *err) {
   double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES], wall_alpha = s->wall_alpha;
+  double beta[HD_MAX_SPECIES][HD_MAX_SPECIES], wall_beta = s->wall_beta;
   memcpy(alpha, s->alpha, sizeof alpha);
+  memcpy(beta, s->beta, sizeof beta);
   for (int a = 0; a < HD_MAX_SPECIES; a++)
-    for (int b = 0; b < HD_MAX_SPECIES; b++) s->alpha[a][b] = 1.0;
+    for (int b = 0; b < HD_MAX_SPECIES; b++) s->alpha[a][b] = 1.0, s->beta[a][b] = -1.0;
   s->wall_alpha = 1.0;
+  s->wall_beta = -1.0;
+  rough_flags(s);
   int rc = HD_OK;
   /* 40 cpd, or until nothing moves (no event left), or a bound on events for a gas whose
    * bodies barely collide */
@@ -180,7 +223,10 @@ static int melt(hd_sim *s, const hd_scene *sc, hd_error *err) {
     }
   }
   memcpy(s->alpha, alpha, sizeof alpha);
+  memcpy(s->beta, beta, sizeof beta);
   s->wall_alpha = wall_alpha;
+  s->wall_beta = wall_beta;
+  rough_flags(s);
   if (rc) return rc;
   for (int32_t i = 0; i < s->n; i++) { /* positions at the current time become time 0 */
     hd_body_sync(s, i);
@@ -639,7 +685,11 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
       hd_body_sync(s, i);
       int w = bi->p_partner, ka = bi->p_ka;
       hd_collision_info info;
-      hd_collide_wall(&bi->k, &s->shape[bi->species], ka, &s->wall[w], s->wall_alpha, &info);
+      if (s->wall_rough[bi->species])
+        hd_collide_rough_wall(&bi->k, &s->shape[bi->species], ka, &s->wall[w], s->wall_alpha,
+                              s->wall_beta, &info);
+      else
+        hd_collide_wall(&bi->k, &s->shape[bi->species], ka, &s->wall[w], s->wall_alpha, &info);
       bi->ncoll++;
       s->c.wall_hits++;
       s->c.e_kin += info.de;
@@ -674,8 +724,13 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
     kj.x += sx;
     kj.y += sy;
     int ka = bi->p_ka, kb = bi->p_kb;
-    hd_collide_pair(&bi->k, &s->shape[bi->species], &kj, &s->shape[bj->species], ka, kb,
-                    s->alpha[bi->species][bj->species], &ev->info);
+    if (s->rough[bi->species][bj->species])
+      hd_collide_rough_pair(&bi->k, &s->shape[bi->species], &kj, &s->shape[bj->species], ka, kb,
+                            s->alpha[bi->species][bj->species], s->beta[bi->species][bj->species],
+                            &ev->info);
+    else
+      hd_collide_pair(&bi->k, &s->shape[bi->species], &kj, &s->shape[bj->species], ka, kb,
+                      s->alpha[bi->species][bj->species], &ev->info);
     if (s->verify) {
       int rc = verify_contact(s, &bi->k, &kj, i, j, ka, kb, err);
       if (rc) return rc;
