@@ -25,3 +25,28 @@ double hd_rough_hcs_ratio(double alpha, double beta, double kappa) {
   /* the positive root without cancellation: 2c / (-b - disc) when b > 0 */
   return b > 0.0 ? 2.0 * c / (-b - disc) : (-b + disc) / (2.0 * a);
 }
+
+int hd_rough_window_ratio(const double *e_tr, const double *e_rot, size_t n0, size_t n1, double *r,
+                          double *err) {
+  *r = *err = NAN;
+  if (n1 < n0 + 2 * HD_ROUGH_BLOCKS) return -1;
+  size_t n = n1 - n0;
+  double blk[HD_ROUGH_BLOCKS], sum = 0.0;
+  for (int b = 0; b < HD_ROUGH_BLOCKS; b++) {
+    size_t lo = n0 + n * (size_t)b / HD_ROUGH_BLOCKS,
+           hi = n0 + n * (size_t)(b + 1) / HD_ROUGH_BLOCKS;
+    double s = 0.0;
+    for (size_t i = lo; i < hi; i++) {
+      if (!(e_tr[i] > 0.0)) return -1;
+      s += 2.0 * e_rot[i] / e_tr[i];
+    }
+    sum += s;
+    blk[b] = s / (double)(hi - lo);
+  }
+  double mean = sum / (double)n, m = 0.0, v = 0.0;
+  for (int b = 0; b < HD_ROUGH_BLOCKS; b++) m += blk[b] / HD_ROUGH_BLOCKS;
+  for (int b = 0; b < HD_ROUGH_BLOCKS; b++) v += (blk[b] - m) * (blk[b] - m);
+  *r = mean;
+  *err = sqrt(v / (HD_ROUGH_BLOCKS - 1) / HD_ROUGH_BLOCKS);
+  return 0;
+}

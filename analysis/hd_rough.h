@@ -8,6 +8,8 @@
 #ifndef HD_ROUGH_H
 #define HD_ROUGH_H
 
+#include <stddef.h>
+
 /* eta_t = (1 + beta) kappa / (2 (1 + kappa)): the share of the tangential slip a collision of
  * two equal disks removes from each disk's velocity. */
 double hd_rough_eta_t(double beta, double kappa);
@@ -24,5 +26,14 @@ void hd_rough_collision_de(double alpha, double beta, double kappa, double t_tr,
  * alpha in [0, 1], beta in (-1, 1], kappa in (0, 1]; NaN otherwise (beta = -1: smooth disks keep
  * their spins, there is no ratio). */
 double hd_rough_hcs_ratio(double alpha, double beta, double kappa);
+
+/* The measured ratio over samples [n0, n1) of a run whose every body turns (one rotational
+ * degree of freedom each): R = 2 e_rot / e_tr averaged over the samples, *err the standard error
+ * of that mean from HD_ROUGH_BLOCKS consecutive blocks (the samples of a block are correlated,
+ * the blocks nearly not).  Returns 0, or -1 (NaNs) with fewer than 2 samples per block or an
+ * e_tr <= 0. */
+#define HD_ROUGH_BLOCKS 8
+int hd_rough_window_ratio(const double *e_tr, const double *e_rot, size_t n0, size_t n1, double *r,
+                          double *err);
 
 #endif

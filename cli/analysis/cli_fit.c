@@ -5,6 +5,7 @@
 
 #include "cli_common.h"
 #include "haff.h"
+#include "hd_rough.h"
 
 const hd_optspec haff_fit_spec = {
     HD_CLI_SPEC("haff-fit", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP),
@@ -29,7 +30,28 @@ const hd_optspec haff_fit_spec = {
         "exit 2 when none can.  flag 'short' (per run; per group when most of its runs are): the\n"
         "window has < 10 samples or E decays by less than a factor e over it; eq. (31) is not\n"
         "constrained there, and groups leave such runs out.  A missing value, or a systematic\n"
-        "term not resolved from its noise, is printed empty (never nan or 0).\n"};
+        "term not resolved from its noise, is printed empty (never nan or 0).\n"
+        "T_rot_tr: T_rot/T_tr = 2 e_rot/e_tr over the window for a gas whose bodies all turn\n"
+        "(dimers; disks of q > 0), T_rot_tr_err its error from 8 blocks, T_rot_tr_theory the\n"
+        "Maxwellian HCS ratio of rough disks (docs/analysis.md, \"Rough bodies\").\n"};
+
+/* T_rot/T_tr over the fit's window for a run whose every body turns (dimers of a > 0, disks of
+ * q > 0), with its block error, and for rough disks the Maxwellian HCS theory (hd_rough.h);
+ * NaN (printed empty) otherwise. */
+static int rot_ratio(sqlite3 *db, const hd_run_fit *f, double *r, double *err, double *th,
+                     hd_error *e) {
+  const hd_run_info *ri = &f->info;
+  *r = *err = *th = NAN;
+  if (!((ri->species == HD_ANA_DIMERS && ri->a > 0) || (ri->species == HD_ANA_DISKS && ri->q > 0)))
+    return HD_OK;
+  hd_series s;
+  int rc = hd_ana_samples(db, ri->id, &s, e);
+  if (rc) return rc;
+  hd_rough_window_ratio(s.e_tr, s.e_rot, f->n_start, f->n_used < s.n ? f->n_used : s.n, r, err);
+  hd_series_free(&s);
+  if (ri->species == HD_ANA_DISKS) *th = hd_rough_hcs_ratio(ri->alpha, ri->beta, ri->q);
+  return HD_OK;
+}
 
 int haff_fit_main(int argc, char **argv) {
   hd_cli_args a;
@@ -50,7 +72,7 @@ int haff_fit_main(int argc, char **argv) {
     fprintf(out, "run\tspecies\talpha\ta_over_d\tn_used\tdetected\tt_end\tcpd_end\tD_e\t"
                  "D_e_fit_err\tnu0_eff\tnu0_eff_fit_err\tnu0_enskog\tratio\tratio_fit_err\t"
                  "chi2_dof\tcpd_start\tD_e_slope\tD_e_slope_err\ts_perp\tflow_excess\t"
-                 "hcs_ended\twindow\tdecay\tflag\n");
+                 "hcs_ended\twindow\tdecay\tflag\tT_rot_tr\tT_rot_tr_err\tT_rot_tr_theory\n");
     size_t nshort = 0;
     for (size_t i = 0; i < n; i++) {
       const hd_run_fit *f = &fits[i];
@@ -58,10 +80,16 @@ int haff_fit_main(int argc, char **argv) {
       const hd_haff_fit *h = &f->haff;
       int ok = f->haff_ok;
       nshort += f->short_window != 0;
+      double rr, rr_err, rr_th;
+      hd_error rerr;
+      if (rot_ratio(db, f, &rr, &rr_err, &rr_th, &rerr)) {
+        free(fits), hd_ana_close(db), hd_cli_close(out, &a);
+        return hd_cli_fail(argv[0], &rerr);
+      }
 #define N(fmt, x) hd_cli_num(fmt, x, 0)
       fprintf(out,
               "%lld\t%s\t%s\t%s\t%zu\t%d\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%"
-              "s\t%d\t%s\t%s\t%s\n",
+              "s\t%d\t%s\t%s\t%s\t%s\t%s\t%s\n",
               (long long)f->info.id, f->info.label, N("%g", f->info.alpha),
               N("%g", f->info.a_over_d), f->n_used, f->homog.detected, N("%.6g", f->t_end),
               N("%.6g", f->cpd_end), N("%.6g", ok ? h->D_e : nan), N("%.3g", ok ? h->D_e_err : nan),
@@ -71,7 +99,8 @@ int haff_fit_main(int argc, char **argv) {
               N("%.6g", f->D_e_slope), N("%.3g", f->D_e_slope_err),
               N("%.4g", f->hcs.have ? f->hcs.s_perp : nan),
               N("%.4g", f->hcs.have ? f->hcs.flow_excess : nan), f->hcs.ended,
-              hd_cli_window_name(f->window), N("%.3g", f->decay), f->short_window ? "short" : "");
+              hd_cli_window_name(f->window), N("%.3g", f->decay), f->short_window ? "short" : "",
+              N("%.5g", rr), N("%.2g", rr_err), N("%.5g", rr_th));
     }
     if (nshort)
       fprintf(stderr,
