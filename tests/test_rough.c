@@ -29,6 +29,7 @@
 #include "hd_rough.h"
 #include "hd_scene.h"
 #include "hd_sim.h"
+#include "test_cli_util.h"
 #include "test_util.h"
 
 static gsl_rng *rng_new(unsigned long seed) {
@@ -586,6 +587,91 @@ static void hcs_ratio_rough_disks(void **state) {
   }
 }
 
+/* The value of column `name` in row `row` (1 = the first after the header) of a TSV text, into
+ * out ("" when empty); 0, or -1 when there is no such column or row. */
+static int tsv_cell(const char *text, const char *name, int row, char *out, size_t n) {
+  int col = -1, c = 0;
+  const char *p = text, *eol = strchr(p, '\n');
+  if (!eol) return -1;
+  for (const char *q = p; q < eol; c++) {
+    size_t len = strcspn(q, "\t\n");
+    if (len == strlen(name) && !strncmp(q, name, len)) col = c;
+    q += len + (q[len] == '\t');
+    if (q[-1] != '\t') break;
+  }
+  if (col < 0) return -1;
+  for (int r = 0; r < row; r++) {
+    p = strchr(p, '\n');
+    if (!p || !p[1]) return -1;
+    p++;
+  }
+  for (c = 0; c < col; c++) {
+    p += strcspn(p, "\t\n");
+    if (*p != '\t') return -1;
+    p++;
+  }
+  size_t len = strcspn(p, "\t\n");
+  if (len >= n) return -1;
+  memcpy(out, p, len);
+  out[len] = '\0';
+  return 0;
+}
+
+/* haff haff-fit's T_rot_tr columns: two runs of rough disks (alpha 0.9, beta 0.5, q 1/2; the
+ * scene of hcs_ratio_rough_disks) within 3 % of the theory it prints (the same tolerance), an
+ * error that is positive and below 3 %; a dimer run has a measured ratio and no theory; smooth
+ * disks have none (empty cells). */
+static void haff_fit_ratio_columns(void **state) {
+  (void)state;
+  if (!haff) skip();
+  static const char *const scene =
+      "[system]\narea_fraction = 0.01\nseed = 1\n[disks]\ncount = 400\nalpha = 0.9\n"
+      "beta = 0.5\nq = 0.5\n[run]\nstop_cpd = 150\n[log]\ncollisions = none\n"
+      "samples_every = 0.5\n";
+  write_file("rough.ini", scene);
+  write_file("dimers.ini", "[system]\narea_fraction = 0.02\nseed = 1\n[dimers]\ncount = 200\n"
+                           "alpha = 0.9\n[run]\nstop_cpd = 60\n[log]\ncollisions = none\n"
+                           "samples_every = 0.5\n");
+  write_file("smooth.ini", "[system]\narea_fraction = 0.02\nseed = 1\n[disks]\ncount = 200\n"
+                           "alpha = 0.9\n[run]\nstop_cpd = 60\n[log]\ncollisions = none\n"
+                           "samples_every = 0.5\n");
+  assert_int_equal(sh("%s run rough.ini -o r.db -q && %s run rough.ini -o r.db -q --seed 2 && "
+                      "%s run dimers.ini -o r.db -q && %s run smooth.ini -o r.db -q && "
+                      "%s haff-fit r.db -o fit.tsv",
+                      haff, haff, haff, haff, haff),
+                   0);
+  char text[8192], v[64], e[64], t[64];
+  read_file("fit.tsv", text, sizeof text);
+  double th = hd_rough_hcs_ratio(0.9, 0.5, 0.5);
+  for (int row = 1; row <= 2; row++) {
+    assert_int_equal(tsv_cell(text, "T_rot_tr", row, v, sizeof v), 0);
+    assert_int_equal(tsv_cell(text, "T_rot_tr_err", row, e, sizeof e), 0);
+    assert_int_equal(tsv_cell(text, "T_rot_tr_theory", row, t, sizeof t), 0);
+    print_message("run %d: T_rot_tr %s +- %s, theory %s\n", row, v, e, t);
+    near(atof(t), th, 1e-4 * th, "theory column");
+    near(atof(v) / th, 1.0, 0.03, "T_rot_tr against theory");
+    assert_true(atof(e) > 0 && atof(e) < 0.03 * th);
+  }
+  assert_int_equal(tsv_cell(text, "T_rot_tr", 3, v, sizeof v), 0);
+  assert_int_equal(tsv_cell(text, "T_rot_tr_theory", 3, t, sizeof t), 0);
+  assert_true(atof(v) > 0 && t[0] == '\0');
+  assert_int_equal(tsv_cell(text, "T_rot_tr", 4, v, sizeof v), 0);
+  assert_true(v[0] == '\0');
+}
+
+static int setup(void **state) {
+  (void)state;
+  if (!test_cli_find_haff()) return 0;
+  static char abs[4096];
+  if (haff[0] != '/' && realpath(haff, abs)) haff = abs;
+  return test_cli_mkdtemp("rough");
+}
+
+static int teardown(void **state) {
+  (void)state;
+  return dir[0] ? test_cli_rmdir() : 0;
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(rough_disks_by_hand),
@@ -597,6 +683,7 @@ int main(void) {
       cmocka_unit_test(scene_keys),
       cmocka_unit_test(engine_books_rough_losses),
       cmocka_unit_test(hcs_ratio_rough_disks),
+      cmocka_unit_test(haff_fit_ratio_columns),
   };
-  return cmocka_run_group_tests(tests, NULL, NULL);
+  return cmocka_run_group_tests(tests, setup, teardown);
 }
