@@ -2149,12 +2149,12 @@ static int csv_row(char *line, const char *path, long lineno, const hd_scene *sc
   r->species = -1;
   if (!strcmp(kind, "dimer"))
     r->kind = HD_KIND_DIMER, r->species = 0, oriented = 1;
-  else if (!strcmp(kind, "disk"))
-    r->kind = HD_KIND_DISK, r->species = 1;
+  else if (!strcmp(kind, "disk")) /* (a rough disk, q > 0, spins: its phi and omega too) */
+    r->kind = HD_KIND_DISK, r->species = 1, oriented = sc && sc->disk_q > 0;
   for (int j = 0; sc && r->species < 0 && j < sc->n_named; j++)
     if (!strcmp(kind, sc->named[j].name)) {
-      oriented = sc->named[j].ndisk >= 2;
-      r->kind = oriented ? HD_KIND_DIMER : HD_KIND_DISK;
+      r->kind = sc->named[j].ndisk >= 2 ? HD_KIND_DIMER : HD_KIND_DISK;
+      oriented = sc->named[j].ndisk >= 2 || sc->named[j].q > 0;
       r->species = 2 + j;
     }
   if (r->species < 0) {

@@ -258,7 +258,8 @@ typedef struct hd_state_row {
   int kind;         /* HD_KIND_DISK or HD_KIND_DIMER (hd_body.h); a named species' body is
                      * HD_KIND_DIMER when it has 2 or more disks (it has an orientation) */
   int species;      /* engine species index: 0 dimer, 1 disk, 2 + k for named[k] */
-  double x, y, phi; /* phi ignored (0) for disks and one-disk species */
+  double x, y, phi; /* phi (and omega) ignored (0) for disks and one-disk species, unless the
+                     * scene (hd_state_csv_read_species) gives them q > 0: rough disks spin */
   double vx, vy, omega;
   long line; /* line number in the CSV, for messages */
 } hd_state_row;

@@ -471,7 +471,7 @@ static int frozen(const hd_sim *s) {
     });
     if (close) return 0;
     static const unsigned bit[4] = {HD_WALL_LEFT, HD_WALL_RIGHT, HD_WALL_BOTTOM, HD_WALL_TOP};
-    for (int w = 0; w < 4 && bi->k.omega != 0.0; w++)
+    for (int w = 0; w < 4 && bi->k.omega != 0.0 && s->shape[bi->species].tag != HD_SHAPE_DISK; w++)
       if ((s->walls & bit[w]) &&
           fabs((s->wall[w].axis ? bi->k.y : bi->k.x) - s->wall[w].pos) <= reach[bi->species])
         return 0;
