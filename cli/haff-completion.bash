@@ -6,7 +6,8 @@
 # "  --NAME" or "  -X, --NAME": an option named in the prose, as sweep's "axes of --set
 # overrides", is not one of its own), and the value of --set the scene keys of
 # `haff run --list-keys` (SECTION.KEY=; for a [species NAME] key, the NAMEs of the scene files
-# on the line, and for its alpha_OTHER the other species).  Files are completed otherwise.
+# on the line, and for its alpha_OTHER and beta_OTHER the other species).  Files are completed
+# otherwise.
 
 # The names of a help text's block that starts with the line "$2:".
 _haff_block() {
@@ -31,9 +32,11 @@ _haff_keys() {
   if [ -n "${names// /}" ]; then
     local k n
     for k in $keys; do
-      if [ "$k" = species.NAME.alpha_OTHER ]; then
+      if [[ $k == species.NAME.*_OTHER ]]; then
+        local kind=${k#species.NAME.}
+        kind=${kind%_OTHER}
         for n in $names; do
-          for o in $names dimers disks; do [ "$o" != "$n" ] && echo "species.$n.alpha_$o"; done
+          for o in $names dimers disks; do [ "$o" != "$n" ] && echo "species.$n.${kind}_$o"; done
         done
       elif [[ $k == species.NAME.* ]]; then
         for n in $names; do echo "species.$n.${k#species.NAME.}"; done

@@ -71,6 +71,7 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
   for (int k = 0; k < sc.n_named; k++) named |= sc.named[k].count > 0;
   ri->rotates = 0, ri->mixture = 0;
   ri->walls = sc.walls != 0;
+  ri->beta = ri->q = NAN;
   if (named) {
     ri->species = HD_KIND_BODY;
     ri->n = 0;
@@ -81,6 +82,7 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
     ri->alpha = sc.dimer_alpha, ri->a = sc.dimer_a, ri->d = sc.dimer_d, ri->m = sc.dimer_m;
     ri->mass = 2.0 * sc.dimer_m;
     ri->a_over_d = sc.dimer_a / sc.dimer_d;
+    ri->beta = sc.dimer_beta, ri->q = sc.dimer_q;
     ri->rotates = 1;
   } else if (sc.n_disks > 0) {
     ri->species = HD_KIND_DISK;
@@ -88,6 +90,7 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
     ri->alpha = sc.disk_alpha, ri->a = 0, ri->d = sc.disk_sigma, ri->m = sc.disk_mass;
     ri->mass = sc.disk_mass;
     ri->a_over_d = 0;
+    ri->beta = sc.disk_beta, ri->q = sc.disk_q;
   } else {
     ri->species = HD_KIND_ROD;
     ri->n = 0, ri->alpha = 1, ri->a = 0, ri->d = 1, ri->m = 1, ri->mass = 1, ri->a_over_d = 0;

@@ -47,6 +47,9 @@ typedef struct hd_run_info {
   double mass;          /* body mass: 2 m for a dimer, m for a disk (shapes: NaN, so no Enskog
                            nu0 reference) */
   double a_over_d;      /* a / d (0 for disks, NaN for shapes) */
+  double beta, q;       /* rough bodies (issue 29): that species' tangential restitution with
+                           itself and its disks' q ([dimers] or [disks] beta, q: -1, 0 when
+                           smooth; NaN for shapes and rods) */
   double box_x, box_y;  /* the box: runs.box_x/box_y (the engine's), else the scene's: [system]
                            box, or derived from area_fraction as the loader does (0: none) */
   double area_fraction; /* [system] area_fraction (0 if absent) */

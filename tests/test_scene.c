@@ -896,7 +896,8 @@ static const bad_case species_bad[] = {
            "[species g]\n",
      NULL, HD_EINPUT, "bad.ini:11:", "[species g]", "more than 6"},
     {SPBOX SP "colour = red\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] colour = red",
-     "unknown key (keys of [species NAME]: count alpha shape d m disks alpha_OTHER)"},
+     "unknown key (keys of [species NAME]: count alpha shape d m disks alpha_OTHER beta q "
+     "beta_OTHER)"},
     {SPBOX SP "count = 3\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] count", "duplicate"},
     {SPBOX SP "shape = hexagon\n", NULL, HD_EINPUT, "bad.ini:7:", "[species t] shape = hexagon",
      "expected disk, dimer A, linear N [S], triangle [S] or bent ANGLE [S]"},

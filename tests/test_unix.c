@@ -273,13 +273,16 @@ static void install_man_completion(void **state) {
   assert_non_null(l8 = strchr(l7, '\n'));
   *l8++ = 0;
   assert_string_equal(l7, "dimers.count= dimers.d= dimers.a= dimers.m= dimers.alpha= "
-                          "disks.count= disks.sigma= disks.mass= disks.alpha= disks.alpha_dimer=");
+                          "dimers.beta= dimers.q= disks.count= disks.sigma= disks.mass= "
+                          "disks.alpha= disks.alpha_dimer= disks.beta= disks.beta_dimer= disks.q=");
   assert_non_null(l9 = strchr(l8, '\n'));
   *l9++ = 0;
   assert_string_equal(l8, "species.tri.count= species.tri.alpha= species.tri.shape= "
                           "species.tri.d= species.tri.m= species.tri.disks= "
                           "species.tri.alpha_rod3= species.tri.alpha_dimers= "
-                          "species.tri.alpha_disks=");
+                          "species.tri.alpha_disks= species.tri.beta= species.tri.q= "
+                          "species.tri.beta_rod3= species.tri.beta_dimers= "
+                          "species.tri.beta_disks=");
   assert_non_null(l10 = strchr(l9, '\n'));
   *l10 = 0;
   assert_string_equal(l9, "species.rod3.alpha_tri= species.rod3.alpha_dimers= "

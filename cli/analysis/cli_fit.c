@@ -6,6 +6,7 @@
 #include "cli_common.h"
 #include "cli_species.h"
 #include "haff.h"
+#include "hd_rough.h"
 
 const hd_optspec haff_fit_spec = {
     HD_CLI_SPEC("haff-fit", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP | HD_OPT_SPECIES),
@@ -43,7 +44,28 @@ const hd_optspec haff_fit_spec = {
         "T_ratio_err its standard error over the runs (err_from 'runs') or, for one run, over 8\n"
         "blocks of its window ('blocks'); T_ratio_theory Garzo-Dufty's HCS of smooth disks in the\n"
         "Maxwellian approximation, d = 2 (empty unless every species is one disk and the box is\n"
-        "periodic); K = <e_tr/e_rot> of a rotating species likewise (docs/analysis.md).\n"};
+        "periodic); K = <e_tr/e_rot> of a rotating species likewise (docs/analysis.md).\n"
+        "T_rot_tr: T_rot/T_tr = 2 e_rot/e_tr over the window for a gas whose bodies all turn\n"
+        "(dimers; disks of q > 0), T_rot_tr_err its error from 8 blocks, T_rot_tr_theory the\n"
+        "Maxwellian HCS ratio of rough disks (docs/analysis.md, \"Rough bodies\").\n"};
+
+/* T_rot/T_tr over the fit's window for a run whose every body turns (dimers of a > 0, disks of
+ * q > 0), with its block error, and for rough disks the Maxwellian HCS theory (hd_rough.h);
+ * NaN (printed empty) otherwise. */
+static int rot_ratio(sqlite3 *db, const hd_run_fit *f, double *r, double *err, double *th,
+                     hd_error *e) {
+  const hd_run_info *ri = &f->info;
+  *r = *err = *th = NAN;
+  if (!((ri->species == HD_KIND_DIMER && ri->a > 0) || (ri->species == HD_KIND_DISK && ri->q > 0)))
+    return HD_OK;
+  hd_series s;
+  int rc = hd_ana_samples(db, ri->id, &s, e);
+  if (rc) return rc;
+  hd_rough_window_ratio(s.e_tr, s.e_rot, f->n_start, f->n_used < s.n ? f->n_used : s.n, r, err);
+  hd_series_free(&s);
+  if (ri->species == HD_KIND_DISK) *th = hd_rough_hcs_ratio(ri->alpha, ri->beta, ri->q);
+  return HD_OK;
+}
 
 int haff_fit_main(int argc, char **argv) {
   hd_cli_args a;
@@ -72,7 +94,7 @@ int haff_fit_main(int argc, char **argv) {
     fprintf(out, "run\tspecies\talpha\ta_over_d\tn_used\tdetected\tt_end\tcpd_end\tD_e\t"
                  "D_e_fit_err\tnu0_eff\tnu0_eff_fit_err\tnu0_enskog\tratio\tratio_fit_err\t"
                  "chi2_dof\tcpd_start\tD_e_slope\tD_e_slope_err\ts_perp\tflow_excess\t"
-                 "hcs_ended\twindow\tdecay\tflag\n");
+                 "hcs_ended\twindow\tdecay\tflag\tT_rot_tr\tT_rot_tr_err\tT_rot_tr_theory\n");
     /* each run's verdict under its group's outlier rule (hd_group_outliers) */
     unsigned char *rej = calloc(n ? n : 1, 1), *rk = malloc(n ? n : 1);
     hd_group *g = NULL;
@@ -96,10 +118,16 @@ int haff_fit_main(int argc, char **argv) {
       const hd_haff_fit *h = &f->haff;
       int ok = f->haff_ok;
       nshort += f->short_window != 0;
+      double rr, rr_err, rr_th;
+      hd_error rerr;
+      if (rot_ratio(db, f, &rr, &rr_err, &rr_th, &rerr)) {
+        free(rej), free(fits), hd_ana_close(db), hd_cli_close(out, &a);
+        return hd_cli_fail(argv[0], &rerr);
+      }
 #define N(fmt, x) hd_cli_num(fmt, x, 0)
       fprintf(out,
               "%lld\t%s\t%s\t%s\t%zu\t%d\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%"
-              "s\t%d\t%s\t%s\t%s\n",
+              "s\t%d\t%s\t%s\t%s\t%s\t%s\t%s\n",
               (long long)f->info.id, f->info.label, N("%g", f->info.alpha),
               N("%g", f->info.a_over_d), f->n_used, f->homog.detected, N("%.6g", f->t_end),
               N("%.6g", f->cpd_end), N("%.6g", ok ? h->D_e : nan), N("%.3g", ok ? h->D_e_err : nan),
@@ -112,7 +140,8 @@ int haff_fit_main(int argc, char **argv) {
               hd_cli_window_name(f->window), N("%.3g", f->decay),
               f->short_window ? "short"
               : rej[i]        ? "outlier"
-                              : "");
+                              : "",
+              N("%.5g", rr), N("%.2g", rr_err), N("%.5g", rr_th));
     }
     free(rej);
     if (nrej)

@@ -8,7 +8,9 @@
  *     I = sum m_k |o_k|^2 (the paper's dimer: I = m a^2 / 2);
  *   - a dimer is the case of two equal disks at (-+a/2, 0): disk 0 at R - (a/2)(cos phi, sin phi),
  *     disk 1 at +; total mass 2m;
- *   - a disk body has one disk (index 0) at R; phi, omega unused (0).
+ *   - a disk body has one disk (index 0) at R; phi, omega unused (0) unless the disk has a
+ *     moment of inertia of its own (hd_shape_set_q: a rough disk spins; its turning does not
+ *     change its shape, so its contacts are still found as a disk's).
  *   - contact angle theta of a body in (-pi, pi]: signed angle from the body's outward axis at its
  *     contacting disk (unit vector from the centre of mass to that disk; for a dimer, from the
  *     partner disk to the contacting disk) to the contact normal (from its contacting disk to the
@@ -75,7 +77,8 @@ typedef struct hd_shape {
                                                         * mass, body frame */
   double dk[HD_MAX_BODY_DISKS], mk[HD_MAX_BODY_DISKS]; /* diameters and masses of the disks */
   double mass;                                         /* total mass */
-  double inertia; /* moment of inertia about the centre of mass, sum m_k |o_k|^2 */
+  double inertia; /* moment of inertia about the centre of mass, sum m_k |o_k|^2, plus
+                   * sum q m_k (d_k/2)^2 after hd_shape_set_q */
   double radius;  /* smallest circle about the centre of mass that holds the body,
                    * max |o_k| + d_k / 2 */
   double rmax;    /* largest distance of a disk centre from the centre of mass, max |o_k| */
@@ -129,6 +132,12 @@ typedef struct hd_collision_info {
                    * as -(1 - alpha^2) mu_eff vn^2 / 2 (no cancellation); 0 if not approaching */
   double vn;      /* normal relative velocity of the contact points before (< 0: approaching) */
 } hd_collision_info;
+
+/* Gives each disk of s its own moment of inertia q m_k (d_k/2)^2 (q = 1/2: uniform disks; 0:
+ * the point masses of the dimer paper, s unchanged), added to s->inertia.  A dimer with q > 0
+ * takes the general code (HD_KIND_BODY): the paper's formulas have I = m a^2 / 2.  Call it
+ * once, after the constructor.  Returns 0, or -1 for q outside [0, 1] (s unchanged). */
+int hd_shape_set_q(hd_shape *s, double q);
 
 /* Total mass of a body of shape s. */
 double hd_shape_mass(const hd_shape *s);
@@ -246,6 +255,24 @@ int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, doubl
  * need a > 0 (a = 0 exactly moves as a disk of mass 2m).  Fills *info if not NULL.  Returns 0. */
 int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
                     double alpha, hd_collision_info *info);
+
+/* Collision of A (disk ka) and B (disk kb) with restitution alpha in [0, 1] along the normal
+ * and tangential restitution beta in [-1, 1] at the contact point (rough bodies; the rule and
+ * its derivation: hd_body_rough.c, docs/analysis.md): the relative velocity g of the contact
+ * points has g'_n = -alpha g_n after, and its slip g_s (the tangential velocity a frictionless
+ * impulse would leave) becomes -beta g_s (for two disks g'_t = -beta g_t).  beta = -1 is the
+ * smooth rule (the same physics as hd_collide_pair, not the same round-off), beta = 1 the
+ * perfectly rough one.  Rotation with each body's hd_shape_inertia (hd_shape_set_q); a body of
+ * zero inertia (a disk of q = 0) takes no torque and makes the contact smooth.  Conserves
+ * momentum and angular momentum about the contact point; info->de (the loss of both parts,
+ * <= 0) is 0 exactly for alpha = 1 and beta = +-1.  Same contract as hd_collide_pair
+ * otherwise.  Returns 0. */
+int hd_collide_rough_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka,
+                          int kb, double alpha, double beta, hd_collision_info *info);
+
+/* The rough rule against wall w (infinite mass and inertia), as hd_collide_rough_pair. */
+int hd_collide_rough_wall(hd_kin *A, const hd_shape *sa, int ka, const hd_wall *w, double alpha,
+                          double beta, hd_collision_info *info);
 
 /* Collision of disk ka of A with wall w (eq. 24-25 for a dimer, the rigid-body impulse rule for a
  * general cluster), restitution alpha; left unchanged

@@ -77,6 +77,8 @@ typedef struct key_def {
   int (*set)(ctx *c, int si, int k, const char *v); /* KT_CUSTOM: parses and stores */
   int (*check)(ctx *c, int si, int k);              /* further check after a generic parse */
   int if_pos;                                       /* written only when > 0 (0 means unset) */
+  int if_not_def; /* KT_REAL: written only when not the default (keys added after runs were
+                   * stored: their runs.scene keeps its form) */
   int (*show)(const ctx *c, int si); /* whether the canonical text writes it (NULL: yes) */
   void (*put)(const ctx *c, int si, int k, sbuf *b); /* writes it (NULL: "name = value") */
   const char *doc_key;                               /* docs: the key column (NULL: the name) */
@@ -108,6 +110,7 @@ static int show_frames(const ctx *c, int si);
 static int show_rod_eps(const ctx *c, int si);
 static int show_short_shape(const ctx *c, int si);
 static int show_explicit(const ctx *c, int si);
+static int show_beta_dimer(const ctx *c, int si);
 static void put_area(const ctx *c, int si, int k, sbuf *b);
 static void put_box(const ctx *c, int si, int k, sbuf *b);
 static void put_sides(const ctx *c, int si, int k, sbuf *b);
@@ -131,6 +134,8 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
 #define R_POS .lo = 0, .hi = INFINITY, .lo_open = 1
 #define R_NONNEG .lo = 0, .hi = INFINITY
 #define R_UNIT .lo = 0, .hi = 1
+#define R_BETA .lo = -1, .hi = 1, .if_not_def = 1
+#define Q_KEY(field) REAL(0), field, R_UNIT, .if_not_def = 1
 #define COUNT(field, what)                                                                         \
   .type = KT_LONG, F(field), .lo = 0, .hi = (double)HD_MAX_COUNT, .doc_def = "required",           \
   .doc = "number of " what
@@ -154,12 +159,24 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
            "the positions; `a = 0` is a disk of mass 2m)")                                           \
   X(DM, S_DIMERS, "m", REAL(1), F(dimer_m), R_POS, .doc = "mass of each disk (a dimer weighs 2m)")   \
   X(DALPHA, S_DIMERS, "alpha", REAL(1), F(dimer_alpha), R_UNIT, .doc = "dimer–dimer restitution")    \
+  X(DBETA, S_DIMERS, "beta", REAL(-1), F(dimer_beta), R_BETA,                                        \
+    .doc = "dimer-dimer tangential restitution at the contact point: -1 smooth (the paper's), "      \
+           "1 perfectly rough (docs/analysis.md, rough bodies)")                                     \
+  X(DQ, S_DIMERS, "q", Q_KEY(F(dimer_q)),                                                            \
+    .doc = "each disk's own moment of inertia q m (d/2)^2, added to m a^2/2 (0: point masses, "      \
+           "the paper's; 1/2: uniform disks)")                                                       \
   X(SCOUNT, S_DISKS, "count", COUNT(n_disks, "disks"))                                               \
   X(SSIGMA, S_DISKS, "sigma", REAL(1), F(disk_sigma), R_POS, .doc = "diameter")                      \
   X(SMASS, S_DISKS, "mass", REAL(1), F(disk_mass), R_POS, .doc = "mass")                             \
   X(SALPHA, S_DISKS, "alpha", REAL(1), F(disk_alpha), R_UNIT, .doc = "disk–disk restitution")        \
   X(SALPHAD, S_DISKS, "alpha_dimer", REAL(1), F(disk_alpha_dimer), R_UNIT, .doc_def = "= `alpha`",   \
     .doc = "dimer–disk restitution (eq. 21–22)")                                                     \
+  X(SBETA, S_DISKS, "beta", REAL(-1), F(disk_beta), R_BETA,                                          \
+    .doc = "disk-disk tangential restitution (a disk of `q` = 0 takes no torque: smooth)")           \
+  X(SBETAD, S_DISKS, "beta_dimer", REAL(-1), F(disk_beta_dimer), .lo = -1, .hi = 1,                  \
+    .show = show_beta_dimer, .doc_def = "= `beta`", .doc = "dimer-disk tangential restitution")      \
+  X(SQ, S_DISKS, "q", Q_KEY(F(disk_q)),                                                              \
+    .doc = "the disk's own moment of inertia q mass (sigma/2)^2 (1/2: a uniform disk)")              \
   X(PCOUNT, S_SPECIES, "count", .type = KT_LONG, SPF(count), .lo = 0, .hi = (double)HD_MAX_COUNT,    \
     .doc_def = "required", .doc = "number of bodies")                                                \
   X(PALPHA, S_SPECIES, "alpha", REAL(1), SPF(alpha), R_UNIT,                                         \
@@ -183,12 +200,21 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
     .doc_def = "the smaller of the two `alpha`s", .doc_range = "[0, 1]",                             \
     .doc = "restitution between this species and OTHER: another species' NAME, `dimers` or "         \
            "`disks` (the pair is set once, in either section)")                                      \
+  X(PBETA, S_SPECIES, "beta", REAL(-1), SPF(beta), R_BETA,                                           \
+    .doc = "tangential restitution between two bodies of the species")                               \
+  X(PQ, S_SPECIES, "q", Q_KEY(SPF(q)),                                                               \
+    .doc = "each disk's own moment of inertia q m (d/2)^2, added to the body's")                     \
+  X(PBETAX, S_SPECIES, "beta_OTHER", CUSTOM(set_alpha_other), .put = put_pairs,                      \
+    .doc_def = "the smaller of the two `beta`s", .doc_range = "[-1, 1]",                             \
+    .doc = "tangential restitution between this species and OTHER (as `alpha_OTHER`)")               \
   X(WSIDES, S_WALLS, "sides", CUSTOM(set_sides), F(walls), .show = show_sides, .put = put_sides,     \
     .doc_def = "required",                                                                           \
     .doc_range = "`left right`, `bottom top` or all four, space separated, no repeats",              \
     .doc = "flat hard walls on those box edges")                                                     \
   X(WALPHA, S_WALLS, "alpha", REAL(1), F(wall_alpha), R_UNIT,                                        \
     .doc = "body–wall restitution (eq. 24–25)")                                                      \
+  X(WBETA, S_WALLS, "beta", REAL(-1), F(wall_beta), R_BETA,                                          \
+    .doc = "body-wall tangential restitution")                                                       \
   X(TEMP, S_INIT, "temperature", REAL(1), F(temperature), R_NONNEG, .why = "must be > 0",            \
     .doc_range = "> 0 (≥ 0 with `state`)",                                                           \
     .doc = "kT per degree of freedom of the initial velocities; not used with `state`")              \
@@ -284,9 +310,10 @@ typedef struct loc {
 enum { SH_NONE, SH_DISK, SH_DIMER, SH_LINEAR, SH_TRIANGLE, SH_BENT, SH_EXPLICIT };
 static const char *const shape_name[] = {"", "disk", "dimer", "linear", "triangle", "bent", ""};
 
-/* An `alpha_OTHER` key of a [species NAME] section. */
+/* An `alpha_OTHER` or `beta_OTHER` key of a [species NAME] section. */
 typedef struct sp_pair {
   char other[HD_SPECIES_NAME_MAX]; /* OTHER */
+  int beta;                        /* 1: beta_OTHER */
   double v;                        /* its value */
   loc at;                          /* where it was set */
   char val[96];                    /* as written */
@@ -294,14 +321,14 @@ typedef struct sp_pair {
 
 /* What a [species NAME] section says besides its hd_scene_species fields. */
 typedef struct sp_parse {
-  int shape;                    /* SH_* */
-  int n;                        /* linear N */
-  double a;                     /* dimer A */
-  double s;                     /* spacing S (NAN: = d) */
-  double angle;                 /* bent ANGLE, degrees */
-  double d, m;                  /* `d`, `m` */
-  int npair;                    /* alpha_OTHER keys */
-  sp_pair pair[HD_MAX_SPECIES]; /* (at most one per other species; one more to report) */
+  int shape;                        /* SH_* */
+  int n;                            /* linear N */
+  double a;                         /* dimer A */
+  double s;                         /* spacing S (NAN: = d) */
+  double angle;                     /* bent ANGLE, degrees */
+  double d, m;                      /* `d`, `m` */
+  int npair;                        /* alpha_OTHER and beta_OTHER keys */
+  sp_pair pair[2 * HD_MAX_SPECIES]; /* (at most one of each per other species) */
 } sp_parse;
 
 struct ctx {
@@ -764,16 +791,17 @@ static int good_name(const char *s) {
   return 1;
 }
 
-/* `alpha_OTHER` (k = K_PALPHAX): recorded here, its OTHER resolved when the scene is read. */
+/* `alpha_OTHER` (k = K_PALPHAX) or `beta_OTHER` (K_PBETAX): recorded here, its OTHER resolved
+ * when the scene is read. */
 static int set_alpha_other(ctx *c, int si, int k, const char *v) {
   (void)k;
   sp_parse *p = &c->sp[si - N_SEC];
   sp_pair *q = &p->pair[p->npair - 1]; /* handle() made it the last */
   char key[HD_SPECIES_NAME_MAX + 8];
-  snprintf(key, sizeof key, "alpha_%s", q->other);
-  double x;
+  snprintf(key, sizeof key, "%s_%s", q->beta ? "beta" : "alpha", q->other);
+  double x, lo = q->beta ? -1 : 0;
   if (!parse_num(v, &x)) return fail(c, HD_EINPUT, q->at, si, key, v, "%s", num_why(v));
-  if (!(x >= 0 && x <= 1)) return fail(c, HD_EINPUT, q->at, si, key, v, "must be in [0, 1]");
+  if (!(x >= lo && x <= 1)) return fail(c, HD_EINPUT, q->at, si, key, v, "must be in [%g, 1]", lo);
   q->v = x;
   return HD_OK;
 }
@@ -878,6 +906,7 @@ static int handle(ctx *c, const char *section, const char *name, const char *val
   int k = 0;
   while (k < N_KEY && !(keys[k].sec == s && !strcmp(keys[k].name, name))) k++;
   if (k == N_KEY && s == S_SPECIES && !strncmp(name, "alpha_", 6) && name[6]) k = K_PALPHAX;
+  if (k == N_KEY && s == S_SPECIES && !strncmp(name, "beta_", 5) && name[5]) k = K_PBETAX;
   if (k == N_KEY) {
     char known[300] = "";
     for (int j = 0; j < N_KEY; j++)
@@ -892,19 +921,22 @@ static int handle(ctx *c, const char *section, const char *name, const char *val
   }
   loc *prev = &c->key_at[si][k];
   char *val = c->key_val[si][k];
-  if (k == K_PALPHAX) { /* one slot per OTHER */
+  if (k == K_PALPHAX || k == K_PBETAX) { /* one slot per OTHER and kind */
     sp_parse *p = &c->sp[si - N_SEC];
-    const char *other = name + 6;
+    int beta = k == K_PBETAX, same = 0;
+    const char *other = name + (beta ? 5 : 6), *kind = beta ? "beta" : "alpha";
     if (!good_name(other))
       return fail(c, HD_EINPUT, c->cur, si, name, value,
-                  "OTHER of alpha_OTHER must be a species name (letters, digits, _)");
+                  "OTHER of %s_OTHER must be a species name (letters, digits, _)", kind);
     int j = 0;
-    while (j < p->npair && strcmp(p->pair[j].other, other)) j++;
+    while (j < p->npair && (strcmp(p->pair[j].other, other) || p->pair[j].beta != beta))
+      same += p->pair[j++].beta == beta;
     if (j == p->npair) {
-      if (p->npair == HD_MAX_SPECIES)
-        return fail(c, HD_EINPUT, c->cur, si, name, value, "more alpha_OTHER keys than species");
+      if (same == HD_MAX_SPECIES)
+        return fail(c, HD_EINPUT, c->cur, si, name, value, "more %s_OTHER keys than species", kind);
       memset(&p->pair[j], 0, sizeof p->pair[j]);
       strcpy(p->pair[j].other, other);
+      p->pair[j].beta = beta;
       p->npair++;
     } else if (j != p->npair - 1) { /* set_alpha_other reads the last: make it so */
       sp_pair t = p->pair[j];
@@ -1390,34 +1422,37 @@ static int build_species(ctx *c, int j) {
   return species_bounds(c, j, key);
 }
 
-/* alpha_pair: each species' own alpha on the diagonal, the smaller of the two off it, then
- * [disks] alpha_dimer and the alpha_OTHER keys. */
-static int fill_pairs(ctx *c) {
+/* alpha_pair (beta = 0) or beta_pair (beta = 1): each species' own alpha (beta) on the
+ * diagonal, the smaller of the two off it, then [disks] alpha_dimer (beta_dimer) and the
+ * alpha_OTHER (beta_OTHER) keys. */
+static int fill_pairs_of(ctx *c, int beta) {
   hd_scene *sc = c->sc;
-  double own[HD_MAX_SPECIES];
+  double own[HD_MAX_SPECIES], (*pair)[HD_MAX_SPECIES] = beta ? sc->beta_pair : sc->alpha_pair;
+  const char *kind = beta ? "beta" : "alpha";
   loc set_at[HD_MAX_SPECIES][HD_MAX_SPECIES];
   int set_by[HD_MAX_SPECIES][HD_MAX_SPECIES];
   memset(set_at, 0, sizeof set_at);
   for (int i = 0; i < HD_MAX_SPECIES; i++)
-    own[i] = i == 0                ? sc->dimer_alpha
-             : i == 1              ? sc->disk_alpha
-             : i - 2 < sc->n_named ? sc->named[i - 2].alpha
-                                   : 1;
+    own[i] = i == 0                ? (beta ? sc->dimer_beta : sc->dimer_alpha)
+             : i == 1              ? (beta ? sc->disk_beta : sc->disk_alpha)
+             : i - 2 < sc->n_named ? (beta ? sc->named[i - 2].beta : sc->named[i - 2].alpha)
+                                   : (beta ? -1 : 1);
   for (int i = 0; i < HD_MAX_SPECIES; i++)
-    for (int j = 0; j < HD_MAX_SPECIES; j++) sc->alpha_pair[i][j] = fmin(own[i], own[j]);
-  sc->alpha_pair[0][1] = sc->alpha_pair[1][0] = sc->disk_alpha_dimer;
+    for (int j = 0; j < HD_MAX_SPECIES; j++) pair[i][j] = fmin(own[i], own[j]);
+  pair[0][1] = pair[1][0] = beta ? sc->disk_beta_dimer : sc->disk_alpha_dimer;
   for (int k = 0; k < sc->n_named; k++) {
     sp_parse *p = &c->sp[k];
     int si = N_SEC + k;
     for (int q = 0; q < p->npair; q++) {
       sp_pair *pr = &p->pair[q];
+      if (pr->beta != beta) continue;
       char key[HD_SPECIES_NAME_MAX + 8];
-      snprintf(key, sizeof key, "alpha_%s", pr->other);
+      snprintf(key, sizeof key, "%s_%s", kind, pr->other);
       int o = !strcmp(pr->other, "dimers") ? 0 : !strcmp(pr->other, "disks") ? 1 : -1;
       if (o < 0 && find_species(c, pr->other) >= 0) o = find_species(c, pr->other) - N_SEC + 2;
       if (o == 2 + k)
         return fail(c, HD_EINPUT, pr->at, si, key, pr->val,
-                    "the species itself: its own restitution is `alpha`");
+                    "the species itself: its own restitution is `%s`", kind);
       if (o < 0 || (o < 2 && !c->present[o == 0 ? S_DIMERS : S_DISKS])) {
         char known[400] = "";
         if (c->present[S_DIMERS]) strcat(known, " dimers");
@@ -1433,14 +1468,25 @@ static int fill_pairs(ctx *c) {
         char at[600];
         where(c, set_at[i][o], at, sizeof at);
         return fail(c, HD_EINPUT, pr->at, si, key, pr->val,
-                    "the pair is also set by [species %s] alpha_%s (%s)",
-                    sc->named[set_by[i][o]].name, sc->named[k].name, at);
+                    "the pair is also set by [species %s] %s_%s (%s)", sc->named[set_by[i][o]].name,
+                    kind, sc->named[k].name, at);
       }
       set_at[i][o] = set_at[o][i] = pr->at;
       set_by[i][o] = set_by[o][i] = k;
-      sc->alpha_pair[i][o] = sc->alpha_pair[o][i] = pr->v;
+      pair[i][o] = pair[o][i] = pr->v;
     }
   }
+  return HD_OK;
+}
+
+/* Both pair tables, and whether the scene is rough (hd_scene.rough). */
+static int fill_pairs(ctx *c) {
+  int rc = fill_pairs_of(c, 0);
+  if (rc || (rc = fill_pairs_of(c, 1))) return rc;
+  hd_scene *sc = c->sc;
+  sc->rough = sc->wall_beta > -1;
+  for (int i = 0; i < 2 + sc->n_named; i++)
+    for (int j = 0; j < 2 + sc->n_named; j++) sc->rough |= sc->beta_pair[i][j] > -1;
   return HD_OK;
 }
 
@@ -1521,6 +1567,7 @@ static int check_all(ctx *c) {
   int rc, run = c->mode != M_READ;
   if (c->present[S_RODS]) return (rc = check_rods(c)) ? rc : run ? check_frames(c) : HD_OK;
   if (!key_set(c, S_DISKS, K_SALPHAD)) sc->disk_alpha_dimer = sc->disk_alpha;
+  if (!key_set(c, S_DISKS, K_SBETAD)) sc->disk_beta_dimer = sc->disk_beta;
   for (int j = 0; j < sc->n_named; j++)
     if ((rc = build_species(c, j))) return rc;
   if ((rc = fill_pairs(c))) return rc;
@@ -1610,6 +1657,10 @@ static void put_kv(sbuf *b, const char *key, double x) {
   put(b, "%s = %s\n", key, v);
 }
 
+static int show_beta_dimer(const ctx *c, int si) {
+  (void)si; /* beta_dimer defaults to beta: written when either is not smooth */
+  return c->sc->disk_beta > -1 || c->sc->disk_beta_dimer > -1;
+}
 static int show_set(const ctx *c, int si) {
   (void)si;
   return key_set(c, S_SYSTEM, K_AREA);
@@ -1729,19 +1780,21 @@ static void put_disks(const ctx *c, int si, int k, sbuf *b) {
   }
   put(b, "\n");
 }
-/* alpha_OTHER of every pair with a species written before this one: each pair once */
+/* alpha_OTHER of every pair with a species written before this one: each pair once;
+ * beta_OTHER (k = K_PBETAX) likewise, where it is not the default (the smaller `beta`) */
 static void put_pairs(const ctx *c, int si, int k, sbuf *b) {
-  (void)k;
   const hd_scene *sc = c->sc;
-  int i = 2 + si - N_SEC;
+  int i = 2 + si - N_SEC, beta = k == K_PBETAX;
   char key[HD_SPECIES_NAME_MAX + 8];
   for (int o = 0; o < i; o++) {
     if (o < 2 && !c->present[o == 0 ? S_DIMERS : S_DISKS]) continue;
-    snprintf(key, sizeof key, "alpha_%s",
+    double own_o = o == 0 ? sc->dimer_beta : o == 1 ? sc->disk_beta : sc->named[o - 2].beta;
+    if (beta && sc->beta_pair[i][o] == fmin(sc->named[i - 2].beta, own_o)) continue;
+    snprintf(key, sizeof key, "%s_%s", beta ? "beta" : "alpha",
              o == 0   ? "dimers"
              : o == 1 ? "disks"
                       : sc->named[o - 2].name);
-    put_kv(b, key, sc->alpha_pair[i][o]);
+    put_kv(b, key, beta ? sc->beta_pair[i][o] : sc->alpha_pair[i][o]);
   }
 }
 
@@ -1751,6 +1804,7 @@ static void put_key(const ctx *c, int si, int k, sbuf *b) {
   const void *p = field(c, si, k);
   if (kd->show && !kd->show(c, si)) return;
   if (kd->if_pos && !(*(const double *)p > 0)) return;
+  if (kd->if_not_def && *(const double *)p == kd->def) return;
   if (kd->put) {
     kd->put(c, si, k, b);
     return;
@@ -2095,12 +2149,12 @@ static int csv_row(char *line, const char *path, long lineno, const hd_scene *sc
   r->species = -1;
   if (!strcmp(kind, "dimer"))
     r->kind = HD_KIND_DIMER, r->species = 0, oriented = 1;
-  else if (!strcmp(kind, "disk"))
-    r->kind = HD_KIND_DISK, r->species = 1;
+  else if (!strcmp(kind, "disk")) /* (a rough disk, q > 0, spins: its phi and omega too) */
+    r->kind = HD_KIND_DISK, r->species = 1, oriented = sc && sc->disk_q > 0;
   for (int j = 0; sc && r->species < 0 && j < sc->n_named; j++)
     if (!strcmp(kind, sc->named[j].name)) {
-      oriented = sc->named[j].ndisk >= 2;
-      r->kind = oriented ? HD_KIND_DIMER : HD_KIND_DISK;
+      r->kind = sc->named[j].ndisk >= 2 ? HD_KIND_DIMER : HD_KIND_DISK;
+      oriented = sc->named[j].ndisk >= 2 || sc->named[j].q > 0;
       r->species = 2 + j;
     }
   if (r->species < 0) {

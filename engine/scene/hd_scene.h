@@ -60,6 +60,8 @@ typedef struct hd_scene_species {
   double d[HD_MAX_BODY_DISKS];    /* diameters, > 0 */
   double m[HD_MAX_BODY_DISKS];    /* masses, > 0 */
   double alpha;                   /* `alpha` [1]: restitution within the species */
+  double beta;                    /* `beta` [-1 = smooth]: tangential restitution within it */
+  double q;                       /* `q` [0]: each disk's own inertia q m (d/2)^2 (1/2: uniform) */
   long line;                      /* line of the section header in the scene (0 from --set) */
 } hd_scene_species;
 
@@ -96,23 +98,36 @@ typedef struct hd_scene {
   double dimer_a;     /* `a` [1]: bond length */
   double dimer_m;     /* `m` [1]: mass of each disk */
   double dimer_alpha; /* `alpha` [1]: dimer-dimer restitution */
+  double dimer_beta;  /* `beta` [-1 = smooth]: dimer-dimer tangential restitution */
+  double dimer_q;     /* `q` [0]: each disk's own inertia q m (d/2)^2 */
   /* [disks] */
   long n_disks;            /* `count` [0] */
   double disk_sigma;       /* `sigma` [1] */
   double disk_mass;        /* `mass` [1] */
   double disk_alpha;       /* `alpha` [1]: disk-disk restitution */
   double disk_alpha_dimer; /* `alpha_dimer` [= alpha]: dimer-disk restitution */
+  double disk_beta;        /* `beta` [-1 = smooth]: disk-disk tangential restitution */
+  double disk_beta_dimer;  /* `beta_dimer` [= beta]: dimer-disk tangential restitution */
+  double disk_q;           /* `q` [0]: the disk's own inertia q mass (sigma/2)^2 */
   /* [species NAME] sections, in the order they appear (engine species 2, 3, ...; [dimers] is
    * species 0 and [disks] species 1 as now) */
   int n_named;                                /* how many */
   hd_scene_species named[HD_MAX_SPECIES - 2]; /* the sections */
   double alpha_pair[HD_MAX_SPECIES]
-                   [HD_MAX_SPECIES]; /* restitution between engine species i != j
-                                      * (symmetric); filled by the loader, with
-                                      * the defaults applied (never NaN after load) */
+                   [HD_MAX_SPECIES];                /* restitution between engine species i != j
+                                                     * (symmetric); filled by the loader, with
+                                                     * the defaults applied (never NaN after load) */
+  double beta_pair[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* tangential restitution between engine
+                                                     * species i, j (i = j included; symmetric),
+                                                     * filled by the loader: the smaller of the
+                                                     * two `beta`s, [disks] beta_dimer, the
+                                                     * beta_OTHER keys */
+  int rough; /* set by the loader: 1 when some beta (pairs, walls) is above -1.  The engine reads
+              * beta_pair and wall_beta only then: a scene filled in code (zeros) is smooth */
   /* [walls] */
   unsigned walls;    /* `sides`: HD_WALL_* bits [0: fully periodic] */
   double wall_alpha; /* `alpha` [1] */
+  double wall_beta;  /* `beta` [-1 = smooth]: body-wall tangential restitution */
   /* [init] */
   double temperature;           /* `temperature` [1]: kT per degree of freedom (not with state) */
   hd_placement placement;       /* `placement` [random], or HD_PLACE_STATE when `state` given */
@@ -243,7 +258,8 @@ typedef struct hd_state_row {
   int kind;         /* HD_KIND_DISK or HD_KIND_DIMER (hd_body.h); a named species' body is
                      * HD_KIND_DIMER when it has 2 or more disks (it has an orientation) */
   int species;      /* engine species index: 0 dimer, 1 disk, 2 + k for named[k] */
-  double x, y, phi; /* phi ignored (0) for disks and one-disk species */
+  double x, y, phi; /* phi (and omega) ignored (0) for disks and one-disk species, unless the
+                     * scene (hd_state_csv_read_species) gives them q > 0: rough disks spin */
   double vx, vy, omega;
   long line; /* line number in the CSV, for messages */
 } hd_state_row;

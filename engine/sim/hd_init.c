@@ -265,7 +265,7 @@ static int place_from_file(hd_sim *s, const hd_scene *sc, hd_error *err) {
   for (int sp = 1; sp < s->nsp; sp++) next[sp] = next[sp - 1] + cnt[sp - 1];
   long *line = malloc(sizeof(long) * (size_t)(s->n > 0 ? s->n : 1));
   for (long r = 0; rc == HD_OK && r < n; r++) {
-    int sp = rows[r].species, turns = s->shape[sp].n > 1;
+    int sp = rows[r].species, turns = s->shape[sp].n > 1 || s->shape[sp].inertia > 0.0;
     int32_t i = next[sp]++;
     hd_body *b = &s->b[i];
     b->species = sp;

@@ -39,7 +39,8 @@ static inline double crossing_time(const hd_sim *s, hd_body *b, int32_t cx, int3
     t = (cy * s->cwy - b->k.y) / b->k.vy;
     if (t < best) best = t, b->c_dir = 3;
   }
-  if (best == INFINITY && b->k.omega != 0.0) {
+  if (best == INFINITY && b->k.omega != 0.0 && s->shape[b->species].tag != HD_KIND_DISK) {
+    /* (a rough disk's spin does not move its contacts: no wake-up) */
     best = HD_WAKE_TURNS * 2.0 * M_PI / fabs(b->k.omega);
     b->c_dir = HD_WAKE;
   }

@@ -26,6 +26,43 @@
 static const hd_wall default_walls[4] = {
     {0, 0.0, +1.0}, {0, 0.0, -1.0}, {1, 0.0, +1.0}, {1, 0.0, -1.0}};
 
+/* Which pairs take the rough rule: beta > -1 or a species whose disks have inertia (q > 0). */
+static void rough_flags(hd_sim *s) {
+  for (int i = 0; i < s->nsp; i++) {
+    for (int j = 0; j < s->nsp; j++)
+      s->rough[i][j] = s->beta[i][j] > -1.0 || s->spin_q[i] > 0.0 || s->spin_q[j] > 0.0;
+    s->wall_rough[i] = s->wall_beta > -1.0 || s->spin_q[i] > 0.0;
+  }
+}
+
+/* Rough bodies (issue 29): each species' q (the disks' own inertia, hd_shape_set_q) and the
+ * tangential restitutions.  A scene whose `rough` is 0 (none of its beta keys above -1, or a
+ * scene filled in code with zeros) is smooth: beta = -1 everywhere. */
+static int rough_setup(hd_sim *s, const hd_scene *sc, hd_error *err) {
+  for (int i = 0; i < s->nsp; i++) {
+    double q = i == 0 ? sc->dimer_q : i == 1 ? sc->disk_q : sc->named[i - 2].q; /* hd_scene_species.h */
+    if (hd_shape_set_q(&s->shape[i], q))
+      return hd_error_set(err, HD_EINPUT, "scene: species %s: q = %g: must be in [0, 1]",
+                          s->sp_name[i], q);
+    s->spin_q[i] = q;
+    for (int j = 0; j < s->nsp; j++) {
+      double b = sc->rough ? sc->beta_pair[i][j] : -1.0;
+      if (!(b >= -1.0 && b <= 1.0) || b != (sc->rough ? sc->beta_pair[j][i] : -1.0))
+        return hd_error_set(err, HD_EINPUT,
+                            "scene: beta of species %s with %s = %g: must be in [-1, 1] and "
+                            "symmetric",
+                            s->sp_name[i], s->sp_name[j], b);
+      s->beta[i][j] = b;
+    }
+  }
+  s->wall_beta = sc->rough ? sc->wall_beta : -1.0;
+  if (!(s->wall_beta >= -1.0 && s->wall_beta <= 1.0))
+    return hd_error_set(err, HD_EINPUT, "scene: [walls] beta = %g: must be in [-1, 1]",
+                        s->wall_beta);
+  rough_flags(s);
+  return HD_OK;
+}
+
 /* The species table from the scene's (hd_scene_species.h: [dimers] 0, [disks] 1, then each
  * `[species NAME]` section 2, 3, ...), with the pair restitutions (hd_scene_pair_alpha).
  * HD_EINPUT for a named species
@@ -64,6 +101,8 @@ static int species_setup(hd_sim *s, const hd_scene *sc, hd_error *err) {
       s->pair_kind[i][j] = hd_coll_kind_of(s->sp_kind[i], s->sp_kind[j]);
     s->pair_kind[i][HD_MAX_SPECIES] = hd_coll_kind_of(s->sp_kind[i], HD_KIND_WALL);
   }
+  int rc = rough_setup(s, sc, err);
+  if (rc) return rc;
   int64_t n = 0;
   for (int i = 0; i < s->nsp; i++) n += s->n_species[i];
   for (int i = 0; i < s->nsp; i++) s->reach[i] = hd_shape_radius(&s->shape[i]) * (1.0 + 1e-9);
@@ -159,10 +198,14 @@ static void start(hd_sim *s) {
  * collisions per body, then fresh Maxwellian velocities and the clocks back to zero. */
 static int melt(hd_sim *s, const hd_scene *sc, hd_error *err) {
   double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES], wall_alpha = s->wall_alpha;
+  double beta[HD_MAX_SPECIES][HD_MAX_SPECIES], wall_beta = s->wall_beta;
   memcpy(alpha, s->alpha, sizeof alpha);
+  memcpy(beta, s->beta, sizeof beta);
   for (int a = 0; a < HD_MAX_SPECIES; a++)
-    for (int b = 0; b < HD_MAX_SPECIES; b++) s->alpha[a][b] = 1.0;
+    for (int b = 0; b < HD_MAX_SPECIES; b++) s->alpha[a][b] = 1.0, s->beta[a][b] = -1.0;
   s->wall_alpha = 1.0;
+  s->wall_beta = -1.0;
+  rough_flags(s);
   int rc = HD_OK;
   /* 40 cpd, or until nothing moves (no event left), or a bound on events for a gas whose
    * bodies barely collide */
@@ -181,7 +224,10 @@ static int melt(hd_sim *s, const hd_scene *sc, hd_error *err) {
     }
   }
   memcpy(s->alpha, alpha, sizeof alpha);
+  memcpy(s->beta, beta, sizeof beta);
   s->wall_alpha = wall_alpha;
+  s->wall_beta = wall_beta;
+  rough_flags(s);
   if (rc) return rc;
   for (int32_t i = 0; i < s->n; i++) { /* positions at the current time become time 0 */
     hd_body_sync(s, i);
@@ -426,7 +472,7 @@ static int frozen(const hd_sim *s) {
     });
     if (close) return 0;
     static const unsigned bit[4] = {HD_WALL_LEFT, HD_WALL_RIGHT, HD_WALL_BOTTOM, HD_WALL_TOP};
-    for (int w = 0; w < 4 && bi->k.omega != 0.0; w++)
+    for (int w = 0; w < 4 && bi->k.omega != 0.0 && s->shape[bi->species].tag != HD_KIND_DISK; w++)
       if ((s->walls & bit[w]) &&
           fabs((s->wall[w].axis ? bi->k.y : bi->k.x) - s->wall[w].pos) <= reach[bi->species])
         return 0;
@@ -633,7 +679,11 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
       hd_body_sync(s, i);
       int w = bi->p_partner, ka = bi->p_ka;
       hd_collision_info info;
-      hd_collide_wall(&bi->k, &s->shape[bi->species], ka, &s->wall[w], s->wall_alpha, &info);
+      if (s->wall_rough[bi->species])
+        hd_collide_rough_wall(&bi->k, &s->shape[bi->species], ka, &s->wall[w], s->wall_alpha,
+                              s->wall_beta, &info);
+      else
+        hd_collide_wall(&bi->k, &s->shape[bi->species], ka, &s->wall[w], s->wall_alpha, &info);
       bi->ncoll++;
       s->c.wall_hits++;
       s->c.e_kin += info.de;
@@ -668,8 +718,13 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
     kj.x += sx;
     kj.y += sy;
     int ka = bi->p_ka, kb = bi->p_kb;
-    hd_collide_pair(&bi->k, &s->shape[bi->species], &kj, &s->shape[bj->species], ka, kb,
-                    s->alpha[bi->species][bj->species], &ev->info);
+    if (s->rough[bi->species][bj->species])
+      hd_collide_rough_pair(&bi->k, &s->shape[bi->species], &kj, &s->shape[bj->species], ka, kb,
+                            s->alpha[bi->species][bj->species], s->beta[bi->species][bj->species],
+                            &ev->info);
+    else
+      hd_collide_pair(&bi->k, &s->shape[bi->species], &kj, &s->shape[bj->species], ka, kb,
+                      s->alpha[bi->species][bj->species], &ev->info);
     if (s->verify) {
       int rc = verify_contact(s, &bi->k, &kj, i, j, ka, kb, err);
       if (rc) return rc;

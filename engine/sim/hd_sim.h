@@ -120,20 +120,27 @@ typedef struct hd_sim {
   double reach[HD_MAX_SPECIES]; /* enclosing radius of each species widened by 1e-9 (the
                                  * neighbour filter of hd_predict.c) */
   double wall_alpha;            /* body-wall restitution */
-  double lx, ly;                /* box */
-  unsigned walls;               /* HD_WALL_* bits */
-  hd_wall wall[4];              /* walls by index: left, right, bottom, top */
-  int32_t ncx, ncy;             /* cells per direction (>= 1) */
-  double cwx, cwy;              /* cell widths (>= largest body diameter) */
-  int32_t *head;                /* first body of each cell, -1 if empty */
-  hd_queue *q;                  /* the event queue */
-  gsl_rng *rng;                 /* seeded generator (initial state; stochastic rules) */
-  hd_sim_clock c;               /* clocks and counters */
-  int64_t rebase_every;         /* events between rebases of the time origin */
-  double rebase_e;              /* the origin is also rebased once c.t^2 e_kin > this: a typical
-                                 * body has flown HD_REBASE_TRAVEL of the smallest diameter
-                                 * since (hd_sim_queue_init; hd_sim.c, rebase) */
-  int verify;                   /* check invariants at every event (slow) */
+  double beta[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* pair tangential restitution (-1: smooth) */
+  double wall_beta;                            /* body-wall tangential restitution */
+  unsigned char rough[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* the pair takes the rough rule
+                                                        * (hd_collide_rough_pair): beta > -1,
+                                                        * or a species with q > 0 */
+  unsigned char wall_rough[HD_MAX_SPECIES];            /* the same against a wall */
+  double spin_q[HD_MAX_SPECIES];                       /* each species' q (hd_shape_set_q) */
+  double lx, ly;                                       /* box */
+  unsigned walls;                                      /* HD_WALL_* bits */
+  hd_wall wall[4];        /* walls by index: left, right, bottom, top */
+  int32_t ncx, ncy;       /* cells per direction (>= 1) */
+  double cwx, cwy;        /* cell widths (>= largest body diameter) */
+  int32_t *head;          /* first body of each cell, -1 if empty */
+  hd_queue *q;            /* the event queue */
+  gsl_rng *rng;           /* seeded generator (initial state; stochastic rules) */
+  hd_sim_clock c;         /* clocks and counters */
+  int64_t rebase_every;   /* events between rebases of the time origin */
+  double rebase_e;        /* the origin is also rebased once c.t^2 e_kin > this: a typical
+                           * body has flown HD_REBASE_TRAVEL of the smallest diameter
+                           * since (hd_sim_queue_init; hd_sim.c, rebase) */
+  int verify;             /* check invariants at every event (slow) */
   int disks_only;         /* only [disks] bodies: disk-disk prediction without shape dispatch */
   double disks_d;         /* the diameter of the [disks] species (HD_KIND_DISK) */
   int partial_cross;      /* pure disks, >= 3x3 cells: crossings search 3 new cells */
