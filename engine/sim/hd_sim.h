@@ -1,9 +1,9 @@
-/* hd_sim: the event-driven engine.  Bodies (disks and dimers) in a 2D box, periodic in every
- * direction that no wall closes.  One event per body in the event queue (hd_queue.h, a
- * calendar queue): the earliest of its predicted contacts, its wall contacts and its next cell
- * crossing.  Bodies are
- * advanced lazily (each keeps the time of its own state) and the time origin is rebased every
- * `rebase_every` events, so precision does not decay over long runs.
+/* hd_sim: the event-driven engine.  Rigid bodies of 1 to HD_MAX_BODY_DISKS disks (the scene's
+ * species: [dimers], [disks] and every [species NAME], hd_body.h's shapes) in a 2D box,
+ * periodic in every direction that no wall closes.  One event per body in the event queue
+ * (hd_queue.h, a calendar queue): the earliest of its predicted contacts, its wall contacts and its
+ * next cell crossing.  Bodies are advanced lazily (each keeps the time of its own state) and the
+ * time origin is rebased every `rebase_every` events, so precision does not decay over long runs.
  *
  * Invalidation: every velocity change bumps a body's ncoll; a pair event remembers the partner's
  * ncoll and is stale when it differs.  Cell crossings do not change velocities and invalidate
@@ -206,10 +206,6 @@ typedef struct hd_state_measures {
 /* Fills *out from the bodies at the current time (COM positions and velocities, body masses);
  * does not change the simulation.  NaN where undefined (no body, no motion). */
 void hd_sim_state(const hd_sim *s, hd_state_measures *out);
-
-/* Total momentum and angular momentum about the origin (unwrapped positions not tracked, so the
- * angular momentum is meaningful only without walls or for spin). */
-void hd_sim_momentum(const hd_sim *s, double *px, double *py);
 
 /* Checks every pair of nearby bodies for overlap at the current time: returns the largest
  * relative overlap (D - |r|)/D found (<= 0 when none), with the pair in *i, *j. O(N). */

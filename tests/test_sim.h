@@ -1,0 +1,20 @@
+/* Helpers of the tests that look inside the 2D engine (hd_sim_internal.h). */
+#ifndef HD_TEST_SIM_H
+#define HD_TEST_SIM_H
+
+#include "hd_sim_internal.h"
+
+/* Total momentum (*px, *py) of the bodies of s (was hd_sim_momentum of the library, which only
+ * the tests called). */
+static inline void test_sim_momentum(const hd_sim *s, double *px, double *py) {
+  double x = 0.0, y = 0.0;
+  for (int32_t i = 0; i < s->n; i++) {
+    double m = hd_shape_mass(&s->shape[s->b[i].species]);
+    x += m * s->b[i].k.vx;
+    y += m * s->b[i].k.vy;
+  }
+  *px = x;
+  *py = y;
+}
+
+#endif
