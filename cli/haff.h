@@ -58,16 +58,16 @@ extern const hd_optspec haff_merge_spec, haff_sweep_spec, haff_movie_spec;
 /* cli/cmd_export.c: haff export xyz DB (its spec's options follow the format word) */
 int haff_export_main(int argc, char **argv);
 extern const hd_optspec haff_export_spec;
-/* cli/mc/fmean_cli.c, cli/mc/eps_cli.c, cli/mc/rate_cli.c: haff mc fmean, eps, rate */
+/* cli/mc/cmd_mc_fmean.c, cmd_mc_eps.c, cmd_mc_rate.c: haff mc fmean, eps, rate */
 int hd_mc_fmean_main(int argc, char **argv);
 int hd_mc_eps_main(int argc, char **argv);
 int hd_mc_rate_main(int argc, char **argv);
 extern const hd_optspec hd_mc_fmean_spec, hd_mc_eps_spec, hd_mc_rate_spec;
 struct hd_shape;
 /* The body of --disks ('x y d m; x y d m; ...', 1 to HD_MAX_BODY_DISKS disks) into *shape
- * (cli/mc/fmean_cli.c).  Returns 0, or 2 after one line on stderr naming cmd. */
+ * (cli/mc/cmd_mc_fmean.c).  Returns 0, or 2 after one line on stderr naming cmd. */
 int hd_mc_parse_disks(const char *cmd, const char *spec, struct hd_shape *shape);
-/* cli/analysis/cli_*.c (docs/analysis.md); each returns 0 ok, 1 failure (database unreadable,
+/* cli/analysis/cmd_*.c (docs/analysis.md); each returns 0 ok, 1 failure (database unreadable,
  * write error), 2 bad usage or input */
 int haff_fit_main(int argc, char **argv);     /* haff haff-fit DB: eq. (31) per run / group */
 int haff_table1_main(int argc, char **argv);  /* haff table1 DB: Table I */
