@@ -181,7 +181,7 @@ $(BUILD)/haff.1: bin/haff cli/haff-man.sh
 	cli/haff-man.sh bin/haff $(DOCDIR) > $@.tmp && mv $@.tmp $@
 
 # Every test links the library and the subcommands (all the CLI's objects but the one with
-# main()): tests call subcommands' mains (haff_fit_main, ...) and test_cli_tables checks the
+# main()): tests call subcommands' mains (hd_cmd_haff_fit, ...) and test_cli_tables checks the
 # table of subcommands (cli/haff_commands.c) and every option table.
 CLI_CMD_OBJ := $(filter-out $(BUILD)/cli/haff.o,$(CLI_OBJ))
 $(BUILD)/tests/%: tests/%.c $(CLI_CMD_OBJ) $(LIB) | $(DEPS_STAMP)

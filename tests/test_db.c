@@ -24,7 +24,7 @@
 
 #include "hd_db.h"
 
-int haff_export_main(int argc, char **argv);
+int hd_cmd_export(int argc, char **argv);
 
 /* ---------------------------------------------------------------------------------------- */
 /* helpers */
@@ -1111,7 +1111,7 @@ static int export_run(char *a1, char *a2, char *a3, char *a4, char *a5, char *a6
   char *argv[] = {"export", "xyz", a1, a2, a3, a4, a5, a6, a7, a8, NULL};
   int argc = 2;
   while (argv[argc]) argc++;
-  return haff_export_main(argc, argv);
+  return hd_cmd_export(argc, argv);
 }
 
 static void export_xyz(void **state) {
@@ -1178,7 +1178,7 @@ static void export_xyz(void **state) {
     snprintf(gsd, sizeof gsd, "%s/out.gsd", fx->dir);
     snprintf(tmp, sizeof tmp, "%s.tmp", gsd);
     char *argv[] = {"export", "gsd", fx->path, "--run", "1", "-o", gsd, NULL};
-    assert_int_equal(haff_export_main(7, argv), 0);
+    assert_int_equal(hd_cmd_export(7, argv), 0);
     FILE *g = fopen(gsd, "rb");
     assert_non_null(g);
     unsigned char h[256];
@@ -1216,9 +1216,9 @@ static void export_xyz(void **state) {
   snprintf(missing, sizeof missing, "%s/nope.db", fx->dir);
   assert_int_equal(export_run(missing, NULL, NULL, NULL, NULL, NULL, NULL, NULL), 2);
   char *argv_bad[] = {"export", "pdb", fx->path, NULL};
-  assert_int_equal(haff_export_main(3, argv_bad), 2);
+  assert_int_equal(hd_cmd_export(3, argv_bad), 2);
   char *argv_help[] = {"export", "--help", NULL};
-  assert_int_equal(haff_export_main(2, argv_help), 0);
+  assert_int_equal(hd_cmd_export(2, argv_help), 0);
 }
 
 int main(void) {

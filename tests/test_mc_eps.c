@@ -14,7 +14,7 @@
 
 #include "eps.h"
 #include "hd_epsdb.h"
-#include "haff.h" /* hd_mc_eps_main */
+#include "haff.h" /* hd_cmd_mc_eps */
 
 static int sanitize(void) {
   const char *s = getenv("HAFF_SANITIZE");
@@ -425,13 +425,13 @@ static void table_balance(void **state) {
 static void cli_usage(void **state) {
   (void)state;
   char *a1[] = {"eps", "--gamma", "0.8", "--beta", "zero", NULL};
-  assert_int_equal(hd_mc_eps_main(5, a1), 2);
+  assert_int_equal(hd_cmd_mc_eps(5, a1), 2);
   char *a2[] = {"eps", "--beta", "1", NULL};
-  assert_int_equal(hd_mc_eps_main(3, a2), 2);
+  assert_int_equal(hd_cmd_mc_eps(3, a2), 2);
   char *a3[] = {"eps", "--gamma", "0.8", "--tabulate", NULL};
-  assert_int_equal(hd_mc_eps_main(4, a3), 2);
+  assert_int_equal(hd_cmd_mc_eps(4, a3), 2);
   char *a4[] = {"eps", "--gamma", "-1", "--samples", "3", NULL};
-  assert_int_equal(hd_mc_eps_main(5, a4), 2);
+  assert_int_equal(hd_cmd_mc_eps(5, a4), 2);
 }
 
 int main(void) {

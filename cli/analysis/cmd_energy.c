@@ -70,7 +70,7 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const siz
   return rc;
 }
 
-const hd_optspec haff_energy_spec = {
+const hd_optspec hd_cmd_energy_spec = {
     HD_CLI_SPEC("energy", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT),
     .head =
         "usage: haff energy DB [--run ID | --all] [fit options] [-o FILE]\n"
@@ -84,10 +84,10 @@ const hd_optspec haff_energy_spec = {
         "         t-t_s) homog (1 if fitted); t_s, cpd_s, E_s: the HCS window's start (nu0: "
         "there)\n"};
 
-int haff_energy_main(int argc, char **argv) {
+int hd_cmd_energy(int argc, char **argv) {
   hd_cli_args a;
   hd_cli_set s;
-  int rc = hd_cli_groups(&haff_energy_spec, argc, argv, &a, &s);
+  int rc = hd_cli_groups(&hd_cmd_energy_spec, argc, argv, &a, &s);
   if (rc) return rc < 0 ? 0 : rc;
   hd_error err;
   FILE *out = hd_cli_out(&a);

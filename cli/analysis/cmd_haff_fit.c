@@ -6,7 +6,7 @@
 #include "cli_common.h"
 #include "haff.h"
 
-const hd_optspec haff_fit_spec = {
+const hd_optspec hd_cmd_haff_fit_spec = {
     HD_CLI_SPEC("haff-fit", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP),
     .head =
         "usage: haff haff-fit DB [--run ID | --all] [--alpha-group] [fit options] [-o FILE]\n"
@@ -31,9 +31,9 @@ const hd_optspec haff_fit_spec = {
         "constrained there, and groups leave such runs out.  A missing value, or a systematic\n"
         "term not resolved from its noise, is printed empty (never nan or 0).\n"};
 
-int haff_fit_main(int argc, char **argv) {
+int hd_cmd_haff_fit(int argc, char **argv) {
   hd_cli_args a;
-  int rc = hd_cli_parse(&haff_fit_spec, argc, argv, &a);
+  int rc = hd_cli_parse(&hd_cmd_haff_fit_spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   sqlite3 *db;
   hd_run_fit *fits;
