@@ -10,6 +10,7 @@
 #include "haff.h"
 #include "hd_db.h"
 #include "hd_opt.h"
+#include "hd_path.h"
 
 /* The options of haff export xyz. */
 typedef struct export_args {
