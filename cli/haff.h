@@ -79,7 +79,7 @@ int hd_cmd_angles(int argc, char **argv);   /* haff angles DB: Fig. 5 data, <f> 
 int hd_cmd_veldist(int argc, char **argv);  /* haff veldist DB: Fig. 6 data, shape stats */
 extern const hd_optspec hd_cmd_haff_fit_spec, hd_cmd_table1_spec, hd_cmd_table2_spec,
     hd_cmd_energy_spec, hd_cmd_angles_spec, hd_cmd_veldist_spec;
-/* cli/analysis/cli_rods_*.c (docs/rods.md) */
+/* cli/analysis/cmd_rods_*.c (docs/rods.md) */
 int hd_cmd_rods_energy(int argc, char **argv);   /* rods Figs. 1, 2, 9-11 data */
 int hd_cmd_rods_density(int argc, char **argv);  /* rods Figs. 3, 4, 6 data */
 int hd_cmd_rods_phase(int argc, char **argv);    /* rods Fig. 5 data: phase space */

@@ -215,7 +215,7 @@ double hd_sim_max_overlap(const hd_sim *s, int32_t *i, int32_t *j);
 int hd_sim_checkpoint(const hd_sim *s, void **blob, size_t *n, hd_error *err);
 
 /* Whether blob (n bytes, a model blob as hd_sim_checkpoint makes it) is of a format that is
- * only ever stored with the runner's checksum trailer (engine/run/hd_run.c): HAFFCKP2, every
+ * only ever stored with the runner's checksum trailer (run/hd_run.c): HAFFCKP2, every
  * version since the species table.  Such a blob found without its trailer has lost it (a
  * truncation, a hand edit) and is damaged; only a first-version blob (HAFFCKP1) may lack it. */
 int hd_sim_checkpoint_needs_trailer(const void *blob, size_t n);
