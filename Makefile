@@ -1,6 +1,6 @@
 # haff: one non-recursive Makefile.  `make help` lists the targets.
 # Sources are found by wildcard: a new file in a layer's folder (LAYERS below: engine/*/, db/,
-# analysis/, mc/, cli/) needs no edit here, and every tests/test_*.c is its own cmocka program.
+# run/, analysis/, mc/, cli/) needs no edit here, and every tests/test_*.c is its own cmocka program.
 .SUFFIXES:
 .DEFAULT_GOAL := all
 SHELL := /bin/bash
@@ -49,14 +49,16 @@ TESTLIBS:= -lcmocka
 # so an #include of a higher layer's header does not compile; tests/check-layers (make
 # check-layers, part of make test) checks every #include "..." against the same order, also in
 # headers that no source of their layer includes.  Tests, benchmarks and fuzzers see all.
-LAYERS          := core kernels scene sim store run programs tools
+LAYERS          := core body rods scene sim store run analysis mc tools
 LAYER_core      := engine/core
-LAYER_kernels   := engine/body engine/rods
+LAYER_body      := engine/body
+LAYER_rods      := engine/rods
 LAYER_scene     := engine/scene
 LAYER_sim       := engine/sim
 LAYER_store     := db
-LAYER_run       := engine/run
-LAYER_programs  := analysis mc
+LAYER_run       := run
+LAYER_analysis  := analysis
+LAYER_mc        := mc
 LAYER_tools     := cli cli/analysis cli/mc
 SRC_DIRS := $(foreach l,$(LAYERS),$(LAYER_$(l)))
 LIB_DIRS := $(filter-out $(LAYER_tools),$(SRC_DIRS))
@@ -66,7 +68,7 @@ $(foreach l,$(LAYERS),$(eval _below += $(LAYER_$(l)))$(eval INC_$(l) := $(addpre
 $(foreach l,$(LAYERS),$(foreach d,$(LAYER_$(l)),$(eval $$(BUILD)/$(d)/%.o: LAYER_INC := $$(INC_$(l)))))
 
 # Sources: every .c of the layer folders (the library) and of cli/ (the program).  A .c or .h
-# elsewhere under engine/, db/, analysis/, mc/ or cli/ belongs to no layer and is not built:
+# elsewhere under engine/, db/, run/, analysis/, mc/ or cli/ belongs to no layer and is not built:
 # said here, and an error of make check-layers.
 LIB_SRC := $(wildcard $(addsuffix /*.c,$(LIB_DIRS)))
 SRC_ROOTS := $(sort $(foreach d,$(SRC_DIRS),$(firstword $(subst /, ,$(d)))))
@@ -182,7 +184,7 @@ $(BUILD)/haff.1: bin/haff cli/haff-man.sh
 	cli/haff-man.sh bin/haff $(DOCDIR) > $@.tmp && mv $@.tmp $@
 
 # Every test links the library and the subcommands (all the CLI's objects but the one with
-# main()): tests call subcommands' mains (haff_fit_main, ...) and test_cli_tables checks the
+# main()): tests call subcommands' mains (hd_cmd_haff_fit, ...) and test_cli_tables checks the
 # table of subcommands (cli/haff_commands.c) and every option table.
 CLI_CMD_OBJ := $(filter-out $(BUILD)/cli/haff.o,$(CLI_OBJ))
 $(BUILD)/tests/%: tests/%.c $(CLI_CMD_OBJ) $(LIB) | $(DEPS_STAMP)

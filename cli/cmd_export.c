@@ -10,6 +10,7 @@
 #include "haff.h"
 #include "hd_db.h"
 #include "hd_opt.h"
+#include "hd_path.h"
 
 /* The options of haff export xyz. */
 typedef struct export_args {
@@ -30,7 +31,7 @@ static const hd_optdef export_opts[] = {
                .flags = HD_OPTF_OUTPUT),
     {0}};
 
-const hd_optspec haff_export_spec = {
+const hd_optspec hd_cmd_export_spec = {
     HD_OPT_SPEC("export", export_opts, 0, 1, 1, "one DB"),
     .head = "usage: haff export xyz|gsd DB [--run ID]\n"
             "       [--label initial|final|checkpoint|velocities|frames|all] [-o FILE]\n"
@@ -47,10 +48,10 @@ const hd_optspec haff_export_spec = {
             "  gsd      HOOMD-blue's GSD, for HOOMD, OVITO and freud\n"
             "\n"};
 
-int haff_export_main(int argc, char **argv) {
+int hd_cmd_export(int argc, char **argv) {
   if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
     int help = argc >= 2;
-    hd_opt_help(&haff_export_spec, help ? stdout : stderr);
+    hd_opt_help(&hd_cmd_export_spec, help ? stdout : stderr);
     return help ? 0 : 2;
   }
   int gsd = !strcmp(argv[1], "gsd");
@@ -60,7 +61,7 @@ int haff_export_main(int argc, char **argv) {
   }
   export_args a = {.label = 5};
   hd_optres res; /* argv + 1: the format as the program's name */
-  int prc = hd_opt_parse(&haff_export_spec, argc - 1, argv + 1, &a, &res);
+  int prc = hd_opt_parse(&hd_cmd_export_spec, argc - 1, argv + 1, &a, &res);
   if (prc) return prc < 0 ? 0 : prc;
   long long run = a.run;
   const char *label = labels[a.label], *outpath = a.outpath;

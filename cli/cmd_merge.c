@@ -16,7 +16,7 @@ typedef struct merge_args {
 static const hd_optdef merge_opts[] = {
     HD_OPT_FLAG("quiet", 'q', merge_args, quiet, "no closing line"), {0}};
 
-const hd_optspec haff_merge_spec = {
+const hd_optspec hd_cmd_merge_spec = {
     HD_OPT_SPEC("merge", merge_opts, 0, 2, -1, "OUT.db and at least one IN.db"), .out_pos = 1,
     .head =
         "usage: haff merge OUT.db IN.db... [--quiet]\n"
@@ -32,10 +32,10 @@ const hd_optspec haff_merge_spec = {
         "  replaced only once the merge is whole; SIGINT or SIGTERM stop it (exit 1), OUT as "
         "it was.\n"};
 
-int haff_merge_main(int argc, char **argv) {
+int hd_cmd_merge(int argc, char **argv) {
   merge_args a = {0};
   hd_optres res;
-  int rc = hd_opt_parse(&haff_merge_spec, argc, argv, &a, &res);
+  int rc = hd_opt_parse(&hd_cmd_merge_spec, argc, argv, &a, &res);
   if (rc) return rc < 0 ? 0 : rc;
   hd_error err;
   hd_error_clear(&err);

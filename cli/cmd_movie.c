@@ -365,7 +365,7 @@ static const hd_optdef movie_opts[] = {
                "width of the longer side in pixels, even [720]"),
     {0}};
 
-const hd_optspec haff_movie_spec = {
+const hd_optspec hd_cmd_movie_spec = {
     HD_OPT_SPEC("movie", movie_opts, 0, 1, 1, "one DB"),
     .head = "usage: haff movie DB [--run ID] -o FILE.mp4|FILE.gif\n"
             "                  [--color speed|density|species] [--fps N] [--size PX]\n"
@@ -375,10 +375,10 @@ const hd_optspec haff_movie_spec = {
             "its species (a key names them); axes in units of the disk diameter d, each frame\n"
             "stamped with t, cpd and N.  gnuplot draws, ffmpeg encodes (H.264 for .mp4, GIF).\n"};
 
-int haff_movie_main(int argc, char **argv) {
+int hd_cmd_movie(int argc, char **argv) {
   movie m = {.fps = 10, .size = 720};
   hd_optres res;
-  int rc = hd_opt_parse(&haff_movie_spec, argc, argv, &m, &res);
+  int rc = hd_opt_parse(&hd_cmd_movie_spec, argc, argv, &m, &res);
   if (rc) return rc < 0 ? 0 : rc;
   if (m.size % 2) {
     fprintf(stderr, "haff movie: --size %d: must be an even number of pixels in [100, 4000]\n",

@@ -55,7 +55,7 @@ static const hd_optdef run_opts[] = {
                "a progress line every SECONDS when stderr is not a terminal [60] (0: none)"),
     {0}};
 
-const hd_optspec haff_run_spec = {
+const hd_optspec hd_cmd_run_spec = {
     HD_OPT_SPEC("run", run_opts, FOR_RUN, 0, 1, "one scene file"),
     .head =
         "usage: haff run SCENE [-o DB] [--set SECTION.KEY=VALUE]... [--seed N] [--force]\n"
@@ -229,11 +229,11 @@ static int refuse_same(const char *db, const hd_scene *sc) {
   return 2;
 }
 
-int haff_run_main(int argc, char **argv) {
+int hd_cmd_run(int argc, char **argv) {
   run_args a;
   hd_optres res;
   double every;
-  int rc = run_parse(&haff_run_spec, argc, argv, &a, &res, &every);
+  int rc = run_parse(&hd_cmd_run_spec, argc, argv, &a, &res, &every);
   if (rc) return rc < 0 ? 0 : rc;
   if (a.list_keys) {
     if (argc != 2) {
@@ -291,7 +291,7 @@ int haff_run_main(int argc, char **argv) {
   return hd_exit_code(rc);
 }
 
-const hd_optspec haff_resume_spec = {
+const hd_optspec hd_cmd_resume_spec = {
     HD_OPT_SPEC("resume", run_opts, FOR_RESUME, 1, 1, "one database"),
     .head =
         "usage: haff resume DB [--run ID | --all] [--quiet] [--progress SECONDS]\n"
@@ -323,11 +323,11 @@ static int list_resumable(const char *db, int64_t **ids, size_t *n) {
   return rc;
 }
 
-int haff_resume_main(int argc, char **argv) {
+int hd_cmd_resume(int argc, char **argv) {
   run_args a;
   hd_optres res;
   double every;
-  int rc = run_parse(&haff_resume_spec, argc, argv, &a, &res, &every);
+  int rc = run_parse(&hd_cmd_resume_spec, argc, argv, &a, &res, &every);
   if (rc) return rc < 0 ? 0 : rc;
   long long want = a.run;
   int quiet = a.quiet, all = a.all;

@@ -1162,8 +1162,8 @@ static const hd_optdef sweep_opts[] = {
     HD_OPT_FLAG("quiet", 'q', sweep_args, quiet, "no progress, no closing lines"),
     {0}};
 
-const hd_optspec haff_sweep_spec = {HD_OPT_SPEC("sweep", sweep_opts, 0, 0, 1, "one sweep file"),
-                                    .head = sweep_usage};
+const hd_optspec hd_cmd_sweep_spec = {HD_OPT_SPEC("sweep", sweep_opts, 0, 0, 1, "one sweep file"),
+                                      .head = sweep_usage};
 
 /* Runs the points of st that are not done (locally, jobs at a time, or as a Slurm array with
  * so) and merges them; a study done and merged is left as it is.  Returns the exit code. */
@@ -1234,10 +1234,10 @@ static int sweep_check(const sweep_args *a, int *modes) {
   return 0;
 }
 
-int haff_sweep_main(int argc, char **argv) {
+int hd_cmd_sweep(int argc, char **argv) {
   sweep_args a = {.so = {.chunk = 1}, .jobs = 1, .progress = 60};
   hd_optres res;
-  int rc = hd_opt_parse(&haff_sweep_spec, argc, argv, &a, &res);
+  int rc = hd_opt_parse(&hd_cmd_sweep_spec, argc, argv, &a, &res);
   if (rc) return rc < 0 ? 0 : rc;
   const char *out = a.out, *status_dir = a.status_dir, *resume_dir = a.resume_dir,
              *merge_dir = a.merge_dir, *task_dir = a.task_dir;

@@ -1,6 +1,8 @@
 /* haff command-line front end: the one table of subcommands (haff_commands, cli/haff_commands.c)
- * and every subcommand's entry point and option spec, declared here only.  Each subcommand is a
- * function int NAME_main(int argc, char **argv) with argv[0] the subcommand's name; it returns
+ * and every subcommand's entry point and option spec, declared here only.  `haff X` (`haff mc X`)
+ * is in cli/cmd_X.c, cli/analysis/cmd_X.c or cli/mc/cmd_mc_X.c ('-' in X written '_'): a function
+ * int hd_cmd_X(int argc, char **argv) (hd_cmd_mc_X) with argv[0] the subcommand's name, and its
+ * option spec hd_cmd_X_spec.  It returns
  * the process exit code (0 ok, 1 failed run, 2 bad usage or input) and never calls exit().  Its
  * options are a table (hd_opt.h) in its hd_optspec, from which its --help, the man page and the
  * bash completion come. */
@@ -47,45 +49,46 @@ extern int haff_argc;
 extern char **haff_argv;
 
 /* cli/cmd_run.c: haff run SCENE, haff resume DB */
-int haff_run_main(int argc, char **argv);
-int haff_resume_main(int argc, char **argv);
-extern const hd_optspec haff_run_spec, haff_resume_spec;
+int hd_cmd_run(int argc, char **argv);
+int hd_cmd_resume(int argc, char **argv);
+extern const hd_optspec hd_cmd_run_spec, hd_cmd_resume_spec;
 /* cli/cmd_merge.c, cli/cmd_sweep.c, cli/cmd_movie.c */
-int haff_merge_main(int argc, char **argv);
-int haff_sweep_main(int argc, char **argv);
-int haff_movie_main(int argc, char **argv);
-extern const hd_optspec haff_merge_spec, haff_sweep_spec, haff_movie_spec;
+int hd_cmd_merge(int argc, char **argv);
+int hd_cmd_sweep(int argc, char **argv);
+int hd_cmd_movie(int argc, char **argv);
+extern const hd_optspec hd_cmd_merge_spec, hd_cmd_sweep_spec, hd_cmd_movie_spec;
 /* cli/cmd_export.c: haff export xyz DB (its spec's options follow the format word) */
-int haff_export_main(int argc, char **argv);
-extern const hd_optspec haff_export_spec;
-/* cli/mc/fmean_cli.c, cli/mc/eps_cli.c, cli/mc/rate_cli.c: haff mc fmean, eps, rate */
-int hd_mc_fmean_main(int argc, char **argv);
-int hd_mc_eps_main(int argc, char **argv);
-int hd_mc_rate_main(int argc, char **argv);
-extern const hd_optspec hd_mc_fmean_spec, hd_mc_eps_spec, hd_mc_rate_spec;
+int hd_cmd_export(int argc, char **argv);
+extern const hd_optspec hd_cmd_export_spec;
+/* cli/mc/cmd_mc_fmean.c, cmd_mc_eps.c, cmd_mc_rate.c: haff mc fmean, eps, rate */
+int hd_cmd_mc_fmean(int argc, char **argv);
+int hd_cmd_mc_eps(int argc, char **argv);
+int hd_cmd_mc_rate(int argc, char **argv);
+extern const hd_optspec hd_cmd_mc_fmean_spec, hd_cmd_mc_eps_spec, hd_cmd_mc_rate_spec;
 struct hd_shape;
 /* The body of --disks ('x y d m; x y d m; ...', 1 to HD_MAX_BODY_DISKS disks) into *shape
- * (cli/mc/fmean_cli.c).  Returns 0, or 2 after one line on stderr naming cmd. */
+ * (cli/mc/cmd_mc_fmean.c).  Returns 0, or 2 after one line on stderr naming cmd. */
 int hd_mc_parse_disks(const char *cmd, const char *spec, struct hd_shape *shape);
-/* cli/analysis/cli_*.c (docs/analysis.md); each returns 0 ok, 1 failure (database unreadable,
+/* cli/analysis/cmd_*.c (docs/analysis.md); each returns 0 ok, 1 failure (database unreadable,
  * write error), 2 bad usage or input */
-int haff_fit_main(int argc, char **argv);     /* haff haff-fit DB: eq. (31) per run / group */
-int haff_table1_main(int argc, char **argv);  /* haff table1 DB: Table I */
-int haff_table2_main(int argc, char **argv);  /* haff table2 DB: Table II */
-int haff_energy_main(int argc, char **argv);  /* haff energy DB: Figs. 2 and 3 data */
-int haff_angles_main(int argc, char **argv);  /* haff angles DB: Fig. 5 data, <f> */
-int haff_veldist_main(int argc, char **argv); /* haff veldist DB: Fig. 6 data, shape stats */
-extern const hd_optspec haff_fit_spec, haff_table1_spec, haff_table2_spec, haff_energy_spec,
-    haff_angles_spec, haff_veldist_spec;
-/* cli/analysis/cli_rods_*.c (docs/rods.md) */
-int haff_rods_energy_main(int argc, char **argv);   /* rods Figs. 1, 2, 9-11 data */
-int haff_rods_density_main(int argc, char **argv);  /* rods Figs. 3, 4, 6 data */
-int haff_rods_phase_main(int argc, char **argv);    /* rods Fig. 5 data: phase space */
-int haff_rods_gofr_main(int argc, char **argv);     /* rods Fig. 8 data: g(x) */
-int haff_rods_veldist_main(int argc, char **argv);  /* rods Fig. 7 data: cluster velocities */
-int haff_rods_clusters_main(int argc, char **argv); /* rods clusters per snapshot */
-int haff_rods_collapse_main(int argc, char **argv); /* rods (N, eps) collapse scan */
-extern const hd_optspec haff_rods_energy_spec, haff_rods_density_spec, haff_rods_phase_spec,
-    haff_rods_gofr_spec, haff_rods_veldist_spec, haff_rods_clusters_spec, haff_rods_collapse_spec;
+int hd_cmd_haff_fit(int argc, char **argv); /* haff haff-fit DB: eq. (31) per run / group */
+int hd_cmd_table1(int argc, char **argv);   /* haff table1 DB: Table I */
+int hd_cmd_table2(int argc, char **argv);   /* haff table2 DB: Table II */
+int hd_cmd_energy(int argc, char **argv);   /* haff energy DB: Figs. 2 and 3 data */
+int hd_cmd_angles(int argc, char **argv);   /* haff angles DB: Fig. 5 data, <f> */
+int hd_cmd_veldist(int argc, char **argv);  /* haff veldist DB: Fig. 6 data, shape stats */
+extern const hd_optspec hd_cmd_haff_fit_spec, hd_cmd_table1_spec, hd_cmd_table2_spec,
+    hd_cmd_energy_spec, hd_cmd_angles_spec, hd_cmd_veldist_spec;
+/* cli/analysis/cmd_rods_*.c (docs/rods.md) */
+int hd_cmd_rods_energy(int argc, char **argv);   /* rods Figs. 1, 2, 9-11 data */
+int hd_cmd_rods_density(int argc, char **argv);  /* rods Figs. 3, 4, 6 data */
+int hd_cmd_rods_phase(int argc, char **argv);    /* rods Fig. 5 data: phase space */
+int hd_cmd_rods_gofr(int argc, char **argv);     /* rods Fig. 8 data: g(x) */
+int hd_cmd_rods_veldist(int argc, char **argv);  /* rods Fig. 7 data: cluster velocities */
+int hd_cmd_rods_clusters(int argc, char **argv); /* rods clusters per snapshot */
+int hd_cmd_rods_collapse(int argc, char **argv); /* rods (N, eps) collapse scan */
+extern const hd_optspec hd_cmd_rods_energy_spec, hd_cmd_rods_density_spec, hd_cmd_rods_phase_spec,
+    hd_cmd_rods_gofr_spec, hd_cmd_rods_veldist_spec, hd_cmd_rods_clusters_spec,
+    hd_cmd_rods_collapse_spec;
 
 #endif

@@ -7,10 +7,12 @@
  *   line 2: Lattice="Lx 0 0 0 Ly 0 0 0 1" Properties=PROPS pbc="T T F" Time=t Label=label [Cpd=cpd]
  * with PROPS = species:S:1:pos:R:3:velo:R:3:masses:R:1:momenta:R:3:radius:R:1:body:I:1:phi:R:1:
  * omega:R:1:species_name:S:1, then one line per disk: species (an element per species of the
- * run: N a disk of a dimer, Ar a single disk, C a rod, O F Ne Na ... the named species by
- * species.idx; chemical symbols, which ASE requires), x y 0, its velocity vx vy 0 (rotation
- * included), its mass, its momentum (what ASE reads as velocities times masses), its radius, the
- * body index, the body's orientation phi and angular velocity omega, and the species' name
+ * run, by species.idx: N for 0 [dimers], Ar for 1 [disks], O F Ne Na ... for 2, 3, ... the
+ * [species NAME] sections; without a species table N for a disk of a dimer and Ar for a single
+ * disk; C for a rod: chemical symbols, which ASE requires),
+ * x y 0, its velocity vx vy 0 (rotation included), its mass, its momentum (what ASE reads as
+ * velocities times masses), its radius, the body index, the body's orientation phi and angular
+ * velocity omega (0 for a body of one disk and for a rod), and the species' name
  * (species.name; rod; dimer or disk for a file without the species table: issue 28).  A dimer's
  * disk k is at R -+ (a/2)(cos phi, sin phi) (disk 0 at -; hd_kin_disk_pos).  Numbers are written in
  * the shortest form that reads back as the same double (at most 17 digits).  Positions are not

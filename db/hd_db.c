@@ -714,28 +714,6 @@ sqlite3 *hd_db_handle(hd_db *db) {
   return db ? db->db : NULL;
 }
 
-int hd_db_exec(hd_db *db, const char *sql, hd_error *err) {
-  if (!db) return hd_error_set(err, HD_EIO, "database: not open");
-  int drc = drain(db, err);
-  if (drc) return drc;
-  char *msg = NULL;
-  if (sqlite3_exec(db->db, sql, NULL, NULL, &msg) != SQLITE_OK) {
-    hd_error_set(err, HD_EIO, "%s: exec: %s", db->path, msg ? msg : sqlite3_errmsg(db->db));
-    sqlite3_free(msg);
-    /* A statement may have ended the batch's transaction (SQLite rolls back on some errors). */
-    if (sqlite3_get_autocommit(db->db)) {
-      db->in_tx = 0;
-      db->pending = 0;
-    }
-    return HD_EIO;
-  }
-  if (db->in_tx && sqlite3_get_autocommit(db->db)) { /* the sql committed or rolled back */
-    db->in_tx = 0;
-    db->pending = 0;
-  }
-  return HD_OK;
-}
-
 /* ---------------------------------------------------------------------------------------- */
 /* batches */
 

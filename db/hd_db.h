@@ -323,10 +323,6 @@ int hd_db_find_resumable(hd_db *db, int64_t want_run, int64_t *run, char **scene
  * from the start), oldest first: *ids malloc'd (free(); NULL when *n is 0). */
 int hd_db_list_resumable(hd_db *db, int64_t **ids, size_t *n, hd_error *err);
 
-/* Runs sql (one or more statements, no result rows wanted) with sqlite3_exec, inside the open
- * batch if there is one.  Returns HD_OK or HD_EIO. */
-int hd_db_exec(hd_db *db, const char *sql, hd_error *err);
-
 /* The SQLite handle, for analysis code that reads with its own statements.  Owned by db. */
 sqlite3 *hd_db_handle(hd_db *db);
 

@@ -14,8 +14,4 @@
 int hd_eps_table_save(const hd_eps_table *t, sqlite3 *db, unsigned long seed, int64_t *id,
                       hd_error *err);
 
-/* Loads table id from db; id <= 0 loads the newest table whose gamma equals gamma (within
- * 1e-12).  Returns HD_OK, HD_EINPUT (no such table) or HD_EIO. */
-int hd_eps_table_load(hd_eps_table **out, sqlite3 *db, int64_t id, double gamma, hd_error *err);
-
 #endif

@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 #include "hd_db.h"
-#include "hd_opt.h"
+#include "hd_path.h"
 #include "hd_stop.h"
 
 static const char *const need_runs[] = {"runs", NULL};

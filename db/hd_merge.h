@@ -31,7 +31,7 @@
 int hd_db_merge(const char *out, const char *const *in, int n_in, int64_t *runs, hd_error *err);
 
 /* Whether a process holds a write lock in path.lock, the lock file of the runs writing to the
- * database path (engine/run/hd_run.c run_lock): on byte `run` (run run's lock) when run >= 0,
+ * database path (run/hd_run.c run_lock): on byte `run` (run run's lock) when run >= 0,
  * on any byte (some run writing) when run < 0.  0 when there is no lock file. */
 int hd_merge_lock_held(const char *path, long long run);
 

@@ -29,15 +29,6 @@ const char *hd_fmean_model_name(hd_fmean_model model) {
   return "?";
 }
 
-int hd_fmean_model_parse(const char *name, hd_fmean_model *model) {
-  for (int m = HD_FMEAN_HEURISTIC; m <= HD_FMEAN_COLLISION; m++)
-    if (name && !strcmp(name, hd_fmean_model_name((hd_fmean_model)m))) {
-      *model = (hd_fmean_model)m;
-      return HD_OK;
-    }
-  return HD_EINPUT;
-}
-
 void hd_fmean_opts_default(hd_fmean_opts *opts) {
   memset(opts, 0, sizeof *opts);
   opts->model = HD_FMEAN_HEURISTIC;

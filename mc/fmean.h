@@ -83,9 +83,6 @@ typedef struct hd_fmean_conv_row {
 /* The model's name ("heuristic", "exclusion", "collision"). */
 const char *hd_fmean_model_name(hd_fmean_model model);
 
-/* Parses a model name; returns HD_OK and sets *model, or HD_EINPUT. */
-int hd_fmean_model_parse(const char *name, hd_fmean_model *model);
-
 /* Fills opts with the defaults: heuristic, a/d = 1, dim = 2, 10^6 samples, seed 1. */
 void hd_fmean_opts_default(hd_fmean_opts *opts);
 

@@ -228,7 +228,7 @@ static double rows[4000][16];
 static void haff_fit_runs(void **state) {
   (void)state;
   char out[400];
-  run_on_db(haff_fit_main, "haff-fit", "fit.tsv", out, sizeof out);
+  run_on_db(hd_cmd_haff_fit, "haff-fit", "fit.tsv", out, sizeof out);
   int n = read_rows(out, rows, 100, 1);
   assert_int_equal(n, 5); /* the failed run 6 is left out */
   for (int i = 0; i < n; i++) {
@@ -250,17 +250,17 @@ static void haff_fit_runs(void **state) {
   }
   /* one run, --alpha-group */
   char *a2[] = {dbpath, "--alpha-group"};
-  assert_int_equal(run_cmd(haff_fit_main, "haff-fit", a2, 2, out), 0);
+  assert_int_equal(run_cmd(hd_cmd_haff_fit, "haff-fit", a2, 2, out), 0);
   assert_int_equal(read_rows(out, rows, 100, 1), 3);
   /* bad usage */
   char *bad[] = {dbpath, "--bins", "3"};
-  assert_int_equal(run_cmd(haff_fit_main, "haff-fit", bad, 3, NULL), 2);
+  assert_int_equal(run_cmd(hd_cmd_haff_fit, "haff-fit", bad, 3, NULL), 2);
   char *missing[] = {"/nonexistent/x.db"};
-  assert_int_equal(run_cmd(haff_fit_main, "haff-fit", missing, 1, NULL), 2); /* bad input */
+  assert_int_equal(run_cmd(hd_cmd_haff_fit, "haff-fit", missing, 1, NULL), 2); /* bad input */
   char *norun[] = {dbpath, "--run", "77"};
-  assert_int_equal(run_cmd(haff_fit_main, "haff-fit", norun, 3, NULL), 2);
+  assert_int_equal(run_cmd(hd_cmd_haff_fit, "haff-fit", norun, 3, NULL), 2);
   char *help[] = {"--help"};
-  assert_int_equal(run_cmd(haff_fit_main, "haff-fit", help, 1, NULL), 0);
+  assert_int_equal(run_cmd(hd_cmd_haff_fit, "haff-fit", help, 1, NULL), 0);
 }
 
 /* table1: three groups; the alpha = 0.9 dimer group has 3 runs, its mean D_e within 3 standard
@@ -268,7 +268,7 @@ static void haff_fit_runs(void **state) {
 static void table1(void **state) {
   (void)state;
   char out[400];
-  run_on_db(haff_table1_main, "table1", "t1.tsv", out, sizeof out);
+  run_on_db(hd_cmd_table1, "table1", "t1.tsv", out, sizeof out);
   FILE *f = fopen(out, "r");
   char head[256];
   assert_non_null(fgets(head, sizeof head, f));
@@ -301,7 +301,7 @@ static void table1(void **state) {
   }
   assert_int_equal(seen, 4);
   char *md[] = {dbpath, "--md"};
-  assert_int_equal(run_cmd(haff_table1_main, "table1", md, 2, out), 0);
+  assert_int_equal(run_cmd(hd_cmd_table1, "table1", md, 2, out), 0);
   f = fopen(out, "r");
   assert_non_null(fgets(head, sizeof head, f));
   fclose(f);
@@ -314,7 +314,7 @@ static void table1(void **state) {
 static void table2(void **state) {
   (void)state;
   char out[400];
-  run_on_db(haff_table2_main, "table2", "t2.tsv", out, sizeof out);
+  run_on_db(hd_cmd_table2, "table2", "t2.tsv", out, sizeof out);
   int n = read_rows(out, rows, 10, 1);
   assert_int_equal(n, 2);
   for (int i = 0; i < n; i++) {
@@ -326,9 +326,9 @@ static void table2(void **state) {
     assert_true(fabs(r[5]) < 1.5 * (r[7] - r[6]) / 2);
   }
   char *runs[] = {dbpath, "--k-ci", "runs"};
-  assert_int_equal(run_cmd(haff_table2_main, "table2", runs, 3, out), 2); /* alpha 0.8: 1 run */
+  assert_int_equal(run_cmd(hd_cmd_table2, "table2", runs, 3, out), 2); /* alpha 0.8: 1 run */
   char *bad[] = {dbpath, "--k-ci", "xx"};
-  assert_int_equal(run_cmd(haff_table2_main, "table2", bad, 3, out), 2);
+  assert_int_equal(run_cmd(hd_cmd_table2, "table2", bad, 3, out), 2);
 }
 
 /* energy: 3 blocks; x = (1 - alpha^2) cpd; within the fitted part the data follow Haff's law
@@ -336,7 +336,7 @@ static void table2(void **state) {
 static void energy(void **state) {
   (void)state;
   char out[400];
-  run_on_db(haff_energy_main, "energy", "energy.tsv", out, sizeof out);
+  run_on_db(hd_cmd_energy, "energy", "energy.tsv", out, sizeof out);
   int n = read_rows(out, rows, 4000, 0);
   assert_int_equal(n, 3 * 201);
   int homog = 0, late = 0;
@@ -354,7 +354,7 @@ static void energy(void **state) {
   assert_true(late > 150);
   assert_int_equal(homog, late);
   char *one[] = {dbpath, "--run", "4"};
-  assert_int_equal(run_cmd(haff_energy_main, "energy", one, 3, out), 0);
+  assert_int_equal(run_cmd(hd_cmd_energy, "energy", one, 3, out), 0);
   n = read_rows(out, rows, 4000, 0);
   assert_int_equal(n, 201);
   int h4 = 0;
@@ -371,7 +371,7 @@ static void angles(void **state) {
   (void)state;
   char out[400], *args[] = {dbpath, "--run", "1", "--block", "5000"};
   snprintf(out, sizeof out, "%s/angles.tsv", dir);
-  assert_int_equal(run_cmd(haff_angles_main, "angles", args, 5, out), 0);
+  assert_int_equal(run_cmd(hd_cmd_angles, "angles", args, 5, out), 0);
   int n = read_rows(out, rows, 4000, 0);
   assert_int_equal(n, 4 * 36);
   for (int i = 0; i < n; i++) {
@@ -382,7 +382,7 @@ static void angles(void **state) {
       assert_true(r[4] == 0);
   }
   char *fa[] = {dbpath, "--run", "1", "--fmean", "--block", "500"};
-  assert_int_equal(run_cmd(haff_angles_main, "angles", fa, 6, out), 0);
+  assert_int_equal(run_cmd(hd_cmd_angles, "angles", fa, 6, out), 0);
   assert_int_equal(read_rows(out, rows, 10, 1), 1);
   double tm = 2 * M_PI / 3, sum = 0, sum2 = 0;
   int m = 400;
@@ -398,7 +398,7 @@ static void angles(void **state) {
   assert_true(fabs(rows[0][3] / (fsd / sqrt(20000.0)) - 1) < 0.35);
   assert_int_equal((int)rows[0][4], 40);
   char *norun[] = {dbpath};
-  assert_int_equal(run_cmd(haff_angles_main, "angles", norun, 1, out), 2);
+  assert_int_equal(run_cmd(hd_cmd_angles, "angles", norun, 1, out), 2);
 }
 
 /* Runs a subcommand as run_cmd does, with stderr sent to a file whose text goes to err. */
@@ -442,22 +442,22 @@ static void bad_numeric_options(void **state) {
     int na = strcmp(bad[i].opt, "--run") ? 5 : 3;
     if (na == 3) args[1] = (char *)bad[i].opt, args[2] = (char *)bad[i].val;
     remove(out);
-    assert_int_equal(run_cmd_err(haff_angles_main, "angles", args, na, out, err, sizeof err), 2);
+    assert_int_equal(run_cmd_err(hd_cmd_angles, "angles", args, na, out, err, sizeof err), 2);
     printf("# angles %s %s: %s", bad[i].opt, bad[i].val, err);
     assert_non_null(strstr(err, bad[i].opt));
     assert_non_null(strstr(err, "whole number"));
     assert_int_equal(access(out, F_OK), -1);
   }
   char *big[] = {dbpath, "--run", "1", "--block", "400000"};
-  assert_int_equal(run_cmd_err(haff_angles_main, "angles", big, 5, out, err, sizeof err), 2);
+  assert_int_equal(run_cmd_err(hd_cmd_angles, "angles", big, 5, out, err, sizeof err), 2);
   printf("# %s", err);
   assert_non_null(strstr(err, "fewer than one block"));
   assert_int_equal(access(out, F_OK), -1);
   char *kmin[] = {dbpath, "--cpd-min-k", "5"};
-  assert_int_equal(run_cmd_err(haff_fit_main, "haff-fit", kmin, 3, out, err, sizeof err), 2);
-  assert_int_equal(run_cmd_err(haff_table1_main, "table1", kmin, 3, out, err, sizeof err), 2);
+  assert_int_equal(run_cmd_err(hd_cmd_haff_fit, "haff-fit", kmin, 3, out, err, sizeof err), 2);
+  assert_int_equal(run_cmd_err(hd_cmd_table1, "table1", kmin, 3, out, err, sizeof err), 2);
   assert_non_null(strstr(err, "--cpd-min-k"));
-  assert_int_equal(run_cmd_err(haff_table2_main, "table2", kmin, 3, out, err, sizeof err), 0);
+  assert_int_equal(run_cmd_err(hd_cmd_table2, "table2", kmin, 3, out, err, sizeof err), 0);
 }
 
 /* Ensembles and densities.  Four dimer runs with alpha 0.9 and a = d, two in a 100 x 100 box
@@ -518,7 +518,7 @@ static void veldist(void **state) {
   (void)state;
   char out[400], *args[] = {dbpath, "--run", "1", "--stats"};
   snprintf(out, sizeof out, "%s/vstats.tsv", dir);
-  assert_int_equal(run_cmd(haff_veldist_main, "veldist", args, 4, out), 0);
+  assert_int_equal(run_cmd(hd_cmd_veldist, "veldist", args, 4, out), 0);
   int n = read_rows(out, rows, 100, 1);
   assert_int_equal(n, 12);
   for (int i = 0; i < n; i++) {
@@ -533,7 +533,7 @@ static void veldist(void **state) {
     }
   }
   char *h[] = {dbpath, "--run", "1", "--bins", "41"};
-  assert_int_equal(run_cmd(haff_veldist_main, "veldist", h, 5, out), 0);
+  assert_int_equal(run_cmd(hd_cmd_veldist, "veldist", h, 5, out), 0);
   n = read_rows(out, rows, 4000, 0);
   assert_int_equal(n, 3 * 41);
   for (int s = 0; s < 2; s++) {
@@ -560,7 +560,7 @@ static void veldist_pool(void **state) {
                     "--bins",     "41",
                     "--cpd-skip", (char *)cases[k][0],
                     "--cpd-max",  (char *)cases[k][1]};
-    assert_int_equal(run_cmd(haff_veldist_main, "veldist", args, 10, out), 0);
+    assert_int_equal(run_cmd(hd_cmd_veldist, "veldist", args, 10, out), 0);
     int n = read_rows(out, rows, 100, 1);
     assert_int_equal(n, 41);
     printf("# veldist --pool cpd %s-%s: n %g (want %g)\n", cases[k][0], cases[k][1], rows[0][7],
@@ -572,7 +572,7 @@ static void veldist_pool(void **state) {
     }
   }
   char *bad[] = {dbpath, "--pool", "--stats"};
-  assert_int_equal(run_cmd(haff_veldist_main, "veldist", bad, 3, NULL), 2);
+  assert_int_equal(run_cmd(hd_cmd_veldist, "veldist", bad, 3, NULL), 2);
 }
 
 /* Renders each gnuplot script to PNG and SVG from the files written above (run after them)
@@ -597,13 +597,13 @@ static void gnuplot_scripts(void **state) {
   /* the angles and veldist files must hold histograms, not the --fmean / --stats tables */
   char out[400], *aa[] = {dbpath, "--run", "1", "--block", "5000"};
   snprintf(out, sizeof out, "%s/angles.tsv", dir);
-  assert_int_equal(run_cmd(haff_angles_main, "angles", aa, 5, out), 0);
+  assert_int_equal(run_cmd(hd_cmd_angles, "angles", aa, 5, out), 0);
   char *va[] = {dbpath, "--run", "1"};
   snprintf(out, sizeof out, "%s/veldist.tsv", dir);
-  assert_int_equal(run_cmd(haff_veldist_main, "veldist", va, 3, out), 0);
+  assert_int_equal(run_cmd(hd_cmd_veldist, "veldist", va, 3, out), 0);
   char *ea[] = {dbpath};
   snprintf(out, sizeof out, "%s/energy.tsv", dir);
-  assert_int_equal(run_cmd(haff_energy_main, "energy", ea, 1, out), 0);
+  assert_int_equal(run_cmd(hd_cmd_energy, "energy", ea, 1, out), 0);
   for (int i = 0; i < 4; i++)
     for (int e = 0; e < 2; e++) {
       const char *ext = e ? "svg" : "png";

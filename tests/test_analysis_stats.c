@@ -1,5 +1,5 @@
 /* Tests of the velocity statistics (analysis/hd_velstats.h), the Kolmogorov distribution and
- * the homogeneity detector (engine/core/hd_homog.h) on synthetic samples with fixed seeds. */
+ * the homogeneity detector (db/hd_homog.h) on synthetic samples with fixed seeds. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

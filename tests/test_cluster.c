@@ -26,6 +26,7 @@
 #include "hd_run.h"
 #include "hd_stop.h"
 #include "hd_sim_internal.h"
+#include "test_sim.h"
 #include "test_util.h"
 
 /* Adds species NAME of n disks at (x, y), diameters d, masses m, count bodies, restitution
@@ -131,7 +132,7 @@ static void elastic_clusters(void **state) {
     }
     double et, er, px, py;
     hd_sim_energy(s, -1, &et, &er);
-    hd_sim_momentum(s, &px, &py);
+    test_sim_momentum(s, &px, &py);
     double drift = fabs(et + er - e0t - e0r) / (e0t + e0r), K = ksum / (double)nk;
     double De = 4.0 * (et + er) / ((double)N * musum / (double)nmu);
     int32_t i, j;
@@ -226,7 +227,7 @@ static void mixture_species(void **state) {
     }
     double et, er, px, py;
     hd_sim_energy(s, -1, &et, &er);
-    hd_sim_momentum(s, &px, &py);
+    test_sim_momentum(s, &px, &py);
     double e0 = e0t + e0r, e1 = et + er;
     printf("# mixture%s: kinds %ld %ld %ld %ld, energy %.6g -> %.6g (booked loss %.6g)\n",
            inel ? " (alpha 0.5 between the named)" : "", kinds[DD], kinds[DK], kinds[KK], kinds[BB],

@@ -20,7 +20,7 @@
 #include "hd_run.h"
 #include "hd_scene.h"
 
-int haff_export_main(int argc, char **argv);
+int hd_cmd_export(int argc, char **argv);
 
 /* sh() sends the command's stdout and stderr to dir/out.txt. */
 #define TEST_CLI_SH_FORMAT "cd %s && (%s) >out.txt 2>&1"
@@ -439,7 +439,7 @@ static void frames_in_process(void **state) {
     sqlite3_close(h);
     assert_int_equal(n, k ? 4 : 5);
     char *argv[] = {"export", "xyz", db, "--label", "frames", "-o", xyz, NULL};
-    assert_int_equal(haff_export_main(7, argv), 0);
+    assert_int_equal(hd_cmd_export(7, argv), 0);
     FILE *f = fopen(xyz, "r");
     assert_non_null(f);
     char line[512];

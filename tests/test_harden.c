@@ -22,6 +22,7 @@
 #include "hd_db.h"
 #include "hd_merge.h"
 #include "hd_opt.h"
+#include "hd_path.h"
 
 #include "test_cli_util.h"
 

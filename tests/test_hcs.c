@@ -460,7 +460,7 @@ static void table2_sys(void **state) {
   assert_int_equal(hd_db_close(db, &err), HD_OK);
   for (int keep = 0; keep < 2; keep++) {
     char *argv[] = {"table2", path, "-o", out, "--keep-flagged", NULL};
-    assert_int_equal(haff_table2_main(4 + keep, argv), 0);
+    assert_int_equal(hd_cmd_table2(4 + keep, argv), 0);
     FILE *f = fopen(out, "r");
     assert_non_null(f);
     char line[1024];
@@ -523,7 +523,7 @@ static void acceptance_cheap(void **state) {
   sqlite3_finalize(st);
   sqlite3_close(h);
   char *argv[] = {"haff-fit", db, "--alpha-group", "-o", out, NULL};
-  assert_int_equal(haff_fit_main(5, argv), 0);
+  assert_int_equal(hd_cmd_haff_fit(5, argv), 0);
   grow g[6];
   assert_int_equal(read_groups(out, g, 6), 4);
   int nstable = 0;
@@ -542,7 +542,7 @@ static void acceptance_cheap(void **state) {
   }
   assert_true(nstable >= 1); /* the rule for stable boxes is exercised */
   char *old[] = {"haff-fit", db, "--alpha-group", "--no-detect", "-o", out, NULL};
-  assert_int_equal(haff_fit_main(6, old), 0);
+  assert_int_equal(hd_cmd_haff_fit(6, old), 0);
   assert_int_equal(read_groups(out, g, 6), 4);
   int fails = 0;
   for (int k = 0; k < 4; k++) {
@@ -578,7 +578,7 @@ static void short_window(void **state) {
   assert_int_equal(hd_run_new(&sc, &ro, &run, &err), HD_OK);
   hd_scene_free(&sc);
   char *argv[] = {"haff-fit", db, "-o", out, NULL};
-  assert_int_equal(haff_fit_main(4, argv), 0);
+  assert_int_equal(hd_cmd_haff_fit(4, argv), 0);
   char buf[4096];
   FILE *f = fopen(out, "r");
   assert_non_null(f);
@@ -589,13 +589,13 @@ static void short_window(void **state) {
   assert_non_null(strstr(buf, "\tdecay\tflag\tT_rot_tr\tT_rot_tr_err\tT_rot_tr_theory\n"));
   assert_non_null(strstr(buf, "\tshort\t")); /* the row is flagged */
   char *grp[] = {"haff-fit", db, "--alpha-group", "-o", out, NULL};
-  assert_int_equal(haff_fit_main(5, grp), 0);
+  assert_int_equal(hd_cmd_haff_fit(5, grp), 0);
   grow g[2];
   assert_int_equal(read_groups(out, g, 2), 1);
   assert_string_equal(g[0].flag, "short");
   assert_true(isnan(g[0].D)); /* no D_e from a window that cannot give one */
   char *t1[] = {"table1", db, "-o", out, NULL};
-  assert_int_equal(haff_table1_main(4, t1), 0);
+  assert_int_equal(hd_cmd_table1(4, t1), 0);
   f = fopen(out, "r");
   nb = fread(buf, 1, sizeof buf - 1, f);
   buf[nb] = 0;
@@ -622,9 +622,9 @@ static void short_window(void **state) {
     const char *d = c == 5 ? db : db2;
     char *av[6] = {(char *)cmds[c][0], (char *)d, "-o", out, (char *)cmds[c][1], NULL};
     int ac = cmds[c][1] ? 5 : 4;
-    int rc = !strcmp(cmds[c][0], "haff-fit") ? haff_fit_main(ac, av)
-             : !strcmp(cmds[c][0], "table1") ? haff_table1_main(ac, av)
-                                             : haff_energy_main(ac, av);
+    int rc = !strcmp(cmds[c][0], "haff-fit") ? hd_cmd_haff_fit(ac, av)
+             : !strcmp(cmds[c][0], "table1") ? hd_cmd_table1(ac, av)
+                                             : hd_cmd_energy(ac, av);
     assert_int_equal(rc, 0);
     f = fopen(out, "r");
     nb = fread(buf, 1, sizeof buf - 1, f);
@@ -767,7 +767,7 @@ static void outlier_runs(void **state) {
   add_haff_run(db, 0.9, 3.0055, 92, 13);
   assert_int_equal(hd_db_close(db, &err), HD_OK);
   char *av[] = {"haff-fit", path, "-o", out, NULL};
-  assert_int_equal(haff_fit_main(4, av), 0);
+  assert_int_equal(hd_cmd_haff_fit(4, av), 0);
   char buf[8192];
   FILE *fp = fopen(out, "r");
   assert_non_null(fp);
@@ -782,7 +782,7 @@ static void outlier_runs(void **state) {
   for (char *p = buf; (p = strstr(p, "\toutlier\n")); p++) nout++;
   assert_int_equal(nout, 1);
   char *ag[] = {"haff-fit", path, "--alpha-group", "-o", out, NULL};
-  assert_int_equal(haff_fit_main(5, ag), 0);
+  assert_int_equal(hd_cmd_haff_fit(5, ag), 0);
   grow gr[2];
   assert_int_equal(read_groups(out, gr, 2), 1);
   printf("# group: D_e %.4f +- %.4f flag '%s'\n", gr[0].D, gr[0].err, gr[0].flag);
@@ -795,7 +795,7 @@ static void outlier_runs(void **state) {
   assert_non_null(strstr(buf, "\tflag\trejected\n"));
   assert_true(nb > 3 && !strcmp(buf + nb - 3, "\t1\n")); /* one run rejected */
   char *t1[] = {"table1", path, "-o", out, NULL};
-  assert_int_equal(haff_table1_main(4, t1), 0);
+  assert_int_equal(hd_cmd_table1(4, t1), 0);
   fp = fopen(out, "r");
   nb = fread(buf, 1, sizeof buf - 1, fp);
   buf[nb] = 0;

@@ -485,10 +485,6 @@ static void bad_input(void **state) {
   o.seconds = 0.02;
   assert_int_equal(hd_fmean_run(&o, &r, &err), HD_OK);
   assert_true(r.samples >= 2 && r.f_stderr > 0.0);
-  hd_fmean_model m;
-  assert_int_equal(hd_fmean_model_parse("collision", &m), HD_OK);
-  assert_int_equal(m, HD_FMEAN_COLLISION);
-  assert_int_equal(hd_fmean_model_parse("bogus", &m), HD_EINPUT);
 }
 
 int main(void) {

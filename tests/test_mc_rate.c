@@ -94,17 +94,17 @@ static void small_a_limit(void **state) {
 static void command(void **state) {
   (void)state;
   char *ok[] = {"rate", "--a", "0", "--samples", "100"};
-  assert_int_equal(hd_mc_rate_main(5, ok), 0);
+  assert_int_equal(hd_cmd_mc_rate(5, ok), 0);
   char *neg[] = {"rate", "--a", "-1"};
-  assert_int_equal(hd_mc_rate_main(3, neg), 2);
+  assert_int_equal(hd_cmd_mc_rate(3, neg), 2);
   char *both[] = {"rate", "--a", "1", "--disks", "0 0 1 1"};
-  assert_int_equal(hd_mc_rate_main(5, both), 2);
+  assert_int_equal(hd_cmd_mc_rate(5, both), 2);
   char *none[] = {"rate", "--samples", "100"};
-  assert_int_equal(hd_mc_rate_main(3, none), 2);
+  assert_int_equal(hd_cmd_mc_rate(3, none), 2);
   char *bad[] = {"rate", "--disks", "0 0 1"};
-  assert_int_equal(hd_mc_rate_main(3, bad), 2);
+  assert_int_equal(hd_cmd_mc_rate(3, bad), 2);
   char *two[] = {"rate", "--a", "1", "--samples", "10", "--seconds", "1"};
-  assert_int_equal(hd_mc_rate_main(7, two), 2);
+  assert_int_equal(hd_cmd_mc_rate(7, two), 2);
 }
 
 int main(void) {

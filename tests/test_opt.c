@@ -1,4 +1,4 @@
-/* The one option parser (engine/core/hd_opt.c) on a table of every kind of value: numbers read or
+/* The one option parser (cli/hd_opt.c) on a table of every kind of value: numbers read or
  * refused with one line naming the option, the value and the rule (bad number, out of range,
  * inf, nan, overflow), a missing value, an unknown option, an option given twice, "--", short
  * clusters, enums, lists, paths, options that do not apply, positional counts, and the help

@@ -1,4 +1,4 @@
-/* Resume from what a run left behind (engine/run/hd_run.c, in-process, so that the sanitizer build
+/* Resume from what a run left behind (run/hd_run.c, in-process, so that the sanitizer build
  * runs it too): damaged checkpoints are refused, never crash nor give wrong results. */
 #include <setjmp.h>
 #include <stdarg.h>

@@ -633,7 +633,7 @@ static void csv_good(void **state) {
   hd_state_row *rows;
   long n;
   hd_error e;
-  assert_int_equal(hd_state_csv_read(p, &rows, &n, &e), HD_OK);
+  assert_int_equal(hd_state_csv_read_species(p, NULL, &rows, &n, &e), HD_OK);
   assert_int_equal(n, 2);
   assert_int_equal(rows[0].kind, HD_KIND_DIMER);
   assert_true(rows[0].x == 1.5 && rows[0].y == 2 && rows[0].phi == 0.25);
@@ -646,7 +646,7 @@ static void csv_good(void **state) {
   free(rows);
   /* with a UTF-8 byte order mark (refused before as "missing header", the mark unprintable) */
   write_file(p, "\xEF\xBB\xBFkind,x,y,phi,vx,vy,omega\ndisk,4,5,0,6,7,0\n");
-  assert_int_equal(hd_state_csv_read(p, &rows, &n, &e), HD_OK);
+  assert_int_equal(hd_state_csv_read_species(p, NULL, &rows, &n, &e), HD_OK);
   assert_int_equal(n, 1);
   free(rows);
 }
@@ -675,7 +675,7 @@ static void csv_bad(void **state) {
     hd_state_row *rows = (hd_state_row *)1;
     long n = -1;
     hd_error e;
-    assert_int_equal(hd_state_csv_read(p, &rows, &n, &e), HD_EINPUT);
+    assert_int_equal(hd_state_csv_read_species(p, NULL, &rows, &n, &e), HD_EINPUT);
     assert_null(rows);
     assert_int_equal(n, 0);
     char at[600];
@@ -685,7 +685,7 @@ static void csv_bad(void **state) {
   hd_state_row *rows;
   long n;
   hd_error e;
-  assert_int_equal(hd_state_csv_read(tmp_path("none.csv"), &rows, &n, &e), HD_EIO);
+  assert_int_equal(hd_state_csv_read_species(tmp_path("none.csv"), NULL, &rows, &n, &e), HD_EIO);
   assert_has(e.msg, "none.csv", "cannot read", NULL, NULL);
 }
 
@@ -1153,7 +1153,7 @@ static void species_state_csv(void **state) {
   free(rows);
   hd_scene_free(&sc);
   /* without the scene (or with another) the names are not known */
-  assert_int_equal(hd_state_csv_read(tmp_path("sp.csv"), &rows, &n, &e), HD_EINPUT);
+  assert_int_equal(hd_state_csv_read_species(tmp_path("sp.csv"), NULL, &rows, &n, &e), HD_EINPUT);
   assert_has(e.msg, "sp.csv:2:", "'tri' is not dimer or disk", NULL, NULL);
   write_file(tmp_path("sp.ini"), "[system]\nbox = 30 30\n[init]\nstate = sp.csv\n[run]\n"
                                  "stop_time = 1\n[species tri]\nshape = triangle\n"

@@ -275,7 +275,7 @@ static void species_ratio_runs(void **state) {
   if (!runner) skip();
   make_runs();
   assert_int_equal(
-      run_main(haff_fit_main, "haff-fit", "@mix.db", "--by-species", "-o", "@fit.tsv", NULL), 0);
+      run_main(hd_cmd_haff_fit, "haff-fit", "@mix.db", "--by-species", "-o", "@fit.tsv", NULL), 0);
   row rows[32];
   int n = read_rows("fit.tsv", rows, 32);
   assert_int_equal(n, 2 * (int)NCASES);
@@ -320,7 +320,7 @@ static void species_ratio_runs(void **state) {
   if (!sanitize()) printf("# largest deviation %.2f %%\n", 100 * worst);
 
   /* one run: the error from the blocks of its window */
-  assert_int_equal(run_main(haff_fit_main, "haff-fit", "@mix.db", "--by-species", "--run", "1",
+  assert_int_equal(run_main(hd_cmd_haff_fit, "haff-fit", "@mix.db", "--by-species", "--run", "1",
                             "-o", "@one.tsv", NULL),
                    0);
   n = read_rows("one.tsv", rows, 32);
@@ -331,7 +331,7 @@ static void species_ratio_runs(void **state) {
 
   /* energy --by-species: one block per species of each ensemble, T_ratio summing to 1 */
   assert_int_equal(
-      run_main(haff_energy_main, "energy", "@mix.db", "--by-species", "-o", "@en.tsv", NULL), 0);
+      run_main(hd_cmd_energy, "energy", "@mix.db", "--by-species", "-o", "@en.tsv", NULL), 0);
   static char buf[1 << 22];
   read_file("en.tsv", buf, sizeof buf);
   int blocks = 0;

@@ -980,6 +980,8 @@ static void sweep_completion_offers_no_set(void **state) {
 /* the sweep file parser below the CLI: the fuzz target on its corpus and on edge inputs */
 
 #include <dirent.h>
+#include <ini.h>
+#include <stdbool.h>
 
 #include "fuzz/fuzz_sweep.c"
 
@@ -1020,6 +1022,49 @@ static void fuzz_sweep_corpus(void **state) {
     LLVMFuzzerTestOneInput((const uint8_t *)edge[k], strlen(edge[k]));
 }
 
+/* The sweep file parser on libinih (hd_sweepfile.c): a line far longer than libinih's default
+ * buffer (an axis of 20000 values, ~110 kB: on libinih's stack buffer it overflowed), a ';'
+ * inside quotes kept and one after a blank cut, a key with ':' before '=' refused (libinih would
+ * split it there), a NUL byte refused after the refusals of the lines before it, and libinih's
+ * process-wide settings as they were before (the scene parser relies on them). */
+static void sweep_parser_on_libinih(void **state) {
+  (void)state;
+  int max_line = ini_max_line, initial = ini_initial_alloc;
+  bool stack = ini_use_stack, inl = ini_allow_inline_comments, multi = ini_allow_multiline;
+  size_t cap = 200000, n = 0;
+  char *text = malloc(cap);
+  assert_non_null(text);
+  n += (size_t)snprintf(text + n, cap - n, "[sweep]\nscene = a.ini\n[axes]\na.b =");
+  for (int k = 0; k < 20000; k++) n += (size_t)snprintf(text + n, cap - n, " %d", k);
+  n += (size_t)snprintf(text + n, cap - n, "\nc.d = \"x ; y\" z ; a comment\n  e.f = 1#2 3 #4\n");
+  hd_sweepfile s;
+  hd_error err;
+  assert_int_equal(hd_sweepfile_parse(&s, text, n, "l.ini", &err), HD_OK);
+  assert_int_equal(s.nax, 3);
+  assert_int_equal(s.ax[0].n, 20000);
+  assert_string_equal(s.ax[0].v[19999], "19999");
+  assert_int_equal(s.ax[1].n, 2);
+  assert_string_equal(s.ax[1].v[0], "x ; y");
+  assert_string_equal(s.ax[1].v[1], "z");
+  assert_int_equal(s.ax[2].line, 6);
+  assert_int_equal(s.ax[2].n, 2);
+  assert_string_equal(s.ax[2].v[0], "1#2");
+  hd_sweepfile_free(&s);
+  free(text);
+  static const char colon[] = "[sweep]\nscene = a.ini\n[axes]\na:b = 1\n";
+  assert_int_equal(hd_sweepfile_parse(&s, colon, sizeof colon - 1, "c.ini", &err), HD_EINPUT);
+  assert_string_equal(err.msg, "c.ini:4: [axes]: 'a:b = 1': not KEY = VALUE");
+  static const char nul[] = "[sweep]\nscene = a.ini\n[grid]\n\0\n";
+  assert_int_equal(hd_sweepfile_parse(&s, nul, sizeof nul - 1, "n.ini", &err), HD_EINPUT);
+  assert_string_equal(err.msg, "n.ini:3: [grid]: unknown section (sweep, axes, points)");
+  assert_int_equal(hd_sweepfile_parse(&s, nul, 22, "n.ini", &err), HD_OK); /* before [grid] */
+  hd_sweepfile_free(&s);
+  assert_int_equal(ini_max_line, max_line);
+  assert_int_equal(ini_initial_alloc, initial);
+  assert_true(ini_use_stack == stack && ini_allow_inline_comments == inl &&
+              ini_allow_multiline == multi);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(progress_in_a_batch_log),
@@ -1044,6 +1089,7 @@ int main(void) {
       cmocka_unit_test(sweep_values_with_blanks),
       cmocka_unit_test(sweep_completion_offers_no_set),
       cmocka_unit_test(fuzz_sweep_corpus),
+      cmocka_unit_test(sweep_parser_on_libinih),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -1,4 +1,4 @@
-/* cli_common: the command-line plumbing shared by the analysis subcommands (cli_*.c):
+/* cli_common: the command-line plumbing shared by the analysis subcommands (cmd_*.c):
  * option parsing, output files and loading the per-run fits.  CLI code: may print to stderr. */
 #ifndef HD_CLI_COMMON_H
 #define HD_CLI_COMMON_H

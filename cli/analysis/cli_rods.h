@@ -1,4 +1,4 @@
-/* cli_rods: what the rod analyses share (cli_rods_*.c, one file per subcommand; docs/rods.md):
+/* cli_rods: what the rod analyses share (cmd_rods_*.c, one file per subcommand; docs/rods.md):
  * their option table, opening a rods run of a database, its snapshots and the cluster finder.
  * CLI code: says what went wrong on stderr as "haff CMD: ...". */
 #ifndef HD_CLI_RODS_H

@@ -267,13 +267,6 @@ void hd_kin_disk_vel(const hd_kin *k, const hd_shape *s, int which, double *vx, 
   *vy = k->vy + h * cs;
 }
 
-double hd_kin_energy(const hd_kin *k, const hd_shape *s) {
-  double e = 0.5 * hd_shape_mass(s) * (k->vx * k->vx + k->vy * k->vy);
-  if (s->tag != HD_KIND_DISK || s->inertia > 0.0) /* (a rough disk: hd_shape_set_q) */
-    e += 0.5 * hd_shape_inertia(s) * k->omega * k->omega;
-  return e;
-}
-
 /* ---- linear motion: closed form ----------------------------------------------------------- */
 
 int hd_predict_disks(double dx, double dy, double dvx, double dvy, double D, double vs, double tmax,

@@ -22,7 +22,7 @@
 
 #include <stdint.h>
 
-#define HD_MAX_BODY_DISKS 8 /* disks in one rigid body (the same as hd_scene.h's) */
+#define HD_MAX_BODY_DISKS 8 /* disks in one rigid body (a scene species' shape too: hd_scene.h) */
 
 /* The kind of a body: the one enumeration of kinds in every layer.  As a shape's tag (hd_shape,
  * derived by the constructors below) it is the fast path the shape takes: the paper's formulas
@@ -156,9 +156,6 @@ void hd_kin_disk_pos(const hd_kin *k, const hd_shape *s, int which, double *px, 
 
 /* Velocity of the centre of disk `which` of a body in state k. */
 void hd_kin_disk_vel(const hd_kin *k, const hd_shape *s, int which, double *vx, double *vy);
-
-/* Kinetic energy (translational + rotational) of a body. */
-double hd_kin_energy(const hd_kin *k, const hd_shape *s);
 
 /* What a search returns when a stop was requested (hd_stop.h) while it ran: it is unfinished,
  * and c->t is the time it reached, before which there is no contact.  Searches look at the stop

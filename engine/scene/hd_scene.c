@@ -2195,10 +2195,6 @@ static long bounded_line(FILE *fp, char *line, long max) {
   return ch == EOF && k == 0 ? -1 : k;
 }
 
-int hd_state_csv_read(const char *path, hd_state_row **rows, long *n, hd_error *err) {
-  return hd_state_csv_read_species(path, NULL, rows, n, err);
-}
-
 int hd_state_csv_read_species(const char *path, const hd_scene *sc, hd_state_row **rows, long *n,
                               hd_error *err) {
   *rows = NULL;

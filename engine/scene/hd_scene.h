@@ -5,6 +5,7 @@
 #ifndef HD_SCENE_H
 #define HD_SCENE_H
 
+#include "hd_body.h" /* HD_MAX_BODY_DISKS */
 #include "hd_error.h"
 
 #define HD_PATH_MAX 1024
@@ -45,8 +46,7 @@
 #define HD_SCENE_MAX_BYTES (1L << 20) /* largest scene file (a scene is ~1 kB) */
 #define HD_STATE_MAX_LINE 4096        /* longest line of a state CSV, in bytes */
 
-#define HD_MAX_SPECIES 8    /* species in one scene, [dimers] and [disks] included */
-#define HD_MAX_BODY_DISKS 8 /* disks in one rigid body */
+#define HD_MAX_SPECIES 8 /* species in one scene, [dimers] and [disks] included */
 #define HD_SPECIES_NAME_MAX 32
 
 /* One `[species NAME]` section: a rigid planar cluster of disks (issue 18, docs/scene-keys.md). */
@@ -264,14 +264,12 @@ typedef struct hd_state_row {
   long line; /* line number in the CSV, for messages */
 } hd_state_row;
 
-/* Reads a state CSV with header `kind,x,y,phi,vx,vy,omega`.  *rows is malloc'd (free()).
- * Errors name file and line. Overlaps are checked by the engine, which knows the shapes.
- * Bounded: HD_EINPUT for a path that is not a regular file (a FIFO, /dev/zero), a line longer
- * than HD_STATE_MAX_LINE or more rows than 2 HD_MAX_COUNT, before memory grows with them. */
-int hd_state_csv_read(const char *path, hd_state_row **rows, long *n, hd_error *err);
-
-/* As hd_state_csv_read, but `kind` may also be the name of one of sc's [species NAME] sections
- * (sc NULL: dimer and disk only, as hd_state_csv_read). */
+/* Reads a state CSV with header `kind,x,y,phi,vx,vy,omega` ([init] state): `kind` is dimer,
+ * disk or the name of one of sc's [species NAME] sections (sc NULL: dimer and disk only).
+ * *rows is malloc'd (free()).  Errors name file and line. Overlaps are checked by the engine,
+ * which knows the shapes.  Bounded: HD_EINPUT for a path that is not a regular file (a FIFO,
+ * /dev/zero), a line longer than HD_STATE_MAX_LINE or more rows than 2 HD_MAX_COUNT, before
+ * memory grows with them. */
 int hd_state_csv_read_species(const char *path, const hd_scene *sc, hd_state_row **rows, long *n,
                               hd_error *err);
 

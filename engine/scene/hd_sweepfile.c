@@ -1,16 +1,29 @@
 /* hd_sweepfile: see hd_sweepfile.h for the contract.
  *
- * Hand-written rather than libinih's: the file is read whole and parsed as len bytes, so that
- * a NUL byte is seen and named (libinih's line reader ends a line there and reads on), every
- * message has its line, and a value may be quoted ("linear 3"), which libinih does not know.
- * The syntax is the scene files' own (sections, KEY = VALUE, ; and # comments). */
+ * The lines are read by libinih (ini_parse_stream, the scene files' reader), with what libinih
+ * does not do done around it:
+ *   - a NUL byte: libinih's lines are C strings, so a NUL would end a line and the rest be read
+ *     on silently; the text is searched for one first, and the line holding it is refused by
+ *     name and line (after the lines before it, in file order as every other refusal);
+ *   - line numbers and [section] lines: libinih tells its handler neither, so its reader here
+ *     hands over one physical line per call, counts them, and checks every line before libinih
+ *     sees it (hd_sweepfile.h's syntax; a [section] known and alone on its line);
+ *   - quoted values ("linear 3"): libinih's inline comments are turned off for the parse (a ';'
+ *     inside quotes is a value), and the handler cuts a comment from libinih's raw value itself,
+ *     outside quotes; LISTs and points are split here (hd_sweep_split);
+ *   - long lines: an axis may list HD_SWEEP_MAX_VALUES values, so libinih's line buffer is put
+ *     on the heap and made as long as the longest line.
+ * libinih's settings are process globals (ini_max_line, ...): they are set for one parse and
+ * restored after it, so a sweep file and a scene must not be parsed by two threads at once. */
 #include "hd_sweepfile.h"
 
 #include <ctype.h>
 #include <errno.h>
+#include <ini.h>
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -242,37 +255,9 @@ static int parse_list(hd_sweep_axis *a, const char *sec, char *val, int seeds, c
   return rc;
 }
 
-/* One line (NUL-terminated copy, no \n) of the file: its section *sec updated. */
-static int one_line(hd_sweepfile *s, char *buf, long line, char *sec, size_t secsize,
-                    const char *name, hd_error *err) {
-  for (const char *c = buf; *c; c++)
-    if (((unsigned char)*c < 0x20 && *c != '\t' && *c != '\r') || *c == 0x7f)
-      return bad(err, name, line, sec, NULL, "a control character (byte 0x%02x): not a text line",
-                 (unsigned)(unsigned char)*c);
-  char *p = trim(buf);
-  if (!*p || *p == ';' || *p == '#') return HD_OK;
-  if (*p == '[') {
-    char *close = strchr(p, ']');
-    if (!close || *trim(close + 1)) return bad(err, name, line, p, NULL, "not a [section] line");
-    *close = '\0';
-    snprintf(sec, secsize, "%s", trim(p + 1));
-    if (strcmp(sec, "sweep") && strcmp(sec, "axes") && strcmp(sec, "points"))
-      return bad(err, name, line, sec, NULL, "unknown section (sweep, axes, points)");
-    return HD_OK;
-  }
-  char *eq = strchr(p, '=');
-  if (!eq) return bad(err, name, line, sec, NULL, "'%s': not KEY = VALUE", p);
-  *eq = '\0';
-  char *key = trim(p), *val = eq + 1;
-  int q = 0; /* an inline comment: ; or # after a blank, outside quotes */
-  for (char *c = val; *c; c++) {
-    if (*c == '"') q = !q;
-    if (!q && (*c == ';' || *c == '#') && c > val && isspace((unsigned char)c[-1])) {
-      *c = '\0';
-      break;
-    }
-  }
-  val = trim(val);
+/* One KEY = VALUE of section sec at line (key and val trimmed, the comment cut). */
+static int one_key(hd_sweepfile *s, const char *sec, const char *key, char *val, long line,
+                   const char *name, hd_error *err) {
   if (!sec[0]) return bad(err, name, line, "", key, "a key before any [section]");
   if (!strcmp(sec, "sweep")) {
     if (!strcmp(key, "scene")) {
@@ -329,40 +314,143 @@ static int one_line(hd_sweepfile *s, char *buf, long line, char *sec, size_t sec
   return HD_OK;
 }
 
+/* One parse: the text, the line being read, its section, the first refusal (parsing stops). */
+typedef struct sweep_ctx {
+  hd_sweepfile *s;
+  const char *p, *end; /* text not yet read; end: the start of the line with a NUL byte, or the
+                          end of the text */
+  long line;           /* the line read last (1-based) */
+  char sec[64];        /* its section ("" before the first) */
+  const char *name;
+  hd_error *err;
+  int rc;
+} sweep_ctx;
+
+/* A key = value line (libinih's handler): the value is libinih's raw one (blanks trimmed, no
+ * comment removed: libinih's inline comments are off, it does not know quotes), from which a
+ * comment is cut here, outside quotes. */
+static int on_key(void *user, const char *section, const char *name, const char *value) {
+  (void)section; /* c->sec, checked by the reader (libinih truncates long names) */
+  sweep_ctx *c = user;
+  if (c->rc) return 1;
+  hd_sweepfile *s = c->s;
+  const char *sec = c->sec, *key = name;
+  long line = c->line;
+  const char *nm = c->name;
+  hd_error *err = c->err;
+  char *val = strdup(value);
+  if (!val) return c->rc = bad(err, nm, line, sec, key, "out of memory"), 1;
+  int q = 0; /* an inline comment: ; or # at the value's start or after a blank, outside quotes */
+  for (char *p = val; *p; p++) {
+    if (*p == '"') q = !q;
+    if (!q && (*p == ';' || *p == '#') && (p == val || isspace((unsigned char)p[-1]))) {
+      *p = '\0';
+      break;
+    }
+  }
+  c->rc = one_key(s, sec, key, trim(val), line, nm, err);
+  free(val);
+  return 1;
+}
+
+/* fgets-like reader for ini_parse_stream: one physical line per call, counted, checked before
+ * libinih sees it: no control character, a [section] line known and alone on its line, any
+ * other line blank, a comment or KEY = VALUE with '=' (libinih also takes ':').  Leading blanks
+ * are dropped (libinih would take an indented line for a continuation of the previous value).
+ * NULL at the end or at the first refusal (in c->rc). */
+static char *reader(char *str, int num, void *stream) {
+  sweep_ctx *c = stream;
+  if (c->rc || c->p >= c->end) return NULL;
+  const char *s = c->p;
+  const char *nl = memchr(s, '\n', (size_t)(c->end - s));
+  size_t n = nl ? (size_t)(nl - s) : (size_t)(c->end - s);
+  c->p = nl ? nl + 1 : c->end;
+  c->line++;
+  for (size_t k = 0; k < n; k++)
+    if (((unsigned char)s[k] < 0x20 && s[k] != '\t' && s[k] != '\r') || s[k] == 0x7f) {
+      c->rc =
+          bad(c->err, c->name, c->line, c->sec, NULL,
+              "a control character (byte 0x%02x): not a text line", (unsigned)(unsigned char)s[k]);
+      return NULL;
+    }
+  while (n > 0 && isspace((unsigned char)*s)) s++, n--;
+  if (n + 2 > (size_t)num) { /* cannot happen: ini_max_line is set to the longest line */
+    c->rc = bad(c->err, c->name, c->line, c->sec, NULL, "line too long");
+    return NULL;
+  }
+  memcpy(str, s, n);
+  str[n] = '\n';
+  str[n + 1] = '\0';
+  char *p = malloc(n + 1);
+  if (!p) {
+    c->rc = bad(c->err, c->name, c->line, c->sec, NULL, "out of memory");
+    return NULL;
+  }
+  memcpy(p, s, n);
+  p[n] = '\0';
+  char *t = trim(p);
+  if (*t == '[') {
+    char *close = strchr(t, ']');
+    if (!close || *trim(close + 1))
+      c->rc = bad(c->err, c->name, c->line, t, NULL, "not a [section] line");
+    else {
+      *close = '\0';
+      snprintf(c->sec, sizeof c->sec, "%s", trim(t + 1));
+      if (strcmp(c->sec, "sweep") && strcmp(c->sec, "axes") && strcmp(c->sec, "points"))
+        c->rc =
+            bad(c->err, c->name, c->line, c->sec, NULL, "unknown section (sweep, axes, points)");
+    }
+  } else if (*t && *t != ';' && *t != '#' && *(t + strcspn(t, "=:")) != '=') {
+    c->rc = bad(c->err, c->name, c->line, c->sec, NULL, "'%s': not KEY = VALUE", t);
+  }
+  free(p);
+  return c->rc ? NULL : str;
+}
+
 int hd_sweepfile_parse(hd_sweepfile *s, const char *text, size_t len, const char *name,
                        hd_error *err) {
   memset(s, 0, sizeof *s);
   if (!name) name = "sweep";
-  size_t at = 0;
-  if (len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3)) at = 3; /* a UTF-8 byte order mark */
-  char sec[64] = "";
-  long line = 0;
-  int rc = HD_OK;
-  char *buf = NULL;
-  size_t cap = 0;
-  while (!rc && at < len) {
-    line++;
-    const char *nl = memchr(text + at, '\n', len - at);
-    size_t n = nl ? (size_t)(nl - (text + at)) : len - at;
-    if (memchr(text + at, '\0', n)) {
-      rc = bad(err, name, line, sec, NULL, "a NUL byte: not a text file");
+  if (len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3)) text += 3, len -= 3; /* a UTF-8 BOM */
+  sweep_ctx c = {.s = s, .p = text, .end = text + len, .name = name, .err = err};
+  /* a NUL byte ends libinih's lines without a word: the text is read up to the line that holds
+   * the first one, which is refused there (after any refusal of the lines before it) */
+  const char *nul = memchr(text, '\0', len);
+  long nul_line = 0;
+  size_t longest = 0;
+  for (const char *p = text; p < text + len;) {
+    const char *nl = memchr(p, '\n', (size_t)(text + len - p));
+    const char *e = nl ? nl : text + len;
+    nul_line++;
+    if (nul && nul < e + 1) {
+      c.end = p;
       break;
     }
-    if (n + 1 > cap) {
-      char *b = realloc(buf, n + 1);
-      if (!b) {
-        rc = bad(err, name, line, sec, NULL, "out of memory");
-        break;
-      }
-      buf = b;
-      cap = n + 1;
-    }
-    memcpy(buf, text + at, n);
-    buf[n] = '\0';
-    rc = one_line(s, buf, line, sec, sizeof sec, name, err);
-    at += n + (nl ? 1 : 0);
+    if ((size_t)(e - p) > longest) longest = (size_t)(e - p);
+    p = e + 1;
   }
-  free(buf);
+  /* libinih's settings for this parse (its globals; the scene parser's are restored after):
+   * the line buffer on the heap and as long as the longest line, no inline comments (a quoted
+   * value may hold ';'), no continuation lines */
+  int max_line = ini_max_line, initial = ini_initial_alloc;
+  bool stack = ini_use_stack, inline_comments = ini_allow_inline_comments,
+       multiline = ini_allow_multiline;
+  if (longest > (size_t)HD_SWEEP_MAX_BYTES) longest = (size_t)HD_SWEEP_MAX_BYTES;
+  ini_max_line = ini_initial_alloc = (int)longest + 3;
+  ini_use_stack = false;
+  ini_allow_inline_comments = false;
+  ini_allow_multiline = false;
+  int r = ini_parse_stream(reader, &c, on_key, &c);
+  ini_max_line = max_line, ini_initial_alloc = initial;
+  ini_use_stack = stack, ini_allow_inline_comments = inline_comments;
+  ini_allow_multiline = multiline;
+  int rc = c.rc;
+  if (!rc && r < 0)
+    rc = bad(err, name, c.line, c.sec, NULL, "out of memory");
+  else if (!rc && r > 0) /* the reader let only well-formed lines through */
+    rc = bad(err, name, r, c.sec, NULL, "not a sweep file line");
+  if (!rc && nul) rc = bad(err, name, nul_line, c.sec, NULL, "a NUL byte: not a text file");
+  long line = c.line;
   if (!rc && !s->scene_line) rc = bad(err, name, line, "sweep", "scene", "missing: the base scene");
   if (!rc && s->nax && s->npoints)
     rc = bad(err, name, s->pt_line[0], "points", "point",

@@ -8,9 +8,10 @@
  *
  * A LIST is values separated by blanks, or a range FROM:TO:STEP (TO included).  A value with
  * blanks is written in double quotes ("linear 3"), in a LIST and in a point (S.K="linear 3").
- * Comments: a line starting with ; or #, and ; or # after a blank.  A UTF-8 byte order mark at
- * the start is skipped; lines end with \n or \r\n; a NUL byte or another control character
- * (but tab) is refused.  Every refusal is one line "NAME:LINE: [section] key: why". */
+ * Comments: a line starting with ; or #, and ; or # at the start of a value or after a blank
+ * (outside double quotes).  A UTF-8 byte order mark at the start is skipped; lines end with \n
+ * or \r\n; a NUL byte or another control character (but tab) is refused.  Every refusal is one
+ * line "NAME:LINE: [section] key: why".  Read with libinih (hd_sweepfile.c says how). */
 #ifndef HD_SWEEPFILE_H
 #define HD_SWEEPFILE_H
 

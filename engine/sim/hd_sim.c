@@ -321,17 +321,6 @@ void hd_sim_energy(const hd_sim *s, int sp, double *e_tr, double *e_rot) {
   *e_rot = rot;
 }
 
-void hd_sim_momentum(const hd_sim *s, double *px, double *py) {
-  double x = 0.0, y = 0.0;
-  for (int32_t i = 0; i < s->n; i++) {
-    double m = hd_shape_mass(&s->shape[s->b[i].species]);
-    x += m * s->b[i].k.vx;
-    y += m * s->b[i].k.vy;
-  }
-  *px = x;
-  *py = y;
-}
-
 /* Largest relative overlap (D - dist)/D between any disks of bodies i and j (j shifted). */
 static double pair_overlap(const hd_sim *s, const hd_kin *ki, const hd_shape *si, const hd_kin *kj,
                            const hd_shape *sj) {

@@ -1,9 +1,9 @@
-/* hd_sim: the event-driven engine.  Bodies (disks and dimers) in a 2D box, periodic in every
- * direction that no wall closes.  One event per body in the event queue (hd_queue.h, a
- * calendar queue): the earliest of its predicted contacts, its wall contacts and its next cell
- * crossing.  Bodies are
- * advanced lazily (each keeps the time of its own state) and the time origin is rebased every
- * `rebase_every` events, so precision does not decay over long runs.
+/* hd_sim: the event-driven engine.  Rigid bodies of 1 to HD_MAX_BODY_DISKS disks (the scene's
+ * species: [dimers], [disks] and every [species NAME], hd_body.h's shapes) in a 2D box,
+ * periodic in every direction that no wall closes.  One event per body in the event queue
+ * (hd_queue.h, a calendar queue): the earliest of its predicted contacts, its wall contacts and its
+ * next cell crossing.  Bodies are advanced lazily (each keeps the time of its own state) and the
+ * time origin is rebased every `rebase_every` events, so precision does not decay over long runs.
  *
  * Invalidation: every velocity change bumps a body's ncoll; a pair event remembers the partner's
  * ncoll and is stale when it differs.  Cell crossings do not change velocities and invalidate
@@ -216,10 +216,6 @@ typedef struct hd_state_measures {
  * does not change the simulation.  NaN where undefined (no body, no motion). */
 void hd_sim_state(const hd_sim *s, hd_state_measures *out);
 
-/* Total momentum and angular momentum about the origin (unwrapped positions not tracked, so the
- * angular momentum is meaningful only without walls or for spin). */
-void hd_sim_momentum(const hd_sim *s, double *px, double *py);
-
 /* Checks every pair of nearby bodies for overlap at the current time: returns the largest
  * relative overlap (D - |r|)/D found (<= 0 when none), with the pair in *i, *j. O(N). */
 double hd_sim_max_overlap(const hd_sim *s, int32_t *i, int32_t *j);
@@ -228,7 +224,7 @@ double hd_sim_max_overlap(const hd_sim *s, int32_t *i, int32_t *j);
 int hd_sim_checkpoint(const hd_sim *s, void **blob, size_t *n, hd_error *err);
 
 /* Whether blob (n bytes, a model blob as hd_sim_checkpoint makes it) is of a format that is
- * only ever stored with the runner's checksum trailer (engine/run/hd_run.c): HAFFCKP2, every
+ * only ever stored with the runner's checksum trailer (run/hd_run.c): HAFFCKP2, every
  * version since the species table.  Such a blob found without its trailer has lost it (a
  * truncation, a hand edit) and is damaged; only a first-version blob (HAFFCKP1) may lack it. */
 int hd_sim_checkpoint_needs_trailer(const void *blob, size_t n);

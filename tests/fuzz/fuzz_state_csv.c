@@ -1,7 +1,7 @@
-/* libFuzzer harness: the state CSV reader (hd_state_csv_read) on arbitrary bytes, given to it
- * as a file in memory (memfd; nothing is written to disk).  Every row it returns must hold
- * finite numbers, a known kind and an increasing line number; a refusal must say why on one
- * printable line.  Built and run by `make fuzz`. */
+/* libFuzzer harness: the state CSV reader (hd_state_csv_read_species, no scene) on arbitrary
+ * bytes, given to it as a file in memory (memfd; nothing is written to disk).  Every row it returns
+ * must hold finite numbers, a known kind and an increasing line number; a refusal must say why on
+ * one printable line.  Built and run by `make fuzz`. */
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -28,7 +28,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   long n = 0;
   hd_error err;
   hd_error_clear(&err);
-  int rc = hd_state_csv_read(path, &rows, &n, &err);
+  int rc = hd_state_csv_read_species(path, NULL, &rows, &n, &err);
   if (rc == HD_OK) {
     if (n <= 0 || !rows) abort();
     for (long i = 0; i < n; i++) {

@@ -101,12 +101,6 @@ int hd_opt_parse(const hd_optspec *spec, int argc, char **argv, void *dest, hd_o
  * the input x.db (the same file): nothing written". */
 int hd_opt_check_outputs(const hd_optspec *spec, const hd_optres *res, const void *dest);
 
-/* Whether writing the file out would destroy the file in: 1 when they are the same file (by
- * device and inode when both exist, whatever symbolic or hard link leads there; else the same
- * path once the folder is resolved by realpath), or when out is one of the files SQLite keeps
- * beside a database in (in-wal, in-shm, in-journal), which hold its newest rows; else 0. */
-int hd_path_overwrites(const char *out, const char *in);
-
 /* The one number parser: reads s as the value of option d by its range and rules, into *x
  * (kind HD_ARG_DOUBLE) or *i (HD_ARG_INT).  Returns 0, or 2 after printing one line on stderr
  * that names the option, the value and what was expected, e.g.

@@ -58,7 +58,7 @@ static int parse_list(const char *cmd, const hd_optdef *d, const char *s, double
   return n;
 }
 
-const hd_optspec haff_rods_collapse_spec = {
+const hd_optspec hd_cmd_rods_collapse_spec = {
     HD_OPT_SPEC("rods-collapse", collapse_opts, 0, 0, 0, NULL),
     .head = "usage: haff rods-collapse [--n LIST] [--eps LIST] [--seeds K] [--cpd C] [--gamma G]\n"
             "Scans the constant-eps ring for inelastic collapse: for every N in LIST "
@@ -69,10 +69,10 @@ const hd_optspec haff_rods_collapse_spec = {
             "median_cpd_at_collapse.\n"
             "Masses alternate with ratio G [1: equal masses, as in McNamara and Young].\n"};
 
-int haff_rods_collapse_main(int argc, char **argv) {
+int hd_cmd_rods_collapse(int argc, char **argv) {
   copts o = {"4,8,16,32,64,128", "0.3,0.5,0.7,0.8,0.9,0.95", 4, 2000, 1};
   hd_optres res;
-  int rc = hd_opt_parse(&haff_rods_collapse_spec, argc, argv, &o, &res);
+  int rc = hd_opt_parse(&hd_cmd_rods_collapse_spec, argc, argv, &o, &res);
   if (rc) return rc < 0 ? 0 : rc;
   const char *nl = o.nl, *el = o.el;
   long seeds = o.seeds;

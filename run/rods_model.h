@@ -1,4 +1,4 @@
-/* The ring of rods as a model of the runner (engine/run/rods_model.c; hd_model.h). */
+/* The ring of rods as a model of the runner (run/rods_model.c; hd_model.h). */
 #ifndef HD_RODS_MODEL_H
 #define HD_RODS_MODEL_H
 

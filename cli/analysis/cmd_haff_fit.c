@@ -8,7 +8,7 @@
 #include "haff.h"
 #include "hd_rough.h"
 
-const hd_optspec haff_fit_spec = {
+const hd_optspec hd_cmd_haff_fit_spec = {
     HD_CLI_SPEC("haff-fit", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_GROUP | HD_OPT_SPECIES),
     .head =
         "usage: haff haff-fit DB [--run ID | --all] [--alpha-group | --by-species] [fit options]\n"
@@ -67,9 +67,9 @@ static int rot_ratio(sqlite3 *db, const hd_run_fit *f, double *r, double *err, d
   return HD_OK;
 }
 
-int haff_fit_main(int argc, char **argv) {
+int hd_cmd_haff_fit(int argc, char **argv) {
   hd_cli_args a;
-  int rc = hd_cli_parse(&haff_fit_spec, argc, argv, &a);
+  int rc = hd_cli_parse(&hd_cmd_haff_fit_spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   if (a.by_species && a.group) {
     fprintf(stderr,

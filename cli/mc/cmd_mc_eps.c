@@ -58,7 +58,7 @@ static const hd_optdef eps_opts[] = {
     {0}};
 #undef NUM
 
-const hd_optspec hd_mc_eps_spec = {
+const hd_optspec hd_cmd_mc_eps_spec = {
     HD_OPT_SPEC("mc eps", eps_opts, 0, 0, 0, NULL),
     .head = "usage: haff mc eps --gamma G [--beta B] [--beta2 B2] [--samples N] [--seed K]\n"
             "                   [--step H] [--adapt A] [--richardson] [--dump FILE]\n"
@@ -294,17 +294,17 @@ static int eps_check(const hd_optres *res, const eopts *e) {
     return 2;
   }
   if (e->tab)
-    return hd_opt_refuse(&hd_mc_eps_spec, res, NULL, "beta beta2 dump convergence",
+    return hd_opt_refuse(&hd_cmd_mc_eps_spec, res, NULL, "beta beta2 dump convergence",
                          "with --tabulate");
   if (e->conv)
-    return hd_opt_refuse(&hd_mc_eps_spec, res, NULL,
+    return hd_opt_refuse(&hd_cmd_mc_eps_spec, res, NULL,
                          "dump adapt richardson db beta-min beta-max nbeta nu",
                          "with --convergence");
-  return hd_opt_refuse(&hd_mc_eps_spec, res, NULL, "db beta-min beta-max nbeta nu",
+  return hd_opt_refuse(&hd_cmd_mc_eps_spec, res, NULL, "db beta-min beta-max nbeta nu",
                        "without --tabulate");
 }
 
-int hd_mc_eps_main(int argc, char **argv) {
+int hd_cmd_mc_eps(int argc, char **argv) {
   eopts e = {.gamma = NAN,
              .beta = 1,
              .beta2 = NAN,
@@ -317,7 +317,7 @@ int hd_mc_eps_main(int argc, char **argv) {
              .nu = 129};
   hd_eps_opts_default(&e.o);
   hd_optres res;
-  int rc = hd_opt_parse(&hd_mc_eps_spec, argc, argv, &e, &res);
+  int rc = hd_opt_parse(&hd_cmd_mc_eps_spec, argc, argv, &e, &res);
   if (rc) return rc < 0 ? 0 : rc;
   if ((rc = eps_check(&res, &e))) return rc;
   double gamma = e.gamma, beta = e.beta, beta2 = e.beta2, bmin = e.bmin, bmax = e.bmax;

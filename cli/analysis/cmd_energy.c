@@ -79,7 +79,7 @@ static int write_block(FILE *out, sqlite3 *db, const hd_run_fit *fits, const hd_
   return rc;
 }
 
-const hd_optspec haff_energy_spec = {
+const hd_optspec hd_cmd_energy_spec = {
     HD_CLI_SPEC("energy", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_SPECIES),
     .head =
         "usage: haff energy DB [--run ID | --all] [--by-species] [fit options] [-o FILE]\n"
@@ -97,13 +97,13 @@ const hd_optspec haff_energy_spec = {
         "averaged over the runs sample by sample: t cpd e_tr e_rot T_ratio=e_tr/T K=e_tr/e_rot\n"
         "hcs (1 inside every run's HCS window); T = sum_j x_j e_tr_j\n"};
 
-int haff_energy_main(int argc, char **argv) {
+int hd_cmd_energy(int argc, char **argv) {
   hd_cli_args a;
-  int rc = hd_cli_parse(&haff_energy_spec, argc, argv, &a);
+  int rc = hd_cli_parse(&hd_cmd_energy_spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   if (a.by_species) return hd_cli_species_energy(&a, argv[0]);
   hd_cli_set s;
-  rc = hd_cli_groups(&haff_energy_spec, argc, argv, &a, &s);
+  rc = hd_cli_groups(&hd_cmd_energy_spec, argc, argv, &a, &s);
   if (rc) return rc < 0 ? 0 : rc;
   hd_error err;
   FILE *out = hd_cli_out(&a);

@@ -46,7 +46,7 @@ typedef struct hd_model_ops {
 /* The model that runs scene sc. */
 const hd_model_ops *hd_model_for_scene(const hd_scene *sc);
 
-/* The 2D bodies engine (hd_sim) as a model: engine/run/hd_model_sim.c. */
+/* The 2D bodies engine (hd_sim) as a model: run/hd_model_sim.c. */
 extern const hd_model_ops hd_model_bodies2d;
 
 #endif

@@ -33,7 +33,7 @@ static const hd_optdef rate_opts[] = {
                "gsl_rng_mt19937 seed (default 1)"),
     {0}};
 
-const hd_optspec hd_mc_rate_spec = {
+const hd_optspec hd_cmd_mc_rate_spec = {
     HD_OPT_SPEC("mc rate", rate_opts, 0, 0, 0, NULL),
     .head = "usage: haff mc rate --a A [--d D] [--samples N | --seconds S] [--seed K]\n"
             "       haff mc rate --disks 'X Y D M; ...' [--samples N | --seconds S] [--seed K]\n"
@@ -48,16 +48,16 @@ const hd_optspec hd_mc_rate_spec = {
             "Output (TSV, one header row): a_over_d ratio ratio_err samples accepted seconds\n"
             "(a_over_d empty with --disks; ratio_err = sd/sqrt(samples); disks: ratio 1).\n"};
 
-int hd_mc_rate_main(int argc, char **argv) {
+int hd_cmd_mc_rate(int argc, char **argv) {
   ropts o = {.a = NAN, .d = 1.0, .seed = 1};
   hd_optres res;
-  int rc = hd_opt_parse(&hd_mc_rate_spec, argc, argv, &o, &res);
+  int rc = hd_opt_parse(&hd_cmd_mc_rate_spec, argc, argv, &o, &res);
   if (rc) return rc < 0 ? 0 : rc;
   if (o.samples && o.seconds > 0) {
     fprintf(stderr, "haff mc rate: give --samples or --seconds, not both\n");
     return 2;
   }
-  if (hd_opt_refuse(&hd_mc_rate_spec, &res, "disks", "a d", "with --disks")) return 2;
+  if (hd_opt_refuse(&hd_cmd_mc_rate_spec, &res, "disks", "a d", "with --disks")) return 2;
   if (!o.disks && isnan(o.a)) {
     fprintf(stderr, "haff mc rate: --a A is required (or --disks SPEC)\n");
     return 2;

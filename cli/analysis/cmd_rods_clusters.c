@@ -7,7 +7,7 @@
 #include "cli_rods.h"
 #include "haff.h"
 
-const hd_optspec haff_rods_clusters_spec = {
+const hd_optspec hd_cmd_rods_clusters_spec = {
     HD_RCLI_SPEC("rods-clusters", HD_RCLI_RUN | HD_RCLI_GAP | HD_RCLI_MIN),
     .head =
         "usage: haff rods-clusters DB [--run ID] [--gap G] [--min-size M]\n"
@@ -37,6 +37,6 @@ static int clusters(const char *cmd, const ropts *o, rrun *r, const double *ts, 
   return 0;
 }
 
-int haff_rods_clusters_main(int argc, char **argv) {
-  return hd_rcli_main_series(&haff_rods_clusters_spec, argc, argv, 0, clusters);
+int hd_cmd_rods_clusters(int argc, char **argv) {
+  return hd_rcli_main_series(&hd_cmd_rods_clusters_spec, argc, argv, 0, clusters);
 }

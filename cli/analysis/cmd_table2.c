@@ -6,7 +6,7 @@
 #include "cli_common.h"
 #include "haff.h"
 
-const hd_optspec haff_table2_spec = {
+const hd_optspec hd_cmd_table2_spec = {
     HD_CLI_SPEC("table2", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD | HD_OPT_KCI),
     .head =
         "usage: haff table2 DB [--md] [--keep-flagged] [--k-ci ac|ols|runs] [--cpd-min-k X] [fit "
@@ -18,12 +18,12 @@ const hd_optspec haff_table2_spec = {
         "flow the state measures see; docs/analysis.md, \"Errors of K\"; empty when not\n"
         "measured.  Runs that table1 rejects as near-collapse outliers are left out of K too)\n"};
 
-int haff_table2_main(int argc, char **argv) {
+int hd_cmd_table2(int argc, char **argv) {
   hd_cli_args a;
   hd_cli_set s;
   FILE *out;
   int rc = hd_cli_table_start(
-      &haff_table2_spec, argc, argv, 0,
+      &hd_cmd_table2_spec, argc, argv, 0,
       "no dimer run to fit (K = E_tr/E_rot needs rotation; dimers alone in a periodic box)", &a, &s,
       &out);
   if (rc) return rc < 0 ? 0 : rc;

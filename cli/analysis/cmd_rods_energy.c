@@ -10,7 +10,7 @@
 #include "hd_anadb.h"
 #include "haff.h"
 
-const hd_optspec haff_rods_energy_spec = {
+const hd_optspec hd_cmd_rods_energy_spec = {
     HD_RCLI_SPEC("rods-energy", HD_RCLI_RUN),
     .head =
         "usage: haff rods-energy DB [--run ID]\n"
@@ -20,10 +20,10 @@ const hd_optspec haff_rods_energy_spec = {
         "e_kin_stat = the equipartition value (docs/rods.md); coll_ideal and coll_eq35: the\n"
         "stationary collision count rate*t from the 1D ideal gas and from the paper's eq. (35).\n"};
 
-int haff_rods_energy_main(int argc, char **argv) {
+int hd_cmd_rods_energy(int argc, char **argv) {
   ropts o;
   rrun r;
-  int rc = hd_rcli_start(&haff_rods_energy_spec, argc, argv, 0, &o, &r);
+  int rc = hd_rcli_start(&hd_cmd_rods_energy_spec, argc, argv, 0, &o, &r);
   if (rc) return rc < 0 ? 0 : rc;
   const hd_scene *sc = &r.sc;
   long N = sc->n_rods, nmod = sc->rod_nmod;

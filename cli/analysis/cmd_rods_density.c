@@ -8,7 +8,7 @@
 #include "cli_common.h" /* hd_cli_num */
 #include "haff.h"
 
-const hd_optspec haff_rods_density_spec = {
+const hd_optspec hd_cmd_rods_density_spec = {
     HD_RCLI_SPEC("rods-density", HD_RCLI_RUN | HD_RCLI_BINS | HD_RCLI_T),
     .head =
         "usage: haff rods-density DB [--run ID] [--bins N] [--t T]\n"
@@ -54,6 +54,6 @@ static int density(const char *cmd, const ropts *o, rrun *r, const double *ts, l
   return 0;
 }
 
-int haff_rods_density_main(int argc, char **argv) {
-  return hd_rcli_main_series(&haff_rods_density_spec, argc, argv, 100, density);
+int hd_cmd_rods_density(int argc, char **argv) {
+  return hd_rcli_main_series(&hd_cmd_rods_density_spec, argc, argv, 100, density);
 }

@@ -111,7 +111,7 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
   return rc;
 }
 
-const hd_optspec haff_veldist_spec = {
+const hd_optspec hd_cmd_veldist_spec = {
     HD_CLI_SPEC("veldist", HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT),
     .head =
         "usage: haff veldist DB --run ID [--stats] [--bins B] [--range X] [--label L] [-o FILE]\n"
@@ -123,11 +123,11 @@ const hd_optspec haff_veldist_spec = {
         "by a line whose first field is its legend title 'cpd=X'.\n"
         "Columns: snap cpd c p_vx p_vy p_omega gauss   (p_omega NaN for disks)\n"};
 
-int haff_veldist_main(int argc, char **argv) {
+int hd_cmd_veldist(int argc, char **argv) {
   hd_cli_args a;
   sqlite3 *db;
   hd_run_info ri;
-  int rc = hd_cli_parse(&haff_veldist_spec, argc, argv, &a);
+  int rc = hd_cli_parse(&hd_cmd_veldist_spec, argc, argv, &a);
   if (rc) return rc < 0 ? 0 : rc;
   if (a.pool) {
     if (a.stats) {
@@ -136,7 +136,7 @@ int haff_veldist_main(int argc, char **argv) {
     }
     return veldist_pool(&a, argv[0]);
   }
-  rc = hd_cli_one_run(&haff_veldist_spec, argc, argv, &a, &db, &ri);
+  rc = hd_cli_one_run(&hd_cmd_veldist_spec, argc, argv, &a, &db, &ri);
   if (rc) return rc < 0 ? 0 : rc;
   if (ri.species == HD_KIND_ROD) {
     hd_ana_close(db);

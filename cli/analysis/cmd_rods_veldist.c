@@ -8,7 +8,7 @@
 #include "cli_common.h" /* hd_cli_num */
 #include "haff.h"
 
-const hd_optspec haff_rods_veldist_spec = {
+const hd_optspec hd_cmd_rods_veldist_spec = {
     HD_RCLI_SPEC("rods-veldist", HD_RCLI_RUN | HD_RCLI_T | HD_RCLI_BINS | HD_RCLI_GAP | HD_RCLI_X),
     .head =
         "usage: haff rods-veldist DB [--run ID] [--t T] [--bins N] [--gap G] [--x X]\n"
@@ -82,6 +82,6 @@ static int veldist(const char *cmd, const ropts *o, const rrun *r, const rsnap *
   return 0;
 }
 
-int haff_rods_veldist_main(int argc, char **argv) {
-  return hd_rcli_main_at(&haff_rods_veldist_spec, argc, argv, 40, veldist);
+int hd_cmd_rods_veldist(int argc, char **argv) {
+  return hd_rcli_main_at(&hd_cmd_rods_veldist_spec, argc, argv, 40, veldist);
 }

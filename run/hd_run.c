@@ -22,9 +22,6 @@ static void on_signal(int sig) {
   (void)sig;
   hd_stop_requested = 1;
 }
-void hd_run_request_stop(void) {
-  hd_stop_requested = 1;
-}
 
 /* Runner state that a checkpoint carries besides the engine's. */
 typedef struct run_state {

@@ -7,7 +7,7 @@
 #include "cli_rods.h"
 #include "haff.h"
 
-const hd_optspec haff_rods_gofr_spec = {
+const hd_optspec hd_cmd_rods_gofr_spec = {
     HD_RCLI_SPEC("rods-gofr", HD_RCLI_RUN | HD_RCLI_T | HD_RCLI_BINS | HD_RCLI_RANGE),
     .head =
         "usage: haff rods-gofr DB [--run ID] [--t T] [--bins N] [--range X]\n"
@@ -37,6 +37,6 @@ static int gofr(const char *cmd, const ropts *o, const rrun *r, const rsnap *s) 
   return 0;
 }
 
-int haff_rods_gofr_main(int argc, char **argv) {
-  return hd_rcli_main_at(&haff_rods_gofr_spec, argc, argv, 200, gofr);
+int hd_cmd_rods_gofr(int argc, char **argv) {
+  return hd_rcli_main_at(&hd_cmd_rods_gofr_spec, argc, argv, 200, gofr);
 }

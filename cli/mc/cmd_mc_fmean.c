@@ -57,7 +57,7 @@ static const hd_optdef fmean_opts[] = {
                "a_over_d is then nan"),
     {0}};
 
-const hd_optspec hd_mc_fmean_spec = {
+const hd_optspec hd_cmd_mc_fmean_spec = {
     HD_OPT_SPEC("mc fmean", fmean_opts, 0, 0, 0, NULL),
     .head = "usage: haff mc fmean --a A [--d D] [--model heuristic|exclusion|collision|all]\n"
             "                     [--samples N | --seconds S] [--seed K] [--dim DIM]\n"
@@ -126,15 +126,15 @@ static int fmean_check(const hd_optres *res, const fopts *o) {
     fprintf(stderr, "haff mc fmean: give --samples or --seconds, not both\n");
     return 2;
   }
-  if (hd_opt_refuse(&hd_mc_fmean_spec, res, "convergence", "model scan fig4-data dim",
+  if (hd_opt_refuse(&hd_cmd_mc_fmean_spec, res, "convergence", "model scan fig4-data dim",
                     "with --convergence") ||
-      hd_opt_refuse(&hd_mc_fmean_spec, res, "fig4-data",
+      hd_opt_refuse(&hd_cmd_mc_fmean_spec, res, "fig4-data",
                     "model samples seconds seed scan convergence dim", "with --fig4-data") ||
-      hd_opt_refuse(&hd_mc_fmean_spec, res, "scan", "a fig4-data convergence", "with --scan") ||
-      hd_opt_refuse(&hd_mc_fmean_spec, res, "disks", "a d scan convergence fig4-data",
+      hd_opt_refuse(&hd_cmd_mc_fmean_spec, res, "scan", "a fig4-data convergence", "with --scan") ||
+      hd_opt_refuse(&hd_cmd_mc_fmean_spec, res, "disks", "a d scan convergence fig4-data",
                     "with --disks"))
     return 2;
-  if (o->conv && isnan(o->a) && res->given[hd_opt_index(&hd_mc_fmean_spec, "d")]) {
+  if (o->conv && isnan(o->a) && res->given[hd_opt_index(&hd_cmd_mc_fmean_spec, "d")]) {
     /* --d alone: a/d would silently be 1 */
     fprintf(stderr, "haff mc fmean: --convergence with --d needs --a\n");
     return 2;
@@ -260,10 +260,10 @@ static int fmean_rows(const fopts *fo) {
   return 0;
 }
 
-int hd_mc_fmean_main(int argc, char **argv) {
+int hd_cmd_mc_fmean(int argc, char **argv) {
   fopts o = {.a = NAN, .d = 1.0, .dim = 2.0, .seed = 1, .model = 3};
   hd_optres res;
-  int rc = hd_opt_parse(&hd_mc_fmean_spec, argc, argv, &o, &res);
+  int rc = hd_opt_parse(&hd_cmd_mc_fmean_spec, argc, argv, &o, &res);
   if (rc) return rc < 0 ? 0 : rc;
   if ((rc = fmean_check(&res, &o))) return rc;
   if (o.conv) return fmean_convergence(&o);

@@ -1,6 +1,7 @@
 /* hd_run: drives a simulation to its stop condition and logs it to the database — collisions,
  * samples, velocity snapshots, checkpoints — with SIGINT/SIGTERM handling, a progress line and
- * `resume`.  The one place where hd_sim and hd_db meet. */
+ * `resume`.  The one place where a simulation model (hd_model.h: the 2D engine hd_sim, the rod
+ * ring) and the store (hd_db) meet. */
 #ifndef HD_RUN_H
 #define HD_RUN_H
 
@@ -41,8 +42,5 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
 /* Continues run want_run (<= 0: the newest resumable) from its last checkpoint, exactly as if
  * it had never stopped.  Returns as hd_run_new. */
 int hd_run_resume(int64_t want_run, const hd_run_opts *o, int64_t *run, hd_error *err);
-
-/* Asks a running hd_run_* to stop at the next event as if SIGINT had arrived (tests). */
-void hd_run_request_stop(void);
 
 #endif

@@ -31,7 +31,7 @@ static double rate_theory(double ad) {
   return v;
 }
 
-const hd_optspec haff_table1_spec = {
+const hd_optspec hd_cmd_table1_spec = {
     HD_CLI_SPEC("table1", HD_OPT_RUN | HD_OPT_ALL | HD_OPT_FIT | HD_OPT_MD),
     .head =
         "usage: haff table1 DB [--md] [--keep-flagged] [fit options] [-o FILE]\n"
@@ -52,11 +52,11 @@ const hd_optspec haff_table1_spec = {
         "rejected: runs left out as outliers, D_e more than 6 robust standard deviations from\n"
         "the group's median: near-collapse bursts, docs/analysis.md)\n"};
 
-int haff_table1_main(int argc, char **argv) {
+int hd_cmd_table1(int argc, char **argv) {
   hd_cli_args a;
   hd_cli_set s;
   FILE *out;
-  int rc = hd_cli_table_start(&haff_table1_spec, argc, argv, 1,
+  int rc = hd_cli_table_start(&hd_cmd_table1_spec, argc, argv, 1,
                               "no run of one species in a periodic box to tabulate", &a, &s, &out);
   if (rc) return rc < 0 ? 0 : rc;
   if (a.md)

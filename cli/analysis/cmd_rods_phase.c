@@ -7,7 +7,7 @@
 #include "cli_rods.h"
 #include "haff.h"
 
-const hd_optspec haff_rods_phase_spec = {
+const hd_optspec hd_cmd_rods_phase_spec = {
     HD_RCLI_SPEC("rods-phase", HD_RCLI_RUN | HD_RCLI_T),
     .head = "usage: haff rods-phase DB [--run ID] [--t T]\n"
             "Fig. 5 data: phase space of the snapshot nearest --t (default the last): columns\n"
@@ -22,6 +22,6 @@ static int phase(const char *cmd, const ropts *o, const rrun *r, const rsnap *s)
   return 0;
 }
 
-int haff_rods_phase_main(int argc, char **argv) {
-  return hd_rcli_main_at(&haff_rods_phase_spec, argc, argv, 0, phase);
+int hd_cmd_rods_phase(int argc, char **argv) {
+  return hd_rcli_main_at(&hd_cmd_rods_phase_spec, argc, argv, 0, phase);
 }

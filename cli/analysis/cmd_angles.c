@@ -7,7 +7,7 @@
 #include "cli_common.h"
 #include "haff.h"
 
-const hd_optspec haff_angles_spec = {
+const hd_optspec hd_cmd_angles_spec = {
     HD_CLI_SPEC("angles", HD_OPT_RUN | HD_OPT_BLOCK | HD_OPT_BINS),
     .head =
         "usage: haff angles DB --run ID [--block N] [--bins B] [--fmean] [-o FILE]\n"
@@ -18,11 +18,11 @@ const hd_optspec haff_angles_spec = {
         "each headed by a line whose first field is its legend title; an incomplete last block\n"
         "is dropped)\n"};
 
-int haff_angles_main(int argc, char **argv) {
+int hd_cmd_angles(int argc, char **argv) {
   hd_cli_args a;
   sqlite3 *db;
   hd_run_info ri;
-  int rc = hd_cli_one_run(&haff_angles_spec, argc, argv, &a, &db, &ri);
+  int rc = hd_cli_one_run(&hd_cmd_angles_spec, argc, argv, &a, &db, &ri);
   if (rc) return rc < 0 ? 0 : rc;
   int bins = a.bins ? a.bins : 36;
   hd_error err;
