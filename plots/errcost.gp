@@ -64,15 +64,22 @@ do for [p = (two ? 0 : 1) : 1] {
   }
   set xrange [x0 / 2 : x1 * 3]
   set yrange [y0 / 2 : y1 * 15]
-  # (gnuplot evaluates index and lt once even for an empty range: no block with a total)
+  # the dashed totals only when some block has one (gnuplot plots an empty for [k=1:0] once)
+  if (strlen(tot) > 0) {
   plot for [i=0:nb-1] f index i using 3:7 with linespoints pt 7 ps 0.9 lt i+1 title columnheader(1), \
        for [i=0:nb-1] f index i using 3:7:(sprintf("%d", $2)) with labels offset char 0.2,char -0.8 \
          left font ",8" tc lt i+1 notitle, \
-       for [k=1:words(tot)] f index (k <= words(tot) ? word(tot, k) + 0 : 0) \
-         using 3:(column(9) > 0 ? column(9) : NaN) with linespoints dt 2 lw 2 pt 6 ps 1.1 \
-         lt (k <= words(tot) ? word(tot, k) + 1 : 1) notitle, \
+       for [k=1:words(tot)] f index (word(tot, k) + 0) using 3:(column(9) > 0 ? column(9) : NaN) \
+         with linespoints dt 2 lw 2 pt 6 ps 1.1 lt (word(tot, k) + 1) notitle, \
        e1 * sqrt(c1 / x) with lines dt 3 lw 2 lc rgb "black" title "stat ∝ (CPU time)^{−1/2}", \
        NaN with linespoints dt 2 lw 2 pt 6 lc rgb "gray40" title "total, √(stat² + sys²)", \
        NaN with points pt 7 lc rgb "gray40" title "stat: sd of all runs / √R (R beside)"
+  } else {
+  plot for [i=0:nb-1] f index i using 3:7 with linespoints pt 7 ps 0.9 lt i+1 title columnheader(1), \
+       for [i=0:nb-1] f index i using 3:7:(sprintf("%d", $2)) with labels offset char 0.2,char -0.8 \
+         left font ",8" tc lt i+1 notitle, \
+       e1 * sqrt(c1 / x) with lines dt 3 lw 2 lc rgb "black" title "stat ∝ (CPU time)^{−1/2}", \
+       NaN with points pt 7 lc rgb "gray40" title "stat: sd of all runs / √R (R beside)"
+  }
 }
 if (two) { unset multiplot }
