@@ -391,11 +391,93 @@ static inline void ca_eval_sc(const hd_ca_geom *c, double t, double sa, double c
   }
 }
 
+/* ca_eval_sc for two dimers (the fast path with na = nb = 2), unrolled: the same numbers bit for
+ * bit.  ca_eval_sc's factors k = -+h (disk_sign) only change signs, which is exact:
+ * k_a ca = -+(h_a ca), (-k_a w_a) sa = +-((h_a w_a) sa), (k_b w_b) sb = -+((h_b w_b) sb), and
+ * x - (-y) = x + y, so every sum below is the one ca_eval_sc forms, in its order. */
+static inline void ca_eval_dd(const hd_ca_geom *c, double t, double sa, double ca, double *h,
+                              double *g, double *r) {
+  double sb, cb;
+  ca_sincos(c->pb + c->wb * t, &sb, &cb);
+  const double rx0 = c->dx + c->dvx * t, ry0 = c->dy + c->dvy * t;
+  const double hw_a = c->ha * c->wa, hw_b = c->hb * c->wb;
+  const double ax = c->ha * ca, ay = c->ha * sa, wax = hw_a * sa, way = hw_a * ca;
+  const double bx = c->hb * cb, by = c->hb * sb, wbx = hw_b * sb, wby = hw_b * cb;
+  /* disk j of B: rx0 + k_b cb, ry0 + k_b sb, dvx - (k_b w_b) sb, dvy + (k_b w_b) cb */
+  const double px[2] = {rx0 - bx, rx0 + bx}, py[2] = {ry0 - by, ry0 + by};
+  const double qx[2] = {c->dvx + wbx, c->dvx - wbx}, qy[2] = {c->dvy - wby, c->dvy + wby};
+  for (int j = 0; j < 2; j++) {
+    /* disk 0 of A (k_a = -h_a): - oax = + ax, - wax = - wax', - way = + way' (' as above) */
+    double rx = px[j] + ax, ry = py[j] + ay, vx = qx[j] - wax, vy = qy[j] + way;
+    double rr = sqrt(rx * rx + ry * ry);
+    h[j] = rr - c->D;
+    g[j] = rx * vx + ry * vy;
+    r[j] = rr;
+    /* disk 1 of A (k_a = +h_a) */
+    rx = px[j] - ax, ry = py[j] - ay, vx = qx[j] + wax, vy = qy[j] - way;
+    rr = sqrt(rx * rx + ry * ry);
+    h[2 + j] = rr - c->D;
+    g[2 + j] = rx * vx + ry * vy;
+    r[2 + j] = rr;
+  }
+}
+
 /* ca_eval_sc with sin and cos of A's orientation at t computed here. */
 static void ca_eval(const hd_ca_geom *c, double t, double *h, double *g, double *r) {
   double sa, ca;
   ca_sincos(c->pa + c->wa * t, &sa, &ca);
-  ca_eval_sc(c, t, sa, ca, h, g, r);
+  if (!c->sha && !c->wall && c->na == 2 && c->nb == 2)
+    ca_eval_dd(c, t, sa, ca, h, g, r);
+  else
+    ca_eval_sc(c, t, sa, ca, h, g, r);
+}
+
+/* Pair p alone of ca_eval at t (h, g and r of that pair, the same numbers bit for bit): for the
+ * Newton polish of a candidate, which needs no other pair. */
+static void ca_eval_one(const hd_ca_geom *c, double t, int p, double *h, double *g, double *r) {
+  double sa, ca;
+  ca_sincos(c->pa + c->wa * t, &sa, &ca);
+  const int i = p / c->nb, j = p % c->nb;
+  if (c->wall) {
+    double gc = c->dx + c->dvx * t;
+    if (c->sha) {
+      const hd_shape *A = c->sha;
+      double ox = A->ox[i], oy = A->oy[i];
+      double px = ox * ca - oy * sa, py = ox * sa + oy * ca;
+      double along = c->wsin ? py : px, rate = c->wsin ? px : -py;
+      *h = gc + c->wn * along - 0.5 * A->dk[i];
+      *g = c->dvx + c->wn * c->wa * rate;
+    } else {
+      double sg = disk_sign(i) * c->ha * c->wn;
+      if (c->na == 1) sg = 0.0;
+      *h = gc + sg * (c->wsin ? sa : ca);
+      *g = c->dvx + sg * c->wa * (c->wsin ? ca : -sa);
+    }
+    *r = 1.0;
+    return;
+  }
+  double sb, cb;
+  ca_sincos(c->pb + c->wb * t, &sb, &cb);
+  double rx0 = c->dx + c->dvx * t, ry0 = c->dy + c->dvy * t, rx, ry, vx, vy, D;
+  if (c->sha) {
+    const hd_shape *A = c->sha, *B = c->shb;
+    double bx = B->ox[j] * cb - B->oy[j] * sb, by = B->ox[j] * sb + B->oy[j] * cb;
+    double ax = A->ox[i] * ca - A->oy[i] * sa, ay = A->ox[i] * sa + A->oy[i] * ca;
+    rx = rx0 + bx - ax, ry = ry0 + by - ay;
+    vx = c->dvx - c->wb * by + c->wa * ay, vy = c->dvy + c->wb * bx - c->wa * ax;
+    D = 0.5 * (A->dk[i] + B->dk[j]);
+  } else {
+    double ka = c->na == 1 ? 0.0 : disk_sign(i) * c->ha;
+    double oax = ka * ca, oay = ka * sa, wax = -ka * c->wa * sa, way = ka * c->wa * ca;
+    double kb = c->nb == 1 ? 0.0 : disk_sign(j) * c->hb;
+    rx = rx0 + kb * cb - oax, ry = ry0 + kb * sb - oay;
+    vx = c->dvx - kb * c->wb * sb - wax, vy = c->dvy + kb * c->wb * cb - way;
+    D = c->D;
+  }
+  double rr = sqrt(rx * rx + ry * ry);
+  *h = rr - D;
+  *g = rx * vx + ry * vy;
+  *r = rr;
 }
 
 /* The gap rate h' = g / r of a pair evaluated by ca_eval (-inf for coincident centres). */
@@ -468,9 +550,9 @@ static void ca_init(hd_ca *s, double t0, double tend) {
 /* One CA step: evaluates the pairs at s->t (the pair state at t = 0 is first checked for
  * contacts and just-collided pairs) and advances s->t by the safe step.  Returns 1 and (t, pair
  * index) on a contact, 0 if there is none up to min(tend, tmax), 2 if under way. */
-static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
+static inline __attribute__((always_inline)) int
+ca_advance_n(hd_ca *s, double tmax, double *tout, int *pout, const int np, const int dd) {
   const hd_ca_geom *c = &s->g;
-  const int np = c->na * c->nb;
   const double D = c->D, hc = TOL_C * D, h0 = TOL_0 * D, hsep = TOL_SEP * D;
   const double vtol = VTOL * c->L + HD_DISK_VROUND * c->vs;
   double h[HD_CA_MAXP], g[HD_CA_MAXP], r[HD_CA_MAXP], t = s->t;
@@ -479,7 +561,9 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
   if (s->fresh) {
     s->fresh = 0;
     if (t == 0.0) {
-      if (s->sc0)
+      if (s->sc0 && dd)
+        ca_eval_dd(c, 0.0, s->sa0, s->ca0, h, g, r);
+      else if (s->sc0)
         ca_eval_sc(c, 0.0, s->sa0, s->ca0, h, g, r);
       else
         ca_eval(c, 0.0, h, g, r);
@@ -502,7 +586,13 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
     }
   }
   if (++s->it > HD_CA_MAXIT) return 0;
-  if (!have) ca_eval(c, t, h, g, r);
+  if (!have && dd) {
+    double sa, ca;
+    ca_sincos(c->pa + c->wa * t, &sa, &ca);
+    ca_eval_dd(c, t, sa, ca, h, g, r);
+  } else if (!have) {
+    ca_eval(c, t, h, g, r);
+  }
   double step = HUGE_VAL;
   uint64_t cand = 0, far = 0; /* far: pairs with h > hc, not ignored: the safe step */
   for (int p = 0; p < np; p++) {
@@ -555,12 +645,12 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
       for (int k = 0; k < 3 && hp > 0.0; k++) {
         double t1 = tp + hp / (-hdp);
         if (!(t1 < t + step) || !(t1 <= tmax)) break;
-        double h1[HD_CA_MAXP], g1[HD_CA_MAXP], r1[HD_CA_MAXP];
-        ca_eval(c, t1, h1, g1, r1);
-        double hd1 = ca_rate(g1[p], r1[p]);
-        if (!(fabs(h1[p]) < hp) || !(hd1 < 0.0)) break;
+        double h1, g1, r1;
+        ca_eval_one(c, t1, p, &h1, &g1, &r1);
+        double hd1 = ca_rate(g1, r1);
+        if (!(fabs(h1) < hp) || !(hd1 < 0.0)) break;
         tp = t1;
-        hp = h1[p];
+        hp = h1;
         hdp = hd1;
       }
       if (tp < tbest) {
@@ -576,6 +666,14 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
   if (!(tn > t)) tn = nextafter(t, HUGE_VAL);
   s->t = tn;
   return tn <= s->tend && tn <= tmax ? 2 : 0;
+}
+
+/* One CA step (ca_advance_n), with the loops over the 4 pairs of two dimers unrolled. */
+static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
+  const hd_ca_geom *c = &s->g;
+  if (!c->sha && !c->wall && c->na == 2 && c->nb == 2)
+    return ca_advance_n(s, tmax, tout, pout, 4, 1);
+  return ca_advance_n(s, tmax, tout, pout, c->na * c->nb, 0);
 }
 
 /* CA from s->t to the end: returns 1 and (t, pair index) on a contact, 0 if none, HD_CA_CUT
