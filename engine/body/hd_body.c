@@ -547,6 +547,61 @@ static void ca_init(hd_ca *s, double t0, double tend) {
   s->sc0 = 0;
 }
 
+/* Newton steps for the gap of candidate pair p (gap hp <= TOL_C D at tp, rate hdp < 0) towards its
+ * root, each kept only inside [tp, tlim) and at most tmax, and only while it lowers |h| and the
+ * pair still approaches.  Returns the polished time. */
+static double ca_polish(const hd_ca_geom *c, int p, double tp, double hp, double hdp, double tlim,
+                        double tmax) {
+  for (int k = 0; k < 3 && hp > 0.0; k++) {
+    double t1 = tp + hp / (-hdp);
+    if (!(t1 < tlim) || !(t1 <= tmax)) break;
+    double h1, g1, r1;
+    ca_eval_one(c, t1, p, &h1, &g1, &r1);
+    double hd1 = ca_rate(g1, r1);
+    if (!(fabs(h1) < hp) || !(hd1 < 0.0)) break;
+    tp = t1;
+    hp = h1;
+    hdp = hd1;
+  }
+  return tp;
+}
+
+/* Single steps (issue 27): pair p alone limits the step of a search at t, every other pair
+ * (and every ignored one) keeps its gap positive up to tsafe > t + its own step (their bounds
+ * (i) and (ii) hold from t on, for any tau).  Then the CA goes on with pair p alone, evaluating
+ * only it (ca_eval_one), up to tsafe: a contact of p before tsafe is the earliest of the bodies.
+ * It stops at a contact of p (polished as in ca_advance, inside [t, tsafe)), at min(tend, tmax)
+ * (no contact: 0), when p touches without approaching (sliding: the full step takes it), or at
+ * tsafe, or after HD_CA_SINGLE steps (under way: 2, s->t a lower bound on the contact). */
+#define HD_CA_SINGLE 64
+static int ca_single(hd_ca *s, int p, double t, double hp, double gp, double rp, double tsafe,
+                     double tmax, double *tout, int *pout) {
+  const hd_ca_geom *c = &s->g;
+  const double hc = TOL_C * c->D, vtol = VTOL * c->L + HD_DISK_VROUND * c->vs;
+  for (int k = 0; k < HD_CA_SINGLE; k++) {
+    double tn = t + safe_step(hp, gp, rp, c->L, c->K);
+    if (!(tn > t)) tn = nextafter(t, HUGE_VAL);
+    if (!(tn < tsafe)) {
+      tn = tsafe; /* the others' bound: the full step from there */
+      s->t = tn;
+      return tn <= s->tend && tn <= tmax ? 2 : 0;
+    }
+    s->t = tn;
+    if (!(tn <= s->tend && tn <= tmax)) return 0;
+    ca_eval_one(c, tn, p, &hp, &gp, &rp);
+    t = tn;
+    if (hp != hp || gp != gp) return 0; /* NaN state */
+    if (hp <= hc) {
+      double hd = ca_rate(gp, rp);
+      if (!(hd < -vtol)) return 2; /* touching, not approaching: the full step decides */
+      *tout = ca_polish(c, p, t, hp, hd, tsafe, tmax);
+      *pout = p;
+      return 1;
+    }
+  }
+  return 2;
+}
+
 /* One CA step: evaluates the pairs at s->t (the pair state at t = 0 is first checked for
  * contacts and just-collided pairs) and advances s->t by the safe step.  Returns 1 and (t, pair
  * index) on a contact, 0 if there is none up to min(tend, tmax), 2 if under way. */
@@ -631,28 +686,25 @@ ca_advance_n(hd_ca *s, double tmax, double *tout, int *pout, const int np, const
     }
   }
   s->ign = ign;
+  /* the safe step of the far pairs: the smallest (pair pmin), and the smallest of the others */
+  double sfar = HUGE_VAL, sother = step;
+  int pmin = -1;
   for (int p = 0; p < np; p++) { /* no branch on the data: the steps overlap in the CPU */
     double st = safe_step(h[p], g[p], r[p], c->L, c->K);
-    if ((far >> p) & 1u) step = st < step ? st : step;
+    int f = (int)((far >> p) & 1u), lt = f & (st < sfar);
+    sother = f & !lt & (st < sother) ? st : sother;
+    sother = lt & (sfar < sother) ? sfar : sother;
+    pmin = lt ? p : pmin;
+    sfar = lt ? st : sfar;
   }
+  step = sfar < step ? sfar : step;
   if (cand) {
     /* polish each candidate by Newton steps inside [t, t + step) and keep the earliest */
     double tbest = HUGE_VAL;
     int pbest = -1;
     for (int p = 0; p < np; p++) {
       if (!((cand >> p) & 1u)) continue;
-      double tp = t, hp = h[p], hdp = ca_rate(g[p], r[p]);
-      for (int k = 0; k < 3 && hp > 0.0; k++) {
-        double t1 = tp + hp / (-hdp);
-        if (!(t1 < t + step) || !(t1 <= tmax)) break;
-        double h1, g1, r1;
-        ca_eval_one(c, t1, p, &h1, &g1, &r1);
-        double hd1 = ca_rate(g1, r1);
-        if (!(fabs(h1) < hp) || !(hd1 < 0.0)) break;
-        tp = t1;
-        hp = h1;
-        hdp = hd1;
-      }
+      double tp = ca_polish(c, p, t, h[p], ca_rate(g[p], r[p]), t + step, tmax);
       if (tp < tbest) {
         tbest = tp;
         pbest = p;
@@ -662,6 +714,8 @@ ca_advance_n(hd_ca *s, double tmax, double *tout, int *pout, const int np, const
     *pout = pbest;
     return 1;
   }
+  if (pmin >= 0 && sother > sfar)
+    return ca_single(s, pmin, t, h[pmin], g[pmin], r[pmin], t + sother, tmax, tout, pout);
   double tn = t + step;
   if (!(tn > t)) tn = nextafter(t, HUGE_VAL);
   s->t = tn;
