@@ -579,6 +579,10 @@ static int ca_single(hd_ca *s, int p, double t, double hp, double gp, double rp,
   const hd_ca_geom *c = &s->g;
   const double hc = TOL_C * c->D, vtol = VTOL * c->L + HD_DISK_VROUND * c->vs;
   for (int k = 0; k < HD_CA_SINGLE; k++) {
+    /* each single step counts as a step (HD_CA_MAXIT), and the callers' look at a stop request
+     * every HD_CA_POLL + 1 of them is kept: return (under way) when the count reaches one */
+    if (k > 0 && (++s->it > HD_CA_MAXIT || (s->it & HD_CA_POLL) == 0))
+      return s->it > HD_CA_MAXIT ? 0 : 2;
     double tn = t + safe_step(hp, gp, rp, c->L, c->K);
     if (!(tn > t)) tn = nextafter(t, HUGE_VAL);
     if (!(tn < tsafe)) {
