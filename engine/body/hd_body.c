@@ -38,6 +38,18 @@
  * sin and cos at t = 0 may be given (hd_ca_sincos, the same function): shared by the searches of
  * all its neighbours.
  *
+ * Single steps (issue 27): when one pair p alone limits a step, the bounds of every other pair
+ * (and the steps of ignored pairs), taken at t, keep them clear up to tsafe = t + the smallest
+ * of their steps, for any later time of p.  The search then goes on with p alone, evaluating only
+ * p (ca_eval_one; its numbers are those of ca_eval bit for bit) and stepping by p's own bound,
+ * until p touches (a contact before tsafe is the bodies' earliest: polished inside [t, tsafe)),
+ * or slides, or tsafe is reached (a full step from there).  Near a contact one pair nearly
+ * always limits the step, so the last steps evaluate one pair instead of all of them; the steps
+ * are those of the full search wherever p limits it there too, so a contact time differs from
+ * the full search's only in round-off (last bits): the brute-force comparisons of
+ * tests/test_body.c (predict_*, predict_single_steps) pin it down, not bit identity with the
+ * search of before.  Each single step counts as a step for HD_CA_MAXIT and the stop requests.
+ *
  * Tolerances (all relative to D; velocities relative to L) and their effect:
  *   TOL_C = 1e-12  a pair is "in contact" when CA brings its gap to h <= TOL_C D.  One or two
  *                  Newton steps then polish t to the root (accepted only if they stay inside
