@@ -10,8 +10,11 @@
 
 static void stat_line(FILE *out, size_t s, const hd_snapshot *sn, const char *var,
                       const hd_velstats *v) {
-  fprintf(out, "%zu\t%.8g\t%.6g\t%s\t%zu\t%.6g\t%.5f\t%.5f\t%.3g\t%.5f\t%.3g\n", s, sn->t, sn->cpd,
-          var, v->n, v->scale, v->kurt, v->a2, v->a2_err, v->ks_d, v->ks_p);
+  /* a statistic the snapshot cannot give (too few bodies: hd_velstats) is empty, never nan */
+  fprintf(out, "%zu\t%.8g\t%.6g\t%s\t%zu\t%s\t%s\t%s\t%s\t%s\t%s\n", s, sn->t, sn->cpd, var, v->n,
+          hd_cli_num("%.6g", v->scale, 0), hd_cli_num("%.5f", v->kurt, 0),
+          hd_cli_num("%.5f", v->a2, 0), hd_cli_num("%.3g", v->a2_err, 0),
+          hd_cli_num("%.5f", v->ks_d, 0), hd_cli_num("%.3g", v->ks_p, 0));
 }
 
 /* Says on stderr why a run of named species (hd_run_info.species HD_KIND_BODY) is refused. */
