@@ -36,8 +36,8 @@ static const hd_optdef eps_opts[] = {
     HD_OPT_INT("seed", 0, eopts, seed, 0, LONG_MAX, 0, "K", "RNG seed (mt19937) [1]"),
     NUM("step", o.step, "H", "grid step in tau at beta >= 1 [0.01]"),
     NUM("refine", o.refine, "H",
-        "refine the steps near the running maximum down to H, 0 = plain grid; tables always "
-        "use the plain grid [0.01/128]"),
+        "refine the steps near the running maximum down to H, 0 = plain grid (tables and "
+        "--convergence: the plain grid) [0.01/128]"),
     HD_OPT_INT("adapt", 0, eopts, adapt, 1, INT_MAX, 0, "A",
                "step reduced down to H/A at beta < 1 (power of 2) [16]"),
     HD_OPT_FLAG("richardson", 0, eopts, o.richardson,
@@ -299,11 +299,11 @@ static int eps_check(const hd_optres *res, const eopts *e) {
     return 2;
   }
   if (e->tab)
-    return hd_opt_refuse(&hd_mc_eps_spec, res, NULL, "beta beta2 dump convergence",
+    return hd_opt_refuse(&hd_mc_eps_spec, res, NULL, "beta beta2 dump convergence refine",
                          "with --tabulate");
   if (e->conv)
     return hd_opt_refuse(&hd_mc_eps_spec, res, NULL,
-                         "dump adapt richardson db beta-min beta-max nbeta nu",
+                         "dump adapt richardson refine db beta-min beta-max nbeta nu",
                          "with --convergence");
   return hd_opt_refuse(&hd_mc_eps_spec, res, NULL, "db beta-min beta-max nbeta nu",
                        "without --tabulate");
