@@ -256,14 +256,14 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
     .doc_def = "0 (= 0.01)", .doc_range = "0 or in [1e-5, 0.5]",                                     \
     .doc = "grid step of the ε sampler (the direct one, and the one the table is built from); "     \
            "the direct sampler refines it near the running maximum down to 0.01/128, which "         \
-           "leaves ~ -0.3 % in the stationary E_kin (the plain grid's bias was -3.5 %); "            \
+           "leaves ~ -0.3 % in the stationary E_kin at gamma 0.8 (plain grid: -3.5 %); "             \
            "see docs/mc-eps.md section 4f")                                                          \
   X(RTEMP, S_RODS, "temperature", REAL(HD_RODS_TEMPERATURE_DEFAULT), F(rod_temperature), R_POS,      \
     .doc = "initial temperature T0: E_kin(0) = N T0/2")                                              \
   X(RTABLE, S_RODS, "table", .type = KT_BOOL, F(rod_table), .names = no_yes,                         \
     .doc_def = "yes (stochastic model, baths = mean, γ < 1), else no",                               \
     .doc = "yes: ε from the balanced tabulated p_β (fast, ~3 s to build at the start; stationary " \
-           "E_kin within 0.25 % of equipartition); no: the direct sampler (refined: ~0.3 %, "        \
+           "E_kin within 0.25 % of equipartition); no: the direct sampler (refined: 0.2-1.3 %, "     \
            "~10x slower per collision; not with baths = unequal). **Changed (issue 16):** "          \
            "the default was no")                                                                     \
   X(RBATHS, S_RODS, "baths", .type = KT_ENUM, F(rod_unequal), .names = rod_baths,                    \
