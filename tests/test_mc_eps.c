@@ -190,9 +190,11 @@ static void step_bias_is_small(void **state) {
 /* The energy moment D = <E (eps^2 - eps_ref^2)> over E ~ Exp(1), beta = E, that sets the ring's
  * stationary E_kin (E_kin shifts by about 6.6 D, docs/mc-eps.md 4b): the default sampler
  * (refined to step 0.01/128) against a reference refined to 0.01/1024 on the same paths, with the
- * default's step adaptation.  Measured: D = +0.0000 +- 0.0002 (default), -0.0045 +- 0.0011 (the
- * plain grid, today's sampler before issue 25, on the same paths).  Bound: |D| < 0.00075 (0.5 %
- * of E_kin) and the grid below -0.002: the test fails on the plain-grid sampler. */
+ * default's step adaptation.  Measured (seed fixed): D = -0.00021 +- 0.00026 (default) and
+ * -0.0057 +- 0.0033 for the plain grid on the same paths (the sampler before issue 25: -0.0048
+ * against the continuum over 40000 paths, docs/mc-eps.md 4b).  Bound: |D| < 0.00075 (0.5 % of
+ * E_kin), with its s.e. < 0.0003; the grid's D below -0.002 shows the test would fail on the
+ * plain-grid sampler (refine = 0 makes the default's row the grid's). */
 static void refined_energy_moment(void **state) {
   (void)state;
   hd_eps_opts o;
