@@ -261,6 +261,62 @@ static void step_bias_is_small(void **state) {
   hd_eps_sampler_free(s);
 }
 
+/* The energy moment D = <E (eps^2 - eps_ref^2)> over E ~ Exp(1), beta = E, that sets the ring's
+ * stationary E_kin (E_kin shifts by about 6.6 D, docs/mc-eps.md 4b): the default sampler
+ * (refined to step 0.01/128) against a reference refined to 0.01/1024 on the same paths, with the
+ * default's step adaptation.  Measured (seed fixed): D = -0.00021 +- 0.00026 (default) and
+ * -0.0057 +- 0.0033 for the plain grid on the same paths (the sampler before issue 25: -0.0048
+ * against the continuum over 40000 paths, docs/mc-eps.md 4b).  Bound: |D| < 0.00075 (0.5 % of
+ * E_kin), with its s.e. < 0.0003; the grid's D below -0.002 shows the test would fail on the
+ * plain-grid sampler (refine = 0 makes the default's row the grid's). */
+static void refined_energy_moment(void **state) {
+  (void)state;
+  hd_eps_opts o;
+  hd_eps_opts_default(&o);
+  hd_eps_sampler *s;
+  assert_int_equal(hd_eps_sampler_alloc(&s, 0.8, &o, NULL), HD_OK);
+  int ldef = hd_eps_sampler_levels(s);
+  assert_int_equal(ldef, 7); /* 0.01 / 2^7 */
+  hd_eps_sampler_free(s);
+  o.refine = o.step / 1024;
+  assert_int_equal(hd_eps_sampler_alloc(&s, 0.8, &o, NULL), HD_OK);
+  assert_int_equal(hd_eps_sampler_levels(s), 10);
+  gsl_rng *re = rng_seeded(12345), *r = rng_seeded(1);
+  int n = sanitize() ? 100 : 2000;
+  double m[2] = {0}, m2[2] = {0};
+  for (long i = 0; i < n; i++) {
+    double E = gsl_ran_exponential(re, 1.0);
+    int st = o.adapt;
+    for (double b = E; st > 1 && b < 1; b *= 2) st /= 2; /* the working stride at beta = E */
+    const int strides[3] = {st, st, st}, levels[3] = {0, ldef, 10};
+    double out[3];
+    assert_int_equal(hd_eps_sample_levels(s, E, E, strides, levels, 3, out, r), HD_OK);
+    for (int k = 0; k < 2; k++) {
+      double x = E * (out[k] * out[k] - out[2] * out[2]);
+      m[k] += x;
+      m2[k] += x * x;
+    }
+  }
+  double d[2], se[2];
+  for (int k = 0; k < 2; k++) {
+    d[k] = m[k] / n;
+    se[k] = sqrt((m2[k] / n - d[k] * d[k]) / n);
+  }
+  fprintf(stderr, "energy moment D: grid %+.5f +- %.5f, default (refined) %+.5f +- %.5f\n", d[0],
+          se[0], d[1], se[1]);
+  if (!sanitize()) {
+    assert_true(se[1] < 0.0003);
+    assert_true(fabs(d[1]) < 0.00075);
+    assert_true(d[0] < -0.002);
+  }
+  const int bad[1] = {16}, badl[1] = {11};
+  double out[1];
+  assert_int_equal(hd_eps_sample_levels(s, 1, 1, bad, badl, 1, out, r), HD_EINPUT);
+  gsl_rng_free(r);
+  gsl_rng_free(re);
+  hd_eps_sampler_free(s);
+}
+
 /* hd_eps_sample_pair is the same path solved at the working step and at a quarter of it: with
  * richardson (r = 4 adapt = 64) the working stride at beta = 2 is 64, so the pair must equal
  * hd_eps_sample_strides at strides {64, 16} drawn from the same seed, exactly (same normals, same
@@ -441,6 +497,7 @@ int main(void) {
                                      cmocka_unit_test(nonnegative_and_symmetric),
                                      cmocka_unit_test(detailed_balance),
                                      cmocka_unit_test(step_bias_is_small),
+                                     cmocka_unit_test(refined_energy_moment),
                                      cmocka_unit_test(pair_is_paired),
                                      cmocka_unit_test(bad_input),
                                      cmocka_unit_test(table_build_sample_store),

@@ -659,8 +659,9 @@ static void collapse(void **state) {
 }
 
 /* The conservative ring at equilibrium (N = 50, N_mod = 5, after 300 collisions per rod), eps
- * from the direct sampler at step 0.0025 (at the default 0.01 its sqrt(h) bias makes E_kin
- * ~4% low, docs/rods.md): time averages of E_kin and of the collision rate over 8 blocks.  Held to
+ * from the direct sampler at step 0.0025 (on the plain grid its sqrt(h) bias made E_kin ~1 % low
+ * at 0.0025 and ~4 % at 0.01; refined since issue 25, docs/mc-eps.md 4f): time averages of E_kin
+ * and of the collision rate over 8 blocks.  Held to
  *   E_kin = E(0)(N-1)/(N-1+2 N N_mod)   (equipartition, zero momentum), and
  *   rate  = (N-1) sqrt(T/(2 pi)), T = 2 <E_kin>/(N-1)   (1D ideal gas, docs/rods.md),
  * within 4 standard errors of the block means (the blocks are 400 collisions per rod long,

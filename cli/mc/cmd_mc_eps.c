@@ -21,7 +21,7 @@ typedef struct eopts {
   long n, seed, adapt, nbeta, nu;        /* --samples (-1: the mode's default), --adapt (-1) */
   int conv, tab;                         /* --convergence, --tabulate */
   const char *dump, *dbpath;             /* --dump FILE, --db DB */
-  hd_eps_opts o;                         /* --step, --richardson */
+  hd_eps_opts o;                         /* --step, --richardson, --refine */
 } eopts;
 
 #define NUM(N, F, M, H)                                                                            \
@@ -35,6 +35,9 @@ static const hd_optdef eps_opts[] = {
                "samples [10000] (per beta node with --tabulate [2000])"),
     HD_OPT_INT("seed", 0, eopts, seed, 0, LONG_MAX, 0, "K", "RNG seed (mt19937) [1]"),
     NUM("step", o.step, "H", "grid step in tau at beta >= 1 [0.01]"),
+    NUM("refine", o.refine, "H",
+        "refine the steps near the running maximum down to H, 0 = plain grid (tables and "
+        "--convergence: the plain grid) [0.01/128]"),
     HD_OPT_INT("adapt", 0, eopts, adapt, 1, INT_MAX, 0, "A",
                "step reduced down to H/A at beta < 1 (power of 2) [16]"),
     HD_OPT_FLAG("richardson", 0, eopts, o.richardson,
@@ -61,7 +64,7 @@ static const hd_optdef eps_opts[] = {
 const hd_optspec hd_cmd_mc_eps_spec = {
     HD_OPT_SPEC("mc eps", eps_opts, 0, 0, 0, NULL),
     .head = "usage: haff mc eps --gamma G [--beta B] [--beta2 B2] [--samples N] [--seed K]\n"
-            "                   [--step H] [--adapt A] [--richardson] [--dump FILE]\n"
+            "                   [--step H] [--adapt A] [--richardson] [--refine H] [--dump FILE]\n"
             "       haff mc eps --gamma G [--beta B] --convergence [--samples N] [--step H]\n"
             "       haff mc eps --gamma G --tabulate --db DB [--beta-min B0] [--beta-max B1]\n"
             "                   [--nbeta K] [--nu M] [--samples N] [--step H]\n\n"
@@ -96,6 +99,7 @@ static int convergence(double gamma, double beta, double beta2, long n, double s
   o.adapt = 64;
   hd_eps_sampler *s;
   hd_error err;
+  o.refine = 0; /* the study solves plain grids at several strides */
   if (hd_eps_sampler_alloc(&s, gamma, &o, &err)) {
     fprintf(stderr, "haff mc eps: %s\n", err.msg);
     return 2;
@@ -150,6 +154,7 @@ static int convergence(double gamma, double beta, double beta2, long n, double s
       oc.step = h0 * strides[m];
       oc.adapt = 1;
       oc.richardson = pass;
+      oc.refine = 0; /* the plain grid, as the rows */
       hd_eps_sampler *sc;
       double us = NAN;
       if (hd_eps_sampler_alloc(&sc, gamma, &oc, &err) == HD_OK) {
@@ -294,11 +299,11 @@ static int eps_check(const hd_optres *res, const eopts *e) {
     return 2;
   }
   if (e->tab)
-    return hd_opt_refuse(&hd_cmd_mc_eps_spec, res, NULL, "beta beta2 dump convergence",
+    return hd_opt_refuse(&hd_cmd_mc_eps_spec, res, NULL, "beta beta2 dump convergence refine",
                          "with --tabulate");
   if (e->conv)
     return hd_opt_refuse(&hd_cmd_mc_eps_spec, res, NULL,
-                         "dump adapt richardson db beta-min beta-max nbeta nu",
+                         "dump adapt richardson refine db beta-min beta-max nbeta nu",
                          "with --convergence");
   return hd_opt_refuse(&hd_cmd_mc_eps_spec, res, NULL, "db beta-min beta-max nbeta nu",
                        "without --tabulate");
@@ -346,6 +351,7 @@ int hd_cmd_mc_eps(int argc, char **argv) {
   }
   hd_eps_sampler *s;
   hd_error err;
+  if (tab) o.refine = 0; /* tables: the plain grid, as the ring's (docs/mc-eps.md 2b) */
   if (hd_eps_sampler_alloc(&s, gamma, &o, &err)) {
     fprintf(stderr, "haff mc eps: %s\n", err.msg);
     gsl_rng_free(rng);

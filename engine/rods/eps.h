@@ -25,6 +25,10 @@ typedef struct hd_eps_opts {
                      2 eps_fine - eps_coarse (bias ~ sqrt(step) removed per path; widens the
                      distribution at beta < 1, see docs/mc-eps.md); 0: plain grid [0] */
   double max_tau; /* cap on the duration of one collision, in tau [1e4] */
+  double refine;  /* 0: plain grid; > 0: the working steps near the running maximum are refined
+                     dyadically, down to this step (or the finest 2^12 division that fits), the
+                     noise drawn per rod between the grid points (docs/mc-eps.md section 2b)
+                     [0.01/128]; ignored with richardson */
 } hd_eps_opts;
 
 /* Fills opts with the defaults. */
@@ -76,6 +80,7 @@ typedef struct hd_eps_stats {
   long truncated; /* collisions still running at max_tau */
   long clamped;   /* Richardson combinations < 0 set to 0 */
   double steps;   /* grid steps solved, all levels */
+  double refined; /* noise values drawn by refinement between grid points */
 } hd_eps_stats;
 
 /* Copies the counters. */
@@ -95,6 +100,15 @@ int hd_eps_sample_pair(hd_eps_sampler *s, double beta1, double beta2, double *co
  * HD_EINPUT. */
 int hd_eps_sample_strides(hd_eps_sampler *s, double beta1, double beta2, const int *strides, int n,
                           double *out, gsl_rng *rng);
+
+/* As hd_eps_sample_strides, each solve m refined levels[m] levels below its stride (0: plain
+ * grid; at most hd_eps_sampler_levels), all on one path: the refined points are drawn once per
+ * path, by Brownian-bridge interpolation per rod.  levels NULL = all 0.  HD_OK or HD_EINPUT. */
+int hd_eps_sample_levels(hd_eps_sampler *s, double beta1, double beta2, const int *strides,
+                         const int *levels, int n, double *out, gsl_rng *rng);
+
+/* The sampler's refinement levels below its working step (0: plain grid). */
+int hd_eps_sampler_levels(const hd_eps_sampler *s);
 
 /* ---- tables: p_beta(eps) as inverse CDFs on a logarithmic beta grid (equal temperatures) --- */
 

@@ -150,6 +150,9 @@ static int alloc_bare(hd_rods **out, const hd_rods_params *p, hd_error *err) {
   if (p->model == HD_RODS_STOCHASTIC && p->gamma < 1) {
     hd_eps_opts o;
     hd_rods_eps_opts(p->eps_step, &o);
+    /* the table (and its direct fallback below its nodes) stays on the plain grid: its balance
+     * removes the moment that moves E_kin (docs/mc-eps.md 4c); direct draws are refined (2b) */
+    if (p->table) o.refine = 0;
     rc = hd_eps_sampler_alloc(&r->sampler, p->gamma, &o, err);
     if (!rc && p->table) {
       gsl_rng *tr = gsl_rng_alloc(gsl_rng_mt19937);

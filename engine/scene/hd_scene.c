@@ -281,15 +281,17 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
   X(RSTEP, S_RODS, "eps_step", REAL(0), F(rod_eps_step), R_NONNEG, .check = check_eps_step,          \
     .doc_def = "0 (= 0.01)", .doc_range = "0 or in [1e-5, 0.5]",                                     \
     .doc = "grid step of the ε sampler (the direct one, and the one the table is built from); "     \
-           "the direct sampler's √step bias lowers the stationary E_kin by ~3.5 % at 0.01 and "    \
-           "~1 % at 0.0025 (4× slower); see docs/rods.md")                                           \
+           "the direct sampler refines it near the running maximum down to 0.01/128, which "         \
+           "leaves ~ -0.3 % in the stationary E_kin at gamma 0.8 (plain grid: -3.5 %); "             \
+           "see docs/mc-eps.md section 4f")                                                          \
   X(RTEMP, S_RODS, "temperature", REAL(HD_RODS_TEMPERATURE_DEFAULT), F(rod_temperature), R_POS,      \
     .doc = "initial temperature T0: E_kin(0) = N T0/2")                                              \
   X(RTABLE, S_RODS, "table", .type = KT_BOOL, F(rod_table), .names = no_yes,                         \
     .doc_def = "yes (stochastic model, baths = mean, γ < 1), else no",                               \
     .doc = "yes: ε from the balanced tabulated p_β (fast, ~3 s to build at the start; stationary " \
-           "E_kin within 0.25 % of equipartition); no: the direct sampler (not with baths = "        \
-           "unequal). **Changed (issue 16):** the default was no")                                   \
+           "E_kin within 0.25 % of equipartition); no: the direct sampler (refined: 0.2-1.3 %, "     \
+           "~10x slower per collision; not with baths = unequal). **Changed (issue 16):** "          \
+           "the default was no")                                                                     \
   X(RBATHS, S_RODS, "baths", .type = KT_ENUM, F(rod_unequal), .names = rod_baths,                    \
     .doc = "`mean` (paper: β = E_tr/mean T_B) or `unequal` (β per rod)")
 
@@ -1512,8 +1514,9 @@ static int check_rods(ctx *c) {
     sc->rod_eps = sc->rod_gamma;
   else if (sc->rod_model != 1)
     return FAIL_KEY(c, K_REPS, "only with model = constant");
-  /* table unset: the balanced table wherever it applies (issue 16: the direct sampler at its
-   * default step lowers the stationary E_kin by ~3.5 %, the balanced table by 0.2 %) */
+  /* table unset: the balanced table wherever it applies (issue 16: the direct sampler then
+   * lowered the stationary E_kin by ~3.5 %, the balanced table by 0.2 %; refined since issue 25,
+   * the direct sampler is within ~0.3 % but ~10x slower per collision) */
   if (!key_set(c, S_RODS, K_RTABLE))
     sc->rod_table = sc->rod_model != 1 && !sc->rod_unequal && sc->rod_gamma < 1;
   if (sc->rod_table && sc->rod_unequal)
