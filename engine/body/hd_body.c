@@ -38,18 +38,6 @@
  * sin and cos at t = 0 may be given (hd_ca_sincos, the same function): shared by the searches of
  * all its neighbours.
  *
- * Single steps (issue 27): when one pair p alone limits a step, the bounds of every other pair
- * (and the steps of ignored pairs), taken at t, keep them clear up to tsafe = t + the smallest
- * of their steps, for any later time of p.  The search then goes on with p alone, evaluating only
- * p (ca_eval_one; its numbers are those of ca_eval bit for bit) and stepping by p's own bound,
- * until p touches (a contact before tsafe is the bodies' earliest: polished inside [t, tsafe)),
- * or slides, or tsafe is reached (a full step from there).  Near a contact one pair nearly
- * always limits the step, so the last steps evaluate one pair instead of all of them; the steps
- * are those of the full search wherever p limits it there too, so a contact time differs from
- * the full search's only in round-off (last bits): the brute-force comparisons of
- * tests/test_body.c (predict_*, predict_single_steps) pin it down, not bit identity with the
- * search of before.  Each single step counts as a step for HD_CA_MAXIT and the stop requests.
- *
  * Tolerances (all relative to D; velocities relative to L) and their effect:
  *   TOL_C = 1e-12  a pair is "in contact" when CA brings its gap to h <= TOL_C D.  One or two
  *                  Newton steps then polish t to the root (accepted only if they stay inside
@@ -418,93 +406,11 @@ static inline void ca_eval_sc(const hd_ca_geom *c, double t, double sa, double c
   }
 }
 
-/* ca_eval_sc for two dimers (the fast path with na = nb = 2), unrolled: the same numbers bit for
- * bit.  ca_eval_sc's factors k = -+h (disk_sign) only change signs, which is exact:
- * k_a ca = -+(h_a ca), (-k_a w_a) sa = +-((h_a w_a) sa), (k_b w_b) sb = -+((h_b w_b) sb), and
- * x - (-y) = x + y, so every sum below is the one ca_eval_sc forms, in its order. */
-static inline void ca_eval_dd(const hd_ca_geom *c, double t, double sa, double ca, double *h,
-                              double *g, double *r) {
-  double sb, cb;
-  ca_sincos(c->pb + c->wb * t, &sb, &cb);
-  const double rx0 = c->dx + c->dvx * t, ry0 = c->dy + c->dvy * t;
-  const double hw_a = c->ha * c->wa, hw_b = c->hb * c->wb;
-  const double ax = c->ha * ca, ay = c->ha * sa, wax = hw_a * sa, way = hw_a * ca;
-  const double bx = c->hb * cb, by = c->hb * sb, wbx = hw_b * sb, wby = hw_b * cb;
-  /* disk j of B: rx0 + k_b cb, ry0 + k_b sb, dvx - (k_b w_b) sb, dvy + (k_b w_b) cb */
-  const double px[2] = {rx0 - bx, rx0 + bx}, py[2] = {ry0 - by, ry0 + by};
-  const double qx[2] = {c->dvx + wbx, c->dvx - wbx}, qy[2] = {c->dvy - wby, c->dvy + wby};
-  for (int j = 0; j < 2; j++) {
-    /* disk 0 of A (k_a = -h_a): - oax = + ax, - wax = - wax', - way = + way' (' as above) */
-    double rx = px[j] + ax, ry = py[j] + ay, vx = qx[j] - wax, vy = qy[j] + way;
-    double rr = sqrt(rx * rx + ry * ry);
-    h[j] = rr - c->D;
-    g[j] = rx * vx + ry * vy;
-    r[j] = rr;
-    /* disk 1 of A (k_a = +h_a) */
-    rx = px[j] - ax, ry = py[j] - ay, vx = qx[j] + wax, vy = qy[j] - way;
-    rr = sqrt(rx * rx + ry * ry);
-    h[2 + j] = rr - c->D;
-    g[2 + j] = rx * vx + ry * vy;
-    r[2 + j] = rr;
-  }
-}
-
 /* ca_eval_sc with sin and cos of A's orientation at t computed here. */
 static void ca_eval(const hd_ca_geom *c, double t, double *h, double *g, double *r) {
   double sa, ca;
   ca_sincos(c->pa + c->wa * t, &sa, &ca);
-  if (!c->sha && !c->wall && c->na == 2 && c->nb == 2)
-    ca_eval_dd(c, t, sa, ca, h, g, r);
-  else
-    ca_eval_sc(c, t, sa, ca, h, g, r);
-}
-
-/* Pair p alone of ca_eval at t (h, g and r of that pair, the same numbers bit for bit): for the
- * Newton polish of a candidate, which needs no other pair. */
-static void ca_eval_one(const hd_ca_geom *c, double t, int p, double *h, double *g, double *r) {
-  double sa, ca;
-  ca_sincos(c->pa + c->wa * t, &sa, &ca);
-  const int i = p / c->nb, j = p % c->nb;
-  if (c->wall) {
-    double gc = c->dx + c->dvx * t;
-    if (c->sha) {
-      const hd_shape *A = c->sha;
-      double ox = A->ox[i], oy = A->oy[i];
-      double px = ox * ca - oy * sa, py = ox * sa + oy * ca;
-      double along = c->wsin ? py : px, rate = c->wsin ? px : -py;
-      *h = gc + c->wn * along - 0.5 * A->dk[i];
-      *g = c->dvx + c->wn * c->wa * rate;
-    } else {
-      double sg = disk_sign(i) * c->ha * c->wn;
-      if (c->na == 1) sg = 0.0;
-      *h = gc + sg * (c->wsin ? sa : ca);
-      *g = c->dvx + sg * c->wa * (c->wsin ? ca : -sa);
-    }
-    *r = 1.0;
-    return;
-  }
-  double sb, cb;
-  ca_sincos(c->pb + c->wb * t, &sb, &cb);
-  double rx0 = c->dx + c->dvx * t, ry0 = c->dy + c->dvy * t, rx, ry, vx, vy, D;
-  if (c->sha) {
-    const hd_shape *A = c->sha, *B = c->shb;
-    double bx = B->ox[j] * cb - B->oy[j] * sb, by = B->ox[j] * sb + B->oy[j] * cb;
-    double ax = A->ox[i] * ca - A->oy[i] * sa, ay = A->ox[i] * sa + A->oy[i] * ca;
-    rx = rx0 + bx - ax, ry = ry0 + by - ay;
-    vx = c->dvx - c->wb * by + c->wa * ay, vy = c->dvy + c->wb * bx - c->wa * ax;
-    D = 0.5 * (A->dk[i] + B->dk[j]);
-  } else {
-    double ka = c->na == 1 ? 0.0 : disk_sign(i) * c->ha;
-    double oax = ka * ca, oay = ka * sa, wax = -ka * c->wa * sa, way = ka * c->wa * ca;
-    double kb = c->nb == 1 ? 0.0 : disk_sign(j) * c->hb;
-    rx = rx0 + kb * cb - oax, ry = ry0 + kb * sb - oay;
-    vx = c->dvx - kb * c->wb * sb - wax, vy = c->dvy + kb * c->wb * cb - way;
-    D = c->D;
-  }
-  double rr = sqrt(rx * rx + ry * ry);
-  *h = rr - D;
-  *g = rx * vx + ry * vy;
-  *r = rr;
+  ca_eval_sc(c, t, sa, ca, h, g, r);
 }
 
 /* The gap rate h' = g / r of a pair evaluated by ca_eval (-inf for coincident centres). */
@@ -574,71 +480,12 @@ static void ca_init(hd_ca *s, double t0, double tend) {
   s->sc0 = 0;
 }
 
-/* Newton steps for the gap of candidate pair p (gap hp <= TOL_C D at tp, rate hdp < 0) towards its
- * root, each kept only inside [tp, tlim) and at most tmax, and only while it lowers |h| and the
- * pair still approaches.  Returns the polished time. */
-static double ca_polish(const hd_ca_geom *c, int p, double tp, double hp, double hdp, double tlim,
-                        double tmax) {
-  for (int k = 0; k < 3 && hp > 0.0; k++) {
-    double t1 = tp + hp / (-hdp);
-    if (!(t1 < tlim) || !(t1 <= tmax)) break;
-    double h1, g1, r1;
-    ca_eval_one(c, t1, p, &h1, &g1, &r1);
-    double hd1 = ca_rate(g1, r1);
-    if (!(fabs(h1) < hp) || !(hd1 < 0.0)) break;
-    tp = t1;
-    hp = h1;
-    hdp = hd1;
-  }
-  return tp;
-}
-
-/* Single steps (issue 27): pair p alone limits the step of a search at t, every other pair
- * (and every ignored one) keeps its gap positive up to tsafe > t + its own step (their bounds
- * (i) and (ii) hold from t on, for any tau).  Then the CA goes on with pair p alone, evaluating
- * only it (ca_eval_one), up to tsafe: a contact of p before tsafe is the earliest of the bodies.
- * It stops at a contact of p (polished as in ca_advance, inside [t, tsafe)), at min(tend, tmax)
- * (no contact: 0), when p touches without approaching (sliding: the full step takes it), or at
- * tsafe, or after HD_CA_SINGLE steps (under way: 2, s->t a lower bound on the contact). */
-#define HD_CA_SINGLE 64
-static int ca_single(hd_ca *s, int p, double t, double hp, double gp, double rp, double tsafe,
-                     double tmax, double *tout, int *pout) {
-  const hd_ca_geom *c = &s->g;
-  const double hc = TOL_C * c->D, vtol = VTOL * c->L + HD_DISK_VROUND * c->vs;
-  for (int k = 0; k < HD_CA_SINGLE; k++) {
-    /* each single step counts as a step (HD_CA_MAXIT), and the callers' look at a stop request
-     * every HD_CA_POLL + 1 of them is kept: return (under way) when the count reaches one */
-    if (k > 0 && (++s->it > HD_CA_MAXIT || (s->it & HD_CA_POLL) == 0))
-      return s->it > HD_CA_MAXIT ? 0 : 2;
-    double tn = t + safe_step(hp, gp, rp, c->L, c->K);
-    if (!(tn > t)) tn = nextafter(t, HUGE_VAL);
-    if (!(tn < tsafe)) {
-      tn = tsafe; /* the others' bound: the full step from there */
-      s->t = tn;
-      return tn <= s->tend && tn <= tmax ? 2 : 0;
-    }
-    s->t = tn;
-    if (!(tn <= s->tend && tn <= tmax)) return 0;
-    ca_eval_one(c, tn, p, &hp, &gp, &rp);
-    t = tn;
-    if (hp != hp || gp != gp) return 0; /* NaN state */
-    if (hp <= hc) {
-      double hd = ca_rate(gp, rp);
-      if (!(hd < -vtol)) return 2; /* touching, not approaching: the full step decides */
-      *tout = ca_polish(c, p, t, hp, hd, tsafe, tmax);
-      *pout = p;
-      return 1;
-    }
-  }
-  return 2;
-}
-
 /* One CA step: evaluates the pairs at s->t (the pair state at t = 0 is first checked for
  * contacts and just-collided pairs) and advances s->t by the safe step.  Returns 1 and (t, pair
  * index) on a contact, 0 if there is none up to min(tend, tmax), 2 if under way. */
-static inline __attribute__((always_inline)) int
-ca_advance_n(hd_ca *s, double tmax, double *tout, int *pout, const int np, const int dd) {
+static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
   const hd_ca_geom *c = &s->g;
+  const int np = c->na * c->nb;
   const double D = c->D, hc = TOL_C * D, h0 = TOL_0 * D, hsep = TOL_SEP * D;
   const double vtol = VTOL * c->L + HD_DISK_VROUND * c->vs;
   double h[HD_CA_MAXP], g[HD_CA_MAXP], r[HD_CA_MAXP], t = s->t;
@@ -647,9 +494,7 @@ ca_advance_n(hd_ca *s, double tmax, double *tout, int *pout, const int np, const
   if (s->fresh) {
     s->fresh = 0;
     if (t == 0.0) {
-      if (s->sc0 && dd)
-        ca_eval_dd(c, 0.0, s->sa0, s->ca0, h, g, r);
-      else if (s->sc0)
+      if (s->sc0)
         ca_eval_sc(c, 0.0, s->sa0, s->ca0, h, g, r);
       else
         ca_eval(c, 0.0, h, g, r);
@@ -672,13 +517,7 @@ ca_advance_n(hd_ca *s, double tmax, double *tout, int *pout, const int np, const
     }
   }
   if (++s->it > HD_CA_MAXIT) return 0;
-  if (!have && dd) {
-    double sa, ca;
-    ca_sincos(c->pa + c->wa * t, &sa, &ca);
-    ca_eval_dd(c, t, sa, ca, h, g, r);
-  } else if (!have) {
-    ca_eval(c, t, h, g, r);
-  }
+  if (!have) ca_eval(c, t, h, g, r);
   double step = HUGE_VAL;
   uint64_t cand = 0, far = 0; /* far: pairs with h > hc, not ignored: the safe step */
   for (int p = 0; p < np; p++) {
@@ -717,25 +556,28 @@ ca_advance_n(hd_ca *s, double tmax, double *tout, int *pout, const int np, const
     }
   }
   s->ign = ign;
-  /* the safe step of the far pairs: the smallest (pair pmin), and the smallest of the others */
-  double sfar = HUGE_VAL, sother = step;
-  int pmin = -1;
   for (int p = 0; p < np; p++) { /* no branch on the data: the steps overlap in the CPU */
     double st = safe_step(h[p], g[p], r[p], c->L, c->K);
-    int f = (int)((far >> p) & 1u), lt = f & (st < sfar);
-    sother = f & !lt & (st < sother) ? st : sother;
-    sother = lt & (sfar < sother) ? sfar : sother;
-    pmin = lt ? p : pmin;
-    sfar = lt ? st : sfar;
+    if ((far >> p) & 1u) step = st < step ? st : step;
   }
-  step = sfar < step ? sfar : step;
   if (cand) {
     /* polish each candidate by Newton steps inside [t, t + step) and keep the earliest */
     double tbest = HUGE_VAL;
     int pbest = -1;
     for (int p = 0; p < np; p++) {
       if (!((cand >> p) & 1u)) continue;
-      double tp = ca_polish(c, p, t, h[p], ca_rate(g[p], r[p]), t + step, tmax);
+      double tp = t, hp = h[p], hdp = ca_rate(g[p], r[p]);
+      for (int k = 0; k < 3 && hp > 0.0; k++) {
+        double t1 = tp + hp / (-hdp);
+        if (!(t1 < t + step) || !(t1 <= tmax)) break;
+        double h1[HD_CA_MAXP], g1[HD_CA_MAXP], r1[HD_CA_MAXP];
+        ca_eval(c, t1, h1, g1, r1);
+        double hd1 = ca_rate(g1[p], r1[p]);
+        if (!(fabs(h1[p]) < hp) || !(hd1 < 0.0)) break;
+        tp = t1;
+        hp = h1[p];
+        hdp = hd1;
+      }
       if (tp < tbest) {
         tbest = tp;
         pbest = p;
@@ -745,20 +587,10 @@ ca_advance_n(hd_ca *s, double tmax, double *tout, int *pout, const int np, const
     *pout = pbest;
     return 1;
   }
-  if (pmin >= 0 && sother > sfar)
-    return ca_single(s, pmin, t, h[pmin], g[pmin], r[pmin], t + sother, tmax, tout, pout);
   double tn = t + step;
   if (!(tn > t)) tn = nextafter(t, HUGE_VAL);
   s->t = tn;
   return tn <= s->tend && tn <= tmax ? 2 : 0;
-}
-
-/* One CA step (ca_advance_n), with the loops over the 4 pairs of two dimers unrolled. */
-static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
-  const hd_ca_geom *c = &s->g;
-  if (!c->sha && !c->wall && c->na == 2 && c->nb == 2)
-    return ca_advance_n(s, tmax, tout, pout, 4, 1);
-  return ca_advance_n(s, tmax, tout, pout, c->na * c->nb, 0);
 }
 
 /* CA from s->t to the end: returns 1 and (t, pair index) on a contact, 0 if none, HD_CA_CUT

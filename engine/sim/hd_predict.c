@@ -189,67 +189,51 @@ typedef struct hd_cand {
  * and all stop once the smallest bound is not below the earliest contact found: no step is
  * taken past the final answer, and every other pair touches later, if at all.  Disk-disk
  * pairs take the closed form at once. */
-static inline __attribute__((always_inline)) void sorted_cand(hd_sim *s, hd_body *bi, int32_t j,
-                                                              double sx, double sy, double cross,
-                                                              int i_disk, double rad_i, hd_cand *cs,
-                                                              int *nc, double *best) {
-  const double now = s->c.t;
-  const double *rad = s->reach; /* enclosing radii, widened */
-  const hd_body *bj = &s->b[j];
-  if (i_disk && s->shape[bj->species].tag == HD_KIND_DISK) {
-    predict_disk_pair(s, bi, j, sx, sy, (sx > 0) - (sx < 0), (sy > 0) - (sy < 0),
-                      disk_contact(s, bi, bj), best);
-    return;
-  }
-  double dtj = now - bj->t, R = rad_i + rad[bj->species];
-  double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x, ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
-  /* the circles' first meeting, without branches on the data (they would be mispredicted):
-   * 0 if they overlap (c <= 0), else c / (sqrt(b^2 - v^2 c) - b) when they meet (b < 0 and
-   * disc > 0); a denominator floored at DBL_MIN only lowers the bound */
-  double vx = bj->k.vx - bi->k.vx, vy = bj->k.vy - bi->k.vy;
-  double c = rx * rx + ry * ry - R * R, b = rx * vx + ry * vy,
-         disc = b * b - (vx * vx + vy * vy) * c;
-  double t = dmax(c, 0.0) / dmax(sqrt(dmax(disc, 0.0)) - b, DBL_MIN);
-  double lim = dmin(cross, bj->c_t - now);
-  /* kept unless it cannot touch before the earliest contact so far, or within the horizon */
-  int keep = ((c <= 0.0) | ((b < 0.0) & (disc > 0.0))) & (t < *best) & (t <= lim);
-  if (*nc == HD_MAX_CAND) { /* a crowd: the rest one by one (still exact, only slower) */
-    if (keep) predict_one(s, bi, j, sx, sy, cross, best);
-    return;
-  }
-  hd_cand *cd = &cs[*nc];
-  cd->t = t;
-  cd->lim = dmax(lim, 0.0);
-  cd->sx = sx;
-  cd->sy = sy;
-  cd->j = j;
-  cd->begun = 0;
-  *nc += keep;
-}
-
 static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, double *best) {
   hd_body *bi = &s->b[i];
   const double now = s->c.t;
   const hd_shape *si = &s->shape[bi->species];
-  const double rad_i = s->reach[bi->species];
+  const double *rad = s->reach; /* enclosing radii, widened */
+  const double rad_i = rad[bi->species];
   const int i_disk = si->tag == HD_KIND_DISK; /* (locals: the stores below may alias s) */
   hd_cand cs[HD_MAX_CAND];
-  int nc = 0, ord[HD_MAX_CAND], have_sca = 0;
-  double sca[2]; /* sin and cos of i's orientation, shared by its searches (once one begins) */
-  int32_t c0 = bi->cell, ncx = s->ncx, cx = c0 % ncx, cy = c0 / ncx;
-  if (cx >= 1 && cx < ncx - 1 && cy >= 1 && cy < s->ncy - 1) {
-    /* an interior cell: no periodic image, no wall; the cells in HD_FOR_NEIGHBOURS's order */
-    for (int32_t row = c0 - ncx; row <= c0 + ncx; row += ncx)
-      for (int32_t cc = row - 1; cc <= row + 1; cc++)
-        for (int32_t j = s->head[cc]; j >= 0; j = s->b[j].next)
-          if (j != i && j != skip)
-            sorted_cand(s, bi, j, 0.0, 0.0, cross, i_disk, rad_i, cs, &nc, best);
-  } else {
-    HD_FOR_NEIGHBOURS(s, c0, {
-      if (j == i || j == skip) continue;
-      sorted_cand(s, bi, j, sx, sy, cross, i_disk, rad_i, cs, &nc, best);
-    });
-  }
+  int nc = 0, ord[HD_MAX_CAND];
+  double sca[2]; /* sin and cos of i's orientation, shared by its searches */
+  hd_ca_sincos(bi->k.phi, &sca[0], &sca[1]);
+  HD_FOR_NEIGHBOURS(s, bi->cell, {
+    if (j == i || j == skip) continue;
+    const hd_body *bj = &s->b[j];
+    if (i_disk && s->shape[bj->species].tag == HD_KIND_DISK) {
+      predict_disk_pair(s, bi, j, sx, sy, (sx > 0) - (sx < 0), (sy > 0) - (sy < 0),
+                        disk_contact(s, bi, bj), best);
+      continue;
+    }
+    double dtj = now - bj->t, R = rad_i + rad[bj->species];
+    double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x,
+           ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
+    /* the circles' first meeting, without branches on the data (they would be mispredicted):
+     * 0 if they overlap (c <= 0), else c / (sqrt(b^2 - v^2 c) - b) when they meet (b < 0 and
+     * disc > 0); a denominator floored at DBL_MIN only lowers the bound */
+    double vx = bj->k.vx - bi->k.vx, vy = bj->k.vy - bi->k.vy;
+    double c = rx * rx + ry * ry - R * R, b = rx * vx + ry * vy,
+           disc = b * b - (vx * vx + vy * vy) * c;
+    double t = dmax(c, 0.0) / dmax(sqrt(dmax(disc, 0.0)) - b, DBL_MIN);
+    double lim = dmin(cross, bj->c_t - now);
+    /* kept unless it cannot touch before the earliest contact so far, or within the horizon */
+    int keep = ((c <= 0.0) | ((b < 0.0) & (disc > 0.0))) & (t < *best) & (t <= lim);
+    if (nc == HD_MAX_CAND) { /* a crowd: the rest one by one (still exact, only slower) */
+      if (keep) predict_one(s, bi, j, sx, sy, cross, best);
+      continue;
+    }
+    hd_cand *cd = &cs[nc];
+    cd->t = t;
+    cd->lim = dmax(lim, 0.0);
+    cd->sx = sx;
+    cd->sy = sy;
+    cd->j = j;
+    cd->begun = 0;
+    nc += keep;
+  });
   for (int k = 0; k < nc; k++) ord[k] = k;
   for (long steps = 1; nc > 0; steps++) {
     int k = 0; /* the pending search furthest behind */
@@ -257,10 +241,7 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
       if (cs[ord[q]].t < cs[ord[k]].t) k = q;
     hd_cand *c = &cs[ord[k]];
     if (!(c->t < *best)) break;
-    /* a stop request is looked at every HD_CA_POLL + 1 calls, and when a search's own count of
-     * steps (single steps included) reaches such a multiple */
-    if (((steps & HD_CA_POLL) == 0 || (c->begun && (c->ca.it & HD_CA_POLL) == 0)) &&
-        hd_stop_requested) { /* cut: no contact before c->t */
+    if ((steps & HD_CA_POLL) == 0 && hd_stop_requested) { /* cut: no contact before c->t */
       s->cut_t = dmin(s->cut_t, c->t);
       break;
     }
@@ -275,10 +256,6 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
       hd_kin_advance(&kj, now - bj->t);
       kj.x += c->sx;
       kj.y += c->sy;
-      if (!have_sca) {
-        hd_ca_sincos(bi->k.phi, &sca[0], &sca[1]);
-        have_sca = 1;
-      }
       r = hd_ca_begin(&c->ca, &bi->k, si, &kj, &s->shape[bj->species], lim, sca, &ct);
       c->begun = 1;
     }
