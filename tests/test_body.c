@@ -105,7 +105,6 @@ static void ref_vel(const hd_kin *b, const hd_shape *s, int k, double *vx, doubl
   }
 }
 
-
 /* Kinetic energy as the sum over disks (for a dimer: m v1^2/2 + m v2^2/2). */
 static double ref_ke(const hd_kin *b, const hd_shape *s) {
   double e = 0.0;
@@ -1279,7 +1278,8 @@ static void general_matches_paper(void **state) {
       assert_true(same_or_nan(i1.theta_i, i2.theta_i, 1e-12));
       assert_true(same_or_nan(i1.theta_j, i2.theta_j, 1e-12));
       assert_true(fabs(i1.f - i2.f) <= 1e-12 * i1.f && fabs(i1.vn - i2.vn) <= tol);
-      assert_true(fabs(i1.de - i2.de) <= 1e-12 * (test_kin_energy(&A, sa) + test_kin_energy(&B, sb)));
+      assert_true(fabs(i1.de - i2.de) <=
+                  1e-12 * (test_kin_energy(&A, sa) + test_kin_energy(&B, sb)));
       /* prediction from an approach */
       random_approach(r, sa, sb, k % 2 ? 2.0 : 0.0, 2.0, 0.01, 1.5, &A, &B);
       hd_contact c1, c2;

@@ -40,7 +40,9 @@ static void rough_flags(hd_sim *s) {
  * scene filled in code with zeros) is smooth: beta = -1 everywhere. */
 static int rough_setup(hd_sim *s, const hd_scene *sc, hd_error *err) {
   for (int i = 0; i < s->nsp; i++) {
-    double q = i == 0 ? sc->dimer_q : i == 1 ? sc->disk_q : sc->named[i - 2].q; /* hd_scene_species.h */
+    double q = i == 0   ? sc->dimer_q
+               : i == 1 ? sc->disk_q
+                        : sc->named[i - 2].q; /* hd_scene_species.h */
     if (hd_shape_set_q(&s->shape[i], q))
       return hd_error_set(err, HD_EINPUT, "scene: species %s: q = %g: must be in [0, 1]",
                           s->sp_name[i], q);
