@@ -30,6 +30,7 @@
 #include "haff.h"
 #include "hd_db.h"
 #include "hd_error.h"
+#include "hd_lock.h"
 #include "hd_merge.h"
 #include "hd_opt.h"
 #include "hd_scene.h"
@@ -352,14 +353,14 @@ static int manifest_read(study *st, const char *dir) {
 /* ------------------------------------------------------------------------------------------ */
 /* the study's lock: DIR/sweep.lock
  *
- * POSIX record locks (fcntl), which the kernel drops when the process ends however it ends
- * (kill -9 too), so a lock is never stale; the file's text only names the last holder.
- * Byte 0: the study, held (write lock, not waited for) by a local sweep, --resume and --merge
- * for their whole life: a second one on the same folder is refused, naming the holder.
- * Byte 1 + k: point k, held by the sweep process (local or a Slurm task) that runs it, from
- * before its database is looked at until its run has ended: no other sweep classes, renames or
- * starts a point that another one is running, even in the set-up before the run's own lock.
- * Every lock of a process goes with any close() of the file, so the one descriptor stays open. */
+ * POSIX record locks (fcntl, db/hd_lock.h), which the kernel drops when the process ends however it
+ * ends (kill -9 too), so a lock is never stale; the file's text only names the last holder. Byte 0:
+ * the study, held (write lock, not waited for) by a local sweep, --resume and --merge for their
+ * whole life: a second one on the same folder is refused, naming the holder. Byte 1 + k: point k,
+ * held by the sweep process (local or a Slurm task) that runs it, from before its database is
+ * looked at until its run has ended: no other sweep classes, renames or starts a point that another
+ * one is running, even in the set-up before the run's own lock. Every lock of a process goes with
+ * any close() of the file, so the one descriptor stays open. */
 
 static int lock_fd = -1; /* DIR/sweep.lock, open for the process's life once opened */
 
@@ -368,33 +369,16 @@ static int lock_open(const study *st, int readonly) {
   if (lock_fd >= 0) return 0;
   char path[PATH_MAX + 32];
   snprintf(path, sizeof path, "%s/sweep.lock", st->dir);
-  lock_fd =
-      readonly ? open(path, O_RDONLY | O_CLOEXEC) : open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  lock_fd = hd_lock_open(path, !readonly);
   return lock_fd >= 0 ? 0 : -1;
 }
 
-/* Byte at of the lock file: type F_WRLCK (taken, not waited for) or F_UNLCK; 0 or -1. */
-static int lock_byte(off_t at, short type) {
-  struct flock fl;
-  memset(&fl, 0, sizeof fl);
-  fl.l_type = type;
-  fl.l_whence = SEEK_SET;
-  fl.l_start = at;
-  fl.l_len = 1;
-  return fcntl(lock_fd, F_SETLK, &fl);
-}
-
-/* The pid of another process that holds byte at, or 0 when none does. */
+/* The pid of another process that holds byte at, or 0 when none does (-1: one does, its pid
+ * unknown). */
 static long lock_holder(off_t at) {
-  if (lock_fd < 0) return 0;
-  struct flock fl;
-  memset(&fl, 0, sizeof fl);
-  fl.l_type = F_WRLCK;
-  fl.l_whence = SEEK_SET;
-  fl.l_start = at;
-  fl.l_len = 1;
-  if (fcntl(lock_fd, F_GETLK, &fl) != 0 || fl.l_type == F_UNLCK) return 0;
-  return fl.l_pid > 0 ? (long)fl.l_pid : -1;
+  hd_lock_who who;
+  if (lock_fd < 0 || hd_lock_holder(lock_fd, at, 1, 1, &who) != 0) return 0;
+  return who.pid;
 }
 
 /* Takes the study's lock for what (e.g. "sweep"), or refuses: 0, or 1 after one line that
@@ -404,7 +388,7 @@ static int study_lock(const study *st, const char *what) {
     fprintf(stderr, "haff sweep: %s/sweep.lock: %s\n", st->dir, strerror(errno));
     return 1;
   }
-  if (lock_byte(0, F_WRLCK) != 0) {
+  if (hd_lock_acquire(lock_fd, 0, 1) != 0) {
     int e = errno;
     if (e != EACCES && e != EAGAIN) {
       fprintf(stderr, "haff sweep: %s/sweep.lock: cannot lock: %s\n", st->dir, strerror(e));
@@ -440,18 +424,18 @@ static int study_lock(const study *st, const char *what) {
   int len = snprintf(text, sizeof text, "pid %ld on %s since %s: haff sweep %s\n", (long)getpid(),
                      host, when, what);
   if (ftruncate(lock_fd, 0) == 0 && pwrite(lock_fd, text, (size_t)len, 0) == len) {
-    /* only a note: the lock is the fcntl lock */
+    /* only a note: the lock is the record lock (hd_lock) */
   }
   return 0;
 }
 
 /* Claims point k for this process: 1 taken, 0 another process runs it (or no lock file). */
 static int point_claim(int k) {
-  return lock_fd >= 0 && lock_byte((off_t)k + 1, F_WRLCK) == 0;
+  return lock_fd >= 0 && hd_lock_acquire(lock_fd, (off_t)k + 1, 1) == 0;
 }
 
 static void point_release(int k) {
-  if (lock_fd >= 0) lock_byte((off_t)k + 1, F_UNLCK);
+  if (lock_fd >= 0) hd_lock_release(lock_fd, (off_t)k + 1, 1);
 }
 
 static int mkdir_p(const char *path) {

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "hd_db.h"
+#include "hd_lock.h"
 #include "hd_path.h"
 #include "hd_stop.h"
 
@@ -69,14 +70,13 @@ static int check_input(const char *path, hd_error *err) {
 int hd_merge_lock_held(const char *path, long long run) {
   char lk[PATH_MAX + 256];
   snprintf(lk, sizeof lk, "%s.lock", path);
-  int fd = open(lk, O_RDONLY | O_CLOEXEC);
+  int fd = hd_lock_open(lk, 0);
   if (fd < 0) return 0;
-  struct flock fl;
-  memset(&fl, 0, sizeof fl); /* l_start = l_len = 0: the whole file */
-  fl.l_type = F_RDLCK;       /* a write lock of anyone on the bytes asked conflicts with it */
-  fl.l_whence = SEEK_SET;
-  if (run >= 0) fl.l_start = (off_t)run, fl.l_len = 1;
-  int held = fcntl(fd, F_GETLK, &fl) == 0 && fl.l_type != F_UNLCK;
+  /* a read lock asked about: a write lock of anyone on the bytes asked conflicts with it;
+   * start = len = 0: the whole file */
+  hd_lock_who who;
+  int held =
+      hd_lock_holder(fd, run >= 0 ? (off_t)run : 0, run >= 0 ? 1 : 0, 0, &who) == 0 && who.pid != 0;
   close(fd);
   return held;
 }

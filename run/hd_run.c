@@ -2,7 +2,6 @@
 
 #include <assert.h>
 #include <errno.h>
-#include <fcntl.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -14,6 +13,7 @@
 
 #include "hd_build.h"
 #include "hd_db.h"
+#include "hd_lock.h"
 #include "hd_model.h"
 #include "hd_sim.h"
 #include "hd_stop.h"
@@ -79,16 +79,10 @@ static int run_lock(runner *r, hd_error *err) {
   char path[4200];
   lock_path(r, path, sizeof path);
   for (int attempt = 0;; attempt++) {
-    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    int fd = hd_lock_open(path, 1);
     if (fd < 0)
       return hd_error_set(err, HD_EIO, "%s: cannot open the run lock: %s", path, strerror(errno));
-    struct flock fl;
-    memset(&fl, 0, sizeof fl);
-    fl.l_type = F_WRLCK;
-    fl.l_whence = SEEK_SET;
-    fl.l_start = (off_t)r->run;
-    fl.l_len = 1;
-    if (fcntl(fd, F_SETLK, &fl) == 0) {
+    if (hd_lock_acquire(fd, (off_t)r->run, 1) == 0) {
       if (same_file(fd, path)) {
         r->lock_fd = fd;
         return HD_OK;
@@ -98,12 +92,13 @@ static int run_lock(runner *r, hd_error *err) {
       return hd_error_set(err, HD_EIO, "%s: the run lock file keeps being replaced", path);
     }
     int e = errno;
-    /* the whole file locked (l_start = l_len = 0; a run's lock is byte id >= 1): its last
-     * holder removing it, for a moment; or no lock left by the time we look (F_UNLCK: that
-     * holder has let go); then try again */
-    struct flock who = fl;
-    int removing = (e == EACCES || e == EAGAIN) && fcntl(fd, F_GETLK, &who) == 0 &&
-                   (who.l_type == F_UNLCK || (who.l_start == 0 && who.l_len == 0));
+    /* the whole file locked (start = len = 0; a run's lock is byte id >= 1): its last holder
+     * removing it, for a moment; or no lock left by the time we look (none: that holder has
+     * let go); then try again */
+    hd_lock_who who;
+    int removing = (e == EACCES || e == EAGAIN) &&
+                   hd_lock_holder(fd, (off_t)r->run, 1, 1, &who) == 0 &&
+                   (who.pid == 0 || (who.start == 0 && who.len == 0));
     close(fd);
     if (removing && attempt < 1000) {
       const struct timespec ms = {0, 1000000L};
@@ -124,13 +119,10 @@ static int run_lock(runner *r, hd_error *err) {
  * lock on the whole file, which fails if one does, is taken for the removal). */
 static void run_unlock(runner *r) {
   if (r->lock_fd < 0) return;
-  struct flock fl;
-  memset(&fl, 0, sizeof fl);
-  fl.l_type = F_WRLCK;
-  fl.l_whence = SEEK_SET; /* l_start = l_len = 0: the whole file */
   char path[4200];
   lock_path(r, path, sizeof path);
-  if (fcntl(r->lock_fd, F_SETLK, &fl) == 0 && same_file(r->lock_fd, path)) unlink(path);
+  /* start = len = 0: the whole file */
+  if (hd_lock_acquire(r->lock_fd, 0, 0) == 0 && same_file(r->lock_fd, path)) unlink(path);
   close(r->lock_fd);
   r->lock_fd = -1;
 }
