@@ -7,49 +7,35 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gen_file.h"
 #include "hd_db.h"
 
-int main(int argc, char **argv) {
-  if (argc < 2) {
-    fprintf(stderr, "usage: gen_schema db/schema.sql [--check]\n");
-    return 2;
-  }
-  FILE *f = fopen(argv[1], "rb");
-  if (!f) {
-    perror(argv[1]);
-    return 1;
-  }
-  static char in[1 << 20];
-  size_t n = fread(in, 1, sizeof in - 1, f);
-  fclose(f);
-  in[n] = '\0';
-  const char *head = "CREATE TABLE IF NOT EXISTS collisions (\n";
-  char *a = strstr(in, head), *b = a ? strstr(a, "\n);\n") : NULL;
+/* in with its CREATE TABLE of collisions (to the first "\n);\n" after it) made anew */
+static int make(const char *in, char **out, char *why, size_t why_size) {
+  const char *head = "CREATE TABLE IF NOT EXISTS collisions (\n", *end = "\n);\n";
+  const char *a = strstr(in, head), *b = a ? strstr(a, end) : NULL;
   char *gen = hd_db_collisions_create_sql();
-  if (!a || !b || !gen) {
-    fprintf(stderr, "%s: %s\n", argv[1],
-            gen ? "no \"CREATE TABLE IF NOT EXISTS collisions (\" ... \");\" in it"
-                : "out of memory");
+  size_t pre = a ? (size_t)(a - in) : 0, ng = gen ? strlen(gen) : 0;
+  if (a && b && gen) {
+    b += strlen(end);
+    *out = malloc(pre + ng + strlen(b) + 1);
+  }
+  if (!a || !b || !gen || !*out) {
+    snprintf(why, why_size, "%s",
+             gen && (!a || !b) ? "no \"CREATE TABLE IF NOT EXISTS collisions (\" ... \");\" in it"
+                               : "out of memory");
     free(gen);
     return 1;
   }
-  b += strlen("\n);\n");
-  int same = (size_t)(b - a) == strlen(gen) && !memcmp(a, gen, strlen(gen));
-  if (argc > 2 && !strcmp(argv[2], "--check")) {
-    if (!same) fprintf(stderr, "%s: not what the column table gives: run make schema\n", argv[1]);
-    free(gen);
-    return !same;
-  }
-  if (!same) {
-    f = fopen(argv[1], "wb");
-    if (!f || fwrite(in, 1, (size_t)(a - in), f) != (size_t)(a - in) || fputs(gen, f) == EOF ||
-        fputs(b, f) == EOF || fclose(f) != 0) {
-      perror(argv[1]);
-      free(gen);
-      return 1;
-    }
-  }
-  printf("%s: %s\n", argv[1], same ? "up to date" : "collisions table rewritten");
+  memcpy(*out, in, pre);
+  memcpy(*out + pre, gen, ng);
+  strcpy(*out + pre + ng, b);
   free(gen);
   return 0;
+}
+
+int main(int argc, char **argv) {
+  const gen_file g = {
+      "gen_schema", "db/schema.sql", "column table", "schema", "collisions table rewritten", make};
+  return gen_file_main(&g, argc, argv);
 }
