@@ -7,39 +7,50 @@
 
 #include "hd_species.h"
 
-/* hd_cli_fits, then the ensembles (hd_species_groups).  Exit code; on 0 *db, *fits, *g are
- * the caller's to free. */
-static int load(const hd_cli_args *a, const char *cmd, sqlite3 **db, hd_run_fit **fits,
-                hd_species_group **g, size_t *ng) {
+/* What both commands read: the runs' fits and their ensembles. */
+typedef struct loaded {
+  sqlite3 *db;
+  hd_run_fit *fits;
+  hd_species_group *g; /* ng ensembles (hd_species_groups) */
+  size_t ng;
+} loaded;
+
+/* hd_cli_fits, then the ensembles (hd_species_groups).  Exit code; on 0 *l is the caller's to
+ * free with unload. */
+static int load(const hd_cli_args *a, const char *cmd, loaded *l) {
   size_t n;
-  int rc = hd_cli_fits(a, cmd, db, fits, &n);
+  int rc = hd_cli_fits(a, cmd, &l->db, &l->fits, &n);
   if (rc) return rc;
   hd_error err;
-  if (hd_species_groups(*db, *fits, n, g, ng, &err)) {
-    free(*fits), hd_ana_close(*db);
+  if (hd_species_groups(l->db, l->fits, n, &l->g, &l->ng, &err)) {
+    free(l->fits), hd_ana_close(l->db);
     return hd_cli_fail(cmd, &err);
   }
-  if (*ng == 0) {
-    free(*fits), hd_ana_close(*db), hd_species_groups_free(*g, *ng);
+  if (l->ng == 0) {
+    free(l->fits), hd_ana_close(l->db), hd_species_groups_free(l->g, l->ng);
     fprintf(stderr, "haff %s: no run with species (rods have none)\n", cmd);
     return 2;
   }
-  for (size_t j = 0; j < *ng; j++) {
-    const hd_species_group *q = &(*g)[j];
+  for (size_t j = 0; j < l->ng; j++) {
+    const hd_species_group *q = &l->g[j];
     if (q->used == 0)
       fprintf(stderr, "haff %s: run %lld and its ensemble: no per-species samples in the window\n",
-              cmd, (long long)(*fits)[q->idx[0]].info.id);
+              cmd, (long long)l->fits[q->idx[0]].info.id);
   }
   return 0;
 }
 
+static void unload(loaded *l) {
+  hd_species_groups_free(l->g, l->ng), free(l->fits), hd_ana_close(l->db);
+}
+
 int hd_cli_species_fit(const hd_cli_args *a, const char *cmd) {
-  sqlite3 *db;
-  hd_run_fit *fits;
-  hd_species_group *g;
-  size_t ng;
-  int rc = load(a, cmd, &db, &fits, &g, &ng);
+  loaded l;
+  int rc = load(a, cmd, &l);
   if (rc) return rc;
+  const hd_run_fit *fits = l.fits;
+  const hd_species_group *g = l.g;
+  size_t ng = l.ng;
   FILE *out = hd_cli_out(a);
   if (out) {
     fprintf(out, "group\trun\truns\tspecies\tN\tT_ratio\tT_ratio_err\terr_from\tT_ratio_theory\t"
@@ -70,7 +81,7 @@ int hd_cli_species_fit(const hd_cli_args *a, const char *cmd) {
   }
   size_t used = 0;
   for (size_t j = 0; j < ng; j++) used += g[j].used;
-  hd_species_groups_free(g, ng), free(fits), hd_ana_close(db);
+  unload(&l);
   if (!rc && used == 0) {
     fprintf(stderr, "haff %s: no run had per-species samples in its window\n", cmd);
     return 2;
@@ -151,22 +162,19 @@ static int write_group(FILE *out, sqlite3 *db, const hd_run_fit *fits, const hd_
 }
 
 int hd_cli_species_energy(const hd_cli_args *a, const char *cmd) {
-  sqlite3 *db;
-  hd_run_fit *fits;
-  hd_species_group *g;
-  size_t ng;
-  int rc = load(a, cmd, &db, &fits, &g, &ng);
+  loaded l;
+  int rc = load(a, cmd, &l);
   if (rc) return rc;
   FILE *out = hd_cli_out(a);
   hd_error err;
   int first = 1;
   rc = out ? 0 : 1;
-  for (size_t j = 0; out && j < ng && !rc; j++)
-    if (write_group(out, db, fits, &g[j], j, &first, &err)) rc = hd_cli_fail(cmd, &err);
+  for (size_t j = 0; out && j < l.ng && !rc; j++)
+    if (write_group(out, l.db, l.fits, &l.g[j], j, &first, &err)) rc = hd_cli_fail(cmd, &err);
   if (out) {
     int c = hd_cli_close(out, a);
     if (!rc) rc = c;
   }
-  hd_species_groups_free(g, ng), free(fits), hd_ana_close(db);
+  unload(&l);
   return rc;
 }
