@@ -109,4 +109,16 @@ static inline int test_cli_rmdir(void) {
   return system(cmd) == 0 ? 0 : -1;
 }
 
+/* The setup of a program whose tests all drive bin/haff: haff (test_cli_find_haff) and dir, a
+ * new folder /tmp/haff-NAME-XXXXXX; in the sanitized build neither (haff NULL: the tests skip).
+ * 0, or -1 when dir cannot be made. */
+static inline int test_cli_setup(const char *name) {
+  return test_cli_find_haff() ? test_cli_mkdtemp(name) : 0;
+}
+
+/* Its teardown: removes dir (when the setup made it). */
+static inline int test_cli_teardown(void) {
+  return haff && dir[0] ? test_cli_rmdir() : 0;
+}
+
 #endif

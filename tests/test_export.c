@@ -461,16 +461,13 @@ static void frames_in_process(void **state) {
 
 static int setup(void **state) {
   (void)state;
-  if (!test_cli_find_haff()) return 0; /* these tests drive bin/haff, not sanitized */
   assert_non_null(getcwd(root, sizeof root));
-  assert_int_equal(test_cli_mkdtemp("export"), 0);
-  return 0;
+  return test_cli_setup("export"); /* these tests drive bin/haff, not sanitized */
 }
 
 static int teardown(void **state) {
   (void)state;
-  if (!haff) return 0;
-  return test_cli_rmdir();
+  return test_cli_teardown();
 }
 
 int main(void) {

@@ -65,17 +65,15 @@ static void errors(void **state) {
 
 static int setup(void **state) {
   (void)state;
-  if (!test_cli_find_haff()) return 0; /* these tests drive bin/haff, not sanitized */
   assert_non_null(getcwd(root, sizeof root));
-  assert_non_null(realpath(haff, exe));
-  assert_int_equal(test_cli_mkdtemp("python"), 0);
+  if (test_cli_setup("python")) return -1; /* these tests drive bin/haff, not sanitized */
+  if (haff) assert_non_null(realpath(haff, exe));
   return 0;
 }
 
 static int teardown(void **state) {
   (void)state;
-  if (!haff) return 0;
-  return test_cli_rmdir();
+  return test_cli_teardown();
 }
 
 int main(void) {
