@@ -20,16 +20,7 @@ import sys
 
 import ase.io
 
-passed = failed = 0
-
-
-def check(ok, what):
-    global passed, failed
-    if ok:
-        passed += 1
-    else:
-        failed += 1
-        print("FAILED:", what)
+from check_tally import check, done
 
 
 def scene_keys(text):
@@ -180,8 +171,7 @@ def main():
             if want[i][0] == want[i + 1][0] and f.get_chemical_symbols()[i] == "N":
                 worst = max(worst, abs(math.dist(pos[i], pos[i + 1]) - a))
         check(worst <= 1e-12 * box, where + ": bond off by %.3g" % worst)
-    print("%d passed, %d failed" % (passed, failed))
-    sys.exit(1 if failed else 0)
+    done()
 
 
 if __name__ == "__main__":

@@ -26,16 +26,7 @@ import gsd.hoomd
 import gsd.pygsd
 import numpy as np
 
-passed = failed = 0
-
-
-def check(ok, what):
-    global passed, failed
-    if ok:
-        passed += 1
-    else:
-        failed += 1
-        print("FAILED:", what)
+from check_tally import check, done
 
 
 def same(a, b):
@@ -226,8 +217,7 @@ def main():
             check(same(py[k].particles.position, traj[k].particles.position) and
                   same(py[k].log["haff/position"], traj[k].log["haff/position"]),
                   "pygsd: frame %d differs" % k)
-    print("%d passed, %d failed" % (passed, failed))
-    sys.exit(1 if failed else 0)
+    done()
 
 
 if __name__ == "__main__":
