@@ -19,21 +19,12 @@
 
 #include "hd_body.h"
 #include "hd_body_impulse.h"
+#include "test_rng.h"
 #include "test_sim.h"
 
 static int sanitize(void) {
   const char *s = getenv("HAFF_SANITIZE");
   return s && s[0] == '1';
-}
-
-static gsl_rng *rng_new(unsigned long seed) {
-  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-  gsl_rng_set(r, seed);
-  return r;
-}
-
-static double unif(gsl_rng *r, double lo, double hi) {
-  return lo + (hi - lo) * gsl_rng_uniform(r);
 }
 
 static hd_shape dimer(double d, double a, double m) {

@@ -30,18 +30,9 @@
 #include "hd_scene.h"
 #include "hd_sim.h"
 #include "test_cli_util.h"
+#include "test_rng.h"
 #include "test_sim.h"
 #include "test_util.h"
-
-static gsl_rng *rng_new(unsigned long seed) {
-  gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
-  gsl_rng_set(r, seed);
-  return r;
-}
-
-static double unif(gsl_rng *r, double lo, double hi) {
-  return lo + (hi - lo) * gsl_rng_uniform(r);
-}
 
 static void near(double got, double want, double tol, const char *what) {
   if (!(fabs(got - want) <= tol)) {
