@@ -168,19 +168,25 @@ static void second_process_refused(void **state) {
   close(fd);
 }
 
-/* The holder lets go (hd_lock_release): the byte is free for the next process. */
-static void released_by_release(void **state) {
-  (void)state;
-  holder h = hold(1, 1);
+/* A child holds byte at; this process is refused it until the child obeys order (hold's
+ * letters), then takes it and sees no other holder. */
+static void released_by_order(off_t at, char what) {
+  holder h = hold(at, 1);
   int fd = hd_lock_open(path, 1);
-  assert_true(refused(fd, 1, 1));
-  order(&h, 'r');
-  assert_false(refused(fd, 1, 1));
+  assert_true(refused(fd, at, 1));
+  order(&h, what);
+  assert_false(refused(fd, at, 1));
   hd_lock_who who;
-  assert_int_equal(hd_lock_holder(fd, 1, 1, 1, &who), 0);
+  assert_int_equal(hd_lock_holder(fd, at, 1, 1, &who), 0);
   assert_int_equal(who.pid, 0);
   end(&h, 0);
   close(fd);
+}
+
+/* The holder lets go (hd_lock_release): the byte is free for the next process. */
+static void released_by_release(void **state) {
+  (void)state;
+  released_by_order(1, 'r');
 }
 
 /* The holder ends, by exit and by kill -9: its lock goes with it (never stale). */
@@ -203,13 +209,7 @@ static void released_on_exit(void **state) {
  * keeps its one descriptor open). */
 static void released_on_close(void **state) {
   (void)state;
-  holder h = hold(2, 1);
-  int fd = hd_lock_open(path, 1);
-  assert_true(refused(fd, 2, 1));
-  order(&h, 'c');
-  assert_false(refused(fd, 2, 1));
-  end(&h, 0);
-  close(fd);
+  released_by_order(2, 'c');
 }
 
 /* hd_merge_lock_held's question: a read lock asked about is refused only by a write lock, and a
