@@ -432,6 +432,79 @@ static void figures_png_svg_pdf_once(void **state) {
   }
 }
 
+/* Fig. 3 (the faults found by looking at it): (1) the groups it marks open are those that
+ * haff-fit --alpha-group flags on the figure's own runs (fig23.db), with their flag in the key:
+ * it used to mark the tables' groups (other boxes, and no 0.8 among TAB_ALPHAS) and call every
+ * flag "inhomogeneous".  Made at XMAX = 2, where every group of the figure is flagged short
+ * (windows with less than one e-fold of E) and has no nu0_eff, which (2) made gnuplot fail (no
+ * figure; now such groups are named in the key alone); its key read back from the SVG.  (3) The
+ * x axis reaches the last point: it was cut at a fixed 3000, which PAPER=1's alpha = 0.98 runs
+ * pass (~9000): a two-block energy file to nu0_eff t = 9000, gnuplot's GPVAL_X_MAX read back,
+ * and flagged's alpha matched as a number (0.980). */
+static void fig3_flags_and_range(void **state) {
+  (void)state;
+  need();
+  char t[600], cmd[4096], buf[65536];
+  snprintf(t, sizeof t, "OUT='%s/out3' XMAX=2 %s/out3/fig3.svg", tmp, tmp);
+  if (make("", t, "fig3.log") != 0) {
+    show_log("fig3.log");
+    fail_msg("make -f plots/plots.mk (tiny, XMAX=2) fig3.svg failed");
+  }
+  snprintf(cmd, sizeof cmd, "%s/out3/fig3.svg", tmp);
+  FILE *f = fopen(cmd, "r");
+  assert_non_null(f);
+  size_t n = fread(buf, 1, sizeof buf - 1, f);
+  buf[n] = '\0';
+  fclose(f);
+  if (!strstr(buf, "α = 0.9 (2 runs): flagged short") ||
+      !strstr(buf, "α = 0.8 (2 runs): flagged short") || strstr(buf, "inhomogeneous"))
+    fail_msg("fig3.svg: the key does not name the figure's own groups' flag (short)");
+  snprintf(cmd, sizeof cmd, "%s/out3/data/fig23-groups.tsv", tmp);
+  f = fopen(cmd, "r");
+  assert_non_null(f);
+  n = fread(buf, 1, sizeof buf - 1, f);
+  buf[n] = '\0';
+  fclose(f);
+  for (int k = 0; k < 2; k++) { /* FIG2_ALPHAS of TINY: both groups flagged short */
+    snprintf(cmd, sizeof cmd, "\n%s\t1\tdimers\t", k ? "0.8" : "0.9");
+    const char *row = strstr(buf, cmd);
+    assert_non_null(row);
+    assert_non_null(strstr(row, "\tshort\t"));
+  }
+
+  snprintf(cmd, sizeof cmd, "%s/e3.tsv", tmp);
+  f = fopen(cmd, "w");
+  assert_non_null(f);
+  for (int b = 0; b < 2; b++) {
+    double al = b ? 0.9 : 0.98, g = 0.17 * (1 - al * al);
+    fprintf(f, "%s# dimers alpha=%g a_over_d=1 runs=2 D_e=3 nu0_eff=0.17\n", b ? "\n\n" : "", al);
+    fprintf(f,
+            "alpha=%g a/d=1 (2 runs)\tcpd\tE\tE_over_E0\te_tr\te_rot\tx\tnu0t\t"
+            "haff_E_over_E0\tx_eq31\thomog\n",
+            al);
+    for (int i = 0; i <= 60; i++) {
+      double tau = (b ? 300.0 : 9000.0) * i / 60, x = (1 - al * al) * log1p(g * tau) / g;
+      fprintf(f, "%g\t%g\t1\t1\t1\t1\t%.6g\t%.6g\t1\t%.6g\t1\n", tau, x / (1 - al * al), x, tau, x);
+    }
+  }
+  fclose(f);
+  snprintf(cmd, sizeof cmd,
+           "gnuplot -e \"in='%1$s/e3.tsv'; out='%1$s/e3.svg'; flagged='0.980=outliers'\" "
+           "'%2$s/plots/fig3.gp' -e \"set print '%1$s/e3.txt'; print GPVAL_X_MAX\" "
+           "2>'%1$s/e3.err' && test ! -s '%1$s/e3.err'",
+           tmp, root);
+  if (system(cmd) != 0) fail_msg("fig3.gp on a file to nu0_eff t = 9000 failed or warned");
+  snprintf(cmd, sizeof cmd, "%s/e3.txt", tmp);
+  f = fopen(cmd, "r");
+  assert_non_null(f);
+  double xmax = 0;
+  assert_int_equal(fscanf(f, "%lf", &xmax), 1);
+  fclose(f);
+  if (!(xmax >= 9000)) fail_msg("fig3: the x axis ends at %g, before the last point (9000)", xmax);
+  snprintf(cmd, sizeof cmd, "grep -q 'α = 0.98 (2 runs): flagged outliers' '%s/e3.svg'", tmp);
+  if (system(cmd) != 0) fail_msg("fig3: flagged='0.980=outliers' is not alpha 0.98's flag");
+}
+
 /* The report page (issue 26): plots/scripts/report.py on small generated inputs (two figures
  * drawn with plots/style.gp, Tables I-II, one tiny run) writes one self-contained index.html;
  * its captions say what was run (N, area fraction, seeds, from the run's database) and Table I
@@ -491,6 +564,7 @@ int main(void) {
       cmocka_unit_test(pipeline_and_rebuild),  cmocka_unit_test(merge_keeps_rows),
       cmocka_unit_test(tsv_columns),           cmocka_unit_test(table_boxes_inside_hcs),
       cmocka_unit_test(gnuplot_render),        cmocka_unit_test(figures_png_svg_pdf_once),
-      cmocka_unit_test(rods_pipeline_resumes), cmocka_unit_test(report_page_in_chromium)};
+      cmocka_unit_test(rods_pipeline_resumes), cmocka_unit_test(report_page_in_chromium),
+      cmocka_unit_test(fig3_flags_and_range)};
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -40,8 +40,10 @@ CAPTIONS = {
              "D<sub>e</sub> (dashed) and a t<sup>−2</sup> guide. Lower panel: E/E(0) over exp(−x/3), "
              "where the bands and the differences between the α can be seen. " + U_DIMER),
     "fig3": ("Fig. 3", "(1 − α²)·cpd against ν<sub>0</sub><sup>eff</sup>t (log axis) with eq. (31) "
-             "of the fitted D<sub>e</sub>; open symbols: groups the tables flag inhomogeneous "
-             "(α = 0.9, 0.8 at this N), shown for comparison. Points: mean over the runs. "
+             "of the fitted D<sub>e</sub>; open symbols: groups that haff-fit --alpha-group flags on "
+             "these very runs, the flag named in the key (at N = 900, α = 0.9 and 0.8 are past "
+             "the HCS's critical size: inhomogeneous), shown for comparison. Points: mean over "
+             "the runs. "
              + U_DIMER),
     "fig4": ("Fig. 4", "Two dimers at contact, a/d = 1: the allowed range |θ| ≤ θ<sub>max</sub> of "
              "the contact angle (Monte Carlo geometry, no statistics). Lengths in units of d."),
