@@ -26,7 +26,9 @@ for arg in "$@"; do
   sys=$("$haff" haff-fit "$db" --alpha-group 2>/dev/null |
     awk -F '\t' 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "D_e_sys") c = i; next }
                   { print $c; exit }')
-  fits=$("$haff" haff-fit "$db" | awk -F '\t' 'NR > 1 { print $1 "\t" $9 "\t" $8 }')
+  # per run: run, D_e, cpd_end (haff-fit's columns found by name, as D_e_sys above)
+  fits=$("$haff" haff-fit "$db" | awk -F '\t' 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+                                                { print $c["run"] "\t" $c["D_e"] "\t" $c["cpd_end"] }')
   cpu=$(sqlite3 -separator $'\t' "$db" "SELECT run, cpu_seconds FROM plots_runs ORDER BY run")
   join -t $'\t' <(sort -k1,1 <<< "$fits") <(sort -k1,1 <<< "$cpu") | sort -n -k1,1 |
     awk -F '\t' -v L="$L" -v sys="${sys:-}" '
