@@ -176,21 +176,21 @@ CREATE INDEX IF NOT EXISTS sample_species_run ON sample_species(run, t);
 -- DESIGN.md rely on (run, t, collisions, cpd, e_tr, e_rot) are sample_rows' own; a query that
 -- does not ask for the per-species columns reads sample_rows alone (SQLite flattens the view).
 CREATE VIEW IF NOT EXISTS samples AS
-SELECT s.run, s.t, s.collisions, s.cpd, s.e_tr, s.e_rot,
-       CASE WHEN EXISTS (SELECT 1 FROM sample_species AS k WHERE k.run = s.run AND k.t = s.t
-                           AND k.species = 1)
-            THEN (SELECT d.e_tr FROM sample_species AS d WHERE d.run = s.run AND d.t = s.t
-                    AND d.species = 0) END AS e_tr_dimer,
-       CASE WHEN EXISTS (SELECT 1 FROM sample_species AS k WHERE k.run = s.run AND k.t = s.t
-                           AND k.species = 1)
-            THEN (SELECT d.e_rot FROM sample_species AS d WHERE d.run = s.run AND d.t = s.t
-                    AND d.species = 0) END AS e_rot_dimer,
-       CASE WHEN EXISTS (SELECT 1 FROM sample_species AS d WHERE d.run = s.run AND d.t = s.t
-                           AND d.species = 0)
-            THEN (SELECT k.e_tr FROM sample_species AS k WHERE k.run = s.run AND k.t = s.t
-                    AND k.species = 1) END AS e_tr_disk,
-       s.flow_frac, s.flow_chaos, s.count_var, s.s_rho, s.s_perp, s.s_par
-FROM sample_rows AS s;
+SELECT run, t, collisions, cpd, e_tr, e_rot,
+       CASE WHEN EXISTS (SELECT 1 FROM sample_species AS k WHERE k.run = sample_rows.run
+                           AND k.t = sample_rows.t AND k.species = 1)
+            THEN (SELECT d.e_tr FROM sample_species AS d WHERE d.run = sample_rows.run
+                    AND d.t = sample_rows.t AND d.species = 0) END AS e_tr_dimer,
+       CASE WHEN EXISTS (SELECT 1 FROM sample_species AS k WHERE k.run = sample_rows.run
+                           AND k.t = sample_rows.t AND k.species = 1)
+            THEN (SELECT d.e_rot FROM sample_species AS d WHERE d.run = sample_rows.run
+                    AND d.t = sample_rows.t AND d.species = 0) END AS e_rot_dimer,
+       CASE WHEN EXISTS (SELECT 1 FROM sample_species AS d WHERE d.run = sample_rows.run
+                           AND d.t = sample_rows.t AND d.species = 0)
+            THEN (SELECT k.e_tr FROM sample_species AS k WHERE k.run = sample_rows.run
+                    AND k.t = sample_rows.t AND k.species = 1) END AS e_tr_disk,
+       flow_frac, flow_chaos, count_var, s_rho, s_perp, s_par
+FROM sample_rows;
 
 -- Body states: label 'initial', 'final', 'checkpoint', 'velocities' (at [log] velocities_at).
 -- 'checkpoint' is where an interrupted or collapsed run stopped; `haff resume` removes it.
