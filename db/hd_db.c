@@ -492,8 +492,9 @@ int hd_db_samples_convert(sqlite3 *h, const char *src, const char *run_off, cons
  * stamped; so is a file of this version that lacks some of them (made by an earlier build of
  * it, before runs.hcs_* were added).  Additive up to version 4; version 5 replaces the table
  * samples by sample_rows, sample_species rows and the view samples of the same columns
- * (hd_db_samples_convert), so that readers of every haff version after 4 read the file as before.
- * A file of a newer version is refused (HD_EINPUT): this haff does not know its columns. */
+ * (hd_db_samples_convert), so that queries of samples read the file as before (a haff of version
+ * 4 or older refuses it).  A file of a newer version is refused (HD_EINPUT): this haff does not
+ * know its columns. */
 static int schema_apply(hd_db *db, hd_error *err) {
   int v = query_int(db->db, "PRAGMA user_version");
   if (v < 0) return sql_error(db, err, "read the schema version");

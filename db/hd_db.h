@@ -254,8 +254,9 @@ typedef struct hd_same_run {
 int hd_db_find_same_run(hd_db *db, const char *scene_text, unsigned long long seed,
                         hd_same_run *same, hd_error *err);
 
-/* Builds the indexes (after a run): collisions(run,seq), collisions(run,kind), samples(run,t),
- * states(run,label,t), checkpoints(run).  Commits the open batch first. */
+/* Builds the indexes (after a run): collisions(run,seq), collisions(run,kind),
+ * sample_rows(run,t) (named samples_run_t), states(run,label,t), checkpoints(run).  Commits the
+ * open batch first. */
 int hd_db_build_indexes(hd_db *db, hd_error *err);
 
 /* Buffered inserts into the open batch (a batch is opened on demand). */
@@ -314,7 +315,7 @@ const hd_run_table *hd_db_run_tables(void);
 int hd_db_run_delete(hd_db *db, int64_t run, hd_error *err);
 
 /* Deletes the rows a resumed run will write again, in every per-run table
- * (hd_db_run_tables): collisions with seq > seq, samples,
+ * (hd_db_run_tables): collisions with seq > seq, sample_rows,
  * frames, sample_species and states with t > t; and the run's 'checkpoint' and 'final' states
  * (where it stopped: it goes on, and writes its final state again); species too when t < 0 (a
  * run begun again from its set-up, t = -inf, writes them again). */
