@@ -53,9 +53,11 @@ typedef struct hd_ana_spseries {
   double *t, *e_tr, *e_rot; /* malloc'd; hd_ana_spseries_free */
 } hd_ana_spseries;
 
-/* Reads run's per-species energies (sample_species; a file without rows for the run, written
- * before schema version 3 or a run of [dimers] and [disks] only, falls back to the samples
- * columns e_tr_dimer, e_rot_dimer, e_tr_disk, and a run of one species to e_tr, e_rot).  A
+/* Reads run's per-species energies: the one reader of them, for every analysis.  From
+ * sample_species, their only store from schema version 5 on (and every species' rows from
+ * version 3); a run without rows there (a file before version 3, read as it is) falls back to
+ * the samples columns e_tr_dimer, e_rot_dimer, e_tr_disk, and a run of one species to e_tr,
+ * e_rot.  A
  * time at which some species has no row is left out.  HD_OK (n = 0 when there is nothing),
  * HD_EIO, HD_ENOMEM. */
 int hd_ana_spseries_read(sqlite3 *db, int64_t run, const hd_ana_mix *mix, hd_ana_spseries *s,

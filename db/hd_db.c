@@ -39,7 +39,7 @@ struct hd_db {
   int in_tx;                  /* a batch transaction is open */
   sqlite3_stmt *ins_run;      /* INSERT INTO runs */
   sqlite3_stmt *ins_coll;     /* INSERT INTO collisions */
-  sqlite3_stmt *ins_sample;   /* INSERT INTO samples */
+  sqlite3_stmt *ins_sample;   /* INSERT INTO sample_rows */
   sqlite3_stmt *ins_spsample; /* INSERT INTO sample_species */
   sqlite3_stmt *ins_state;    /* INSERT INTO states */
   sqlite3_stmt *ins_ckpt;     /* INSERT INTO checkpoints */
@@ -381,14 +381,119 @@ static int column_missing(sqlite3 *h, const char *table, const char *column) {
   return v;
 }
 
+/* 1 when schema src (a name of this program: "main", "s") has a table (c NULL) or a column c of
+ * table t, 0 when not, -1 on failure. */
+static int schema_has(sqlite3 *h, const char *src, const char *t, const char *c) {
+  sqlite3_stmt *st;
+  char sql[160];
+  if (c)
+    snprintf(sql, sizeof sql, "SELECT count(*) FROM pragma_table_info(?1, '%s') WHERE name = ?2",
+             src);
+  else
+    snprintf(sql, sizeof sql,
+             "SELECT count(*) FROM \"%s\".sqlite_schema WHERE type = 'table' AND name = ?1", src);
+  if (sqlite3_prepare_v2(h, sql, -1, &st, NULL) != SQLITE_OK) return -1;
+  sqlite3_bind_text(st, 1, t, -1, SQLITE_STATIC);
+  if (c) sqlite3_bind_text(st, 2, c, -1, SQLITE_STATIC);
+  int v = sqlite3_step(st) == SQLITE_ROW ? sqlite3_column_int(st, 0) > 0 : -1;
+  sqlite3_finalize(st);
+  return v;
+}
+
+/* Runs the statement made of q (sqlite3_str, finished and freed here) on h. */
+static int exec_str(sqlite3 *h, sqlite3_str *q, const char *path, hd_error *err) {
+  char *sql = sqlite3_str_finish(q);
+  if (!sql) return hd_error_set(err, HD_ENOMEM, "%s: out of memory", path);
+  int ok = sqlite3_exec(h, sql, NULL, NULL, NULL) == SQLITE_OK;
+  sqlite3_free(sql);
+  if (ok) return HD_OK;
+  return hd_error_set(err, hd_db_status_of(sqlite3_errcode(h)),
+                      "%s: convert the samples table of an older schema version: %s", path,
+                      sqlite3_errmsg(h));
+}
+
+int hd_db_samples_convert(sqlite3 *h, const char *src, const char *run_off, const char *path,
+                          hd_error *err) {
+  int old = schema_has(h, src, "samples", NULL);
+  if (old <= 0) /* version 5 (samples is the view), or no samples at all */
+    return old < 0 ? hd_error_set(err, hd_db_status_of(sqlite3_errcode(h)),
+                                  "%s: read the schema: %s", path, sqlite3_errmsg(h))
+                   : HD_OK;
+  /* the columns of sample_rows, each from the old table when it has it (else NULL: a file of
+   * version 0 read by merge lacks the state measures) */
+  sqlite3_stmt *st;
+  if (sqlite3_prepare_v2(h,
+                         "SELECT name FROM pragma_table_info('sample_rows', 'main') ORDER BY cid",
+                         -1, &st, NULL) != SQLITE_OK)
+    return hd_error_set(err, HD_EIO, "%s: read the schema: %s", path, sqlite3_errmsg(h));
+  sqlite3_str *cols = sqlite3_str_new(h), *vals = sqlite3_str_new(h);
+  int rc = HD_OK, k = 0;
+  while (!rc && sqlite3_step(st) == SQLITE_ROW) {
+    const char *c = (const char *)sqlite3_column_text(st, 0); /* haff's own names */
+    int has = schema_has(h, src, "samples", c);
+    if (has < 0) rc = hd_error_set(err, HD_EIO, "%s: read the schema: %s", path, sqlite3_errmsg(h));
+    sqlite3_str_appendf(cols, "%s\"%s\"", k ? ", " : "", c);
+    if (!strcmp(c, "run"))
+      sqlite3_str_appendf(vals, "%sold.run + %s", k ? ", " : "", run_off);
+    else
+      sqlite3_str_appendf(vals, has > 0 ? "%sold.\"%s\"" : "%sNULL", k ? ", " : "", c);
+    k++;
+  }
+  sqlite3_finalize(st);
+  char *cs = sqlite3_str_finish(cols), *vs = sqlite3_str_finish(vals);
+  if (!rc && (!cs || !vs)) rc = hd_error_set(err, HD_ENOMEM, "%s: out of memory", path);
+  if (!rc) {
+    sqlite3_str *q = sqlite3_str_new(h);
+    sqlite3_str_appendf(q,
+                        "INSERT INTO main.sample_rows (%s) SELECT %s FROM \"%s\".samples AS old "
+                        "ORDER BY old.rowid",
+                        cs, vs, src);
+    rc = exec_str(h, q, path, err);
+  }
+  sqlite3_free(cs);
+  sqlite3_free(vs);
+  /* the per-species columns, where sample_species has no row of that species at that t (files
+   * before version 3 have no sample_species; from 3 on it has every species) */
+  int pk = 1, ss = rc ? 0 : schema_has(h, src, "sample_species", NULL);
+  static const char *const pcols[] = {"e_tr_dimer", "e_rot_dimer", "e_tr_disk"};
+  for (int j = 0; j < 3 && !rc; j++) pk &= schema_has(h, src, "samples", pcols[j]) == 1;
+  if (!rc && ss < 0)
+    rc = hd_error_set(err, HD_EIO, "%s: read the schema: %s", path, sqlite3_errmsg(h));
+  if (!rc && pk) {
+    sqlite3_str *q = sqlite3_str_new(h);
+    for (int sp = 0; sp < 2; sp++) {
+      sqlite3_str_appendf(q,
+                          "%s SELECT old.run + %s, old.t, %d, %s FROM \"%s\".samples AS old "
+                          "WHERE %s",
+                          sp ? " UNION ALL"
+                             : "INSERT INTO main.sample_species (run, t, species, "
+                               "e_tr, e_rot)",
+                          run_off, sp, sp ? "old.e_tr_disk, 0" : "old.e_tr_dimer, old.e_rot_dimer",
+                          src,
+                          sp ? "old.e_tr_disk IS NOT NULL"
+                             : "old.e_tr_dimer IS NOT NULL AND old.e_rot_dimer IS NOT NULL");
+      if (ss)
+        sqlite3_str_appendf(q,
+                            " AND NOT EXISTS (SELECT 1 FROM \"%s\".sample_species AS x WHERE "
+                            "x.run = old.run AND x.t = old.t AND x.species = %d)",
+                            src, sp);
+    }
+    sqlite3_str_appendall(q, " ORDER BY 1, 2, 3");
+    rc = exec_str(h, q, path, err);
+  }
+  return rc;
+}
+
 /* Applies db/schema.sql (every statement IF NOT EXISTS) and brings a file of an older schema
  * version (PRAGMA user_version below HD_DB_SCHEMA_VERSION; 0 for files made before it was
  * kept) up to this one, under the write lock so that two processes upgrading at once end the
  * same: the columns of added_at that its tables lack are added (old rows read NULL), the
  * views are dropped to be made again as this version defines them, and the version is
  * stamped; so is a file of this version that lacks some of them (made by an earlier build of
- * it, before runs.hcs_* were added).  Additive only: every older file stays readable, and older
- * readers read it as before.  A file of a newer version is refused (HD_EINPUT): this haff does not
+ * it, before runs.hcs_* were added).  Additive up to version 4; version 5 replaces the table
+ * samples by sample_rows, sample_species rows and the view samples of the same columns
+ * (hd_db_samples_convert), so that queries of samples read the file as before (a haff of version
+ * 4 or older refuses it).  A file of a newer version is refused (HD_EINPUT): this haff does not
  * know its columns. */
 static int schema_apply(hd_db *db, hd_error *err) {
   int v = query_int(db->db, "PRAGMA user_version");
@@ -426,8 +531,17 @@ static int schema_apply(hd_db *db, hd_error *err) {
                            "DROP VIEW IF EXISTS params; DROP VIEW IF EXISTS run_summary; "
                            "DROP VIEW IF EXISTS run_species;",
                            NULL, NULL, NULL) != SQLITE_OK ||
-              sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK ||
-              sqlite3_exec(db->db, set, NULL, NULL, NULL) != SQLITE_OK))
+              sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK))
+    rc = sql_error(db, err, "upgrade the schema");
+  /* 5: the table samples of an older file becomes sample_rows and sample_species rows, then
+   * the view samples (the schema again: the view was not made beside the table) */
+  int old = rc ? 0 : schema_has(db->db, "main", "samples", NULL);
+  if (old < 0) rc = sql_error(db, err, "upgrade the schema");
+  if (!rc && old && (rc = hd_db_samples_convert(db->db, "main", "0", db->path, err)) == HD_OK &&
+      (sqlite3_exec(db->db, "DROP TABLE main.samples", NULL, NULL, NULL) != SQLITE_OK ||
+       sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK))
+    rc = sql_error(db, err, "upgrade the schema");
+  if (!rc && sqlite3_exec(db->db, set, NULL, NULL, NULL) != SQLITE_OK)
     rc = sql_error(db, err, "upgrade the schema");
   if (!rc && sqlite3_exec(db->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK)
     rc = sql_error(db, err, "upgrade the schema");
@@ -508,10 +622,9 @@ static int open_rw(hd_db **out, const char *path, int existing, hd_error *err) {
     rc = prepare_coll(db, &db->ins_coll2_k, HD_DB_GROUP, 1, err);
   if (!rc)
     rc = prepare(db, &db->ins_sample,
-                 "INSERT INTO samples (run, t, collisions, cpd, e_tr, e_rot, e_tr_dimer, "
-                 "e_rot_dimer, e_tr_disk, flow_frac, flow_chaos, count_var, s_rho, s_perp, "
-                 "s_par) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, "
-                 "?15)",
+                 "INSERT INTO sample_rows (run, t, collisions, cpd, e_tr, e_rot, flow_frac, "
+                 "flow_chaos, count_var, s_rho, s_perp, s_par) VALUES (?1, ?2, ?3, ?4, ?5, ?6, "
+                 "?7, ?8, ?9, ?10, ?11, ?12)",
                  err);
   if (!rc)
     rc = prepare(db, &db->ins_spsample,
@@ -628,7 +741,10 @@ int hd_db_check_path(const char *path, int must_exist, hd_error *err) {
  * it lacks; -1 when its schema cannot be read (not a database, or no -shm can be made). */
 static int tables_missing(sqlite3 *h, const char *const *tables, const char **missing) {
   sqlite3_stmt *st;
-  if (sqlite3_prepare_v2(h, "SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = ?1",
+  /* samples is a view from schema version 5 on, a table before */
+  if (sqlite3_prepare_v2(h,
+                         "SELECT count(*) FROM sqlite_schema WHERE type IN ('table', 'view') AND "
+                         "name = ?1",
                          -1, &st, NULL) != SQLITE_OK)
     return -1;
   int rc = 0;
@@ -823,15 +939,12 @@ static int put_sample(hd_db *db, int64_t run, const hd_sample_row *r, hd_error *
   bind_real(st, 4, r->cpd);
   bind_real(st, 5, r->e_tr);
   bind_real(st, 6, r->e_rot);
-  bind_real(st, 7, r->e_tr_dimer);
-  bind_real(st, 8, r->e_rot_dimer);
-  bind_real(st, 9, r->e_tr_disk);
-  bind_real(st, 10, r->flow_frac);
-  bind_real(st, 11, r->flow_chaos);
-  bind_real(st, 12, r->count_var);
-  bind_real(st, 13, r->s_rho);
-  bind_real(st, 14, r->s_perp);
-  bind_real(st, 15, r->s_par);
+  bind_real(st, 7, r->flow_frac);
+  bind_real(st, 8, r->flow_chaos);
+  bind_real(st, 9, r->count_var);
+  bind_real(st, 10, r->s_rho);
+  bind_real(st, 11, r->s_perp);
+  bind_real(st, 12, r->s_par);
   return batch_step(db, st, err, "insert sample");
 }
 
@@ -1393,7 +1506,7 @@ int hd_db_build_indexes(hd_db *db, hd_error *err) {
   static const char sql[] =
       "CREATE INDEX IF NOT EXISTS collisions_run_seq ON collisions(run, seq);"
       "CREATE INDEX IF NOT EXISTS collisions_run_kind ON collisions(run, kind);"
-      "CREATE INDEX IF NOT EXISTS samples_run_t ON samples(run, t);"
+      "CREATE INDEX IF NOT EXISTS samples_run_t ON sample_rows(run, t);"
       "CREATE INDEX IF NOT EXISTS states_run_label_t ON states(run, label, t);"
       "CREATE INDEX IF NOT EXISTS checkpoints_run ON checkpoints(run);";
   if (sqlite3_exec(db->db, sql, NULL, NULL, NULL) != SQLITE_OK)
@@ -1525,7 +1638,7 @@ int hd_db_checkpoint_load(hd_db *db, int64_t run, void **blob, size_t *n, int64_
 static const hd_run_table run_tables[] = {
     {"provenance", NULL},
     {"collisions", "DELETE FROM collisions WHERE run = ?1 AND seq > ?2"},
-    {"samples", "DELETE FROM samples WHERE run = ?1 AND t > ?3"},
+    {"sample_rows", "DELETE FROM sample_rows WHERE run = ?1 AND t > ?3"},
     {"sample_species", "DELETE FROM sample_species WHERE run = ?1 AND t > ?3"},
     /* written once, at the start (t = 0): again only by a run begun again from its set-up */
     {"species", "DELETE FROM species WHERE run = ?1 AND ?3 < 0"},

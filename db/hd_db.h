@@ -16,11 +16,13 @@
 /* The schema version, stored in the file as PRAGMA user_version: 0 for the files made before it
  * was kept; 2 adds runs.cpd, the provenance and frames tables, the state measures of samples and
  * the views params and run_summary; 3 the species tables; 4 how each run was made
- * (runs.git_commit ... sweep_point), the view run_species and states.species (db/README.md lists
- * them).  A file opened for writing (hd_db_open, hd_db_open_existing) is brought up to it; the
- * change is additive, so files of every version stay readable.  A writer refuses a file of a newer
- * version. */
-#define HD_DB_SCHEMA_VERSION 4
+ * (runs.git_commit ... sweep_point), the view run_species and states.species; 5 stores per-species
+ * energies in sample_species only: the table sample_rows, and samples a view of it with version
+ * 4's columns (db/README.md lists them).  A file opened for writing (hd_db_open,
+ * hd_db_open_existing) is brought up to it (hd_db_samples_convert); every version's file stays
+ * readable (samples: a table up to 4, a view from 5, the same columns).  A writer refuses a file of
+ * a newer version. */
+#define HD_DB_SCHEMA_VERSION 5
 
 typedef struct hd_db hd_db;
 typedef struct sqlite3 sqlite3; /* the same typedef as <sqlite3.h> (C11 allows the repeat) */
@@ -75,15 +77,13 @@ typedef struct hd_collision_row {
  * holds it (from "CREATE TABLE" to ");\n"), malloc'd; NULL when out of memory. */
 char *hd_db_collisions_create_sql(void);
 
-/* One row of `samples` (energies per particle). */
+/* One row of `sample_rows` (energies per body, all species; each species' own: a
+ * hd_species_sample, hd_db_log_species_sample). */
 typedef struct hd_sample_row {
   double t;
   int64_t collisions; /* pair collisions so far (walls not counted) */
   double cpd;         /* 2 * collisions / N */
   double e_tr, e_rot; /* translational and rotational kinetic energy per body */
-  double e_tr_dimer;  /* per dimer, in mixtures: translational (NaN -> NULL when absent) */
-  double e_rot_dimer; /*   rotational */
-  double e_tr_disk;   /* per disk, in mixtures (NaN -> NULL when absent) */
   /* state measures (hd_sim.h, hd_state_measures; NaN -> NULL, e.g. for rods): */
   double flow_frac, flow_chaos, count_var, s_rho, s_perp, s_par;
 } hd_sample_row;
@@ -116,6 +116,17 @@ typedef struct hd_species_sample {
   double e_tr;  /* translational energy per body of the species */
   double e_rot; /* rotational energy per body of the species */
 } hd_species_sample;
+
+/* Brings the rows of a table `samples` of schema version 0 to 4 in schema src of connection h
+ * ("main" or an attached "s"; a name of the caller's, never read from a file) into main's
+ * version 5 tables: every row to main.sample_rows (the columns it has; those it lacks NULL), and
+ * each dimer-disk mixture value of its columns e_tr_dimer, e_rot_dimer, e_tr_disk that src's
+ * sample_species has no row for (run, t, species) to main.sample_species (species 0: e_tr_dimer,
+ * e_rot_dimer; 1: e_tr_disk, e_rot 0).  run_off: an SQL expression added to run ("0", or merge's
+ * run shift).  Nothing when src's samples is not a table (version 5: the view).  The caller holds
+ * the transaction and drops the old table.  HD_OK, or HD_EIO / HD_ENOMEM naming path. */
+int hd_db_samples_convert(sqlite3 *h, const char *src, const char *run_off, const char *path,
+                          hd_error *err);
 
 /* The status for an SQLite result code (primary or extended) of a failed call: HD_EINPUT for a
  * damaged or foreign file (SQLITE_CORRUPT "malformed", SQLITE_NOTADB: bad input, exit 2),
@@ -243,8 +254,9 @@ typedef struct hd_same_run {
 int hd_db_find_same_run(hd_db *db, const char *scene_text, unsigned long long seed,
                         hd_same_run *same, hd_error *err);
 
-/* Builds the indexes (after a run): collisions(run,seq), collisions(run,kind), samples(run,t),
- * states(run,label,t), checkpoints(run).  Commits the open batch first. */
+/* Builds the indexes (after a run): collisions(run,seq), collisions(run,kind),
+ * sample_rows(run,t) (named samples_run_t), states(run,label,t), checkpoints(run).  Commits the
+ * open batch first. */
 int hd_db_build_indexes(hd_db *db, hd_error *err);
 
 /* Buffered inserts into the open batch (a batch is opened on demand). */
@@ -303,7 +315,7 @@ const hd_run_table *hd_db_run_tables(void);
 int hd_db_run_delete(hd_db *db, int64_t run, hd_error *err);
 
 /* Deletes the rows a resumed run will write again, in every per-run table
- * (hd_db_run_tables): collisions with seq > seq, samples,
+ * (hd_db_run_tables): collisions with seq > seq, sample_rows,
  * frames, sample_species and states with t > t; and the run's 'checkpoint' and 'final' states
  * (where it stopped: it goes on, and writes its final state again); species too when t < 0 (a
  * run begun again from its set-up, t = -inf, writes them again). */

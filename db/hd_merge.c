@@ -420,6 +420,9 @@ static int merge_one(sqlite3 *h, const char *tmp, const char *path, const char *
   /* haff's tables with a run column (the one list, db/hd_db.c), but provenance (below) */
   for (const hd_run_table *k = hd_db_run_tables(); !rc && k->name; k++)
     if (strcmp(k->name, "provenance")) rc = copy_known(h, mem, tmp, k->name, "run", err);
+  /* an input of schema version 0 to 4: its table samples (not the view of version 5) into
+   * sample_rows and, for the per-species columns sample_species lacks, sample_species */
+  if (!rc) rc = hd_db_samples_convert(h, "s", "(SELECT v FROM temp.off)", shown, err);
   /* and a user's tables with a run column, their names checked */
   char **names = NULL;
   int n = 0;

@@ -1,9 +1,12 @@
 /* hd_merge: merges haff databases into one (`haff merge OUT IN...`).  Every run of every input
  * is appended to OUT with a new id (the input's ids shifted past OUT's largest) and the rows of
- * every table with a `run` column follow it (collisions, samples, states, checkpoints, and any
- * table of the user's such as plots_runs, created in OUT from the input's definition when OUT
- * lacks it).  Each run's provenance row (host, Slurm job and task) is carried over with the file
- * and id it came from (db/schema.sql, table provenance).
+ * every table with a `run` column follow it (collisions, sample_rows, sample_species, states,
+ * checkpoints, and any table of the user's such as plots_runs, created in OUT from the input's
+ * definition when OUT lacks it).  OUT is of this haff's schema version (an older OUT is brought
+ * to it); an input of schema version 0 to 4 has its table samples converted as OUT's would be
+ * (hd_db_samples_convert: the per-species columns become sample_species rows).  Each run's
+ * provenance row (host, Slurm job and task) is carried over with the file and id it came from
+ * (db/schema.sql, table provenance).
  *
  * Refused, as bad input, before OUT is touched: a file given twice (also as OUT, by any link, or
  * as its SQLite log), an OUT name that SQLite or the command line reads otherwise ("-",

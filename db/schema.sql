@@ -18,6 +18,16 @@
 --      and the view run_species; run_summary gives named species (issue 18) their label.
 --      Also states.species (each body's species.idx; issue 28): ALTER TABLE ... ADD COLUMN,
 --      old rows NULL (their species still follows from the body number and species.count).
+--   5  stores per-species energies in one form, sample_species (issue 29): the species-independent
+--      columns of a sample are the table sample_rows, and samples is a view of it with the
+--      columns e_tr_dimer, e_rot_dimer, e_tr_disk made from sample_species (the same columns, in
+--      the same order, as version 4's table samples: queries of samples read as before).  A file
+--      of version 0 to 4 opened for writing is brought to 5 in one transaction (hd_db.c,
+--      samples_upgrade): its table samples is copied to sample_rows, each value of its columns
+--      e_tr_dimer, e_rot_dimer, e_tr_disk that sample_species lacks becomes a sample_species row
+--      (species 0 the dimers, 1 the disks with e_rot 0: files before version 3 had no
+--      sample_species), the table is dropped and the view made.  Readers read files of every
+--      version: samples is a table up to version 4 and a view from 5, with the same columns.
 PRAGMA journal_mode = WAL;
 
 -- One row per run.  status: running, done, interrupted, collapsed, failed.
@@ -109,16 +119,17 @@ CREATE TABLE IF NOT EXISTS collisions (
 );
 
 -- Energies per body every [log] samples_every cpd.  cpd = 2 * pair collisions / N.
--- e_tr, e_rot: mean translational and rotational kinetic energy per body (all species);
--- per-species columns for mixtures.  Rods: e_rot is the bath energy per rod.
-CREATE TABLE IF NOT EXISTS samples (
+-- e_tr, e_rot: mean translational and rotational kinetic energy per body (all species; each
+-- species' own: sample_species).  Rods: e_rot is the bath energy per rod.  Read it as the view
+-- samples (below), which every version of the file has; haff writes this table (schema
+-- version 5; the table samples of older files, with the per-species columns, before).
+CREATE TABLE IF NOT EXISTS sample_rows (
   run        INTEGER NOT NULL REFERENCES runs(id),
   t          REAL NOT NULL,
   collisions INTEGER NOT NULL,
   cpd        REAL NOT NULL,
   e_tr       REAL NOT NULL,
   e_rot      REAL NOT NULL,
-  e_tr_dimer REAL, e_rot_dimer REAL, e_tr_disk REAL, -- per species, NULL when absent
   -- State measures (schema version 2; NULL for rods and in runs logged before them), each with
   -- its value for an uncorrelated gas: docs/analysis.md, "State measures".
   flow_frac  REAL,  -- energy of the momentum field on a 4 x 4 grid / translational energy
@@ -147,8 +158,8 @@ CREATE TABLE IF NOT EXISTS species (
 CREATE INDEX IF NOT EXISTS species_run ON species(run, idx);
 
 -- Energies per body of each species with every sample (schema version 3): one row per
--- species that has bodies, at the samples row's t (the per-species columns of samples stay
--- filled for dimer-disk mixtures as before).
+-- species that has bodies, at the samples row's t.  The one place per-species values are stored
+-- (schema version 5; up to 4 the table samples also had them as columns for dimer-disk mixtures).
 CREATE TABLE IF NOT EXISTS sample_species (
   run     INTEGER NOT NULL REFERENCES runs(id),
   t       REAL NOT NULL,
@@ -157,6 +168,29 @@ CREATE TABLE IF NOT EXISTS sample_species (
   e_rot   REAL NOT NULL      -- rotational kinetic energy per body of the species
 );
 CREATE INDEX IF NOT EXISTS sample_species_run ON sample_species(run, t);
+
+-- samples: one row per sample, the columns of sample_rows and, after e_rot, the per-species
+-- columns of a mixture of [dimers] and [disks] as version 4's table had them, from
+-- sample_species: e_tr_dimer, e_rot_dimer (species 0) and e_tr_disk (species 1) when the run
+-- has both at that t, else NULL (one species, named species only, rods).  The columns users and
+-- DESIGN.md rely on (run, t, collisions, cpd, e_tr, e_rot) are sample_rows' own; a query that
+-- does not ask for the per-species columns reads sample_rows alone (SQLite flattens the view).
+CREATE VIEW IF NOT EXISTS samples AS
+SELECT run, t, collisions, cpd, e_tr, e_rot,
+       CASE WHEN EXISTS (SELECT 1 FROM sample_species AS k WHERE k.run = sample_rows.run
+                           AND k.t = sample_rows.t AND k.species = 1)
+            THEN (SELECT d.e_tr FROM sample_species AS d WHERE d.run = sample_rows.run
+                    AND d.t = sample_rows.t AND d.species = 0) END AS e_tr_dimer,
+       CASE WHEN EXISTS (SELECT 1 FROM sample_species AS k WHERE k.run = sample_rows.run
+                           AND k.t = sample_rows.t AND k.species = 1)
+            THEN (SELECT d.e_rot FROM sample_species AS d WHERE d.run = sample_rows.run
+                    AND d.t = sample_rows.t AND d.species = 0) END AS e_rot_dimer,
+       CASE WHEN EXISTS (SELECT 1 FROM sample_species AS d WHERE d.run = sample_rows.run
+                           AND d.t = sample_rows.t AND d.species = 0)
+            THEN (SELECT k.e_tr FROM sample_species AS k WHERE k.run = sample_rows.run
+                    AND k.t = sample_rows.t AND k.species = 1) END AS e_tr_disk,
+       flow_frac, flow_chaos, count_var, s_rho, s_perp, s_par
+FROM sample_rows;
 
 -- Body states: label 'initial', 'final', 'checkpoint', 'velocities' (at [log] velocities_at).
 -- 'checkpoint' is where an interrupted or collapsed run stopped; `haff resume` removes it.

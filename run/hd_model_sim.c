@@ -66,41 +66,23 @@ static double m_temperature(const void *m) {
   return 2.0 * s->c.e_kin / dof;
 }
 
-/* The species of kind k (-1 if none): [dimers] for HD_KIND_DIMER, [disks] for HD_KIND_DISK. */
-static int species_of(const hd_sim *s, hd_kind k) {
-  for (int sp = 0; sp < s->nsp; sp++)
-    if (s->sp_kind[sp] == k) return sp;
-  return -1;
-}
-
 static void m_sample(const void *m, hd_sample_row *row) {
   const hd_sim *s = m;
-  double e_tr, e_rot, dt = NAN, dr = NAN, st = NAN, sr = NAN;
-  hd_sim_energy(s, -1, &e_tr, &e_rot);
-  /* the columns of a [dimers]-[disks] mixture (sample_species has every species) */
-  int di = species_of(s, HD_KIND_DIMER), dk = species_of(s, HD_KIND_DISK);
-  int nd = di >= 0 ? s->n_species[di] : 0, nk = dk >= 0 ? s->n_species[dk] : 0;
-  int mixed = nd > 0 && nk > 0;
-  if (mixed) {
-    hd_sim_energy(s, di, &dt, &dr);
-    hd_sim_energy(s, dk, &st, &sr);
-  }
+  double e_tr, e_rot;
+  hd_sim_energy(s, -1, &e_tr, &e_rot); /* each species': m_log_species_sample */
   hd_state_measures q;
   hd_sim_state(s, &q);
-  *row = (hd_sample_row){hd_sim_time(s),
-                         s->c.collisions,
-                         hd_sim_cpd(s),
-                         e_tr / s->n,
-                         e_rot / s->n,
-                         mixed ? dt / nd : NAN,
-                         mixed ? dr / nd : NAN,
-                         mixed ? st / nk : NAN,
-                         q.flow_frac,
-                         q.flow_chaos,
-                         q.count_var,
-                         q.s_rho,
-                         q.s_perp,
-                         q.s_par};
+  *row = (hd_sample_row){.t = hd_sim_time(s),
+                         .collisions = s->c.collisions,
+                         .cpd = hd_sim_cpd(s),
+                         .e_tr = e_tr / s->n,
+                         .e_rot = e_rot / s->n,
+                         .flow_frac = q.flow_frac,
+                         .flow_chaos = q.flow_chaos,
+                         .count_var = q.count_var,
+                         .s_rho = q.s_rho,
+                         .s_perp = q.s_perp,
+                         .s_par = q.s_par};
 }
 
 /* states.kind of body i: its species' kind (hd_sim.sp_kind). */

@@ -89,8 +89,17 @@ static void m_sample(const void *m, hd_sample_row *row) {
   const hd_rods *r = m;
   double ek, eb, N = (double)r->p.n;
   hd_rods_energy(r, &ek, &eb, NULL);
-  *row = (hd_sample_row){r->t, r->collisions, m_cpd(m), ek / N, eb / N, NAN, NAN,
-                         NAN,  NAN,           NAN,      NAN,    NAN,    NAN, NAN};
+  *row = (hd_sample_row){.t = r->t,
+                         .collisions = r->collisions,
+                         .cpd = m_cpd(m),
+                         .e_tr = ek / N,
+                         .e_rot = eb / N,
+                         .flow_frac = NAN, /* no state measures for rods */
+                         .flow_chaos = NAN,
+                         .count_var = NAN,
+                         .s_rho = NAN,
+                         .s_perp = NAN,
+                         .s_par = NAN};
 }
 
 static int m_log_states(const void *m, hd_db *db, int64_t run, const char *label, hd_error *err) {

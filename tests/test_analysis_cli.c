@@ -55,8 +55,8 @@ static void add_run(sqlite3 *db, gsl_rng *r, int id, const char *scene, const ch
   exec(db, sql);
   sqlite3_stmt *st;
   sqlite3_prepare_v2(
-      db, "INSERT INTO samples(run, t, collisions, cpd, e_tr, e_rot) VALUES (?,?,?,?,?,?)", -1, &st,
-      NULL);
+      db, "INSERT INTO sample_rows(run, t, collisions, cpd, e_tr, e_rot) VALUES (?,?,?,?,?,?)", -1,
+      &st, NULL);
   double K0 = 2.05, T0 = 1.0, t = 0;
   double nu0 = nu_ratio * nu0_enskog_test(T0);
   if (disks) nu0 = nu_ratio * hd_enskog_nu0(900.0 / 1e4, 1.0, T0, 1.0, M_PI * 0.09 / 4);

@@ -168,6 +168,109 @@ static void sigint_then_resume(void **state) {
   same_as_reference("int.db");
 }
 
+/* Makes database db of dir (written by this haff, schema version 5) a file of schema version 4
+ * as haff 4 wrote it: the table samples with the per-kind columns (filled from the view, which
+ * gives version 4's values: tests/test_db.c schema5_*), no sample_rows, user_version 4. */
+static void to_schema4(const char *db) {
+  char p[400];
+  snprintf(p, sizeof p, "%s/%s", dir, db);
+  sqlite3 *h;
+  assert_int_equal(sqlite3_open(p, &h), SQLITE_OK);
+  char *msg = NULL;
+  int rc = sqlite3_exec(
+      h,
+      "BEGIN; CREATE TEMP TABLE x AS SELECT * FROM samples; DROP VIEW samples; "
+      "DROP TABLE sample_rows; CREATE TABLE samples (run INTEGER NOT NULL REFERENCES runs(id), t "
+      "REAL NOT NULL, collisions INTEGER NOT NULL, cpd REAL NOT NULL, e_tr REAL NOT NULL, e_rot "
+      "REAL NOT NULL, e_tr_dimer REAL, e_rot_dimer REAL, e_tr_disk REAL, flow_frac REAL, "
+      "flow_chaos REAL, count_var REAL, s_rho REAL, s_perp REAL, s_par REAL); INSERT INTO "
+      "samples SELECT * FROM temp.x; CREATE INDEX samples_run_t ON samples(run, t); "
+      "PRAGMA user_version = 4; COMMIT; PRAGMA journal_mode = DELETE",
+      NULL, NULL, &msg);
+  if (rc != SQLITE_OK) fail_msg("%s: to schema 4: %s", db, msg ? msg : "?");
+  sqlite3_close(h);
+}
+
+/* A run interrupted (SIGINT) in a file of schema version 4 resumes to the uninterrupted run:
+ * the resume brings the file to version 5 first (the samples table becomes sample_rows and the
+ * view, in one transaction) and truncates and writes sample_rows and sample_species; the file
+ * then has every sample and every species row of the uninterrupted run, once. */
+static void schema4_file_resumed(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(run_and_signal("old4.db", SIGINT, 400), 1);
+  to_schema4("old4.db");
+  assert_int_equal(q1("old4.db", "SELECT user_version FROM pragma_user_version"), 4);
+  assert_int_equal(sh("%s resume old4.db --quiet", haff), 0);
+  same_as_reference("old4.db");
+  assert_int_equal(q1("old4.db", "SELECT user_version FROM pragma_user_version"), 5);
+  assert_int_equal(q1("old4.db", "SELECT count(*) FROM (SELECT t, species, e_tr, e_rot FROM "
+                                 "sample_species EXCEPT SELECT t, species, e_tr, e_rot FROM "
+                                 "ref.sample_species)"),
+                   0);
+  assert_int_equal(q1("old4.db", "SELECT count(*) FROM sample_species"),
+                   q1("old4.db", "SELECT count(*) FROM ref.sample_species"));
+  assert_sound("old4.db");
+}
+
+/* A file of schema version 4 (two dimer-disk mixtures, a mixture of named species, dimers)
+ * analyses to the same numbers, byte for byte, as the file of version 5 it was made from: read
+ * as it is (the analyses never change a file), after `haff merge` into a new file (the input
+ * converted), and after a writer brought it to version 5 in place (`haff resume` with nothing to
+ * resume opens it for writing and exits 2).  The files have one name (mix.db) in three folders,
+ * so that the outputs may name it. */
+static void schema4_file_analysed(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("m4.ini", "[system]\narea_fraction = 0.05\nseed = 9\n[dimers]\ncount = 100\n"
+                       "alpha = 0.8\n[disks]\ncount = 100\nalpha = 0.7\nalpha_dimer = 0.9\n"
+                       "[run]\nstop_cpd = 20\n[log]\nsamples_every = 0.5\n");
+  write_file("n4.ini", "[system]\narea_fraction = 0.02\nseed = 1\n[species light]\ncount = 100\n"
+                       "shape = disk\nm = 1\nalpha = 0.8\n[species heavy]\ncount = 100\nshape = "
+                       "disk\nm = 4\nalpha = 0.8\n[run]\nstop_cpd = 20\n[log]\nsamples_every = "
+                       "0.5\n");
+  write_file("d4.ini", "[system]\narea_fraction = 0.05\nseed = 3\n[dimers]\ncount = 200\n"
+                       "alpha = 0.9\n[run]\nstop_cpd = 20\n[log]\nsamples_every = 0.5\n");
+  assert_int_equal(sh("mkdir -p v5 v4 mg && %s run m4.ini -o v5/mix.db --quiet && %s run m4.ini "
+                      "--set system.seed=10 -o v5/mix.db --quiet && %s run n4.ini -o v5/mix.db "
+                      "--quiet && %s run d4.ini -o v5/mix.db --quiet && cp v5/mix.db v4/mix.db",
+                      haff, haff, haff, haff),
+                   0);
+  to_schema4("v4/mix.db");
+  static const char *const an[] = {"haff-fit",
+                                   "haff-fit --by-species",
+                                   "energy",
+                                   "energy --by-species",
+                                   "table1",
+                                   "table2",
+                                   "haff-fit --run 3 --by-species",
+                                   "haff-fit --alpha-group"};
+  const size_t na = sizeof an / sizeof an[0];
+  for (size_t k = 0; k < na; k++)
+    assert_int_equal(sh("cd v5 && %s %s mix.db > out%zu.txt 2>&1", haff, an[k], k), 0);
+  /* 0: read as it is; 1: merged into a new file; 2: converted in place */
+  for (int stage = 0; stage < 3; stage++) {
+    if (stage == 1) assert_int_equal(sh("cd mg && %s merge mix.db ../v4/mix.db", haff), 0);
+    if (stage == 2) {
+      assert_int_equal(sh("cd mg && rm -f mix.db && cp ../v4/mix.db . && %s resume mix.db", haff),
+                       2);
+      assert_int_equal(q1("mg/mix.db", "SELECT user_version FROM pragma_user_version"), 5);
+    }
+    const char *in = stage ? "mg" : "v4";
+    assert_int_equal(
+        q1(stage ? "mg/mix.db" : "v4/mix.db", "SELECT user_version FROM pragma_user_version"),
+        stage ? 5 : 4);
+    for (size_t k = 0; k < na; k++) {
+      assert_int_equal(sh("cd %s && %s %s mix.db > out%zu.txt 2>&1", in, haff, an[k], k), 0);
+      if (sh("cmp -s %s/out%zu.txt v5/out%zu.txt", in, k, k))
+        fail_msg("stage %d: haff %s differs on the file of schema version 4", stage, an[k]);
+    }
+  }
+  /* the per-species energies are stored once: as many sample_species rows as version 5 wrote */
+  assert_int_equal(q1("mg/mix.db", "SELECT count(*) FROM sample_species"),
+                   q1("v5/mix.db", "SELECT count(*) FROM sample_species"));
+}
+
 /* SIGTERM behaves as SIGINT. */
 static void sigterm_then_resume(void **state) {
   (void)state;
@@ -970,6 +1073,8 @@ int main(void) {
       cmocka_unit_test(disk_full_then_resume),
       cmocka_unit_test(sigint_then_resume),
       cmocka_unit_test(sigterm_then_resume),
+      cmocka_unit_test(schema4_file_resumed),
+      cmocka_unit_test(schema4_file_analysed),
       cmocka_unit_test(kill9_then_resume),
       cmocka_unit_test(rods_collapse_counts),
       cmocka_unit_test(tiny_bond_twin_contacts),

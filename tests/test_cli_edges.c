@@ -213,11 +213,12 @@ static void special_and_malformed_databases(void **state) {
     if (rc != 2) fail_msg("%s: exit %d, not 2", fifo[i], rc);
     one_line_with("not a regular file");
   }
-  /* the root pages of samples and states in a copy of d.db overwritten (found by their rootpage,
-   * not by number: the schema's tables and views move them): SQLite finds it malformed when it
-   * reads them */
+  /* the root pages of the samples (the table sample_rows, whose view samples is: schema version
+   * 5) and states in a copy of d.db overwritten (found by their rootpage, not by number: the
+   * schema's tables and views move them): SQLite finds it malformed when it reads them */
   assert_int_equal(sh("cp d.db bad.db && for p in $(sqlite3 d.db \"SELECT rootpage FROM "
-                      "sqlite_schema WHERE name IN ('samples', 'states')\"); do head -c 4096 "
+                      "sqlite_schema WHERE type = 'table' AND name IN ('sample_rows', "
+                      "'states')\"); do head -c 4096 "
                       "/dev/zero | tr '\\0' '\\377' | dd of=bad.db bs=4096 seek=$((p - 1)) "
                       "conv=notrunc status=none; done"),
                    0);

@@ -22,7 +22,9 @@
 #include <gsl/gsl_rng.h>
 #include <gsl/gsl_statistics_double.h>
 
+#include "hd_anaspecies.h"
 #include "hd_db.h"
+#include "hd_merge.h"
 
 int hd_cmd_export(int argc, char **argv);
 
@@ -190,7 +192,7 @@ static void round_trip(void **state) {
                           .tb_j = 3.0};
     assert_int_equal(hd_db_log_collision(db, run, &r, &err), HD_OK);
   }
-  hd_sample_row s = {1.25, 42, 0.84, 0.75, 0.5, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
+  hd_sample_row s = {1.25, 42, 0.84, 0.75, 0.5, NAN, NAN, NAN, NAN, NAN, NAN};
   assert_int_equal(hd_db_log_sample(db, run, &s, &err), HD_OK);
   hd_state_rec st0 = {0.0, 0, 1, 1.5, 2.5, -0.5, 0.1, 0.2, 3.0, NAN, 0};
   hd_state_rec st1 = {2.0, 1, 0, 0.5, 0.25, 0.0, -0.1, 0.3, 0.0, 1.5, 1};
@@ -308,17 +310,17 @@ static void nan_in_not_null_column(void **state) {
   hd_error err;
   hd_db *db = open_ok(fx->path);
   int64_t run = begin_run(db, "", 1);
-  hd_sample_row ok = {1.0, 1, 0.5, 1.0, 2.0, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
+  hd_sample_row ok = {1.0, 1, 0.5, 1.0, 2.0, NAN, NAN, NAN, NAN, NAN, NAN};
   assert_int_equal(hd_db_log_sample(db, run, &ok, &err), HD_OK);
   assert_int_equal(hd_db_commit(db, &err), HD_OK);
-  hd_sample_row s = {1.0, 1, 0.5, 1.0, 2.0, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
+  hd_sample_row s = {1.0, 1, 0.5, 1.0, 2.0, NAN, NAN, NAN, NAN, NAN, NAN};
   assert_int_equal(hd_db_log_sample(db, run, &s, &err), HD_OK); /* batch opened */
   s.e_rot = NAN;
   /* rows are written by a writer thread: the error comes with the next call that waits for it */
   assert_int_equal(hd_db_log_sample(db, run, &s, &err), HD_OK);
   assert_int_equal(hd_db_commit(db, &err), HD_EIO);
   assert_non_null(strstr(err.msg, fx->path));
-  assert_non_null(strstr(err.msg, "samples.e_rot"));
+  assert_non_null(strstr(err.msg, "sample_rows.e_rot")); /* the table haff writes */
   /* the failed batch is rolled back whole: only the committed first row remains */
   assert_int_equal(count_other(fx->path, "SELECT count(*) FROM samples"), 1);
   assert_int_equal(hd_db_log_sample(db, run, &ok, &err), HD_OK); /* usable afterwards */
@@ -454,8 +456,7 @@ static void checkpoint_save_load_truncate(void **state) {
     r.t = (double)(k - 1);
     assert_int_equal(hd_db_log_collision(db, r1, &r, &err), HD_OK);
     assert_int_equal(hd_db_log_collision(db, r2, &r, &err), HD_OK);
-    hd_sample_row s = {
-        (double)(k - 1), k, 0.1 * (double)k, 1.0, 0.5, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
+    hd_sample_row s = {(double)(k - 1), k, 0.1 * (double)k, 1.0, 0.5, NAN, NAN, NAN, NAN, NAN, NAN};
     assert_int_equal(hd_db_log_sample(db, r1, &s, &err), HD_OK);
     assert_int_equal(hd_db_log_sample(db, r2, &s, &err), HD_OK);
   }
@@ -933,9 +934,8 @@ static void fill_query_db(const char *path, qdata *q) {
     for (int k = 0; k < 20; k++) {
       q->e_tr[r][k] = 2.0 * exp(-0.1 * k) + r;
       q->e_rot[r][k] = 1.0 * exp(-0.05 * k);
-      hd_sample_row sm = {
-          0.5 * k, 100 * k, 0.2 * k, q->e_tr[r][k], q->e_rot[r][k], NAN, NAN, NAN, NAN, NAN, NAN,
-          NAN,     NAN,     NAN};
+      hd_sample_row sm = {0.5 * k, 100 * k, 0.2 * k, q->e_tr[r][k], q->e_rot[r][k], NAN, NAN, NAN,
+                          NAN,     NAN,     NAN};
       assert_int_equal(hd_db_log_sample(db, run, &sm, &err), HD_OK);
     }
     assert_int_equal(
@@ -1214,6 +1214,293 @@ static void states_species(void **state) {
   sqlite3_close(h);
 }
 
+/* ---------------------------------------------------------------------------------------- */
+/* schema version 5: per-species energies stored in sample_species only (issue 29) */
+
+/* Version 4's table samples, as db/schema.sql of haff 4 made it (the per-kind columns). */
+static const char samples_v4_sql[] =
+    "CREATE TABLE samples (run INTEGER NOT NULL REFERENCES runs(id), t REAL NOT NULL, collisions "
+    "INTEGER NOT NULL, cpd REAL NOT NULL, e_tr REAL NOT NULL, e_rot REAL NOT NULL, e_tr_dimer "
+    "REAL, e_rot_dimer REAL, e_tr_disk REAL, flow_frac REAL, flow_chaos REAL, count_var REAL, "
+    "s_rho REAL, s_perp REAL, s_par REAL)";
+
+/* The energies of sample k of run r, species sp (-1: all): numbers of full mantissa. */
+static double e_of(int r, int k, int sp) {
+  return exp(-0.037 * k) * (1.0 + 0.1 * r) / (sp < 0 ? 1.0 : 1.3 + 0.71 * sp);
+}
+
+/* Makes path a file of schema version `version` (4: samples with the per-kind columns and
+ * sample_species with every species, as haff 4 wrote them; 2: no sample_species nor species,
+ * the per-kind columns alone) holding three runs of 10 samples: 1 a dimer-disk mixture, 2
+ * dimers only, 3 two named species (idx 2 and 3); and a user's view of samples
+ * (db/queries/views.sql's kind).  The tables other than samples are this haff's. */
+static void make_old_file(const char *path, int version) {
+  hd_db *db = open_ok(path);
+  for (int r = 1; r <= 3; r++) begin_run(db, "[system]\nseed = 1\n", (unsigned long long)r);
+  close_ok(db);
+  sqlite3 *h = NULL;
+  assert_int_equal(sqlite3_open(path, &h), SQLITE_OK);
+  assert_int_equal(sqlite3_exec(h, "DROP VIEW samples; DROP TABLE sample_rows", NULL, NULL, NULL),
+                   SQLITE_OK);
+  assert_int_equal(sqlite3_exec(h, samples_v4_sql, NULL, NULL, NULL), SQLITE_OK);
+  assert_int_equal(sqlite3_exec(h,
+                                "CREATE VIEW v_energy AS SELECT run, t, e_tr + e_rot AS e FROM "
+                                "samples",
+                                NULL, NULL, NULL),
+                   SQLITE_OK);
+  sqlite3_stmt *ins = NULL, *sp = NULL;
+  assert_int_equal(sqlite3_prepare_v2(h,
+                                      "INSERT INTO samples VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, "
+                                      "?9, ?10, 0.01, 1, 1.5, 1.25, 0.75)",
+                                      -1, &ins, NULL),
+                   SQLITE_OK);
+  assert_int_equal(sqlite3_prepare_v2(h, "INSERT INTO sample_species VALUES (?1, ?2, ?3, ?4, ?5)",
+                                      -1, &sp, NULL),
+                   SQLITE_OK);
+  static const int species[4][2] = {{0, 0}, {0, 1}, {0, -1}, {2, 3}}; /* run r: its species */
+  for (int r = 1; r <= 3; r++)
+    for (int k = 0; k < 10; k++) {
+      double t = 0.37 * k + 0.01 * r;
+      sqlite3_bind_int(ins, 1, r);
+      sqlite3_bind_double(ins, 2, t);
+      sqlite3_bind_int(ins, 3, 100 * k);
+      sqlite3_bind_double(ins, 4, 0.5 * k);
+      sqlite3_bind_double(ins, 5, e_of(r, k, -1));
+      sqlite3_bind_double(ins, 6, e_of(r, k, -1) / 2.1);
+      for (int c = 7; c <= 9; c++) sqlite3_bind_null(ins, c);
+      if (r == 1) { /* the mixture's columns, as haff 4 filled them */
+        sqlite3_bind_double(ins, 7, e_of(r, k, 0));
+        sqlite3_bind_double(ins, 8, e_of(r, k, 0) / 2.3);
+        sqlite3_bind_double(ins, 9, e_of(r, k, 1));
+      }
+      sqlite3_bind_double(ins, 10, 0.001 * k);
+      assert_int_equal(sqlite3_step(ins), SQLITE_DONE);
+      sqlite3_reset(ins);
+      for (int j = 0; j < 2 && version >= 3; j++) {
+        int s = species[r][j];
+        if (s < 0) continue;
+        sqlite3_bind_int(sp, 1, r);
+        sqlite3_bind_double(sp, 2, t);
+        sqlite3_bind_int(sp, 3, s);
+        sqlite3_bind_double(sp, 4, e_of(r, k, s));
+        sqlite3_bind_double(sp, 5, s == 1 ? 0.0 : e_of(r, k, s) / 2.3);
+        assert_int_equal(sqlite3_step(sp), SQLITE_DONE);
+        sqlite3_reset(sp);
+      }
+    }
+  sqlite3_finalize(ins);
+  sqlite3_finalize(sp);
+  char set[64];
+  snprintf(set, sizeof set, "PRAGMA user_version = %d", version);
+  assert_int_equal(sqlite3_exec(h, set, NULL, NULL, NULL), SQLITE_OK);
+  if (version < 3)
+    assert_int_equal(
+        sqlite3_exec(h, "DROP TABLE sample_species; DROP TABLE species", NULL, NULL, NULL),
+        SQLITE_OK);
+  sqlite3_close(h);
+}
+
+/* Copies file a to b (a file closed by every connection: no log beside it). */
+static void copy_file(const char *a, const char *b) {
+  char cmd[1024];
+  snprintf(cmd, sizeof cmd, "cp '%s' '%s'", a, b);
+  assert_int_equal(system(cmd), 0);
+}
+
+/* Rows of db's samples (main) that equal, column by column and bit for bit (IS: NULL too), a row
+ * of the samples of the file `other` (run shifted by `off`), in one connection. */
+static long long samples_same(sqlite3 *h, const char *other, int off) {
+  char sql[2048];
+  snprintf(sql, sizeof sql, "ATTACH '%s' AS o", other);
+  assert_int_equal(sqlite3_exec(h, sql, NULL, NULL, NULL), SQLITE_OK);
+  snprintf(sql, sizeof sql,
+           "SELECT count(*) FROM main.samples a JOIN o.samples b ON a.run = b.run + %d AND a.t "
+           "IS b.t AND a.collisions IS b.collisions AND a.cpd IS b.cpd AND a.e_tr IS b.e_tr AND "
+           "a.e_rot IS b.e_rot AND a.e_tr_dimer IS b.e_tr_dimer AND a.e_rot_dimer IS "
+           "b.e_rot_dimer AND a.e_tr_disk IS b.e_tr_disk AND a.flow_frac IS b.flow_frac AND "
+           "a.flow_chaos IS b.flow_chaos AND a.count_var IS b.count_var AND a.s_rho IS b.s_rho "
+           "AND a.s_perp IS b.s_perp AND a.s_par IS b.s_par",
+           off);
+  long long n = q_int(h, sql);
+  assert_int_equal(sqlite3_exec(h, "DETACH o", NULL, NULL, NULL), SQLITE_OK);
+  return n;
+}
+
+/* A new file keeps per-species energies in sample_species only: its table sample_rows has no
+ * per-kind column, samples is a view, and the view answers version 4's query (SELECT e_tr_dimer,
+ * e_rot_dimer, e_tr_disk FROM samples) from sample_species: set where the run has species 0 and
+ * 1 at that t, NULL where it has one of them or named species only.  Before: samples was a
+ * table that held both forms. */
+static void schema5_samples_view(void **state) {
+  fixture *fx = *state;
+  hd_error err;
+  hd_db *db = open_ok(fx->path);
+  int64_t mix = begin_run(db, "[system]\nseed = 1\n", 1);
+  int64_t one = begin_run(db, "[system]\nseed = 2\n", 2);
+  for (int k = 0; k < 4; k++) {
+    hd_sample_row s = {.t = k, .collisions = k, .cpd = k, .e_tr = 1.5, .e_rot = 0.5};
+    s.flow_frac = s.flow_chaos = s.count_var = s.s_rho = s.s_perp = s.s_par = NAN;
+    assert_int_equal(hd_db_log_sample(db, mix, &s, &err), HD_OK);
+    assert_int_equal(hd_db_log_sample(db, one, &s, &err), HD_OK);
+    hd_species_sample d = {k, 0, e_of(1, k, 0), e_of(1, k, 0) / 3}, c = {k, 1, e_of(1, k, 1), 0};
+    assert_int_equal(hd_db_log_species_sample(db, mix, &d, &err), HD_OK);
+    assert_int_equal(hd_db_log_species_sample(db, mix, &c, &err), HD_OK);
+    assert_int_equal(hd_db_log_species_sample(db, one, &d, &err), HD_OK);
+  }
+  assert_int_equal(hd_db_build_indexes(db, &err), HD_OK);
+  close_ok(db);
+  sqlite3 *h = NULL;
+  assert_int_equal(sqlite3_open(fx->path, &h), SQLITE_OK);
+  assert_int_equal(q_int(h, "SELECT user_version FROM pragma_user_version"), 5);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM sqlite_schema WHERE name = 'samples' AND type "
+                            "= 'view'"),
+                   1);
+  assert_int_equal(q_int(h, "SELECT count(*) FROM pragma_table_info('sample_rows') WHERE name "
+                            "LIKE '%dimer%' OR name LIKE '%disk%'"),
+                   0);
+  /* version 4's columns, in its order */
+  sqlite3_stmt *st = NULL;
+  assert_int_equal(sqlite3_prepare_v2(h,
+                                      "SELECT group_concat(name, ' ') FROM (SELECT name FROM "
+                                      "pragma_table_info('samples') ORDER BY cid)",
+                                      -1, &st, NULL),
+                   SQLITE_OK);
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  assert_string_equal((const char *)sqlite3_column_text(st, 0),
+                      "run t collisions cpd e_tr e_rot e_tr_dimer e_rot_dimer e_tr_disk flow_frac "
+                      "flow_chaos count_var s_rho s_perp s_par");
+  sqlite3_finalize(st);
+  assert_int_equal(sqlite3_prepare_v2(h,
+                                      "SELECT run, t, e_tr_dimer, e_rot_dimer, e_tr_disk FROM "
+                                      "samples ORDER BY run, t",
+                                      -1, &st, NULL),
+                   SQLITE_OK);
+  for (int r = 1; r <= 2; r++)
+    for (int k = 0; k < 4; k++) {
+      assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+      assert_int_equal(sqlite3_column_int(st, 0), r);
+      if (r == 1) {
+        assert_true(sqlite3_column_double(st, 2) == e_of(1, k, 0));
+        assert_true(sqlite3_column_double(st, 3) == e_of(1, k, 0) / 3);
+        assert_true(sqlite3_column_double(st, 4) == e_of(1, k, 1));
+      } else {
+        for (int c = 2; c <= 4; c++) assert_int_equal(sqlite3_column_type(st, c), SQLITE_NULL);
+      }
+    }
+  assert_int_equal(sqlite3_step(st), SQLITE_DONE);
+  sqlite3_finalize(st);
+  /* a one-run query of samples searches the index of sample_rows (no scan of the table) */
+  assert_int_equal(sqlite3_prepare_v2(h,
+                                      "EXPLAIN QUERY PLAN SELECT t, e_tr_dimer FROM samples WHERE "
+                                      "run = 1",
+                                      -1, &st, NULL),
+                   SQLITE_OK);
+  while (sqlite3_step(st) == SQLITE_ROW) {
+    const char *d = (const char *)sqlite3_column_text(st, 3);
+    if (strstr(d, "SCAN")) fail_msg("plan: %s", d);
+  }
+  sqlite3_finalize(st);
+  sqlite3_close(h);
+}
+
+/* A file of schema version 4 (both forms) or 2 (the per-kind columns only) opened for writing
+ * is brought to 5: samples reads the same rows bit for bit as before (every column, the
+ * mixture's per-kind ones from sample_species now), sample_species gains the rows that only the
+ * columns had (version 2: 2 per sample of the mixture; version 4: none), the per-species series
+ * that the analyses read (hd_ana_spseries_read) is the same before (the old file, read as it is)
+ * and after, a user's view of samples still reads, and the old table is gone.  Before: the file
+ * kept its table samples, with the per-kind columns. */
+static void schema5_old_files_converted(void **state) {
+  fixture *fx = *state;
+  for (int version = 4; version >= 2; version -= 2) {
+    char old[400];
+    snprintf(old, sizeof old, "%s/v%d-orig.db", fx->dir, version);
+    unlink(fx->path);
+    make_old_file(fx->path, version);
+    copy_file(fx->path, old);
+    hd_ana_mix mix = {.k = 2};
+    mix.sp[0].idx = 0, mix.sp[1].idx = 1;
+    hd_ana_spseries before, after;
+    hd_error err;
+    sqlite3 *h = NULL;
+    assert_int_equal(sqlite3_open_v2(old, &h, SQLITE_OPEN_READONLY, NULL), SQLITE_OK);
+    assert_int_equal(hd_ana_spseries_read(h, 1, &mix, &before, &err), HD_OK);
+    sqlite3_close(h);
+    assert_int_equal(before.n, 10);
+    long long ss_old = version >= 3 ? count_other(old, "SELECT count(*) FROM sample_species") : 0;
+    close_ok(open_ok(fx->path)); /* a writer opens it: the upgrade */
+    assert_int_equal(sqlite3_open(fx->path, &h), SQLITE_OK);
+    assert_int_equal(q_int(h, "SELECT user_version FROM pragma_user_version"), 5);
+    assert_int_equal(q_int(h, "SELECT count(*) FROM sqlite_schema WHERE name = 'samples' AND "
+                              "type = 'view'"),
+                     1);
+    assert_int_equal(q_int(h, "SELECT count(*) FROM pragma_table_info('sample_rows') WHERE name "
+                              "LIKE 'e_tr_di%'"),
+                     0);
+    assert_int_equal(q_int(h, "SELECT count(*) FROM samples"), 30);
+    assert_int_equal(samples_same(h, old, 0), 30);
+    assert_int_equal(q_int(h, "SELECT count(*) FROM sample_species"), ss_old + (version < 3) * 20);
+    assert_int_equal(q_int(h, "SELECT count(*) FROM v_energy"), 30);
+    assert_int_equal(hd_ana_spseries_read(h, 1, &mix, &after, &err), HD_OK);
+    assert_int_equal(after.n, before.n);
+    for (size_t f = 0; f < 2 * after.n; f++) {
+      assert_true(after.e_tr[f] == before.e_tr[f]);
+      assert_true(after.e_rot[f] == before.e_rot[f]);
+    }
+    assert_true(after.t[9] == before.t[9]);
+    hd_ana_spseries_free(&before);
+    hd_ana_spseries_free(&after);
+    sqlite3_close(h);
+    assert_integrity_ok(fx->path);
+  }
+}
+
+/* haff merge of a file of version 4 and one of version 5, into a new OUT and into a copy of
+ * the version 4 file: OUT is of version 5 and reads every input's samples as it read them (run
+ * numbers shifted), bit for bit, with the mixture's per-kind values from sample_species.
+ * Before: a version 4 input's per-kind columns were copied into OUT's table samples. */
+static void schema5_merge_old_and_new(void **state) {
+  fixture *fx = *state;
+  char v4[400], v5[400], out[400], out4[400];
+  snprintf(v4, sizeof v4, "%s/v4.db", fx->dir);
+  snprintf(v5, sizeof v5, "%s/v5.db", fx->dir);
+  snprintf(out, sizeof out, "%s/out.db", fx->dir);
+  snprintf(out4, sizeof out4, "%s/out4.db", fx->dir);
+  make_old_file(v4, 4);
+  copy_file(v4, out4);
+  hd_error err;
+  hd_db *db = open_ok(v5);
+  int64_t run = begin_run(db, "[system]\nseed = 9\n", 9);
+  for (int k = 0; k < 5; k++) {
+    hd_sample_row s = {.t = k, .collisions = k, .cpd = k, .e_tr = e_of(4, k, -1), .e_rot = 0.5};
+    s.flow_frac = s.flow_chaos = s.count_var = s.s_rho = s.s_perp = s.s_par = NAN;
+    assert_int_equal(hd_db_log_sample(db, run, &s, &err), HD_OK);
+    for (int sp = 0; sp < 2; sp++) {
+      hd_species_sample e = {k, sp, e_of(4, k, sp), sp ? 0 : 0.25};
+      assert_int_equal(hd_db_log_species_sample(db, run, &e, &err), HD_OK);
+    }
+  }
+  close_ok(db);
+  const char *both[] = {v4, v5};
+  int64_t n = 0;
+  assert_int_equal(hd_db_merge(out, both, 2, &n, &err), HD_OK);
+  assert_int_equal(n, 4);
+  assert_int_equal(hd_db_merge(out4, both + 1, 1, &n, &err), HD_OK);
+  assert_int_equal(n, 1);
+  const char *outs[] = {out, out4};
+  for (int o = 0; o < 2; o++) {
+    sqlite3 *h = NULL;
+    assert_int_equal(sqlite3_open(outs[o], &h), SQLITE_OK);
+    assert_int_equal(q_int(h, "SELECT user_version FROM pragma_user_version"), 5);
+    assert_int_equal(q_int(h, "SELECT count(*) FROM samples"), 35);
+    assert_int_equal(samples_same(h, v4, 0), 30);
+    assert_int_equal(samples_same(h, v5, 3), 5);
+    assert_int_equal(q_int(h, "SELECT count(*) FROM samples WHERE e_tr_dimer IS NOT NULL"), 15);
+    assert_int_equal(q_int(h, "SELECT count(*) FROM sample_species"), 50 + 10);
+    sqlite3_close(h);
+  }
+}
+
 static int export_run(char *a1, char *a2, char *a3, char *a4, char *a5, char *a6, char *a7,
                       char *a8) {
   char *argv[] = {"export", "xyz", a1, a2, a3, a4, a5, a6, a7, a8, NULL};
@@ -1346,6 +1633,9 @@ int main(void) {
       cmocka_unit_test_setup_teardown(queries, setup, teardown),
       cmocka_unit_test_setup_teardown(export_xyz, setup, teardown),
       cmocka_unit_test_setup_teardown(states_species, setup, teardown),
+      cmocka_unit_test_setup_teardown(schema5_samples_view, setup, teardown),
+      cmocka_unit_test_setup_teardown(schema5_old_files_converted, setup, teardown),
+      cmocka_unit_test_setup_teardown(schema5_merge_old_and_new, setup, teardown),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

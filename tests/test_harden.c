@@ -229,7 +229,6 @@ static void truncate_and_delete_every_table(void **state) {
     for (int k = 0; k <= 10; k++) {
       hd_sample_row s = {0};
       s.t = k, s.cpd = k, s.e_tr = 1, s.e_rot = 1;
-      s.e_tr_dimer = s.e_rot_dimer = s.e_tr_disk = NAN;
       s.flow_frac = s.flow_chaos = s.count_var = s.s_rho = s.s_perp = s.s_par = NAN;
       assert_int_equal(hd_db_log_sample(db, r, &s, &err), HD_OK);
       hd_species_sample ss = {k, 2, 1, 1};

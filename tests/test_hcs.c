@@ -145,7 +145,7 @@ static void schema_upgrade(void **state) {
   sqlite3_close(h);
   hd_db *db;
   assert_int_equal(hd_db_open(&db, path, &err), HD_OK);
-  hd_sample_row row = {2, 100, 2, 0.8, 0, NAN, NAN, NAN, 0.1, 0.05, 1, 1, 2.5, 1};
+  hd_sample_row row = {2, 100, 2, 0.8, 0, 0.1, 0.05, 1, 1, 2.5, 1};
   assert_int_equal(hd_db_log_sample(db, 1, &row, &err), HD_OK);
   assert_int_equal(hd_db_close(db, &err), HD_OK);
   assert_int_equal(sqlite3_open(path, &h), SQLITE_OK);
@@ -425,13 +425,8 @@ static void add_dimer_run(hd_db *db, double alpha, double kink, double sp, doubl
     x = x * 6364136223846793005UL + 1442695040888963407UL;
     double u = (double)(x >> 11) / 9007199254740992.0 - 0.5; /* uniform, sd 0.29 */
     double K = 2 + 0.001 * cpd + kink * fmax(0, cpd - 52.5) + 3.5e-3 * u;
-    hd_sample_row row = {t,           (int64_t)(450 * k),
-                         cpd,         E * K / (K + 1),
-                         E / (K + 1), NAN,
-                         NAN,         NAN,
-                         0.05 + fx,   0.05,
-                         1,           1,
-                         sp,          1};
+    hd_sample_row row = {
+        t, (int64_t)(450 * k), cpd, E * K / (K + 1), E / (K + 1), 0.05 + fx, 0.05, 1, 1, sp, 1};
     assert_int_equal(hd_db_log_sample(db, run, &row, &err), HD_OK);
   }
   assert_int_equal(hd_db_run_hcs(db, run, &err), HD_OK);
@@ -688,8 +683,7 @@ static void add_haff_run(hd_db *db, double alpha, double De, double burst, unsig
     } else if (k > 0) {
       t += 0.5 / (0.3 * exp(-g * (cpd - 0.25) / (2 * De)));
     }
-    hd_sample_row row = {
-        t, (int64_t)(450 * cpd), cpd, E * 2 / 3, E / 3, NAN, NAN, NAN, 0.05, 0.05, 1, 1, 1, 1};
+    hd_sample_row row = {t, (int64_t)(450 * cpd), cpd, E * 2 / 3, E / 3, 0.05, 0.05, 1, 1, 1, 1};
     assert_int_equal(hd_db_log_sample(db, run, &row, &err), HD_OK);
   }
   assert_int_equal(hd_db_run_hcs(db, run, &err), HD_OK);

@@ -242,7 +242,7 @@ static void killed_in_setup(const char *scene, const char *name) {
   assert_int_equal(hd_db_run_begin(db, sc.text, sc.seed, "test", &run, &err), HD_OK);
   hd_state_rec st = {0.0, 0, 0, 1.0, 2.0, 0.0, 0.5, 0.5, 0.0, 0.0, 1};
   assert_int_equal(hd_db_log_state(db, run, "initial", &st, &err), HD_OK);
-  hd_sample_row sa = {0.0, 0, 0.0, 1.0, 0.0, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
+  hd_sample_row sa = {0.0, 0, 0.0, 1.0, 0.0, NAN, NAN, NAN, NAN, NAN, NAN};
   assert_int_equal(hd_db_log_sample(db, run, &sa, &err), HD_OK);
   assert_int_equal(hd_db_close(db, &err), HD_OK);
   hd_scene_free(&sc);

@@ -355,7 +355,12 @@ static void old_schema_reads_and_upgrades(void **state) {
   if (!haff) skip();
   assert_int_equal(
       sh("%s run short.ini -o old.db --quiet && sqlite3 old.db 'ALTER TABLE runs "
-         "DROP COLUMN cpd; DROP TABLE provenance; DROP TABLE species; DROP TABLE sample_species; "
+         "DROP COLUMN cpd; DROP TABLE provenance; CREATE TEMP TABLE x AS SELECT run, t, "
+         "collisions, cpd, e_tr, e_rot, e_tr_dimer, e_rot_dimer, e_tr_disk FROM samples; DROP "
+         "VIEW samples; DROP TABLE sample_rows; CREATE TABLE samples (run INTEGER NOT NULL, t "
+         "REAL NOT NULL, collisions INTEGER NOT NULL, cpd REAL NOT NULL, e_tr REAL NOT NULL, "
+         "e_rot REAL NOT NULL, e_tr_dimer REAL, e_rot_dimer REAL, e_tr_disk REAL); INSERT INTO "
+         "samples SELECT * FROM temp.x; DROP TABLE species; DROP TABLE sample_species; "
          "PRAGMA user_version = 0'",
          haff),
       0);
@@ -371,6 +376,15 @@ static void old_schema_reads_and_upgrades(void **state) {
   assert_int_equal(q1("old.db", "PRAGMA user_version"), HD_DB_SCHEMA_VERSION);
   assert_int_equal(q1("old.db", "SELECT count(*) FROM runs WHERE cpd >= 20"), 1);
   assert_true(q1("old.db", "SELECT count(*) FROM species WHERE run = 2") >= 1); /* version 3 */
+  /* version 5: the table samples (no state measures) became sample_rows and the view */
+  assert_int_equal(q1("old.db", "SELECT count(*) FROM sqlite_schema WHERE name = 'samples' AND "
+                                "type = 'view'"),
+                   1);
+  assert_int_equal(q1("old.db", "SELECT count(*) FROM samples WHERE run = 1"),
+                   q1("fromold.db", "SELECT count(*) FROM samples WHERE run = 1"));
+  assert_int_equal(q1("old.db", "SELECT count(*) FROM samples WHERE run = 1 AND flow_frac IS "
+                                "NULL"),
+                   q1("old.db", "SELECT count(*) FROM samples WHERE run = 1"));
 }
 
 /* A run's identity is (scene, seed, commit) (issue 28): haff run refuses a second run of a
