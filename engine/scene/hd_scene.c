@@ -21,6 +21,7 @@
 #include "hd_scene.h"
 
 #include "hd_body.h"
+#include "hd_scene_internal.h"
 #include "rods.h"
 
 #include <ctype.h>
@@ -84,6 +85,8 @@ typedef struct key_def {
   const char *doc_key;                               /* docs: the key column (NULL: the name) */
   const char *doc_def;                               /* docs: the default column (NULL: from def) */
   const char *doc_range; /* docs: the range column (NULL: from the type and range) */
+  int doc_forms;         /* docs: the range column is the short forms (hd_scene_forms), then
+                          * "; " and doc_range */
   const char *doc;       /* docs: what it means */
 } key_def;
 
@@ -182,9 +185,7 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
   X(PALPHA, S_SPECIES, "alpha", REAL(1), SPF(alpha), R_UNIT,                                         \
     .doc = "restitution between two bodies of the species")                                          \
   X(PSHAPE, S_SPECIES, "shape", CUSTOM(set_shape), .show = show_short_shape, .put = put_shape,       \
-    .doc_def = "— (or `disks`)",                                                                     \
-    .doc_range = "`disk` \\| `dimer A` \\| `linear N [S]` \\| `triangle [S]` \\| "                   \
-                 "`bent ANGLE [S]`; A, S ≥ 10⁻⁹ d",                                                  \
+    .doc_def = "— (or `disks`)", .doc_forms = 1, .doc_range = "A, S ≥ 10⁻⁹ d",                       \
     .doc = "a short form (below); S, the centre spacing, defaults to `d`")                           \
   X(PD, S_SPECIES, "d", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,                \
     .put = put_sp_dm, .doc = "with `shape`: the diameter of every disk")                             \
@@ -308,10 +309,6 @@ typedef struct loc {
   int over;
 } loc;
 
-/* The shapes of `shape = ...` (SH_EXPLICIT: `disks = ...`). */
-enum { SH_NONE, SH_DISK, SH_DIMER, SH_LINEAR, SH_TRIANGLE, SH_BENT, SH_EXPLICIT };
-static const char *const shape_name[] = {"", "disk", "dimer", "linear", "triangle", "bent", ""};
-
 /* An `alpha_OTHER` or `beta_OTHER` key of a [species NAME] section. */
 typedef struct sp_pair {
   char other[HD_SPECIES_NAME_MAX]; /* OTHER */
@@ -323,14 +320,12 @@ typedef struct sp_pair {
 
 /* What a [species NAME] section says besides its hd_scene_species fields. */
 typedef struct sp_parse {
-  int shape;                        /* SH_* */
-  int n;                            /* linear N */
-  double a;                         /* dimer A */
-  double s;                         /* spacing S (NAN: = d) */
-  double angle;                     /* bent ANGLE, degrees */
-  double d, m;                      /* `d`, `m` */
-  int npair;                        /* alpha_OTHER and beta_OTHER keys */
-  sp_pair pair[2 * HD_MAX_SPECIES]; /* (at most one of each per other species) */
+  const hd_scene_form *form;         /* its short form (NULL: `disks = ...`) */
+  double v[HD_SCENE_FORM_MAX_PARAM]; /* the form's numbers */
+  double s;                          /* spacing S (NAN: = d) */
+  double d, m;                       /* `d`, `m` */
+  int npair;                         /* alpha_OTHER and beta_OTHER keys */
+  sp_pair pair[2 * HD_MAX_SPECIES];  /* (at most one of each per other species) */
 } sp_parse;
 
 struct ctx {
@@ -703,49 +698,140 @@ static int set_sp_dm(ctx *c, int si, int k, const char *v) {
   return HD_OK;
 }
 
-/* A number token of a shape; else an error naming it. */
-static int shape_num(ctx *c, int si, int k, const char *tok, const char *what, double *x) {
-  if (!parse_num(tok, x)) return FAIL_AT(c, si, k, "%s '%s': %s", what, tok, num_why(tok));
+/* ---- the short forms of `shape = ...` ------------------------------------------------------- */
+
+/* Each form's builder (hd_scene_form.build): its disks' centres in the body frame. */
+static int build_disk(const double *v, double s, double *x, double *y) {
+  (void)v, (void)s;
+  x[0] = 0, y[0] = 0;
+  return 1;
+}
+static int build_dimer(const double *v, double s, double *x, double *y) {
+  (void)s;
+  for (int i = 0; i < 2; i++) x[i] = i ? v[0] / 2 : -v[0] / 2, y[i] = 0;
+  return 2;
+}
+static int build_linear(const double *v, double s, double *x, double *y) {
+  int n = (int)v[0];
+  for (int i = 0; i < n; i++) x[i] = (i - (n - 1) / 2.0) * s, y[i] = 0;
+  return n;
+}
+/* side s, centroid at the origin */
+static int build_triangle(const double *v, double s, double *x, double *y) {
+  (void)v;
+  double h = s / (2 * sqrt(3.0));
+  for (int i = 0; i < 3; i++) {
+    x[i] = i == 0 ? 0 : i == 1 ? -s / 2 : s / 2;
+    y[i] = i == 0 ? 2 * h : -h;
+  }
+  return 3;
+}
+/* the middle disk at the origin, the arms at +-ANGLE/2 from the x axis */
+static int build_bent(const double *v, double s, double *x, double *y) {
+  double half = v[0] * M_PI / 360;
+  for (int i = 0; i < 3; i++) {
+    x[i] = i == 1 ? 0 : s * cos(half);
+    y[i] = i == 1 ? 0 : i == 0 ? s * sin(half) : -s * sin(half);
+  }
+  return 3;
+}
+
+/* The short forms: a new one is a row here and its builder above (docs/architecture.md). */
+const hd_scene_form hd_scene_forms[] = {
+    {.name = "disk", .build = build_disk, .help = "one disk"},
+    {.name = "dimer",
+     .nparam = 1,
+     .param = {{.name = "A",
+                .lo = 0,
+                .hi = INFINITY,
+                .lo_open = 1,
+                .note = " (one disk: shape = disk)"}},
+     .build = build_dimer,
+     .help = "two disks A apart (A > 0; A < d overlaps them, as `[dimers] a` does)"},
+    {.name = "linear",
+     .nparam = 1,
+     .param = {{.name = "N", .lo = 1, .hi = HD_MAX_BODY_DISKS, .whole = 1}},
+     .spacing = 1,
+     .build = build_linear,
+     .help = "N disks (1 … 8) in a row, S apart"},
+    {.name = "triangle",
+     .spacing = 1,
+     .build = build_triangle,
+     .help = "three disks at the corners of an equilateral triangle of side S"},
+    {.name = "bent",
+     .nparam = 1,
+     .param = {{.name = "ANGLE", .lo = 0, .hi = 180, .lo_open = 1, .note = " degrees"}},
+     .spacing = 1,
+     .build = build_bent,
+     .help = "three disks, the outer two S from the middle one, ANGLE degrees (0 < ANGLE ≤ 180) "
+             "between the two arms at the middle disk"},
+    {.name = NULL}};
+
+const hd_scene_form_param hd_scene_form_spacing = {
+    .name = "S", .lo = 0, .hi = INFINITY, .lo_open = 1};
+
+void hd_scene_form_syntax(const hd_scene_form *f, char *buf, size_t n) {
+  size_t at = (size_t)snprintf(buf, n, "%s", f->name);
+  for (int i = 0; i < f->nparam && at < n; i++)
+    at += (size_t)snprintf(buf + at, n - at, " %s", f->param[i].name);
+  if (f->spacing && at < n) snprintf(buf + at, n - at, " [%s]", hd_scene_form_spacing.name);
+}
+
+void hd_scene_forms_list(const char *quote, const char *sep, const char *last_sep, char *buf,
+                         size_t n) {
+  buf[0] = '\0';
+  for (const hd_scene_form *f = hd_scene_forms; f->name; f++) {
+    char syn[120];
+    hd_scene_form_syntax(f, syn, sizeof syn);
+    size_t at = strlen(buf);
+    snprintf(buf + at, n - at, "%s%s%s%s",
+             f == hd_scene_forms ? ""
+             : f[1].name         ? sep
+                                 : last_sep,
+             quote, syn, quote);
+  }
+}
+
+void hd_scene_form_param_why(const hd_scene_form_param *q, char *buf, size_t n) {
+  key_def kd = {.lo = q->lo, .hi = q->hi, .lo_open = q->lo_open, .hi_open = q->hi_open};
+  char why[120];
+  range_why(&kd, why, sizeof why); /* "must be ..." */
+  snprintf(buf, n, "must be %s%s%s", q->whole ? "a whole number " : "", why + strlen("must be "),
+           q->note ? q->note : "");
+}
+
+/* A number of a form (the word tok) in q's range into *x; else an error naming q. */
+static int form_num(ctx *c, int si, int k, const char *tok, const hd_scene_form_param *q,
+                    double *x) {
+  if (!parse_num(tok, x)) return FAIL_AT(c, si, k, "%s '%s': %s", q->name, tok, num_why(tok));
+  int in = (q->lo_open ? *x > q->lo : *x >= q->lo) && (q->hi_open ? *x < q->hi : *x <= q->hi);
+  if ((q->whole && *x != floor(*x)) || !in) {
+    char why[200];
+    hd_scene_form_param_why(q, why, sizeof why);
+    return FAIL_AT(c, si, k, "%s %s", q->name, why);
+  }
   return HD_OK;
 }
 
-/* `shape = disk | dimer A | linear N [S] | triangle [S] | bent ANGLE_DEG [S]` */
+/* `shape = NAME [numbers] [S]`: a row of hd_scene_forms */
 static int set_shape(ctx *c, int si, int k, const char *v) {
-  static const char *const forms =
-      "expected disk, dimer A, linear N [S], triangle [S] or bent ANGLE [S]";
+  char forms[400] = "expected ";
+  hd_scene_forms_list("", ", ", " or ", forms + strlen(forms), sizeof forms - strlen(forms));
   sp_parse *p = &c->sp[si - N_SEC];
-  char tok[4][64];
-  int n = split(v, tok, 3), rc;
+  char tok[2 + HD_SCENE_FORM_MAX_PARAM][64];
+  int n = split(v, tok, 2 + HD_SCENE_FORM_MAX_PARAM), rc;
   if (n < 1) return FAIL_AT(c, si, k, "%s", forms);
-  int sh = SH_DISK;
-  while (sh < SH_EXPLICIT && strcmp(tok[0], shape_name[sh])) sh++;
-  if (sh == SH_EXPLICIT) return FAIL_AT(c, si, k, "%s", forms);
-  static const int lo[] = {0, 1, 2, 2, 1, 2}, hi[] = {0, 1, 2, 3, 2, 3};
-  if (n < lo[sh] || n > hi[sh]) return FAIL_AT(c, si, k, "%s", forms);
+  const hd_scene_form *f = hd_scene_forms;
+  while (f->name && strcmp(tok[0], f->name)) f++;
+  if (!f->name || n < 1 + f->nparam || n > 1 + f->nparam + f->spacing)
+    return FAIL_AT(c, si, k, "%s", forms);
   p->s = NAN;
-  double x;
-  if (sh == SH_DIMER) {
-    if ((rc = shape_num(c, si, k, tok[1], "A", &x))) return rc;
-    if (!(x > 0)) return FAIL_AT(c, si, k, "A must be > 0 (one disk: shape = disk)");
-    p->a = x;
-  }
-  if (sh == SH_LINEAR) {
-    if ((rc = shape_num(c, si, k, tok[1], "N", &x))) return rc;
-    if (x != floor(x) || x < 1 || x > HD_MAX_BODY_DISKS)
-      return FAIL_AT(c, si, k, "N must be a whole number in [1, %d]", HD_MAX_BODY_DISKS);
-    p->n = (int)x;
-  }
-  if (sh == SH_BENT) {
-    if ((rc = shape_num(c, si, k, tok[1], "ANGLE", &x))) return rc;
-    if (!(x > 0 && x <= 180)) return FAIL_AT(c, si, k, "ANGLE must be in (0, 180] degrees");
-    p->angle = x;
-  }
-  if ((sh == SH_LINEAR || sh == SH_BENT || sh == SH_TRIANGLE) && n == hi[sh]) {
-    if ((rc = shape_num(c, si, k, tok[n - 1], "S", &x))) return rc;
-    if (!(x > 0)) return FAIL_AT(c, si, k, "S must be > 0");
-    p->s = x;
-  }
-  p->shape = sh;
+  for (int i = 0; i < f->nparam; i++)
+    if ((rc = form_num(c, si, k, tok[1 + i], &f->param[i], &p->v[i]))) return rc;
+  if (f->spacing && n == 2 + f->nparam &&
+      (rc = form_num(c, si, k, tok[n - 1], &hd_scene_form_spacing, &p->s)))
+    return rc;
+  p->form = f;
   return HD_OK;
 }
 
@@ -780,7 +866,6 @@ static int set_disks(ctx *c, int si, int k, const char *v) {
   }
   if (n == 0) return FAIL_AT(c, si, k, "missing value: expected x y d m; x y d m; ...");
   sp->ndisk = n;
-  c->sp[si - N_SEC].shape = SH_EXPLICIT;
   return HD_OK;
 }
 
@@ -1365,42 +1450,19 @@ static int build_species(ctx *c, int j) {
     int later = a.over > b.over || (a.over == b.over && a.line > b.line) ? K_PSHAPE : K_PDISKS;
     return FAIL_AT(c, si, later, "give either shape or disks, not both");
   }
-  if (!has_shape && !has_disks)
+  if (!has_shape && !has_disks) {
+    char forms[400];
+    hd_scene_forms_list("", " | ", " | ", forms, sizeof forms);
     return fail(c, HD_EINPUT, c->sec_at[si], si, "shape", NULL,
-                "missing: give shape = disk | dimer A | linear N [S] | triangle [S] | bent "
-                "ANGLE [S], or disks = x y d m; x y d m; ...");
+                "missing: give shape = %s, or disks = x y d m; x y d m; ...", forms);
+  }
   if (has_disks) {
     for (int k = K_PD; k <= K_PM; k++)
       if (key_set(c, si, k))
         return FAIL_AT(c, si, k, "not used with disks = ... (each disk gives its own d and m)");
   } else {
-    double s = isnan(p->s) ? p->d : p->s, h = s / (2 * sqrt(3.0));
-    int n = p->shape == SH_DISK ? 1 : p->shape == SH_DIMER ? 2 : p->shape == SH_LINEAR ? p->n : 3;
-    sp->ndisk = n;
-    for (int i = 0; i < n; i++) {
-      double x = 0, y = 0;
-      switch (p->shape) {
-      case SH_DIMER:
-        x = i ? p->a / 2 : -p->a / 2;
-        break;
-      case SH_LINEAR:
-        x = (i - (n - 1) / 2.0) * s;
-        break;
-      case SH_TRIANGLE: /* side s, centroid at the origin */
-        x = i == 0 ? 0 : i == 1 ? -s / 2 : s / 2;
-        y = i == 0 ? 2 * h : -h;
-        break;
-      case SH_BENT: { /* the middle disk at the origin, the arms at +-ANGLE/2 from the x axis */
-        double half = p->angle * M_PI / 360;
-        x = i == 1 ? 0 : s * cos(half);
-        y = i == 1 ? 0 : i == 0 ? s * sin(half) : -s * sin(half);
-        break;
-      }
-      default:
-        break;
-      }
-      sp->x[i] = x, sp->y[i] = y, sp->d[i] = p->d, sp->m[i] = p->m;
-    }
+    sp->ndisk = p->form->build(p->v, isnan(p->s) ? p->d : p->s, sp->x, sp->y);
+    for (int i = 0; i < sp->ndisk; i++) sp->d[i] = p->d, sp->m[i] = p->m;
   }
   /* connected: every disk reached from disk 0 through touching or overlapping pairs */
   int seen[HD_MAX_BODY_DISKS] = {1}, stack[HD_MAX_BODY_DISKS] = {0}, top = 1;
@@ -1702,7 +1764,7 @@ static int show_rod_eps(const ctx *c, int si) {
   return c->sc->rod_model == 1;
 }
 static int show_short_shape(const ctx *c, int si) {
-  return c->sp[si - N_SEC].shape != SH_EXPLICIT;
+  return c->sp[si - N_SEC].form != NULL;
 }
 static int show_explicit(const ctx *c, int si) {
   return !show_short_shape(c, si);
@@ -1756,13 +1818,10 @@ static void put_vel(const ctx *c, int si, int k, sbuf *b) {
 static void put_shape(const ctx *c, int si, int k, sbuf *b) {
   (void)k;
   const sp_parse *p = &c->sp[si - N_SEC];
-  char a[40], s[40];
-  shortest(isnan(p->s) ? p->d : p->s, s, sizeof s);
-  put(b, "shape = %s", shape_name[p->shape]);
-  if (p->shape == SH_DIMER) shortest(p->a, a, sizeof a), put(b, " %s", a);
-  if (p->shape == SH_LINEAR) put(b, " %d", p->n);
-  if (p->shape == SH_BENT) shortest(p->angle, a, sizeof a), put(b, " %s", a);
-  if (p->shape == SH_LINEAR || p->shape == SH_TRIANGLE || p->shape == SH_BENT) put(b, " %s", s);
+  char t[40];
+  put(b, "shape = %s", p->form->name);
+  for (int i = 0; i < p->form->nparam; i++) shortest(p->v[i], t, sizeof t), put(b, " %s", t);
+  if (p->form->spacing) shortest(isnan(p->s) ? p->d : p->s, t, sizeof t), put(b, " %s", t);
   put(b, "\n");
 }
 static void put_sp_dm(const ctx *c, int si, int k, sbuf *b) {
@@ -1871,7 +1930,11 @@ static void doc_table(int s, sbuf *b) {
       snprintf(def, sizeof def, "`%s`", kd->names[(int)kd->def]);
     else
       shortest(kd->def, def, sizeof def);
-    if (kd->doc_range) {
+    if (kd->doc_forms) {
+      hd_scene_forms_list("`", " \\| ", " \\| ", range, sizeof range);
+      size_t at = strlen(range);
+      snprintf(range + at, sizeof range - at, "; %s", kd->doc_range);
+    } else if (kd->doc_range) {
       snprintf(range, sizeof range, "%s", kd->doc_range);
     } else if (kd->type == KT_BOOL) {
       snprintf(range, sizeof range, "`1 0 true false yes no on off`");
