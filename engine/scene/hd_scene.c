@@ -42,10 +42,10 @@
  * (si = N_SEC + k). */
 enum { S_SYSTEM, S_DIMERS, S_DISKS, S_SPECIES, S_WALLS, S_INIT, S_RUN, S_LOG, S_RODS, N_SEC };
 enum { N_SI = N_SEC + HD_MAX_SPECIES - 2 };
-static const char *const sec_name[N_SEC] = {"system", "dimers", "disks", "species", "walls",
-                                            "init",   "run",    "log",   "rods"};
+static const char *const hd_scene_sec_name[N_SEC] = {
+    "system", "dimers", "disks", "species", "walls", "init", "run", "log", "rods"};
 
-static int sec_of(int si) {
+static int hd_scene_sec_of(int si) {
   return si >= N_SEC ? S_SPECIES : si;
 }
 
@@ -91,39 +91,39 @@ typedef struct key_def {
 } key_def;
 
 /* Handlers of the custom keys, and the predicates and writers of the canonical text. */
-static int set_box(ctx *c, int si, int k, const char *v);
-static int set_sides(ctx *c, int si, int k, const char *v);
-static int set_state(ctx *c, int si, int k, const char *v);
-static int set_collisions(ctx *c, int si, int k, const char *v);
-static int set_vel_at(ctx *c, int si, int k, const char *v);
-static int set_shape(ctx *c, int si, int k, const char *v);
-static int set_disks(ctx *c, int si, int k, const char *v);
-static int set_sp_dm(ctx *c, int si, int k, const char *v);
-static int set_alpha_other(ctx *c, int si, int k, const char *v);
-static int check_rod_count(ctx *c, int si, int k);
-static int check_eps_step(ctx *c, int si, int k);
-static int show_set(const ctx *c, int si);
-static int show_box(const ctx *c, int si);
-static int show_not_state(const ctx *c, int si);
-static int show_state(const ctx *c, int si);
-static int show_sides(const ctx *c, int si);
-static int show_vel(const ctx *c, int si);
-static int show_vel_time(const ctx *c, int si);
-static int show_frames(const ctx *c, int si);
-static int show_rod_eps(const ctx *c, int si);
-static int show_short_shape(const ctx *c, int si);
-static int show_explicit(const ctx *c, int si);
-static int show_beta_dimer(const ctx *c, int si);
-static void put_area(const ctx *c, int si, int k, sbuf *b);
-static void put_box(const ctx *c, int si, int k, sbuf *b);
-static void put_sides(const ctx *c, int si, int k, sbuf *b);
-static void put_state(const ctx *c, int si, int k, sbuf *b);
-static void put_collisions(const ctx *c, int si, int k, sbuf *b);
-static void put_vel(const ctx *c, int si, int k, sbuf *b);
-static void put_shape(const ctx *c, int si, int k, sbuf *b);
-static void put_sp_dm(const ctx *c, int si, int k, sbuf *b);
-static void put_disks(const ctx *c, int si, int k, sbuf *b);
-static void put_pairs(const ctx *c, int si, int k, sbuf *b);
+static int hd_scene_set_box(ctx *c, int si, int k, const char *v);
+static int hd_scene_set_sides(ctx *c, int si, int k, const char *v);
+static int hd_scene_set_state(ctx *c, int si, int k, const char *v);
+static int hd_scene_set_collisions(ctx *c, int si, int k, const char *v);
+static int hd_scene_set_vel_at(ctx *c, int si, int k, const char *v);
+static int hd_scene_set_shape(ctx *c, int si, int k, const char *v);
+static int hd_scene_set_disks(ctx *c, int si, int k, const char *v);
+static int hd_scene_set_sp_dm(ctx *c, int si, int k, const char *v);
+static int hd_scene_set_alpha_other(ctx *c, int si, int k, const char *v);
+static int hd_scene_check_rod_count(ctx *c, int si, int k);
+static int hd_scene_check_eps_step(ctx *c, int si, int k);
+static int hd_scene_show_set(const ctx *c, int si);
+static int hd_scene_show_box(const ctx *c, int si);
+static int hd_scene_show_not_state(const ctx *c, int si);
+static int hd_scene_show_state(const ctx *c, int si);
+static int hd_scene_show_sides(const ctx *c, int si);
+static int hd_scene_show_vel(const ctx *c, int si);
+static int hd_scene_show_vel_time(const ctx *c, int si);
+static int hd_scene_show_frames(const ctx *c, int si);
+static int hd_scene_show_rod_eps(const ctx *c, int si);
+static int hd_scene_show_short_shape(const ctx *c, int si);
+static int hd_scene_show_explicit(const ctx *c, int si);
+static int hd_scene_show_beta_dimer(const ctx *c, int si);
+static void hd_scene_put_area(const ctx *c, int si, int k, sbuf *b);
+static void hd_scene_put_box(const ctx *c, int si, int k, sbuf *b);
+static void hd_scene_put_sides(const ctx *c, int si, int k, sbuf *b);
+static void hd_scene_put_state(const ctx *c, int si, int k, sbuf *b);
+static void hd_scene_put_collisions(const ctx *c, int si, int k, sbuf *b);
+static void hd_scene_put_vel(const ctx *c, int si, int k, sbuf *b);
+static void hd_scene_put_shape(const ctx *c, int si, int k, sbuf *b);
+static void hd_scene_put_sp_dm(const ctx *c, int si, int k, sbuf *b);
+static void hd_scene_put_disks(const ctx *c, int si, int k, sbuf *b);
+static void hd_scene_put_pairs(const ctx *c, int si, int k, sbuf *b);
 
 static const char *const no_yes[] = {"no", "yes", NULL};
 static const char *const zero_one[] = {"0", "1", NULL};
@@ -147,11 +147,11 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
 /* Every key: X(ID, section, name, the rest of its key_def).  K_ID is its index. */
 #define SCENE_KEYS(X)                                                                                \
   X(AREA, S_SYSTEM, "area_fraction", REAL(0), F(area_fraction), .lo = 0,                             \
-    .hi = HD_MAX_AREA_FRACTION, .lo_open = 1, .hi_open = 1, .show = show_set, .put = put_area,       \
-    .doc_key = "area_fraction = eta", .doc_def = "—",                                                \
+    .hi = HD_MAX_AREA_FRACTION, .lo_open = 1, .hi_open = 1, .show = hd_scene_show_set,               \
+    .put = hd_scene_put_area, .doc_key = "area_fraction = eta", .doc_def = "—",                      \
     .doc = "instead of `box`: a square box whose area makes the bodies cover eta")                   \
-  X(BOX, S_SYSTEM, "box", CUSTOM(set_box), F(box_x), .show = show_box, .put = put_box,               \
-    .doc_key = "box = Lx Ly", .doc_def = "—", .doc_range = "both > 0",                               \
+  X(BOX, S_SYSTEM, "box", CUSTOM(hd_scene_set_box), F(box_x), .show = hd_scene_show_box,             \
+    .put = hd_scene_put_box, .doc_key = "box = Lx Ly", .doc_def = "—", .doc_range = "both > 0",      \
     .doc = "box edges; periodic in every direction no wall closes")                                  \
   X(SEED, S_SYSTEM, "seed", .type = KT_U64, F(seed), .def = 1, .doc_range = "0 … 2^64−1",            \
     .doc = "RNG seed (`haff run --seed N` is the override `--set system.seed=N`)")                   \
@@ -177,39 +177,45 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
   X(SBETA, S_DISKS, "beta", REAL(-1), F(disk_beta), R_BETA,                                          \
     .doc = "disk-disk tangential restitution (a disk of `q` = 0 takes no torque: smooth)")           \
   X(SBETAD, S_DISKS, "beta_dimer", REAL(-1), F(disk_beta_dimer), .lo = -1, .hi = 1,                  \
-    .show = show_beta_dimer, .doc_def = "= `beta`", .doc = "dimer-disk tangential restitution")      \
+    .show = hd_scene_show_beta_dimer, .doc_def = "= `beta`",                                         \
+    .doc = "dimer-disk tangential restitution")                                                      \
   X(SQ, S_DISKS, "q", Q_KEY(F(disk_q)),                                                              \
     .doc = "the disk's own moment of inertia q mass (sigma/2)^2 (1/2: a uniform disk)")              \
   X(PCOUNT, S_SPECIES, "count", .type = KT_LONG, SPF(count), .lo = 0, .hi = (double)HD_MAX_COUNT,    \
     .doc_def = "required", .doc = "number of bodies")                                                \
   X(PALPHA, S_SPECIES, "alpha", REAL(1), SPF(alpha), R_UNIT,                                         \
     .doc = "restitution between two bodies of the species")                                          \
-  X(PSHAPE, S_SPECIES, "shape", CUSTOM(set_shape), .show = show_short_shape, .put = put_shape,       \
-    .doc_def = "— (or `disks`)", .doc_forms = 1, .doc_range = "A, S ≥ 10⁻⁹ d",                       \
+  X(PSHAPE, S_SPECIES, "shape", CUSTOM(hd_scene_set_shape), .show = hd_scene_show_short_shape,       \
+    .put = hd_scene_put_shape, .doc_def = "— (or `disks`)", .doc_forms = 1,                          \
+    .doc_range = "A, S ≥ 10⁻⁹ d",                                                                    \
     .doc = "a short form (below); S, the centre spacing, defaults to `d`")                           \
-  X(PD, S_SPECIES, "d", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,                \
-    .put = put_sp_dm, .doc = "with `shape`: the diameter of every disk")                             \
-  X(PM, S_SPECIES, "m", CUSTOM(set_sp_dm), .def = 1, R_POS, .show = show_short_shape,                \
-    .put = put_sp_dm, .doc = "with `shape`: the mass of every disk")                                 \
-  X(PDISKS, S_SPECIES, "disks", CUSTOM(set_disks), .show = show_explicit, .put = put_disks,          \
-    .doc_key = "disks = x y d m; x y d m; ...", .doc_def = "— (or `shape`)",                         \
+  X(PD, S_SPECIES, "d", CUSTOM(hd_scene_set_sp_dm), .def = 1, R_POS,                                 \
+    .show = hd_scene_show_short_shape, .put = hd_scene_put_sp_dm,                                    \
+    .doc = "with `shape`: the diameter of every disk")                                               \
+  X(PM, S_SPECIES, "m", CUSTOM(hd_scene_set_sp_dm), .def = 1, R_POS,                                 \
+    .show = hd_scene_show_short_shape, .put = hd_scene_put_sp_dm,                                    \
+    .doc = "with `shape`: the mass of every disk")                                                   \
+  X(PDISKS, S_SPECIES, "disks", CUSTOM(hd_scene_set_disks), .show = hd_scene_show_explicit,          \
+    .put = hd_scene_put_disks, .doc_key = "disks = x y d m; x y d m; ...",                           \
+    .doc_def = "— (or `shape`)",                                                                     \
     .doc_range = "1 to 8 disks, d > 0, m > 0; in one body m ≤ 10¹² × "                          \
                  "the smallest m, d ≤ 10⁴ × the smallest d, centres that "                      \
                  "span 0 or ≥ 10⁻⁹ × the largest d; no blank before `;`",                            \
     .doc = "instead of `shape`: each disk's centre in the body frame, diameter and mass")            \
-  X(PALPHAX, S_SPECIES, "alpha_OTHER", CUSTOM(set_alpha_other), .put = put_pairs,                    \
-    .doc_def = "the smaller of the two `alpha`s", .doc_range = "[0, 1]",                             \
+  X(PALPHAX, S_SPECIES, "alpha_OTHER", CUSTOM(hd_scene_set_alpha_other),                             \
+    .put = hd_scene_put_pairs, .doc_def = "the smaller of the two `alpha`s",                         \
+    .doc_range = "[0, 1]",                                                                           \
     .doc = "restitution between this species and OTHER: another species' NAME, `dimers` or "         \
            "`disks` (the pair is set once, in either section)")                                      \
   X(PBETA, S_SPECIES, "beta", REAL(-1), SPF(beta), R_BETA,                                           \
     .doc = "tangential restitution between two bodies of the species")                               \
   X(PQ, S_SPECIES, "q", Q_KEY(SPF(q)),                                                               \
     .doc = "each disk's own moment of inertia q m (d/2)^2, added to the body's")                     \
-  X(PBETAX, S_SPECIES, "beta_OTHER", CUSTOM(set_alpha_other), .put = put_pairs,                      \
+  X(PBETAX, S_SPECIES, "beta_OTHER", CUSTOM(hd_scene_set_alpha_other), .put = hd_scene_put_pairs,    \
     .doc_def = "the smaller of the two `beta`s", .doc_range = "[-1, 1]",                             \
     .doc = "tangential restitution between this species and OTHER (as `alpha_OTHER`)")               \
-  X(WSIDES, S_WALLS, "sides", CUSTOM(set_sides), F(walls), .show = show_sides, .put = put_sides,     \
-    .doc_def = "required",                                                                           \
+  X(WSIDES, S_WALLS, "sides", CUSTOM(hd_scene_set_sides), F(walls), .show = hd_scene_show_sides,     \
+    .put = hd_scene_put_sides, .doc_def = "required",                                                \
     .doc_range = "`left right`, `bottom top` or all four, space separated, no repeats",              \
     .doc = "flat hard walls on those box edges")                                                     \
   X(WALPHA, S_WALLS, "alpha", REAL(1), F(wall_alpha), R_UNIT,                                        \
@@ -220,9 +226,10 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
     .doc_range = "> 0 (≥ 0 with `state`)",                                                           \
     .doc = "kT per degree of freedom of the initial velocities; not used with `state`")              \
   X(PLACE, S_INIT, "placement", .type = KT_ENUM, F(placement), .names = placements,                  \
-    .show = show_not_state, .doc = "how bodies are placed, orientations random")                     \
-  X(STATE, S_INIT, "state", CUSTOM(set_state), F(state_file), .show = show_state,                    \
-    .put = put_state, .doc_def = "—", .doc_range = "a CSV file",                                     \
+    .show = hd_scene_show_not_state, .doc = "how bodies are placed, orientations random")            \
+  X(STATE, S_INIT, "state", CUSTOM(hd_scene_set_state), F(state_file),                               \
+    .show = hd_scene_show_state, .put = hd_scene_put_state, .doc_def = "—",                          \
+    .doc_range = "a CSV file",                                                                       \
     .doc = "every body given explicitly; relative to the scene file's folder")                       \
   X(STIME, S_RUN, "stop_time", REAL(0), F(stop_time), R_POS, .if_pos = 1, .doc_def = "unset",        \
     .doc = "stop at this time")                                                                      \
@@ -235,20 +242,21 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
     .doc = "check no-overlap and time order at every event")                                         \
   X(CKPT, S_RUN, "checkpoint_every", REAL(60), F(checkpoint_every), R_POS,                           \
     .doc = "wall-clock seconds between checkpoints")                                                 \
-  X(LCOLL, S_LOG, "collisions", CUSTOM(set_collisions), F(log_collisions), .put = put_collisions,    \
-    .doc_def = "`all`", .doc_range = "`all` \\| `none` \\| `every N` (N whole ≥ 1)",                 \
+  X(LCOLL, S_LOG, "collisions", CUSTOM(hd_scene_set_collisions), F(log_collisions),                  \
+    .put = hd_scene_put_collisions, .doc_def = "`all`",                                              \
+    .doc_range = "`all` \\| `none` \\| `every N` (N whole ≥ 1)",                                     \
     .doc = "which collisions get a row")                                                             \
   X(LSAMPLES, S_LOG, "samples_every", REAL(0), F(samples_every), R_NONNEG, .doc_def = "0 (none)",    \
     .doc = "cpd between samples of E_tr, E_rot")                                                     \
-  X(LVEL, S_LOG, "velocities_at", CUSTOM(set_vel_at), F(velocities_at), .show = show_vel,            \
-    .put = put_vel, .doc_def = "none",                                                               \
+  X(LVEL, S_LOG, "velocities_at", CUSTOM(hd_scene_set_vel_at), F(velocities_at),                     \
+    .show = hd_scene_show_vel, .put = hd_scene_put_vel, .doc_def = "none",                           \
     .doc_range = "up to 64 cpd values ≥ 0, strictly ascending, space separated",                     \
     .doc = "when every body's velocity is stored (at the first collision at or past each value; "    \
            "values that one collision passes together give one snapshot). A value past "             \
            "`stop_cpd` is an error at set-up; values the run does not reach for another stop "       \
            "give none, and the run's message says how many")                                         \
-  X(LVELT, S_LOG, "velocities_at_time", CUSTOM(set_vel_at), F(velocities_at),                        \
-    .show = show_vel_time, .put = put_vel, .doc_def = "none",                                        \
+  X(LVELT, S_LOG, "velocities_at_time", CUSTOM(hd_scene_set_vel_at), F(velocities_at),               \
+    .show = hd_scene_show_vel_time, .put = hd_scene_put_vel, .doc_def = "none",                      \
     .doc_range = "up to 64 times ≥ 0, strictly ascending; not with `velocities_at`",                 \
     .doc = "the same in time: each snapshot is taken at exactly that time (the run is advanced "     \
            "to it, no collision changed). A time past `stop_time` is an error at set-up")            \
@@ -262,10 +270,10 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
     .doc = "a frame at t = 0, T, 2T, … up to `stop_time`, at exactly those times (the engine "     \
            "stops there; the run's collisions are bit for bit those of a run without frames)")       \
   X(LFRAMESMB, S_LOG, "frames_max_mb", REAL(HD_FRAMES_MAX_MB), F(frames_max_mb), R_POS,              \
-    .show = show_frames, .doc_range = "> 0; only with frames",                                       \
+    .show = hd_scene_show_frames, .doc_range = "> 0; only with frames",                              \
     .doc = "cap on the frames' storage, in MB (10⁶ bytes)")                                          \
   X(RCOUNT, S_RODS, "count", .type = KT_LONG, F(n_rods), .lo = 2, .hi = (double)HD_MAX_COUNT,        \
-    .check = check_rod_count, .doc_def = "required", .doc_range = "whole, even, ≥ 2",                \
+    .check = hd_scene_check_rod_count, .doc_def = "required", .doc_range = "whole, even, ≥ 2",       \
     .doc = "rods on the ring (lengths alternate short/long); the ring length is `count`")            \
   X(RGAMMA, S_RODS, "gamma", REAL(HD_RODS_GAMMA_DEFAULT), F(rod_gamma), .lo = 0, .hi = 1,            \
     .lo_open = 1, .doc = "length and mass ratio short/long")                                         \
@@ -273,14 +281,15 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
     .hi = 1e9, .doc = "vibrational modes per rod")                                                   \
   X(RMODEL, S_RODS, "model", .type = KT_ENUM, F(rod_model), .names = rod_models,                     \
     .doc = "`stochastic` (ε ~ p_β) or `constant`")                                                   \
-  X(REPS, S_RODS, "eps", REAL(HD_RODS_GAMMA_DEFAULT), F(rod_eps), R_UNIT, .show = show_rod_eps,      \
-    .doc_def = "= `gamma`", .doc = "the constant model's ε (only with model = constant)")            \
+  X(REPS, S_RODS, "eps", REAL(HD_RODS_GAMMA_DEFAULT), F(rod_eps), R_UNIT,                            \
+    .show = hd_scene_show_rod_eps, .doc_def = "= `gamma`",                                           \
+    .doc = "the constant model's ε (only with model = constant)")                                    \
   X(RDAMP, S_RODS, "damping", REAL(0), F(rod_damping), R_NONNEG,                                     \
     .doc = "ν: bath temperatures decay as e^{−νt} between collisions")                               \
   X(RTC, S_RODS, "tc", REAL(0), F(rod_tc), R_NONNEG,                                                 \
     .doc = "TC model: ε = 1 when a rod collided less than tc ago (0 = off)")                         \
-  X(RSTEP, S_RODS, "eps_step", REAL(0), F(rod_eps_step), R_NONNEG, .check = check_eps_step,          \
-    .doc_def = "0 (= 0.01)", .doc_range = "0 or in [1e-5, 0.5]",                                     \
+  X(RSTEP, S_RODS, "eps_step", REAL(0), F(rod_eps_step), R_NONNEG,                                   \
+    .check = hd_scene_check_eps_step, .doc_def = "0 (= 0.01)", .doc_range = "0 or in [1e-5, 0.5]",   \
     .doc = "grid step of the ε sampler (the direct one, and the one the table is built from); "     \
            "the direct sampler refines it near the running maximum down to 0.01/128, which "         \
            "leaves ~ -0.3 % in the stationary E_kin at gamma 0.8 (plain grid: -3.5 %); "             \
@@ -299,9 +308,9 @@ static const char *const rod_baths[] = {"mean", "unequal", NULL};
 #define KEY_ENUM(id, ...) K_##id,
 enum { SCENE_KEYS(KEY_ENUM) N_KEY };
 #define KEY_DEF(id, s, n, ...) [K_##id] = {.sec = s, .name = n, __VA_ARGS__},
-static const key_def keys[N_KEY] = {SCENE_KEYS(KEY_DEF)};
+static const key_def hd_scene_keys[N_KEY] = {SCENE_KEYS(KEY_DEF)};
 
-static const char *const wall_name[4] = {"left", "right", "bottom", "top"};
+static const char *const hd_scene_wall_name[4] = {"left", "right", "bottom", "top"};
 
 /* Where something was set: a line of the file, or the over-th --set (1-based); 0/0 = nowhere. */
 typedef struct loc {
@@ -353,29 +362,29 @@ struct ctx {
  * read), or a stored text only read (hd_scene_read_stored). */
 enum { M_RUN, M_STORED, M_READ };
 
-static int is_set(loc l) {
+static int hd_scene_is_set(loc l) {
   return l.line > 0 || l.over > 0;
 }
 
-static int key_set(const ctx *c, int si, int k) {
-  return is_set(c->key_at[si][k]);
+static int hd_scene_key_set(const ctx *c, int si, int k) {
+  return hd_scene_is_set(c->key_at[si][k]);
 }
 
 /* Where key k of section si is stored. */
-static void *field(const ctx *c, int si, int k) {
+static void *hd_scene_field(const ctx *c, int si, int k) {
   char *base = si >= N_SEC ? (char *)&c->sc->named[si - N_SEC] : (char *)c->sc;
-  return base + keys[k].off;
+  return base + hd_scene_keys[k].off;
 }
 
 /* "dimers", or "species NAME" */
-static void sec_label(const ctx *c, int si, char *buf, size_t n) {
+static void hd_scene_sec_label(const ctx *c, int si, char *buf, size_t n) {
   if (si >= N_SEC)
     snprintf(buf, n, "species %s", c->sc->named[si - N_SEC].name);
   else
-    snprintf(buf, n, "%s", si >= 0 ? sec_name[si] : "?");
+    snprintf(buf, n, "%s", si >= 0 ? hd_scene_sec_name[si] : "?");
 }
 
-static void where(const ctx *c, loc l, char *buf, size_t n) {
+static void hd_scene_where(const ctx *c, loc l, char *buf, size_t n) {
   if (l.over)
     snprintf(buf, n, "--set %s", c->over[l.over - 1]);
   else
@@ -383,7 +392,8 @@ static void where(const ctx *c, loc l, char *buf, size_t n) {
 }
 
 /* Records a failure: sets c->err and stops the parse.  Returns code. */
-static __attribute__((format(printf, 3, 4))) int cfail(ctx *c, int code, const char *fmt, ...) {
+static __attribute__((format(printf, 3, 4))) int hd_scene_cfail(ctx *c, int code, const char *fmt,
+                                                                ...) {
   char msg[sizeof c->err->msg];
   va_list ap;
   va_start(ap, fmt);
@@ -395,7 +405,7 @@ static __attribute__((format(printf, 3, 4))) int cfail(ctx *c, int code, const c
 }
 
 /* Shortens a value for a message. */
-static void shorten(const char *v, char *buf, size_t n) {
+static void hd_scene_shorten(const char *v, char *buf, size_t n) {
   size_t len = strlen(v);
   if (len < n) {
     memcpy(buf, v, len + 1);
@@ -406,36 +416,38 @@ static void shorten(const char *v, char *buf, size_t n) {
 }
 
 /* "WHERE: [sec] key = value: why" (key NULL: "WHERE: [sec]: why"; val NULL: "[sec] key: why"). */
-static __attribute__((format(printf, 7, 8))) int
-fail(ctx *c, int code, loc l, int si, const char *key, const char *val, const char *fmt, ...) {
+static __attribute__((format(printf, 7, 8))) int hd_scene_fail(ctx *c, int code, loc l, int si,
+                                                               const char *key, const char *val,
+                                                               const char *fmt, ...) {
   char at[600], why[400], v[96], what[240], sec[64];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(why, sizeof why, fmt, ap);
   va_end(ap);
-  where(c, l, at, sizeof at);
-  sec_label(c, si, sec, sizeof sec);
+  hd_scene_where(c, l, at, sizeof at);
+  hd_scene_sec_label(c, si, sec, sizeof sec);
   if (!key)
     snprintf(what, sizeof what, "[%s]", sec);
   else if (!val)
     snprintf(what, sizeof what, "[%s] %s", sec, key);
   else {
-    shorten(val, v, sizeof v);
+    hd_scene_shorten(val, v, sizeof v);
     snprintf(what, sizeof what, "[%s] %s = %s", sec, key, v);
   }
-  return cfail(c, code, "%s: %s: %s", at, what, why);
+  return hd_scene_cfail(c, code, "%s: %s: %s", at, what, why);
 }
 
 /* Error about key k of section si where it was set, with its value. */
 #define FAIL_AT(c, si, k, ...)                                                                     \
-  fail((c), HD_EINPUT, (c)->key_at[si][k], (si), keys[k].name, (c)->key_val[si][k], __VA_ARGS__)
+  hd_scene_fail((c), HD_EINPUT, (c)->key_at[si][k], (si), hd_scene_keys[k].name,                   \
+                (c)->key_val[si][k], __VA_ARGS__)
 /* The same for a key of a fixed section. */
-#define FAIL_KEY(c, k, ...) FAIL_AT(c, keys[k].sec, k, __VA_ARGS__)
+#define FAIL_KEY(c, k, ...) FAIL_AT(c, hd_scene_keys[k].sec, k, __VA_ARGS__)
 
 /* ---- value parsing ------------------------------------------------------------------------ */
 
 /* A finite number that is the whole of s (no hex, no nan/inf). 1 on success. */
-static int parse_num(const char *s, double *x) {
+static int hd_scene_parse_num(const char *s, double *x) {
   if (!*s || strpbrk(s, "xX")) return 0;
   char *e;
   errno = 0;
@@ -446,7 +458,7 @@ static int parse_num(const char *s, double *x) {
 }
 
 /* Why s is not a finite number (for messages). */
-static const char *num_why(const char *s) {
+static const char *hd_scene_num_why(const char *s) {
   if (!*s) return "missing value: expected a number";
   double v = strtod(s, NULL);
   if (!isfinite(v)) return "must be a finite number";
@@ -455,7 +467,7 @@ static const char *num_why(const char *s) {
 
 /* The shortest of %.15g, %.16g, %.17g that reads back as exactly x (so the text round-trips
  * bit for bit, and 0.95 stays "0.95" rather than "0.94999999999999996"). */
-static void shortest(double x, char *buf, size_t n) {
+static void hd_scene_shortest(double x, char *buf, size_t n) {
   for (int prec = 15; prec <= 17; prec++) {
     snprintf(buf, n, "%.*g", prec, x);
     if (strtod(buf, NULL) == x) return;
@@ -468,10 +480,10 @@ static int in_range(const key_def *kd, double x) {
 }
 
 /* The generic "must be ..." of key k's range. */
-static void range_why(const key_def *kd, char *buf, size_t n) {
+static void hd_scene_range_why(const key_def *kd, char *buf, size_t n) {
   char lo[40], hi[40];
-  shortest(kd->lo, lo, sizeof lo);
-  shortest(kd->hi, hi, sizeof hi);
+  hd_scene_shortest(kd->lo, lo, sizeof lo);
+  hd_scene_shortest(kd->hi, hi, sizeof hi);
   if (kd->hi == INFINITY)
     snprintf(buf, n, "must be %s %s", kd->lo_open ? ">" : ">=", lo);
   else
@@ -480,14 +492,14 @@ static void range_why(const key_def *kd, char *buf, size_t n) {
 }
 
 /* A number in key k's range (whole: a whole number too); else an error on key k of si. */
-static int get_ranged(ctx *c, int si, int k, const char *s, int whole, double *x) {
-  const key_def *kd = &keys[k];
+static int hd_scene_get_ranged(ctx *c, int si, int k, const char *s, int whole, double *x) {
+  const key_def *kd = &hd_scene_keys[k];
   double v;
   char why[120];
-  if (!parse_num(s, &v)) return FAIL_AT(c, si, k, "%s", num_why(s));
+  if (!hd_scene_parse_num(s, &v)) return FAIL_AT(c, si, k, "%s", hd_scene_num_why(s));
   if (whole && v != floor(v)) return FAIL_AT(c, si, k, "must be a whole number");
   if (!in_range(kd, v)) {
-    range_why(kd, why, sizeof why);
+    hd_scene_range_why(kd, why, sizeof why);
     return FAIL_AT(c, si, k, "%s", kd->why ? kd->why : why);
   }
   *x = v;
@@ -496,7 +508,7 @@ static int get_ranged(ctx *c, int si, int k, const char *s, int whole, double *x
 
 /* Splits s at blanks into at most max tokens copied to tok (each < 64 chars). Returns the count,
  * or -1 if there are more than max or one is too long. */
-static int split(const char *s, char tok[][64], int max) {
+static int hd_scene_split(const char *s, char tok[][64], int max) {
   int n = 0;
   while (*s) {
     while (*s == ' ' || *s == '\t') s++;
@@ -512,9 +524,9 @@ static int split(const char *s, char tok[][64], int max) {
 }
 
 /* Parses the value of key k of section si into the scene. */
-static int set_value(ctx *c, int si, int k, const char *v) {
-  const key_def *kd = &keys[k];
-  void *p = field(c, si, k);
+static int hd_scene_set_value(ctx *c, int si, int k, const char *v) {
+  const key_def *kd = &hd_scene_keys[k];
+  void *p = hd_scene_field(c, si, k);
   double x;
   int rc = HD_OK;
   switch (kd->type) {
@@ -522,11 +534,11 @@ static int set_value(ctx *c, int si, int k, const char *v) {
     return kd->set(c, si, k, v);
   case KT_REAL:
   case KT_WHOLE:
-    if ((rc = get_ranged(c, si, k, v, kd->type == KT_WHOLE, &x))) return rc;
+    if ((rc = hd_scene_get_ranged(c, si, k, v, kd->type == KT_WHOLE, &x))) return rc;
     *(double *)p = x;
     break;
   case KT_LONG:
-    if ((rc = get_ranged(c, si, k, v, 1, &x))) return rc;
+    if ((rc = hd_scene_get_ranged(c, si, k, v, 1, &x))) return rc;
     *(long *)p = (long)x;
     break;
   case KT_U64: {
@@ -570,10 +582,11 @@ static int set_value(ctx *c, int si, int k, const char *v) {
 
 /* ---- the custom keys ------------------------------------------------------------------------ */
 
-static int set_box(ctx *c, int si, int k, const char *v) {
+static int hd_scene_set_box(ctx *c, int si, int k, const char *v) {
   char tok[2][64];
   double lx, ly;
-  if (split(v, tok, 2) != 2 || !parse_num(tok[0], &lx) || !parse_num(tok[1], &ly))
+  if (hd_scene_split(v, tok, 2) != 2 || !hd_scene_parse_num(tok[0], &lx) ||
+      !hd_scene_parse_num(tok[1], &ly))
     return FAIL_AT(c, si, k, "expected two finite numbers Lx Ly");
   if (!(lx > 0 && ly > 0)) return FAIL_AT(c, si, k, "box edges must be > 0");
   c->sc->box_x = lx;
@@ -581,15 +594,15 @@ static int set_box(ctx *c, int si, int k, const char *v) {
   return HD_OK;
 }
 
-static int set_sides(ctx *c, int si, int k, const char *v) {
+static int hd_scene_set_sides(ctx *c, int si, int k, const char *v) {
   char tok[5][64];
-  int n = split(v, tok, 4);
+  int n = hd_scene_split(v, tok, 4);
   if (n < 0) return FAIL_AT(c, si, k, "at most the four sides left right bottom top");
   if (n == 0) return FAIL_AT(c, si, k, "missing value: list some of left right bottom top");
   unsigned w = 0;
   for (int i = 0; i < n; i++) {
     int j = 0;
-    while (j < 4 && strcmp(tok[i], wall_name[j])) j++;
+    while (j < 4 && strcmp(tok[i], hd_scene_wall_name[j])) j++;
     if (j == 4) return FAIL_AT(c, si, k, "unknown side '%s' (left right bottom top)", tok[i]);
     if (w & (1u << j)) return FAIL_AT(c, si, k, "side '%s' repeated", tok[i]);
     w |= 1u << j;
@@ -606,7 +619,7 @@ static int set_sides(ctx *c, int si, int k, const char *v) {
   return HD_OK;
 }
 
-static int set_state(ctx *c, int si, int k, const char *v) {
+static int hd_scene_set_state(ctx *c, int si, int k, const char *v) {
   if (!*v) return FAIL_AT(c, si, k, "missing value: expected a CSV file name");
   /* the canonical text writes "state = NAME": a NAME starting with ';' would read back as an
    * inline comment (found by make fuzz through hd_scene_read_stored, which opens no file) */
@@ -616,7 +629,7 @@ static int set_state(ctx *c, int si, int k, const char *v) {
   return HD_OK;
 }
 
-static int set_collisions(ctx *c, int si, int k, const char *v) {
+static int hd_scene_set_collisions(ctx *c, int si, int k, const char *v) {
   hd_scene *sc = c->sc;
   if (!strcmp(v, "all") || !strcmp(v, "none")) {
     sc->log_collisions = !strcmp(v, "all") ? HD_LOG_ALL : HD_LOG_NONE;
@@ -625,9 +638,9 @@ static int set_collisions(ctx *c, int si, int k, const char *v) {
   }
   char tok[3][64];
   double n;
-  if (split(v, tok, 2) != 2 || strcmp(tok[0], "every"))
+  if (hd_scene_split(v, tok, 2) != 2 || strcmp(tok[0], "every"))
     return FAIL_AT(c, si, k, "expected all, none or every N");
-  if (!parse_num(tok[1], &n) || n != floor(n) || n < 1 || n > (double)LONG_MAX / 2)
+  if (!hd_scene_parse_num(tok[1], &n) || n != floor(n) || n < 1 || n > (double)LONG_MAX / 2)
     return FAIL_AT(c, si, k, "every N needs a whole number N >= 1");
   sc->log_collisions = HD_LOG_EVERY;
   sc->log_every = (long)n;
@@ -636,15 +649,15 @@ static int set_collisions(ctx *c, int si, int k, const char *v) {
 
 /* `velocities_at` (k = K_LVEL, cpd) or `velocities_at_time` (k = K_LVELT, times): the two
  * share the list, so only one of them may be given. */
-static int set_vel_at(ctx *c, int si, int k, const char *v) {
+static int hd_scene_set_vel_at(ctx *c, int si, int k, const char *v) {
   hd_scene *sc = c->sc;
   int other = k == K_LVEL ? K_LVELT : K_LVEL;
   const char *unit = k == K_LVEL ? "cpd values" : "times";
-  if (key_set(c, si, other))
+  if (hd_scene_key_set(c, si, other))
     return FAIL_AT(c, si, k,
                    "cannot be used together with %s (one list of snapshots, in cpd or in "
                    "time)",
-                   keys[other].name);
+                   hd_scene_keys[other].name);
   int n = 0;
   const char *s = v;
   while (*s) {
@@ -657,7 +670,7 @@ static int set_vel_at(ctx *c, int si, int k, const char *v) {
     memcpy(t, s, len);
     t[len] = '\0';
     s += len;
-    if (!parse_num(t, &x)) return FAIL_AT(c, si, k, "'%s': %s", t, num_why(t));
+    if (!hd_scene_parse_num(t, &x)) return FAIL_AT(c, si, k, "'%s': %s", t, hd_scene_num_why(t));
     if (x < 0) return FAIL_AT(c, si, k, "'%s': %s must be >= 0", t, unit);
     if (n == HD_MAX_VEL_AT)
       return FAIL_AT(c, si, k,
@@ -674,7 +687,7 @@ static int set_vel_at(ctx *c, int si, int k, const char *v) {
   return HD_OK;
 }
 
-static int check_rod_count(ctx *c, int si, int k) {
+static int hd_scene_check_rod_count(ctx *c, int si, int k) {
   if (c->sc->n_rods % 2 != 0)
     return FAIL_AT(c, si, k, "must be even: the rod lengths alternate round the ring");
   return HD_OK;
@@ -682,7 +695,7 @@ static int check_rod_count(ctx *c, int si, int k) {
 
 /* 0 is the sampler's default; its grid needs ~(1 + 1/gamma)/step points, at most 5e7 / 64
  * (engine/rods/eps.c), and 1e-300 overflowed the size check and crashed the run (SIGFPE) */
-static int check_eps_step(ctx *c, int si, int k) {
+static int hd_scene_check_eps_step(ctx *c, int si, int k) {
   double x = c->sc->rod_eps_step;
   if (x != 0 && !(x >= 1e-5 && x <= 0.5))
     return FAIL_AT(c, si, k, "must be 0 (the default step) or in [1e-5, 0.5]");
@@ -690,9 +703,9 @@ static int check_eps_step(ctx *c, int si, int k) {
 }
 
 /* [species NAME] `d` and `m` (the short forms' disks). */
-static int set_sp_dm(ctx *c, int si, int k, const char *v) {
+static int hd_scene_set_sp_dm(ctx *c, int si, int k, const char *v) {
   double x;
-  int rc = get_ranged(c, si, k, v, 0, &x);
+  int rc = hd_scene_get_ranged(c, si, k, v, 0, &x);
   if (rc) return rc;
   *(k == K_PD ? &c->sp[si - N_SEC].d : &c->sp[si - N_SEC].m) = x;
   return HD_OK;
@@ -795,7 +808,7 @@ void hd_scene_forms_list(const char *quote, const char *sep, const char *last_se
 void hd_scene_form_param_why(const hd_scene_form_param *q, char *buf, size_t n) {
   key_def kd = {.lo = q->lo, .hi = q->hi, .lo_open = q->lo_open, .hi_open = q->hi_open};
   char why[120];
-  range_why(&kd, why, sizeof why); /* "must be ..." */
+  hd_scene_range_why(&kd, why, sizeof why); /* "must be ..." */
   snprintf(buf, n, "must be %s%s%s", q->whole ? "a whole number " : "", why + strlen("must be "),
            q->note ? q->note : "");
 }
@@ -803,7 +816,8 @@ void hd_scene_form_param_why(const hd_scene_form_param *q, char *buf, size_t n) 
 /* A number of a form (the word tok) in q's range into *x; else an error naming q. */
 static int form_num(ctx *c, int si, int k, const char *tok, const hd_scene_form_param *q,
                     double *x) {
-  if (!parse_num(tok, x)) return FAIL_AT(c, si, k, "%s '%s': %s", q->name, tok, num_why(tok));
+  if (!hd_scene_parse_num(tok, x))
+    return FAIL_AT(c, si, k, "%s '%s': %s", q->name, tok, hd_scene_num_why(tok));
   int in = (q->lo_open ? *x > q->lo : *x >= q->lo) && (q->hi_open ? *x < q->hi : *x <= q->hi);
   if ((q->whole && *x != floor(*x)) || !in) {
     char why[200];
@@ -814,12 +828,12 @@ static int form_num(ctx *c, int si, int k, const char *tok, const hd_scene_form_
 }
 
 /* `shape = NAME [numbers] [S]`: a row of hd_scene_forms */
-static int set_shape(ctx *c, int si, int k, const char *v) {
+static int hd_scene_set_shape(ctx *c, int si, int k, const char *v) {
   char forms[400] = "expected ";
   hd_scene_forms_list("", ", ", " or ", forms + strlen(forms), sizeof forms - strlen(forms));
   sp_parse *p = &c->sp[si - N_SEC];
   char tok[2 + HD_SCENE_FORM_MAX_PARAM][64];
-  int n = split(v, tok, 2 + HD_SCENE_FORM_MAX_PARAM), rc;
+  int n = hd_scene_split(v, tok, 2 + HD_SCENE_FORM_MAX_PARAM), rc;
   if (n < 1) return FAIL_AT(c, si, k, "%s", forms);
   const hd_scene_form *f = hd_scene_forms;
   while (f->name && strcmp(tok[0], f->name)) f++;
@@ -836,7 +850,7 @@ static int set_shape(ctx *c, int si, int k, const char *v) {
 }
 
 /* `disks = x y d m; x y d m; ...` */
-static int set_disks(ctx *c, int si, int k, const char *v) {
+static int hd_scene_set_disks(ctx *c, int si, int k, const char *v) {
   hd_scene_species *sp = &c->sc->named[si - N_SEC];
   int n = 0;
   const char *s = v;
@@ -847,7 +861,7 @@ static int set_disks(ctx *c, int si, int k, const char *v) {
     memcpy(grp, s, len);
     grp[len] = '\0';
     s += len + (s[len] == ';');
-    int nt = split(grp, tok, 4);
+    int nt = hd_scene_split(grp, tok, 4);
     if (nt == 0) continue; /* an empty group: "a; ; b", or a ';' at the end */
     if (n == HD_MAX_BODY_DISKS)
       return FAIL_AT(c, si, k, "more than %d disks (HD_MAX_BODY_DISKS)", HD_MAX_BODY_DISKS);
@@ -857,8 +871,9 @@ static int set_disks(ctx *c, int si, int k, const char *v) {
       return FAIL_AT(c, si, k, "disk %d: expected x y d m (four numbers, disks separated by ';')",
                      n + 1);
     for (int j = 0; j < 4; j++)
-      if (!parse_num(tok[j], &x[j]))
-        return FAIL_AT(c, si, k, "disk %d: %s '%s': %s", n + 1, what[j], tok[j], num_why(tok[j]));
+      if (!hd_scene_parse_num(tok[j], &x[j]))
+        return FAIL_AT(c, si, k, "disk %d: %s '%s': %s", n + 1, what[j], tok[j],
+                       hd_scene_num_why(tok[j]));
     for (int j = 2; j < 4; j++)
       if (!(x[j] > 0)) return FAIL_AT(c, si, k, "disk %d: %s must be > 0", n + 1, what[j]);
     sp->x[n] = x[0], sp->y[n] = x[1], sp->d[n] = x[2], sp->m[n] = x[3];
@@ -880,24 +895,26 @@ static int good_name(const char *s) {
 
 /* `alpha_OTHER` (k = K_PALPHAX) or `beta_OTHER` (K_PBETAX): recorded here, its OTHER resolved
  * when the scene is read. */
-static int set_alpha_other(ctx *c, int si, int k, const char *v) {
+static int hd_scene_set_alpha_other(ctx *c, int si, int k, const char *v) {
   (void)k;
   sp_parse *p = &c->sp[si - N_SEC];
   sp_pair *q = &p->pair[p->npair - 1]; /* handle() made it the last */
   char key[HD_SPECIES_NAME_MAX + 8];
   snprintf(key, sizeof key, "%s_%s", q->beta ? "beta" : "alpha", q->other);
   double x, lo = q->beta ? -1 : 0;
-  if (!parse_num(v, &x)) return fail(c, HD_EINPUT, q->at, si, key, v, "%s", num_why(v));
-  if (!(x >= lo && x <= 1)) return fail(c, HD_EINPUT, q->at, si, key, v, "must be in [%g, 1]", lo);
+  if (!hd_scene_parse_num(v, &x))
+    return hd_scene_fail(c, HD_EINPUT, q->at, si, key, v, "%s", hd_scene_num_why(v));
+  if (!(x >= lo && x <= 1))
+    return hd_scene_fail(c, HD_EINPUT, q->at, si, key, v, "must be in [%g, 1]", lo);
   q->v = x;
   return HD_OK;
 }
 
 /* ---- sections and keys ---------------------------------------------------------------------- */
 
-static int find_sec(const char *s) {
+static int hd_scene_find_sec(const char *s) {
   for (int i = 0; i < N_SEC; i++)
-    if (i != S_SPECIES && !strcmp(s, sec_name[i])) return i;
+    if (i != S_SPECIES && !strcmp(s, hd_scene_sec_name[i])) return i;
   return -1;
 }
 
@@ -910,7 +927,7 @@ static const char *species_part(const char *s) {
 }
 
 /* The instance of named species `name`, or -1. */
-static int find_species(const ctx *c, const char *name) {
+static int hd_scene_find_species(const ctx *c, const char *name) {
   for (int j = 0; j < c->sc->n_named; j++)
     if (!strcmp(c->sc->named[j].name, name)) return N_SEC + j;
   return -1;
@@ -918,13 +935,15 @@ static int find_species(const ctx *c, const char *name) {
 
 static int unknown_section(ctx *c, const char *s) {
   char at[600];
-  where(c, c->cur, at, sizeof at);
+  hd_scene_where(c, c->cur, at, sizeof at);
   if (!strcmp(s, "species"))
-    return cfail(c, HD_EINPUT, "%s: [species]: a species section needs a name: [species NAME]", at);
-  return cfail(c, HD_EINPUT,
-               "%s: [%.60s]: unknown section (known: system dimers disks species NAME walls init "
-               "run log rods)",
-               at, s);
+    return hd_scene_cfail(c, HD_EINPUT,
+                          "%s: [species]: a species section needs a name: [species NAME]", at);
+  return hd_scene_cfail(
+      c, HD_EINPUT,
+      "%s: [%.60s]: unknown section (known: system dimers disks species NAME walls init "
+      "run log rods)",
+      at, s);
 }
 
 static void mark_section(ctx *c, int si) {
@@ -935,32 +954,34 @@ static void mark_section(ctx *c, int si) {
 /* The section instance of a [section] name (a new [species NAME] is created when `create`), or
  * -1 with the error set. */
 static int section_index(ctx *c, const char *s, int create) {
-  int si = find_sec(s);
+  int si = hd_scene_find_sec(s);
   if (si >= 0) return si;
   const char *name = species_part(s);
   if (!name) return unknown_section(c, s), -1;
   char at[600];
-  where(c, c->cur, at, sizeof at);
+  hd_scene_where(c, c->cur, at, sizeof at);
   if (!good_name(name))
-    return cfail(c, HD_EINPUT,
-                 "%s: [species %.40s]: a species name is 1 to %d letters, digits or _", at, name,
-                 HD_SPECIES_NAME_MAX - 1),
+    return hd_scene_cfail(c, HD_EINPUT,
+                          "%s: [species %.40s]: a species name is 1 to %d letters, digits or _", at,
+                          name, HD_SPECIES_NAME_MAX - 1),
            -1;
   if (!strcmp(name, "dimer") || !strcmp(name, "disk") || !strcmp(name, "dimers") ||
       !strcmp(name, "disks"))
-    return cfail(c, HD_EINPUT,
-                 "%s: [species %s]: reserved name (the [dimers] and [disks] sections are those "
-                 "species)",
-                 at, name),
+    return hd_scene_cfail(
+               c, HD_EINPUT,
+               "%s: [species %s]: reserved name (the [dimers] and [disks] sections are those "
+               "species)",
+               at, name),
            -1;
-  si = find_species(c, name);
+  si = hd_scene_find_species(c, name);
   if (si >= 0 || !create) return si;
   hd_scene *sc = c->sc;
   if (sc->n_named == HD_MAX_SPECIES - 2)
-    return cfail(c, HD_EINPUT,
-                 "%s: [species %s]: more than %d [species] sections (HD_MAX_SPECIES %d counts "
-                 "[dimers] and [disks])",
-                 at, name, HD_MAX_SPECIES - 2, HD_MAX_SPECIES),
+    return hd_scene_cfail(
+               c, HD_EINPUT,
+               "%s: [species %s]: more than %d [species] sections (HD_MAX_SPECIES %d counts "
+               "[dimers] and [disks])",
+               at, name, HD_MAX_SPECIES - 2, HD_MAX_SPECIES),
            -1;
   si = N_SEC + sc->n_named;
   hd_scene_species *sp = &sc->named[sc->n_named++];
@@ -968,12 +989,12 @@ static int section_index(ctx *c, const char *s, int create) {
   strcpy(sp->name, name);
   sp->line = c->cur.over ? 0 : c->cur.line;
   for (int k = 0; k < N_KEY; k++)
-    if (keys[k].sec == S_SPECIES && keys[k].type == KT_REAL)
-      *(double *)field(c, si, k) = keys[k].def;
+    if (hd_scene_keys[k].sec == S_SPECIES && hd_scene_keys[k].type == KT_REAL)
+      *(double *)hd_scene_field(c, si, k) = hd_scene_keys[k].def;
   sp_parse *p = &c->sp[si - N_SEC];
   memset(p, 0, sizeof *p);
-  p->d = keys[K_PD].def;
-  p->m = keys[K_PM].def;
+  p->d = hd_scene_keys[K_PD].def;
+  p->m = hd_scene_keys[K_PM].def;
   p->s = NAN;
   return si;
 }
@@ -982,29 +1003,29 @@ static int section_index(ctx *c, const char *s, int create) {
 static int handle(ctx *c, const char *section, const char *name, const char *value) {
   char at[600], v[96], label[64];
   if (!*section) {
-    where(c, c->cur, at, sizeof at);
-    shorten(value, v, sizeof v);
-    return cfail(c, HD_EINPUT, "%s: %.60s = %s: key outside any [section]", at, name, v);
+    hd_scene_where(c, c->cur, at, sizeof at);
+    hd_scene_shorten(value, v, sizeof v);
+    return hd_scene_cfail(c, HD_EINPUT, "%s: %.60s = %s: key outside any [section]", at, name, v);
   }
   int si = section_index(c, section, 0);
   if (si < 0) return c->failed ? c->code : unknown_section(c, section);
-  int s = sec_of(si);
-  sec_label(c, si, label, sizeof label);
+  int s = hd_scene_sec_of(si);
+  hd_scene_sec_label(c, si, label, sizeof label);
   int k = 0;
-  while (k < N_KEY && !(keys[k].sec == s && !strcmp(keys[k].name, name))) k++;
+  while (k < N_KEY && !(hd_scene_keys[k].sec == s && !strcmp(hd_scene_keys[k].name, name))) k++;
   if (k == N_KEY && s == S_SPECIES && !strncmp(name, "alpha_", 6) && name[6]) k = K_PALPHAX;
   if (k == N_KEY && s == S_SPECIES && !strncmp(name, "beta_", 5) && name[5]) k = K_PBETAX;
   if (k == N_KEY) {
     char known[300] = "";
     for (int j = 0; j < N_KEY; j++)
-      if (keys[j].sec == s) {
+      if (hd_scene_keys[j].sec == s) {
         strcat(known, " ");
-        strcat(known, keys[j].name);
+        strcat(known, hd_scene_keys[j].name);
       }
     char nm[64];
-    shorten(name, nm, sizeof nm);
-    return fail(c, HD_EINPUT, c->cur, si, nm, value, "unknown key (keys of [%s]:%s)",
-                s == S_SPECIES ? "species NAME" : sec_name[s], known);
+    hd_scene_shorten(name, nm, sizeof nm);
+    return hd_scene_fail(c, HD_EINPUT, c->cur, si, nm, value, "unknown key (keys of [%s]:%s)",
+                         s == S_SPECIES ? "species NAME" : hd_scene_sec_name[s], known);
   }
   loc *prev = &c->key_at[si][k];
   char *val = c->key_val[si][k];
@@ -1013,19 +1034,20 @@ static int handle(ctx *c, const char *section, const char *name, const char *val
     int beta = k == K_PBETAX, same = 0;
     const char *other = name + (beta ? 5 : 6), *kind = beta ? "beta" : "alpha";
     if (!good_name(other))
-      return fail(c, HD_EINPUT, c->cur, si, name, value,
-                  "OTHER of %s_OTHER must be a species name (letters, digits, _)", kind);
+      return hd_scene_fail(c, HD_EINPUT, c->cur, si, name, value,
+                           "OTHER of %s_OTHER must be a species name (letters, digits, _)", kind);
     int j = 0;
     while (j < p->npair && (strcmp(p->pair[j].other, other) || p->pair[j].beta != beta))
       same += p->pair[j++].beta == beta;
     if (j == p->npair) {
       if (same == HD_MAX_SPECIES)
-        return fail(c, HD_EINPUT, c->cur, si, name, value, "more %s_OTHER keys than species", kind);
+        return hd_scene_fail(c, HD_EINPUT, c->cur, si, name, value,
+                             "more %s_OTHER keys than species", kind);
       memset(&p->pair[j], 0, sizeof p->pair[j]);
       strcpy(p->pair[j].other, other);
       p->pair[j].beta = beta;
       p->npair++;
-    } else if (j != p->npair - 1) { /* set_alpha_other reads the last: make it so */
+    } else if (j != p->npair - 1) { /* hd_scene_set_alpha_other reads the last: make it so */
       sp_pair t = p->pair[j];
       memmove(&p->pair[j], &p->pair[j + 1], (size_t)(p->npair - 1 - j) * sizeof t);
       p->pair[p->npair - 1] = t;
@@ -1034,17 +1056,17 @@ static int handle(ctx *c, const char *section, const char *name, const char *val
     val = p->pair[p->npair - 1].val;
   }
   if (!c->cur.over && prev->line > 0)
-    return fail(c, HD_EINPUT, c->cur, si, name, value, "duplicate key (first set at line %ld)",
-                prev->line);
+    return hd_scene_fail(c, HD_EINPUT, c->cur, si, name, value,
+                         "duplicate key (first set at line %ld)", prev->line);
   if (c->cur.over && prev->over > 0)
-    return fail(c, HD_EINPUT, c->cur, si, name, value, "duplicate key (also set by --set %s)",
-                c->over[prev->over - 1]);
+    return hd_scene_fail(c, HD_EINPUT, c->cur, si, name, value,
+                         "duplicate key (also set by --set %s)", c->over[prev->over - 1]);
   *prev = c->cur;
-  shorten(value, val, 96);
+  hd_scene_shorten(value, val, 96);
   /* a file's value that a --set replaces is not read: the override mends a bad line */
   for (int i = 0; !c->cur.over && i < c->n_over; i++)
     if (hd_scene_override_sets(c->over[i], label, name)) return HD_OK;
-  return set_value(c, si, k, value);
+  return hd_scene_set_value(c, si, k, value);
 }
 
 static int on_key(void *user, const char *section, const char *name, const char *value) {
@@ -1057,15 +1079,15 @@ static int on_key(void *user, const char *section, const char *name, const char 
 static int section_line(ctx *c, const char *line) {
   const char *close = strchr(line, ']');
   char at[600];
-  where(c, c->cur, at, sizeof at);
+  hd_scene_where(c, c->cur, at, sizeof at);
   if (!close) {
-    return cfail(c, HD_EINPUT, "%s: malformed section header: no ']'", at);
+    return hd_scene_cfail(c, HD_EINPUT, "%s: malformed section header: no ']'", at);
   }
   const char *r = close + 1;
   while (*r == ' ' || *r == '\t') r++;
   if (*r && *r != '\n' && *r != '\r' && *r != ';' && *r != '#') {
-    return cfail(c, HD_EINPUT, "%s: text after the [section] header: put each key on its own line",
-                 at);
+    return hd_scene_cfail(c, HD_EINPUT,
+                          "%s: text after the [section] header: put each key on its own line", at);
   }
   char name[64];
   size_t len = (size_t)(close - line - 1);
@@ -1100,8 +1122,8 @@ static char *reader(char *str, int num, void *stream) {
   if (body > 0 && s[body - 1] == '\r') body--;
   if (len + 1 > (size_t)num || body > HD_SCENE_MAX_LINE) {
     char at[600];
-    where(c, c->cur, at, sizeof at);
-    cfail(c, HD_EINPUT, "%s: line too long (max %d bytes)", at, HD_SCENE_MAX_LINE);
+    hd_scene_where(c, c->cur, at, sizeof at);
+    hd_scene_cfail(c, HD_EINPUT, "%s: line too long (max %d bytes)", at, HD_SCENE_MAX_LINE);
     return NULL;
   }
   memcpy(str, s, len);
@@ -1112,17 +1134,18 @@ static char *reader(char *str, int num, void *stream) {
   if (c->cur_si >= N_SEC && !strncmp(str, "disks", 5) && strchr(" \t=:", str[5]) &&
       (strstr(str, " ;") || strstr(str, "\t;"))) {
     char at[600];
-    where(c, c->cur, at, sizeof at);
-    cfail(c, HD_EINPUT,
-          "%s: [species %s] disks: a blank before ';' starts a comment: write x y d m; x y d m", at,
-          c->sc->named[c->cur_si - N_SEC].name);
+    hd_scene_where(c, c->cur, at, sizeof at);
+    hd_scene_cfail(
+        c, HD_EINPUT,
+        "%s: [species %s] disks: a blank before ';' starts a comment: write x y d m; x y d m", at,
+        c->sc->named[c->cur_si - N_SEC].name);
     return NULL;
   }
   return str;
 }
 
 /* Parses the scene text (c->p .. c->end). */
-static int parse_text(ctx *c) {
+static int hd_scene_parse_text(ctx *c) {
   int saved = ini_max_line;
   ini_max_line = HD_SCENE_MAX_LINE + 3;
   c->cur_si = -1;
@@ -1130,14 +1153,15 @@ static int parse_text(ctx *c) {
   ini_max_line = saved;
   if (c->failed) return c->code;
   if (r != 0) {
-    if (r < 0) return cfail(c, HD_ENOMEM, "%s: out of memory while parsing", c->name);
-    return cfail(c, HD_EINPUT,
-                 "%s:%d: malformed line: expected [section], key = value or a comment", c->name, r);
+    if (r < 0) return hd_scene_cfail(c, HD_ENOMEM, "%s: out of memory while parsing", c->name);
+    return hd_scene_cfail(c, HD_EINPUT,
+                          "%s:%d: malformed line: expected [section], key = value or a comment",
+                          c->name, r);
   }
   return HD_OK;
 }
 
-static char *trim(char *s) {
+static char *hd_scene_trim(char *s) {
   while (*s == ' ' || *s == '\t') s++;
   char *e = s + strlen(s);
   while (e > s && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' || e[-1] == '\n')) *--e = '\0';
@@ -1152,14 +1176,14 @@ static int split_override(char *buf, char *secbuf, size_t n, char **sec, char **
   char *dot = eq ? memchr(buf, '.', (size_t)(eq - buf)) : NULL;
   if (!eq || !dot) return 0;
   *dot = *eq = '\0';
-  *sec = trim(buf), *key = trim(dot + 1), *val = trim(eq + 1);
+  *sec = hd_scene_trim(buf), *key = hd_scene_trim(dot + 1), *val = hd_scene_trim(eq + 1);
   if (!strcmp(*sec, "species")) {
     char *dot2 = strchr(*key, '.');
     if (!dot2) return 0;
     *dot2 = '\0';
-    snprintf(secbuf, n, "species %s", trim(*key));
+    snprintf(secbuf, n, "species %s", hd_scene_trim(*key));
     *sec = secbuf;
-    *key = trim(dot2 + 1);
+    *key = hd_scene_trim(dot2 + 1);
   }
   return 1;
 }
@@ -1173,18 +1197,19 @@ int hd_scene_override_sets(const char *over, const char *section, const char *ke
 }
 
 /* Applies override i ("SECTION.KEY=VALUE"). */
-static int apply_override(ctx *c, int i) {
+static int hd_scene_apply_override(ctx *c, int i) {
   char buf[HD_SCENE_MAX_LINE + 1], secbuf[HD_SCENE_MAX_LINE + 16], at[600];
   c->cur.line = 0;
   c->cur.over = i + 1;
-  where(c, c->cur, at, sizeof at);
+  hd_scene_where(c, c->cur, at, sizeof at);
   if (strlen(c->over[i]) > HD_SCENE_MAX_LINE) {
-    return cfail(c, HD_EINPUT, "--set: value too long (max %d bytes)", HD_SCENE_MAX_LINE);
+    return hd_scene_cfail(c, HD_EINPUT, "--set: value too long (max %d bytes)", HD_SCENE_MAX_LINE);
   }
   strcpy(buf, c->over[i]);
   char *sec, *key, *val;
   if (!split_override(buf, secbuf, sizeof secbuf, &sec, &key, &val))
-    return cfail(c, HD_EINPUT, "%s: expected SECTION.KEY=VALUE (species.NAME.KEY=VALUE)", at);
+    return hd_scene_cfail(c, HD_EINPUT, "%s: expected SECTION.KEY=VALUE (species.NAME.KEY=VALUE)",
+                          at);
   int si = section_index(c, sec, 1);
   if (si < 0) return c->code;
   mark_section(c, si);
@@ -1209,7 +1234,7 @@ static int check_vel_at(ctx *c) {
 }
 
 /* Body counts of the scene (dimers, disks and each named species) summed. */
-static long body_count(const hd_scene *sc) {
+static long hd_scene_body_count(const hd_scene *sc) {
   long n = sc->n_dimers + sc->n_disks;
   for (int j = 0; j < sc->n_named; j++) n += sc->named[j].count;
   return n;
@@ -1218,8 +1243,8 @@ static long body_count(const hd_scene *sc) {
 /* Resolves, checks and counts the state file. */
 static int check_state(ctx *c) {
   hd_scene *sc = c->sc;
-  int any_count = key_set(c, S_DIMERS, K_DCOUNT) || key_set(c, S_DISKS, K_SCOUNT);
-  for (int j = 0; j < sc->n_named; j++) any_count |= key_set(c, N_SEC + j, K_PCOUNT);
+  int any_count = hd_scene_key_set(c, S_DIMERS, K_DCOUNT) || hd_scene_key_set(c, S_DISKS, K_SCOUNT);
+  for (int j = 0; j < sc->n_named; j++) any_count |= hd_scene_key_set(c, N_SEC + j, K_PCOUNT);
   if (c->mode != M_RUN) { /* the run's bodies are in its checkpoint; the counts are in the text */
     if (c->mode == M_STORED && !any_count)
       return FAIL_KEY(c, K_STATE, "a stored scene gives the counts of its bodies");
@@ -1233,8 +1258,9 @@ static int check_state(ctx *c) {
     snprintf(joined, sizeof joined, "%s/%s", sc->dir, c->state_rel);
   char *real = realpath(joined, NULL);
   if (!real)
-    return fail(c, HD_EIO, c->key_at[S_INIT][K_STATE], S_INIT, "state", c->key_val[S_INIT][K_STATE],
-                "cannot read state file '%s': %s", joined, strerror(errno));
+    return hd_scene_fail(c, HD_EIO, c->key_at[S_INIT][K_STATE], S_INIT, "state",
+                         c->key_val[S_INIT][K_STATE], "cannot read state file '%s': %s", joined,
+                         strerror(errno));
   if (strlen(real) >= sizeof sc->state_file) {
     free(real);
     return FAIL_KEY(c, K_STATE, "path too long");
@@ -1271,7 +1297,7 @@ static int check_state(ctx *c) {
     int k = j == 0 ? K_DCOUNT : j == 1 ? K_SCOUNT : K_PCOUNT;
     long *cnt = j == 0 ? &sc->n_dimers : j == 1 ? &sc->n_disks : &sc->named[j - 2].count;
     const char *kind = j == 0 ? "dimer" : j == 1 ? "disk" : sc->named[j - 2].name;
-    if (key_set(c, si, k)) {
+    if (hd_scene_key_set(c, si, k)) {
       if (*cnt != have[j])
         return FAIL_AT(c, si, k, "the state file %s holds %ld %s rows", c->state_rel, have[j],
                        kind);
@@ -1296,21 +1322,22 @@ static double largest_body(const hd_scene *sc) {
 /* The box: given, or derived from area_fraction; then (run is set) does everything fit. */
 static int check_box(ctx *c, int run) {
   hd_scene *sc = c->sc;
-  long nb = body_count(sc);
-  int kb = key_set(c, S_SYSTEM, K_BOX) ? K_BOX : K_AREA;
-  if (key_set(c, S_SYSTEM, K_BOX) && key_set(c, S_SYSTEM, K_AREA)) {
+  long nb = hd_scene_body_count(sc);
+  int kb = hd_scene_key_set(c, S_SYSTEM, K_BOX) ? K_BOX : K_AREA;
+  if (hd_scene_key_set(c, S_SYSTEM, K_BOX) && hd_scene_key_set(c, S_SYSTEM, K_AREA)) {
     loc a = c->key_at[S_SYSTEM][K_AREA], b = c->key_at[S_SYSTEM][K_BOX];
     int later = a.over > b.over || (a.over == b.over && a.line > b.line) ? K_AREA : K_BOX;
     return FAIL_KEY(c, later, "give either box or area_fraction, not both");
   }
   if (nb == 0) {
-    if (run && key_set(c, S_SYSTEM, K_AREA))
+    if (run && hd_scene_key_set(c, S_SYSTEM, K_AREA))
       return FAIL_KEY(c, K_AREA, "needs bodies: a [dimers], [disks] or [species] count > 0");
     return HD_OK;
   }
-  if (!key_set(c, S_SYSTEM, K_BOX) && !key_set(c, S_SYSTEM, K_AREA))
-    return run ? fail(c, HD_EINPUT, c->present[S_SYSTEM] ? c->sec_at[S_SYSTEM] : (loc){0, 0},
-                      S_SYSTEM, "box", NULL, "missing: give box = Lx Ly or area_fraction = eta")
+  if (!hd_scene_key_set(c, S_SYSTEM, K_BOX) && !hd_scene_key_set(c, S_SYSTEM, K_AREA))
+    return run ? hd_scene_fail(c, HD_EINPUT,
+                               c->present[S_SYSTEM] ? c->sec_at[S_SYSTEM] : (loc){0, 0}, S_SYSTEM,
+                               "box", NULL, "missing: give box = Lx Ly or area_fraction = eta")
                : HD_OK;
   sc->box_line = c->key_at[S_SYSTEM][kb].over ? 0 : c->key_at[S_SYSTEM][kb].line;
   double area = hd_scene_covered_area(sc);
@@ -1353,7 +1380,7 @@ static int check_box(ctx *c, int run) {
 
 /* The moment of inertia of a body of species sp about its centre of mass (the engine's
  * sum m_k |o_k|^2), and its mass in *mass if not NULL. */
-static double species_inertia(const hd_scene_species *sp, double *mass) {
+static double hd_scene_species_inertia(const hd_scene_species *sp, double *mass) {
   double M = 0, cx = 0, cy = 0, I = 0;
   for (int a = 0; a < sp->ndisk; a++)
     M += sp->m[a], cx += sp->m[a] * sp->x[a], cy += sp->m[a] * sp->y[a];
@@ -1381,11 +1408,11 @@ static int check_thermal(ctx *c) {
     worst = T / sc->disk_mass, what = "[disks] v^2 ~ T / mass";
   for (int j = 0; j < sc->n_named; j++) {
     if (sc->named[j].count == 0) continue;
-    double M, I = species_inertia(&sc->named[j], &M);
+    double M, I = hd_scene_species_inertia(&sc->named[j], &M);
     if (T / M > worst) worst = T / M, what = "a [species] v^2 ~ T / M";
     if (I > 0 && T / I > worst) worst = T / I, what = "a [species] w^2 ~ T / I";
   }
-  double e = T * (double)body_count(sc);
+  double e = T * (double)hd_scene_body_count(sc);
   if (!(worst <= 1e300 && e <= 1e300))
     return FAIL_KEY(c, K_TEMP,
                     "the drawn velocities leave the range of doubles (%s = %g, energy N T = %g; "
@@ -1395,7 +1422,7 @@ static int check_thermal(ctx *c) {
 }
 
 /* Why a moment of inertia must be within [HD_MIN_INERTIA, 1 / HD_MIN_INERTIA]. */
-static const char inertia_why[] =
+static const char hd_scene_inertia_why[] =
     "the spin energy I w^2 / 2 and the thermal spin w^2 = T / I leave the range of doubles "
     "(the samples' e_rot became NaN); scale the masses or lengths";
 
@@ -1425,10 +1452,10 @@ static int species_bounds(ctx *c, int j, int key) {
                    "of mass spins up to sqrt(disks x ratio) times the speed of the body, and the "
                    "contact search steps through every turn (it made no progress at 1e30)",
                    mlo, mhi, HD_MAX_MASS_RATIO);
-  double I = species_inertia(sp, NULL);
+  double I = hd_scene_species_inertia(sp, NULL);
   if (span > 0 && !(I >= HD_MIN_INERTIA && I <= 1 / HD_MIN_INERTIA))
     return FAIL_AT(c, si, key, "the moment of inertia %g is outside [%g, %g]: %s", I,
-                   HD_MIN_INERTIA, 1 / HD_MIN_INERTIA, inertia_why);
+                   HD_MIN_INERTIA, 1 / HD_MIN_INERTIA, hd_scene_inertia_why);
   if (!(dhi <= HD_MAX_DIAMETER_RATIO * dlo))
     return FAIL_AT(c, si, key,
                    "diameters from %g to %g, a ratio above %g: the contact tolerances are "
@@ -1440,11 +1467,11 @@ static int species_bounds(ctx *c, int j, int key) {
 
 /* The disks of named species j from its shape, then: are they one connected body, within the
  * bounds of species_bounds. */
-static int build_species(ctx *c, int j) {
+static int hd_scene_build_species(ctx *c, int j) {
   hd_scene_species *sp = &c->sc->named[j];
   sp_parse *p = &c->sp[j];
   int si = N_SEC + j;
-  int has_shape = key_set(c, si, K_PSHAPE), has_disks = key_set(c, si, K_PDISKS);
+  int has_shape = hd_scene_key_set(c, si, K_PSHAPE), has_disks = hd_scene_key_set(c, si, K_PDISKS);
   if (has_shape && has_disks) {
     loc a = c->key_at[si][K_PSHAPE], b = c->key_at[si][K_PDISKS];
     int later = a.over > b.over || (a.over == b.over && a.line > b.line) ? K_PSHAPE : K_PDISKS;
@@ -1453,12 +1480,12 @@ static int build_species(ctx *c, int j) {
   if (!has_shape && !has_disks) {
     char forms[400];
     hd_scene_forms_list("", " | ", " | ", forms, sizeof forms);
-    return fail(c, HD_EINPUT, c->sec_at[si], si, "shape", NULL,
-                "missing: give shape = %s, or disks = x y d m; x y d m; ...", forms);
+    return hd_scene_fail(c, HD_EINPUT, c->sec_at[si], si, "shape", NULL,
+                         "missing: give shape = %s, or disks = x y d m; x y d m; ...", forms);
   }
   if (has_disks) {
     for (int k = K_PD; k <= K_PM; k++)
-      if (key_set(c, si, k))
+      if (hd_scene_key_set(c, si, k))
         return FAIL_AT(c, si, k, "not used with disks = ... (each disk gives its own d and m)");
   } else {
     sp->ndisk = p->form->build(p->v, isnan(p->s) ? p->d : p->s, sp->x, sp->y);
@@ -1513,27 +1540,28 @@ static int fill_pairs_of(ctx *c, int beta) {
       char key[HD_SPECIES_NAME_MAX + 8];
       snprintf(key, sizeof key, "%s_%s", kind, pr->other);
       int o = !strcmp(pr->other, "dimers") ? 0 : !strcmp(pr->other, "disks") ? 1 : -1;
-      if (o < 0 && find_species(c, pr->other) >= 0) o = find_species(c, pr->other) - N_SEC + 2;
+      if (o < 0 && hd_scene_find_species(c, pr->other) >= 0)
+        o = hd_scene_find_species(c, pr->other) - N_SEC + 2;
       if (o == 2 + k)
-        return fail(c, HD_EINPUT, pr->at, si, key, pr->val,
-                    "the species itself: its own restitution is `%s`", kind);
+        return hd_scene_fail(c, HD_EINPUT, pr->at, si, key, pr->val,
+                             "the species itself: its own restitution is `%s`", kind);
       if (o < 0 || (o < 2 && !c->present[o == 0 ? S_DIMERS : S_DISKS])) {
         char known[400] = "";
         if (c->present[S_DIMERS]) strcat(known, " dimers");
         if (c->present[S_DISKS]) strcat(known, " disks");
         for (int j = 0; j < sc->n_named; j++)
           if (j != k) strcat(known, " "), strcat(known, sc->named[j].name);
-        return fail(c, HD_EINPUT, pr->at, si, key, pr->val,
-                    "no [%s%s] section in the scene (other species:%s)", o < 0 ? "species " : "",
-                    pr->other, known[0] ? known : " none");
+        return hd_scene_fail(c, HD_EINPUT, pr->at, si, key, pr->val,
+                             "no [%s%s] section in the scene (other species:%s)",
+                             o < 0 ? "species " : "", pr->other, known[0] ? known : " none");
       }
       int i = 2 + k;
-      if (is_set(set_at[i][o])) {
+      if (hd_scene_is_set(set_at[i][o])) {
         char at[600];
-        where(c, set_at[i][o], at, sizeof at);
-        return fail(c, HD_EINPUT, pr->at, si, key, pr->val,
-                    "the pair is also set by [species %s] %s_%s (%s)", sc->named[set_by[i][o]].name,
-                    kind, sc->named[k].name, at);
+        hd_scene_where(c, set_at[i][o], at, sizeof at);
+        return hd_scene_fail(c, HD_EINPUT, pr->at, si, key, pr->val,
+                             "the pair is also set by [species %s] %s_%s (%s)",
+                             sc->named[set_by[i][o]].name, kind, sc->named[k].name, at);
       }
       set_at[i][o] = set_at[o][i] = pr->at;
       set_by[i][o] = set_by[o][i] = k;
@@ -1544,7 +1572,7 @@ static int fill_pairs_of(ctx *c, int beta) {
 }
 
 /* Both pair tables, and whether the scene is rough (hd_scene.rough). */
-static int fill_pairs(ctx *c) {
+static int hd_scene_fill_pairs(ctx *c) {
   int rc = fill_pairs_of(c, 0);
   if (rc || (rc = fill_pairs_of(c, 1))) return rc;
   hd_scene *sc = c->sc;
@@ -1557,29 +1585,31 @@ static int fill_pairs(ctx *c) {
 /* A [rods] scene: a ring of count rods, nothing 2D. */
 static int check_rods(ctx *c) {
   hd_scene *sc = c->sc;
-  if (!key_set(c, S_RODS, K_RCOUNT))
-    return fail(c, HD_EINPUT, c->sec_at[S_RODS], S_RODS, "count", NULL,
-                "missing: required in [rods]");
+  if (!hd_scene_key_set(c, S_RODS, K_RCOUNT))
+    return hd_scene_fail(c, HD_EINPUT, c->sec_at[S_RODS], S_RODS, "count", NULL,
+                         "missing: required in [rods]");
   static const int other[4] = {S_DIMERS, S_DISKS, S_WALLS, S_INIT};
   for (int j = 0; j < 4; j++)
     if (c->present[other[j]])
-      return fail(c, HD_EINPUT, c->sec_at[other[j]], other[j], NULL, NULL,
-                  "cannot be combined with [rods] (the ring has its own count and temperature)");
+      return hd_scene_fail(
+          c, HD_EINPUT, c->sec_at[other[j]], other[j], NULL, NULL,
+          "cannot be combined with [rods] (the ring has its own count and temperature)");
   for (int j = 0; j < sc->n_named; j++)
-    return fail(c, HD_EINPUT, c->sec_at[N_SEC + j], N_SEC + j, NULL, NULL,
-                "cannot be combined with [rods] (the ring has its own count and temperature)");
-  if (key_set(c, S_SYSTEM, K_BOX))
+    return hd_scene_fail(
+        c, HD_EINPUT, c->sec_at[N_SEC + j], N_SEC + j, NULL, NULL,
+        "cannot be combined with [rods] (the ring has its own count and temperature)");
+  if (hd_scene_key_set(c, S_SYSTEM, K_BOX))
     return FAIL_KEY(c, K_BOX, "not used with [rods]: the ring length is the rod count");
-  if (key_set(c, S_SYSTEM, K_AREA))
+  if (hd_scene_key_set(c, S_SYSTEM, K_AREA))
     return FAIL_KEY(c, K_AREA, "not used with [rods]: the ring length is the rod count");
-  if (!key_set(c, S_RODS, K_REPS))
+  if (!hd_scene_key_set(c, S_RODS, K_REPS))
     sc->rod_eps = sc->rod_gamma;
   else if (sc->rod_model != 1)
     return FAIL_KEY(c, K_REPS, "only with model = constant");
   /* table unset: the balanced table wherever it applies (issue 16: the direct sampler then
    * lowered the stationary E_kin by ~3.5 %, the balanced table by 0.2 %; refined since issue 25,
    * the direct sampler is within ~0.3 % but ~10x slower per collision) */
-  if (!key_set(c, S_RODS, K_RTABLE))
+  if (!hd_scene_key_set(c, S_RODS, K_RTABLE))
     sc->rod_table = sc->rod_model != 1 && !sc->rod_unequal && sc->rod_gamma < 1;
   if (sc->rod_table && sc->rod_unequal)
     return FAIL_KEY(c, K_RTABLE,
@@ -1596,8 +1626,8 @@ static int check_rods(ctx *c) {
   }
   if (c->mode == M_READ) return HD_OK;
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
-    return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
-                "no stop condition: set stop_time, stop_events or stop_cpd");
+    return hd_scene_fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN,
+                         NULL, NULL, "no stop condition: set stop_time, stop_events or stop_cpd");
   return check_vel_at(c);
 }
 
@@ -1610,7 +1640,8 @@ static int check_frames(ctx *c) {
     return FAIL_KEY(c, K_LFRAMEST,
                     "needs [run] stop_time (frames are taken at exact times up to it; by cpd: "
                     "frames_every)");
-  if (key_set(c, S_LOG, K_LFRAMESMB) && !(sc->frames_every > 0 || sc->frames_every_time > 0))
+  if (hd_scene_key_set(c, S_LOG, K_LFRAMESMB) &&
+      !(sc->frames_every > 0 || sc->frames_every_time > 0))
     return FAIL_KEY(c, K_LFRAMESMB, "set without frames_every or frames_every_time");
   double nf = hd_scene_frames_estimate(sc);
   if (nf > 0) {
@@ -1627,17 +1658,17 @@ static int check_frames(ctx *c) {
   return HD_OK;
 }
 
-static int check_all(ctx *c) {
+static int hd_scene_check_all(ctx *c) {
   hd_scene *sc = c->sc;
   int rc, run = c->mode != M_READ;
   if (c->present[S_RODS]) return (rc = check_rods(c)) ? rc : run ? check_frames(c) : HD_OK;
-  if (!key_set(c, S_DISKS, K_SALPHAD)) sc->disk_alpha_dimer = sc->disk_alpha;
-  if (!key_set(c, S_DISKS, K_SBETAD)) sc->disk_beta_dimer = sc->disk_beta;
+  if (!hd_scene_key_set(c, S_DISKS, K_SALPHAD)) sc->disk_alpha_dimer = sc->disk_alpha;
+  if (!hd_scene_key_set(c, S_DISKS, K_SBETAD)) sc->disk_beta_dimer = sc->disk_beta;
   for (int j = 0; j < sc->n_named; j++)
-    if ((rc = build_species(c, j))) return rc;
-  if ((rc = fill_pairs(c))) return rc;
-  if (key_set(c, S_INIT, K_STATE)) {
-    if (key_set(c, S_INIT, K_PLACE))
+    if ((rc = hd_scene_build_species(c, j))) return rc;
+  if ((rc = hd_scene_fill_pairs(c))) return rc;
+  if (hd_scene_key_set(c, S_INIT, K_STATE)) {
+    if (hd_scene_key_set(c, S_INIT, K_PLACE))
       return FAIL_KEY(c, K_STATE,
                       "cannot be used together with placement (state gives every "
                       "body)");
@@ -1650,14 +1681,15 @@ static int check_all(ctx *c) {
   static const int req_sec[3] = {S_DIMERS, S_DISKS, S_WALLS};
   static const int req_key[3] = {K_DCOUNT, K_SCOUNT, K_WSIDES};
   for (int j = 0; j < 3; j++)
-    if (c->present[req_sec[j]] && !key_set(c, req_sec[j], req_key[j]) &&
+    if (c->present[req_sec[j]] && !hd_scene_key_set(c, req_sec[j], req_key[j]) &&
         !(req_sec[j] != S_WALLS && sc->placement == HD_PLACE_STATE))
-      return fail(c, HD_EINPUT, c->sec_at[req_sec[j]], req_sec[j], keys[req_key[j]].name, NULL,
-                  "missing: required in [%s]", sec_name[req_sec[j]]);
+      return hd_scene_fail(c, HD_EINPUT, c->sec_at[req_sec[j]], req_sec[j],
+                           hd_scene_keys[req_key[j]].name, NULL, "missing: required in [%s]",
+                           hd_scene_sec_name[req_sec[j]]);
   for (int j = 0; j < sc->n_named; j++)
-    if (!key_set(c, N_SEC + j, K_PCOUNT) && sc->placement != HD_PLACE_STATE)
-      return fail(c, HD_EINPUT, c->sec_at[N_SEC + j], N_SEC + j, "count", NULL,
-                  "missing: required in [species %s]", sc->named[j].name);
+    if (!hd_scene_key_set(c, N_SEC + j, K_PCOUNT) && sc->placement != HD_PLACE_STATE)
+      return hd_scene_fail(c, HD_EINPUT, c->sec_at[N_SEC + j], N_SEC + j, "count", NULL,
+                           "missing: required in [species %s]", sc->named[j].name);
   if (sc->n_dimers > 0 && sc->dimer_a > 0 && sc->dimer_a < HD_MIN_BOND * sc->dimer_d)
     return FAIL_KEY(c, K_DA,
                     "must be 0 or at least %g d = %g: a shorter bond is lost in the round-off of "
@@ -1667,19 +1699,20 @@ static int check_all(ctx *c) {
   if (sc->n_dimers > 0 && sc->dimer_a > 0 &&
       !(inertia >= HD_MIN_INERTIA && inertia <= 1 / HD_MIN_INERTIA))
     return FAIL_KEY(c, K_DA, "the moment of inertia m a^2 / 2 = %g is outside [%g, %g]: %s",
-                    inertia, HD_MIN_INERTIA, 1 / HD_MIN_INERTIA, inertia_why);
+                    inertia, HD_MIN_INERTIA, 1 / HD_MIN_INERTIA, hd_scene_inertia_why);
   if (sc->placement != HD_PLACE_STATE && (rc = check_thermal(c))) return rc;
   if ((rc = check_box(c, 1))) return rc;
   if (!(sc->stop_time > 0 || sc->stop_events > 0 || sc->stop_cpd > 0))
-    return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
-                "no stop condition: set stop_time, stop_events or stop_cpd");
-  if (body_count(sc) == 1 && !(sc->stop_time > 0) && !(sc->walls && sc->stop_events > 0))
+    return hd_scene_fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN,
+                         NULL, NULL, "no stop condition: set stop_time, stop_events or stop_cpd");
+  if (hd_scene_body_count(sc) == 1 && !(sc->stop_time > 0) && !(sc->walls && sc->stop_events > 0))
     /* it has no pair collision ever (cpd stays 0), and without walls no collision at all: the
      * run would go on for ever */
-    return fail(c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
-                "one body alone never collides with another: stop it with stop_time (stop_events "
-                "counts only its wall collisions, and a drawn velocity of one body is 0: it rests "
-                "or spins in place)");
+    return hd_scene_fail(
+        c, HD_EINPUT, c->present[S_RUN] ? c->sec_at[S_RUN] : (loc){0, 0}, S_RUN, NULL, NULL,
+        "one body alone never collides with another: stop it with stop_time (stop_events "
+        "counts only its wall collisions, and a drawn velocity of one body is 0: it rests "
+        "or spins in place)");
   if ((rc = check_frames(c))) return rc;
   return check_vel_at(c);
 }
@@ -1692,7 +1725,7 @@ struct sbuf {
   int oom;
 };
 
-static __attribute__((format(printf, 2, 3))) void put(sbuf *b, const char *fmt, ...) {
+static __attribute__((format(printf, 2, 3))) void hd_scene_put(sbuf *b, const char *fmt, ...) {
   if (b->oom) return;
   va_list ap;
   va_start(ap, fmt);
@@ -1716,135 +1749,138 @@ static __attribute__((format(printf, 2, 3))) void put(sbuf *b, const char *fmt, 
 }
 
 /* "key = x\n" */
-static void put_kv(sbuf *b, const char *key, double x) {
+static void hd_scene_put_kv(sbuf *b, const char *key, double x) {
   char v[40];
-  shortest(x, v, sizeof v);
-  put(b, "%s = %s\n", key, v);
+  hd_scene_shortest(x, v, sizeof v);
+  hd_scene_put(b, "%s = %s\n", key, v);
 }
 
-static int show_beta_dimer(const ctx *c, int si) {
+static int hd_scene_show_beta_dimer(const ctx *c, int si) {
   (void)si; /* beta_dimer defaults to beta: written when either is not smooth */
   return c->sc->disk_beta > -1 || c->sc->disk_beta_dimer > -1;
 }
-static int show_set(const ctx *c, int si) {
+static int hd_scene_show_set(const ctx *c, int si) {
   (void)si;
-  return key_set(c, S_SYSTEM, K_AREA);
+  return hd_scene_key_set(c, S_SYSTEM, K_AREA);
 }
-static int show_box(const ctx *c, int si) {
+static int hd_scene_show_box(const ctx *c, int si) {
   (void)si;
-  return key_set(c, S_SYSTEM, K_BOX) && !key_set(c, S_SYSTEM, K_AREA);
+  return hd_scene_key_set(c, S_SYSTEM, K_BOX) && !hd_scene_key_set(c, S_SYSTEM, K_AREA);
 }
-static int show_not_state(const ctx *c, int si) {
+static int hd_scene_show_not_state(const ctx *c, int si) {
   (void)si;
   return c->sc->placement != HD_PLACE_STATE;
 }
-static int show_state(const ctx *c, int si) {
-  return !show_not_state(c, si);
+static int hd_scene_show_state(const ctx *c, int si) {
+  return !hd_scene_show_not_state(c, si);
 }
 /* (always, in a scene to run: [walls] requires sides; not in one only read without them) */
-static int show_sides(const ctx *c, int si) {
+static int hd_scene_show_sides(const ctx *c, int si) {
   (void)si;
   return c->sc->walls != 0;
 }
-static int show_vel(const ctx *c, int si) {
+static int hd_scene_show_vel(const ctx *c, int si) {
   (void)si;
   return c->sc->n_velocities_at > 0 && !c->sc->velocities_in_time;
 }
-static int show_vel_time(const ctx *c, int si) {
+static int hd_scene_show_vel_time(const ctx *c, int si) {
   (void)si;
   return c->sc->n_velocities_at > 0 && c->sc->velocities_in_time;
 }
 /* only when asked for: the text of a run without frames is as before */
-static int show_frames(const ctx *c, int si) {
+static int hd_scene_show_frames(const ctx *c, int si) {
   (void)si;
   return c->sc->frames_every > 0 || c->sc->frames_every_time > 0;
 }
-static int show_rod_eps(const ctx *c, int si) {
+static int hd_scene_show_rod_eps(const ctx *c, int si) {
   (void)si;
   return c->sc->rod_model == 1;
 }
-static int show_short_shape(const ctx *c, int si) {
+static int hd_scene_show_short_shape(const ctx *c, int si) {
   return c->sp[si - N_SEC].form != NULL;
 }
-static int show_explicit(const ctx *c, int si) {
-  return !show_short_shape(c, si);
+static int hd_scene_show_explicit(const ctx *c, int si) {
+  return !hd_scene_show_short_shape(c, si);
 }
 
-static void put_area(const ctx *c, int si, int k, sbuf *b) {
+static void hd_scene_put_area(const ctx *c, int si, int k, sbuf *b) {
   (void)si, (void)k;
   char v1[40], v2[40];
-  put_kv(b, "area_fraction", c->sc->area_fraction);
-  shortest(c->sc->box_x, v1, sizeof v1);
-  shortest(c->sc->box_y, v2, sizeof v2);
-  put(b, "; box = %s %s (from area_fraction)\n", v1, v2);
+  hd_scene_put_kv(b, "area_fraction", c->sc->area_fraction);
+  hd_scene_shortest(c->sc->box_x, v1, sizeof v1);
+  hd_scene_shortest(c->sc->box_y, v2, sizeof v2);
+  hd_scene_put(b, "; box = %s %s (from area_fraction)\n", v1, v2);
 }
-static void put_box(const ctx *c, int si, int k, sbuf *b) {
+static void hd_scene_put_box(const ctx *c, int si, int k, sbuf *b) {
   (void)si, (void)k;
   char v1[40], v2[40];
-  shortest(c->sc->box_x, v1, sizeof v1);
-  shortest(c->sc->box_y, v2, sizeof v2);
-  put(b, "box = %s %s\n", v1, v2);
+  hd_scene_shortest(c->sc->box_x, v1, sizeof v1);
+  hd_scene_shortest(c->sc->box_y, v2, sizeof v2);
+  hd_scene_put(b, "box = %s %s\n", v1, v2);
 }
-static void put_sides(const ctx *c, int si, int k, sbuf *b) {
+static void hd_scene_put_sides(const ctx *c, int si, int k, sbuf *b) {
   (void)si, (void)k;
-  put(b, "sides =");
+  hd_scene_put(b, "sides =");
   for (int j = 0; j < 4; j++)
-    if (c->sc->walls & (1u << j)) put(b, " %s", wall_name[j]);
-  put(b, "\n");
+    if (c->sc->walls & (1u << j)) hd_scene_put(b, " %s", hd_scene_wall_name[j]);
+  hd_scene_put(b, "\n");
 }
-static void put_state(const ctx *c, int si, int k, sbuf *b) {
+static void hd_scene_put_state(const ctx *c, int si, int k, sbuf *b) {
   (void)si, (void)k;
-  put(b, "state = %s\n", c->sc->state_file);
+  hd_scene_put(b, "state = %s\n", c->sc->state_file);
 }
-static void put_collisions(const ctx *c, int si, int k, sbuf *b) {
+static void hd_scene_put_collisions(const ctx *c, int si, int k, sbuf *b) {
   (void)si, (void)k;
   const hd_scene *sc = c->sc;
   if (sc->log_collisions == HD_LOG_EVERY)
-    put(b, "collisions = every %ld\n", sc->log_every);
+    hd_scene_put(b, "collisions = every %ld\n", sc->log_every);
   else
-    put(b, "collisions = %s\n", sc->log_collisions == HD_LOG_NONE ? "none" : "all");
+    hd_scene_put(b, "collisions = %s\n", sc->log_collisions == HD_LOG_NONE ? "none" : "all");
 }
-static void put_vel(const ctx *c, int si, int k, sbuf *b) {
+static void hd_scene_put_vel(const ctx *c, int si, int k, sbuf *b) {
   (void)si, (void)k;
   const hd_scene *sc = c->sc;
   char v[40];
-  put(b, "%s =", sc->velocities_in_time ? "velocities_at_time" : "velocities_at");
+  hd_scene_put(b, "%s =", sc->velocities_in_time ? "velocities_at_time" : "velocities_at");
   for (int i = 0; i < sc->n_velocities_at; i++) {
-    shortest(sc->velocities_at[i], v, sizeof v);
-    put(b, " %s", v);
+    hd_scene_shortest(sc->velocities_at[i], v, sizeof v);
+    hd_scene_put(b, " %s", v);
   }
-  put(b, "\n");
+  hd_scene_put(b, "\n");
 }
-static void put_shape(const ctx *c, int si, int k, sbuf *b) {
+static void hd_scene_put_shape(const ctx *c, int si, int k, sbuf *b) {
   (void)k;
   const sp_parse *p = &c->sp[si - N_SEC];
   char t[40];
-  put(b, "shape = %s", p->form->name);
-  for (int i = 0; i < p->form->nparam; i++) shortest(p->v[i], t, sizeof t), put(b, " %s", t);
-  if (p->form->spacing) shortest(isnan(p->s) ? p->d : p->s, t, sizeof t), put(b, " %s", t);
-  put(b, "\n");
+  hd_scene_put(b, "shape = %s", p->form->name);
+  for (int i = 0; i < p->form->nparam; i++)
+    hd_scene_shortest(p->v[i], t, sizeof t), hd_scene_put(b, " %s", t);
+  if (p->form->spacing)
+    hd_scene_shortest(isnan(p->s) ? p->d : p->s, t, sizeof t), hd_scene_put(b, " %s", t);
+  hd_scene_put(b, "\n");
 }
-static void put_sp_dm(const ctx *c, int si, int k, sbuf *b) {
-  put_kv(b, keys[k].name, k == K_PD ? c->sp[si - N_SEC].d : c->sp[si - N_SEC].m);
+static void hd_scene_put_sp_dm(const ctx *c, int si, int k, sbuf *b) {
+  hd_scene_put_kv(b, hd_scene_keys[k].name, k == K_PD ? c->sp[si - N_SEC].d : c->sp[si - N_SEC].m);
 }
-static void put_disks(const ctx *c, int si, int k, sbuf *b) {
+static void hd_scene_put_disks(const ctx *c, int si, int k, sbuf *b) {
   (void)k;
   const hd_scene_species *sp = &c->sc->named[si - N_SEC];
-  put(b, "disks =");
+  hd_scene_put(b, "disks =");
   for (int i = 0; i < sp->ndisk; i++) {
     double v[4] = {sp->x[i], sp->y[i], sp->d[i], sp->m[i]};
     for (int j = 0; j < 4; j++) {
       char t[40];
-      shortest(v[j], t, sizeof t);
-      put(b, " %s", t);
+      hd_scene_shortest(v[j], t, sizeof t);
+      hd_scene_put(b, " %s", t);
     }
-    if (i + 1 < sp->ndisk) put(b, ";"); /* no blank before ';': that would start a comment */
+    if (i + 1 < sp->ndisk)
+      hd_scene_put(b, ";"); /* no blank before ';': that would start a comment */
   }
-  put(b, "\n");
+  hd_scene_put(b, "\n");
 }
 /* alpha_OTHER of every pair with a species written before this one: each pair once;
  * beta_OTHER (k = K_PBETAX) likewise, where it is not the default (the smaller `beta`) */
-static void put_pairs(const ctx *c, int si, int k, sbuf *b) {
+static void hd_scene_put_pairs(const ctx *c, int si, int k, sbuf *b) {
   const hd_scene *sc = c->sc;
   int i = 2 + si - N_SEC, beta = k == K_PBETAX;
   char key[HD_SPECIES_NAME_MAX + 8];
@@ -1856,14 +1892,14 @@ static void put_pairs(const ctx *c, int si, int k, sbuf *b) {
              o == 0   ? "dimers"
              : o == 1 ? "disks"
                       : sc->named[o - 2].name);
-    put_kv(b, key, beta ? sc->beta_pair[i][o] : sc->alpha_pair[i][o]);
+    hd_scene_put_kv(b, key, beta ? sc->beta_pair[i][o] : sc->alpha_pair[i][o]);
   }
 }
 
 /* Writes key k of section si as the canonical text has it. */
 static void put_key(const ctx *c, int si, int k, sbuf *b) {
-  const key_def *kd = &keys[k];
-  const void *p = field(c, si, k);
+  const key_def *kd = &hd_scene_keys[k];
+  const void *p = hd_scene_field(c, si, k);
   if (kd->show && !kd->show(c, si)) return;
   if (kd->if_pos && !(*(const double *)p > 0)) return;
   if (kd->if_not_def && *(const double *)p == kd->def) return;
@@ -1874,17 +1910,17 @@ static void put_key(const ctx *c, int si, int k, sbuf *b) {
   switch (kd->type) {
   case KT_REAL:
   case KT_WHOLE:
-    put_kv(b, kd->name, *(const double *)p);
+    hd_scene_put_kv(b, kd->name, *(const double *)p);
     break;
   case KT_LONG:
-    put(b, "%s = %ld\n", kd->name, *(const long *)p);
+    hd_scene_put(b, "%s = %ld\n", kd->name, *(const long *)p);
     break;
   case KT_U64:
-    put(b, "%s = %llu\n", kd->name, *(const unsigned long long *)p);
+    hd_scene_put(b, "%s = %llu\n", kd->name, *(const unsigned long long *)p);
     break;
   case KT_BOOL:
   case KT_ENUM:
-    put(b, "%s = %s\n", kd->name, kd->names[*(const int *)p]);
+    hd_scene_put(b, "%s = %s\n", kd->name, kd->names[*(const int *)p]);
     break;
   case KT_CUSTOM:
     break;
@@ -1893,15 +1929,15 @@ static void put_key(const ctx *c, int si, int k, sbuf *b) {
 
 static void put_section(const ctx *c, int si, sbuf *b) {
   char label[64];
-  sec_label(c, si, label, sizeof label);
-  put(b, "[%s]\n", label);
+  hd_scene_sec_label(c, si, label, sizeof label);
+  hd_scene_put(b, "[%s]\n", label);
   for (int k = 0; k < N_KEY; k++)
-    if (keys[k].sec == sec_of(si)) put_key(c, si, k, b);
+    if (hd_scene_keys[k].sec == hd_scene_sec_of(si)) put_key(c, si, k, b);
 }
 
-static char *canonical_text(const ctx *c) {
+static char *hd_scene_canonical_text(const ctx *c) {
   sbuf b = {0};
-  put(&b, "%s", "");
+  hd_scene_put(&b, "%s", "");
   for (int s = 0; s < N_SEC; s++) {
     if (s == S_SPECIES)
       for (int j = 0; j < c->sc->n_named; j++) put_section(c, N_SEC + j, &b);
@@ -1919,9 +1955,9 @@ static char *canonical_text(const ctx *c) {
 
 /* The generated table of section s. */
 static void doc_table(int s, sbuf *b) {
-  put(b, "| key | default | range | meaning |\n|---|---|---|---|\n");
+  hd_scene_put(b, "| key | default | range | meaning |\n|---|---|---|---|\n");
   for (int k = 0; k < N_KEY; k++) {
-    const key_def *kd = &keys[k];
+    const key_def *kd = &hd_scene_keys[k];
     if (kd->sec != s) continue;
     char def[80], range[320];
     if (kd->doc_def)
@@ -1929,7 +1965,7 @@ static void doc_table(int s, sbuf *b) {
     else if (kd->type == KT_BOOL || kd->type == KT_ENUM)
       snprintf(def, sizeof def, "`%s`", kd->names[(int)kd->def]);
     else
-      shortest(kd->def, def, sizeof def);
+      hd_scene_shortest(kd->def, def, sizeof def);
     if (kd->doc_forms) {
       hd_scene_forms_list("`", " \\| ", " \\| ", range, sizeof range);
       size_t at = strlen(range);
@@ -1946,36 +1982,37 @@ static void doc_table(int s, sbuf *b) {
       }
     } else if (kd->type == KT_LONG || kd->type == KT_WHOLE) {
       char lo[40], hi[40];
-      shortest(kd->lo, lo, sizeof lo);
-      shortest(kd->hi, hi, sizeof hi);
+      hd_scene_shortest(kd->lo, lo, sizeof lo);
+      hd_scene_shortest(kd->hi, hi, sizeof hi);
       snprintf(range, sizeof range, "whole, %s … %s", lo, hi);
     } else {
       char why[120];
-      range_why(kd, why, sizeof why);
+      hd_scene_range_why(kd, why, sizeof why);
       snprintf(range, sizeof range, "%s", why + strlen("must be "));
       char *ge = strstr(range, ">=");
       if (ge) memmove(ge + 3, ge + 2, strlen(ge + 2) + 1), memcpy(ge, "≥", 3);
       if (!strncmp(range, "in ", 3)) memmove(range, range + 3, strlen(range + 3) + 1);
     }
-    put(b, "| `%s` | %s | %s | %s |\n", kd->doc_key ? kd->doc_key : kd->name, def, range, kd->doc);
+    hd_scene_put(b, "| `%s` | %s | %s | %s |\n", kd->doc_key ? kd->doc_key : kd->name, def, range,
+                 kd->doc);
   }
 }
 
 int hd_scene_keys_doc(const char *in, char **out, hd_error *err) {
   static const char open_tag[] = "<!-- keys ", end_tag[] = "<!-- end keys -->";
   sbuf b = {0};
-  put(&b, "%s", "");
+  hd_scene_put(&b, "%s", "");
   const char *p = in;
   long line = 0;
   while (*p) {
     const char *nl = strchr(p, '\n');
     size_t len = nl ? (size_t)(nl - p) + 1 : strlen(p);
     line++;
-    put(&b, "%.*s", (int)len, p);
+    hd_scene_put(&b, "%.*s", (int)len, p);
     if (!strncmp(p, open_tag, sizeof open_tag - 1)) {
       char name[32] = "";
       sscanf(p + sizeof open_tag - 1, "%31[a-z]", name);
-      int s = !strcmp(name, "species") ? S_SPECIES : find_sec(name);
+      int s = !strcmp(name, "species") ? S_SPECIES : hd_scene_find_sec(name);
       if (s < 0) {
         free(b.s);
         return hd_error_set(err, HD_EINPUT, "line %ld: %s: no such section", line, name);
@@ -2008,9 +2045,9 @@ int hd_scene_keys_doc(const char *in, char **out, hd_error *err) {
 
 int hd_scene_key_name(int k, char *buf, size_t size) {
   if (k < 0 || k >= N_KEY) return 1;
-  const key_def *kd = &keys[k];
-  int n = snprintf(buf, size, "%s.%s%s", sec_name[kd->sec], kd->sec == S_SPECIES ? "NAME." : "",
-                   kd->name);
+  const key_def *kd = &hd_scene_keys[k];
+  int n = snprintf(buf, size, "%s.%s%s", hd_scene_sec_name[kd->sec],
+                   kd->sec == S_SPECIES ? "NAME." : "", kd->name);
   return n < 0 || (size_t)n >= size;
 }
 
@@ -2018,7 +2055,7 @@ void hd_scene_defaults(hd_scene *sc) {
   memset(sc, 0, sizeof *sc);
   strcpy(sc->dir, ".");
   for (int k = 0; k < N_KEY; k++) {
-    const key_def *kd = &keys[k];
+    const key_def *kd = &hd_scene_keys[k];
     void *p = (char *)sc + kd->off;
     if (kd->sec == S_SPECIES) continue; /* set when the section is made */
     switch (kd->type) {
@@ -2045,7 +2082,7 @@ void hd_scene_defaults(hd_scene *sc) {
 }
 
 long hd_scene_bodies(const hd_scene *sc) {
-  return sc->n_rods > 0 ? sc->n_rods : body_count(sc);
+  return sc->n_rods > 0 ? sc->n_rods : hd_scene_body_count(sc);
 }
 
 double hd_scene_frame_bytes(const hd_scene *sc) {
@@ -2096,11 +2133,11 @@ static int load_text(hd_scene *sc, const char *text, size_t len, const char *nam
   int rc = HD_OK;
   if (memchr(text, '\0', len))
     rc = hd_error_set(err, HD_EINPUT, "%s: contains a NUL byte: not a text file", name);
-  if (!rc) rc = parse_text(c);
-  for (int i = 0; !rc && i < n_over; i++) rc = apply_override(c, i);
-  if (!rc) rc = check_all(c);
+  if (!rc) rc = hd_scene_parse_text(c);
+  for (int i = 0; !rc && i < n_over; i++) rc = hd_scene_apply_override(c, i);
+  if (!rc) rc = hd_scene_check_all(c);
   if (!rc) {
-    sc->text = canonical_text(c);
+    sc->text = hd_scene_canonical_text(c);
     if (!sc->text) rc = hd_error_set(err, HD_ENOMEM, "%s: out of memory", name);
   }
   free(c);
@@ -2210,7 +2247,7 @@ static int csv_row(char *line, const char *path, long lineno, const hd_scene *sc
   if (nf != 7)
     return hd_error_set(err, HD_EINPUT, "%s:%ld: expected 7 columns (%s), found %d", path, lineno,
                         "kind,x,y,phi,vx,vy,omega", nf);
-  char *kind = trim(f[0]);
+  char *kind = hd_scene_trim(f[0]);
   int oriented = 0; /* phi and omega are read */
   r->species = -1;
   if (!strcmp(kind, "dimer"))
@@ -2233,10 +2270,10 @@ static int csv_row(char *line, const char *path, long lineno, const hd_scene *sc
   }
   double v[7];
   for (int j = 1; j < 7; j++) {
-    char *t = trim(f[j]);
-    if (!parse_num(t, &v[j]))
+    char *t = hd_scene_trim(f[j]);
+    if (!hd_scene_parse_num(t, &v[j]))
       return hd_error_set(err, HD_EINPUT, "%s:%ld: column %d (%s): '%.40s': %s", path, lineno,
-                          j + 1, csv_col[j], t, num_why(t));
+                          j + 1, csv_col[j], t, hd_scene_num_why(t));
   }
   r->x = v[1];
   r->y = v[2];
