@@ -209,7 +209,8 @@ static void form_text(const hd_scene_form *f, int i, double bad, double s, char 
  * its `.help` line in the list of short forms, (3) the error ranges: a number just outside its
  * range is refused with "NAME must be ..." naming the range's ends, a word too many is refused,
  * (4) the form with numbers inside the ranges, with and without S, makes the builder's disks
- * bit for bit and round-trips through the canonical text (put_shape, then parsed again). */
+ * bit for bit and round-trips through the canonical text (hd_scene_put_shape, then parsed again).
+ */
 static void howto_shape_forms(void **state) {
   (void)state;
   char *keys = slurp("docs/scene-keys.md");
