@@ -247,7 +247,7 @@ build-fuzz/tests/fuzz/%: tests/fuzz/%.c $(LIB)
 	$(CC) $(CFLAGS) $(ALL_INC) -fsanitize=fuzzer -Itests -o $@ $< $(LIB) $(LDLIBS)
 
 # --- user targets --------------------------------------------------------------------------
-# The key tables of docs/scene-keys.md come from the scene key table (engine/scene/hd_scene.c);
+# The key tables of docs/scene-keys.md come from the scene key table (engine/scene/hd_scene_keys.h);
 # tests/test_scene.c fails when they differ.
 scene-keys: $(BUILD)/tests/gen_scene_keys
 	@$< docs/scene-keys.md

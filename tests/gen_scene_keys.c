@@ -1,7 +1,7 @@
 /* `make scene-keys`: rewrites the key tables of docs/scene-keys.md from the scene key table
- * (engine/scene/hd_scene.c, hd_scene_keys_doc).  Usage: gen_scene_keys FILE [--check]; with --check
- * it writes nothing and exits 1 when FILE differs from what the table gives.  tests/test_scene.c
- * makes the same check in `make test`. */
+ * (engine/scene/hd_scene_keys.h, hd_scene_keys_doc in hd_scene_doc.c).  Usage: gen_scene_keys FILE
+ * [--check]; with --check it writes nothing and exits 1 when FILE differs from what the table
+ * gives.  tests/test_scene.c makes the same check in `make test`. */
 #include <stdio.h>
 
 #include "gen_file.h"

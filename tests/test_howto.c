@@ -15,6 +15,9 @@
 
 #include "haff.h"
 #include "hd_scene.h"
+#include "hd_scene_internal.h"
+
+#include <math.h>
 
 /* The whole file at path (malloc'd), or NULL. */
 static char *slurp(const char *path) {
@@ -160,6 +163,160 @@ static void howto_shape(void **state) {
   hd_scene_free(&sc);
 }
 
+/* Loads `shape = SHAPE` (with d = 1, m = 1) as the species t of a small scene, file "f.ini"
+ * (the shape on line 3). */
+static int load_shape(hd_scene *sc, const char *shape, hd_error *e) {
+  char text[512];
+  snprintf(text, sizeof text,
+           "[species t]\ncount = 4\nshape = %s\n[system]\narea_fraction = 0.05\n[run]\n"
+           "stop_cpd = 1\n",
+           shape);
+  return hd_scene_load_string(sc, text, "f.ini", NULL, 0, e);
+}
+
+/* Whether every form's syntax is in s, in the table's order, each between two `quote`s (the
+ * messages: "", the docs' key table: "`"). */
+static int lists_forms(const char *s, const char *quote) {
+  for (const hd_scene_form *f = hd_scene_forms; f->name; f++) {
+    char syn[128], want[140];
+    hd_scene_form_syntax(f, syn, sizeof syn);
+    snprintf(want, sizeof want, "%s%s%s", quote, syn, quote);
+    if (!(s = strstr(s, want))) return 0;
+    s += strlen(want);
+  }
+  return 1;
+}
+
+/* A value of q inside its range. */
+static double inside(const hd_scene_form_param *q) {
+  if (isinf(q->hi)) return q->lo + 0.5;
+  return q->whole ? floor((q->lo + q->hi) / 2) : (q->lo + q->hi) / 2;
+}
+
+/* The shape text "NAME v0 v1 ...", with number i replaced by bad (i = -1: none), and S when
+ * s > 0. */
+static void form_text(const hd_scene_form *f, int i, double bad, double s, char *buf, size_t n) {
+  size_t at = (size_t)snprintf(buf, n, "%s", f->name);
+  for (int j = 0; j < f->nparam; j++)
+    at += (size_t)snprintf(buf + at, n - at, " %.17g", j == i ? bad : inside(&f->param[j]));
+  if (s > 0) snprintf(buf + at, n - at, " %.17g", s);
+}
+
+/* How to add a shape: a short form is a row of hd_scene_forms (and its builder), and that row
+ * drives everything else.  Walked through for every row: (1) no other list of forms is left
+ * (the SH_ enum is gone), (2) the help text: the messages of an unknown form and of a species
+ * without a shape list every form, and docs/scene-keys.md has the form in the `shape` row and
+ * its `.help` line in the list of short forms, (3) the error ranges: a number just outside its
+ * range is refused with "NAME must be ..." naming the range's ends, a word too many is refused,
+ * (4) the form with numbers inside the ranges, with and without S, makes the builder's disks
+ * bit for bit and round-trips through the canonical text (hd_scene_put_shape, then parsed again).
+ */
+static void howto_shape_forms(void **state) {
+  (void)state;
+  char *keys = slurp("docs/scene-keys.md");
+  if (!keys) skip();
+  /* (1) */
+  assert_int_not_equal(system("grep -rqE '\\bSH_[A-Z]+' engine/scene"), 0);
+  /* (2) */
+  hd_scene sc;
+  hd_error e;
+  assert_int_equal(load_shape(&sc, "nosuchform", &e), HD_EINPUT);
+  assert_true(lists_forms(e.msg, ""));
+  assert_int_equal(hd_scene_load_string(&sc, "[species t]\ncount = 4\n[run]\nstop_cpd = 1\n",
+                                        "f.ini", NULL, 0, &e),
+                   HD_EINPUT);
+  assert_non_null(strstr(e.msg, "missing: give shape = "));
+  assert_true(lists_forms(e.msg, ""));
+  char *row = strstr(keys, "| `shape` |");
+  assert_non_null(row);
+  *strchr(row, '\n') = '\0';
+  assert_true(lists_forms(row, "`"));
+  char *list = strstr(row + strlen(row) + 1, "Short forms of `shape`");
+  assert_non_null(list);
+  char *w = list; /* the list with each line break and its indent made one blank */
+  for (const char *r = list; *r; r++) {
+    if (*r == '\n' && r[1] == ' ') {
+      *w++ = ' ';
+      while (r[1] == ' ') r++;
+    } else {
+      *w++ = *r;
+    }
+  }
+  *w = '\0';
+  int nform = 0;
+  for (const hd_scene_form *f = hd_scene_forms; f->name; f++, nform++) {
+    char syn[128], line[512];
+    hd_scene_form_syntax(f, syn, sizeof syn);
+    snprintf(line, sizeof line, "- `%s`: %s", syn, f->help);
+    if (!strstr(list, line)) fail_msg("docs/scene-keys.md: no line '%s'", line);
+  }
+  assert_true(nform >= 5);
+  free(keys);
+  for (const hd_scene_form *f = hd_scene_forms; f->name; f++) {
+    char text[256], msg[512];
+    /* (3) */
+    for (int i = 0; i < f->nparam; i++) {
+      const hd_scene_form_param *q = &f->param[i];
+      double out[3] = {q->lo_open ? q->lo : q->lo - 1, q->hi_open ? q->hi : q->hi + 1,
+                       q->whole ? q->lo + 0.5 : NAN};
+      for (int o = 0; o < 3; o++) {
+        if (isnan(out[o]) || isinf(out[o])) continue;
+        form_text(f, i, out[o], 0, text, sizeof text);
+        assert_int_equal(load_shape(&sc, text, &e), HD_EINPUT);
+        snprintf(msg, sizeof msg, "f.ini:3: [species t] shape = %s: %s must be ", text, q->name);
+        if (strncmp(e.msg, msg, strlen(msg))) fail_msg("%s: '%s'", text, e.msg);
+        char lo[40], hi[40];
+        snprintf(lo, sizeof lo, "%g", q->lo);
+        snprintf(hi, sizeof hi, "%g", q->hi);
+        if (!strstr(e.msg + strlen(msg), lo) || (!isinf(q->hi) && !strstr(e.msg + strlen(msg), hi)))
+          fail_msg("%s: '%s' does not name the range", text, e.msg);
+        if (q->note && !strstr(e.msg, q->note)) fail_msg("%s: '%s': no note", text, e.msg);
+      }
+    }
+    if (f->spacing) { /* S = 0 */
+      form_text(f, -1, 0, 0, text, sizeof text);
+      strcat(text, " 0");
+      assert_int_equal(load_shape(&sc, text, &e), HD_EINPUT);
+      snprintf(msg, sizeof msg, "f.ini:3: [species t] shape = %s: %s must be > 0", text,
+               hd_scene_form_spacing.name);
+      assert_string_equal(e.msg, msg);
+    }
+    form_text(f, -1, 0, 0.9, text, sizeof text); /* a word too many */
+    strcat(text, f->spacing ? " 1" : " 0.9 1");
+    assert_int_equal(load_shape(&sc, text, &e), HD_EINPUT);
+    assert_true(lists_forms(e.msg, ""));
+    /* (4) */
+    for (int with_s = 0; with_s < 1 + f->spacing; with_s++) {
+      double s = with_s ? 0.9 : 0, v[HD_SCENE_FORM_MAX_PARAM];
+      double x[HD_MAX_BODY_DISKS], y[HD_MAX_BODY_DISKS];
+      for (int i = 0; i < f->nparam; i++) v[i] = inside(&f->param[i]);
+      int n = f->build(v, with_s ? s : 1, x, y);
+      form_text(f, -1, 0, s, text, sizeof text);
+      if (load_shape(&sc, text, &e)) fail_msg("shape = %s: %s", text, e.msg);
+      assert_int_equal(sc.named[0].ndisk, n);
+      for (int k = 0; k < n; k++) {
+        assert_memory_equal(&sc.named[0].x[k], &x[k], sizeof x[k]);
+        assert_memory_equal(&sc.named[0].y[k], &y[k], sizeof y[k]);
+        assert_true(sc.named[0].d[k] == 1 && sc.named[0].m[k] == 1);
+      }
+      char written[128];
+      const char *at = strstr(sc.text, "shape = ");
+      assert_non_null(at);
+      snprintf(written, sizeof written, "%.*s", (int)strcspn(at, "\n"), at);
+      snprintf(msg, sizeof msg, "shape = %s", f->name);
+      assert_int_equal(strncmp(written, msg, strlen(msg)), 0);
+      hd_scene again;
+      assert_int_equal(hd_scene_load_stored(&again, sc.text, "runs.scene", &e), HD_OK);
+      assert_string_equal(again.text, sc.text);
+      assert_int_equal(again.named[0].ndisk, n);
+      assert_memory_equal(again.named[0].x, sc.named[0].x, (size_t)n * sizeof(double));
+      assert_memory_equal(again.named[0].y, sc.named[0].y, (size_t)n * sizeof(double));
+      hd_scene_free(&again);
+      hd_scene_free(&sc);
+    }
+  }
+}
+
 /* The subcommand rule: every command of haff_commands is hd_cmd_X (haff mc X: hd_cmd_mc_X)
  * with its options hd_cmd_X_spec, defined in cmd_X.c of cli/, cli/analysis/ or cli/mc/ (haff
  * resume shares cli/cmd_run.c with haff run) and declared in cli/haff.h. */
@@ -199,6 +356,7 @@ int main(void) {
       cmocka_unit_test(howto_names_exist),
       cmocka_unit_test(howto_scene_key),
       cmocka_unit_test(howto_shape),
+      cmocka_unit_test(howto_shape_forms),
       cmocka_unit_test(howto_subcommand_files),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -28,7 +28,8 @@ typedef enum hd_rods_model {
 } hd_rods_model;
 
 /* Defaults of a ring's parameters: hd_rods_params_default and the [rods] keys of a scene
- * (engine/scene/hd_scene.c) both take them from here.  The constant model's eps defaults to gamma.
+ * (engine/scene/hd_scene_keys.h) both take them from here.  The constant model's eps defaults to
+ * gamma.
  */
 #define HD_RODS_GAMMA_DEFAULT 0.8
 #define HD_RODS_NMOD_DEFAULT 1000

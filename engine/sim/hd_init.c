@@ -126,7 +126,7 @@ static int place_lattice(hd_sim *s, hd_error *err) {
   double range = 0.0;
   for (int sp = 0; sp < s->nsp; sp++)
     if (s->n_species[sp] > 0) range = fmax(range, 2.0 * hd_shape_radius(&s->shape[sp]));
-  /* the grid hd_scene.c checks: at most floor(L / range) sites along each edge (spacing
+  /* the grid hd_scene_check.c checks: at most floor(L / range) sites along each edge (spacing
    * >= range; equal means touching), as square as the box allows */
   double fx = fmax(1.0, floor(s->lx / range)), fy = fmax(1.0, floor(s->ly / range));
   double gx = fmin(fmin(fx, (double)s->n), fmax(1.0, ceil(sqrt((double)s->n * s->lx / s->ly))));
