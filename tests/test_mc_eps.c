@@ -263,25 +263,26 @@ static void step_bias_is_small(void **state) {
 
 /* The energy moment D = <E (eps^2 - eps_ref^2)> over E ~ Exp(1), beta = E, that sets the ring's
  * stationary E_kin (E_kin shifts by about 6.6 D, docs/mc-eps.md 4b): the default sampler
- * (refined to step 0.01/128) against a reference refined to 0.01/1024 on the same paths, with the
- * default's step adaptation.  Measured (seed fixed): D = -0.00021 +- 0.00026 (default) and
- * -0.0057 +- 0.0033 for the plain grid on the same paths (the sampler before issue 25: -0.0048
- * against the continuum over 40000 paths, docs/mc-eps.md 4b).  Bound: |D| < 0.00075 (0.5 % of
- * E_kin), with its s.e. < 0.0003; the grid's D below -0.002 shows the test would fail on the
- * plain-grid sampler (refine = 0 makes the default's row the grid's). */
-static void refined_energy_moment(void **state) {
-  (void)state;
+ * (refined to step 0.01/128) against a reference refined to 0.01/1024 on the same paths and
+ * strides (the refined noise is shared), with the default's step adaptation, at gamma = 0.8 and
+ * 0.6 (the rings of issue 25).  Measured (seeds fixed, 2000 paths each): gamma = 0.8:
+ * D = -0.00021 +- 0.00026 (default), -0.0057 +- 0.0033 for the plain grid on the same paths;
+ * gamma = 0.6: +0.00011 +- 0.00026 and -0.0071 +- 0.0034 (20000 paths, docs/mc-eps.md 4f:
+ * D(0.01/128) - D(0.01/2048) = -0.00011 +- 0.00009).  Bound: |D| < 0.00075 (0.5 % of E_kin), with
+ * its s.e. < 0.0003; the grid's D below -0.002 shows the test would fail on the plain-grid sampler
+ * (refine = 0 makes the default's row the grid's). */
+static void energy_moment_at(double gamma, unsigned long seed) {
   hd_eps_opts o;
   hd_eps_opts_default(&o);
   hd_eps_sampler *s;
-  assert_int_equal(hd_eps_sampler_alloc(&s, 0.8, &o, NULL), HD_OK);
+  assert_int_equal(hd_eps_sampler_alloc(&s, gamma, &o, NULL), HD_OK);
   int ldef = hd_eps_sampler_levels(s);
   assert_int_equal(ldef, 7); /* 0.01 / 2^7 */
   hd_eps_sampler_free(s);
   o.refine = o.step / 1024;
-  assert_int_equal(hd_eps_sampler_alloc(&s, 0.8, &o, NULL), HD_OK);
+  assert_int_equal(hd_eps_sampler_alloc(&s, gamma, &o, NULL), HD_OK);
   assert_int_equal(hd_eps_sampler_levels(s), 10);
-  gsl_rng *re = rng_seeded(12345), *r = rng_seeded(1);
+  gsl_rng *re = rng_seeded(seed), *r = rng_seeded(1);
   int n = sanitize() ? 100 : 2000;
   double m[2] = {0}, m2[2] = {0};
   for (long i = 0; i < n; i++) {
@@ -302,8 +303,9 @@ static void refined_energy_moment(void **state) {
     d[k] = m[k] / n;
     se[k] = sqrt((m2[k] / n - d[k] * d[k]) / n);
   }
-  fprintf(stderr, "energy moment D: grid %+.5f +- %.5f, default (refined) %+.5f +- %.5f\n", d[0],
-          se[0], d[1], se[1]);
+  fprintf(stderr,
+          "gamma %g: energy moment D: grid %+.5f +- %.5f, default (refined) %+.5f +- %.5f\n", gamma,
+          d[0], se[0], d[1], se[1]);
   if (!sanitize()) {
     assert_true(se[1] < 0.0003);
     assert_true(fabs(d[1]) < 0.00075);
@@ -315,6 +317,12 @@ static void refined_energy_moment(void **state) {
   gsl_rng_free(r);
   gsl_rng_free(re);
   hd_eps_sampler_free(s);
+}
+
+static void refined_energy_moment(void **state) {
+  (void)state;
+  energy_moment_at(0.8, 12345);
+  energy_moment_at(0.6, 12346);
 }
 
 /* hd_eps_sample_pair is the same path solved at the working step and at a quarter of it: with

@@ -7,6 +7,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The default finest step of the refined sampler (hd_eps_opts.refine; docs/mc-eps.md 2b, 4f);
+ * -DHD_EPS_REFINE=... at compile time for a study of the ring at another step. */
+#ifndef HD_EPS_REFINE
+#define HD_EPS_REFINE (0.01 / 128)
+#endif
+
 struct hd_eps_sampler {
   double gamma_in; /* as requested */
   double gamma;    /* canonical simulated ratio N1/N2 <= 1 */
@@ -41,7 +47,7 @@ void hd_eps_opts_default(hd_eps_opts *o) {
   o->adapt = 16;
   o->richardson = 0;
   o->max_tau = 1e4;
-  o->refine = 0.01 / 128;
+  o->refine = HD_EPS_REFINE;
 }
 
 /* Refinement levels for coarse step h: the least L with h / 2^L <= refine, such that the finest
@@ -342,8 +348,11 @@ static int sigmas(const hd_eps_sampler *s, double beta1, double beta2, double *s
 /* ---- the refined solver (docs/mc-eps.md section 2b) ---- */
 
 /* ln(1/p)/2 for the refinement threshold p: an interval is left unrefined when the probability
- * that the bound of g over it (a Brownian bridge) crosses the record is below p. */
+ * that the bound of g over it (a Brownian bridge) crosses the record is below p (-DHD_EPS_KE=...
+ * for a study: docs/mc-eps.md 4f). */
+#ifndef HD_EPS_KE
 #define HD_EPS_KE 3.45 /* p = 1e-3 */
+#endif
 
 /* State of one refined solve. Offsets inside the current working step are in units u (finest
  * points) = d >> lev, nsub = 2^lev of them per step. */
