@@ -432,11 +432,11 @@ int hd_db_samples_convert(sqlite3 *h, const char *src, const char *run_off, cons
     const char *c = (const char *)sqlite3_column_text(st, 0); /* haff's own names */
     int has = schema_has(h, src, "samples", c);
     if (has < 0) rc = hd_error_set(err, HD_EIO, "%s: read the schema: %s", path, sqlite3_errmsg(h));
-    sqlite3_str_appendf(cols, "%s\"%s\"", k ? ", " : "", c);
+    sqlite3_str_appendf(cols, "%s\"%w\"", k ? ", " : "", c); /* %w: quoted as a name */
     if (!strcmp(c, "run"))
       sqlite3_str_appendf(vals, "%sold.run + %s", k ? ", " : "", run_off);
     else
-      sqlite3_str_appendf(vals, has > 0 ? "%sold.\"%s\"" : "%sNULL", k ? ", " : "", c);
+      sqlite3_str_appendf(vals, has > 0 ? "%sold.\"%w\"" : "%sNULL", k ? ", " : "", c);
     k++;
   }
   sqlite3_finalize(st);

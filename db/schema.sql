@@ -23,7 +23,7 @@
 --      columns e_tr_dimer, e_rot_dimer, e_tr_disk made from sample_species (the same columns, in
 --      the same order, as version 4's table samples: queries of samples read as before).  A file
 --      of version 0 to 4 opened for writing is brought to 5 in one transaction (hd_db.c,
---      samples_upgrade): its table samples is copied to sample_rows, each value of its columns
+--      hd_db_samples_convert): its table samples is copied to sample_rows, each value of its columns
 --      e_tr_dimer, e_rot_dimer, e_tr_disk that sample_species lacks becomes a sample_species row
 --      (species 0 the dimers, 1 the disks with e_rot 0: files before version 3 had no
 --      sample_species), the table is dropped and the view made.  Readers read files of every
