@@ -33,7 +33,13 @@ static inline int gen_file_main(const gen_file *g, int argc, char **argv) {
   }
   static char in[1 << 20];
   size_t n = fread(in, 1, sizeof in - 1, f);
+  int whole = feof(f) && !ferror(f);
   fclose(f);
+  if (!whole) { /* a rewrite of a cut text would lose the rest of the file */
+    fprintf(stderr, "%s: not read whole (larger than %zu bytes, or a read error)\n", argv[1],
+            sizeof in - 1);
+    return 1;
+  }
   in[n] = '\0';
   char *out = NULL, why[512] = "";
   if (g->make(in, &out, why, sizeof why)) {

@@ -27,7 +27,10 @@ for arg in "$@"; do
     awk -F '\t' 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "D_e_sys") c = i; next }
                   { print $c; exit }')
   # per run: run, D_e, cpd_end (haff-fit's columns found by name, as D_e_sys above)
-  fits=$("$haff" haff-fit "$db" | awk -F '\t' 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+  fits=$("$haff" haff-fit "$db" | awk -F '\t' 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i
+                                                         if (!c["run"] || !c["D_e"] || !c["cpd_end"]) {
+                                                           print "errcost: haff-fit has no run, D_e or cpd_end column" > "/dev/stderr"; exit 1 }
+                                                         next }
                                                 { print $c["run"] "\t" $c["D_e"] "\t" $c["cpd_end"] }')
   cpu=$(sqlite3 -separator $'\t' "$db" "SELECT run, cpu_seconds FROM plots_runs ORDER BY run")
   join -t $'\t' <(sort -k1,1 <<< "$fits") <(sort -k1,1 <<< "$cpu") | sort -n -k1,1 |
