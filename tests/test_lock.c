@@ -25,6 +25,7 @@ static char dir[64], path[128];
 
 static int setup(void **state) {
   (void)state;
+  umask(022); /* the mode test below expects hd_lock_open's 0644 unmasked by a stricter umask */
   snprintf(dir, sizeof dir, "/tmp/haff-lock-XXXXXX");
   if (!mkdtemp(dir)) return -1;
   snprintf(path, sizeof path, "%s/x.lock", dir);

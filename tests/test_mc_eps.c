@@ -269,8 +269,10 @@ static void step_bias_is_small(void **state) {
  * D = -0.00021 +- 0.00026 (default), -0.0057 +- 0.0033 for the plain grid on the same paths;
  * gamma = 0.6: +0.00011 +- 0.00026 and -0.0071 +- 0.0034 (20000 paths, docs/mc-eps.md 4f:
  * D(0.01/128) - D(0.01/2048) = -0.00011 +- 0.00009).  Bound: |D| < 0.00075 (0.5 % of E_kin), with
- * its s.e. < 0.0003; the grid's D below -0.002 shows the test would fail on the plain-grid sampler
- * (refine = 0 makes the default's row the grid's). */
+ * its s.e. < 0.0003.  The plain grid's row is printed, not held: 2000 paths resolve its bias to
+ * only 1.7-2 s.e. (-0.0057 +- 0.0033, -0.0071 +- 0.0034), so a bound on it would pass by the seed
+ * alone; what shows that the bound sees a biased sampler is that the grid's |D| is 8-9 times it,
+ * and the ring tests of test_rods (equilibrium_table fails with the grid at step >= 0.0025). */
 static void energy_moment_at(double gamma, unsigned long seed) {
   hd_eps_opts o;
   hd_eps_opts_default(&o);
@@ -309,7 +311,6 @@ static void energy_moment_at(double gamma, unsigned long seed) {
   if (!sanitize()) {
     assert_true(se[1] < 0.0003);
     assert_true(fabs(d[1]) < 0.00075);
-    assert_true(d[0] < -0.002);
   }
   const int bad[1] = {16}, badl[1] = {11};
   double out[1];

@@ -754,6 +754,7 @@ static double table_ring_shift(double gamma, long N, long nmod, unsigned long lo
       "gamma %g, N %ld, N_mod %ld: E_kin/E_th - 1 = %+.3f %% +- %.3f %% (%d blocks of %ld; "
       "%lld redrawn)\n",
       gamma, N, nmod, 100 * (m1 / e_th - 1), 100 * *se, nb, per, (long long)r->resampled);
+  assert_int_equal(r->resampled, 0); /* the cap on eps^2 plays no part (comment below) */
   hd_rods_free(r);
   return m1 / e_th - 1;
 }
