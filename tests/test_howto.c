@@ -284,8 +284,8 @@ static void howto_shape_forms(void **state) {
                hd_scene_form_spacing.name);
       assert_string_equal(e.msg, msg);
     }
-    form_text(f, -1, 0, 0.9, text, sizeof text); /* a word too many */
-    strcat(text, f->spacing ? " 1" : " 0.9 1");
+    form_text(f, -1, 0, f->spacing ? 0.9 : 0, text, sizeof text); /* every word it takes, */
+    strcat(text, " 1");                                           /* and exactly one more */
     assert_int_equal(load_shape(&sc, text, &e), HD_EINPUT);
     assert_true(lists_forms(e.msg, ""));
     /* (4) */
