@@ -64,6 +64,7 @@ int main(int argc, char **argv) {
   }
   sc.box_x = sc.box_y = sqrt((double)n * area / eta);
   sc.seed = 1;
+  sc.log_collisions = log ? HD_LOG_ALL : HD_LOG_NONE; /* as `haff run` with [log] collisions */
   sc.temperature = 1.0;
   sc.placement = !dimer && eta > 0.4 ? HD_PLACE_LATTICE : HD_PLACE_RANDOM;
   hd_sim *s;

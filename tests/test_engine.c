@@ -438,6 +438,50 @@ static void prefetch_hints_change_nothing(void **state) {
   }
 }
 
+/* The contact angles are left out (NaN) when the scene logs no collision ([log] collisions =
+ * none, hd_sim.angles = 0: two atan2 per dimer collision saved), and nothing else changes: a
+ * dimer-disk mixture run with and without them has the same events with the same times, bodies,
+ * disks, vn, de and f bit for bit, and the same final state; with them every dimer's angle is a
+ * number in (-pi, pi], without them every one is NaN (disks' are NaN either way). */
+static void angles_only_when_logged(void **state) {
+  (void)state;
+  hd_sim *s[2];
+  hd_error err;
+  for (int k = 0; k < 2; k++) {
+    hd_scene sc;
+    test_disk_scene(&sc, 400, 0.08, 0.9, 19); /* 0.24 with the dimers */
+    sc.n_dimers = 400, sc.dimer_alpha = 0.95, sc.disk_alpha_dimer = 0.8;
+    sc.log_collisions = k ? HD_LOG_NONE : HD_LOG_ALL;
+    assert_int_equal(hd_sim_alloc(&s[k], &sc, &err), HD_OK);
+  }
+  assert_int_equal(s[0]->angles, 1);
+  assert_int_equal(s[1]->angles, 0);
+  long steps = test_size(20000, 10), dimer_angles = 0;
+  for (long n = 0; n < steps; n++) {
+    hd_event_out e[2];
+    for (int k = 0; k < 2; k++)
+      if (hd_sim_next(s[k], INFINITY, &e[k], &err)) fail_msg("event %ld: %s", n, err.msg);
+    assert_memory_equal(&e[0].t, &e[1].t, sizeof(double));
+    assert_true(e[0].i == e[1].i && e[0].j == e[1].j && e[0].ka == e[1].ka && e[0].kb == e[1].kb);
+    assert_memory_equal(&e[0].info.vn, &e[1].info.vn, sizeof(double));
+    assert_memory_equal(&e[0].info.de, &e[1].info.de, sizeof(double));
+    assert_memory_equal(&e[0].info.f, &e[1].info.f, sizeof(double));
+    int dimer_i = s[0]->shape[s[0]->b[e[0].i].species].tag == HD_KIND_DIMER;
+    if (dimer_i) {
+      assert_true(e[0].info.theta_i > -M_PI && e[0].info.theta_i <= M_PI);
+      assert_true(isnan(e[1].info.theta_i));
+      dimer_angles++;
+    } else {
+      assert_true(isnan(e[0].info.theta_i) && isnan(e[1].info.theta_i));
+    }
+  }
+  assert_true(dimer_angles > steps / 4); /* the check saw dimers, not only disks */
+  for (int32_t i = 0; i < s[0]->n; i++)
+    assert_memory_equal(&s[0]->b[i].k, &s[1]->b[i].k, sizeof(hd_kin));
+  hd_sim_free(s[0]);
+  hd_sim_free(s[1]);
+}
+
 /* Near jamming: 1000 elastic disks at area fraction 0.72 (a melted lattice; hard disks freeze
  * near 0.70), 2e5 collisions in verification mode: energy drift < 1e-10, no overlap, and the
  * melt left no overlap and a Maxwellian start (exact T). */
@@ -686,6 +730,7 @@ static void dilute_precision(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(head_on),
+      cmocka_unit_test(angles_only_when_logged),
       cmocka_unit_test(huge_box_in_diameters),
       cmocka_unit_test(oblique_grazing_periodic),
       cmocka_unit_test(collision_across_wrap),

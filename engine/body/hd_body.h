@@ -253,6 +253,12 @@ int hd_predict_wall(const hd_kin *A, const hd_shape *sa, const hd_wall *w, doubl
 int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
                     double alpha, hd_collision_info *info);
 
+/* hd_collide_pair, with the contact angles of *info (theta_i, theta_j) computed only if `angles`
+ * (else NaN) for the paper's dimer and dimer-disk rules; vn, de, f and the velocities after are
+ * the same bit for bit.  The engine leaves them out when no collision is logged. */
+int hd_collide_pair_ex(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
+                       double alpha, int angles, hd_collision_info *info);
+
 /* Collision of A (disk ka) and B (disk kb) with restitution alpha in [0, 1] along the normal
  * and tangential restitution beta in [-1, 1] at the contact point (rough bodies; the rule and
  * its derivation: hd_body_rough.c, docs/analysis.md): the relative velocity g of the contact

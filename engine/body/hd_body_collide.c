@@ -69,14 +69,19 @@ static int collide_disks(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shap
 
 int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
                     double alpha, hd_collision_info *info) {
+  return hd_collide_pair_ex(A, sa, B, sb, ka, kb, alpha, 1, info);
+}
+
+int hd_collide_pair_ex(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
+                       double alpha, int angles, hd_collision_info *info) {
   if (sa->tag == HD_KIND_DISK && sb->tag == HD_KIND_DISK)
     return collide_disks(A, sa, B, sb, alpha, info);
   if (sa->tag == HD_KIND_BODY || sb->tag == HD_KIND_BODY)
     return hd_impulse_pair(A, sa, B, sb, ka, kb, alpha, info); /* the general rule */
-  if (info) hd_pair_info(A, sa, B, sb, ka, kb, alpha, info);
-  hd_side a, b;
+  hd_side a, b; /* (the info and the rule share them: the velocities change only below) */
   hd_side_of(A, sa, ka, &a);
   hd_side_of(B, sb, kb, &b);
+  if (info) hd_pair_info_sides(A, &a, sa, ka, B, &b, sb, kb, alpha, angles, info);
   double r13x = (A->x - B->x) + (a.ox - b.ox), r13y = (A->y - B->y) + (a.oy - b.oy);
   double dd = sqrt(r13x * r13x + r13y * r13y);
   double g = (b.vx - a.vx) * r13x + (b.vy - a.vy) * r13y; /* (v3 - v1) . r13 */

@@ -90,19 +90,25 @@ static double loss(double alpha, double vn, double inv_mu) {
   return vn < 0.0 ? -0.5 * (1.0 - alpha) * (1.0 + alpha) * vn * vn / inv_mu : 0.0;
 }
 
+void hd_pair_info_sides(const hd_kin *A, const hd_side *a, const hd_shape *sa, int ka,
+                        const hd_kin *B, const hd_side *b, const hd_shape *sb, int kb, double alpha,
+                        int angles, hd_collision_info *info) {
+  double nx, ny;
+  hd_pair_normal(A, a, B, b, &nx, &ny);
+  double inv_mu = hd_side_inv_mass(a, nx, ny) + hd_side_inv_mass(b, nx, ny);
+  info->vn = (b->vx - a->vx) * nx + (b->vy - a->vy) * ny;
+  info->theta_i = angles ? hd_side_theta(a, nx, ny) : NAN;
+  info->theta_j = angles ? hd_side_theta(b, -nx, -ny) : NAN;
+  info->f = 1.0 / (inv_mu * pair_mref(sa, ka, sb, kb));
+  info->de = loss(alpha, info->vn, inv_mu);
+}
+
 void hd_pair_info(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb, int ka,
                   int kb, double alpha, hd_collision_info *info) {
   hd_side a, b;
-  double nx, ny;
   hd_side_of(A, sa, ka, &a);
   hd_side_of(B, sb, kb, &b);
-  hd_pair_normal(A, &a, B, &b, &nx, &ny);
-  double inv_mu = hd_side_inv_mass(&a, nx, ny) + hd_side_inv_mass(&b, nx, ny);
-  info->vn = (b.vx - a.vx) * nx + (b.vy - a.vy) * ny;
-  info->theta_i = hd_side_theta(&a, nx, ny);
-  info->theta_j = hd_side_theta(&b, -nx, -ny);
-  info->f = 1.0 / (inv_mu * pair_mref(sa, ka, sb, kb));
-  info->de = loss(alpha, info->vn, inv_mu);
+  hd_pair_info_sides(A, &a, sa, ka, B, &b, sb, kb, alpha, 1, info);
 }
 
 /* The unit normal from a disk to wall w. */

@@ -47,6 +47,13 @@ double hd_side_theta(const hd_side *o, double nx, double ny);
 void hd_pair_normal(const hd_kin *A, const hd_side *sa, const hd_kin *B, const hd_side *sb,
                     double *nx, double *ny);
 
+/* hd_pair_info from the two sides (hd_side_of of A's disk ka and B's disk kb), with the contact
+ * angles theta_i, theta_j only if `angles` (else NaN: two atan2 saved per collision when nothing
+ * logs them); vn, de and f are the same either way. */
+void hd_pair_info_sides(const hd_kin *A, const hd_side *a, const hd_shape *sa, int ka,
+                        const hd_kin *B, const hd_side *b, const hd_shape *sb, int kb, double alpha,
+                        int angles, hd_collision_info *info);
+
 /* hd_collision_info of a collision of A (disk ka) with B (disk kb) before it happens. */
 void hd_pair_info(const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb, int ka,
                   int kb, double alpha, hd_collision_info *info);

@@ -132,6 +132,7 @@ static int sim_setup(hd_sim **out, const hd_scene *sc, hd_error *err) {
   s->wall[1].pos = s->lx;
   s->wall[3].pos = s->ly;
   s->verify = sc->verify;
+  s->angles = sc->log_collisions != HD_LOG_NONE; /* nobody reads them otherwise */
   s->rng = gsl_rng_alloc(gsl_rng_mt19937);
   if (!s->rng) {
     hd_sim_free(s);
@@ -714,8 +715,8 @@ int hd_sim_next(hd_sim *s, double t_stop, hd_event_out *ev, hd_error *err) {
                             s->alpha[bi->species][bj->species], s->beta[bi->species][bj->species],
                             &ev->info);
     else
-      hd_collide_pair(&bi->k, &s->shape[bi->species], &kj, &s->shape[bj->species], ka, kb,
-                      s->alpha[bi->species][bj->species], &ev->info);
+      hd_collide_pair_ex(&bi->k, &s->shape[bi->species], &kj, &s->shape[bj->species], ka, kb,
+                         s->alpha[bi->species][bj->species], s->angles, &ev->info);
     if (s->verify) {
       int rc = verify_contact(s, &bi->k, &kj, i, j, ka, kb, err);
       if (rc) return rc;

@@ -93,7 +93,7 @@ typedef struct hd_event_out {
   hd_coll_kind kind;      /* of the partners' species kinds (hd_sim.sp_kind, hd_coll_kind_of) */
   int32_t i, j;           /* bodies; j = -1 - wall index for a wall */
   int ka, kb;             /* touching disks (kb = -1 for a wall) */
-  hd_collision_info info; /* angles, f, de, vn */
+  hd_collision_info info; /* angles (NaN for dimers unless hd_sim.angles), f, de, vn */
 } hd_event_out;
 
 /* The simulation. */
@@ -141,6 +141,9 @@ typedef struct hd_sim {
                            * body has flown HD_REBASE_TRAVEL of the smallest diameter
                            * since (hd_sim_queue_init; hd_sim.c, rebase) */
   int verify;             /* check invariants at every event (slow) */
+  int angles;             /* the contact angles of hd_event_out.info are computed (1), or left
+                           * NaN for dimer pairs (0: the scene logs no collision, [log]
+                           * collisions = none); set it to 1 to have them all the same */
   int disks_only;         /* only [disks] bodies: disk-disk prediction without shape dispatch */
   double disks_d;         /* the diameter of the [disks] species (HD_KIND_DISK) */
   int partial_cross;      /* pure disks, >= 3x3 cells: crossings search 3 new cells */
