@@ -439,47 +439,62 @@ static void prefetch_hints_change_nothing(void **state) {
 }
 
 /* The contact angles are left out (NaN) when the scene logs no collision ([log] collisions =
- * none, hd_sim.angles = 0: two atan2 per dimer collision saved), and nothing else changes: a
- * dimer-disk mixture run with and without them has the same events with the same times, bodies,
- * disks, vn, de and f bit for bit, and the same final state; with them every dimer's angle is a
- * number in (-pi, pi], without them every one is NaN (disks' are NaN either way). */
+ * none, hd_sim.angles = 0: two atan2 per collision of bodies of several disks saved), and
+ * nothing else changes: a dimer-disk mixture and a trimer-disk mixture (the general rule), each
+ * run with and without them, have the same events with the same times, bodies, disks, vn, de and
+ * f bit for bit, and the same final state; with them the angle of a body of several disks is a
+ * number in (-pi, pi] (NaN for a disk at its centre), without them NaN. */
 static void angles_only_when_logged(void **state) {
   (void)state;
-  hd_sim *s[2];
-  hd_error err;
-  for (int k = 0; k < 2; k++) {
-    hd_scene sc;
-    test_disk_scene(&sc, 400, 0.08, 0.9, 19); /* 0.24 with the dimers */
-    sc.n_dimers = 400, sc.dimer_alpha = 0.95, sc.disk_alpha_dimer = 0.8;
-    sc.log_collisions = k ? HD_LOG_NONE : HD_LOG_ALL;
-    assert_int_equal(hd_sim_alloc(&s[k], &sc, &err), HD_OK);
-  }
-  assert_int_equal(s[0]->angles, 1);
-  assert_int_equal(s[1]->angles, 0);
-  long steps = test_size(20000, 10), dimer_angles = 0;
-  for (long n = 0; n < steps; n++) {
-    hd_event_out e[2];
-    for (int k = 0; k < 2; k++)
-      if (hd_sim_next(s[k], INFINITY, &e[k], &err)) fail_msg("event %ld: %s", n, err.msg);
-    assert_memory_equal(&e[0].t, &e[1].t, sizeof(double));
-    assert_true(e[0].i == e[1].i && e[0].j == e[1].j && e[0].ka == e[1].ka && e[0].kb == e[1].kb);
-    assert_memory_equal(&e[0].info.vn, &e[1].info.vn, sizeof(double));
-    assert_memory_equal(&e[0].info.de, &e[1].info.de, sizeof(double));
-    assert_memory_equal(&e[0].info.f, &e[1].info.f, sizeof(double));
-    int dimer_i = s[0]->shape[s[0]->b[e[0].i].species].tag == HD_KIND_DIMER;
-    if (dimer_i) {
-      assert_true(e[0].info.theta_i > -M_PI && e[0].info.theta_i <= M_PI);
-      assert_true(isnan(e[1].info.theta_i));
-      dimer_angles++;
-    } else {
-      assert_true(isnan(e[0].info.theta_i) && isnan(e[1].info.theta_i));
+  for (int tri = 0; tri < 2; tri++) {
+    hd_sim *s[2];
+    hd_error err;
+    for (int k = 0; k < 2; k++) {
+      hd_scene sc;
+      test_disk_scene(&sc, 400, 0.08, 0.9, 19); /* 0.24 with the dimers, 0.20 with trimers */
+      if (tri) {
+        hd_scene_species *sp = &sc.named[sc.n_named++];
+        snprintf(sp->name, sizeof sp->name, "trimer");
+        sp->count = 200;
+        sp->ndisk = 3;
+        for (int d = 0; d < 3; d++) sp->x[d] = d, sp->y[d] = 0, sp->d[d] = sp->m[d] = 1;
+        sp->alpha = 0.95;
+        for (int j = 0; j < 2; j++) sc.alpha_pair[2][j] = sc.alpha_pair[j][2] = 0.85;
+      } else {
+        sc.n_dimers = 400, sc.dimer_alpha = 0.95, sc.disk_alpha_dimer = 0.8;
+      }
+      sc.log_collisions = k ? HD_LOG_NONE : HD_LOG_ALL;
+      assert_int_equal(hd_sim_alloc(&s[k], &sc, &err), HD_OK);
     }
+    assert_int_equal(s[0]->angles, 1);
+    assert_int_equal(s[1]->angles, 0);
+    long steps = test_size(20000, 10), with_angle = 0;
+    for (long n = 0; n < steps; n++) {
+      hd_event_out e[2];
+      for (int k = 0; k < 2; k++)
+        if (hd_sim_next(s[k], INFINITY, &e[k], &err)) fail_msg("event %ld: %s", n, err.msg);
+      assert_memory_equal(&e[0].t, &e[1].t, sizeof(double));
+      assert_true(e[0].i == e[1].i && e[0].j == e[1].j && e[0].ka == e[1].ka && e[0].kb == e[1].kb);
+      assert_memory_equal(&e[0].info.vn, &e[1].info.vn, sizeof(double));
+      assert_memory_equal(&e[0].info.de, &e[1].info.de, sizeof(double));
+      assert_memory_equal(&e[0].info.f, &e[1].info.f, sizeof(double));
+      /* a number for the disks of a body off its centre (a trimer's middle disk has no axis) */
+      for (int side = 0; side < 2; side++) {
+        double th = side ? e[0].info.theta_j : e[0].info.theta_i;
+        int32_t b = side ? e[0].j : e[0].i;
+        if (isnan(th)) continue;
+        assert_true(b >= 0 && s[0]->shape[s[0]->b[b].species].n > 1);
+        assert_true(th > -M_PI && th <= M_PI);
+        with_angle++;
+      }
+      assert_true(isnan(e[1].info.theta_i) && isnan(e[1].info.theta_j));
+    }
+    assert_true(with_angle > steps / 4); /* the check saw dimers or trimers, not only disks */
+    for (int32_t i = 0; i < s[0]->n; i++)
+      assert_memory_equal(&s[0]->b[i].k, &s[1]->b[i].k, sizeof(hd_kin));
+    hd_sim_free(s[0]);
+    hd_sim_free(s[1]);
   }
-  assert_true(dimer_angles > steps / 4); /* the check saw dimers, not only disks */
-  for (int32_t i = 0; i < s[0]->n; i++)
-    assert_memory_equal(&s[0]->b[i].k, &s[1]->b[i].k, sizeof(hd_kin));
-  hd_sim_free(s[0]);
-  hd_sim_free(s[1]);
 }
 
 /* Near jamming: 1000 elastic disks at area fraction 0.72 (a melted lattice; hard disks freeze

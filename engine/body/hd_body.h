@@ -254,7 +254,7 @@ int hd_collide_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb
                     double alpha, hd_collision_info *info);
 
 /* hd_collide_pair, with the contact angles of *info (theta_i, theta_j) computed only if `angles`
- * (else NaN) for the paper's dimer and dimer-disk rules; vn, de, f and the velocities after are
+ * (else NaN) for bodies of more than one disk; vn, de, f and the velocities after are
  * the same bit for bit.  The engine leaves them out when no collision is logged. */
 int hd_collide_pair_ex(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
                        double alpha, int angles, hd_collision_info *info);

@@ -77,7 +77,7 @@ int hd_collide_pair_ex(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape 
   if (sa->tag == HD_KIND_DISK && sb->tag == HD_KIND_DISK)
     return collide_disks(A, sa, B, sb, alpha, info);
   if (sa->tag == HD_KIND_BODY || sb->tag == HD_KIND_BODY)
-    return hd_impulse_pair(A, sa, B, sb, ka, kb, alpha, info); /* the general rule */
+    return hd_impulse_pair_ex(A, sa, B, sb, ka, kb, alpha, angles, info); /* the general rule */
   hd_side a, b; /* (the info and the rule share them: the velocities change only below) */
   hd_side_of(A, sa, ka, &a);
   hd_side_of(B, sb, kb, &b);

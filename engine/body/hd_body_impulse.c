@@ -143,6 +143,11 @@ static void apply(hd_kin *k, const hd_side *o, double px, double py) {
 
 int hd_impulse_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
                     double alpha, hd_collision_info *info) {
+  return hd_impulse_pair_ex(A, sa, B, sb, ka, kb, alpha, 1, info);
+}
+
+int hd_impulse_pair_ex(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
+                       double alpha, int angles, hd_collision_info *info) {
   hd_side a, b;
   double nx, ny;
   hd_side_of(A, sa, ka, &a);
@@ -150,7 +155,7 @@ int hd_impulse_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb
   hd_pair_normal(A, &a, B, &b, &nx, &ny);
   double inv_mu = hd_side_inv_mass(&a, nx, ny) + hd_side_inv_mass(&b, nx, ny);
   double vn = (b.vx - a.vx) * nx + (b.vy - a.vy) * ny;
-  if (info) hd_pair_info(A, sa, B, sb, ka, kb, alpha, info);
+  if (info) hd_pair_info_sides(A, &a, sa, ka, B, &b, sb, kb, alpha, angles, info);
   if (!(vn < 0.0)) return 0;
   double J = -(1.0 + alpha) * vn / inv_mu;
   apply(A, &a, -J * nx, -J * ny);

@@ -66,6 +66,10 @@ void hd_wall_info(const hd_kin *A, const hd_shape *sa, int ka, const hd_wall *w,
 int hd_impulse_pair(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
                     double alpha, hd_collision_info *info);
 
+/* hd_impulse_pair with the contact angles only if `angles` (hd_collide_pair_ex). */
+int hd_impulse_pair_ex(hd_kin *A, const hd_shape *sa, hd_kin *B, const hd_shape *sb, int ka, int kb,
+                       double alpha, int angles, hd_collision_info *info);
+
 /* The generic rule against a wall (same contract as hd_collide_wall).  Returns 0. */
 int hd_impulse_wall(hd_kin *A, const hd_shape *sa, int ka, const hd_wall *w, double alpha,
                     hd_collision_info *info);

@@ -142,7 +142,7 @@ typedef struct hd_sim {
                            * since (hd_sim_queue_init; hd_sim.c, rebase) */
   int verify;             /* check invariants at every event (slow) */
   int angles;             /* the contact angles of hd_event_out.info are computed (1), or left
-                           * NaN for dimer pairs (0: the scene logs no collision, [log]
+                           * NaN for bodies of several disks (0: the scene logs no collision, [log]
                            * collisions = none); set it to 1 to have them all the same */
   int disks_only;         /* only [disks] bodies: disk-disk prediction without shape dispatch */
   double disks_d;         /* the diameter of the [disks] species (HD_KIND_DISK) */
