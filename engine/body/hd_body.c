@@ -636,7 +636,8 @@ void hd_ca_sincos(double x, double *s, double *c) {
 
 /* hd_ca_begin for a pair with a general cluster: the same steps over na x nb disk pairs. */
 static int ca_begin_general(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B,
-                            const hd_shape *sb, double tmax, const double *sca, hd_contact *c) {
+                            const hd_shape *sb, double tmax, const double *sca, const double *win,
+                            hd_contact *c) {
   hd_ca_geom *x = &ca->g;
   x->wall = 0;
   x->sha = sa;
@@ -655,12 +656,11 @@ static int ca_begin_general(hd_ca *ca, const hd_kin *A, const hd_shape *sa, cons
   x->wb = sb->rmax > 0.0 ? B->omega : 0.0;
   x->wsin = 0.0;
   x->wn = 0.0;
-  double dmin = HUGE_VAL, dmax = 0.0;
+  double dmin = HUGE_VAL;
   for (int i = 0; i < x->na; i++)
     for (int j = 0; j < x->nb; j++) {
       double D = 0.5 * (sa->dk[i] + sb->dk[j]);
       dmin = D < dmin ? D : dmin;
-      dmax = D > dmax ? D : dmax;
     }
   x->D = dmin;
   x->vs = fabs(A->vx) + fabs(A->vy) + fabs(B->vx) + fabs(B->vy) + fabs(x->wa) * x->ha +
@@ -695,8 +695,11 @@ static int ca_begin_general(hd_ca *ca, const hd_kin *A, const hd_shape *sa, cons
 
   /* pre-filter: the enclosing circles must meet */
   double t_in, t_out;
-  double R = sa->radius + sb->radius + 2.0 * TOL_SEP * dmax;
-  if (!circle_window(x->dx, x->dy, x->dvx, x->dvy, R, &t_in, &t_out)) return 0;
+  if (win) {
+    t_in = win[0], t_out = win[1];
+  } else if (!circle_window(x->dx, x->dy, x->dvx, x->dvy, hd_ca_reach(sa, sb), &t_in, &t_out)) {
+    return 0;
+  }
   if (t_in > tmax) return 0;
   x->L = sqrt(x->dvx * x->dvx + x->dvy * x->dvy) + fabs(x->wa) * x->ha + fabs(x->wb) * x->hb;
   x->K = x->wa * x->wa * x->ha + x->wb * x->wb * x->hb;
@@ -710,10 +713,25 @@ static int ca_begin_general(hd_ca *ca, const hd_kin *A, const hd_shape *sa, cons
   return 2;
 }
 
-int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
-                double tmax, const double *sca, hd_contact *c) {
+double hd_ca_reach(const hd_shape *sa, const hd_shape *sb) {
+  if (sa->tag == HD_KIND_BODY || sb->tag == HD_KIND_BODY) {
+    double dmax = 0.0;
+    for (int i = 0; i < sa->n; i++)
+      for (int j = 0; j < sb->n; j++) {
+        double D = 0.5 * (sa->dk[i] + sb->dk[j]);
+        dmax = D > dmax ? D : dmax;
+      }
+    return sa->radius + sb->radius + 2.0 * TOL_SEP * dmax;
+  }
+  return half_a(sa) + half_a(sb) + 0.5 * (sa->d + sb->d) * (1.0 + 2.0 * TOL_SEP);
+}
+
+/* hd_ca_begin and hd_ca_begin_in: win is NULL or {t_in, t_out}. */
+static int ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B,
+                    const hd_shape *sb, double tmax, const double *sca, const double *win,
+                    hd_contact *c) {
   if (sa->tag == HD_KIND_BODY || sb->tag == HD_KIND_BODY)
-    return ca_begin_general(ca, A, sa, B, sb, tmax, sca, c);
+    return ca_begin_general(ca, A, sa, B, sb, tmax, sca, win, c);
   hd_ca_geom *x = &ca->g;
   x->wall = 0;
   x->sha = x->shb = NULL;
@@ -762,8 +780,11 @@ int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B,
 
   /* pre-filter: the enclosing circles must meet */
   double t_in, t_out;
-  double R = x->ha + x->hb + x->D * (1.0 + 2.0 * TOL_SEP);
-  if (!circle_window(x->dx, x->dy, x->dvx, x->dvy, R, &t_in, &t_out)) return 0;
+  if (win) {
+    t_in = win[0], t_out = win[1];
+  } else if (!circle_window(x->dx, x->dy, x->dvx, x->dvy, hd_ca_reach(sa, sb), &t_in, &t_out)) {
+    return 0;
+  }
   if (t_in > tmax) return 0;
   x->L = sqrt(x->dvx * x->dvx + x->dvy * x->dvy) + fabs(x->wa) * x->ha + fabs(x->wb) * x->hb;
   x->K = x->wa * x->wa * x->ha + x->wb * x->wb * x->hb;
@@ -775,6 +796,18 @@ int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B,
     ca->ca0 = sca[1];
   }
   return 2;
+}
+
+int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
+                double tmax, const double *sca, hd_contact *c) {
+  return ca_begin(ca, A, sa, B, sb, tmax, sca, NULL, c);
+}
+
+int hd_ca_begin_in(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B,
+                   const hd_shape *sb, double tmax, const double *sca, double t_in, double t_out,
+                   hd_contact *c) {
+  const double win[2] = {t_in, t_out};
+  return ca_begin(ca, A, sa, B, sb, tmax, sca, win, c);
 }
 
 int hd_ca_step(hd_ca *ca, double tmax, hd_contact *c) {

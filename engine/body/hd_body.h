@@ -224,6 +224,20 @@ void hd_ca_sincos(double x, double *s, double *c);
 int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B, const hd_shape *sb,
                 double tmax, const double *sca, hd_contact *c);
 
+/* The radius R of the window in which a search of bodies of shapes sa and sb can find a contact:
+ * the centres of mass within R (the enclosing circles, widened against round-off), exactly as
+ * hd_ca_begin computes it. */
+double hd_ca_reach(const hd_shape *sa, const hd_shape *sb);
+
+/* hd_ca_begin for a caller that has already computed the window [t_in, t_out] in which the
+ * centres are within hd_ca_reach(sa, sb) of each other, as hd_ca_begin would from A and B
+ * (c = |dR|^2 - R^2, b = dR.dV, disc = b^2 - |dV|^2 c; t_in = 0 if c <= 0, else
+ * c / (sqrt(disc) - b); t_out = (sqrt(disc) - b) / |dV|^2, or -c / (b + sqrt(disc)) when c <= 0
+ * and b > 0), non-empty: the same search bit for bit, without computing the window again. */
+int hd_ca_begin_in(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B,
+                   const hd_shape *sb, double tmax, const double *sca, double t_in, double t_out,
+                   hd_contact *c);
+
 /* One step of a search under way (hd_ca_begin returned 2), with tmax no larger than at the start
  * (it may shrink between steps, e.g. to the earliest contact found with other bodies).  Returns 0
  * if there is no contact in [0, tmax], 1 with *c filled at the earliest contact, 2 if the search

@@ -176,20 +176,32 @@ static void predict_disks(hd_sim *s, int32_t i, int32_t cx, int32_t cy, double c
 
 /* A neighbour whose contact search is pending, with a lower bound on its contact time. */
 typedef struct hd_cand {
-  double t;      /* no contact before t (relative to now) */
-  double lim;    /* the search ends at the earlier next crossing of the two bodies */
-  double sx, sy; /* periodic shift of the neighbour */
-  int32_t j;     /* the neighbour */
-  int begun;     /* ca is under way (else t is the enclosing circles' bound) */
-  hd_ca ca;      /* its root search, once begun */
+  double t;              /* no contact before t (relative to now) */
+  double lim;            /* the search ends at the earlier next crossing of the two bodies */
+  double sx, sy;         /* periodic shift of the neighbour */
+  int32_t j;             /* the neighbour */
+  int begun;             /* ca is under way (else t is the enclosing circles' bound) */
+  double c, b, v2, disc; /* the circles' window before it is begun: t = its start */
+  hd_ca ca;              /* its root search, once begun */
 } hd_cand;
+
+/* The end of the window of a neighbour not yet begun (hd_ca_begin_in: as hd_ca_begin's
+ * circle_window computes it). */
+static inline double cand_window_end(const hd_cand *c) {
+  double sq = sqrt(c->disc);
+  if (c->c > 0.0) return (sq - c->b) / c->v2;
+  if (c->v2 == 0.0) return HUGE_VAL;
+  return c->b <= 0.0 ? (sq - c->b) / c->v2 : -c->c / (c->b + sq);
+}
 #define HD_MAX_CAND 64
 
 /* The contacts of body i with its neighbours (but skip) in a scene with dimers, best first.
  * Each neighbour's root search (conservative advancement, hd_ca_step) only moves forward in
  * time and its current time is a lower bound on its contact time; the first bound is when the
- * enclosing circles (radius (a + d)/2 about the centres of mass, in linear motion, widened by
- * 1e-9 against round-off) first meet.  The search that is furthest behind takes the next step,
+ * enclosing circles (radius (a + d)/2 about the centres of mass, in linear motion, widened
+ * against round-off: hd_ca_reach) first meet, the start of the search's window, which is handed
+ * to it (hd_ca_begin_in) rather than computed twice.  The search that is furthest behind takes
+ * the next step,
  * and all stop once the smallest bound is not below the earliest contact found: no step is
  * taken past the final answer, and every other pair touches later, if at all.  Disk-disk
  * pairs take the closed form at once. */
@@ -197,9 +209,8 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
   hd_body *bi = &s->b[i];
   const double now = s->c.t;
   const hd_shape *si = &s->shape[bi->species];
-  const double *rad = s->reach; /* enclosing radii, widened */
-  const double rad_i = rad[bi->species];
-  const int i_disk = si->tag == HD_KIND_DISK; /* (locals: the stores below may alias s) */
+  const double *rad = s->ca_reach[bi->species]; /* the windows' radii (hd_ca_reach) */
+  const int i_disk = si->tag == HD_KIND_DISK;   /* (locals: the stores below may alias s) */
   hd_cand cs[HD_MAX_CAND];
   int nc = 0, ord[HD_MAX_CAND];
   double sca[2]; /* sin and cos of i's orientation, shared by its searches */
@@ -212,15 +223,15 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
                         disk_contact(s, bi, bj), best);
       continue;
     }
-    double dtj = now - bj->t, R = rad_i + rad[bj->species];
+    double dtj = now - bj->t, R = rad[bj->species];
     double rx = bj->k.x + bj->k.vx * dtj + sx - bi->k.x,
            ry = bj->k.y + bj->k.vy * dtj + sy - bi->k.y;
     /* the circles' first meeting, without branches on the data (they would be mispredicted):
      * 0 if they overlap (c <= 0), else c / (sqrt(b^2 - v^2 c) - b) when they meet (b < 0 and
      * disc > 0); a denominator floored at DBL_MIN only lowers the bound */
     double vx = bj->k.vx - bi->k.vx, vy = bj->k.vy - bi->k.vy;
-    double c = rx * rx + ry * ry - R * R, b = rx * vx + ry * vy,
-           disc = b * b - (vx * vx + vy * vy) * c;
+    double c = rx * rx + ry * ry - R * R, b = rx * vx + ry * vy, v2 = vx * vx + vy * vy,
+           disc = b * b - v2 * c;
     double t = dmax(c, 0.0) / dmax(sqrt(dmax(disc, 0.0)) - b, DBL_MIN);
     double lim = dmin(cross, bj->c_t - now);
     /* kept unless it cannot touch before the earliest contact so far, or within the horizon */
@@ -236,6 +247,7 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
     cd->sy = sy;
     cd->j = j;
     cd->begun = 0;
+    cd->c = c, cd->b = b, cd->v2 = v2, cd->disc = disc;
     nc += keep;
   });
   for (int k = 0; k < nc; k++) ord[k] = k;
@@ -260,7 +272,8 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
       hd_kin_advance(&kj, now - bj->t);
       kj.x += c->sx;
       kj.y += c->sy;
-      r = hd_ca_begin(&c->ca, &bi->k, si, &kj, &s->shape[bj->species], lim, sca, &ct);
+      r = hd_ca_begin_in(&c->ca, &bi->k, si, &kj, &s->shape[bj->species], lim, sca, c->t,
+                         cand_window_end(c), &ct);
       c->begun = 1;
     }
     if (r == 2) {

@@ -119,9 +119,11 @@ typedef struct hd_sim {
   double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* pair restitution by species */
   double reach[HD_MAX_SPECIES]; /* enclosing radius of each species widened by 1e-9 (the
                                  * neighbour filter of hd_predict.c) */
-  double wall_alpha;            /* body-wall restitution */
-  double beta[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* pair tangential restitution (-1: smooth) */
-  double wall_beta;                            /* body-wall tangential restitution */
+  double ca_reach[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* hd_ca_reach of each pair of species: the
+                                                    * contact search's window (hd_predict.c) */
+  double wall_alpha;                               /* body-wall restitution */
+  double beta[HD_MAX_SPECIES][HD_MAX_SPECIES];     /* pair tangential restitution (-1: smooth) */
+  double wall_beta;                                /* body-wall tangential restitution */
   unsigned char rough[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* the pair takes the rough rule
                                                         * (hd_collide_rough_pair): beta > -1,
                                                         * or a species with q > 0 */
