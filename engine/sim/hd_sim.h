@@ -144,8 +144,10 @@ typedef struct hd_sim {
                            * since (hd_sim_queue_init; hd_sim.c, rebase) */
   int verify;             /* check invariants at every event (slow) */
   int angles;             /* the contact angles of hd_event_out.info are computed (1), or left
-                           * NaN for bodies of several disks (0: the scene logs no collision, [log]
-                           * collisions = none); set it to 1 to have them all the same */
+                           * NaN in smooth pair collisions of bodies of several disks (0: the
+                           * scene logs no collision, [log] collisions = none; wall and rough
+                           * collisions, a few per cent, have them always); set it to 1 to have
+                           * them all the same */
   int disks_only;         /* only [disks] bodies: disk-disk prediction without shape dispatch */
   double disks_d;         /* the diameter of the [disks] species (HD_KIND_DISK) */
   int partial_cross;      /* pure disks, >= 3x3 cells: crossings search 3 new cells */
