@@ -29,7 +29,6 @@ static size_t distinct_in(const double *x, size_t n, double lo, double hi, doubl
 int hd_cli_grid_make(const double *const *cpd, const size_t *n, size_t m, hd_cli_grid *g,
                      hd_error *err) {
   g->n = 0, g->cpd = NULL, g->lo = -INFINITY, g->hi = INFINITY, g->longest = -INFINITY;
-  g->same = 1;
   for (size_t k = 0; k < m; k++) {
     size_t a, b;
     if (!finite_ends(cpd[k], n[k], &a, &b))
@@ -39,9 +38,8 @@ int hd_cli_grid_make(const double *const *cpd, const size_t *n, size_t m, hd_cli
   }
   if (m == 0 || !(g->lo <= g->hi))
     return hd_error_set(err, HD_EINPUT,
-                        "the runs share no cpd range (latest start %g, earliest "
-                        "end %g)",
-                        g->lo, g->hi);
+                        "the runs share no cpd range (latest start %g, earliest end %g)", g->lo,
+                        g->hi);
   size_t best = 0, nb = 0;
   for (size_t k = 0; k < m; k++) {
     size_t c = distinct_in(cpd[k], n[k], g->lo, g->hi, NULL);
@@ -50,17 +48,6 @@ int hd_cli_grid_make(const double *const *cpd, const size_t *n, size_t m, hd_cli
   g->cpd = malloc((nb ? nb : 1) * sizeof *g->cpd);
   if (!g->cpd) return hd_error_set(err, HD_ENOMEM, "out of memory");
   g->n = distinct_in(cpd[best], n[best], g->lo, g->hi, g->cpd);
-  for (size_t k = 0; k < m && g->same; k++) {
-    size_t i = 0;
-    for (size_t j = 0; j < n[k] && g->same; j++) {
-      if (isnan(cpd[k][j]) || cpd[k][j] < g->lo || cpd[k][j] > g->hi) continue;
-      if (i < g->n && cpd[k][j] == g->cpd[i])
-        i++;
-      else if (!(i > 0 && cpd[k][j] == g->cpd[i - 1]))
-        g->same = 0; /* a repeat is the same */
-    }
-    g->same &= i == g->n;
-  }
   return HD_OK;
 }
 

@@ -15,7 +15,6 @@ typedef struct hd_cli_grid {
   double *cpd;    /* malloc'd; hd_cli_grid_free */
   double lo, hi;  /* the range every run covers: the latest first cpd, the earliest last one */
   double longest; /* the largest last cpd of any run (> hi: the longer runs were cut at hi) */
-  int same;       /* 1 if every run has exactly the grid's cpd values in [lo, hi] */
 } hd_cli_grid;
 
 /* The grid of m runs, run k's samples at cpd[k][0..n[k]) (ascending; NaN entries are skipped):
