@@ -72,7 +72,7 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
     rc = hd_hcs_window_find(s.t, s.coll, e, s.cpd, s.s_perp, s.flow_frac, s.flow_chaos, s.n,
                             &o->homog, &o->hcs, &w, &e2);
     if (rc) {
-      hd_error_set(err, rc, "%s", e2.msg);
+      hd_error_set(err, rc, "run %lld: %s", (long long)ri->id, e2.msg);
       goto done;
     }
     out->window = HD_WINDOW_COMPUTED;
@@ -85,6 +85,11 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
   }
   if (o->cpd_max > 0)
     while (nu > n0 + 1 && s.cpd[nu - 1] > o->cpd_max) nu--;
+  if (o->detect && s.cpd[n0] < o->hcs.cpd_skip && !out->why[0])
+    snprintf(out->why, sizeof out->why,
+             "the window starts at cpd %g, before the transient's end (--cpd-skip %g): the run "
+             "or its HCS is shorter than the transient, its last 3 samples are fitted",
+             s.cpd[n0], o->hcs.cpd_skip);
   out->n_start = n0;
   out->n_used = nu;
   out->t_start = s.t[n0];
@@ -111,6 +116,10 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
   } else {
     out->haff_ok = hd_fit_haff_log(k, x, nu - n0, ri->alpha, &out->haff, &fe) == HD_OK;
     if (!out->haff_ok) snprintf(out->why, sizeof out->why, "eq. 31 fit: %.200s", fe.msg);
+    /* too few samples for an error (HD_FIT_ERR_MIN_SAMPLES): the values stay, their errors
+     * and chi2 are unresolved (NaN, printed empty), not a formal 1e-12 */
+    if (out->haff_ok && nu - n0 < HD_FIT_ERR_MIN_SAMPLES)
+      out->haff.D_e_err = out->haff.nu0_err = out->haff.chi2 = NAN;
   }
   /* T at the window's start from all its samples, not one: Haff's law T(t) = T0 / u(t)^2,
    * u = 1 + gamma nu0 t with the fit's gamma and nu0 (u = 1 at alpha = 1), so T0 is the mean of
@@ -142,8 +151,10 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
     hd_linfit lf;
     if (g1 > 0 && hd_fit_linear_t(x, k, m, 0.68, &lf, &fe) == HD_OK && lf.a1 < 0) {
       double D = -g1 / lf.a1;
-      if (h < 0)
-        out->slope_ok = 1, out->D_e_slope = D, out->D_e_slope_err = D * lf.a1_err_ac / -lf.a1;
+      if (h < 0) /* its error: HD_FIT_ERR_MIN_SAMPLES's rule for a line */
+        out->slope_ok = 1, out->D_e_slope = D,
+        out->D_e_slope_err =
+            m >= HD_FIT_ERR_MIN_SAMPLES - 1 && lf.n_eff >= 3 ? D * lf.a1_err_ac / -lf.a1 : NAN;
       else
         out->D_e_half[h] = D;
     }

@@ -47,6 +47,19 @@ enum {
 #define HD_FIT_MIN_DECAY 1.0  /* ln(E_start / E_end) over the window, alpha < 1 */
 #define HD_FIT_MIN_SAMPLES 10 /* samples in the window (any alpha) */
 
+/* The fewest window samples whose per-run fit errors are printed (docs/analysis.md, "Short
+ * windows: the errors"); fewer: D_e_err, nu0_err, chi2 (so ratio_err and chi2/dof) are NaN,
+ * printed empty.  eq. (31)'s first sample is its origin (t = 0, tau = 0), which the model
+ * passes through whatever D_e and nu0 are: n samples give n - 1 residuals that constrain it
+ * and n - 3 degrees of freedom (n = 3: none; the curve passes through every point, chi2/dof
+ * 1e-25 and errors 1e-12).  A standard error needs residuals to estimate the scatter from, and
+ * the autocorrelation time the per-run line fits correct their errors with (hd_tau_int, for
+ * D_e_slope_err and K) is not estimated below 4 residuals (it returns 0.5, "independent"): so
+ * 4 informative residuals, n >= 5, 2 degrees of freedom.  D_e_slope_err, a line through all m
+ * window samples: m >= 4 likewise, and n_eff >= 3 (its autocorrelation-corrected dof n_eff - 2
+ * at least 1 without hd_fit_linear_t's clamp to 1). */
+#define HD_FIT_ERR_MIN_SAMPLES 5
+
 /* Runs a group rejects (docs/analysis.md, "Outlier runs: the rule"): |D_e - median| > z s, s =
  * 1.4826 MAD of the D_e of the group's fitted runs (the standard deviation of a normal sample),
  * tested when the group has at least HD_FIT_REJECT_MIN such runs.  Measured on the default
@@ -70,7 +83,9 @@ typedef struct hd_run_fit {
   hd_run_info info;
   size_t n_samples;          /* rows in samples */
   size_t n_start;            /* first sample used by the fits (0 when detect = 0) */
-  size_t n_used;             /* samples used by the fits: [n_start, n_used) */
+  size_t n_used;             /* end of the samples used by the fits: [n_start, n_used) (an
+                              * index; haff-fit's column n_used prints n_used - n_start, the
+                              * samples in the window) */
   int window;                /* HD_WINDOW_*: where [n_start, n_used) came from (before cpd_max) */
   hd_homog homog;            /* rate/sqrt(E) detector result (n_end = n_samples when detect = 0) */
   hd_hcs hcs;                /* the state measures' HCS window (detect = 1; have = 0 otherwise) */
@@ -83,11 +98,13 @@ typedef struct hd_run_fit {
                               * gamma, nu0; the mean of e_tr at alpha = 1); NaN without a fit */
   int slope_ok;              /* 1 if the ln E against cpd fit succeeded */
   double D_e_slope;          /* -(1 - alpha^2) / (slope of ln E against cpd): needs no nu0 */
-  double D_e_slope_err;      /* its error from the residuals' autocorrelation-corrected OLS error */
+  double D_e_slope_err;      /* its error from the residuals' autocorrelation-corrected OLS
+                              * error; NaN with < HD_FIT_ERR_MIN_SAMPLES - 1 samples or n_eff < 3 */
   double D_e_half[2];        /* D_e_slope over the first and second half (in cpd) of the window
                               * (NaN if a half has < 3 samples): the window's systematic error */
   int haff_ok;               /* 1 if the eq. (31) fit succeeded */
-  hd_haff_fit haff;          /* its result */
+  hd_haff_fit haff;          /* its result; D_e_err, nu0_err and chi2 NaN (unresolved) when
+                              * the window has < HD_FIT_ERR_MIN_SAMPLES samples */
   double nu0_enskog;         /* eq. (29) for disks of diameter d, body mass, density n, T0_avg (T0
                               * without a fit), eta_disk */
   double ratio, ratio_err;   /* nu0_eff / nu0_enskog and its standard error */

@@ -84,7 +84,11 @@ int hd_hcs_detect(const double *cpd, const double *s_perp, const double *flow_fr
   memset(out, 0, sizeof *out);
   size_t i0 = 0;
   while (i0 < n && cpd[i0] < o->cpd_skip) i0++;
-  if (i0 == n) i0 = n - 1; /* a run shorter than the transient: its last sample */
+  if (i0 == n) /* no window: not moved to the last sample, which nobody asked for */
+    return hd_error_set(err, HD_EINPUT,
+                        "HCS window: the transient cut (--cpd-skip %g) is past the run's last "
+                        "sample (cpd %g)",
+                        o->cpd_skip, cpd[n - 1]);
   out->n_start = i0, out->n_end = n;
   out->s_perp = out->flow_excess = NAN;
   for (size_t i = i0; i < n; i++) out->have |= !isnan(s_perp[i]);
@@ -133,7 +137,20 @@ int hd_hcs_window_find(const double *t, const double *coll, const double *e, con
     nu = w->homog.n_end;
     if (w->homog.detected) w->end = HD_HCS_END_RATE;
   }
-  if (hd_hcs_detect(cpd, s_perp, flow_frac, flow_chaos, n, hc, &w->hcs, &e2) != HD_OK) {
+  /* a run that ends within the transient: an explicit cpd_skip past its end is refused; the
+   * default one (the run layer's stored window, and analyses that did not ask) starts the
+   * window at the last sample, 3 samples before the end below: a short window (its fit flagged
+   * `short`, its errors empty: hd_run_fit_do) */
+  hd_hcs_opts hc2 = *hc;
+  if (!(cpd[n - 1] >= hc->cpd_skip)) {
+    if (hc->cpd_skip != hd_hcs_defaults().cpd_skip)
+      return hd_error_set(err, HD_EINPUT,
+                          "HCS window: --cpd-skip %g is past the run's last sample (cpd %g): no "
+                          "sample after the transient; give a smaller --cpd-skip, or --no-detect",
+                          hc->cpd_skip, cpd[n - 1]);
+    hc2.cpd_skip = cpd[n - 1];
+  }
+  if (hd_hcs_detect(cpd, s_perp, flow_frac, flow_chaos, n, &hc2, &w->hcs, &e2) != HD_OK) {
     snprintf(w->why, sizeof w->why, "%.150s", e2.msg);
   } else {
     w->hcs_ok = 1;

@@ -71,7 +71,8 @@ typedef struct hd_hcs {
 hd_hcs_opts hd_hcs_defaults(void);
 
 /* Finds the window on n samples (cpd ascending; s_perp, flow_frac, flow_chaos NaN where not
- * recorded).  Returns HD_OK or HD_EINPUT (n < 1, bad options). */
+ * recorded).  Returns HD_OK or HD_EINPUT (n < 1, bad options, or no sample with cpd >=
+ * cpd_skip: the window is not moved to the last sample). */
 int hd_hcs_detect(const double *cpd, const double *s_perp, const double *flow_frac,
                   const double *flow_chaos, size_t n, const hd_hcs_opts *o, hd_hcs *out,
                   hd_error *err);
@@ -86,7 +87,9 @@ enum {
 
 /* The window the fits use: the state measures' (hd_hcs_detect) cut also by the rate/sqrt(E)
  * detector's end (hd_homog_detect), whichever ends first; a window of fewer than 3 samples is
- * moved to start 3 samples before its end (so that a line can be fitted). */
+ * moved to start 3 samples before its end (so that a line can be fitted).  A run whose last
+ * sample is below cpd_skip: with the default cpd_skip (hd_hcs_defaults) its window is its last
+ * 3 samples; with another cpd_skip it has none (HD_EINPUT, err says why). */
 typedef struct hd_hcs_window {
   size_t n_start, n_end; /* samples [n_start, n_end), n_end - n_start >= min(n, 3) */
   int end;               /* HD_HCS_END_* */
@@ -99,7 +102,8 @@ typedef struct hd_hcs_window {
 /* Runs both detectors on n samples (t, coll, cpd ascending; e the energy per body; the
  * measures NaN where not recorded) and combines them into *w.  A detector that cannot run
  * (its input is bad) leaves its bound out and says why in w->why.  Returns HD_OK, or
- * HD_EINPUT for n < 1 or bad options (err set). */
+ * HD_EINPUT for n < 1, bad options, or a cpd_skip other than the default past the last sample
+ * (err set). */
 int hd_hcs_window_find(const double *t, const double *coll, const double *e, const double *cpd,
                        const double *s_perp, const double *flow_frac, const double *flow_chaos,
                        size_t n, const hd_homog_opts *ho, const hd_hcs_opts *hc, hd_hcs_window *w,

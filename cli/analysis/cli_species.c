@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_grid.h"
 #include "hd_species.h"
 
 /* What both commands read: the runs' fits and their ensembles. */
@@ -114,50 +115,71 @@ static int read_run(sqlite3 *db, const hd_run_fit *f, const hd_ana_mix *mix, run
   return rc;
 }
 
-/* The blocks of group q (one per species), the first one's separator after `first`. */
-static int write_group(FILE *out, sqlite3 *db, const hd_run_fit *fits, const hd_species_group *q,
-                       size_t gi, int *first, hd_error *err) {
-  size_t n = q->n, k = (size_t)q->mix.k, len = (size_t)-1;
-  run_series *r = calloc(n, sizeof *r);
-  if (!r) return hd_error_set(err, HD_ENOMEM, "out of memory");
-  int rc = HD_OK;
+/* The blocks of group q (one per species), the first one's separator after `first`: the runs
+ * averaged at matching cpd (hd_cli_grid: on the finest run's cpd values over the range every
+ * run covers; cmd_energy.c's rule: t linear in cpd, the energies linear in ln E). */
+static int write_group(FILE *out, const char *cmd, sqlite3 *db, const hd_run_fit *fits,
+                       const hd_species_group *q, size_t gi, int *first, hd_error *err) {
+  size_t n = q->n, k = (size_t)q->mix.k;
+  run_series *r = calloc(n ? n : 1, sizeof *r);
+  const double **x = calloc(n ? n : 1, sizeof *x);
+  size_t *nx = calloc(n ? n : 1, sizeof *nx), *hint = calloc(n ? n : 1, sizeof *hint);
+  double *et = malloc((k ? k : 1) * sizeof *et);
+  hd_cli_grid g = {0};
+  int rc = HD_OK, empty = 0;
+  if (!r || !x || !nx || !hint || !et) rc = hd_error_set(err, HD_ENOMEM, "out of memory");
   for (size_t i = 0; i < n && !rc; i++) {
     rc = read_run(db, &fits[q->idx[i]], &q->mix, &r[i], err);
-    if (!rc && r[i].s.n < len) len = r[i].s.n;
+    if (!rc) x[i] = r[i].cpd, nx[i] = r[i].s.n, empty |= r[i].s.n == 0;
   }
-  if (!rc && len > 0 && len != (size_t)-1) {
+  if (!rc && n > 0 && !empty) rc = hd_cli_grid_make(x, nx, n, &g, err);
+  if (!rc && n > 0 && !empty) {
     long N = 0;
     for (size_t j = 0; j < k; j++) N += q->mix.sp[j].count;
+    if (g.longest > g.hi)
+      fprintf(stderr,
+              "haff %s: note: group %zu: averaged up to cpd %g, where its shortest run ends "
+              "(the longest goes on to cpd %g)\n",
+              cmd, gi + 1, g.hi, g.longest);
     for (size_t j = 0; j < k; j++) {
       const hd_ana_sp *p = &q->mix.sp[j];
       if (!*first) fprintf(out, "\n\n");
       *first = 0;
-      fprintf(out, "# group=%zu run=%lld runs=%zu species=%s N=%ld T_ratio_theory=%s\n", gi + 1,
-              (long long)fits[q->idx[0]].info.id, n, p->name, p->count,
-              hd_cli_num("%.6g", q->row[j].T_ratio_theory, 0));
-      fprintf(out, "%s (%zu runs)\tcpd\te_tr\te_rot\tT_ratio\tK\thcs\n", p->name, n);
-      for (size_t f = 0; f < len; f++) {
-        double t = 0, cpd = 0, et = 0, er = 0, tr = 0;
+      fprintf(out, "# group=%zu run=%lld runs=%zu species=%s N=%ld T_ratio_theory=%s cpd_end=%.8g",
+              gi + 1, (long long)fits[q->idx[0]].info.id, n, p->name, p->count,
+              hd_cli_num("%.6g", q->row[j].T_ratio_theory, 0), g.hi);
+      if (g.longest > g.hi) fprintf(out, " truncated_from=%.8g", g.longest);
+      fprintf(out, "\n%s (%zu runs)\tcpd\te_tr\te_rot\tT_ratio\tK\thcs\n", p->name, n);
+      for (size_t i = 0; i < n; i++) hint[i] = 0;
+      for (size_t f = 0; f < g.n; f++) {
+        double c = g.cpd[f], t = 0, etj = 0, er = 0, tr = 0;
         int in = 1;
         for (size_t i = 0; i < n; i++) {
           const hd_ana_spseries *s = &r[i].s;
           const hd_run_fit *fi = &fits[q->idx[i]];
+          size_t h = hint[i], h2;
           double Tm = 0;
-          for (size_t l = 0; l < k; l++)
-            Tm += (double)q->mix.sp[l].count / (double)N * s->e_tr[f * k + l];
-          t += s->t[f], cpd += r[i].cpd[f], et += s->e_tr[f * k + j], er += s->e_rot[f * k + j];
-          tr += s->e_tr[f * k + j] / Tm;
-          in &= s->t[f] >= fi->t_start && s->t[f] <= fi->t_end;
+          t += hd_cli_interp(x[i], s->t, 1, nx[i], c, 0, &h);
+          for (size_t l = 0; l < k; l++) {
+            h2 = hint[i];
+            et[l] = hd_cli_interp(x[i], s->e_tr + l, k, nx[i], c, 1, &h2);
+            Tm += (double)q->mix.sp[l].count / (double)N * et[l];
+          }
+          h2 = hint[i];
+          er += hd_cli_interp(x[i], s->e_rot + j, k, nx[i], c, 1, &h2);
+          hint[i] = h;
+          etj += et[j], tr += et[j] / Tm;
+          in &= c >= fi->cpd_start && c <= fi->cpd_end;
         }
         double m = (double)n;
-        fprintf(out, "%.8g\t%s\t%.8g\t%.8g\t%.8g\t%s\t%d\n", t / m, hd_cli_num("%.8g", cpd / m, 0),
-                et / m, er / m, tr / m, hd_cli_num("%.8g", p->rotates && er > 0 ? et / er : NAN, 0),
-                in);
+        fprintf(out, "%.8g\t%.8g\t%.8g\t%.8g\t%.8g\t%s\t%d\n", t / m, c, etj / m, er / m, tr / m,
+                hd_cli_num("%.8g", p->rotates && er > 0 ? etj / er : NAN, 0), in);
       }
     }
   }
-  for (size_t i = 0; i < n; i++) hd_ana_spseries_free(&r[i].s), free(r[i].cpd);
-  free(r);
+  for (size_t i = 0; r && i < n; i++) hd_ana_spseries_free(&r[i].s), free(r[i].cpd);
+  hd_cli_grid_free(&g);
+  free(r), free(x), free(nx), free(hint), free(et);
   return rc;
 }
 
@@ -170,7 +192,7 @@ int hd_cli_species_energy(const hd_cli_args *a, const char *cmd) {
   int first = 1;
   rc = out ? 0 : 1;
   for (size_t j = 0; out && j < l.ng && !rc; j++)
-    if (write_group(out, l.db, l.fits, &l.g[j], j, &first, &err)) rc = hd_cli_fail(cmd, &err);
+    if (write_group(out, cmd, l.db, l.fits, &l.g[j], j, &first, &err)) rc = hd_cli_fail(cmd, &err);
   if (out) {
     int c = hd_cli_close(out, a);
     if (!rc) rc = c;

@@ -25,9 +25,12 @@ const hd_optspec hd_cmd_haff_fit_spec = {
         "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m and density;\n"
         "mean +- standard error over the runs; empty with one run).  Per run, *_fit_err are the\n"
         "formal least-squares errors, which take the residuals of the cumulative cpd(t) as\n"
-        "independent: several times too small.  window: 'stored' (the run's runs.hcs_* window,\n"
-        "used when the detection options are the defaults), 'computed' (found now: other options,\n"
-        "or a file without it), 'whole' (--no-detect).  A run that cannot be fitted gets nan and a "
+        "independent: several times too small; empty (with chi2_dof) when the window has\n"
+        "fewer than 5 samples (D_e_slope_err: 4), too few to estimate an error from.  n_used:\n"
+        "the samples in the window [cpd_start, cpd_end]; a --cpd-skip past a run's end is\n"
+        "refused.  window: 'stored' (the run's runs.hcs_* window, used when the detection\n"
+        "options are the defaults), 'computed' (found now: other options, or a file without\n"
+        "it), 'whole' (--no-detect).  A run that cannot be fitted gets nan and a "
         "note;\n"
         "exit 2 when none can.  flag 'short' (per run; per group when most of its runs are): the\n"
         "window has < 10 samples or E decays by less than a factor e over it; eq. (31) is not\n"
@@ -129,12 +132,12 @@ int hd_cmd_haff_fit(int argc, char **argv) {
               "%lld\t%s\t%s\t%s\t%zu\t%d\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%"
               "s\t%d\t%s\t%s\t%s\t%s\t%s\t%s\n",
               (long long)f->info.id, f->info.label, N("%g", f->info.alpha),
-              N("%g", f->info.a_over_d), f->n_used, f->homog.detected, N("%.6g", f->t_end),
-              N("%.6g", f->cpd_end), N("%.6g", ok ? h->D_e : nan), N("%.3g", ok ? h->D_e_err : nan),
-              N("%.6g", ok ? h->nu0 : nan), N("%.3g", ok ? h->nu0_err : nan),
-              N("%.6g", f->nu0_enskog), N("%.6g", f->ratio), N("%.3g", f->ratio_err),
-              N("%.3g", ok ? h->chi2 / (double)h->dof : nan), N("%.6g", f->cpd_start),
-              N("%.6g", f->D_e_slope), N("%.3g", f->D_e_slope_err),
+              N("%g", f->info.a_over_d), f->n_used - f->n_start, f->homog.detected,
+              N("%.6g", f->t_end), N("%.6g", f->cpd_end), N("%.6g", ok ? h->D_e : nan),
+              N("%.3g", ok ? h->D_e_err : nan), N("%.6g", ok ? h->nu0 : nan),
+              N("%.3g", ok ? h->nu0_err : nan), N("%.6g", f->nu0_enskog), N("%.6g", f->ratio),
+              N("%.3g", f->ratio_err), N("%.3g", ok ? h->chi2 / (double)h->dof : nan),
+              N("%.6g", f->cpd_start), N("%.6g", f->D_e_slope), N("%.3g", f->D_e_slope_err),
               N("%.4g", f->hcs.have ? f->hcs.s_perp : nan),
               N("%.4g", f->hcs.have ? f->hcs.flow_excess : nan), f->hcs.ended,
               hd_cli_window_name(f->window), N("%.3g", f->decay),
