@@ -29,18 +29,20 @@ typedef struct hd_run_info {
                   else HD_KIND_DIMER if [dimers] count > 0 (with mixture set if [disks]
                   count > 0 too: analysed through its dimers), else HD_KIND_DISK if [disks]
                   count > 0, else HD_KIND_ROD (a rods run, or no bodies) */
-  int mixture; /* 1: HD_KIND_DIMER of a [dimers]-[disks] mixture */
+  int mixture; /* 1: HD_KIND_DIMER of a [dimers]-[disks] mixture (N, density: every body's; its
+                  alpha: NaN when the three restitutions differ; no Enskog reference: mass NaN) */
   int walls;   /* [walls] sides given: not the periodic box of the papers */
   char label[HD_ANA_LABEL_MAX]; /* what tables print: hd_ana_species_name, or for HD_KIND_BODY
                                    "shapes:" and the present species' names joined by '+' in
                                    scene order ("shapes:dimers+tri"), then "+walls" if walls */
   int rotates;                  /* 1 if some body has more than one disk (E_rot and K exist) */
-  long n;                       /* bodies of that species (HD_KIND_BODY: of every species) */
-  double alpha;              /* its restitution with itself ([dimers] or [disks] alpha, default 1);
-                                HD_KIND_BODY: the one restitution of every pair of present species,
-                                NaN when they differ (eq. 31 has no single alpha then) */
+  long n;       /* bodies of that species (HD_KIND_BODY and a mixture: of every species) */
+  double alpha; /* its restitution with itself ([dimers] or [disks] alpha, default 1);
+                   HD_KIND_BODY and a mixture: the one restitution of every pair of
+                   present species, NaN when they differ (eq. 31 has no single alpha
+                   then) */
   double alpha_lo, alpha_hi; /* the smallest and largest restitution of a pair of present
-                                species (alpha_lo = alpha_hi = alpha but for HD_KIND_BODY) */
+                                species (alpha_lo = alpha_hi = alpha for one species) */
   double a, d;          /* bond length and disk diameter (disks: a = 0, d = sigma; HD_KIND_BODY:
                            0 and NaN) */
   double m;             /* disk mass ([dimers] m or [disks] mass, default 1; shapes: NaN) */
@@ -50,6 +52,16 @@ typedef struct hd_run_info {
   double beta, q;       /* rough bodies (issue 29): that species' tangential restitution with
                            itself and its disks' q ([dimers] or [disks] beta, q: -1, 0 when
                            smooth; NaN for shapes and rods) */
+  int rough;            /* 1 when a pair of present species, or a body and the walls, collide
+                           with a tangential restitution beta > -1 (issue 29): eq. (31) is Haff's
+                           law of smooth bodies, and its D_e does not describe them */
+  double wall_alpha;    /* [walls] alpha (NaN without walls) */
+  uint64_t shape_key;   /* a hash of the present species: names, counts, every disk's place about
+                           its body's centre of mass, diameter and mass */
+  uint64_t coll_key;    /* a hash of the normal restitutions: every pair of present species'
+                           alpha, the walls' sides and alpha */
+  uint64_t rough_key;   /* a hash of the roughness: every pair's beta, each species' q, the walls'
+                           beta */
   double box_x, box_y;  /* the box: runs.box_x/box_y (the engine's), else the scene's: [system]
                            box, or derived from area_fraction as the loader does (0: none) */
   double area_fraction; /* [system] area_fraction (0 if absent) */
@@ -69,6 +81,10 @@ int hd_ana_open(sqlite3 **db, const char *path, hd_error *err);
  * (hd_scene_read_stored: its keys, defaults and body areas).  HD_EINPUT, with the loader's
  * "runs.scene:LINE: [section] key = value: why", for a text it refuses. */
 int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err);
+
+/* Whether runs a and b ran the same bodies and collision rule (shape_key, coll_key, rough_key,
+ * wall_alpha, rough, beta, q equal; box and seed aside): 1 or 0. */
+int hd_ana_same_physics(const hd_run_info *a, const hd_run_info *b);
 
 /* The runs to analyse: want >= 0 gives that run (any status; HD_EINPUT if absent), want < 0
  * every run with status done, collapsed or interrupted, by id.  *runs malloc'd (free()). */

@@ -850,7 +850,7 @@ static void mixtures_and_walls_labelled(void **state) {
   /* 30 cpd: over 5-20 cpd E decays by less than a factor e at alpha = 0.9, and the fits flag
    * such a window short (issue 25) and the tables leave it out */
   write_scene("pure.ini", base, "");
-  write_scene("mixed.ini", base, "[disks]\ncount = 50\n");
+  write_scene("mixed.ini", base, "[disks]\ncount = 50\nalpha = 0.9\n"); /* one alpha: fitted */
   write_scene("walled.ini", base, "[walls]\nsides = left right\n");
   run_scenes("pure mixed walled", "lab.db");
   assert_int_equal(sh("(%s haff-fit lab.db | cut -f2 | tr '\\n' ' ' > species.txt)", haff), 0);
