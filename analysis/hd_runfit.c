@@ -184,8 +184,11 @@ static int abs_eq(double x, double y) {
 }
 
 int hd_group_same_label(const hd_group *a, const hd_group *b) {
-  return a->species == b->species && a->walls == b->walls && !strcmp(a->label, b->label) &&
-         abs_eq(a->alpha, b->alpha) && abs_eq(a->a_over_d, b->a_over_d);
+  /* a table's dimer rows do not print the label: [dimers] and named dimers look alike there */
+  int dimers = a->species == HD_KIND_DIMER && !a->mixture && !b->mixture;
+  return a->species == b->species && a->walls == b->walls &&
+         (dimers || !strcmp(a->label, b->label)) && abs_eq(a->alpha, b->alpha) &&
+         abs_eq(a->a_over_d, b->a_over_d);
 }
 
 int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *ng, hd_error *err) {
@@ -223,23 +226,31 @@ int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *n
 
 void hd_group_differ(const hd_group *a, const hd_group *b, char *buf, size_t len) {
   const hd_run_info *x = &a->first, *y = &b->first;
-  const char *what[8] = {"N",      "density",      "d",           "m", "roughness (beta, q)",
-                         "shapes", "restitutions", "walls' alpha"};
+  const char *what[9] = {"N",
+                         "density",
+                         "d",
+                         "m",
+                         "roughness (beta, q)",
+                         "shapes",
+                         "restitutions",
+                         "walls' alpha",
+                         "species label"};
   int bq = (isnan(x->beta) ? isnan(y->beta) : x->beta == y->beta) &&
            (isnan(x->q) ? isnan(y->q) : x->q == y->q);
-  int diff[8] = {a->nbodies != b->nbodies,
+  int diff[9] = {a->nbodies != b->nbodies,
                  !rel_eq(a->density, b->density),
                  !rel_eq(a->d, b->d),
                  !rel_eq(a->m, b->m),
                  x->rough != y->rough || !bq || x->rough_key != y->rough_key,
                  x->shape_key != y->shape_key,
                  0,
-                 !rel_eq(x->wall_alpha, y->wall_alpha)};
+                 !rel_eq(x->wall_alpha, y->wall_alpha),
+                 strcmp(a->label, b->label) != 0};
   /* the restitutions' hash holds the walls' alpha too: a difference there alone is named so */
   diff[6] = x->coll_key != y->coll_key && !diff[7];
   size_t at = 0;
   if (len) buf[0] = 0;
-  for (int k = 0; k < 8; k++)
+  for (int k = 0; k < 9; k++)
     if (diff[k] && at < len) {
       int w = snprintf(buf + at, len - at, "%s%s", at ? ", " : "", what[k]);
       if (w > 0) at += (size_t)w;

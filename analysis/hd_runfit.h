@@ -133,11 +133,13 @@ typedef struct hd_group {
 
 /* Groups fits[0..n-1] (in order of first appearance).  *groups malloc'd; hd_groups_free. */
 /* Whether groups a and b carry the same (species, alpha, a/d) label, so that a table cannot tell
- * them apart (they differ in N, density, d or m). */
+ * them apart (they differ in N, density, d, m or physics, or are dimers of [dimers] and of a
+ * named species: hd_run_info.named_dimers). */
 int hd_group_same_label(const hd_group *a, const hd_group *b);
 int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *ng, hd_error *err);
 /* What groups a and b of the same label differ in, into buf: some of "N", "density", "d", "m",
- * "roughness (beta, q)", "shapes", "restitutions", "walls' alpha", comma-separated. */
+ * "roughness (beta, q)", "shapes", "restitutions", "walls' alpha", "species label",
+ * comma-separated. */
 void hd_group_differ(const hd_group *a, const hd_group *b, char *buf, size_t len);
 void hd_groups_free(hd_group *g, size_t ng);
 

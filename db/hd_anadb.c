@@ -64,8 +64,8 @@ static void parse_shapes(const hd_scene *sc, hd_run_info *ri) {
 /* FNV-1a over the text of v to 9 significant digits (so that a value parsed twice, or a centre
  * of mass computed in another order, hashes alike; -0 as 0). */
 static void key_str(uint64_t *h, const char *s) {
-  for (; *s; s++) *h = (*h ^ (unsigned char)*s) * 1099511628211ULL;
-  *h = (*h ^ 0xffU) * 1099511628211ULL; /* a separator */
+  for (; *s; s++) *h = (*h ^ (unsigned char)*s) * 1099511628211ULL; /* FNV-1a */
+  *h = (*h ^ 0xffU) * 1099511628211ULL;                             /* a separator */
 }
 static void key_num(uint64_t *h, double v) {
   char b[40];
@@ -78,11 +78,13 @@ static void key_num(uint64_t *h, double v) {
  */
 static void physics_keys(const hd_scene *sc, hd_run_info *ri) {
   uint64_t hs = 14695981039346656037ULL, hc = hs, hr = hs;
-  int ns = 2 + sc->n_named, present[HD_MAX_SPECIES];
+  /* species are keyed by their rank among the present ones, not by their engine index: a gas of
+   * one named species of dimers keys as [dimers] alone does */
+  int ns = 2 + sc->n_named, present[HD_MAX_SPECIES], rank[HD_MAX_SPECIES], np = 0;
   ri->rough = 0;
   for (int i = 0; i < ns; i++) {
     long count = i == 0 ? sc->n_dimers : i == 1 ? sc->n_disks : sc->named[i - 2].count;
-    present[i] = count > 0;
+    present[i] = count > 0, rank[i] = np;
     if (!present[i]) continue;
     double x[HD_MAX_BODY_DISKS], y[HD_MAX_BODY_DISKS], d[HD_MAX_BODY_DISKS], m[HD_MAX_BODY_DISKS];
     int nd;
@@ -102,9 +104,9 @@ static void physics_keys(const hd_scene *sc, hd_run_info *ri) {
     }
     double mt = 0, cx = 0, cy = 0;
     for (int k = 0; k < nd; k++) mt += m[k], cx += m[k] * x[k], cy += m[k] * y[k];
-    key_str(&hs, i == 0 ? "[dimers]" : i == 1 ? "[disks]" : sc->named[i - 2].name);
     key_num(&hs, (double)count);
-    key_num(&hr, i), key_num(&hr, q);
+    np++;
+    key_num(&hr, rank[i]), key_num(&hr, q);
     for (int k = 0; k < nd; k++) {
       key_num(&hs, x[k] - cx / mt), key_num(&hs, y[k] - cy / mt);
       key_num(&hs, d[k]), key_num(&hs, m[k]);
@@ -112,7 +114,8 @@ static void physics_keys(const hd_scene *sc, hd_run_info *ri) {
     for (int j = 0; j <= i; j++) {
       if (!present[j]) continue;
       double beta = sc->beta_pair[i][j];
-      key_num(&hc, i * HD_MAX_SPECIES + j), key_num(&hr, i * HD_MAX_SPECIES + j);
+      key_num(&hc, rank[i] * HD_MAX_SPECIES + rank[j]);
+      key_num(&hr, rank[i] * HD_MAX_SPECIES + rank[j]);
       key_num(&hc, i == j ? alpha : sc->alpha_pair[i][j]), key_num(&hr, beta);
       ri->rough |= beta > -1;
     }
@@ -145,10 +148,25 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
   ri->rotates = 0, ri->mixture = 0;
   ri->walls = sc.walls != 0;
   ri->beta = ri->q = NAN;
+  ri->named_dimers = 0;
   if (named) {
     ri->species = HD_KIND_BODY;
     ri->n = 0;
     parse_shapes(&sc, ri);
+    /* one named species of paper dimers (`shape = dimer A`: two equal disks), alone: it runs
+     * bit for bit as [dimers] do, so it is analysed as dimers (the dimer analyses refused it) */
+    int k = -1, nk = 0;
+    for (int i = 0; i < sc.n_named; i++)
+      if (sc.named[i].count > 0) k = i, nk++;
+    const hd_scene_species *sp = k >= 0 ? &sc.named[k] : NULL;
+    if (nk == 1 && sc.n_dimers <= 0 && sc.n_disks <= 0 && sp->ndisk == 2 && sp->d[0] == sp->d[1] &&
+        sp->m[0] == sp->m[1] && hypot(sp->x[1] - sp->x[0], sp->y[1] - sp->y[0]) > 0) {
+      ri->species = HD_KIND_DIMER, ri->named_dimers = 1;
+      ri->alpha = ri->alpha_lo = ri->alpha_hi = sp->alpha;
+      ri->a = hypot(sp->x[1] - sp->x[0], sp->y[1] - sp->y[0]), ri->d = sp->d[0];
+      ri->m = sp->m[0], ri->mass = 2.0 * sp->m[0], ri->a_over_d = ri->a / ri->d;
+      ri->beta = sp->beta, ri->q = sp->q;
+    }
   } else if (sc.n_dimers > 0) {
     ri->species = HD_KIND_DIMER, ri->mixture = sc.n_disks > 0;
     ri->n = sc.n_dimers;
@@ -178,7 +196,7 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
     ri->species = HD_KIND_ROD;
     ri->n = 0, ri->alpha = 1, ri->a = 0, ri->d = 1, ri->m = 1, ri->mass = 1, ri->a_over_d = 0;
   }
-  if (ri->species != HD_KIND_BODY) {
+  if (ri->species != HD_KIND_BODY && !ri->named_dimers) { /* named dimers: label "shapes:NAME" */
     if (!ri->mixture) ri->alpha_lo = ri->alpha_hi = ri->alpha;
     snprintf(ri->label, sizeof ri->label, "%s",
              hd_ana_species_name(ri->species, ri->mixture, ri->walls));
@@ -386,16 +404,17 @@ int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *ki
   return rc;
 }
 
-int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **theta_j, double **f,
-                         size_t *n, hd_error *err) {
+int hd_ana_dd_collisions(sqlite3 *db, int64_t run, int body, double **theta_i, double **theta_j,
+                         double **f, size_t *n, hd_error *err) {
   *theta_i = *theta_j = *f = NULL, *n = 0;
   sqlite3_stmt *st;
   int rc = prepare_run(db,
                        "SELECT theta_i, theta_j, f FROM collisions WHERE run = ?1 AND "
-                       "kind = 'dimer-dimer' AND theta_i IS NOT NULL AND theta_j IS NOT NULL "
+                       "kind = ?2 AND theta_i IS NOT NULL AND theta_j IS NOT NULL "
                        "ORDER BY seq",
                        run, "collisions", &st, err);
   if (rc) return rc;
+  sqlite3_bind_text(st, 2, body ? "body-body" : "dimer-dimer", -1, SQLITE_STATIC);
   size_t cap = 0;
   int r;
   while ((r = sqlite3_step(st)) == SQLITE_ROW) {

@@ -24,14 +24,19 @@ typedef struct hd_run_info {
   int64_t id;
   char status[16]; /* runs.status */
   unsigned long long seed;
-  int species; /* the kind the run is analysed as (hd_kind): HD_KIND_BODY if a [species NAME]
-                  section has count > 0 (the gas as a whole: every body, whatever its shape),
-                  else HD_KIND_DIMER if [dimers] count > 0 (with mixture set if [disks]
-                  count > 0 too: analysed through its dimers), else HD_KIND_DISK if [disks]
-                  count > 0, else HD_KIND_ROD (a rods run, or no bodies) */
-  int mixture; /* 1: HD_KIND_DIMER of a [dimers]-[disks] mixture (N, density: every body's; its
-                  alpha: NaN when the three restitutions differ; no Enskog reference: mass NaN) */
-  int walls;   /* [walls] sides given: not the periodic box of the papers */
+  int species;      /* the kind the run is analysed as (hd_kind): HD_KIND_BODY if a [species NAME]
+                       section has count > 0 (the gas as a whole: every body, whatever its shape;
+                       HD_KIND_DIMER for named_dimers below),
+                       else HD_KIND_DIMER if [dimers] count > 0 (with mixture set if [disks]
+                       count > 0 too: analysed through its dimers), else HD_KIND_DISK if [disks]
+                       count > 0, else HD_KIND_ROD (a rods run, or no bodies) */
+  int named_dimers; /* 1: the gas is one [species NAME] of paper dimers (two equal disks, as
+                       `shape = dimer A`), which runs bit for bit as [dimers]: analysed as dimers
+                       (HD_KIND_DIMER, its a, d, m, alpha, beta, q; label "shapes:NAME"), its
+                       states rows of kind 'body', its collisions 'body-body' */
+  int mixture;      /* 1: HD_KIND_DIMER of a [dimers]-[disks] mixture (N, density: every body's; its
+                       alpha: NaN when the three restitutions differ; no Enskog reference: mass NaN) */
+  int walls;        /* [walls] sides given: not the periodic box of the papers */
   char label[HD_ANA_LABEL_MAX]; /* what tables print: hd_ana_species_name, or for HD_KIND_BODY
                                    "shapes:" and the present species' names joined by '+' in
                                    scene order ("shapes:dimers+tri"), then "+walls" if walls */
@@ -56,8 +61,9 @@ typedef struct hd_run_info {
                            with a tangential restitution beta > -1 (issue 29): eq. (31) is Haff's
                            law of smooth bodies, and its D_e does not describe them */
   double wall_alpha;    /* [walls] alpha (NaN without walls) */
-  uint64_t shape_key;   /* a hash of the present species: names, counts, every disk's place about
-                           its body's centre of mass, diameter and mass */
+  uint64_t shape_key;   /* a hash of the present species in engine order: counts, every disk's
+                           place about its body's centre of mass, diameter and mass (not their
+                           names: the label has them) */
   uint64_t coll_key;    /* a hash of the normal restitutions: every pair of present species'
                            alpha, the walls' sides and alpha */
   uint64_t rough_key;   /* a hash of the roughness: every pair's beta, each species' q, the walls'
@@ -114,9 +120,10 @@ int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *ki
 void hd_snapshots_free(hd_snapshot *snaps, size_t n);
 
 /* Dimer-dimer collisions of one run by seq: theta_i, theta_j, f (malloc'd arrays; NULL
- * angles are skipped).  HD_OK with *n = 0 when there are none. */
-int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **theta_j, double **f,
-                         size_t *n, hd_error *err);
+ * angles are skipped); body: the rows of kind 'body-body' instead (a run of named dimers,
+ * hd_run_info.named_dimers).  HD_OK with *n = 0 when there are none. */
+int hd_ana_dd_collisions(sqlite3 *db, int64_t run, int body, double **theta_i, double **theta_j,
+                         double **f, size_t *n, hd_error *err);
 
 /* Closes a database of hd_ana_open (NULL allowed). */
 void hd_ana_close(sqlite3 *db);

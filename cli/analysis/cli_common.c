@@ -292,9 +292,15 @@ size_t hd_cli_table_groups(const char *cmd, const hd_group *g, size_t ng, int wi
       in++;
     else if (g[j].species != HD_KIND_DISK || g[j].walls) /* not the disks table2 has no use for */
       fprintf(stderr,
-              "haff %s: note: left out %zu run%s of %s (alpha %g a/d %g): the table is for one "
-              "species in a periodic box; haff-fit --alpha-group fits them\n",
-              cmd, g[j].n, g[j].n == 1 ? "" : "s", g[j].label, g[j].alpha, g[j].a_over_d);
+              "haff %s: note: left out %zu run%s of %s (alpha %g a/d %g): %s; haff-fit "
+              "--alpha-group fits them\n",
+              cmd, g[j].n, g[j].n == 1 ? "" : "s", g[j].label, g[j].alpha, g[j].a_over_d,
+              g[j].walls     ? "the table is for a periodic box, these have walls"
+              : g[j].mixture ? "the table is for one species, these are a mixture"
+              : g[j].species == HD_KIND_BODY
+                  ? "the table is for dimers (of [dimers], or a gas of one named species of two "
+                    "equal disks) and disks, these are other bodies or a mixture"
+                  : "the table is for one species in a periodic box");
   }
   return in;
 }

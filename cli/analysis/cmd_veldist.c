@@ -20,8 +20,9 @@ static void stat_line(FILE *out, size_t s, const hd_snapshot *sn, const char *va
 /* Says on stderr why a run of named species (hd_run_info.species HD_KIND_BODY) is refused. */
 static void refuse_shapes(const char *cmd, const hd_run_info *ri) {
   fprintf(stderr,
-          "haff %s: run %lld has named species (%s): veldist reads one species, [dimers] or "
-          "[disks]; the states table holds every body's velocity (kind 'body')\n",
+          "haff %s: run %lld has named species (%s): veldist reads one species, [dimers], "
+          "[disks] or a gas of one named species of paper dimers (two equal disks); the states "
+          "table holds every body's velocity (kind 'body')\n",
           cmd, (long long)ri->id, ri->label);
 }
 
@@ -65,7 +66,11 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
     int dimers = species != HD_KIND_DISK;
     hd_snapshot *sn;
     size_t ns, used = 0;
-    if (hd_ana_snapshots(db, f->info.id, a->label, dimers ? "dimer" : "disk", &sn, &ns, &err)) {
+    if (hd_ana_snapshots(db, f->info.id, a->label,
+                         f->info.named_dimers ? "body"
+                         : dimers             ? "dimer"
+                                              : "disk",
+                         &sn, &ns, &err)) {
       rc = hd_cli_fail(cmd, &err);
       break;
     }
@@ -167,7 +172,11 @@ int hd_cmd_veldist(int argc, char **argv) {
   size_t ns;
   hd_snapshot *sn;
   int dimers = ri.species != HD_KIND_DISK;
-  rc = hd_ana_snapshots(db, a.run, a.label, dimers ? "dimer" : "disk", &sn, &ns, &err);
+  rc = hd_ana_snapshots(db, a.run, a.label,
+                        ri.named_dimers ? "body"
+                        : dimers        ? "dimer"
+                                        : "disk",
+                        &sn, &ns, &err);
   hd_ana_close(db);
   if (rc) return hd_cli_fail(argv[0], &err);
   if (ns == 0) {
