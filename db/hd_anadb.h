@@ -28,7 +28,7 @@ typedef struct hd_run_info {
                        section has count > 0 (the gas as a whole: every body, whatever its shape;
                        HD_KIND_DIMER for named_dimers below),
                        else HD_KIND_DIMER if [dimers] count > 0 (with mixture set if [disks]
-                       count > 0 too: analysed through its dimers), else HD_KIND_DISK if [disks]
+                       count > 0 too: the whole gas, with the dimers' a, d), else HD_KIND_DISK if [disks]
                        count > 0, else HD_KIND_ROD (a rods run, or no bodies) */
   int named_dimers; /* 1: the gas is one [species NAME] of paper dimers (two equal disks, as
                        `shape = dimer A`), which runs bit for bit as [dimers]: analysed as dimers
