@@ -28,14 +28,15 @@ typedef struct hd_run_info {
                        section has count > 0 (the gas as a whole: every body, whatever its shape;
                        HD_KIND_DIMER for named_dimers below),
                        else HD_KIND_DIMER if [dimers] count > 0 (with mixture set if [disks]
-                       count > 0 too: the whole gas, with the dimers' a, d), else HD_KIND_DISK if [disks]
-                       count > 0, else HD_KIND_ROD (a rods run, or no bodies) */
+                       count > 0 too: the whole gas, with the dimers' a, d), else HD_KIND_DISK
+                       if [disks] count > 0, else HD_KIND_ROD (a rods run, or no bodies) */
   int named_dimers; /* 1: the gas is one [species NAME] of paper dimers (two equal disks, as
                        `shape = dimer A`), which runs bit for bit as [dimers]: analysed as dimers
                        (HD_KIND_DIMER, its a, d, m, alpha, beta, q; label "shapes:NAME"), its
                        states rows of kind 'body', its collisions 'body-body' */
-  int mixture;      /* 1: HD_KIND_DIMER of a [dimers]-[disks] mixture (N, density: every body's; its
-                       alpha: NaN when the three restitutions differ; no Enskog reference: mass NaN) */
+  int mixture;      /* 1: HD_KIND_DIMER of a [dimers]-[disks] mixture (N, density: every
+                       body's; its alpha: NaN when the three restitutions differ; no Enskog
+                       reference: mass NaN) */
   int walls;        /* [walls] sides given: not the periodic box of the papers */
   char label[HD_ANA_LABEL_MAX]; /* what tables print: hd_ana_species_name, or for HD_KIND_BODY
                                    "shapes:" and the present species' names joined by '+' in
