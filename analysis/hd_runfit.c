@@ -195,8 +195,11 @@ static int abs_eq(double x, double y) {
 }
 
 int hd_group_same_label(const hd_group *a, const hd_group *b) {
-  return a->species == b->species && a->walls == b->walls && !strcmp(a->label, b->label) &&
-         abs_eq(a->alpha, b->alpha) && abs_eq(a->a_over_d, b->a_over_d);
+  /* a table's dimer rows do not print the label: [dimers] and named dimers look alike there */
+  int dimers = a->species == HD_KIND_DIMER && !a->mixture && !b->mixture;
+  return a->species == b->species && a->walls == b->walls &&
+         (dimers || !strcmp(a->label, b->label)) && abs_eq(a->alpha, b->alpha) &&
+         abs_eq(a->a_over_d, b->a_over_d);
 }
 
 int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *ng, hd_error *err) {
@@ -211,7 +214,7 @@ int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *n
       if (q->species == r->species && q->mixture == r->mixture && q->walls == r->walls &&
           !strcmp(q->label, r->label) && abs_eq(q->alpha, r->alpha) &&
           abs_eq(q->a_over_d, r->a_over_d) && q->nbodies == r->n && rel_eq(q->d, r->d) &&
-          rel_eq(q->m, r->m) && rel_eq(q->density, r->density))
+          rel_eq(q->m, r->m) && rel_eq(q->density, r->density) && hd_ana_same_physics(&q->first, r))
         g = &(*groups)[j];
     }
     if (!g) {
@@ -220,6 +223,7 @@ int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *n
       g->a_over_d = r->a_over_d;
       snprintf(g->label, sizeof g->label, "%s", r->label);
       g->nbodies = r->n, g->density = r->density, g->d = r->d, g->m = r->m;
+      g->rough = r->rough, g->first = *r;
       g->idx = malloc(n * sizeof *g->idx);
       if (!g->idx) {
         hd_groups_free(*groups, *ng), *groups = NULL, *ng = 0;
@@ -229,6 +233,39 @@ int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *n
     g->idx[g->n++] = i;
   }
   return HD_OK;
+}
+
+void hd_group_differ(const hd_group *a, const hd_group *b, char *buf, size_t len) {
+  const hd_run_info *x = &a->first, *y = &b->first;
+  const char *what[9] = {"N",
+                         "density",
+                         "d",
+                         "m",
+                         "roughness (beta, q)",
+                         "shapes",
+                         "restitutions",
+                         "walls' alpha",
+                         "species label"};
+  int bq = (isnan(x->beta) ? isnan(y->beta) : x->beta == y->beta) &&
+           (isnan(x->q) ? isnan(y->q) : x->q == y->q);
+  int diff[9] = {a->nbodies != b->nbodies,
+                 !rel_eq(a->density, b->density),
+                 !rel_eq(a->d, b->d),
+                 !rel_eq(a->m, b->m),
+                 x->rough != y->rough || !bq || x->rough_key != y->rough_key,
+                 x->shape_key != y->shape_key,
+                 0,
+                 !rel_eq(x->wall_alpha, y->wall_alpha),
+                 strcmp(a->label, b->label) != 0};
+  /* the restitutions' hash holds the walls' alpha too: a difference there alone is named so */
+  diff[6] = x->coll_key != y->coll_key && !diff[7];
+  size_t at = 0;
+  if (len) buf[0] = 0;
+  for (int k = 0; k < 9; k++)
+    if (diff[k] && at < len) {
+      int w = snprintf(buf + at, len - at, "%s%s", at ? ", " : "", what[k]);
+      if (w > 0) at += (size_t)w;
+    }
 }
 
 void hd_groups_free(hd_group *g, size_t ng) {
@@ -254,10 +291,23 @@ static double quad_sum(const double *t, int n) {
 }
 
 const char *hd_group_flag_name(int flagged) {
-  static const char *const names[8] = {
-      "",         "inhomogeneous",          "short",          "inhomogeneous,short",
-      "outliers", "inhomogeneous,outliers", "short,outliers", "inhomogeneous,short,outliers"};
-  return names[flagged & 7];
+  static const char *const names[16] = {"",
+                                        "inhomogeneous",
+                                        "short",
+                                        "inhomogeneous,short",
+                                        "outliers",
+                                        "inhomogeneous,outliers",
+                                        "short,outliers",
+                                        "inhomogeneous,short,outliers",
+                                        "rough",
+                                        "inhomogeneous,rough",
+                                        "short,rough",
+                                        "inhomogeneous,short,rough",
+                                        "outliers,rough",
+                                        "inhomogeneous,outliers,rough",
+                                        "short,outliers,rough",
+                                        "inhomogeneous,short,outliers,rough"};
+  return names[flagged & 15];
 }
 
 size_t hd_group_outliers(const hd_run_fit *fits, const hd_group *g, const hd_fit_opts *o,
@@ -369,6 +419,7 @@ void hd_group_fit_do(const hd_run_fit *fits, const hd_group *g, const hd_fit_opt
     out->flagged |= HD_FLAG_SHORT;
   if (out->n_rejected && (double)out->n_rejected > HD_FIT_REJECT_FLAG * (double)tested)
     out->flagged |= HD_FLAG_OUTLIERS;
+  if (g->rough) out->flagged |= HD_FLAG_ROUGH;
   free(v);
 }
 

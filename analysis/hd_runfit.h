@@ -127,27 +127,37 @@ int hd_run_fit_do(sqlite3 *db, const hd_run_info *ri, const hd_fit_opts *o, hd_r
                   hd_error *err);
 
 /* A group of runs of one ensemble: the same species, alpha and a/d (equal to 1e-9), number of
- * bodies, disk diameter and mass, and number density (equal to 1e-9 relative).  Runs that
- * differ only in N or density used to be pooled into one Table I row (an average of two
- * different ensembles); they now form groups of their own with the same (alpha, a/d) label. */
+ * bodies, disk diameter and mass, and number density (equal to 1e-9 relative), and the same
+ * bodies and collision rule (hd_ana_same_physics: rough or smooth, beta, q, the shapes of named
+ * species, every pair's restitution, the walls' alpha).  Runs that differ only in N or density
+ * used to be pooled into one Table I row (an average of two different ensembles), as did runs
+ * that differ in roughness, shape or wall restitution; they now form groups of their own with
+ * the same (alpha, a/d) label (hd_group_same_label, hd_group_differ). */
 typedef struct hd_group {
   int species;                  /* hd_run_info.species of its runs */
   int mixture;                  /* and their mixture flag */
   int walls;                    /* and their walls flag */
   char label[HD_ANA_LABEL_MAX]; /* and their label (hd_run_info.label) */
   double alpha, a_over_d;
-  long nbodies;   /* N of the species */
-  double density; /* its number density (hd_run_info.density) */
-  double d, m;    /* disk diameter and mass */
-  size_t n;       /* runs in the group */
-  size_t *idx;    /* their indices in the array given to hd_group_runs */
+  long nbodies;      /* N of the species */
+  double density;    /* its number density (hd_run_info.density) */
+  double d, m;       /* disk diameter and mass */
+  int rough;         /* its runs' hd_run_info.rough: eq. (31) does not describe them (flag rough) */
+  hd_run_info first; /* its first run's info (the physics every run shares) */
+  size_t n;          /* runs in the group */
+  size_t *idx;       /* their indices in the array given to hd_group_runs */
 } hd_group;
 
 /* Groups fits[0..n-1] (in order of first appearance).  *groups malloc'd; hd_groups_free. */
 /* Whether groups a and b carry the same (species, alpha, a/d) label, so that a table cannot tell
- * them apart (they differ in N, density, d or m). */
+ * them apart (they differ in N, density, d, m or physics, or are dimers of [dimers] and of a
+ * named species: hd_run_info.named_dimers). */
 int hd_group_same_label(const hd_group *a, const hd_group *b);
 int hd_group_runs(const hd_run_fit *fits, size_t n, hd_group **groups, size_t *ng, hd_error *err);
+/* What groups a and b of the same label differ in, into buf: some of "N", "density", "d", "m",
+ * "roughness (beta, q)", "shapes", "restitutions", "walls' alpha", "species label",
+ * comma-separated. */
+void hd_group_differ(const hd_group *a, const hd_group *b, char *buf, size_t len);
 void hd_groups_free(hd_group *g, size_t ng);
 
 /* The ensemble's D_e with its statistical and systematic errors (docs/analysis.md, "Errors of
@@ -178,10 +188,13 @@ typedef struct hd_group_fit {
 } hd_group_fit;
 
 /* hd_group_fit.flagged bits. */
-enum { HD_FLAG_INHOMOG = 1, HD_FLAG_SHORT = 2, HD_FLAG_OUTLIERS = 4 };
+enum { HD_FLAG_INHOMOG = 1, HD_FLAG_SHORT = 2, HD_FLAG_OUTLIERS = 4, HD_FLAG_ROUGH = 8 };
+/* HD_FLAG_ROUGH is a caveat, not a reason to leave a group out of a table: its bodies are rough
+ * (hd_run_info.rough), and eq. (31)'s D_e, Haff's law of smooth bodies, is a fit parameter for
+ * them (docs/analysis.md, "Rough bodies"). */
 
 /* The flag column's text for bits: "" or the names of the bits set, comma-separated, in the
- * order inhomogeneous, short, outliers. */
+ * order inhomogeneous, short, outliers, rough. */
 const char *hd_group_flag_name(int flagged);
 
 /* The outlier rule (HD_FIT_REJECT_Z): of group g's runs whose eq. (31) fit succeeded on a window

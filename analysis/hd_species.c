@@ -155,7 +155,9 @@ int hd_species_groups(sqlite3 *db, const hd_run_fit *fits, size_t n, hd_species_
     if (mix.k == 0) continue; /* rods */
     hd_species_group *q = NULL;
     for (size_t j = 0; j < *ng && !q; j++)
-      if (hd_ana_mix_same(&(*g)[j].mix, &mix)) q = &(*g)[j];
+      if (hd_ana_mix_same(&(*g)[j].mix, &mix) &&
+          hd_ana_same_physics(&fits[(*g)[j].idx[0]].info, &fits[i].info))
+        q = &(*g)[j]; /* roughness, shapes, walls' alpha too (they were pooled) */
     if (!q) {
       q = &(*g)[(*ng)++];
       q->mix = mix;

@@ -2,7 +2,8 @@
  * --by-species`; docs/analysis.md, "Mixtures: the temperature ratio").  Runs are grouped into
  * ensembles of the same species (hd_ana_mix_same); per species, its translational temperature
  * over the mixture's, T_i / T with T = sum_j x_j T_j (x_j = N_j / N; in 2D a body's e_tr is
- * its T), averaged over the samples of each run's HCS window (hd_run_fit), then over the runs;
+ * its T), averaged over the samples of each run's HCS window (hd_run_fit), then over the runs
+ * (runs of one ensemble also have the same roughness, shapes and walls: hd_ana_same_physics);
  * and the Garzo-Dufty value of the Maxwellian approximation for a mixture of smooth disks
  * (hd_mixture_hcs). */
 #ifndef HD_SPECIES_H

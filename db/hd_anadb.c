@@ -61,6 +61,82 @@ static void parse_shapes(const hd_scene *sc, hd_run_info *ri) {
   ri->a = 0, ri->d = ri->m = ri->mass = ri->a_over_d = NAN;
 }
 
+/* FNV-1a over the text of v to 9 significant digits (so that a value parsed twice, or a centre
+ * of mass computed in another order, hashes alike; -0 as 0). */
+static void key_str(uint64_t *h, const char *s) {
+  for (; *s; s++) *h = (*h ^ (unsigned char)*s) * 1099511628211ULL; /* FNV-1a */
+  *h = (*h ^ 0xffU) * 1099511628211ULL;                             /* a separator */
+}
+static void key_num(uint64_t *h, double v) {
+  char b[40];
+  snprintf(b, sizeof b, "%.9g", v == 0 ? 0.0 : v);
+  key_str(h, b);
+}
+
+/* ri->shape_key, coll_key, rough_key, rough and wall_alpha from the bodies present in sc (issue 14
+ * review: runs of rough and smooth bodies, of different shapes or wall restitutions were pooled).
+ */
+static void physics_keys(const hd_scene *sc, hd_run_info *ri) {
+  uint64_t hs = 14695981039346656037ULL, hc = hs, hr = hs;
+  /* species are keyed by their rank among the present ones, not by their engine index: a gas of
+   * one named species of dimers keys as [dimers] alone does */
+  int ns = 2 + sc->n_named, present[HD_MAX_SPECIES], rank[HD_MAX_SPECIES], np = 0;
+  ri->rough = 0;
+  for (int i = 0; i < ns; i++) {
+    long count = i == 0 ? sc->n_dimers : i == 1 ? sc->n_disks : sc->named[i - 2].count;
+    present[i] = count > 0, rank[i] = np;
+    if (!present[i]) continue;
+    double x[HD_MAX_BODY_DISKS], y[HD_MAX_BODY_DISKS], d[HD_MAX_BODY_DISKS], m[HD_MAX_BODY_DISKS];
+    int nd;
+    double q, alpha;
+    if (i == 0) {
+      nd = 2, q = sc->dimer_q, alpha = sc->dimer_alpha;
+      x[0] = -sc->dimer_a / 2, x[1] = sc->dimer_a / 2, y[0] = y[1] = 0;
+      d[0] = d[1] = sc->dimer_d, m[0] = m[1] = sc->dimer_m;
+    } else if (i == 1) {
+      nd = 1, q = sc->disk_q, alpha = sc->disk_alpha;
+      x[0] = y[0] = 0, d[0] = sc->disk_sigma, m[0] = sc->disk_mass;
+    } else {
+      const hd_scene_species *sp = &sc->named[i - 2];
+      nd = sp->ndisk, q = sp->q, alpha = sp->alpha;
+      for (int k = 0; k < nd; k++)
+        x[k] = sp->x[k], y[k] = sp->y[k], d[k] = sp->d[k], m[k] = sp->m[k];
+    }
+    double mt = 0, cx = 0, cy = 0;
+    for (int k = 0; k < nd; k++) mt += m[k], cx += m[k] * x[k], cy += m[k] * y[k];
+    key_num(&hs, (double)count);
+    np++;
+    key_num(&hr, rank[i]), key_num(&hr, q);
+    for (int k = 0; k < nd; k++) {
+      key_num(&hs, x[k] - cx / mt), key_num(&hs, y[k] - cy / mt);
+      key_num(&hs, d[k]), key_num(&hs, m[k]);
+    }
+    for (int j = 0; j <= i; j++) {
+      if (!present[j]) continue;
+      double beta = sc->beta_pair[i][j];
+      key_num(&hc, rank[i] * HD_MAX_SPECIES + rank[j]);
+      key_num(&hr, rank[i] * HD_MAX_SPECIES + rank[j]);
+      key_num(&hc, i == j ? alpha : sc->alpha_pair[i][j]), key_num(&hr, beta);
+      ri->rough |= beta > -1;
+    }
+  }
+  ri->wall_alpha = sc->walls ? sc->wall_alpha : NAN;
+  key_num(&hc, sc->walls);
+  if (sc->walls) {
+    key_num(&hc, sc->wall_alpha), key_num(&hr, sc->wall_beta);
+    ri->rough |= sc->wall_beta > -1;
+  }
+  ri->shape_key = hs, ri->coll_key = hc, ri->rough_key = hr;
+}
+
+int hd_ana_same_physics(const hd_run_info *a, const hd_run_info *b) {
+  int wall = isnan(a->wall_alpha) ? isnan(b->wall_alpha) : a->wall_alpha == b->wall_alpha;
+  int bq = (isnan(a->beta) ? isnan(b->beta) : a->beta == b->beta) &&
+           (isnan(a->q) ? isnan(b->q) : a->q == b->q);
+  return wall && bq && a->rough == b->rough && a->shape_key == b->shape_key &&
+         a->coll_key == b->coll_key && a->rough_key == b->rough_key;
+}
+
 int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
   /* the engine's own loader (keys, defaults, areas), without the checks of a scene to run */
   hd_scene sc;
@@ -72,10 +148,25 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
   ri->rotates = 0, ri->mixture = 0;
   ri->walls = sc.walls != 0;
   ri->beta = ri->q = NAN;
+  ri->named_dimers = 0;
   if (named) {
     ri->species = HD_KIND_BODY;
     ri->n = 0;
     parse_shapes(&sc, ri);
+    /* one named species of paper dimers (`shape = dimer A`: two equal disks), alone: it runs
+     * bit for bit as [dimers] do, so it is analysed as dimers (the dimer analyses refused it) */
+    int k = -1, nk = 0;
+    for (int i = 0; i < sc.n_named; i++)
+      if (sc.named[i].count > 0) k = i, nk++;
+    const hd_scene_species *sp = k >= 0 ? &sc.named[k] : NULL;
+    if (nk == 1 && sc.n_dimers <= 0 && sc.n_disks <= 0 && sp->ndisk == 2 && sp->d[0] == sp->d[1] &&
+        sp->m[0] == sp->m[1] && hypot(sp->x[1] - sp->x[0], sp->y[1] - sp->y[0]) > 0) {
+      ri->species = HD_KIND_DIMER, ri->named_dimers = 1;
+      ri->alpha = ri->alpha_lo = ri->alpha_hi = sp->alpha;
+      ri->a = hypot(sp->x[1] - sp->x[0], sp->y[1] - sp->y[0]), ri->d = sp->d[0];
+      ri->m = sp->m[0], ri->mass = 2.0 * sp->m[0], ri->a_over_d = ri->a / ri->d;
+      ri->beta = sp->beta, ri->q = sp->q;
+    }
   } else if (sc.n_dimers > 0) {
     ri->species = HD_KIND_DIMER, ri->mixture = sc.n_disks > 0;
     ri->n = sc.n_dimers;
@@ -84,6 +175,16 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
     ri->a_over_d = sc.dimer_a / sc.dimer_d;
     ri->beta = sc.dimer_beta, ri->q = sc.dimer_q;
     ri->rotates = 1;
+    ri->alpha_lo = ri->alpha_hi = ri->alpha;
+    if (ri->mixture) {
+      /* the gas as a whole, as the same gas of named species is (parse_shapes): every body, one
+       * alpha only when the dimers', the disks' and the dimer-disk restitutions agree, and no
+       * Enskog reference of one species (it used to take the dimers' alpha and N alone) */
+      ri->n += sc.n_disks, ri->mass = NAN;
+      ri->alpha_lo = fmin(fmin(sc.dimer_alpha, sc.disk_alpha), sc.alpha_pair[0][1]);
+      ri->alpha_hi = fmax(fmax(sc.dimer_alpha, sc.disk_alpha), sc.alpha_pair[0][1]);
+      ri->alpha = ri->alpha_hi - ri->alpha_lo <= 1e-12 ? ri->alpha_hi : NAN;
+    }
   } else if (sc.n_disks > 0) {
     ri->species = HD_KIND_DISK;
     ri->n = sc.n_disks;
@@ -95,8 +196,8 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
     ri->species = HD_KIND_ROD;
     ri->n = 0, ri->alpha = 1, ri->a = 0, ri->d = 1, ri->m = 1, ri->mass = 1, ri->a_over_d = 0;
   }
-  if (ri->species != HD_KIND_BODY) {
-    ri->alpha_lo = ri->alpha_hi = ri->alpha;
+  if (ri->species != HD_KIND_BODY && !ri->named_dimers) { /* named dimers: label "shapes:NAME" */
+    if (!ri->mixture) ri->alpha_lo = ri->alpha_hi = ri->alpha;
     snprintf(ri->label, sizeof ri->label, "%s",
              hd_ana_species_name(ri->species, ri->mixture, ri->walls));
   }
@@ -105,6 +206,7 @@ int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {
   double area = sc.box_x * sc.box_y;
   ri->density = area > 0 ? (double)ri->n / area : NAN;
   ri->eta_disk = M_PI * ri->density * ri->d * ri->d / 4;
+  physics_keys(&sc, ri);
   return HD_OK;
 }
 
@@ -302,16 +404,17 @@ int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *ki
   return rc;
 }
 
-int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **theta_j, double **f,
-                         size_t *n, hd_error *err) {
+int hd_ana_dd_collisions(sqlite3 *db, int64_t run, int body, double **theta_i, double **theta_j,
+                         double **f, size_t *n, hd_error *err) {
   *theta_i = *theta_j = *f = NULL, *n = 0;
   sqlite3_stmt *st;
   int rc = prepare_run(db,
                        "SELECT theta_i, theta_j, f FROM collisions WHERE run = ?1 AND "
-                       "kind = 'dimer-dimer' AND theta_i IS NOT NULL AND theta_j IS NOT NULL "
+                       "kind = ?2 AND theta_i IS NOT NULL AND theta_j IS NOT NULL "
                        "ORDER BY seq",
                        run, "collisions", &st, err);
   if (rc) return rc;
+  sqlite3_bind_text(st, 2, body ? "body-body" : "dimer-dimer", -1, SQLITE_STATIC);
   size_t cap = 0;
   int r;
   while ((r = sqlite3_step(st)) == SQLITE_ROW) {

@@ -24,23 +24,31 @@ typedef struct hd_run_info {
   int64_t id;
   char status[16]; /* runs.status */
   unsigned long long seed;
-  int species; /* the kind the run is analysed as (hd_kind): HD_KIND_BODY if a [species NAME]
-                  section has count > 0 (the gas as a whole: every body, whatever its shape),
-                  else HD_KIND_DIMER if [dimers] count > 0 (with mixture set if [disks]
-                  count > 0 too: analysed through its dimers), else HD_KIND_DISK if [disks]
-                  count > 0, else HD_KIND_ROD (a rods run, or no bodies) */
-  int mixture; /* 1: HD_KIND_DIMER of a [dimers]-[disks] mixture */
-  int walls;   /* [walls] sides given: not the periodic box of the papers */
+  int species;      /* the kind the run is analysed as (hd_kind): HD_KIND_BODY if a [species NAME]
+                       section has count > 0 (the gas as a whole: every body, whatever its shape;
+                       HD_KIND_DIMER for named_dimers below),
+                       else HD_KIND_DIMER if [dimers] count > 0 (with mixture set if [disks]
+                       count > 0 too: the whole gas, with the dimers' a, d), else HD_KIND_DISK
+                       if [disks] count > 0, else HD_KIND_ROD (a rods run, or no bodies) */
+  int named_dimers; /* 1: the gas is one [species NAME] of paper dimers (two equal disks, as
+                       `shape = dimer A`), which runs bit for bit as [dimers]: analysed as dimers
+                       (HD_KIND_DIMER, its a, d, m, alpha, beta, q; label "shapes:NAME"), its
+                       states rows of kind 'body', its collisions 'body-body' */
+  int mixture;      /* 1: HD_KIND_DIMER of a [dimers]-[disks] mixture (N, density: every
+                       body's; its alpha: NaN when the three restitutions differ; no Enskog
+                       reference: mass NaN) */
+  int walls;        /* [walls] sides given: not the periodic box of the papers */
   char label[HD_ANA_LABEL_MAX]; /* what tables print: hd_ana_species_name, or for HD_KIND_BODY
                                    "shapes:" and the present species' names joined by '+' in
                                    scene order ("shapes:dimers+tri"), then "+walls" if walls */
   int rotates;                  /* 1 if some body has more than one disk (E_rot and K exist) */
-  long n;                       /* bodies of that species (HD_KIND_BODY: of every species) */
-  double alpha;              /* its restitution with itself ([dimers] or [disks] alpha, default 1);
-                                HD_KIND_BODY: the one restitution of every pair of present species,
-                                NaN when they differ (eq. 31 has no single alpha then) */
+  long n;       /* bodies of that species (HD_KIND_BODY and a mixture: of every species) */
+  double alpha; /* its restitution with itself ([dimers] or [disks] alpha, default 1);
+                   HD_KIND_BODY and a mixture: the one restitution of every pair of
+                   present species, NaN when they differ (eq. 31 has no single alpha
+                   then) */
   double alpha_lo, alpha_hi; /* the smallest and largest restitution of a pair of present
-                                species (alpha_lo = alpha_hi = alpha but for HD_KIND_BODY) */
+                                species (alpha_lo = alpha_hi = alpha for one species) */
   double a, d;          /* bond length and disk diameter (disks: a = 0, d = sigma; HD_KIND_BODY:
                            0 and NaN) */
   double m;             /* disk mass ([dimers] m or [disks] mass, default 1; shapes: NaN) */
@@ -50,6 +58,17 @@ typedef struct hd_run_info {
   double beta, q;       /* rough bodies (issue 29): that species' tangential restitution with
                            itself and its disks' q ([dimers] or [disks] beta, q: -1, 0 when
                            smooth; NaN for shapes and rods) */
+  int rough;            /* 1 when a pair of present species, or a body and the walls, collide
+                           with a tangential restitution beta > -1 (issue 29): eq. (31) is Haff's
+                           law of smooth bodies, and its D_e does not describe them */
+  double wall_alpha;    /* [walls] alpha (NaN without walls) */
+  uint64_t shape_key;   /* a hash of the present species in engine order: counts, every disk's
+                           place about its body's centre of mass, diameter and mass (not their
+                           names: the label has them) */
+  uint64_t coll_key;    /* a hash of the normal restitutions: every pair of present species'
+                           alpha, the walls' sides and alpha */
+  uint64_t rough_key;   /* a hash of the roughness: every pair's beta, each species' q, the walls'
+                           beta */
   double box_x, box_y;  /* the box: runs.box_x/box_y (the engine's), else the scene's: [system]
                            box, or derived from area_fraction as the loader does (0: none) */
   double area_fraction; /* [system] area_fraction (0 if absent) */
@@ -69,6 +88,10 @@ int hd_ana_open(sqlite3 **db, const char *path, hd_error *err);
  * (hd_scene_read_stored: its keys, defaults and body areas).  HD_EINPUT, with the loader's
  * "runs.scene:LINE: [section] key = value: why", for a text it refuses. */
 int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err);
+
+/* Whether runs a and b ran the same bodies and collision rule (shape_key, coll_key, rough_key,
+ * wall_alpha, rough, beta, q equal; box and seed aside): 1 or 0. */
+int hd_ana_same_physics(const hd_run_info *a, const hd_run_info *b);
 
 /* The runs to analyse: want >= 0 gives that run (any status; HD_EINPUT if absent), want < 0
  * every run with status done, collapsed or interrupted, by id.  *runs malloc'd (free()). */
@@ -98,9 +121,10 @@ int hd_ana_snapshots(sqlite3 *db, int64_t run, const char *label, const char *ki
 void hd_snapshots_free(hd_snapshot *snaps, size_t n);
 
 /* Dimer-dimer collisions of one run by seq: theta_i, theta_j, f (malloc'd arrays; NULL
- * angles are skipped).  HD_OK with *n = 0 when there are none. */
-int hd_ana_dd_collisions(sqlite3 *db, int64_t run, double **theta_i, double **theta_j, double **f,
-                         size_t *n, hd_error *err);
+ * angles are skipped); body: the rows of kind 'body-body' instead (a run of named dimers,
+ * hd_run_info.named_dimers).  HD_OK with *n = 0 when there are none. */
+int hd_ana_dd_collisions(sqlite3 *db, int64_t run, int body, double **theta_i, double **theta_j,
+                         double **f, size_t *n, hd_error *err);
 
 /* Closes a database of hd_ana_open (NULL allowed). */
 void hd_ana_close(sqlite3 *db);

@@ -850,7 +850,7 @@ static void mixtures_and_walls_labelled(void **state) {
   /* 30 cpd: over 5-20 cpd E decays by less than a factor e at alpha = 0.9, and the fits flag
    * such a window short (issue 25) and the tables leave it out */
   write_scene("pure.ini", base, "");
-  write_scene("mixed.ini", base, "[disks]\ncount = 50\n");
+  write_scene("mixed.ini", base, "[disks]\ncount = 50\nalpha = 0.9\n"); /* one alpha: fitted */
   write_scene("walled.ini", base, "[walls]\nsides = left right\n");
   run_scenes("pure mixed walled", "lab.db");
   assert_int_equal(sh("(%s haff-fit lab.db | cut -f2 | tr '\\n' ' ' > species.txt)", haff), 0);
@@ -877,6 +877,59 @@ static void mixtures_and_walls_labelled(void **state) {
   /* nothing left to tabulate is bad input, as in table2 (it printed a header, exit 0) */
   assert_int_equal(sh("%s run mixed.ini -o mixonly.db --quiet", haff), 0);
   bad_usage("table1 mixonly.db", "no run of one species in a periodic box to tabulate");
+}
+
+/* Issue-14 review, item 11: a gas of paper dimers written as a named species (`shape = dimer
+ * 1`) runs bit for bit as [dimers] with the same seed, and the dimer analyses now read it as
+ * dimers: angles (its body-body collisions) and veldist (its 'body' snapshots) print exactly
+ * what they print for the [dimers] run, table1 and table2 give it a row (they refused it as "not
+ * one species in a periodic box" and "no dimer run", angles found "no logged dimer-dimer
+ * collisions", veldist refused named species); a species of other bodies is still refused,
+ * with that reason. */
+static void named_dimers_analysed(void **state) {
+  (void)state;
+  if (!haff) skip();
+  const char *run = "[run]\nstop_cpd = 30\n[log]\nsamples_every = 0.5\nvelocities_at = 10\n";
+  char text[512];
+  snprintf(text, sizeof text,
+           "[system]\narea_fraction = 0.05\n[dimers]\ncount = 100\nalpha = 0.9\n%s", run);
+  write_file("pd.ini", text);
+  snprintf(text, sizeof text,
+           "[system]\narea_fraction = 0.05\n[species dim]\ncount = 100\nshape = dimer 1\n"
+           "alpha = 0.9\n%s",
+           run);
+  write_file("nd.ini", text);
+  snprintf(text, sizeof text,
+           "[system]\narea_fraction = 0.05\n[species tri]\ncount = 100\nshape = triangle\n"
+           "alpha = 0.9\n%s",
+           run);
+  write_file("nt.ini", text);
+  assert_int_equal(sh("rm -f nd.db nt.db && %s run pd.ini -o nd.db -q && %s run nd.ini -o nd.db -q "
+                      "&& %s run nt.ini -o nt.db -q",
+                      haff, haff, haff),
+                   0);
+  assert_int_equal(sh("%s angles nd.db --run 1 --block 100 > a1.tsv && %s angles nd.db --run 2 "
+                      "--block 100 > a2.tsv && cmp a1.tsv a2.tsv",
+                      haff, haff),
+                   0);
+  assert_int_equal(sh("%s veldist nd.db --run 1 > v1.tsv && %s veldist nd.db --run 2 > v2.tsv && "
+                      "cmp v1.tsv v2.tsv && test $(wc -l < v1.tsv) -gt 10",
+                      haff, haff),
+                   0);
+  /* a row each: header + 2 (equal numbers: the same dynamics), and a warning that says why the
+   * two rows are apart */
+  assert_int_equal(sh("(%s table1 nd.db --keep-flagged > t1.tsv && test $(wc -l < t1.tsv) = 3 && "
+                      "test \"$(sed -n 2p t1.tsv)\" = \"$(sed -n 3p t1.tsv)\")",
+                      haff),
+                   0);
+  char e[4096];
+  read_err(e, sizeof e);
+  assert_non_null(strstr(e, "differ in species label"));
+  assert_int_equal(
+      sh("(%s table2 nd.db --keep-flagged > t2.tsv && test $(wc -l < t2.tsv) = 3)", haff), 0);
+  bad_usage("angles nt.db --run 1", "run 1 has named species (shapes:tri) and no logged "
+                                    "dimer-dimer collisions");
+  bad_usage("table1 nt.db", "the table is for dimers (of [dimers], or a gas of one named species");
 }
 
 /* Named species (issue 18) are analysed as the gas they are, not through [dimers]: they used to
@@ -1084,6 +1137,7 @@ int main(void) {
       cmocka_unit_test(resume_without_the_state_file),
       cmocka_unit_test(live_run_commits_every_second),
       cmocka_unit_test(mixtures_and_walls_labelled),
+      cmocka_unit_test(named_dimers_analysed),
       cmocka_unit_test(named_species_labelled),
       cmocka_unit_test(special_names_are_files),
       cmocka_unit_test(foreign_database_untouched),

@@ -69,7 +69,9 @@ const hd_optdef hd_cli_opts[] = {
                 .set = HD_OPT_STATS),
     HD_OPT_FLAG("pool", 0, hd_cli_args, pool,
                 "one block instead: every snapshot of every finished run (or --run) of\n"
-                "the first run's species whose cpd is in the run's HCS window (haff-fit's\n"
+                "the first run's ensemble (haff-fit --alpha-group's group: species, alpha,\n"
+                "a/d, N, density, roughness, shapes, walls) whose cpd is in the run's HCS\n"
+                "window (haff-fit's\n"
                 "window; fit options apply), pooled; extra column n (values per component)",
                 .set = HD_OPT_STATS),
     HD_OPT_INT("bins", 0, hd_cli_args, bins, 1, 100000, 0, "B",
@@ -223,13 +225,23 @@ void hd_cli_groups_warn(const char *cmd, const hd_group *g, size_t ng) {
   for (size_t j = 0; j < ng; j++)
     for (size_t k = 0; k < j; k++)
       if (hd_group_same_label(&g[j], &g[k])) {
+        char what[160];
+        hd_group_differ(&g[k], &g[j], what, sizeof what);
         fprintf(stderr,
-                "haff %s: warning: runs with alpha %g a/d %g differ in N, density, d or m (N %ld "
-                "n %.6g and N %ld n %.6g): kept apart, as rows with the same alpha and a/d\n",
-                cmd, g[j].alpha, g[j].a_over_d, g[k].nbodies, g[k].density, g[j].nbodies,
-                g[j].density);
+                "haff %s: warning: runs with alpha %g a/d %g differ in %s (N %ld n %.6g%s and N "
+                "%ld n %.6g%s): kept apart, as rows with the same alpha and a/d\n",
+                cmd, g[j].alpha, g[j].a_over_d, what, g[k].nbodies, g[k].density,
+                g[k].rough ? ", rough" : "", g[j].nbodies, g[j].density,
+                g[j].rough ? ", rough" : "");
         break;
       }
+  for (size_t j = 0; j < ng; j++)
+    if (g[j].rough)
+      fprintf(stderr,
+              "haff %s: note: %s alpha %g a/d %g N %ld: rough bodies (tangential restitution "
+              "beta > -1): eq. (31) is Haff's law of smooth bodies, so their D_e is a fit "
+              "parameter, not eq. (31)'s (flag rough; docs/analysis.md, \"Rough bodies\")\n",
+              cmd, g[j].label, g[j].alpha, g[j].a_over_d, g[j].nbodies);
 }
 
 void hd_cli_groups_free(hd_cli_set *s) {
@@ -280,9 +292,15 @@ size_t hd_cli_table_groups(const char *cmd, const hd_group *g, size_t ng, int wi
       in++;
     else if (g[j].species != HD_KIND_DISK || g[j].walls) /* not the disks table2 has no use for */
       fprintf(stderr,
-              "haff %s: note: left out %zu run%s of %s (alpha %g a/d %g): the table is for one "
-              "species in a periodic box; haff-fit --alpha-group fits them\n",
-              cmd, g[j].n, g[j].n == 1 ? "" : "s", g[j].label, g[j].alpha, g[j].a_over_d);
+              "haff %s: note: left out %zu run%s of %s (alpha %g a/d %g): %s; haff-fit "
+              "--alpha-group fits them\n",
+              cmd, g[j].n, g[j].n == 1 ? "" : "s", g[j].label, g[j].alpha, g[j].a_over_d,
+              g[j].walls     ? "the table is for a periodic box, these have walls"
+              : g[j].mixture ? "the table is for one species, these are a mixture"
+              : g[j].species == HD_KIND_BODY
+                  ? "the table is for dimers (of [dimers], or a gas of one named species of two "
+                    "equal disks) and disks, these are other bodies or a mixture"
+                  : "the table is for one species in a periodic box");
   }
   return in;
 }
@@ -295,7 +313,7 @@ int hd_cli_flagged_out(const char *cmd, const hd_group *g, const hd_group_fit *q
             "haff %s: note: alpha %g a/d %g: no state measures in its samples (logged before "
             "schema 2): its homogeneity is not checked and D_e_sys has no box term\n",
             cmd, g->alpha, g->a_over_d);
-  if (!q->flagged || keep) return 0;
+  if (!(q->flagged & ~HD_FLAG_ROUGH) || keep) return 0; /* rough: a caveat, kept */
   if (q->flagged & HD_FLAG_INHOMOG)
     fprintf(stderr,
             "haff %s: note: left out alpha %g a/d %g N %ld: inhomogeneous (window mean s_perp "

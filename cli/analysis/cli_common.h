@@ -96,7 +96,8 @@ int hd_cli_groups(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a,
 int hd_cli_table_start(const hd_optspec *spec, int argc, char **argv, int with_disks,
                        const char *none, hd_cli_args *a, hd_cli_set *s, FILE **out);
 
-/* Prints a warning on stderr for each group whose (alpha, a/d) label an earlier group has. */
+/* Prints a warning on stderr for each group whose (alpha, a/d) label an earlier group has (and
+ * what they differ in: hd_group_differ), and a note for each group of rough bodies. */
 void hd_cli_groups_warn(const char *cmd, const hd_group *g, size_t ng);
 
 /* Frees what hd_cli_groups returned and closes the database. */

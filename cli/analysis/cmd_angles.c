@@ -28,15 +28,22 @@ int hd_cmd_angles(int argc, char **argv) {
   hd_error err;
   size_t n;
   double *ti, *tj, *f;
-  if (hd_ana_dd_collisions(db, a.run, &ti, &tj, &f, &n, &err)) {
+  if (hd_ana_dd_collisions(db, a.run, ri.named_dimers, &ti, &tj, &f, &n, &err)) {
     hd_ana_close(db);
     return hd_cli_fail(argv[0], &err);
   }
   hd_ana_close(db);
   if (n == 0) {
     free(ti), free(tj), free(f);
-    fprintf(stderr, "haff %s: run %lld has no logged dimer-dimer collisions\n", argv[0],
-            (long long)a.run);
+    if (ri.species == HD_KIND_BODY && ri.n > 0) /* the dimer-dimer rows of [dimers] only */
+      fprintf(stderr,
+              "haff %s: run %lld has named species (%s) and no logged dimer-dimer collisions: "
+              "angles reads the collisions of [dimers], or of a gas of one named species of "
+              "paper dimers (two equal disks); other bodies' contact angles are not Fig. 5's\n",
+              argv[0], (long long)a.run, ri.label);
+    else
+      fprintf(stderr, "haff %s: run %lld has no logged dimer-dimer collisions\n", argv[0],
+              (long long)a.run);
     return 2;
   }
   if (!a.fmean && n < (size_t)a.block) { /* before -o: no empty table for a plot to choke on */

@@ -22,7 +22,8 @@ const hd_optspec hd_cmd_haff_fit_spec = {
         "'inhomogeneous' for a box past the HCS's validity.  One line per run, or per group of "
         "runs "
         "with\n"
-        "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m and density;\n"
+        "equal (alpha, a/d) with --alpha-group (also equal species, walls, N, d, m, density,\n"
+        "roughness, shapes and wall alpha;\n"
         "mean +- standard error over the runs; empty with one run).  Per run, *_fit_err are the\n"
         "formal least-squares errors, which take the residuals of the cumulative cpd(t) as\n"
         "independent: several times too small; empty (with chi2_dof) when the window has\n"
@@ -37,8 +38,9 @@ const hd_optspec hd_cmd_haff_fit_spec = {
         "constrained there, and groups leave such runs out.  flag 'outlier' (per run): its D_e is\n"
         "more than 6 robust standard deviations from its group's median (a near-collapse burst);\n"
         "groups leave it out and count it in 'rejected', and are flagged 'outliers' when more\n"
-        "than 1 in 10 of their runs are.  A missing value, or a systematic term not resolved\n"
-        "from its noise, is printed empty (never nan or 0).\n"
+        "than 1 in 10 of their runs are.  flag 'rough' (per run and group): rough bodies (beta\n"
+        "> -1), whose D_e is a fit parameter, not eq. (31)'s.  A missing value, or a systematic\n"
+        "term not resolved from its noise, is printed empty (never nan or 0).\n"
         "--by-species: instead, one row per species of each ensemble of runs (the same species,\n"
         "counts, masses, sizes, restitutions and box; --run: that run alone): group run runs\n"
         "species N T_ratio T_ratio_err err_from T_ratio_theory K K_err mass sigma alpha cpd_start\n"
@@ -141,12 +143,23 @@ int hd_cmd_haff_fit(int argc, char **argv) {
               N("%.4g", f->hcs.have ? f->hcs.s_perp : nan),
               N("%.4g", f->hcs.have ? f->hcs.flow_excess : nan), f->hcs.ended,
               hd_cli_window_name(f->window), N("%.3g", f->decay),
-              f->short_window ? "short"
-              : rej[i]        ? "outlier"
-                              : "",
+              f->info.rough     ? (f->short_window ? "short,rough"
+                                   : rej[i]        ? "outlier,rough"
+                                                   : "rough")
+              : f->short_window ? "short"
+              : rej[i]          ? "outlier"
+                                : "",
               N("%.5g", rr), N("%.2g", rr_err), N("%.5g", rr_th));
     }
     free(rej);
+    size_t nrough = 0;
+    for (size_t i = 0; i < n; i++) nrough += fits[i].info.rough != 0;
+    if (nrough)
+      fprintf(stderr,
+              "haff %s: note: %zu run%s flagged rough: tangential restitution beta > -1; eq. (31) "
+              "is Haff's law of smooth bodies, so their D_e is a fit parameter, not eq. (31)'s "
+              "(docs/analysis.md, \"Rough bodies\")\n",
+              argv[0], nrough, nrough == 1 ? "" : "s");
     if (nrej)
       fprintf(stderr,
               "haff %s: note: %zu run%s flagged outlier: D_e more than %g robust standard "

@@ -49,6 +49,7 @@ const hd_optspec hd_cmd_table1_spec = {
         "area_fraction the area they cover; nu_kt = ratio over its theory: the molecular-chaos\n"
         "rate of haff mc rate at a/d times g(area_fraction) / g(eta), 1 where theory and runs\n"
         "agree; groups flagged inhomogeneous, short or outliers are left out, with a note;\n"
+        "flag rough (rough bodies: D_e a fit parameter, not eq. 31's) is kept, a caveat;\n"
         "rejected: runs left out as outliers, D_e more than 6 robust standard deviations from\n"
         "the group's median: near-collapse bursts, docs/analysis.md)\n"};
 

@@ -20,14 +20,15 @@ static void stat_line(FILE *out, size_t s, const hd_snapshot *sn, const char *va
 /* Says on stderr why a run of named species (hd_run_info.species HD_KIND_BODY) is refused. */
 static void refuse_shapes(const char *cmd, const hd_run_info *ri) {
   fprintf(stderr,
-          "haff %s: run %lld has named species (%s): veldist reads one species, [dimers] or "
-          "[disks]; the states table holds every body's velocity (kind 'body')\n",
+          "haff %s: run %lld has named species (%s): veldist reads one species, [dimers], "
+          "[disks] or a gas of one named species of paper dimers (two equal disks); the states "
+          "table holds every body's velocity (kind 'body')\n",
           cmd, (long long)ri->id, ri->label);
 }
 
-/* --pool: one histogram of the snapshots of every run (or --run) of one species whose cpd lies
- * in the run's HCS window (hd_run_fit_do: after the transient, before the end of homogeneity),
- * each scaled by its own s as in the per-snapshot blocks. */
+/* --pool: one histogram of the snapshots of every run (or --run) of the first run's ensemble whose
+ * cpd lies in the run's HCS window (hd_run_fit_do: after the transient, before the end of
+ * homogeneity), each scaled by its own s as in the per-snapshot blocks. */
 static int veldist_pool(const hd_cli_args *a, const char *cmd) {
   sqlite3 *db;
   hd_run_fit *fits;
@@ -35,7 +36,6 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
   int rc = hd_cli_fits(a, cmd, &db, &fits, &n);
   if (rc) return rc;
   int bins = a->bins ? a->bins : 40, species = fits[0].info.species;
-  int mixture = fits[0].info.mixture;
   if (species == HD_KIND_BODY) {
     refuse_shapes(cmd, &fits[0].info);
     free(fits);
@@ -50,16 +50,27 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
   double nv = 0, nw = 0, c0 = INFINITY, c1 = -INFINITY;
   size_t runs = 0, snaps = 0, other = 0;
   hd_error err;
+  /* the first run's ensemble only (hd_group_runs: species, alpha, a/d, N, density, roughness,
+   * shapes, walls); runs of another alpha or roughness were pooled with it */
+  hd_group *g = NULL;
+  size_t ng = 0;
+  if (hd_group_runs(fits, n, &g, &ng, &err)) rc = hd_cli_fail(cmd, &err);
   for (size_t r = 0; r < n && !rc; r++) {
     const hd_run_fit *f = &fits[r];
-    if (f->info.species != species || f->info.mixture != mixture) {
+    int in = 0;
+    for (size_t k = 0; k < g[0].n && !in; k++) in = g[0].idx[k] == r;
+    if (!in) {
       other++;
       continue;
     }
     int dimers = species != HD_KIND_DISK;
     hd_snapshot *sn;
     size_t ns, used = 0;
-    if (hd_ana_snapshots(db, f->info.id, a->label, dimers ? "dimer" : "disk", &sn, &ns, &err)) {
+    if (hd_ana_snapshots(db, f->info.id, a->label,
+                         f->info.named_dimers ? "body"
+                         : dimers             ? "dimer"
+                                              : "disk",
+                         &sn, &ns, &err)) {
       rc = hd_cli_fail(cmd, &err);
       break;
     }
@@ -81,8 +92,12 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
     hd_snapshots_free(sn, ns);
     snaps += used, runs += used > 0;
   }
+  hd_groups_free(g, ng);
   if (other)
-    fprintf(stderr, "haff %s: note: --pool left out %zu run%s of another species than the first\n",
+    fprintf(stderr,
+            "haff %s: note: --pool left out %zu run%s of another ensemble than the first run's "
+            "(species, alpha, a/d, N, density, roughness, shapes or walls differ: haff-fit "
+            "--alpha-group shows the groups)\n",
             cmd, other, other == 1 ? "" : "s");
   if (!rc && snaps == 0) {
     fprintf(stderr, "haff %s: --pool: no '%s' snapshot inside a run's HCS window\n", cmd, a->label);
@@ -157,7 +172,11 @@ int hd_cmd_veldist(int argc, char **argv) {
   size_t ns;
   hd_snapshot *sn;
   int dimers = ri.species != HD_KIND_DISK;
-  rc = hd_ana_snapshots(db, a.run, a.label, dimers ? "dimer" : "disk", &sn, &ns, &err);
+  rc = hd_ana_snapshots(db, a.run, a.label,
+                        ri.named_dimers ? "body"
+                        : dimers        ? "dimer"
+                                        : "disk",
+                        &sn, &ns, &err);
   hd_ana_close(db);
   if (rc) return hd_cli_fail(argv[0], &err);
   if (ns == 0) {
