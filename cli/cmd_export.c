@@ -93,6 +93,13 @@ int hd_cmd_export(int argc, char **argv) {
               outpath, path);
       return 2;
     }
+    if (hd_path_is_sqlite(outpath)) {
+      fprintf(stderr,
+              "haff export: %s is an SQLite database, which the gsd file would replace: refused, "
+              "nothing written (give -o FILE)\n",
+              outpath);
+      return 2;
+    }
   }
   hd_db *db = NULL;
   hd_error err;

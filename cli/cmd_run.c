@@ -34,7 +34,8 @@ typedef struct run_args {
 
 enum { FOR_RUN = 1, FOR_RESUME = 2 };
 static const hd_optdef run_opts[] = {
-    HD_OPT_PATH("o", 'o', run_args, db, HD_OPTF_SHORT | HD_OPTF_NOT_STDOUT | HD_OPTF_OUTPUT, "DB",
+    HD_OPT_PATH("o", 'o', run_args, db,
+                HD_OPTF_SHORT | HD_OPTF_NOT_STDOUT | HD_OPTF_OUTPUT | HD_OPTF_DB, "DB",
                 "the database [SCENE's name with .db, in the current folder]", .set = FOR_RUN),
     HD_OPT_LIST("set", 0, run_args, sets, "SECTION.KEY=VALUE", "overrides a scene key (repeatable)",
                 .set = FOR_RUN),

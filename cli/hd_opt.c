@@ -273,6 +273,7 @@ static const char *path_value(const hd_optres *res, const hd_optspec *spec, int 
 int hd_opt_check_outputs(const hd_optspec *spec, const hd_optres *res, const void *dest) {
   enum { MAXF = MAX_OPTS + 64 };
   const char *out[MAXF], *oname[MAXF], *in[MAXF];
+  int isdb[MAXF];
   char names[MAX_OPTS][64];
   int no = 0, ni = 0;
   for (int k = 0; spec->opts[k].name && k < MAX_OPTS; k++) {
@@ -280,13 +281,14 @@ int hd_opt_check_outputs(const hd_optspec *spec, const hd_optres *res, const voi
     const char *v = path_value(res, spec, k, dest);
     if (!v) continue;
     if ((d->flags & HD_OPTF_OUTPUT) && no < MAXF)
-      oname[no] = opt_name(d, names[k], sizeof names[k]), out[no++] = v;
+      isdb[no] = (d->flags & HD_OPTF_DB) != 0, oname[no] = opt_name(d, names[k], sizeof names[k]),
+      out[no++] = v;
     else if ((d->flags & HD_OPTF_INPUT) && ni < MAXF)
       in[ni++] = v;
   }
   for (int j = 0; j < res->npos; j++) {
     if (j == spec->out_pos - 1 && no < MAXF)
-      oname[no] = "the output", out[no++] = res->pos[j];
+      isdb[no] = 1, oname[no] = "the output", out[no++] = res->pos[j];
     else if (j != spec->out_pos - 1 && ni < MAXF)
       in[ni++] = res->pos[j];
   }
@@ -305,6 +307,22 @@ int hd_opt_check_outputs(const hd_optspec *spec, const hd_optres *res, const voi
                 oname[p], out[p], oname[o], out[o]);
         return 2;
       }
+  }
+  for (int o = 0; o < no; o++) { /* then each output alone */
+    char folder[512];
+    int miss = hd_path_folder_missing(out[o], folder, sizeof folder);
+    if (miss) {
+      fprintf(stderr, "haff %s: %s %s: the folder %s %s: nothing written\n", spec->cmd, oname[o],
+              out[o], folder, miss == 1 ? "does not exist" : "is not a folder");
+      return 2;
+    }
+    if (!isdb[o] && hd_path_is_sqlite(out[o])) {
+      fprintf(stderr,
+              "haff %s: %s %s is an SQLite database, which this output would replace: refused, "
+              "nothing written (remove it first, or name another file)\n",
+              spec->cmd, oname[o], out[o]);
+      return 2;
+    }
   }
   return 0;
 }

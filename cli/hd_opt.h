@@ -34,8 +34,11 @@ enum {
   HD_OPTF_ONCE = 128,      /* given twice is an error ("--seed given twice: give one") */
   HD_OPTF_OUTPUT = 256,    /* STRING, PATH: a file the command writes ("-": stdout); refused by
                             * hd_opt_parse when it would overwrite an input (hd_path_overwrites) */
-  HD_OPTF_INPUT = 512      /* STRING, PATH: a file the command reads, besides its positional
+  HD_OPTF_INPUT = 512,     /* STRING, PATH: a file the command reads, besides its positional
                             * arguments (which are inputs unless hd_optspec.out_pos says) */
+  HD_OPTF_DB = 1024        /* with HD_OPTF_OUTPUT: a database the command writes into (kept and
+                            * added to); any other output is replaced whole, so an existing
+                            * SQLite file there is refused */
 };
 
 /* The values of an HD_ARG_LIST option, in the order given. */
@@ -97,8 +100,11 @@ int hd_opt_parse(const hd_optspec *spec, int argc, char **argv, void *dest, hd_o
  * are read and before the command opens anything: every output (an HD_OPTF_OUTPUT option given,
  * not "-"; the positional argument out_pos) is compared by hd_path_overwrites with every input
  * (the other positional arguments, the HD_OPTF_INPUT options given) and with every other
- * output.  Returns 0, or 2 after one line on stderr, e.g. "haff energy: -o x.db would overwrite
- * the input x.db (the same file): nothing written". */
+ * output; its folder must exist (hd_path_folder_missing); and an output that is not a database
+ * (no HD_OPTF_DB; out_pos is one) must not be an existing SQLite file (hd_path_is_sqlite: a
+ * text or movie written over a database would destroy its runs).  Returns 0, or 2 after one
+ * line on stderr, e.g. "haff energy: -o x.db would overwrite the input x.db (the same file):
+ * nothing written", "haff run: -o no/x.db: the folder no does not exist: nothing written". */
 int hd_opt_check_outputs(const hd_optspec *spec, const hd_optres *res, const void *dest);
 
 /* The one number parser: reads s as the value of option d by its range and rules, into *x
