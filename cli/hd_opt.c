@@ -234,7 +234,11 @@ int hd_opt_parse(const hd_optspec *spec, int argc, char **argv, void *dest, hd_o
       return 2;
     }
     const hd_optdef *d = &spec->opts[k];
-    if (res->given[k] && (d->flags & HD_OPTF_ONCE)) {
+    /* an output, an input or any file name given twice: which one was meant? (the last one
+     * counted: `run -o a.db -o b.db` wrote b.db alone) */
+    int once =
+        (d->flags & (HD_OPTF_ONCE | HD_OPTF_OUTPUT | HD_OPTF_INPUT)) || d->kind == HD_ARG_PATH;
+    if (res->given[k] && once) {
       fprintf(stderr, "haff %s: %s given twice: give one\n", spec->cmd, opt_name(d, nb, sizeof nb));
       return 2;
     }

@@ -31,7 +31,8 @@ enum {
   HD_OPTF_CLEAR = 16,      /* FLAG: stores 0 (a --no-X flag) */
   HD_OPTF_NOT_STDOUT = 32, /* PATH: "-" refused (a database is a file, not a stream) */
   HD_OPTF_SHORT = 64,      /* only the short form (-o): name is its name in messages and help */
-  HD_OPTF_ONCE = 128,      /* given twice is an error ("--seed given twice: give one") */
+  HD_OPTF_ONCE = 128,      /* given twice is an error ("--seed given twice: give one"); so is
+                            * every HD_OPTF_OUTPUT, HD_OPTF_INPUT and HD_ARG_PATH option */
   HD_OPTF_OUTPUT = 256,    /* STRING, PATH: a file the command writes ("-": stdout); refused by
                             * hd_opt_parse when it would overwrite an input (hd_path_overwrites) */
   HD_OPTF_INPUT = 512,     /* STRING, PATH: a file the command reads, besides its positional
@@ -89,7 +90,8 @@ typedef struct hd_optres {
 /* Parses argv[1..argc) (argv[0] the subcommand's name; GNU getopt_long, which moves the
  * positional arguments after the options; "--" ends the options) by spec, storing each value
  * in dest (the struct the table's offsets refer to; its defaults set by the caller).  A value
- * given twice: the last one counts (res->given says how often).  -h and --help print the help
+ * given twice: the last one counts (res->given says how often), except an option of
+ * HD_OPTF_ONCE, an output, an input or a path (refused).  -h and --help print the help
  * (hd_opt_help) on stdout.  Returns 0 to go on, -1 after printing the help (the caller returns
  * 0), or 2 after one line on stderr naming the option, the value and why (bad number, out of
  * range, unknown option, missing value, an option that does not apply to this subcommand

@@ -720,6 +720,15 @@ static void snapshots_and_exports(void **state) {
                                "'velocities_at: 2 of 3 snapshots not taken%'"),
                    1);
   bad_usage("run va.ini -o va2.db --seed 1 --seed 2", "--seed given twice");
+  /* REVIEW14 10: an output, an input or a run given twice is refused (before: the last one
+   * counted, `run -o a.db -o b.db` wrote b.db alone, haff-fit --run 1 --run 2 read run 2) */
+  bad_usage("run va.ini -o va4.db -o va5.db", "-o given twice: give one");
+  assert_false(exists("va4.db") || exists("va5.db"));
+  bad_usage("haff-fit va.db --run 1 --run 1", "--run given twice: give one");
+  bad_usage("energy va.db -o e1.tsv -o e2.tsv", "-o given twice: give one");
+  bad_usage("export xyz va.db --run 1 --run 1", "--run given twice: give one");
+  bad_usage("mc eps --tabulate --db e1.db --db e2.db", "--db given twice: give one");
+  bad_usage("sweep x.ini --status a --status b", "--status given twice: give one");
   bad_usage("run va.ini -o va3.db --set run.stop_cpd=2",
             "va.ini:9: [log] velocities_at = 1 5 10: 10 is past stop_cpd = 2");
   /* snapshot times are taken at those times exactly, the last one at stop_time */
@@ -761,14 +770,18 @@ static void resume_without_the_state_file(void **state) {
                    0);
 }
 
-/* A read-only database directory: exit 1 with a clear message, no crash. */
+/* A database directory where no file can be made (/proc, even for root): exit 1 with a clear
+ * message, no crash.  One that does not exist is bad usage, refused before anything is opened
+ * (exit 2, naming it; review 14: it was exit 1, "unable to open database file"). */
 static void unwritable_db(void **state) {
   (void)state;
   if (!haff) skip();
   char e[2048];
-  assert_int_equal(sh("%s run s.ini -o /proc/nope/x.db --quiet", haff), 1);
+  assert_int_equal(sh("%s run s.ini -o /proc/x.db --quiet", haff), 1);
   read_err(e, sizeof e);
   assert_non_null(strstr(e, "x.db"));
+  bad_usage("run s.ini -o /proc/nope/x.db --quiet",
+            "-o /proc/nope/x.db: the folder /proc/nope does not exist");
 }
 
 /* A sparsely logged run commits what it has every second (hd_run.c), so that its rows can be

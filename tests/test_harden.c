@@ -139,9 +139,12 @@ static void text_output_not_a_database(void **state) {
   (void)state;
   if (!haff) skip();
   assert_int_equal(sh("cp d.db other.db && cp d.db keep2.db"), 0);
-  static const char *const cmds[] = {"mc eps --dump other.db",      "haff-fit d.db -o other.db",
-                                     "energy d.db -o other.db",     "export xyz d.db -o other.db",
-                                     "export gsd d.db -o other.db", "movie d.db -o other.db"};
+  static const char *const cmds[] = {"mc eps --gamma 1 --samples 10 --dump other.db",
+                                     "haff-fit d.db -o other.db",
+                                     "energy d.db -o other.db",
+                                     "export xyz d.db -o other.db",
+                                     "export gsd d.db -o other.db",
+                                     "movie d.db -o other.db"};
   for (size_t k = 0; k < sizeof cmds / sizeof *cmds; k++) {
     int rc = sh("%s %s", haff, cmds[k]);
     char err[2048];
@@ -166,7 +169,7 @@ static void output_folder_missing(void **state) {
   static const char *const cmds[] = {
       "run disks.ini -o nosuch/b.db",    "merge nosuch/o.db d.db",
       "haff-fit d.db -o nosuch/f.tsv",   "export xyz d.db -o nosuch/x.xyz",
-      "export gsd d.db -o nosuch/x.gsd", "mc eps --tabulate --db nosuch/e.db",
+      "export gsd d.db -o nosuch/x.gsd", "mc eps --gamma 1 --tabulate --db nosuch/e.db",
       "energy d.db -o nosuch//e.tsv",    "run disks.ini -o disks.ini/b.db"};
   size_t n = sizeof cmds / sizeof *cmds;
   for (size_t k = 0; k < n; k++) {

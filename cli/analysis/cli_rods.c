@@ -11,7 +11,7 @@
 
 /* Every option of the DB readers; each subcommand's spec says which it reads. */
 const hd_optdef hd_rcli_opts[] = {
-    HD_OPT_INT("run", 0, ropts, run, 0, 8999999999999999999LL, HD_OPTF_EXP, "ID",
+    HD_OPT_INT("run", 0, ropts, run, 0, 8999999999999999999LL, HD_OPTF_EXP | HD_OPTF_ONCE, "ID",
                "the run [the newest rods run of DB]", .set = HD_RCLI_RUN),
     HD_OPT_DBL("t", 0, ropts, t, -INFINITY, INFINITY, HD_OPTF_FINITE, "T",
                "the snapshot nearest time T [the last; rods-density: every one]", .set = HD_RCLI_T),
