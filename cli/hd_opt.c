@@ -346,7 +346,10 @@ void hd_opt_help(const hd_optspec *spec, FILE *out) {
     if (d->meta) snprintf(left + o, sizeof left - (size_t)o, " %s", d->meta);
     fprintf(out, "%-*s", 19, left);
     if (strlen(left) >= 19) fputs("  ", out);
-    for (const char *p = d->help; *p;) { /* continuation lines under the first */
+    const char *help = d->help;
+    for (const char *const *h = spec->help_for; h && h[0] && h[1]; h += 2)
+      if (!strcmp(h[0], d->name)) help = h[1];
+    for (const char *p = help; *p;) { /* continuation lines under the first */
       size_t len = strcspn(p, "\n");
       fprintf(out, "%.*s\n", (int)len, p);
       p += len;

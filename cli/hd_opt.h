@@ -78,6 +78,8 @@ typedef struct hd_optspec {
   int out_pos;            /* 1 + the index of the positional argument that is an output (merge's
                            * OUT.db), checked like an HD_OPTF_OUTPUT option; 0: every
                            * positional argument is an input */
+  const char *const *help_for; /* this subcommand's own help of options of a shared table:
+                                * pairs (name, help), then NULL; NULL: the table's help */
 } hd_optspec;
 
 /* What hd_opt_parse found besides the stored values. */
