@@ -54,9 +54,8 @@ static const hd_optdef fmean_opts[] = {
     HD_OPT_STR("disks", 0, fopts, disks, "SPEC",
                "two bodies of any rigid shape instead of dimers: 1 to 8 disks, each\n"
                "'x y d m' (centre in the body frame, diameter, mass), separated by\n"
-               "';', touching or overlapping; f = mu_eff / m_ref as the engine logs it "
-               "(docs/contract.md);\n"
-               "a_over_d is then nan"),
+               "';', touching or overlapping (one body); f = mu_eff / m_ref as the\n"
+               "engine logs it (docs/contract.md); a_over_d is then nan"),
     {0}};
 
 const hd_optspec hd_cmd_mc_fmean_spec = {
