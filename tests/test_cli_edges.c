@@ -143,6 +143,25 @@ static void help_says_what_is_required(void **state) {
   assert_int_equal(sh("%s help nosuch", haff), 2);
 }
 
+/* Review 14 (lower priority): a rods analysis given --t where the run has no snapshot says which
+ * one it reads, on stderr (before: only the output's header showed it); without --t, or at a
+ * snapshot's time, nothing is said. */
+static void rods_t_names_the_snapshot(void **state) {
+  (void)state;
+  if (!haff) skip();
+  char err[4096];
+  assert_int_equal(sh("%s rods-phase r.db --run 1 --t 1e6 > /dev/null", haff), 0);
+  read_file("err.txt", err, sizeof err);
+  if (!strstr(err, "note: run 1 has no snapshot at t = 1e+06: the nearest, t = 10, is read"))
+    fail_msg("rods-phase --t 1e6: %s", err);
+  assert_int_equal(sh("%s rods-density r.db --run 1 --t 1e6 > /dev/null", haff), 0);
+  read_file("err.txt", err, sizeof err);
+  if (!strstr(err, "no snapshot at t = 1e+06")) fail_msg("rods-density --t 1e6: %s", err);
+  assert_int_equal(sh("%s rods-phase r.db --run 1 --t 10 > /dev/null", haff), 0);
+  read_file("err.txt", err, sizeof err);
+  if (err[0]) fail_msg("rods-phase --t 10: %s", err);
+}
+
 /* Item 4: the "continue with" hint of an interrupted run, pasted into sh, gives haff resume
  * the database's exact name and runs nothing else (before: a quote in the name ended the
  * quoting, and `x'; touch PWNED; echo '.db` ran touch). */
@@ -440,6 +459,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(stdout_write_errors),
       cmocka_unit_test(help_says_what_is_required),
+      cmocka_unit_test(rods_t_names_the_snapshot),
       cmocka_unit_test(resume_hint_is_shell_safe),
       cmocka_unit_test(messages_escape_control_bytes),
       cmocka_unit_test(bad_option_named),

@@ -156,6 +156,12 @@ int hd_rcli_pick_time(const char *cmd, rrun *r, const ropts *o, double *t) {
   if (!isnan(o->t))
     for (long k = 0; k < n; k++)
       if (fabs(ts[k] - o->t) < fabs(ts[best] - o->t)) best = k;
+  /* --t between or past the snapshots: say which one is read (it was in the header only) */
+  if (!isnan(o->t) && fabs(ts[best] - o->t) > 1e-9 * fmax(1, fabs(o->t)))
+    fprintf(stderr,
+            "haff %s: note: run %ld has no snapshot at t = %g: the nearest, t = %.6g, is read "
+            "(its %ld snapshots: t = %.6g to %.6g)\n",
+            cmd, r->id, o->t, ts[best], n, ts[0], ts[n - 1]);
   *t = ts[best];
   free(ts);
   return 0;
