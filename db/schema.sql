@@ -28,6 +28,9 @@
 --      (species 0 the dimers, 1 the disks with e_rot 0: files before version 3 had no
 --      sample_species), the table is dropped and the view made.  Readers read files of every
 --      version: samples is a table up to version 4 and a view from 5, with the same columns.
+-- The views params, run_summary and run_species are made again by a writer whenever the file's
+-- differ from the ones below (hd_db.c, views_stale), without a new version: a fix of a view
+-- (run_summary's area_fraction of one species in a box given, review 14) reaches old files.
 PRAGMA journal_mode = WAL;
 
 -- One row per run.  status: running, done, interrupted, collapsed, failed.
