@@ -23,7 +23,8 @@ static const char *const labels[] = {"initial",    "final",  "checkpoint",
                                      "velocities", "frames", "all"};
 
 static const hd_optdef export_opts[] = {
-    HD_OPT_INT("run", 0, export_args, run, 1, LLONG_MAX, 0, "ID", "the run [the newest run in DB]"),
+    HD_OPT_INT("run", 0, export_args, run, 1, LLONG_MAX, HD_OPTF_ONCE, "ID",
+               "the run [the newest run in DB]"),
     HD_OPT_ENUM("label", 0, export_args, label, "initial|final|checkpoint|velocities|frames|all",
                 "L", "which states; frames: the [log] frames_every* frames [all]"),
     HD_OPT_STR("output", 'o', export_args, outpath, "FILE",
@@ -91,6 +92,13 @@ int hd_cmd_export(int argc, char **argv) {
               "haff export: %s would overwrite the input %s: refused, nothing written "
               "(give -o FILE)\n",
               outpath, path);
+      return 2;
+    }
+    if (hd_path_is_sqlite(outpath)) {
+      fprintf(stderr,
+              "haff export: %s is an SQLite database, which the gsd file would replace: refused, "
+              "nothing written (give -o FILE)\n",
+              outpath);
       return 2;
     }
   }

@@ -354,7 +354,8 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
 
 /* The options of haff movie, into the movie. */
 static const hd_optdef movie_opts[] = {
-    HD_OPT_INT("run", 0, movie, run, 1, INT64_MAX, 0, "ID", "the run [the newest run in DB]"),
+    HD_OPT_INT("run", 0, movie, run, 1, INT64_MAX, HD_OPTF_ONCE, "ID",
+               "the run [the newest run in DB]"),
     HD_OPT_STR("output", 'o', movie, outpath, "FILE",
                "the movie; its extension chooses the format (.mp4 or .gif)",
                .flags = HD_OPTF_OUTPUT),

@@ -34,14 +34,15 @@ typedef struct run_args {
 
 enum { FOR_RUN = 1, FOR_RESUME = 2 };
 static const hd_optdef run_opts[] = {
-    HD_OPT_PATH("o", 'o', run_args, db, HD_OPTF_SHORT | HD_OPTF_NOT_STDOUT | HD_OPTF_OUTPUT, "DB",
+    HD_OPT_PATH("o", 'o', run_args, db,
+                HD_OPTF_SHORT | HD_OPTF_NOT_STDOUT | HD_OPTF_OUTPUT | HD_OPTF_DB, "DB",
                 "the database [SCENE's name with .db, in the current folder]", .set = FOR_RUN),
     HD_OPT_LIST("set", 0, run_args, sets, "SECTION.KEY=VALUE", "overrides a scene key (repeatable)",
                 .set = FOR_RUN),
     HD_OPT_STR("seed", 0, run_args, seed, "N", "overrides [system] seed", .flags = HD_OPTF_ONCE,
                .set = FOR_RUN),
-    HD_OPT_INT("run", 0, run_args, run, 1, LLONG_MAX, 0, "ID", "the run [the newest resumable run]",
-               .set = FOR_RESUME),
+    HD_OPT_INT("run", 0, run_args, run, 1, LLONG_MAX, HD_OPTF_ONCE, "ID",
+               "the run [the newest resumable run]", .set = FOR_RESUME),
     HD_OPT_FLAG("force", 0, run_args, force,
                 "run even when DB has a run of the same scene and seed", .set = FOR_RUN),
     HD_OPT_FLAG("list-keys", 0, run_args, list_keys,

@@ -9,7 +9,8 @@
 #include <string.h>
 
 static void usage(FILE *out) {
-  fprintf(out, "usage: haff COMMAND [ARGS...]   (haff COMMAND --help for each)\n\ncommands:\n");
+  fprintf(out, "usage: haff COMMAND [ARGS...]   (haff COMMAND --help, or haff help COMMAND, for "
+               "each)\n\ncommands:\n");
   for (const haff_command *c = haff_commands; c->name; c++)
     if (!c->group) fprintf(out, "  %-12s %s\n", c->name, c->summary);
   fprintf(
@@ -68,6 +69,13 @@ int main(int argc, char **argv) {
   if (argc < 2) {
     usage(stderr);
     return 2;
+  }
+  static char help_opt[] = "--help";
+  char *hv[5];
+  if (argc >= 3 && !strcmp(argv[1], "help")) { /* haff help CMD [PROGRAM]: its --help */
+    hv[0] = argv[0], hv[1] = argv[2], hv[2] = argc >= 4 ? argv[3] : help_opt;
+    hv[3] = argc >= 4 ? help_opt : NULL, hv[4] = NULL;
+    argc = argc >= 4 ? 4 : 3, argv = hv;
   }
   if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
     usage(stdout);

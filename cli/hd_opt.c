@@ -234,7 +234,11 @@ int hd_opt_parse(const hd_optspec *spec, int argc, char **argv, void *dest, hd_o
       return 2;
     }
     const hd_optdef *d = &spec->opts[k];
-    if (res->given[k] && (d->flags & HD_OPTF_ONCE)) {
+    /* an output, an input or any file name given twice: which one was meant? (the last one
+     * counted: `run -o a.db -o b.db` wrote b.db alone) */
+    int once =
+        (d->flags & (HD_OPTF_ONCE | HD_OPTF_OUTPUT | HD_OPTF_INPUT)) || d->kind == HD_ARG_PATH;
+    if (res->given[k] && once) {
       fprintf(stderr, "haff %s: %s given twice: give one\n", spec->cmd, opt_name(d, nb, sizeof nb));
       return 2;
     }
@@ -273,6 +277,7 @@ static const char *path_value(const hd_optres *res, const hd_optspec *spec, int 
 int hd_opt_check_outputs(const hd_optspec *spec, const hd_optres *res, const void *dest) {
   enum { MAXF = MAX_OPTS + 64 };
   const char *out[MAXF], *oname[MAXF], *in[MAXF];
+  int isdb[MAXF];
   char names[MAX_OPTS][64];
   int no = 0, ni = 0;
   for (int k = 0; spec->opts[k].name && k < MAX_OPTS; k++) {
@@ -280,13 +285,14 @@ int hd_opt_check_outputs(const hd_optspec *spec, const hd_optres *res, const voi
     const char *v = path_value(res, spec, k, dest);
     if (!v) continue;
     if ((d->flags & HD_OPTF_OUTPUT) && no < MAXF)
-      oname[no] = opt_name(d, names[k], sizeof names[k]), out[no++] = v;
+      isdb[no] = (d->flags & HD_OPTF_DB) != 0, oname[no] = opt_name(d, names[k], sizeof names[k]),
+      out[no++] = v;
     else if ((d->flags & HD_OPTF_INPUT) && ni < MAXF)
       in[ni++] = v;
   }
   for (int j = 0; j < res->npos; j++) {
     if (j == spec->out_pos - 1 && no < MAXF)
-      oname[no] = "the output", out[no++] = res->pos[j];
+      isdb[no] = 1, oname[no] = "the output", out[no++] = res->pos[j];
     else if (j != spec->out_pos - 1 && ni < MAXF)
       in[ni++] = res->pos[j];
   }
@@ -306,6 +312,22 @@ int hd_opt_check_outputs(const hd_optspec *spec, const hd_optres *res, const voi
         return 2;
       }
   }
+  for (int o = 0; o < no; o++) { /* then each output alone */
+    char folder[512];
+    int miss = hd_path_folder_missing(out[o], folder, sizeof folder);
+    if (miss) {
+      fprintf(stderr, "haff %s: %s %s: the folder %s %s: nothing written\n", spec->cmd, oname[o],
+              out[o], folder, miss == 1 ? "does not exist" : "is not a folder");
+      return 2;
+    }
+    if (!isdb[o] && hd_path_is_sqlite(out[o])) {
+      fprintf(stderr,
+              "haff %s: %s %s is an SQLite database, which this output would replace: refused, "
+              "nothing written (remove it first, or name another file)\n",
+              spec->cmd, oname[o], out[o]);
+      return 2;
+    }
+  }
   return 0;
 }
 
@@ -324,7 +346,10 @@ void hd_opt_help(const hd_optspec *spec, FILE *out) {
     if (d->meta) snprintf(left + o, sizeof left - (size_t)o, " %s", d->meta);
     fprintf(out, "%-*s", 19, left);
     if (strlen(left) >= 19) fputs("  ", out);
-    for (const char *p = d->help; *p;) { /* continuation lines under the first */
+    const char *help = d->help;
+    for (const char *const *h = spec->help_for; h && h[0] && h[1]; h += 2)
+      if (!strcmp(h[0], d->name)) help = h[1];
+    for (const char *p = help; *p;) { /* continuation lines under the first */
       size_t len = strcspn(p, "\n");
       fprintf(out, "%.*s\n", (int)len, p);
       p += len;

@@ -31,11 +31,15 @@ enum {
   HD_OPTF_CLEAR = 16,      /* FLAG: stores 0 (a --no-X flag) */
   HD_OPTF_NOT_STDOUT = 32, /* PATH: "-" refused (a database is a file, not a stream) */
   HD_OPTF_SHORT = 64,      /* only the short form (-o): name is its name in messages and help */
-  HD_OPTF_ONCE = 128,      /* given twice is an error ("--seed given twice: give one") */
+  HD_OPTF_ONCE = 128,      /* given twice is an error ("--seed given twice: give one"); so is
+                            * every HD_OPTF_OUTPUT, HD_OPTF_INPUT and HD_ARG_PATH option */
   HD_OPTF_OUTPUT = 256,    /* STRING, PATH: a file the command writes ("-": stdout); refused by
                             * hd_opt_parse when it would overwrite an input (hd_path_overwrites) */
-  HD_OPTF_INPUT = 512      /* STRING, PATH: a file the command reads, besides its positional
+  HD_OPTF_INPUT = 512,     /* STRING, PATH: a file the command reads, besides its positional
                             * arguments (which are inputs unless hd_optspec.out_pos says) */
+  HD_OPTF_DB = 1024        /* with HD_OPTF_OUTPUT: a database the command writes into (kept and
+                            * added to); any other output is replaced whole, so an existing
+                            * SQLite file there is refused */
 };
 
 /* The values of an HD_ARG_LIST option, in the order given. */
@@ -74,6 +78,8 @@ typedef struct hd_optspec {
   int out_pos;            /* 1 + the index of the positional argument that is an output (merge's
                            * OUT.db), checked like an HD_OPTF_OUTPUT option; 0: every
                            * positional argument is an input */
+  const char *const *help_for; /* this subcommand's own help of options of a shared table:
+                                * pairs (name, help), then NULL; NULL: the table's help */
 } hd_optspec;
 
 /* What hd_opt_parse found besides the stored values. */
@@ -86,7 +92,8 @@ typedef struct hd_optres {
 /* Parses argv[1..argc) (argv[0] the subcommand's name; GNU getopt_long, which moves the
  * positional arguments after the options; "--" ends the options) by spec, storing each value
  * in dest (the struct the table's offsets refer to; its defaults set by the caller).  A value
- * given twice: the last one counts (res->given says how often).  -h and --help print the help
+ * given twice: the last one counts (res->given says how often), except an option of
+ * HD_OPTF_ONCE, an output, an input or a path (refused).  -h and --help print the help
  * (hd_opt_help) on stdout.  Returns 0 to go on, -1 after printing the help (the caller returns
  * 0), or 2 after one line on stderr naming the option, the value and why (bad number, out of
  * range, unknown option, missing value, an option that does not apply to this subcommand
@@ -97,8 +104,11 @@ int hd_opt_parse(const hd_optspec *spec, int argc, char **argv, void *dest, hd_o
  * are read and before the command opens anything: every output (an HD_OPTF_OUTPUT option given,
  * not "-"; the positional argument out_pos) is compared by hd_path_overwrites with every input
  * (the other positional arguments, the HD_OPTF_INPUT options given) and with every other
- * output.  Returns 0, or 2 after one line on stderr, e.g. "haff energy: -o x.db would overwrite
- * the input x.db (the same file): nothing written". */
+ * output; its folder must exist (hd_path_folder_missing); and an output that is not a database
+ * (no HD_OPTF_DB; out_pos is one) must not be an existing SQLite file (hd_path_is_sqlite: a
+ * text or movie written over a database would destroy its runs).  Returns 0, or 2 after one
+ * line on stderr, e.g. "haff energy: -o x.db would overwrite the input x.db (the same file):
+ * nothing written", "haff run: -o no/x.db: the folder no does not exist: nothing written". */
 int hd_opt_check_outputs(const hd_optspec *spec, const hd_optres *res, const void *dest);
 
 /* The one number parser: reads s as the value of option d by its range and rules, into *x

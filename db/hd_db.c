@@ -484,17 +484,60 @@ int hd_db_samples_convert(sqlite3 *h, const char *src, const char *run_off, cons
   return rc;
 }
 
+/* The views that a writer remakes from db/schema.sql (the tables they read never change with
+ * them), in one statement. */
+static const char drop_views[] = "DROP VIEW IF EXISTS params; DROP VIEW IF EXISTS run_summary; "
+                                 "DROP VIEW IF EXISTS run_species;";
+
+/* Whether the file open on h holds the views of drop_views as db/schema.sql defines them
+ * (compared with the schema applied in memory by their text, which SQLite stores as written):
+ * 0 yes, 1 when one differs or is missing (a file written by a build whose view differed, such
+ * as run_summary's NULL area_fraction of a one-species run given a box), -1
+ * when a schema cannot be read.  Nothing is written. */
+static int views_stale(sqlite3 *h) {
+  static const char q[] = "SELECT name, sql FROM sqlite_schema WHERE type = 'view' AND name IN "
+                          "('params', 'run_summary', 'run_species') ORDER BY name";
+  sqlite3 *mem = NULL;
+  sqlite3_stmt *a = NULL, *b = NULL;
+  int rc = -1;
+  if (sqlite3_open_v2(":memory:", &mem, SQLITE_OPEN_READWRITE, NULL) == SQLITE_OK &&
+      sqlite3_exec(mem, hd_schema_sql, NULL, NULL, NULL) == SQLITE_OK &&
+      sqlite3_prepare_v2(mem, q, -1, &a, NULL) == SQLITE_OK &&
+      sqlite3_prepare_v2(h, q, -1, &b, NULL) == SQLITE_OK) {
+    for (rc = 0; !rc;) {
+      int sa = sqlite3_step(a), sb = sqlite3_step(b);
+      if (sa == SQLITE_DONE && sb == SQLITE_DONE) break; /* the same views */
+      if (sa != SQLITE_ROW || sb != SQLITE_ROW) {        /* one lacks a view, or an error */
+        int ok = (sa == SQLITE_ROW || sa == SQLITE_DONE) && (sb == SQLITE_ROW || sb == SQLITE_DONE);
+        rc = ok ? 1 : -1;
+        break;
+      }
+      for (int c = 0; c < 2 && !rc; c++) {
+        const char *x = (const char *)sqlite3_column_text(a, c);
+        const char *y = (const char *)sqlite3_column_text(b, c);
+        rc = !x || !y || strcmp(x, y) ? 1 : 0;
+      }
+    }
+  }
+  sqlite3_finalize(a);
+  sqlite3_finalize(b);
+  sqlite3_close(mem);
+  return rc;
+}
+
 /* Applies db/schema.sql (every statement IF NOT EXISTS) and brings a file of an older schema
  * version (PRAGMA user_version below HD_DB_SCHEMA_VERSION; 0 for files made before it was
  * kept) up to this one, under the write lock so that two processes upgrading at once end the
  * same: the columns of added_at that its tables lack are added (old rows read NULL), the
  * views are dropped to be made again as this version defines them, and the version is
  * stamped; so is a file of this version that lacks some of them (made by an earlier build of
- * it, before runs.hcs_* were added).  Additive up to version 4; version 5 replaces the table
- * samples by sample_rows, sample_species rows and the view samples of the same columns
- * (hd_db_samples_convert), so that queries of samples read the file as before (a haff of version
- * 4 or older refuses it).  A file of a newer version is refused (HD_EINPUT): this haff does not
- * know its columns. */
+ * it, before runs.hcs_* were added).  A file of this version whose views params, run_summary,
+ * run_species differ from db/schema.sql's (views_stale: an earlier build's, e.g. before
+ * run_summary's area_fraction of one species in a box given was fixed) gets them made again.
+ * Additive up to version 4; version 5 replaces the table samples by sample_rows, sample_species
+ * rows and the view samples of the same columns (hd_db_samples_convert), so that queries of samples
+ * read the file as before (a haff of version 4 or older refuses it).  A file of a newer version is
+ * refused (HD_EINPUT): this haff does not know its columns. */
 static int schema_apply(hd_db *db, hd_error *err) {
   int v = query_int(db->db, "PRAGMA user_version");
   if (v < 0) return sql_error(db, err, "read the schema version");
@@ -512,6 +555,17 @@ static int schema_apply(hd_db *db, hd_error *err) {
   if (v == HD_DB_SCHEMA_VERSION && !missing) {
     if (sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK)
       return sql_error(db, err, "apply schema");
+    /* a view of an earlier build of this version: made again, under the write lock */
+    int stale = views_stale(db->db);
+    if (stale < 0) return sql_error(db, err, "read the schema");
+    if (stale && (sqlite3_exec(db->db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK ||
+                  sqlite3_exec(db->db, drop_views, NULL, NULL, NULL) != SQLITE_OK ||
+                  sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK ||
+                  sqlite3_exec(db->db, "COMMIT", NULL, NULL, NULL) != SQLITE_OK)) {
+      int rc = sql_error(db, err, "remake the views");
+      sqlite3_exec(db->db, "ROLLBACK", NULL, NULL, NULL);
+      return rc;
+    }
     return HD_OK;
   }
   if (sqlite3_exec(db->db, "BEGIN IMMEDIATE", NULL, NULL, NULL) != SQLITE_OK)
@@ -527,10 +581,7 @@ static int schema_apply(hd_db *db, hd_error *err) {
   }
   char set[64];
   snprintf(set, sizeof set, "PRAGMA user_version = %d", HD_DB_SCHEMA_VERSION);
-  if (!rc && (sqlite3_exec(db->db,
-                           "DROP VIEW IF EXISTS params; DROP VIEW IF EXISTS run_summary; "
-                           "DROP VIEW IF EXISTS run_species;",
-                           NULL, NULL, NULL) != SQLITE_OK ||
+  if (!rc && (sqlite3_exec(db->db, drop_views, NULL, NULL, NULL) != SQLITE_OK ||
               sqlite3_exec(db->db, hd_schema_sql, NULL, NULL, NULL) != SQLITE_OK))
     rc = sql_error(db, err, "upgrade the schema");
   /* 5: the table samples of an older file becomes sample_rows and sample_species rows, then

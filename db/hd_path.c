@@ -49,3 +49,32 @@ int hd_path_overwrites(const char *out, const char *in) {
     }
   return 0;
 }
+
+int hd_path_folder_missing(const char *path, char *dir, size_t size) {
+  if (size) dir[0] = 0;
+  const char *slash = path ? strrchr(path, '/') : NULL;
+  if (!slash || slash == path) return 0; /* the current folder, or / */
+  size_t n = (size_t)(slash - path);
+  while (n > 1 && path[n - 1] == '/') n--; /* a//b: the folder a */
+  char d[PATH_MAX];
+  if (n >= sizeof d) n = sizeof d - 1;
+  memcpy(d, path, n);
+  d[n] = 0;
+  struct stat st;
+  int e = stat(d, &st) == 0;
+  if (e && S_ISDIR(st.st_mode)) return 0;
+  if (size) snprintf(dir, size, "%s", d);
+  return e ? 2 : 1;
+}
+
+int hd_path_is_sqlite(const char *path) {
+  static const char magic[16] = "SQLite format 3"; /* and its NUL: the file's first 16 bytes */
+  struct stat st;
+  if (!path || stat(path, &st) != 0 || !S_ISREG(st.st_mode)) return 0;
+  FILE *f = fopen(path, "rb");
+  if (!f) return 0;
+  char head[16];
+  size_t k = fread(head, 1, sizeof head, f);
+  fclose(f);
+  return k == sizeof head && !memcmp(head, magic, sizeof head);
+}

@@ -28,6 +28,9 @@
 --      (species 0 the dimers, 1 the disks with e_rot 0: files before version 3 had no
 --      sample_species), the table is dropped and the view made.  Readers read files of every
 --      version: samples is a table up to version 4 and a view from 5, with the same columns.
+-- The views params, run_summary and run_species are made again by a writer whenever the file's
+-- differ from the ones below (hd_db.c, views_stale), without a new version: a fix of a view
+-- (run_summary's area_fraction of one species in a box given, review 14) reaches old files.
 PRAGMA journal_mode = WAL;
 
 -- One row per run.  status: running, done, interrupted, collapsed, failed.
@@ -382,10 +385,15 @@ SELECT id AS run,
        CASE WHEN n_rods > 0 THEN NULL
             WHEN area_fraction IS NOT NULL THEN area_fraction
             WHEN nn > 0 THEN NULL
-            ELSE (nd * CASE WHEN a >= d THEN pi() * d * d / 2.0
-                            ELSE pi() * d * d / 2.0
-                                 - (d * d / 2.0 * acos(a / d) - a / 2.0 * sqrt(d * d - a * a)) END
-                  + ns * pi() * sigma * sigma / 4.0) / (lx * ly) END AS area_fraction,
+            -- each kind's area only when it has bodies: an absent section's d, a or sigma
+            -- is NULL, and 0 * NULL would make the sum NULL
+            ELSE ((CASE WHEN nd = 0 THEN 0
+                        WHEN a >= d THEN nd * pi() * d * d / 2.0
+                        ELSE nd * (pi() * d * d / 2.0
+                                   - (d * d / 2.0 * acos(a / d) - a / 2.0 * sqrt(d * d - a * a)))
+                   END)
+                  + (CASE WHEN ns = 0 THEN 0 ELSE ns * pi() * sigma * sigma / 4.0 END))
+                 / (lx * ly) END AS area_fraction,
        lx AS box_x, ly AS box_y,
        CASE WHEN n_rods > 0 THEN NULL
             WHEN nn > 0 THEN CASE WHEN alpha_hi - alpha_lo <= 1e-12 THEN alpha_hi END

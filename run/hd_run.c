@@ -562,8 +562,13 @@ int hd_run_new(const hd_scene *sc, const hd_run_opts *o, int64_t *run, hd_error 
     if (rc == HD_EINPUT && sc->path[0] && err->msg[0] == '[') {
       char msg[sizeof err->msg]; /* "[section] ...": a set-up the engine refused, in which file */
       snprintf(msg, sizeof msg, "%s", err->msg);
-      if (!strncmp(msg, "[system] box", 12) && sc->box_line > 0) /* and on which line */
-        hd_error_set(err, rc, "%s:%ld: %s", sc->path, sc->box_line, msg);
+      /* about the box: where it was given (the line, or the --set), by the key the user wrote:
+       * area_fraction when the box came from it */
+      if (!strncmp(msg, "[system] box", 12) && sc->box_at[0] && sc->area_fraction > 0)
+        hd_error_set(err, rc, "%s: [system] area_fraction = %.6g: the %s", sc->box_at,
+                     sc->area_fraction, msg + 9);
+      else if (!strncmp(msg, "[system] box", 12) && sc->box_at[0])
+        hd_error_set(err, rc, "%s: %s", sc->box_at, msg);
       else
         hd_error_set(err, rc, "%s: %s", sc->path, msg);
     }

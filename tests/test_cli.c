@@ -720,6 +720,15 @@ static void snapshots_and_exports(void **state) {
                                "'velocities_at: 2 of 3 snapshots not taken%'"),
                    1);
   bad_usage("run va.ini -o va2.db --seed 1 --seed 2", "--seed given twice");
+  /* REVIEW14 10: an output, an input or a run given twice is refused (before: the last one
+   * counted, `run -o a.db -o b.db` wrote b.db alone, haff-fit --run 1 --run 2 read run 2) */
+  bad_usage("run va.ini -o va4.db -o va5.db", "-o given twice: give one");
+  assert_false(exists("va4.db") || exists("va5.db"));
+  bad_usage("haff-fit va.db --run 1 --run 1", "--run given twice: give one");
+  bad_usage("energy va.db -o e1.tsv -o e2.tsv", "-o given twice: give one");
+  bad_usage("export xyz va.db --run 1 --run 1", "--run given twice: give one");
+  bad_usage("mc eps --tabulate --db e1.db --db e2.db", "--db given twice: give one");
+  bad_usage("sweep x.ini --status a --status b", "--status given twice: give one");
   bad_usage("run va.ini -o va3.db --set run.stop_cpd=2",
             "va.ini:9: [log] velocities_at = 1 5 10: 10 is past stop_cpd = 2");
   /* snapshot times are taken at those times exactly, the last one at stop_time */
@@ -761,14 +770,55 @@ static void resume_without_the_state_file(void **state) {
                    0);
 }
 
-/* A read-only database directory: exit 1 with a clear message, no crash. */
+/* Review 14, item 7: a scene too dense for placement = random is told to use the lattice only
+ * when the lattice holds its bodies (before: always, though it holds at most pi/8 of the box
+ * for dimers, so the advice failed for every dimer scene); a box that came from area_fraction
+ * is named by that key, with its line or its --set (before: `FILE:2: [system] box 22.1 x 22.1`
+ * for a file's area_fraction, and `FILE: [system] box ...` with no line for a --set). */
+static void dense_placement_messages(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("dd.ini", "[system]\narea_fraction = 0.8\n[dimers]\ncount = 300\n[run]\n"
+                       "stop_events = 10\n");
+  bad_usage("run dd.ini -o dd.db",
+            "dd.ini:2: [system] area_fraction = 0.8: too dense: the bodies cover 0.8 of the box, "
+            "above 0.75 for placement = random, and placement = lattice holds only 144 of the 300 "
+            "bodies");
+  bad_usage("run dd.ini -o dd.db --set init.placement=lattice", "give a lower area_fraction");
+  /* disks at 0.77: above random's 0.75, below the lattice's pi/4, which holds them */
+  write_file("dk.ini", "[system]\narea_fraction = 0.77\n[disks]\ncount = 100\n[run]\n"
+                       "stop_events = 10\n");
+  bad_usage("run dk.ini -o dd.db", "(use placement = lattice, which holds them, or a lower "
+                                   "area_fraction)");
+  assert_int_equal(sh("%s run dk.ini -o dd.db --quiet --set init.placement=lattice", haff), 0);
+  /* the engine's set-up refusal of a mixture: by the key written, where */
+  write_file("el6.ini", "[system]\narea_fraction = 0.6\n[dimers]\ncount = 100\na = 0.6\n[disks]\n"
+                        "count = 50\nsigma = 1.5\n[species tri]\ncount = 30\nshape = bent 100\n"
+                        "[walls]\nsides = left right top bottom\n[run]\nstop_cpd = 2\n");
+  bad_usage("run el6.ini -o el.db", "el6.ini:2: [system] area_fraction = 0.6: the box 22.1268");
+  bad_usage("run el6.ini -o el.db --set system.area_fraction=0.6",
+            "--set system.area_fraction=0.6: [system] area_fraction = 0.6: the box 22.1268");
+  write_file("el7.ini", "[system]\nbox = 22 22\n[dimers]\ncount = 100\na = 0.6\n[disks]\n"
+                        "count = 50\nsigma = 1.5\n[species tri]\ncount = 30\nshape = bent 100\n"
+                        "[walls]\nsides = left right top bottom\n[run]\nstop_cpd = 2\n");
+  bad_usage("run el7.ini -o el.db", "el7.ini:2: [system] box 22 x 22: 180 bodies do not fit");
+  bad_usage("run el7.ini -o el.db --set 'system.box=22 22'",
+            "--set system.box=22 22: [system] box 22 x 22: 180 bodies do not fit");
+  assert_false(exists("el.db"));
+}
+
+/* A database directory where no file can be made (/proc, even for root): exit 1 with a clear
+ * message, no crash.  One that does not exist is bad usage, refused before anything is opened
+ * (exit 2, naming it; review 14: it was exit 1, "unable to open database file"). */
 static void unwritable_db(void **state) {
   (void)state;
   if (!haff) skip();
   char e[2048];
-  assert_int_equal(sh("%s run s.ini -o /proc/nope/x.db --quiet", haff), 1);
+  assert_int_equal(sh("%s run s.ini -o /proc/x.db --quiet", haff), 1);
   read_err(e, sizeof e);
   assert_non_null(strstr(e, "x.db"));
+  bad_usage("run s.ini -o /proc/nope/x.db --quiet",
+            "-o /proc/nope/x.db: the folder /proc/nope does not exist");
 }
 
 /* A sparsely logged run commits what it has every second (hd_run.c), so that its rows can be
@@ -1122,6 +1172,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(bad_input),
       cmocka_unit_test(unwritable_db),
+      cmocka_unit_test(dense_placement_messages),
       cmocka_unit_test(logged_restitution),
       cmocka_unit_test(disk_full_then_resume),
       cmocka_unit_test(sigint_then_resume),

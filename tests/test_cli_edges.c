@@ -113,6 +113,55 @@ static void stdout_write_errors(void **state) {
   }
 }
 
+/* Review 14, item 6: angles and veldist need --run (veldist not with --pool), and their --help
+ * says so (before: both printed the shared line "one run (any status); default: every
+ * done/collapsed/interrupted run", then refused a command without it); haff-fit keeps that
+ * line.  `haff help CMD [PROGRAM]` prints CMD's --help (before: the general help). */
+static void help_says_what_is_required(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("%s angles --help > a.txt", haff), 0);
+  assert_int_equal(sh("grep -q -- '--run ID *the run (any status; required)$' a.txt"), 0);
+  assert_int_equal(sh("grep -q 'default: every done' a.txt"), 1);
+  assert_int_equal(sh("%s veldist --help > v.txt", haff), 0);
+  assert_int_equal(sh("grep -q -- '--run ID *the run (any status); required, except with --pool' "
+                      "v.txt"),
+                   0);
+  assert_int_equal(sh("%s haff-fit --help | grep -q -- '--run ID *one run (any status); default: "
+                      "every done/collapsed/interrupted run'",
+                      haff),
+                   0);
+  /* the help of a command as --help prints it, a program of a group too */
+  static const char *const cmds[][2] = {
+      {"help run", "run --help"}, {"help mc eps", "mc eps --help"}, {"help mc", "mc --help"}};
+  for (size_t i = 0; i < sizeof cmds / sizeof *cmds; i++) {
+    assert_int_equal(sh("%s %s > h1.txt && %s %s > h2.txt", haff, cmds[i][0], haff, cmds[i][1]), 0);
+    if (sh("cmp -s h1.txt h2.txt")) fail_msg("haff %s is not haff %s", cmds[i][0], cmds[i][1]);
+  }
+  assert_int_equal(sh("%s help > h1.txt && %s --help > h2.txt && cmp -s h1.txt h2.txt", haff, haff),
+                   0);
+  assert_int_equal(sh("%s help nosuch", haff), 2);
+}
+
+/* Review 14 (lower priority): a rods analysis given --t where the run has no snapshot says which
+ * one it reads, on stderr (before: only the output's header showed it); without --t, or at a
+ * snapshot's time, nothing is said. */
+static void rods_t_names_the_snapshot(void **state) {
+  (void)state;
+  if (!haff) skip();
+  char err[4096];
+  assert_int_equal(sh("%s rods-phase r.db --run 1 --t 1e6 > /dev/null", haff), 0);
+  read_file("err.txt", err, sizeof err);
+  if (!strstr(err, "note: run 1 has no snapshot at t = 1e+06: the nearest, t = 10, is read"))
+    fail_msg("rods-phase --t 1e6: %s", err);
+  assert_int_equal(sh("%s rods-density r.db --run 1 --t 1e6 > /dev/null", haff), 0);
+  read_file("err.txt", err, sizeof err);
+  if (!strstr(err, "no snapshot at t = 1e+06")) fail_msg("rods-density --t 1e6: %s", err);
+  assert_int_equal(sh("%s rods-phase r.db --run 1 --t 10 > /dev/null", haff), 0);
+  read_file("err.txt", err, sizeof err);
+  if (err[0]) fail_msg("rods-phase --t 10: %s", err);
+}
+
 /* Item 4: the "continue with" hint of an interrupted run, pasted into sh, gives haff resume
  * the database's exact name and runs nothing else (before: a quote in the name ended the
  * quoting, and `x'; touch PWNED; echo '.db` ran touch). */
@@ -409,6 +458,8 @@ static void wall_collapse(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(stdout_write_errors),
+      cmocka_unit_test(help_says_what_is_required),
+      cmocka_unit_test(rods_t_names_the_snapshot),
       cmocka_unit_test(resume_hint_is_shell_safe),
       cmocka_unit_test(messages_escape_control_bytes),
       cmocka_unit_test(bad_option_named),

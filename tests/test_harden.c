@@ -131,6 +131,59 @@ static long long q1(const char *name, const char *sql) {
   return v;
 }
 
+/* REVIEW14 (lower priority): an output that the command replaces whole (a TSV, an xyz, a movie,
+ * mc eps --dump) is refused with exit 2 when it is an SQLite database, which stays byte-identical
+ * (before: `haff mc eps --dump DB` wrote its text over a database of runs, exit 0); a text file
+ * there is replaced as before, and a database output (run -o) is added to. */
+static void text_output_not_a_database(void **state) {
+  (void)state;
+  if (!haff) skip();
+  assert_int_equal(sh("cp d.db other.db && cp d.db keep2.db"), 0);
+  static const char *const cmds[] = {"mc eps --gamma 1 --samples 10 --dump other.db",
+                                     "haff-fit d.db -o other.db",
+                                     "energy d.db -o other.db",
+                                     "export xyz d.db -o other.db",
+                                     "export gsd d.db -o other.db",
+                                     "movie d.db -o other.db"};
+  for (size_t k = 0; k < sizeof cmds / sizeof *cmds; k++) {
+    int rc = sh("%s %s", haff, cmds[k]);
+    char err[2048];
+    read_file("err.txt", err, sizeof err);
+    if (rc != 2) fail_msg("haff %s: exit %d, not 2 (%s)", cmds[k], rc, err);
+    if (!strstr(err, "other.db is an SQLite database")) fail_msg("haff %s: %s", cmds[k], err);
+    if (!same_bytes("other.db", "keep2.db")) fail_msg("haff %s changed other.db", cmds[k]);
+  }
+  assert_int_equal(sh("echo old > t.tsv && %s haff-fit d.db -o t.tsv", haff), 0);
+  assert_int_equal(sh("grep -q old t.tsv"), 1); /* replaced */
+  assert_int_equal(sh("%s run disks.ini -o other.db --quiet --seed 77", haff), 0);
+  assert_int_equal(q1("other.db", "SELECT count(*) FROM runs"), 2);
+}
+
+/* REVIEW14 9: an output in a folder that does not exist (or is a file) is refused with exit 2
+ * and one line naming the folder, before anything is opened (before: run "open: unable to open
+ * database file" and merge naming its temporary file, exit 1; haff-fit and export "No such file
+ * or directory", exit 1). */
+static void output_folder_missing(void **state) {
+  (void)state;
+  if (!haff) skip();
+  static const char *const cmds[] = {
+      "run disks.ini -o nosuch/b.db",    "merge nosuch/o.db d.db",
+      "haff-fit d.db -o nosuch/f.tsv",   "export xyz d.db -o nosuch/x.xyz",
+      "export gsd d.db -o nosuch/x.gsd", "mc eps --gamma 1 --tabulate --db nosuch/e.db",
+      "energy d.db -o nosuch//e.tsv",    "run disks.ini -o disks.ini/b.db"};
+  size_t n = sizeof cmds / sizeof *cmds;
+  for (size_t k = 0; k < n; k++) {
+    int rc = sh("%s %s", haff, cmds[k]);
+    char err[2048];
+    read_file("err.txt", err, sizeof err);
+    if (rc != 2) fail_msg("haff %s: exit %d, not 2 (%s)", cmds[k], rc, err);
+    const char *want =
+        k + 1 < n ? "the folder nosuch does not exist" : "the folder disks.ini is not a folder";
+    if (!strstr(err, want)) fail_msg("haff %s: %s", cmds[k], err);
+  }
+  assert_false(exists("nosuch"));
+}
+
 /* Item 2: an input whose table name closes the quote of a statement merge builds (before:
  * `haff merge out.db evil.db` printed "1 runs merged", exit 0, and out.db's runs were gone) is
  * refused, out.db byte-identical; a user's table with plain names (plots_runs) still follows
@@ -439,6 +492,8 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(output_is_not_input),
       cmocka_unit_test(path_overwrites_rule),
+      cmocka_unit_test(text_output_not_a_database),
+      cmocka_unit_test(output_folder_missing),
       cmocka_unit_test(merge_no_sql_from_names),
       cmocka_unit_test(run_tables_list_complete),
       cmocka_unit_test(truncate_and_delete_every_table),

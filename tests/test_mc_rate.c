@@ -187,6 +187,15 @@ static void command(void **state) {
   assert_int_equal(hd_cmd_mc_rate(3, bad), 2);
   char *two[] = {"rate", "--a", "1", "--samples", "10", "--seconds", "1"};
   assert_int_equal(hd_cmd_mc_rate(7, two), 2);
+  /* review 14: disks that are not one body (a scene's [species] refuses them) are refused by
+   * mc rate and mc fmean too (before: accepted, exit 0); touching ones are a body */
+  char *apart[] = {"rate", "--disks", "0 0 1 1; 5 0 1 1", "--samples", "100"};
+  assert_int_equal(hd_cmd_mc_rate(5, apart), 2);
+  char *touch[] = {"rate", "--disks", "0 0 1 1; 1 0 1 1", "--samples", "100"};
+  assert_int_equal(hd_cmd_mc_rate(5, touch), 0);
+  hd_shape sh;
+  assert_int_equal(hd_mc_parse_disks("mc fmean", "0 0 1 1; 1 0 1 1; 3 0 1 1", &sh), 2);
+  assert_int_equal(hd_mc_parse_disks("mc fmean", "0 0 1 1; 1 0 1 1; 2 0 1 1", &sh), 0);
 }
 
 int main(void) {

@@ -189,6 +189,47 @@ static void run_summary_area_fraction(void **state) {
   sqlite3_close(h);
 }
 
+/* run_summary's area fraction of one species in a box given: the bodies' area over the box's,
+ * for dimers alone (a = 1: two touching disks, pi d^2 / 2 each) and disks alone (pi sigma^2 / 4
+ * each).  Before: NULL, the absent section's NULL d, a or sigma times its count 0.  Then a file
+ * whose run_summary is an earlier build's (here a stand-in view of one column) gets the view of
+ * db/schema.sql again when haff opens it for writing; before, IF NOT EXISTS kept the old one. */
+static void run_summary_box_one_species(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("b1.ini", "[system]\nbox = 60 50\nseed = 3\n[dimers]\ncount = 100\na = 1\nd = 1\n"
+                       "[run]\nstop_events = 20\n[log]\ncollisions = none\n");
+  assert_int_equal(sh("%s run b1.ini -o b1.db --quiet", haff), 0);
+  assert_int_equal(sh("%s run b1.ini -o b1.db --quiet --set dimers.count=0 --set disks.count=80 "
+                      "--set disks.sigma=1.5 --set disks.alpha=0.9",
+                      haff),
+                   0);
+  sqlite3 *h = open_db("b1.db");
+  double pi = acos(-1.0);
+  int type;
+  double eta = qv(h, "SELECT area_fraction FROM run_summary WHERE run = 1", NULL, 0, &type);
+  assert_int_equal(type, SQLITE_FLOAT);
+  assert_true(fabs(eta - 100 * pi / 2 / 3000) < 1e-12); /* rounding of the view's sum */
+  eta = qv(h, "SELECT area_fraction FROM run_summary WHERE run = 2", NULL, 0, &type);
+  assert_int_equal(type, SQLITE_FLOAT);
+  assert_true(fabs(eta - 80 * pi * 2.25 / 4 / 3000) < 1e-12);
+  /* an earlier build's view, in a file of this schema version */
+  assert_int_equal(sqlite3_exec(h,
+                                "DROP VIEW run_summary; CREATE VIEW run_summary AS SELECT id AS "
+                                "run, NULL AS area_fraction FROM runs",
+                                0, 0, 0),
+                   SQLITE_OK);
+  sqlite3_close(h);
+  assert_int_equal(sh("%s run b1.ini -o b1.db --quiet --seed 9", haff), 0);
+  h = open_db("b1.db");
+  assert_int_equal((int)qd(h, "PRAGMA user_version"), HD_DB_SCHEMA_VERSION);
+  eta = qv(h, "SELECT area_fraction FROM run_summary WHERE run = 3", NULL, 0, &type);
+  assert_int_equal(type, SQLITE_FLOAT);
+  assert_true(fabs(eta - 100 * pi / 2 / 3000) < 1e-12);
+  assert_true(qd(h, "SELECT alpha FROM run_summary WHERE run = 2") == 0.9); /* all columns */
+  sqlite3_close(h);
+}
+
 /* run_summary and run_species for named species (issue 28): scenes/shapes-mixture.ini (200
  * dimers, 200 triangles, 200 asymmetric dimers, restitutions 0.95, 0.9, 0.95 and 0.92 for
  * tri-dimers) and a triangle + linear trimer scene.  run_summary's species is the label of
@@ -395,6 +436,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(params_view),
       cmocka_unit_test(run_summary_area_fraction),
+      cmocka_unit_test(run_summary_box_one_species),
       cmocka_unit_test(run_summary_named_species),
       cmocka_unit_test(schema_upgrade),
       cmocka_unit_test(queries_use_indexes),

@@ -15,7 +15,7 @@
 /* The options of the analysis subcommands: one table, each subcommand accepting the sets
  * (HD_OPT_*) of its spec's `allowed` (others: "does not apply here"). */
 const hd_optdef hd_cli_opts[] = {
-    HD_OPT_INT("run", 0, hd_cli_args, run, 0, INT64_MAX, 0, "ID",
+    HD_OPT_INT("run", 0, hd_cli_args, run, 0, INT64_MAX, HD_OPTF_ONCE, "ID",
                "one run (any status); default: every done/collapsed/interrupted run",
                .set = HD_OPT_RUN),
     HD_OPT_FLAG("all", 0, hd_cli_args, all, "every finished run (the default)", .set = HD_OPT_ALL),

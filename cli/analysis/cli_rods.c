@@ -11,7 +11,7 @@
 
 /* Every option of the DB readers; each subcommand's spec says which it reads. */
 const hd_optdef hd_rcli_opts[] = {
-    HD_OPT_INT("run", 0, ropts, run, 0, 8999999999999999999LL, HD_OPTF_EXP, "ID",
+    HD_OPT_INT("run", 0, ropts, run, 0, 8999999999999999999LL, HD_OPTF_EXP | HD_OPTF_ONCE, "ID",
                "the run [the newest rods run of DB]", .set = HD_RCLI_RUN),
     HD_OPT_DBL("t", 0, ropts, t, -INFINITY, INFINITY, HD_OPTF_FINITE, "T",
                "the snapshot nearest time T [the last; rods-density: every one]", .set = HD_RCLI_T),
@@ -156,6 +156,12 @@ int hd_rcli_pick_time(const char *cmd, rrun *r, const ropts *o, double *t) {
   if (!isnan(o->t))
     for (long k = 0; k < n; k++)
       if (fabs(ts[k] - o->t) < fabs(ts[best] - o->t)) best = k;
+  /* --t between or past the snapshots: say which one is read (it was in the header only) */
+  if (!isnan(o->t) && fabs(ts[best] - o->t) > 1e-9 * fmax(1, fabs(o->t)))
+    fprintf(stderr,
+            "haff %s: note: run %ld has no snapshot at t = %g: the nearest, t = %.6g, is read "
+            "(its %ld snapshots: t = %.6g to %.6g)\n",
+            cmd, r->id, o->t, ts[best], n, ts[0], ts[n - 1]);
   *t = ts[best];
   free(ts);
   return 0;

@@ -9,6 +9,7 @@
 
 const hd_optspec hd_cmd_angles_spec = {
     HD_CLI_SPEC("angles", HD_OPT_RUN | HD_OPT_BLOCK | HD_OPT_BINS),
+    .help_for = (const char *const[]){"run", "the run (any status; required)", NULL},
     .head =
         "usage: haff angles DB --run ID [--block N] [--bins B] [--fmean] [-o FILE]\n"
         "Fig. 5: histogram of the contact angles theta (both bodies of every dimer-dimer\n"

@@ -131,6 +131,11 @@ static int veldist_pool(const hd_cli_args *a, const char *cmd) {
 
 const hd_optspec hd_cmd_veldist_spec = {
     HD_CLI_SPEC("veldist", HD_OPT_RUN | HD_OPT_BINS | HD_OPT_STATS | HD_OPT_FIT),
+    .help_for =
+        (const char *const[]){"run",
+                              "the run (any status); required, except with --pool (default: every\n"
+                              "finished run)",
+                              NULL},
     .head =
         "usage: haff veldist DB --run ID [--stats] [--bins B] [--range X] [--label L] [-o FILE]\n"
         "       haff veldist DB --pool [--run ID] [--bins B] [--range X] [--label L] [-o FILE]\n"

@@ -52,7 +52,7 @@ static const hd_optdef eps_opts[] = {
     HD_OPT_FLAG("tabulate", 0, eopts, tab,
                 "build inverse-CDF tables on a log beta grid and store them in --db;\n"
                 "prints the table's KS distance and mean error against direct sampling"),
-    HD_OPT_PATH("db", 0, eopts, dbpath, HD_OPTF_NOT_STDOUT | HD_OPTF_OUTPUT, "DB",
+    HD_OPT_PATH("db", 0, eopts, dbpath, HD_OPTF_NOT_STDOUT | HD_OPTF_OUTPUT | HD_OPTF_DB, "DB",
                 "the database of --tabulate"),
     NUM("beta-min", bmin, "B0", "table grid: smallest beta [1e-3]"),
     NUM("beta-max", bmax, "B1", "table grid: largest beta [1e3]"),

@@ -9,6 +9,7 @@
 #include "haff.h"
 #include "hd_body.h"
 #include "hd_opt.h"
+#include "hd_scene_species.h"
 
 /* The options of `haff mc fmean`. */
 typedef struct fopts {
@@ -53,8 +54,8 @@ static const hd_optdef fmean_opts[] = {
     HD_OPT_STR("disks", 0, fopts, disks, "SPEC",
                "two bodies of any rigid shape instead of dimers: 1 to 8 disks, each\n"
                "'x y d m' (centre in the body frame, diameter, mass), separated by\n"
-               "';'; f = mu_eff / m_ref as the engine logs it (docs/contract.md);\n"
-               "a_over_d is then nan"),
+               "';', touching or overlapping (one body); f = mu_eff / m_ref as the\n"
+               "engine logs it (docs/contract.md); a_over_d is then nan"),
     {0}};
 
 const hd_optspec hd_cmd_mc_fmean_spec = {
@@ -199,6 +200,14 @@ int hd_mc_parse_disks(const char *cmd, const char *spec, hd_shape *shape) {
             "haff %s: --disks '%s': expected 1 to %d disks 'x y d m' separated by ';' "
             "(d, m > 0)\n",
             cmd, spec, HD_MAX_BODY_DISKS);
+    return 2;
+  }
+  int b = hd_scene_disks_unconnected(k, x, y, dd); /* the rule of a scene's [species] disks */
+  if (b >= 0) {
+    fprintf(stderr,
+            "haff %s: --disks '%s': disk %d at (%g, %g) is not connected to disk 1: the disks of "
+            "a body must touch or overlap (centres at most (d_i + d_j)/2 apart)\n",
+            cmd, spec, b + 1, x[b], y[b]);
     return 2;
   }
   return 0;

@@ -63,10 +63,17 @@ double hd_scene_frames_estimate(const hd_scene *sc) {
   if (sc->frames_every_time > 0 && sc->stop_time > 0)
     best = floor(sc->stop_time / sc->frames_every_time) + 1;
   if (sc->frames_every > 0) {
-    /* the run ends at the first stop reached; cpd = 2 pair collisions / N <= 2 events / N */
-    if (sc->stop_cpd > 0) best = fmin(best, floor(sc->stop_cpd / sc->frames_every) + 1);
+    /* the run ends at the first stop reached; cpd = 2 pair collisions / N <= 2 events / N; a
+     * frame after frame 0 needs cpd to grow, so a pair collision: one frame per collision at
+     * most (run/hd_run.c, observe), the stop's collisions + 1 */
+    if (sc->stop_cpd > 0) {
+      best = fmin(best, floor(sc->stop_cpd / sc->frames_every) + 1);
+      if (n > 0) best = fmin(best, ceil(sc->stop_cpd * n / 2) + 1);
+    }
     if (sc->stop_events > 0 && n > 0)
-      best = fmin(best, floor(2 * sc->stop_events / n / sc->frames_every) + 1);
+      best = fmin(best,
+                  fmin(floor(2 * sc->stop_events / n / sc->frames_every), (double)sc->stop_events) +
+                      1);
   }
   if (!(sc->frames_every > 0 || sc->frames_every_time > 0)) return 0;
   return best < INFINITY ? best : -1;

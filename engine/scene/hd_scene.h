@@ -90,8 +90,9 @@ typedef struct hd_scene {
   double box_x, box_y;     /* box edges: `box = Lx Ly`, or derived from area_fraction */
   double area_fraction;    /* `area_fraction = eta` instead of box: square box [0 if box given] */
   unsigned long long seed; /* `seed` [1]; the CLI's --seed overrides it */
-  long box_line; /* line of `box` or `area_fraction` in path, for the engine's set-up errors
-                  * about the box (0: given by --set, or no file) */
+  char box_at[HD_PATH_MAX + 64]; /* where `box` or `area_fraction` was given, as the scene's
+                                  * messages say it ("FILE:LINE", "--set system.box=20 20"),
+                                  * for the engine's set-up errors about the box ("": nowhere) */
   /* [dimers] */
   long n_dimers;      /* `count` [0] */
   double dimer_d;     /* `d` [1]: disk diameter */

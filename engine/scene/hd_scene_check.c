@@ -133,7 +133,7 @@ static int check_box(ctx *c, int run) {
                                c->present[S_SYSTEM] ? c->sec_at[S_SYSTEM] : (loc){0, 0}, S_SYSTEM,
                                "box", NULL, "missing: give box = Lx Ly or area_fraction = eta")
                : HD_OK;
-  sc->box_line = c->key_at[S_SYSTEM][kb].over ? 0 : c->key_at[S_SYSTEM][kb].line;
+  hd_scene_where(c, c->key_at[S_SYSTEM][kb], sc->box_at, sizeof sc->box_at);
   double area = hd_scene_covered_area(sc);
   if (kb == K_AREA) sc->box_x = sc->box_y = sqrt(area / sc->area_fraction);
   if (!run) return HD_OK;
@@ -152,19 +152,27 @@ static int check_box(ctx *c, int run) {
                     "lengths",
                     sc->box_x, sc->box_y);
   double frac = area / (sc->box_x * sc->box_y);
-  if (sc->placement == HD_PLACE_RANDOM && frac > HD_RANDOM_MAX_FRACTION)
-    return FAIL_KEY(c, kb,
-                    "box too dense: the bodies cover %.4g of it, above %g for placement = random "
-                    "(use placement = lattice or a larger box)",
-                    frac, HD_RANDOM_MAX_FRACTION);
-  if (sc->placement == HD_PLACE_LATTICE) {
-    double nx = floor(sc->box_x / ext), ny = floor(sc->box_y / ext);
-    if (nx * ny < (double)nb)
+  /* the lattice: one body per square cell of the largest body's extent (at most pi/8 of the box
+   * for dimers of a = d, pi/4 for disks) */
+  double nx = floor(sc->box_x / ext), ny = floor(sc->box_y / ext);
+  const char *bigger = kb == K_AREA ? "a lower area_fraction" : "a larger box";
+  if (sc->placement == HD_PLACE_RANDOM && frac > HD_RANDOM_MAX_FRACTION) {
+    if (nx * ny >= (double)nb)
       return FAIL_KEY(c, kb,
-                      "box too dense for placement = lattice: %.0f x %.0f cells of edge %.6g "
-                      "hold fewer than the %ld bodies",
-                      nx, ny, ext, nb);
+                      "too dense: the bodies cover %.4g of the box, above %g for placement = "
+                      "random (use placement = lattice, which holds them, or %s)",
+                      frac, HD_RANDOM_MAX_FRACTION, bigger);
+    return FAIL_KEY(c, kb,
+                    "too dense: the bodies cover %.4g of the box, above %g for placement = random, "
+                    "and placement = lattice holds only %.0f of the %ld bodies (%.0f x %.0f cells "
+                    "of edge %.6g): give %s",
+                    frac, HD_RANDOM_MAX_FRACTION, nx * ny, nb, nx, ny, ext, bigger);
   }
+  if (sc->placement == HD_PLACE_LATTICE && nx * ny < (double)nb)
+    return FAIL_KEY(c, kb,
+                    "too dense for placement = lattice: %.0f x %.0f cells of edge %.6g "
+                    "hold fewer than the %ld bodies: give %s",
+                    nx, ny, ext, nb, bigger);
   return HD_OK;
 }
 

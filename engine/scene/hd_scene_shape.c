@@ -2,6 +2,7 @@
  * hd_scene_forms), `d`, `m` or `disks = ...`; the canonical text of those keys; the disks built
  * from them and checked (one connected body within the engine's bounds). */
 #include "hd_scene_internal.h"
+#include "hd_scene_species.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -320,24 +321,31 @@ int hd_scene_build_species(ctx *c, int j) {
     sp->ndisk = p->form->build(p->v, isnan(p->s) ? p->d : p->s, sp->x, sp->y);
     for (int i = 0; i < sp->ndisk; i++) sp->d[i] = p->d, sp->m[i] = p->m;
   }
-  /* connected: every disk reached from disk 0 through touching or overlapping pairs */
-  int seen[HD_MAX_BODY_DISKS] = {1}, stack[HD_MAX_BODY_DISKS] = {0}, top = 1;
+  int key = has_disks ? K_PDISKS : K_PSHAPE;
+  int b = hd_scene_disks_unconnected(sp->ndisk, sp->x, sp->y, sp->d);
+  if (b >= 0)
+    return FAIL_AT(c, si, key,
+                   "disk %d at (%g, %g) is not connected to disk 1: the disks of a body must "
+                   "touch or overlap (centres at most (d_i + d_j)/2 apart)",
+                   b + 1, sp->x[b], sp->y[b]);
+  return species_bounds(c, j, key);
+}
+
+int hd_scene_disks_unconnected(int n, const double *x, const double *y, const double *d) {
+  /* every disk reached from disk 0 through touching or overlapping pairs */
+  int seen[HD_MAX_BODY_DISKS] = {1}, stack[HD_MAX_BODY_DISKS] = {0}, top = n > 0;
+  if (n > HD_MAX_BODY_DISKS) return HD_MAX_BODY_DISKS;
   while (top > 0) {
     int a = stack[--top];
-    for (int b = 0; b < sp->ndisk; b++) {
-      double gap = hypot(sp->x[a] - sp->x[b], sp->y[a] - sp->y[b]);
-      if (!seen[b] && gap <= (sp->d[a] + sp->d[b]) / 2 * (1 + HD_TOUCH_SLACK)) {
+    for (int b = 0; b < n; b++) {
+      double gap = hypot(x[a] - x[b], y[a] - y[b]);
+      if (!seen[b] && gap <= (d[a] + d[b]) / 2 * (1 + HD_TOUCH_SLACK)) {
         seen[b] = 1;
         stack[top++] = b;
       }
     }
   }
-  int key = has_disks ? K_PDISKS : K_PSHAPE;
-  for (int b = 0; b < sp->ndisk; b++)
-    if (!seen[b])
-      return FAIL_AT(c, si, key,
-                     "disk %d at (%g, %g) is not connected to disk 1: the disks of a body must "
-                     "touch or overlap (centres at most (d_i + d_j)/2 apart)",
-                     b + 1, sp->x[b], sp->y[b]);
-  return species_bounds(c, j, key);
+  for (int b = 0; b < n; b++)
+    if (!seen[b]) return b;
+  return -1;
 }

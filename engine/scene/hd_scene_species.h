@@ -34,4 +34,10 @@ int hd_scene_species_get(const hd_scene *sc, int k, hd_scene_sp *out);
  * the loader). */
 double hd_scene_pair_alpha(const hd_scene *sc, int i, int j);
 
+/* Whether n disks (centres x, y, diameters d; n <= HD_MAX_BODY_DISKS) are one body, as a
+ * [species] must be: every disk reached from disk 0 through touching or overlapping pairs
+ * (centres at most (d_i + d_j)/2 apart, up to a relative 1e-12).  Returns -1 when they are,
+ * else the index of a disk not reached (HD_MAX_BODY_DISKS when n is above it). */
+int hd_scene_disks_unconnected(int n, const double *x, const double *y, const double *d);
+
 #endif

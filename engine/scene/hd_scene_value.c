@@ -102,8 +102,14 @@ int hd_scene_parse_num(const char *s, double *x) {
 /* Why s is not a finite number (for messages). */
 const char *hd_scene_num_why(const char *s) {
   if (!*s) return "missing value: expected a number";
-  double v = strtod(s, NULL);
+  char *e;
+  double v = strtod(s, &e);
   if (!isfinite(v)) return "must be a finite number";
+  /* `alpha = 0.9 # inelastic`: '#' starts a comment only at a line's start (libinih), and a
+   * blank then ';' anywhere */
+  if (e != s && strchr(e, '#'))
+    return "not a number ('#' starts a comment only at the start of a line; after a value, "
+           "write ' ; comment')";
   return "not a number";
 }
 
