@@ -902,7 +902,12 @@ static void mixtures_and_walls_labelled(void **state) {
   write_scene("pure.ini", base, "");
   write_scene("mixed.ini", base, "[disks]\ncount = 50\nalpha = 0.9\n"); /* one alpha: fitted */
   write_scene("walled.ini", base, "[walls]\nsides = left right\n");
-  run_scenes("pure mixed walled", "lab.db");
+  write_scene("tri.ini",
+              "[system]\narea_fraction = 0.05\n[species tri]\ncount = 60\nshape = triangle\n"
+              "alpha = 0.9\n[run]\nstop_cpd = 30\n[log]\ncollisions = none\n"
+              "samples_every = 0.5\n",
+              "");
+  run_scenes("pure mixed walled tri", "lab.db");
   assert_int_equal(sh("(%s haff-fit lab.db | cut -f2 | tr '\\n' ' ' > species.txt)", haff), 0);
   char p[300], line[200] = "";
   snprintf(p, sizeof p, "%s/species.txt", dir);
@@ -910,7 +915,7 @@ static void mixtures_and_walls_labelled(void **state) {
   assert_non_null(f);
   assert_non_null(fgets(line, sizeof line, f));
   fclose(f);
-  assert_string_equal(line, "species dimers dimers+disks dimers+walls ");
+  assert_string_equal(line, "species dimers dimers+disks dimers+walls shapes:tri ");
   assert_int_equal(
       sh("(%s energy lab.db > en.tsv && grep -q '^# dimers+disks alpha=0.9' en.tsv)", haff), 0);
   assert_int_equal(sh("(%s table1 lab.db > t1.tsv && test $(wc -l < t1.tsv) = 2)", haff), 0);
@@ -918,10 +923,13 @@ static void mixtures_and_walls_labelled(void **state) {
   read_err(e, sizeof e);
   assert_non_null(strstr(e, "left out 1 run of dimers+disks (alpha 0.9 a/d 0.5)"));
   assert_non_null(strstr(e, "left out 1 run of dimers+walls"));
+  /* a/d does not apply to triangles: the note leaves it out (it printed "a/d nan") */
+  assert_non_null(strstr(e, "left out 1 run of shapes:tri (alpha 0.9):"));
+  assert_null(strstr(e, "nan"));
   assert_int_equal(sh("(%s table2 lab.db > t2.tsv && test $(wc -l < t2.tsv) = 2)", haff), 0);
   /* no run fitted (too few samples below --cpd-max): rows of nan and exit 2, not 0 */
   assert_int_equal(sh("(%s haff-fit lab.db --cpd-max 0.5 > nan.tsv; r=$?; test $(wc -l < nan.tsv) "
-                      "= 4 && exit $r)",
+                      "= 5 && exit $r)",
                       haff),
                    2);
   /* nothing left to tabulate is bad input, as in table2 (it printed a header, exit 0) */

@@ -84,6 +84,19 @@ const hd_optdef hd_cli_opts[] = {
                .flags = HD_OPTF_SHORT | HD_OPTF_OUTPUT),
     {0}};
 
+hd_cli_name hd_cli_group_name(const hd_group *g) {
+  hd_cli_name n;
+  if (isnan(g->alpha))
+    snprintf(n.s, sizeof n.s, "alpha (several)");
+  else
+    snprintf(n.s, sizeof n.s, "alpha %g", g->alpha);
+  if (!isnan(g->a_over_d)) {
+    size_t l = strlen(n.s);
+    snprintf(n.s + l, sizeof n.s - l, " a/d %g", g->a_over_d);
+  }
+  return n;
+}
+
 int hd_cli_parse(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a) {
   memset(a, 0, sizeof *a);
   a->run = -1;
@@ -228,9 +241,9 @@ void hd_cli_groups_warn(const char *cmd, const hd_group *g, size_t ng) {
         char what[160];
         hd_group_differ(&g[k], &g[j], what, sizeof what);
         fprintf(stderr,
-                "haff %s: warning: runs with alpha %g a/d %g differ in %s (N %ld n %.6g%s and N "
+                "haff %s: warning: runs with %s differ in %s (N %ld n %.6g%s and N "
                 "%ld n %.6g%s): kept apart, as rows with the same alpha and a/d\n",
-                cmd, g[j].alpha, g[j].a_over_d, what, g[k].nbodies, g[k].density,
+                cmd, hd_cli_group_name(&g[j]).s, what, g[k].nbodies, g[k].density,
                 g[k].rough ? ", rough" : "", g[j].nbodies, g[j].density,
                 g[j].rough ? ", rough" : "");
         break;
@@ -238,10 +251,10 @@ void hd_cli_groups_warn(const char *cmd, const hd_group *g, size_t ng) {
   for (size_t j = 0; j < ng; j++)
     if (g[j].rough)
       fprintf(stderr,
-              "haff %s: note: %s alpha %g a/d %g N %ld: rough bodies (tangential restitution "
+              "haff %s: note: %s %s N %ld: rough bodies (tangential restitution "
               "beta > -1): eq. (31) is Haff's law of smooth bodies, so their D_e is a fit "
               "parameter, not eq. (31)'s (flag rough; docs/analysis.md, \"Rough bodies\")\n",
-              cmd, g[j].label, g[j].alpha, g[j].a_over_d, g[j].nbodies);
+              cmd, g[j].label, hd_cli_group_name(&g[j]).s, g[j].nbodies);
 }
 
 void hd_cli_groups_free(hd_cli_set *s) {
@@ -292,9 +305,9 @@ size_t hd_cli_table_groups(const char *cmd, const hd_group *g, size_t ng, int wi
       in++;
     else if (g[j].species != HD_KIND_DISK || g[j].walls) /* not the disks table2 has no use for */
       fprintf(stderr,
-              "haff %s: note: left out %zu run%s of %s (alpha %g a/d %g): %s; haff-fit "
+              "haff %s: note: left out %zu run%s of %s (%s): %s; haff-fit "
               "--alpha-group fits them\n",
-              cmd, g[j].n, g[j].n == 1 ? "" : "s", g[j].label, g[j].alpha, g[j].a_over_d,
+              cmd, g[j].n, g[j].n == 1 ? "" : "s", g[j].label, hd_cli_group_name(&g[j]).s,
               g[j].walls     ? "the table is for a periodic box, these have walls"
               : g[j].mixture ? "the table is for one species, these are a mixture"
               : g[j].species == HD_KIND_BODY
@@ -310,25 +323,25 @@ size_t hd_cli_table_groups(const char *cmd, const hd_group *g, size_t ng, int wi
 int hd_cli_flagged_out(const char *cmd, const hd_group *g, const hd_group_fit *q, int keep) {
   if (!q->measured)
     fprintf(stderr,
-            "haff %s: note: alpha %g a/d %g: no state measures in its samples (logged before "
+            "haff %s: note: %s: no state measures in its samples (logged before "
             "schema 2): its homogeneity is not checked and D_e_sys has no box term\n",
-            cmd, g->alpha, g->a_over_d);
+            cmd, hd_cli_group_name(g).s);
   if (!(q->flagged & ~HD_FLAG_ROUGH) || keep) return 0; /* rough: a caveat, kept */
   if (q->flagged & HD_FLAG_INHOMOG)
     fprintf(stderr,
-            "haff %s: note: left out alpha %g a/d %g N %ld: inhomogeneous (window mean s_perp "
+            "haff %s: note: left out %s N %ld: inhomogeneous (window mean s_perp "
             "%.3g, %zu of %zu runs left the HCS early); --keep-flagged keeps it\n",
-            cmd, g->alpha, g->a_over_d, g->nbodies, q->s_perp, q->ended, q->m);
+            cmd, hd_cli_group_name(g).s, g->nbodies, q->s_perp, q->ended, q->m);
   else if (q->flagged & HD_FLAG_SHORT)
     fprintf(stderr,
-            "haff %s: note: left out alpha %g a/d %g N %ld: short (%zu of %zu runs have a window "
+            "haff %s: note: left out %s N %ld: short (%zu of %zu runs have a window "
             "too short for eq. (31)); --keep-flagged keeps it\n",
-            cmd, g->alpha, g->a_over_d, g->nbodies, q->n_short, q->n_short + q->m);
+            cmd, hd_cli_group_name(g).s, g->nbodies, q->n_short, q->n_short + q->m);
   else
     fprintf(stderr,
-            "haff %s: note: left out alpha %g a/d %g N %ld: outliers (%zu of %zu runs rejected, "
+            "haff %s: note: left out %s N %ld: outliers (%zu of %zu runs rejected, "
             "more than %g of them: the box's bursts are not rare); --keep-flagged keeps it\n",
-            cmd, g->alpha, g->a_over_d, g->nbodies, q->n_rejected, q->n_rejected + q->m,
+            cmd, hd_cli_group_name(g).s, g->nbodies, q->n_rejected, q->n_rejected + q->m,
             HD_FIT_REJECT_FLAG);
   return 1;
 }
@@ -337,26 +350,26 @@ int hd_cli_flagged_out(const char *cmd, const hd_group *g, const hd_group_fit *q
 void hd_cli_one_run_note(const char *cmd, const hd_group *g, size_t m) {
   if (m == 1)
     fprintf(stderr,
-            "haff %s: note: alpha %g a/d %g: one fitted run, so its errors are empty (an ensemble "
+            "haff %s: note: %s: one fitted run, so its errors are empty (an ensemble "
             "error needs >= 2 runs; the fit's formal error, haff-fit's *_fit_err, is several times "
             "smaller than the scatter between runs)\n",
-            cmd, g->alpha, g->a_over_d);
+            cmd, hd_cli_group_name(g).s);
 }
 
 void hd_cli_short_note(const char *cmd, const hd_group *g, const hd_group_fit *q) {
   if (q->n_rejected)
     fprintf(stderr,
-            "haff %s: note: alpha %g a/d %g N %ld: rejected %zu run%s whose D_e is more than %g "
+            "haff %s: note: %s N %ld: rejected %zu run%s whose D_e is more than %g "
             "robust standard deviations from the group's median (near-collapse bursts; "
             "haff-fit flags them `outlier`, docs/analysis.md \"Outlier runs\")%s\n",
-            cmd, g->alpha, g->a_over_d, g->nbodies, q->n_rejected, q->n_rejected == 1 ? "" : "s",
+            cmd, hd_cli_group_name(g).s, g->nbodies, q->n_rejected, q->n_rejected == 1 ? "" : "s",
             HD_FIT_REJECT_Z,
             q->flagged & HD_FLAG_OUTLIERS ? ": the group is flagged outliers" : "");
   if (q->n_short)
     fprintf(stderr,
-            "haff %s: note: alpha %g a/d %g N %ld: left out %zu run%s whose window is too short "
+            "haff %s: note: %s N %ld: left out %zu run%s whose window is too short "
             "for eq. (31) (< %d samples, or ln(E_start/E_end) < %g)%s\n",
-            cmd, g->alpha, g->a_over_d, g->nbodies, q->n_short, q->n_short == 1 ? "" : "s",
+            cmd, hd_cli_group_name(g).s, g->nbodies, q->n_short, q->n_short == 1 ? "" : "s",
             HD_FIT_MIN_SAMPLES, HD_FIT_MIN_DECAY,
             q->flagged & HD_FLAG_SHORT ? ": the group is flagged short" : "");
 }

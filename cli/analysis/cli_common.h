@@ -96,6 +96,14 @@ int hd_cli_groups(const hd_optspec *spec, int argc, char **argv, hd_cli_args *a,
 int hd_cli_table_start(const hd_optspec *spec, int argc, char **argv, int with_disks,
                        const char *none, hd_cli_args *a, hd_cli_set *s, FILE **out);
 
+/* A group's name for the notes: "alpha A a/d X", "alpha A" when a/d does not apply (bodies
+ * that are not dimers or disks), "alpha (several)" for a gas of several restitutions: never
+ * "nan".  Returned by value: usable as a printf argument. */
+typedef struct hd_cli_name {
+  char s[64];
+} hd_cli_name;
+hd_cli_name hd_cli_group_name(const hd_group *g);
+
 /* Prints a warning on stderr for each group whose (alpha, a/d) label an earlier group has (and
  * what they differ in: hd_group_differ), and a note for each group of rough bodies. */
 void hd_cli_groups_warn(const char *cmd, const hd_group *g, size_t ng);

@@ -55,8 +55,7 @@ int hd_cmd_table2(int argc, char **argv) {
     double r[6];
     if (hd_combine_k(s.fits, use, nu, a.kmode, a.fit.level, r, &err)) {
       free(use);
-      fprintf(stderr, "haff %s: alpha %g a/d %g: %s\n", argv[0], s.g[j].alpha, s.g[j].a_over_d,
-              err.msg);
+      fprintf(stderr, "haff %s: %s: %s\n", argv[0], hd_cli_group_name(&s.g[j]).s, err.msg);
       bad = 2;
       continue;
     }
