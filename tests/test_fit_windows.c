@@ -154,7 +154,7 @@ static void energy_species_matching_cpd(void **state) {
   int n1[2];
   for (int k = 0; k < 2; k++) {
     snprintf(out, sizeof out, "%s/mix%d.tsv", dir, k + 1);
-    char id[8];
+    char id[16];
     snprintf(id, sizeof id, "%d", k + 1);
     char *av[] = {"energy", db, "--by-species", "--run", id, "-o", out, NULL};
     assert_int_equal(hd_cmd_energy(7, av), 0);
