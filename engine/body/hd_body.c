@@ -337,7 +337,7 @@ static void ca_eval_general(const hd_ca_geom *c, double t, double sa, double ca,
     for (int i = 0; i < c->na; i++) {
       double ox = A->ox[i], oy = A->oy[i];
       double px = ox * ca - oy * sa, py = ox * sa + oy * ca; /* turned offset */
-      double along = c->wsin ? py : px, rate = c->wsin ? px : -py;
+      double along = c->wsin != 0.0 ? py : px, rate = c->wsin != 0.0 ? px : -py;
       h[i] = gc + c->wn * along - 0.5 * A->dk[i];
       g[i] = c->dvx + c->wn * c->wa * rate;
       r[i] = 1.0;
@@ -381,8 +381,8 @@ static inline void ca_eval_sc(const hd_ca_geom *c, double t, double sa, double c
     for (int i = 0; i < c->na; i++) {
       double s = disk_sign(i) * c->ha * c->wn;
       if (c->na == 1) s = 0.0;
-      h[i] = gc + s * (c->wsin ? sa : ca);
-      g[i] = c->dvx + s * c->wa * (c->wsin ? ca : -sa);
+      h[i] = gc + s * (c->wsin != 0.0 ? sa : ca);
+      g[i] = c->dvx + s * c->wa * (c->wsin != 0.0 ? ca : -sa);
       r[i] = 1.0;
     }
     return;
