@@ -1,8 +1,10 @@
 /* The Python module python/haff (issue 28), tested by python/tests/test_haff.py with Debian's
  * /usr/bin/python3 and unittest: each TestCase there is one test here (its output is shown when
  * it fails).  TestStudy: a study made with haff.run and merged, read back against docs/sql.md's
- * SQL (<f>, D_e, K) and `haff export xyz` (every disk of every frame, exactly); TestRunResume:
- * a run interrupted by SIGINT and resumed with haff.resume; TestErrors: bad files and scenes.
+ * SQL (<f>, D_e, K) and `haff export xyz` (every disk of every frame, exactly), sample_species,
+ * negative frame indices, bad run ids and labels; TestRunResume: a run interrupted by SIGINT and
+ * resumed with haff.resume (the id of the run resumed; --all; nothing to resume), haff.run's id
+ * with another writer and for a collapse; TestErrors: bad files, a missing haff, bad scenes.
  * These drive bin/haff (HAFF_BIN), so they skip in the sanitized build. */
 #include <limits.h>
 #include <setjmp.h>

@@ -9,6 +9,7 @@ docs/python.md has the examples and the measurements.
     db.runs()                                   # run_summary: one dict per run, typed
     db.params(3)                                # {"dimers.alpha": 0.95, ...}
     c = db.collisions(3, kinds=["dimer-dimer"], columns=["t", "f"])   # numpy structured array
+    sp = db.sample_species(3)                   # t, species, e_tr, e_rot of every species
     for chunk in db.collisions(chunk=1_000_000): ...                   # memory-light
     for fr in db.frames(3): fr.t, fr.bodies["x"], fr.disks()["x"]      # decoded frames
     run = haff.run("scene.ini", "out.db", set={"dimers.alpha": 0.9})   # calls `haff run`
@@ -16,14 +17,16 @@ docs/python.md has the examples and the measurements.
 import itertools
 import math
 import os
+import re
 import shutil
 import sqlite3
 import subprocess
+from urllib.request import pathname2url
 
 import numpy as np
 
 __all__ = ["open", "Database", "Frame", "HaffError", "run", "resume", "COLLISION_KINDS",
-           "FRAME_DTYPE"]
+           "FRAME_DTYPE", "STATE_LABELS"]
 
 #: collisions.kind, in the order of the codes of Database.collisions' "kind" field
 COLLISION_KINDS = ("dimer-dimer", "dimer-disk", "disk-disk", "dimer-wall", "disk-wall",
@@ -49,8 +52,18 @@ _STATE_COLUMNS = {
 
 
 class HaffError(Exception):
-    """A haff command that failed (its exit status and its message), or a database that is not
-    what was asked for."""
+    """A haff command that failed (its exit status and its message), or a database, run, label
+    or argument that is not what was asked for.  status: the haff command's exit status (None
+    when no command ran); run: the id of the run the command made or resumed, when one was made
+    (e.g. an interrupted run), else None."""
+
+    def __init__(self, message, status=None, run=None):
+        super().__init__(message)
+        self.status, self.run = status, run
+
+
+#: states.label values (db/schema.sql)
+STATE_LABELS = ("initial", "final", "checkpoint", "velocities")
 
 
 def open(path):  # noqa: A001 (the module's verb, as in gsd.hoomd.open)
@@ -68,9 +81,13 @@ class Database:
             raise HaffError("%s: no such database file" % path)
         self.path = path
         self.con = sqlite3.connect(path)
-        self.con.execute("PRAGMA query_only = 1")
-        names = {r[0] for r in self.con.execute(
-            "SELECT name FROM sqlite_master WHERE type IN ('table', 'view')")}
+        try:
+            self.con.execute("PRAGMA query_only = 1")
+            names = {r[0] for r in self.con.execute(
+                "SELECT name FROM sqlite_master WHERE type IN ('table', 'view')")}
+        except sqlite3.DatabaseError as e:
+            self.con.close()
+            raise HaffError("%s: not an SQLite database (%s)" % (path, e)) from None
         if "runs" not in names:
             self.con.close()
             raise HaffError("%s: not a haff database (no runs table)" % path)
@@ -123,11 +140,21 @@ class Database:
             fields.append((c, t))
         return exprs, np.dtype(fields)
 
-    @staticmethod
-    def _runs_where(run):
+    def _run(self, run):
+        """run as an int, the id of a run of the file; HaffError otherwise (None too)."""
+        if isinstance(run, bool) or not isinstance(run, (int, np.integer)):
+            raise HaffError("%s: a run id is an integer, not %r" % (self.path, run))
+        run = int(run)
+        if self.con.execute("SELECT 1 FROM runs WHERE id = ?", (run,)).fetchone() is None:
+            ids = self.run_ids()
+            raise HaffError("%s: there is no run %d (runs: %s)" % (
+                self.path, run, ", ".join(map(str, ids)) if ids else "none"))
+        return run
+
+    def _runs_where(self, run):
         if run is None:
             return "", ()
-        return " WHERE run = ?", (int(run),)
+        return " WHERE run = ?", (self._run(run),)
 
     def _array(self, sql, args, dtype, count=None):
         cur = self.con.execute(sql, args)
@@ -176,18 +203,19 @@ class Database:
         for r, sec, key, value, num in self.con.execute(
                 "SELECT run, section, key, value, num FROM params%s" % where, args):
             out.setdefault(r, {})["%s.%s" % (sec, key)] = value if num is None else num
-        return out.get(int(run), {}) if run is not None else out
+        return out.get(self._run(run), {}) if run is not None else out
 
     def species(self, run):
         """The species table of a run: one dict per species (idx, name, count, mass, inertia,
         disks: [(x, y, d, m), ...] in the body frame about the centre of mass); [] for rods and
         files made before schema version 3."""
+        run = self._run(run)
         if "species" not in self._tables:
             return []
         out = []
         for idx, name, disks, count, mass, inertia in self.con.execute(
                 "SELECT idx, name, disks, count, mass, inertia FROM species WHERE run = ? "
-                "ORDER BY idx", (int(run),)):
+                "ORDER BY idx", (run,)):
             d = [tuple(float(v) for v in p.split()) for p in disks.split(";") if p.strip()]
             out.append({"idx": idx, "name": name, "count": count, "mass": mass,
                         "inertia": inertia, "disks": d})
@@ -249,25 +277,50 @@ class Database:
         """The states rows of a run (or every run, with "run"), by (label, t, body): label, t,
         cpd, body, kind, species (species.idx; -1 for rods and rows written before schema
         version 4), x, y, phi, vx, vy, omega.  label: only 'initial', 'final', 'checkpoint' or
-        'velocities'."""
+        'velocities' (STATE_LABELS), or a list of them; another label is a HaffError."""
         cols = list(_STATE_COLUMNS)
         if run is None:
             cols = ["run"] + cols
         exprs, dtype = self._select("states", cols, dict(_STATE_COLUMNS, run="i8"))
         where, args = self._runs_where(run)
         if label is not None:
-            where += (" AND " if where else " WHERE ") + "label = ?"
-            args += (label,)
+            labels = [label] if isinstance(label, str) else list(label)
+            bad = [x for x in labels if x not in STATE_LABELS]
+            if bad or not labels:
+                raise HaffError("unknown states label %s (labels: %s)" % (
+                    ", ".join(map(repr, bad)) or "(none given)", ", ".join(STATE_LABELS)))
+            where += (" AND " if where else " WHERE ") + "label IN (%s)" % ",".join(
+                "?" * len(labels))
+            args += tuple(labels)
         sql = "SELECT %s FROM states%s ORDER BY %s" % (
             ", ".join(exprs), where, ("" if run is not None else "run, ") + "label, t, body")
         return self._frame(self._array(sql, args, dtype), as_frame)
 
+    def sample_species(self, run=None, as_frame=False):
+        """The per-species samples of a run (or every run, with "run"), the table sample_species
+        (docs/sql.md), by (t, species): t, species (species.idx, as in Database.species), e_tr,
+        e_rot (per body of the species; NaN for NULL); every species of a mixture, named
+        species too.  Empty for a file made before schema version 3."""
+        cols = ["t", "species", "e_tr", "e_rot"]
+        if run is None:
+            cols = ["run"] + cols
+        where, args = self._runs_where(run)
+        spec = {"run": "i8", "t": "f8", "species": "i4", "e_tr": "f8", "e_rot": "f8"}
+        if "sample_species" not in self._tables:
+            return self._frame(np.zeros(0, np.dtype([(c, spec[c]) for c in cols])), as_frame)
+        exprs, dtype = self._select("sample_species", cols, spec)
+        sql = "SELECT %s FROM sample_species%s ORDER BY %s" % (
+            ", ".join(exprs), where, ("" if run is not None else "run, ") + "t, species")
+        return self._frame(self._array(sql, args, dtype), as_frame)
+
     # ---- frames ---------------------------------------------------------------------------
     def frame_count(self, run):
+        """The number of frames of a run."""
+        run = self._run(run)
         if "frames" not in self._tables:
             return 0
         return self.con.execute("SELECT count(*) FROM frames WHERE run = ?",
-                                (int(run),)).fetchone()[0]
+                                (run,)).fetchone()[0]
 
     def _bodies(self, run):
         """kind and species of every body of a run, from its initial states (the frames' rule);
@@ -289,14 +342,22 @@ class Database:
     def frames(self, run, start=0, stop=None):
         """Iterates over the frames of a run in time order, one Frame at a time (one frames row
         in memory): Frame.index, t, cpd, bodies (FRAME_DTYPE: x, y, phi float64; vx, vy, omega
-        float32 as stored), kind and species of each body, and Frame.disks()."""
+        float32 as stored), kind and species of each body, and Frame.disks().  start, stop: the
+        frames start to stop - 1, as a Python slice (negative: counted from the end)."""
+        run = self._run(run)  # checked now, not at the first next()
+        return self._frames(run, start, stop)
+
+    def _frames(self, run, start, stop):
         if "frames" not in self._tables:
+            return
+        start, stop, _ = slice(start, stop).indices(self.frame_count(run))
+        if start >= stop:
             return
         kind, species = self._bodies(run)
         shapes = _shapes(self.species(run))
         cur = self.con.execute(
             "SELECT t, cpd, n, data FROM frames WHERE run = ? ORDER BY t, rowid LIMIT ? OFFSET ?",
-            (int(run), -1 if stop is None else max(0, stop - start), int(start)))
+            (run, stop - start, start))
         for k, (t, cpd, n, data) in enumerate(cur, start):
             if n != len(kind) or len(data) != n * FRAME_DTYPE.itemsize:
                 raise HaffError("%s: run %d: frame %d holds %d bodies, the initial states %d" %
@@ -305,10 +366,16 @@ class Database:
                         shapes)
 
     def frame(self, run, index):
-        """Frame number index (0-based, time order) of a run."""
-        for f in self.frames(run, index, index + 1):
+        """Frame number index (0-based, time order; negative: from the end, -1 the last) of a
+        run; HaffError when there is no such frame."""
+        run = self._run(run)
+        n = self.frame_count(run)
+        k = int(index)
+        if k < -n or k >= n:
+            raise HaffError("%s: run %d has no frame %d (it has %d)" % (self.path, run, k, n))
+        for f in self.frames(run, k % n, k % n + 1):
             return f
-        raise HaffError("%s: run %d has no frame %d" % (self.path, run, index))
+        raise HaffError("%s: run %d has no frame %d" % (self.path, run, k))
 
 
 def _shapes(species):
@@ -396,48 +463,132 @@ def _haff(haff):
     if not exe:
         raise HaffError("the haff program is not found (install it, put it on PATH, or give "
                         "haff= or $HAFF_BIN)")
-    return exe
+    return str(exe)
 
 
 def _call(args):
-    p = subprocess.run(args, capture_output=True, text=True)
-    if p.returncode != 0:
-        raise HaffError("%s: exit %d: %s" % (" ".join(args[:2]), p.returncode,
-                                              (p.stderr or p.stdout).strip()))
-    return p
-
-
-def _newest(db):
-    con = sqlite3.connect(db)
+    """Runs args; the CompletedProcess (any exit status); HaffError when it cannot start."""
     try:
-        return con.execute("SELECT max(id) FROM runs").fetchone()[0]
+        return subprocess.run(args, capture_output=True, text=True)
+    except OSError as e:
+        raise HaffError("%s: cannot run the haff program: %s (give haff= or $HAFF_BIN)" %
+                        (args[0], e.strerror or e)) from None
+
+
+def _failed(args, p, run=None):
+    return HaffError("haff %s: exit %d: %s" % (args[1],
+                                          p.returncode, (p.stderr or p.stdout).strip()),
+                     status=p.returncode, run=run)
+
+
+def _query(db, sql, args=()):
+    """The rows of sql on database file db (read-only); [] when db is no haff database yet."""
+    if not os.path.isfile(str(db)):
+        return []
+    try:
+        con = sqlite3.connect("file:%s?mode=ro" % pathname2url(os.path.abspath(str(db))),
+                              uri=True)
+    except sqlite3.Error:
+        return []
+    try:
+        return con.execute(sql, args).fetchall()
+    except sqlite3.Error:
+        return []
     finally:
         con.close()
 
 
+def _quote(word):
+    """A word of a command line as haff stores it in runs.command (cli/cmd_run.c,
+    command_line): as is when made of [A-Za-z0-9._/-+=:,@%], else single-quoted."""
+    if word and all(c.isascii() and (c.isalnum() or c in "._/-+=:,@%") for c in word):
+        return word
+    return "'" + word.replace("'", "'\\''") + "'"
+
+
+def _status(db, run):
+    rows = _query(db, "SELECT status FROM runs WHERE id = ?", (run,))
+    return rows[0][0] if rows else None
+
+
 def run(scene, db, set=None, seed=None, haff=None):  # noqa: A002 (haff's own option name)
     """Runs the scene file `scene` into database `db` with the installed haff (`haff run SCENE
-    -o DB --quiet [--set S.K=V]... [--seed N]`) and returns the new run's id.  set: a dict
+    -o DB --quiet [--set S.K=V]... [--seed N]`) and returns the new run's id, that of a run that
+    collapsed too (a collapse is a result: runs.status 'collapsed', runs.message).  set: a dict
     {"section.key": value} or a list of "section.key=value".  HaffError on failure (the exit
-    status and haff's message; a run that collapsed or was interrupted is a failure too)."""
+    status and haff's message; .run the run's id when one was made, e.g. an interrupted run).
+
+    The id is that of the one run, newer than those before the call, whose runs.command is this
+    call's command line: right when other processes write to db too (haff refuses a second run
+    of the same scene and seed, so no other process makes a run with that command line)."""
     args = [_haff(haff), "run", str(scene), "-o", str(db), "--quiet"]
     items = set.items() if isinstance(set, dict) else [s.split("=", 1) for s in (set or [])]
     for k, v in items:
         args += ["--set", "%s=%s" % (k, v)]
     if seed is not None:
         args += ["--seed", str(int(seed))]
-    _call(args)
-    return _newest(db)
+    before = (_query(db, "SELECT max(id) FROM runs") or [(None,)])[0][0] or 0
+    p = _call(args)
+    tail = " " + " ".join(_quote(a) for a in args[1:])
+    ids = [r[0] for r in _query(db, "SELECT id, command FROM runs WHERE id > ? ORDER BY id",
+                                (before,))
+           if r[1] is not None and (r[1] == tail[1:] or r[1].endswith(tail))]
+    if len(ids) > 1:
+        raise HaffError("%s: runs %s all have this command line: which one is this call's is "
+                        "not known" % (db, ", ".join(map(str, ids))), status=p.returncode)
+    new = ids[0] if ids else None
+    if p.returncode == 1 and new is not None and _status(db, new) == "collapsed":
+        return new
+    if p.returncode != 0:
+        raise _failed(args, p, new)
+    if new is None:
+        raise HaffError("%s: haff run ended well but its run is not found (a haff that does not "
+                        "store runs.command?)" % db, status=0)
+    return new
+
+
+_RESUMABLE = ("SELECT id FROM runs WHERE status IN ('running', 'interrupted', 'failed') AND "
+              "(EXISTS (SELECT 1 FROM checkpoints c WHERE c.run = runs.id) OR status = "
+              "'running') ORDER BY id")
 
 
 def resume(db, run=None, all=False, haff=None):  # noqa: A002
-    """Resumes an interrupted, killed or failed run of `db` (`haff resume DB [--run ID | --all]
-    --quiet`); returns the id of the run resumed (the newest run, for all=True).  HaffError on
-    failure, e.g. a run that is done (exit 2)."""
-    args = [_haff(haff), "resume", str(db), "--quiet"]
-    if run is not None:
-        args += ["--run", str(int(run))]
+    """Resumes an interrupted, killed or failed run of `db` (`haff resume DB --run ID --quiet`):
+    run=ID that run; else the newest resumable run (haff's rule, hd_db_find_resumable), chosen
+    here and passed as --run.  Returns the id of the run resumed (also when it collapsed: a
+    result, as for run()).  all=True: every resumable run in turn (`haff resume DB --all`),
+    returns the list of the ids resumed, oldest first.  HaffError on failure (.run the run's id),
+    e.g. a run that is done (exit 2), and when there is nothing to resume."""
+    exe = _haff(haff)
     if all:
-        args.append("--all")
-    _call(args)
-    return int(run) if run is not None else _newest(db)
+        if run is not None:
+            raise HaffError("resume: run= and all=True: give one")
+        # not --quiet: haff says "haff resume: run N done, in DB" for each run it resumed
+        args = [exe, "resume", str(db), "--all", "--progress", "0"]
+        p = _call(args)
+        done = [int(m) for m in re.findall(r"^haff resume: run (\d+) done, in ", p.stderr, re.M)]
+        if p.returncode != 0:
+            raise _failed(args, p, done[-1] if done else None)
+        if not done:
+            raise HaffError("%s: no run to resume (%s)" % (db, p.stderr.strip() or "none"),
+                            status=0)
+        return done
+    if run is None:
+        ids = [r[0] for r in _query(db, _RESUMABLE)]
+        if not ids:
+            args = [exe, "resume", str(db), "--quiet"]  # haff's own message for this file
+            p = _call(args)
+            if p.returncode != 0:
+                raise _failed(args, p)
+            raise HaffError("%s: no run to resume" % db, status=p.returncode)
+        run = ids[-1]
+    if isinstance(run, bool) or not isinstance(run, (int, np.integer)):
+        raise HaffError("resume: a run id is an integer, not %r" % (run,))
+    run = int(run)
+    args = [exe, "resume", str(db), "--quiet", "--run", str(run)]
+    p = _call(args)
+    if p.returncode == 1 and _status(db, run) == "collapsed":
+        return run
+    if p.returncode != 0:
+        raise _failed(args, p, run if _status(db, run) is not None else None)
+    return run

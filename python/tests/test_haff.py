@@ -11,7 +11,12 @@ with frames, merged with `haff merge` into one; then checks the module against d
 2/<f> and K = E_tr/E_rot, to 1e-12 relative: the sums are the same numbers added in another
 order) and the decoded frames against `haff export xyz` (every disk's position and velocity,
 exactly: the export prints the shortest form that reads back as the same double).
-TestRunResume interrupts a run with SIGINT and resumes it with haff.resume.
+TestStudy also reads sample_species, frames by negative index, and checks that bad run ids,
+labels and None are HaffErrors.  TestRunResume interrupts a run with SIGINT and resumes it with
+haff.resume (the id of the run resumed, not the newest; resume(all=True) the ids resumed;
+nothing to resume an error), and checks that haff.run gives the id of its own run when another
+process adds one meanwhile, and of a run that collapsed.  TestErrors: a file that is not
+SQLite, a haff program that is missing, a bad scene.
 """
 import math
 import os
@@ -21,6 +26,7 @@ import sqlite3
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import unittest
 
@@ -68,7 +74,35 @@ sides = bottom top
 stop_cpd = 4
 [log]
 collisions = all
+samples_every = 0.5
 frames_every = 1
+"""
+
+# rods that collapse at once (tests/test_sweep.c's): haff run's exit 1
+COLLAPSE = """[system]
+seed = 1998
+[rods]
+count = 1000
+gamma = 0.8
+nmod = 1000
+model = constant
+[run]
+stop_time = 1e4
+[log]
+collisions = none
+"""
+
+# dimers for ~3 s on an idle machine (one stopped by SIGINT after 0.8 s, past its set-up, is
+# interrupted with a checkpoint and can be resumed)
+SLOW = """[system]
+area_fraction = 0.2
+seed = 4
+[dimers]
+count = 1000
+[run]
+stop_cpd = 2000
+[log]
+collisions = none
 """
 
 
@@ -213,6 +247,61 @@ class TestStudy(unittest.TestCase):
                     self.assertEqual(float(r[7]), d["mass"][k])
             self.assertEqual(at, len(lines))
 
+    def test_frame_negative_index(self):
+        """db.frame(run, -1) is the last frame (Python's indexing), never frame 0 labelled -1;
+        past either end a HaffError (review 14b, finding 4)."""
+        n = self.db.frame_count(5)
+        frames = list(self.db.frames(5))
+        last = self.db.frame(5, -1)
+        self.assertEqual((last.index, last.t), (n - 1, frames[-1].t))
+        self.assertNotEqual(frames[0].t, last.t)
+        self.assertEqual(self.db.frame(5, -n).t, frames[0].t)
+        self.assertEqual([f.t for f in self.db.frames(5, -2)], [f.t for f in frames[-2:]])
+        self.assertEqual([f.index for f in self.db.frames(5, 1, -1)], list(range(1, n - 1)))
+        for k in (n, -n - 1):
+            with self.assertRaises(haff.HaffError):
+                self.db.frame(5, k)
+
+    def test_sample_species(self):
+        """db.sample_species(run): the table sample_species, every species of the mixture
+        (review 14b, finding 6)."""
+        con = sqlite3.connect(self.path)
+        want = con.execute("SELECT t, species, e_tr, e_rot FROM sample_species WHERE run = 5 "
+                           "ORDER BY t, species").fetchall()
+        allrows = con.execute("SELECT count(*) FROM sample_species").fetchone()[0]
+        con.close()
+        ss = self.db.sample_species(5)
+        self.assertGreater(len(want), 3)
+        self.assertEqual(list(ss.dtype.names), ["t", "species", "e_tr", "e_rot"])
+        self.assertEqual([tuple(r) for r in ss.tolist()], want)
+        self.assertEqual(set(ss["species"]), {s["idx"] for s in self.db.species(5)})
+        self.assertTrue(np.all(ss["e_tr"] > 0))
+        every = self.db.sample_species()
+        self.assertEqual(len(every), allrows)
+        self.assertEqual(every.dtype.names[0], "run")
+        df = self.db.sample_species(5, as_frame=True)
+        self.assertEqual(list(df.columns), ["t", "species", "e_tr", "e_rot"])
+        self.assertTrue(np.array_equal(df.e_tr.to_numpy(), ss["e_tr"]))
+
+    def test_bad_arguments(self):
+        """Every documented error is a HaffError: unknown run ids, None, unknown labels; a list
+        of labels is read (review 14b, finding 8)."""
+        for call in (lambda: self.db.collisions(99), lambda: self.db.params(99),
+                     lambda: self.db.species(99), lambda: self.db.states(99),
+                     lambda: self.db.samples(99), lambda: self.db.sample_species(99),
+                     lambda: self.db.frame_count(99), lambda: self.db.frames(99),
+                     lambda: self.db.frame(99, 0), lambda: self.db.frames(None),
+                     lambda: self.db.species(None), lambda: self.db.frame(None, 0),
+                     lambda: self.db.frame_count(None),
+                     lambda: self.db.states(2, label="finall"),
+                     lambda: self.db.states(2, label=["initial", "finall"])):
+            with self.assertRaises(haff.HaffError):
+                call()
+        both = self.db.states(2, label=["initial", "final"])
+        self.assertEqual(set(both["label"]), {"initial", "final"})
+        self.assertEqual(len(both), len(self.db.states(2, label="initial")) +
+                         len(self.db.states(2, label="final")))
+
     def test_states_species(self):
         st = self.db.states(5, label="initial")
         sp = {s["idx"]: s for s in self.db.species(5)}
@@ -247,6 +336,12 @@ class TestRunResume(unittest.TestCase):
             db = haff.open(out)
             self.assertEqual(db.runs()[0]["status"], "interrupted")
             db.close()
+            # a newer run that is done: resume() resumes run 1 and says so (review 14b: it
+            # returned max(id), 2)
+            short = os.path.join(d, "short.ini")
+            write(short, "[system]\narea_fraction = 0.2\nseed = 4\n[dimers]\ncount = 20\n"
+                  "[run]\nstop_cpd = 2\n[log]\ncollisions = none\n")
+            self.assertEqual(haff.run(short, out, haff=HAFF), 2)
             self.assertEqual(haff.resume(out, haff=HAFF), 1)
             db = haff.open(out)
             status, cpd = db.con.execute("SELECT status, cpd FROM runs").fetchone()
@@ -256,6 +351,68 @@ class TestRunResume(unittest.TestCase):
             with self.assertRaises(haff.HaffError) as e:  # a done run cannot be resumed
                 haff.resume(out, run=1, haff=HAFF)
             self.assertIn("exit 2", str(e.exception))
+            for every in (False, True):  # nothing left to resume: an error, not a run id
+                with self.assertRaises(haff.HaffError):
+                    haff.resume(out, all=every, haff=HAFF)
+
+    def test_resume_all(self):
+        """resume(all=True) gives the ids it resumed."""
+        with tempfile.TemporaryDirectory(prefix="haff-py-") as d:
+            out = os.path.join(d, "a.db")
+            slow = os.path.join(d, "slow.ini")
+            write(slow, SLOW)
+            for seed in (1, 2):
+                subprocess.run(["timeout", "-s", "INT", "0.8", HAFF, "run", slow, "-o", out,
+                                "--quiet", "--seed", str(seed)], capture_output=True)
+            st = dict(sqlite3.connect(out).execute("SELECT id, status FROM runs").fetchall())
+            self.assertEqual(st, {1: "interrupted", 2: "interrupted"})
+            self.assertEqual(haff.resume(out, all=True, haff=HAFF), [1, 2])
+
+    def test_collapse_is_a_result(self):
+        """A run that collapses (haff run's exit 1) gives its id, as resume of one does."""
+        with tempfile.TemporaryDirectory(prefix="haff-py-") as d:
+            scene = os.path.join(d, "rc.ini")
+            write(scene, COLLAPSE)
+            out = os.path.join(d, "c.db")
+            self.assertEqual(haff.run(scene, out, haff=HAFF), 1)
+            self.assertEqual(haff.run(scene, out, seed=7, haff=HAFF), 2)
+            db = haff.open(out)
+            self.assertEqual([r["status"] for r in db.runs()], ["collapsed", "collapsed"])
+            db.close()
+
+    def test_run_id_with_another_writer(self):
+        """haff.run's id is its own run's when another process adds a run to the same database
+        while it runs (review 14b: it was max(id), the other's)."""
+        with tempfile.TemporaryDirectory(prefix="haff-py-") as d:
+            slow = os.path.join(d, "slow.ini")
+            write(slow, SLOW)
+            quick = os.path.join(d, "quick.ini")
+            write(quick, "[system]\narea_fraction = 0.2\nseed = 5\n[dimers]\ncount = 20\n"
+                  "[run]\nstop_cpd = 2\n[log]\ncollisions = none\n")
+            out = os.path.join(d, "w.db")
+            got = []
+            th = threading.Thread(target=lambda: got.append(haff.run(slow, out, haff=HAFF)))
+            th.start()
+            for _ in range(600):  # until the slow run has its row
+                time.sleep(0.05)
+                rows = []
+                try:
+                    con = sqlite3.connect(out)
+                    rows = con.execute("SELECT id FROM runs").fetchall()
+                    con.close()
+                except sqlite3.Error:
+                    pass
+                if rows or not th.is_alive():
+                    break
+            other = subprocess.run([HAFF, "run", quick, "-o", out, "--quiet"])
+            th.join()
+            self.assertEqual(other.returncode, 0)
+            con = sqlite3.connect(out)
+            ids = dict(con.execute("SELECT seed, id FROM runs").fetchall())
+            finished = con.execute("SELECT id FROM runs ORDER BY finished").fetchall()
+            con.close()
+            self.assertEqual(finished[0][0], ids[5])  # the other run ended first
+            self.assertEqual(got, [ids[4]])
 
 
 class TestErrors(unittest.TestCase):
@@ -270,6 +427,14 @@ class TestErrors(unittest.TestCase):
             with self.assertRaises(haff.HaffError) as e:
                 haff.open(other)
             self.assertIn("not a haff database", str(e.exception))
+            junk = os.path.join(d, "junk.db")  # not SQLite
+            write(junk, "this is not a database\n" * 100)
+            with self.assertRaises(haff.HaffError) as e:
+                haff.open(junk)
+            self.assertIn("not an SQLite database", str(e.exception))
+            with self.assertRaises(haff.HaffError):
+                haff.run(os.path.join(d, "any.ini"), os.path.join(d, "y.db"),
+                         haff=os.path.join(d, "no-haff"))
             scene = os.path.join(d, "bad.ini")
             write(scene, "[dimers]\ncount = 10\nalpha = 1.5\n")
             with self.assertRaises(haff.HaffError) as e:
