@@ -21,7 +21,6 @@ import re
 import shutil
 import sqlite3
 import subprocess
-from urllib.request import pathname2url
 
 import numpy as np
 
@@ -486,11 +485,11 @@ def _query(db, sql, args=()):
     if not os.path.isfile(str(db)):
         return []
     try:
-        con = sqlite3.connect("file:%s?mode=ro" % pathname2url(os.path.abspath(str(db))),
-                              uri=True)
+        con = sqlite3.connect(str(db), timeout=30)
     except sqlite3.Error:
         return []
     try:
+        con.execute("PRAGMA query_only = 1")
         return con.execute(sql, args).fetchall()
     except sqlite3.Error:
         return []
@@ -547,6 +546,7 @@ def run(scene, db, set=None, seed=None, haff=None):  # noqa: A002 (haff's own op
     return new
 
 
+# hd_db_find_resumable's (db/hd_db.c) choice of a run to resume, oldest first
 _RESUMABLE = ("SELECT id FROM runs WHERE status IN ('running', 'interrupted', 'failed') AND "
               "(EXISTS (SELECT 1 FROM checkpoints c WHERE c.run = runs.id) OR status = "
               "'running') ORDER BY id")
