@@ -307,7 +307,7 @@ static void gsd_reads_every_kind_of_run(void **state) {
 /* haff movie: as many video frames as stored frames (ffprobe counts them), the size asked for
  * (720 wide, the height from the square box plus the title), a file of reasonable size, both
  * formats, and the temporary folder removed; a run without frames, a bad file name or colour
- * are bad input, with no movie left. */
+ * and a ring of rods are bad input, with no movie left. */
 static void movie_of_frames(void **state) {
   (void)state;
   if (!haff) skip();
@@ -341,6 +341,12 @@ static void movie_of_frames(void **state) {
   bad("movie m.db -o x.avi", "-o x.avi: give the movie's file, ending in .mp4 or .gif");
   bad("movie m.db -o x.mp4 --color mass", "--color 'mass': expected speed, density or species");
   bad("movie m.db -o x.mp4 --run 7", "there is no such run");
+  /* a ring of rods would be a strip of disks one unit high: refused, naming what shows it */
+  write_file("mr.ini", "[rods]\ncount = 40\ngamma = 0.5\n[run]\nstop_time = 3\n[log]\n"
+                       "collisions = none\nframes_every_time = 1\n");
+  run_ok("mr.ini", "mr.db", "--quiet");
+  bad("movie mr.db -o x.mp4", "run 1 is a ring of rods, which a movie of disks does not show: use "
+                              "haff rods-phase or haff rods-density");
   assert_int_equal(sh("test ! -e x.mp4 && test ! -e x.avi"), 0);
 }
 
