@@ -334,6 +334,11 @@ static void movie_of_frames(void **state) {
   assert_int_equal(sh("sqlite3 noframes.db 'DROP TABLE frames' && chmod a-w noframes.db"), 0);
   bad("movie noframes.db -o x.mp4", "run 1 has no frames: run it with [log] frames_every");
   bad("export xyz noframes.db --label frames", "run 1 has no frames (run it with [log]");
+  /* a failed export to a file leaves no file (it was left empty), as export gsd; a path that is
+   * not a regular file is still written directly */
+  bad("export xyz noframes.db --label frames -o nf0.xyz", "run 1 has no frames (run it with");
+  assert_int_equal(sh("test ! -e nf0.xyz && test ! -e nf0.xyz.tmp"), 0);
+  if (sh("%s export xyz noframes.db -o /dev/null", haff)) fail_msg("%s", out());
   if (sh("%s export xyz noframes.db -o nf.xyz && /usr/bin/python3 %s/tests/ase_check.py nf.xyz "
          "noframes.db 1",
          haff, root))
