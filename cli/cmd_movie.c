@@ -13,7 +13,8 @@
  *   species  one colour per species (the run's species table; without one, dimers and disks),
  *            from the Okabe-Ito palette (distinct for colour-blind readers), named in a key.
  * The unit of length d: the dimers' disk diameter, else the disks', else the first species'
- * largest disk (a ring of rods: its own length unit).
+ * largest disk.  A ring of rods is refused (exit 2): drawn as a strip of disks it is unreadable;
+ * rods-phase and rods-density show its evolution.
  * Positions are wrapped into the box (a disk over an edge is cut there, not drawn twice). */
 #include <errno.h>
 #include <math.h>
@@ -172,7 +173,13 @@ static int read_run(sqlite3 *h, movie *m) {
   }
   free(run.scene);
   if (code) return code;
-  if (m->sc.n_rods > 0) m->ly = 1; /* a ring: a strip one unit wide */
+  if (m->sc.n_rods > 0) {
+    fprintf(stderr,
+            "haff movie: %s: run %lld is a ring of rods, which a movie of disks does not show: "
+            "use haff rods-phase or haff rods-density (or haff export xyz)\n",
+            m->dbpath, (long long)m->run);
+    return 2;
+  }
   if (!(m->lx > 0 && m->ly > 0)) {
     fprintf(stderr, "haff movie: %s: run %lld: box unknown\n", m->dbpath, (long long)m->run);
     return 1;
@@ -205,11 +212,10 @@ static int read_run(sqlite3 *h, movie *m) {
     }
   }
   sqlite3_finalize(q);
-  m->unit = m->sc.n_rods > 0     ? 1
-            : m->sc.n_dimers > 0 ? m->sc.dimer_d
-            : m->sc.n_disks > 0  ? m->sc.disk_sigma
-            : m->nsp > 0         ? m->sp[0].d
-                                 : 1;
+  m->unit = m->sc.n_dimers > 0  ? m->sc.dimer_d
+            : m->sc.n_disks > 0 ? m->sc.disk_sigma
+            : m->nsp > 0        ? m->sp[0].d
+                                : 1;
   if (!(m->unit > 0)) m->unit = 1;
   return 0;
 }
@@ -260,8 +266,7 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
             "set xtics out nomirror\nset ytics out nomirror\nset border lw 1.5\n"
             "set xlabel '%s' offset 0,0.5\nset ylabel '%s' offset 1.5,0\n"
             "set style fill solid 1.0 noborder\n",
-            w, hgt, m->lx / u, m->ly / u, m->sc.n_rods > 0 ? "x" : "x / d",
-            m->sc.n_rods > 0 ? "" : "y / d");
+            w, hgt, m->lx / u, m->ly / u, "x / d", "y / d");
     if (m->color == COLOR_SPECIES) {
       fprintf(gp, "unset colorbox\nset key outside top center horizontal samplen 1\n");
       int ns = m->nsp > 0 ? m->nsp : 2;
@@ -300,8 +305,8 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
       float f[3];
       memcpy(d, data + (size_t)i * HD_FRAME_BODY_BYTES, sizeof d);
       memcpy(f, data + (size_t)i * HD_FRAME_BODY_BYTES + sizeof d, sizeof f);
-      x[i] = d[0], y[i] = m->sc.n_rods > 0 ? 0.5 : d[1], phi[i] = d[2];
-      vx[i] = f[0], vy[i] = m->sc.n_rods > 0 ? 0.0f : f[1];
+      x[i] = d[0], y[i] = d[1], phi[i] = d[2];
+      vx[i] = f[0], vy[i] = f[1];
     }
     if (m->color == COLOR_SPECIES)
       for (long i = 0; i < n; i++)
@@ -317,7 +322,7 @@ static int write_frames(sqlite3 *h, const movie *m, long *frames) {
     }
     for (long i = 0; i < n; i++) {
       hd_kin k = {x[i], y[i], vx[i], vy[i], phi[i], 0};
-      const hd_shape *sh = m->sc.n_rods > 0 ? NULL : body_shape(m, i);
+      const hd_shape *sh = body_shape(m, i);
       for (int j = 0; j < (sh ? sh->n : 1); j++) {
         double px = x[i], py = y[i], r = sh ? 0.5 * sh->dk[j] : 0.25;
         if (sh) hd_kin_disk_pos(&k, sh, j, &px, &py); /* the engine's disk positions */
@@ -374,7 +379,8 @@ const hd_optspec hd_cmd_movie_spec = {
             "disk as its disk, coloured by its body's speed over the frame's rms speed, or by the\n"
             "local density (bodies within 5 diameters over the frame's mean), on [0, 3], or by\n"
             "its species (a key names them); axes in units of the disk diameter d, each frame\n"
-            "stamped with t, cpd and N.  gnuplot draws, ffmpeg encodes (H.264 for .mp4, GIF).\n"};
+            "stamped with t, cpd and N.  gnuplot draws, ffmpeg encodes (H.264 for .mp4, GIF).\n"
+            "2D runs only: a ring of rods is refused (rods-phase, rods-density show it).\n"};
 
 int hd_cmd_movie(int argc, char **argv) {
   movie m = {.fps = 10, .size = 720};

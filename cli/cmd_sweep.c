@@ -138,39 +138,70 @@ static int split_sets(const char *text, char **buf, const char **sets, int max) 
   return n < 0 ? 0 : n;
 }
 
-/* Checks that the base scene with the overrides of text loads; else says where (line). */
-static int check_sets(const sweep *s, const char *text, long line, const char *sec,
-                      const char *key) {
+/* Loads the base scene with the overrides of text: 0 when it loads, else 1 with the reason in
+ * why (the loader's message, or a malformed override). */
+static int load_sets(const sweep *s, const char *text, char *why, size_t cap) {
   const char *sets[SW_MAX_AXES + 64];
   char *buf;
   int n = split_sets(text, &buf, sets, (int)(sizeof sets / sizeof sets[0]));
   for (int k = 0; k < n; k++)
     if (!strchr(sets[k], '=') || !strchr(sets[k], '.')) {
-      int r = bad(s, line, sec, key, "'%s': not SECTION.KEY=VALUE", sets[k]);
+      snprintf(why, cap, "'%s': not SECTION.KEY=VALUE", sets[k]);
       free(buf);
-      return r;
+      return 1;
     }
   hd_scene sc;
   hd_error err;
   hd_error_clear(&err);
   int rc = hd_scene_load(&sc, s->scene, sets, n, &err);
   free(buf);
-  if (rc) return bad(s, line, sec, key, "%s", err.msg);
+  if (rc) {
+    snprintf(why, cap, "%s", err.msg);
+    return 1;
+  }
   hd_scene_free(&sc);
   return 0;
 }
 
-/* The points of the sweep, in order, validated against the base scene.  0 or 2 (said). */
+/* The axis value indices of grid point b (the last axis varies fastest). */
+static void grid_index(const sweep *s, int b, int *idx) {
+  int rem = b;
+  for (int k = s->f.nax - 1; k >= 0; k--) idx[k] = rem % s->f.ax[k].n, rem /= s->f.ax[k].n;
+}
+
+/* Says why a grid whose points in bad[] (1 = does not load, of nb) fail is refused: an axis
+ * value bad in every point that has it (and bad alone) is named with the line of its axis and
+ * the loader's message for it alone; else the first bad point with all its overrides.  2. */
+static int grid_bad(const sweep *s, const point *p, const unsigned char *bad_pt, int nb,
+                    int nseed) {
+  char why[1024];
+  int idx[SW_MAX_AXES];
+  for (int k = 0; k < s->f.nax; k++)
+    for (int j = 0; j < s->f.ax[k].n; j++) {
+      int all = 1;
+      for (int b = 0; b < nb && all; b++) {
+        grid_index(s, b, idx);
+        if (idx[k] == j && !bad_pt[b]) all = 0;
+      }
+      char one[4096];
+      hd_sweep_format_set(one, sizeof one, s->f.ax[k].key, s->f.ax[k].v[j]);
+      if (all && load_sets(s, one, why, sizeof why))
+        return bad(s, s->f.ax[k].line, "axes", s->f.ax[k].key, "%s", why);
+    }
+  for (int b = 0; b < nb; b++)
+    if (bad_pt[b]) {
+      load_sets(s, p[b * nseed].sets, why, sizeof why);
+      return bad(s, s->f.ax[s->f.nax - 1].line, "axes", NULL, "point %d (%s): %s", b * nseed,
+                 p[b * nseed].sets, why);
+    }
+  return 2;
+}
+
+/* The points of the sweep, in order, each validated whole against the base scene (a value
+ * can be bad alone and fine with another axis's value, as with --set).  0 or 2 (said). */
 static int make_points(const sweep *s, point **out, int *np) {
   *out = NULL;
   *np = 0;
-  /* each axis value alone first: the line of the value at fault */
-  for (int k = 0; k < s->f.nax; k++)
-    for (int j = 0; j < s->f.ax[k].n; j++) {
-      char one[4096];
-      hd_sweep_format_set(one, sizeof one, s->f.ax[k].key, s->f.ax[k].v[j]);
-      if (check_sets(s, one, s->f.ax[k].line, "axes", s->f.ax[k].key)) return 2;
-    }
   double total = s->f.npoints ? s->f.npoints : 1;
   for (int k = 0; k < s->f.nax; k++) total *= s->f.ax[k].n;
   int nseed = s->f.seeds.n ? s->f.seeds.n : 1;
@@ -181,17 +212,22 @@ static int make_points(const sweep *s, point **out, int *np) {
   }
   int n = (int)total;
   point *p = calloc((size_t)n, sizeof *p);
-  if (!p) return 2;
   int base = n / nseed;
+  unsigned char *bad_pt = calloc((size_t)base + 1, 1);
+  if (!p || !bad_pt) {
+    free(p);
+    free(bad_pt);
+    return 2;
+  }
+  int nbad = 0;
   for (int b = 0; b < base; b++) {
     char text[8192] = "";
     size_t len = 0;
     if (s->f.npoints) {
       len = (size_t)snprintf(text, sizeof text, "%s", s->f.points[b]);
     } else {
-      int rem = b;
       int idx[SW_MAX_AXES];
-      for (int k = s->f.nax - 1; k >= 0; k--) idx[k] = rem % s->f.ax[k].n, rem /= s->f.ax[k].n;
+      grid_index(s, b, idx);
       for (int k = 0; k < s->f.nax && len < sizeof text; k++) {
         if (k) len += (size_t)snprintf(text + len, sizeof text - len, " ");
         if (len < sizeof text)
@@ -201,8 +237,8 @@ static int make_points(const sweep *s, point **out, int *np) {
     }
     if (len >= sizeof text - 64) {
       fprintf(stderr, "haff sweep: %s: a point's overrides are too long\n", s->path);
-      free(p);
-      return 2;
+      nbad = -1;
+      break;
     }
     for (int q = 0; q < nseed; q++) {
       char full[8300];
@@ -213,19 +249,24 @@ static int make_points(const sweep *s, point **out, int *np) {
       p[b * nseed + q].id = b * nseed + q;
       p[b * nseed + q].sets = strdup(full);
     }
-    /* the whole point loads (a combination can fail where each value alone does not) */
-    long line = s->f.npoints ? s->f.pt_line[b] : s->f.ax[s->f.nax ? s->f.nax - 1 : 0].line;
-    if (check_sets(s, p[b * nseed].sets, s->f.npoints || s->f.nax ? line : s->f.scene_line,
-                   s->f.npoints ? "points"
-                   : s->f.nax   ? "axes"
-                                : "sweep",
-                   s->f.npoints ? "point"
-                   : s->f.nax   ? s->f.ax[s->f.nax - 1].key
-                                : "scene")) {
-      for (int k = 0; k < n; k++) free(p[k].sets);
-      free(p);
-      return 2;
+    /* the whole point loads */
+    char why[1024];
+    if (!load_sets(s, p[b * nseed].sets, why, sizeof why)) continue;
+    if (s->f.npoints || !s->f.nax) {
+      bad(s, s->f.npoints ? s->f.pt_line[b] : s->f.scene_line, s->f.npoints ? "points" : "sweep",
+          s->f.npoints ? "point" : "scene", "%s", why);
+      nbad = -1;
+      break;
     }
+    bad_pt[b] = 1;
+    nbad++;
+  }
+  if (nbad > 0) grid_bad(s, p, bad_pt, base, nseed);
+  free(bad_pt);
+  if (nbad) {
+    for (int k = 0; k < n; k++) free(p[k].sets);
+    free(p);
+    return 2;
   }
   *out = p;
   *np = n;

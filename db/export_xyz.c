@@ -31,6 +31,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "export_xyz.h"
@@ -453,18 +454,34 @@ int hd_xyz_export(hd_db *db, int64_t run, const char *label, const char *outpath
   int code = hd_export_read_run(db, &r, &g);
   FILE *out = stdout;
   if (outpath && !strcmp(outpath, "-")) outpath = NULL; /* -o -: stdout */
-  if (!code && outpath && !(out = fopen(outpath, "w"))) {
-    fprintf(stderr, "haff export: %s: cannot write: %m\n", outpath);
+  /* a file is written as FILE.tmp and renamed on success (a failure leaves no FILE, as in
+   * export gsd); what is not a regular file (a FIFO, /dev/stdout) is written directly */
+  char *tmp = NULL;
+  struct stat sb;
+  if (!code && outpath && !(stat(outpath, &sb) == 0 && !S_ISREG(sb.st_mode))) {
+    size_t len = strlen(outpath) + 8;
+    if (!(tmp = malloc(len))) return 1;
+    snprintf(tmp, len, "%s.tmp", outpath);
+  }
+  const char *wpath = tmp ? tmp : outpath;
+  if (!code && outpath && !(out = fopen(wpath, "w"))) {
+    fprintf(stderr, "haff export: %s: cannot write: %m\n", wpath);
     code = 1;
   }
   if (!code) code = hd_export_frames(db, r, label, &g, xyz_emit, out);
   if (out && out != stdout && fclose(out) != 0 && !code) {
-    fprintf(stderr, "haff export: %s: write failed: %m\n", outpath);
+    fprintf(stderr, "haff export: %s: write failed: %m\n", wpath);
     code = 1;
   }
   if (out == stdout && (fflush(stdout) != 0 || ferror(stdout)) && !code) {
     fprintf(stderr, "haff export: stdout: write error: %m\n");
     code = 1;
   }
+  if (tmp && !code && rename(tmp, outpath) != 0) {
+    fprintf(stderr, "haff export: %s: cannot write: %m\n", outpath);
+    code = 1;
+  }
+  if (tmp && code) remove(tmp);
+  free(tmp);
   return code;
 }

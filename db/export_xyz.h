@@ -63,7 +63,9 @@ double hd_export_rod_mass(const hd_export_geom *g, long long body);
 
 /* Writes the states and frames of run `run` of db (the newest run if run <= 0) with label
  * initial, final, checkpoint, velocities, frames or all, as extended XYZ, to outpath (NULL or
- * "-": stdout, which is flushed and checked).  Messages go to stderr, prefixed "haff export: ".
+ * "-": stdout, which is flushed and checked; a regular file is written as outpath.tmp, renamed to
+ * outpath on success and removed on failure, so a failed export leaves no outpath).  Messages go
+ * to stderr, prefixed "haff export: ".
  * Returns 0, or the exit code of the failure: 1 (cannot read or write), 2 (no such run). */
 int hd_xyz_export(hd_db *db, int64_t run, const char *label, const char *outpath);
 

@@ -307,7 +307,7 @@ static void gsd_reads_every_kind_of_run(void **state) {
 /* haff movie: as many video frames as stored frames (ffprobe counts them), the size asked for
  * (720 wide, the height from the square box plus the title), a file of reasonable size, both
  * formats, and the temporary folder removed; a run without frames, a bad file name or colour
- * are bad input, with no movie left. */
+ * and a ring of rods are bad input, with no movie left. */
 static void movie_of_frames(void **state) {
   (void)state;
   if (!haff) skip();
@@ -334,6 +334,11 @@ static void movie_of_frames(void **state) {
   assert_int_equal(sh("sqlite3 noframes.db 'DROP TABLE frames' && chmod a-w noframes.db"), 0);
   bad("movie noframes.db -o x.mp4", "run 1 has no frames: run it with [log] frames_every");
   bad("export xyz noframes.db --label frames", "run 1 has no frames (run it with [log]");
+  /* a failed export to a file leaves no file (it was left empty), as export gsd; a path that is
+   * not a regular file is still written directly */
+  bad("export xyz noframes.db --label frames -o nf0.xyz", "run 1 has no frames (run it with");
+  assert_int_equal(sh("test ! -e nf0.xyz && test ! -e nf0.xyz.tmp"), 0);
+  if (sh("%s export xyz noframes.db -o /dev/null", haff)) fail_msg("%s", out());
   if (sh("%s export xyz noframes.db -o nf.xyz && /usr/bin/python3 %s/tests/ase_check.py nf.xyz "
          "noframes.db 1",
          haff, root))
@@ -341,6 +346,12 @@ static void movie_of_frames(void **state) {
   bad("movie m.db -o x.avi", "-o x.avi: give the movie's file, ending in .mp4 or .gif");
   bad("movie m.db -o x.mp4 --color mass", "--color 'mass': expected speed, density or species");
   bad("movie m.db -o x.mp4 --run 7", "there is no such run");
+  /* a ring of rods would be a strip of disks one unit high: refused, naming what shows it */
+  write_file("mr.ini", "[rods]\ncount = 40\ngamma = 0.5\n[run]\nstop_time = 3\n[log]\n"
+                       "collisions = none\nframes_every_time = 1\n");
+  run_ok("mr.ini", "mr.db", "--quiet");
+  bad("movie mr.db -o x.mp4", "run 1 is a ring of rods, which a movie of disks does not show: use "
+                              "haff rods-phase or haff rods-density");
   assert_int_equal(sh("test ! -e x.mp4 && test ! -e x.avi"), 0);
 }
 

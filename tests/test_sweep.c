@@ -611,6 +611,31 @@ static void sweep_bad_input(void **state) {
   assert_int_equal(sh("%s sweep short.ini --time 5", haff), 2); /* --time without --slurm */
 }
 
+/* [axes] is validated point by point, not value by value: run.stop_cpd = 12 is bad alone with
+ * the base scene's velocities_at = 10 15 but fine with log.velocities_at = 5 (as with --set);
+ * a combination that is bad is named with all its overrides. */
+static void sweep_axes_validates_whole_points(void **state) {
+  (void)state;
+  if (!haff) skip();
+  write_file("vbase.ini", "[system]\narea_fraction = 0.1\nseed = 1\n[disks]\ncount = 50\n"
+                          "alpha = 0.9\n[run]\nstop_cpd = 20\n[log]\nvelocities_at = 10 15\n");
+  write_file("va.ini", "[sweep]\nscene = vbase.ini\n[axes]\nlog.velocities_at = 5\n"
+                       "run.stop_cpd = 12 20\n");
+  assert_int_equal(sh("%s sweep va.ini --dry-run > va.txt", haff), 0);
+  char m[4096];
+  read_file("va.txt", m, sizeof m);
+  assert_non_null(strstr(m, "log.velocities_at=5 run.stop_cpd=12\n"));
+  /* velocities_at = 30 is fine with stop_cpd = 40, not with 12: that point is named */
+  write_file("vb.ini", "[sweep]\nscene = vbase.ini\n[axes]\nlog.velocities_at = 5 30\n"
+                       "run.stop_cpd = 12 40\n");
+  assert_int_equal(sh("%s sweep vb.ini", haff), 2);
+  read_file("err.txt", m, sizeof m);
+  if (!strstr(m, "vb.ini:5: [axes]: point 2 (log.velocities_at=30 run.stop_cpd=12): ") ||
+      !strstr(m, "30 is past stop_cpd = 12"))
+    fail_msg("stderr '%s'", m);
+  assert_false(exists("vb"));
+}
+
 /* A local sweep stopped with SIGTERM passes it to its points (checkpointed, interrupted, exit
  * 1, not merged); --status says so; --resume finishes them, each exactly as an uninterrupted
  * run of the point, and merges. */
@@ -1091,6 +1116,7 @@ int main(void) {
       cmocka_unit_test(merge_library),
       cmocka_unit_test(sweep_grid_runs_and_merges),
       cmocka_unit_test(sweep_bad_input),
+      cmocka_unit_test(sweep_axes_validates_whole_points),
       cmocka_unit_test(sweep_interrupted_then_resumed),
       cmocka_unit_test(sweep_collapsed_point_is_done),
       cmocka_unit_test(sweep_point_killed_in_setup),

@@ -66,8 +66,11 @@ static int veldist(const char *cmd, const ropts *o, const rrun *r, const rsnap *
     long b = (long)((w[order[(start[pick] + m) % N]] - lo) / dw);
     hc[b < o->bins ? b : o->bins - 1] += 1.0 / ((double)ncl * dw);
   }
-  printf("# t = %.10g; %ld clusters (gap < %g); cluster: %ld rods around x = %.6g\n", s->t, nc,
-         o->gap, ncl, x[order[(start[pick] + ncl / 2) % N]]);
+  long nc2 = 0; /* clusters of 2 rods or more (rods-clusters --min-size 2); the rest are single */
+  for (long c = 0; c < nc; c++) nc2 += size[c] >= 2;
+  printf("# t = %.10g; %ld clusters of >= 2 rods and %ld single rods (gap < %g); cluster: %ld "
+         "rods around x = %.6g\n",
+         s->t, nc2, nc - nc2, o->gap, ncl, x[order[(start[pick] + ncl / 2) % N]]);
   printf("# all: mean %.6g sd %.6g; cluster: mean %.6g sd %.6g\n", ma, sa, mc, scl);
   printf("w\tp_all\tp_cluster\tgauss_all\tgauss_cluster\n");
   for (int b = 0; b < o->bins; b++) {
