@@ -8,21 +8,34 @@ SHELL := /bin/bash
 CC      ?= gcc
 BUILD   ?= build
 PKGS    := gsl sqlite3 inih
-DEPS_PKGS := build-essential pkg-config libgsl-dev libsqlite3-dev sqlite3 libinih-dev gnuplot-nox libcmocka-dev
+# Debian packages, by what needs them; each group has its stamp in $(BUILD)/ (below), so that
+# building haff needs only the build's packages (a user without root and without, say, Slurm
+# or chromium can still `make`).  The groups build on each other: demo's stamp needs build's,
+# plots' demo's, test's plots'.  `make deps` installs them all (DEPS_PKGS).
+# build: bin/haff, build/libhaff.so, the man page, the benchmarks, plots' shapes program
+BUILD_PKGS := build-essential pkg-config libgsl-dev libsqlite3-dev libinih-dev
+# demo: scenes/demo.sh queries the database with the sqlite3 shell
+DEMO_PKGS := sqlite3
+# plots: gnuplot draws; plots/scripts/*.py run on python3 (its standard library only)
+PLOTS_PKGS := gnuplot-nox python3
+# test: make test, make test-slurm, make fuzz and the test programs (cmocka)
+TEST_PKGS := libcmocka-dev
 # slurm-wlm, munge: tests/slurm/run.sh starts a one-node Slurm to test `haff sweep --slurm`
-DEPS_PKGS += slurm-wlm munge
+TEST_PKGS += slurm-wlm munge
 # python3-pandas: tests/test_sql.c runs the pandas answers of docs/sql.md;
 # groff-base: tests/test_unix.c formats the man page and fails on a troff warning
-DEPS_PKGS += python3-pandas groff-base
+TEST_PKGS += python3-pandas groff-base
 # python3-ase: tests/ase_check.py reads the XYZ export with ASE; ffmpeg: haff movie encodes
-DEPS_PKGS += python3-ase ffmpeg
+# (haff movie needs it, and gnuplot, when it runs; the build does not)
+TEST_PKGS += python3-ase ffmpeg
 # python3-gsd: tests/gsd_check.py reads `haff export gsd` with the real reader (gsd.hoomd);
 # python3-numpy: the Python module python/haff (its tests run under make test)
-DEPS_PKGS += python3-gsd python3-numpy
+TEST_PKGS += python3-gsd python3-numpy
 # clang: make fuzz (libFuzzer on the parsers and the checkpoint restore)
-DEPS_PKGS += clang
+TEST_PKGS += clang
 # chromium: tests/test_plots.c loads make plots' report page (plots/out/index.html) headless
-DEPS_PKGS += chromium
+TEST_PKGS += chromium
+DEPS_PKGS = $(BUILD_PKGS) $(DEMO_PKGS) $(PLOTS_PKGS) $(TEST_PKGS)
 WARN    := -Wall -Wextra -Wshadow -Wconversion -Wno-sign-conversion -Wstrict-prototypes -Wmissing-prototypes
 # Warnings are errors in CI (CI=true) and whenever WERROR=1.
 ifneq ($(filter true 1,$(CI) $(WERROR)),)
@@ -81,7 +94,10 @@ CLI_OBJ := $(CLI_SRC:%.c=$(BUILD)/%.o)
 TEST_BIN:= $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 LIB     := $(BUILD)/libhaff.a
 SOLIB   := $(BUILD)/libhaff.so
-DEPS_STAMP := $(BUILD)/.deps-ok
+BUILD_STAMP := $(BUILD)/.deps-build
+DEMO_STAMP  := $(BUILD)/.deps-demo
+PLOTS_STAMP := $(BUILD)/.deps-plots
+TEST_STAMP  := $(BUILD)/.deps-test
 
 .PHONY: all deps test test-unit check-layers fuzz demo bench plots clean help format install uninstall scene-keys schema
 all: bin/haff $(SOLIB) $(BUILD)/haff.1
@@ -103,21 +119,39 @@ help:
 	@echo "make uninstall PREFIX=... DESTDIR=...      removes what make install put there"
 
 # --- dependencies --------------------------------------------------------------------------
-deps:
-	@missing=""; for p in $(DEPS_PKGS); do \
-	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; done; \
-	if [ -z "$$missing" ]; then echo "deps: all present"; exit 0; fi; \
-	if [ "$$(id -u)" != 0 ]; then echo "deps: missing:$$missing"; \
-	  echo "deps: run: sudo apt-get install -y$$missing"; exit 1; fi; \
-	echo "deps: installing$$missing"; \
-	apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing >/dev/null
-	@mkdir -p $(BUILD) && touch $(DEPS_STAMP)
+# deps_install(PACKAGES,WHAT): the missing ones of the Debian PACKAGES installed (as root), or
+# the apt-get command that would install them printed and an error (otherwise); WHAT says what
+# needs them.
+define deps_install
+missing=""; for p in $(1); do \
+  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; done; \
+if [ -z "$$missing" ]; then exit 0; fi; \
+if [ "$$(id -u)" != 0 ]; then echo "deps: missing$(if $(2), for $(2)):$$missing"; \
+  echo "deps: run: sudo apt-get install -y$$missing"; exit 1; fi; \
+echo "deps: installing$$missing"; \
+apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing >/dev/null
+endef
 
-$(DEPS_STAMP):
-	@$(MAKE) --no-print-directory deps
+deps:
+	@$(call deps_install,$(DEPS_PKGS),)
+	@echo "deps: all present"
+	@mkdir -p $(BUILD) && touch $(BUILD_STAMP) $(DEMO_STAMP) $(PLOTS_STAMP) $(TEST_STAMP)
+
+$(BUILD_STAMP):
+	@$(call deps_install,$(BUILD_PKGS),building haff)
+	@mkdir -p $(@D) && touch $@
+$(DEMO_STAMP): | $(BUILD_STAMP)
+	@$(call deps_install,$(DEMO_PKGS),make demo)
+	@touch $@
+$(PLOTS_STAMP): | $(DEMO_STAMP)
+	@$(call deps_install,$(PLOTS_PKGS),make plots)
+	@touch $@
+$(TEST_STAMP): | $(PLOTS_STAMP)
+	@$(call deps_install,$(TEST_PKGS),the tests)
+	@touch $@
 
 # --- build ---------------------------------------------------------------------------------
-$(BUILD)/%.o: %.c | $(DEPS_STAMP)
+$(BUILD)/%.o: %.c | $(BUILD_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(LAYER_INC) -c $< -o $@
 
@@ -127,7 +161,7 @@ $(BUILD)/gen/schema_sql.c: db/schema.sql
 	@{ echo '/* generated from db/schema.sql by the Makefile: do not edit */'; \
 	   echo 'extern const char hd_schema_sql[];'; echo 'const char hd_schema_sql[] ='; \
 	   sed -e 's/\\/\\\\/g' -e 's/"/\\"/g' -e 's/^/  "/' -e 's/$$/\\n"/' $<; echo ';'; } > $@
-$(BUILD)/gen/schema_sql.o: $(BUILD)/gen/schema_sql.c
+$(BUILD)/gen/schema_sql.o: $(BUILD)/gen/schema_sql.c | $(BUILD_STAMP)
 	$(CC) $(CFLAGS) -c $< -o $@
 
 # The build's provenance, compiled in (engine/core/hd_build.h; runs.git_commit ... runs.cflags,
@@ -162,7 +196,7 @@ $(shell mkdir -p $(BUILD)/gen)
 $(file >$(BUILD)/gen/version.c.new,$(VERSION_C))
 $(shell cmp -s $(BUILD)/gen/version.c.new $(BUILD)/gen/version.c && rm -f $(BUILD)/gen/version.c.new \
   || mv -f $(BUILD)/gen/version.c.new $(BUILD)/gen/version.c)
-$(BUILD)/gen/version.o: $(BUILD)/gen/version.c
+$(BUILD)/gen/version.o: $(BUILD)/gen/version.c | $(BUILD_STAMP)
 	$(CC) $(CFLAGS) $(INC_core) -include hd_build.h -c $< -o $@
 
 $(LIB): $(LIB_OBJ)
@@ -187,7 +221,7 @@ $(BUILD)/haff.1: bin/haff cli/haff-man.sh
 # main()): tests call subcommands' mains (hd_cmd_haff_fit, ...) and test_cli_tables checks the
 # table of subcommands (cli/haff_commands.c) and every option table.
 CLI_CMD_OBJ := $(filter-out $(BUILD)/cli/haff.o,$(CLI_OBJ))
-$(BUILD)/tests/%: tests/%.c $(CLI_CMD_OBJ) $(LIB) | $(DEPS_STAMP)
+$(BUILD)/tests/%: tests/%.c $(CLI_CMD_OBJ) $(LIB) | $(TEST_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(ALL_INC) -Itests -o $@ $< $(CLI_CMD_OBJ) $(LIB) $(LDLIBS) $(TESTLIBS)
 
@@ -199,7 +233,7 @@ $(BUILD)/tests/%: tests/%.c $(CLI_CMD_OBJ) $(LIB) | $(DEPS_STAMP)
 test-unit: $(TEST_BIN) bin/haff
 	@HAFF_BIN=$(CURDIR)/bin/haff tests/run-tests $(TEST_BIN)
 
-test: | $(DEPS_STAMP)
+test: | $(TEST_STAMP)
 	@$(MAKE) --no-print-directory all $(TEST_BIN)
 	@$(MAKE) --no-print-directory BUILD=build-asan \
 	  OPT="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=undefined,float-cast-overflow" \
@@ -216,7 +250,7 @@ check-layers:
 # A real one-node Slurm (munged, slurmctld, slurmd started and stopped by the script): a sweep
 # as a job array, a task stopped with SIGTERM, resumed, merged.  Part of `make test`, ~40 s.
 SLURM_TEST := tests/slurm/run.sh
-test-slurm: bin/haff | $(DEPS_STAMP)
+test-slurm: bin/haff | $(TEST_STAMP)
 	@HAFF_BIN=$(CURDIR)/bin/haff tests/run-tests $(SLURM_TEST)
 
 # --- fuzzing -------------------------------------------------------------------------------
@@ -231,7 +265,7 @@ FUZZ_TIME ?= 20
 FUZZ_RUNS ?= 1000000
 FUZZ_SAN  := -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all
 
-fuzz: | $(DEPS_STAMP)
+fuzz: | $(TEST_STAMP)
 	@$(MAKE) --no-print-directory BUILD=build-fuzz CC=clang CI= WERROR= \
 	  OPT="-O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link $(FUZZ_SAN)" $(FUZZ_BIN)
 	@for b in $(FUZZ_BIN); do name=$${b##*/fuzz_}; mkdir -p build-fuzz/corpus/$$name; \
@@ -257,21 +291,21 @@ scene-keys: $(BUILD)/tests/gen_scene_keys
 schema: $(BUILD)/tests/gen_schema
 	@$< db/schema.sql
 
-demo: bin/haff
+demo: bin/haff | $(DEMO_STAMP)
 	@scenes/demo.sh
 
 BENCH_BIN := $(BUILD)/bench/bench_engine
-$(BENCH_BIN): bench/bench_engine.c $(LIB) | $(DEPS_STAMP)
+$(BENCH_BIN): bench/bench_engine.c $(LIB) | $(BUILD_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(ALL_INC) -o $@ $< $(LIB) $(LDLIBS)
 
 BENCH_RODS_BIN := $(BUILD)/bench/bench_rods
-$(BENCH_RODS_BIN): bench/bench_rods.c $(LIB) | $(DEPS_STAMP)
+$(BENCH_RODS_BIN): bench/bench_rods.c $(LIB) | $(BUILD_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(ALL_INC) -o $@ $< $(LIB) $(LDLIBS)
 
 MEMLAT_BIN := $(BUILD)/bench/memlat
-$(MEMLAT_BIN): bench/memlat.c | $(DEPS_STAMP)
+$(MEMLAT_BIN): bench/memlat.c | $(BUILD_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -o $@ $< $(LDLIBS)
 
@@ -279,11 +313,11 @@ bench: bin/haff $(BENCH_BIN) $(MEMLAT_BIN)
 	@BENCH_BIN=$(BENCH_BIN) MEMLAT_BIN=$(MEMLAT_BIN) bench/run.sh
 
 SHAPES_BIN := $(BUILD)/plots/shapes
-$(SHAPES_BIN): plots/shapes.c $(LIB) | $(DEPS_STAMP)
+$(SHAPES_BIN): plots/shapes.c $(LIB) | $(BUILD_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(ALL_INC) -o $@ $< $(LIB) $(LDLIBS)
 
-plots: bin/haff $(SHAPES_BIN)
+plots: bin/haff $(SHAPES_BIN) | $(PLOTS_STAMP)
 	@$(MAKE) --no-print-directory -f plots/plots.mk SHAPES_BIN=$(SHAPES_BIN)
 
 format:

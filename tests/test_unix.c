@@ -353,6 +353,59 @@ static void docs_say_what_is(void **state) {
   free(keys);
 }
 
+/* The Makefile's package groups (BUILD_PKGS, DEMO_PKGS, PLOTS_PKGS, TEST_PKGS): building bin/haff
+ * checks only the build's packages, make demo those and the demo's, a test program all of them
+ * (a user without root and without a test-only package can still build); make -n prints the
+ * checks with the package names, given here as names no package has.  And README.md names every
+ * package `make deps` installs, in backquotes. */
+static void deps_groups(void **state) {
+  (void)state;
+  if (!haff) skip();
+  const char *mk = "env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -n -C";
+  const char *bogus = "BUILD_PKGS='libgsl-dev haff-bogus-build' DEMO_PKGS=haff-bogus-demo "
+                      "PLOTS_PKGS=haff-bogus-plots TEST_PKGS=haff-bogus-test";
+  static const char *const names[] = {"haff-bogus-build", "haff-bogus-demo", "haff-bogus-plots",
+                                      "haff-bogus-test"};
+  /* target, how many groups of names[] (in order) its checks name */
+  static const struct {
+    const char *target;
+    int groups;
+  } want[] = {{"bin/haff", 1}, {"all", 1}, {"demo", 2}, {"%s/b/tests/test_smoke", 4}};
+  for (size_t k = 0; k < sizeof want / sizeof *want; k++) {
+    char target[512];
+    snprintf(target, sizeof target, want[k].target, dir);
+    assert_int_equal(sh("%s %s BUILD=%s/b %s %s", mk, root, dir, bogus, target), 0);
+    char *out = slurp("out.txt");
+    for (int g = 0; g < 4; g++)
+      if ((strstr(out, names[g]) != NULL) != (g < want[k].groups))
+        fail_msg("make -n %s: the package check %s %s", want[k].target,
+                 g < want[k].groups ? "lacks" : "names", names[g]);
+    free(out);
+  }
+  /* make deps installs DEPS_PKGS, every group: its check's "for p in LIST; do" */
+  assert_int_equal(sh("%s %s BUILD=%s/b deps", mk, root, dir), 0);
+  char *out = slurp("out.txt");
+  char *list = strstr(out, "for p in ");
+  assert_non_null(list);
+  list += strlen("for p in ");
+  char *end = strstr(list, "; do");
+  assert_non_null(end);
+  *end = 0;
+  char p[4200];
+  snprintf(p, sizeof p, "%s/README.md", root);
+  char *readme = slurp(p);
+  int n = 0;
+  for (char *w = strtok(list, " "); w; w = strtok(NULL, " "), n++) {
+    char quoted[128];
+    snprintf(quoted, sizeof quoted, "`%s`", w);
+    if (!strstr(readme, quoted))
+      fail_msg("README.md does not name %s, which make deps installs", w);
+  }
+  assert_true(n >= 19);
+  free(readme);
+  free(out);
+}
+
 /* build/libhaff.so is built with `make` and loads, with the library's functions in it. */
 static void shared_library(void **state) {
   (void)state;
@@ -371,7 +424,7 @@ int main(void) {
       cmocka_unit_test(version),          cmocka_unit_test(dash_is_stdout),
       cmocka_unit_test(run_refuses_dash), cmocka_unit_test(install_man_completion),
       cmocka_unit_test(shared_library),   cmocka_unit_test(run_tests_counts_skips),
-      cmocka_unit_test(docs_say_what_is),
+      cmocka_unit_test(docs_say_what_is), cmocka_unit_test(deps_groups),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
