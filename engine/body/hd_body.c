@@ -605,28 +605,28 @@ static int ca_solve(hd_ca *s, double tmax, double *tout, int *pout) {
   return r;
 }
 
+double hd_circle_exit(double c, double b, double v2, double disc) {
+  double s = sqrt(disc);
+  if (c > 0.0) return (s - b) / v2;
+  if (v2 == 0.0) return HUGE_VAL;
+  return b <= 0.0 ? (s - b) / v2 : -c / (b + s); /* the positive root, without cancellation */
+}
+
 /* The interval [t_in, t_out] in which |d + v t| <= R, intersected with t >= 0. Returns 0 if empty.
  */
 static int circle_window(double dx, double dy, double vx, double vy, double R, double *t_in,
                          double *t_out) {
   double c = dx * dx + dy * dy - R * R, b = dx * vx + dy * vy, v2 = vx * vx + vy * vy;
+  double disc = b * b - v2 * c;
   if (c <= 0.0) {
     *t_in = 0.0;
-    if (v2 == 0.0) {
-      *t_out = HUGE_VAL;
-    } else {
-      double disc = b * b - v2 * c, s = sqrt(disc);
-      /* positive root (-b + s)/v2, written without cancellation */
-      *t_out = b <= 0.0 ? (s - b) / v2 : -c / (b + s);
-    }
+    *t_out = hd_circle_exit(c, b, v2, disc);
     return 1;
   }
   if (b >= 0.0) return 0;
-  double disc = b * b - v2 * c;
   if (!(disc >= 0.0)) return 0;
-  double s = sqrt(disc);
-  *t_in = c / (s - b);
-  *t_out = (s - b) / v2;
+  *t_in = c / (sqrt(disc) - b);
+  *t_out = hd_circle_exit(c, b, v2, disc);
   return 1;
 }
 

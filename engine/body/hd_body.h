@@ -229,6 +229,12 @@ int hd_ca_begin(hd_ca *ca, const hd_kin *A, const hd_shape *sa, const hd_kin *B,
  * hd_ca_begin computes it. */
 double hd_ca_reach(const hd_shape *sa, const hd_shape *sb);
 
+/* When two circles in linear relative motion part for good: with c = |dR|^2 - R^2, b = dR.dV,
+ * v2 = |dV|^2 and disc = b^2 - v2 c >= 0, the larger root of |dR + dV t| = R (HUGE_VAL for v2 = 0
+ * and c <= 0: they never part).  The window ends of hd_ca_begin and of its callers
+ * (hd_ca_begin_in) are this one function, so that both are the same number. */
+double hd_circle_exit(double c, double b, double v2, double disc);
+
 /* hd_ca_begin for a caller that has already computed the window [t_in, t_out] in which the
  * centres are within hd_ca_reach(sa, sb) of each other, as hd_ca_begin would from A and B
  * (c = |dR|^2 - R^2, b = dR.dV, disc = b^2 - |dV|^2 c; t_in = 0 if c <= 0, else

@@ -30,7 +30,8 @@ static inline double crossing_time(const hd_sim *s, hd_body *b, int32_t cx, int3
    * bit, x first on a tie.  A face is open unless a wall closes it (or v is 0). */
   const double vx = b->k.vx, vy = b->k.vy;
   const unsigned w = s->walls;
-  const int px = vx > 0.0, mx = vx<0.0, py = vy> 0.0, my = vy < 0.0;
+  const int px = vx > 0.0, py = vy > 0.0; /* moving up in x, in y */
+  const int mx = vx < 0.0, my = vy < 0.0; /* moving down */
   const int ox = (px & !((cx == s->ncx - 1) & ((w & HD_WALL_RIGHT) != 0))) |
                  (mx & !((cx == 0) & ((w & HD_WALL_LEFT) != 0)));
   const int oy = (py & !((cy == s->ncy - 1) & ((w & HD_WALL_TOP) != 0))) |
@@ -185,14 +186,6 @@ typedef struct hd_cand {
   hd_ca ca;              /* its root search, once begun */
 } hd_cand;
 
-/* The end of the window of a neighbour not yet begun (hd_ca_begin_in: as hd_ca_begin's
- * circle_window computes it). */
-static inline double cand_window_end(const hd_cand *c) {
-  double sq = sqrt(c->disc);
-  if (c->c > 0.0) return (sq - c->b) / c->v2;
-  if (c->v2 == 0.0) return HUGE_VAL;
-  return c->b <= 0.0 ? (sq - c->b) / c->v2 : -c->c / (c->b + sq);
-}
 #define HD_MAX_CAND 64
 
 /* The contacts of body i with its neighbours (but skip) in a scene with dimers, best first.
@@ -273,7 +266,7 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
       kj.x += c->sx;
       kj.y += c->sy;
       r = hd_ca_begin_in(&c->ca, &bi->k, si, &kj, &s->shape[bj->species], lim, sca, c->t,
-                         cand_window_end(c), &ct);
+                         hd_circle_exit(c->c, c->b, c->v2, c->disc), &ct);
       c->begun = 1;
     }
     if (r == 2) {

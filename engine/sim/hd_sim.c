@@ -107,7 +107,6 @@ static int species_setup(hd_sim *s, const hd_scene *sc, hd_error *err) {
   if (rc) return rc;
   int64_t n = 0;
   for (int i = 0; i < s->nsp; i++) n += s->n_species[i];
-  for (int i = 0; i < s->nsp; i++) s->reach[i] = hd_shape_radius(&s->shape[i]) * (1.0 + 1e-9);
   for (int i = 0; i < s->nsp; i++)
     for (int j = 0; j < s->nsp; j++) s->ca_reach[i][j] = hd_ca_reach(&s->shape[i], &s->shape[j]);
   if (n > INT32_MAX)

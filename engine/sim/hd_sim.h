@@ -113,12 +113,10 @@ typedef struct hd_sim {
                                     * collisions.kind): HD_KIND_DIMER, HD_KIND_DISK, HD_KIND_BODY
                                     * for a named species whatever its shape */
   hd_coll_kind pair_kind[HD_MAX_SPECIES]
-                        [HD_MAX_SPECIES + 1];   /* [si][sj]: the kind of a collision
-                                                 * of species si with sj (hd_coll_kind_of their
-                                                 * sp_kind), [si]   [HD_MAX_SPECIES] with a wall */
-  double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* pair restitution by species */
-  double reach[HD_MAX_SPECIES]; /* enclosing radius of each species widened by 1e-9 (the
-                                 * neighbour filter of hd_predict.c) */
+                        [HD_MAX_SPECIES + 1];      /* [si][sj]: the kind of a collision
+                                                    * of species si with sj (hd_coll_kind_of their
+                                                    * sp_kind), [si]   [HD_MAX_SPECIES] with a wall */
+  double alpha[HD_MAX_SPECIES][HD_MAX_SPECIES];    /* pair restitution by species */
   double ca_reach[HD_MAX_SPECIES][HD_MAX_SPECIES]; /* hd_ca_reach of each pair of species: the
                                                     * contact search's window (hd_predict.c) */
   double wall_alpha;                               /* body-wall restitution */
