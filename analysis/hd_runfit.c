@@ -246,13 +246,11 @@ void hd_group_differ(const hd_group *a, const hd_group *b, char *buf, size_t len
                          "restitutions",
                          "walls' alpha",
                          "species label"};
-  int bq = (isnan(x->beta) ? isnan(y->beta) : x->beta == y->beta) &&
-           (isnan(x->q) ? isnan(y->q) : x->q == y->q);
   int diff[9] = {a->nbodies != b->nbodies,
                  !rel_eq(a->density, b->density),
                  !rel_eq(a->d, b->d),
                  !rel_eq(a->m, b->m),
-                 x->rough != y->rough || !bq || x->rough_key != y->rough_key,
+                 x->rough_key != y->rough_key,
                  x->shape_key != y->shape_key,
                  0,
                  !rel_eq(x->wall_alpha, y->wall_alpha),

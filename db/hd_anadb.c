@@ -130,11 +130,9 @@ static void physics_keys(const hd_scene *sc, hd_run_info *ri) {
 }
 
 int hd_ana_same_physics(const hd_run_info *a, const hd_run_info *b) {
-  int wall = isnan(a->wall_alpha) ? isnan(b->wall_alpha) : a->wall_alpha == b->wall_alpha;
-  int bq = (isnan(a->beta) ? isnan(b->beta) : a->beta == b->beta) &&
-           (isnan(a->q) ? isnan(b->q) : a->q == b->q);
-  return wall && bq && a->rough == b->rough && a->shape_key == b->shape_key &&
-         a->coll_key == b->coll_key && a->rough_key == b->rough_key;
+  /* the keys hold it all: every species' q and every pair's beta (rough, beta and q follow from
+   * them), the walls' alpha and beta, the shapes and counts, every pair's alpha */
+  return a->shape_key == b->shape_key && a->coll_key == b->coll_key && a->rough_key == b->rough_key;
 }
 
 int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err) {

@@ -89,8 +89,8 @@ int hd_ana_open(sqlite3 **db, const char *path, hd_error *err);
  * "runs.scene:LINE: [section] key = value: why", for a text it refuses. */
 int hd_ana_parse_scene(const char *text, hd_run_info *ri, hd_error *err);
 
-/* Whether runs a and b ran the same bodies and collision rule (shape_key, coll_key, rough_key,
- * wall_alpha, rough, beta, q equal; box and seed aside): 1 or 0. */
+/* Whether runs a and b ran the same bodies and collision rule (their shape_key, coll_key and
+ * rough_key equal; box and seed aside): 1 or 0. */
 int hd_ana_same_physics(const hd_run_info *a, const hd_run_info *b);
 
 /* The runs to analyse: want >= 0 gives that run (any status; HD_EINPUT if absent), want < 0
