@@ -382,7 +382,8 @@ static void line_at_the_limit(void **state) {
   }
 }
 
-/* A section line that starts with \v, \f or \r (libinih skips them, and so does the reader now)
+/* A section line that starts with \v, \f or \r (libinih skips them, and so does the reader now),
+ * or on the first line with byte order marks among its blanks,
  * is a section like any other: "\v[disks]" took effect but was missing from the canonical text,
  * so a resumed run went on without it; "\v[bogus]" was accepted.  And eps_step is 0 or in
  * [1e-5, 0.5] (1e-300 crashed the run after the database was made). */
@@ -404,6 +405,23 @@ static void blank_prefixed_sections(void **state) {
       HD_EINPUT);
   printf("# %s\n", e.msg);
   assert_has(e.msg, "vt.ini:", "bogus", NULL, NULL);
+  /* a byte order mark after blanks on the first line (found by make fuzz): libinih skipped it
+   * and took "[system]" for its section, the reader did not, and the canonical text lost
+   * [system] (its reload refused "box: missing") */
+  static const char *const boms[] = {"\t\t\xEF\xBB\xBF\t[system]\n",
+                                     "\xEF\xBB\xBF\xEF\xBB\xBF[system]\n",
+                                     " \xEF\xBB\xBF \xEF\xBB\xBF [system]\n"};
+  for (int i = 0; i < 3; i++) {
+    char text[256];
+    snprintf(text, sizeof text, "%sbox = 60 60\n[disks]\ncount = 4\n" RUN, boms[i]);
+    assert_int_equal(hd_scene_load_string(&sc, text, "bom.ini", NULL, 0, &e), HD_OK);
+    assert_non_null(strstr(sc.text, "[system]\nbox = 60 60\n"));
+    hd_scene sc2;
+    assert_int_equal(hd_scene_load_stored(&sc2, sc.text, "canonical", &e), HD_OK);
+    assert_string_equal(sc.text, sc2.text);
+    hd_scene_free(&sc2);
+    hd_scene_free(&sc);
+  }
   assert_int_equal(hd_scene_load_string(&sc, "[rods]\ncount = 10\neps_step = 1e-300\n" RUN,
                                         "es.ini", NULL, 0, &e),
                    HD_EINPUT);

@@ -228,11 +228,20 @@ static char *reader(char *str, int num, void *stream) {
   c->p = stop;
   c->cur.line = ++c->lineno;
   c->cur.over = 0;
-  if (c->lineno == 1 && stop - s >= 3 && !memcmp(s, "\xEF\xBB\xBF", 3)) s += 3;
   /* every blank libinih skips at a line's start (\r \v \f too): "\v[disks]" was parsed as a
    * section by libinih but not seen as one here, so its keys took effect while the section was
-   * left out of the canonical text (and a resume ran without them) */
-  while (s < stop && (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\v' || *s == '\f')) s++;
+   * left out of the canonical text (and a resume ran without them).  On the first line, byte
+   * order marks among the blanks too: libinih skips one at the start of what it is handed,
+   * so "\t<BOM>[system]" (found by make fuzz) was its section but not ours.  Handing it the
+   * line without any of them keeps the two views the same. */
+  for (;;) {
+    if (c->lineno == 1 && stop - s >= 3 && !memcmp(s, "\xEF\xBB\xBF", 3))
+      s += 3;
+    else if (s < stop && (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\v' || *s == '\f'))
+      s++;
+    else
+      break;
+  }
   size_t len = (size_t)(stop - s);
   size_t body = len; /* the line without its end (\n or \r\n): what HD_SCENE_MAX_LINE bounds */
   if (body > 0 && s[body - 1] == '\n') body--;

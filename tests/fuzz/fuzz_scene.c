@@ -4,6 +4,7 @@
  * loader).  Built and run by `make fuzz`. */
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -24,8 +25,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (!sc.text) abort(); /* an accepted scene has its canonical text */
     hd_scene sc2;          /* which must load again, to the same text */
     hd_error e2;
-    if (hd_scene_load_stored(&sc2, sc.text, "canonical", &e2) != HD_OK) abort();
-    if (strcmp(sc.text, sc2.text)) abort();
+    if (hd_scene_load_stored(&sc2, sc.text, "canonical", &e2) != HD_OK) {
+      /* CI keeps only the log: what failed, on the text it failed on */
+      fprintf(stderr, "canonical text refused: %s\n--- text:\n%s---\n", e2.msg, sc.text);
+      abort();
+    }
+    if (strcmp(sc.text, sc2.text)) {
+      fprintf(stderr, "canonical text changed:\n%s--- reloaded:\n%s---\n", sc.text, sc2.text);
+      abort();
+    }
     hd_scene_free(&sc2);
     hd_scene_free(&sc);
   } else {
@@ -37,8 +45,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   hd_scene sc3, sc4;
   hd_error e3, e4;
   if (hd_scene_read_stored(&sc3, text, "fuzz.ini", &e3) == HD_OK) {
-    if (hd_scene_read_stored(&sc4, sc3.text, "canonical", &e4) != HD_OK) abort();
-    if (strcmp(sc3.text, sc4.text)) abort();
+    if (hd_scene_read_stored(&sc4, sc3.text, "canonical", &e4) != HD_OK) {
+      fprintf(stderr, "read_stored: canonical text refused: %s\n--- text:\n%s---\n", e4.msg,
+              sc3.text);
+      abort();
+    }
+    if (strcmp(sc3.text, sc4.text)) {
+      fprintf(stderr, "read_stored: canonical text changed:\n%s--- reloaded:\n%s---\n",
+              sc3.text, sc4.text);
+      abort();
+    }
     hd_scene_free(&sc4);
     hd_scene_free(&sc3);
   } else {
