@@ -13,10 +13,23 @@
  * systems. */
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #include "hd_disk.h"
 #include "hd_sim_internal.h"
 #include "hd_stop.h"
+
+/* c ? a : b (c 0 or 1) by masks on the bits: gcc 12 turns the conditional into a branch on c,
+ * which here is the sign of a velocity, random from body to body (mispredicted half the time). */
+static inline double select_bits(int c, double a, double b) {
+  uint64_t ua, ub, m = (uint64_t)0 - (uint64_t)c;
+  memcpy(&ua, &a, sizeof ua);
+  memcpy(&ub, &b, sizeof ub);
+  ua = (ua & m) | (ub & ~m);
+  memcpy(&a, &ua, sizeof a);
+  return a;
+}
 
 /* Time until body b, in cell (cx, cy), leaves it (>= 0), or INFINITY; sets b->c_dir.  A body
  * that never leaves its cell but spins gets a wake-up HD_WAKE_TURNS turns ahead instead (c_dir
@@ -38,12 +51,12 @@ static inline double crossing_time(const hd_sim *s, hd_body *b, int32_t cx, int3
                  (my & !((cy == 0) & ((w & HD_WALL_BOTTOM) != 0)));
   double tx = ((double)(cx + px) * s->cwx - b->k.x) / vx;
   double ty = ((double)(cy + py) * s->cwy - b->k.y) / vy;
-  tx = ox ? tx : INFINITY;
-  ty = oy ? ty : INFINITY;
+  tx = select_bits(ox, tx, INFINITY);
+  ty = select_bits(oy, ty, INFINITY);
   const int ylt = ty < tx;
-  double best = ylt ? ty : tx;
+  double best = select_bits(ylt, ty, tx);
   if (best < INFINITY) {
-    b->c_dir = (int16_t)(ylt ? 3 - py : 1 - px);
+    b->c_dir = (int16_t)(ylt * (3 - py) + (1 - ylt) * (1 - px));
   } else if (b->k.omega != 0.0 && s->shape[b->species].tag != HD_KIND_DISK) {
     /* (a rough disk's spin does not move its contacts: no wake-up) */
     best = HD_WAKE_TURNS * 2.0 * M_PI / fabs(b->k.omega);
