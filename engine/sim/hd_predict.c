@@ -8,7 +8,8 @@
  * search): a contact after it is found by the full prediction that follows that crossing, since
  * bodies in contact are in adjacent cells.  After a collision of i and j their own pair is
  * searched once, by j (hd_predict_after_pair).  In a pure disk scene a prediction walks interior
- * cells by index offsets, without the periodic and wall logic of HD_FOR_NEIGHBOURS.
+ * cells by index offsets, without the periodic and wall logic of HD_FOR_NEIGHBOURS, and takes
+ * their list heads without a branch on whether each is empty (gather_cells).
  * hd_predict_prefetch_near and _far are the event queue's prefetch hints (hd_queue.h) for large
  * systems. */
 #include <float.h>
