@@ -362,8 +362,7 @@ void hd_predict_after_pair(hd_sim *s, int32_t i, int32_t j) {
 /* The cell dist cells from cell c across face dir (0 +x, 1 -x, 2 +y, 3 -y) of a grid ncx
  * cells wide, without wrapping (for cells far enough from the edges). */
 static inline int32_t cell_beyond(int32_t c, int dir, int32_t dist, int32_t ncx) {
-  static const int8_t step[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-  return c + dist * (step[dir][0] + step[dir][1] * ncx);
+  return c + dist * (hd_face_step[dir][0] + hd_face_step[dir][1] * ncx);
 }
 
 /* After body i crossed face `dir` (without wrapping) in a pure disk scene: searches the 3 cells

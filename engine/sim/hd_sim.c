@@ -378,30 +378,27 @@ static int cross_cell(hd_sim *s, int32_t i) {
   hd_body *b = &s->b[i];
   int32_t cx, cy;
   hd_body_cxy(s, b, &cx, &cy);
-  int wrapped = 0;
   /* the face is random from crossing to crossing: a switch on it was mispredicted 3 times in 4,
-   * so the step is looked up, and only a crossing through the box's edge takes the switch */
-  static const int8_t step_x[4] = {1, -1, 0, 0}, step_y[4] = {0, 0, 1, -1};
+   * so the step is looked up, and only a crossing through the box's edge branches on it */
   const int dir = b->c_dir;
-  const int32_t nx = cx + step_x[dir], ny = cy + step_y[dir];
-  if (__builtin_expect(((uint32_t)nx < (uint32_t)s->ncx) & ((uint32_t)ny < (uint32_t)s->ncy), 1)) {
-    hd_cells_remove(s, i);
-    hd_cells_insert_xy(s, i, nx, ny);
-    return 0;
-  }
-  switch (dir) {
-  case 0:
-    if (++cx == s->ncx) cx = 0, b->k.x -= s->lx, b->wx++, wrapped = 1;
-    break;
-  case 1:
-    if (--cx < 0) cx = s->ncx - 1, b->k.x += s->lx, b->wx--, wrapped = 1;
-    break;
-  case 2:
-    if (++cy == s->ncy) cy = 0, b->k.y -= s->ly, b->wy++, wrapped = 1;
-    break;
-  default:
-    if (--cy < 0) cy = s->ncy - 1, b->k.y += s->ly, b->wy--, wrapped = 1;
-    break;
+  cx += hd_face_step[dir][0];
+  cy += hd_face_step[dir][1];
+  const int wrapped = !(((uint32_t)cx < (uint32_t)s->ncx) & ((uint32_t)cy < (uint32_t)s->ncy));
+  if (__builtin_expect(wrapped, 0)) {
+    switch (dir) {
+    case 0:
+      cx = 0, b->k.x -= s->lx, b->wx++;
+      break;
+    case 1:
+      cx = s->ncx - 1, b->k.x += s->lx, b->wx--;
+      break;
+    case 2:
+      cy = 0, b->k.y -= s->ly, b->wy++;
+      break;
+    default:
+      cy = s->ncy - 1, b->k.y += s->ly, b->wy--;
+      break;
+    }
   }
   hd_cells_remove(s, i);
   hd_cells_insert_xy(s, i, cx, cy);

@@ -63,6 +63,9 @@ static inline void hd_body_sync(hd_sim *s, int32_t i) {
   }
 }
 
+/* The step in cells (x, y) across face dir of a cell (hd_body.c_dir: 0 +x, 1 -x, 2 +y, 3 -y). */
+static const int8_t hd_face_step[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+
 /* Runs BODY for every body j in the 3x3 cells around cell c (j may be the caller's own body),
  * with (sx, sy) the periodic shift that brings j next to cell c.  With fewer than 3 cells in a
  * periodic direction the same cell is visited at its distinct images (shifts -L, 0, +L), which
