@@ -4,9 +4,13 @@
  * scene only the 3 cells that became adjacent are searched, and the stored contact is kept if
  * still valid: disk-disk contact times are exact and unbounded (closed form), so the stored one
  * is the earliest with every body of the cells that stay adjacent.  Contacts involving a dimer
- * are searched only up to the earlier next crossing of the two bodies (which bounds the root
- * search): a contact after it is found by the full prediction that follows that crossing, since
- * bodies in contact are in adjacent cells.  After a collision of i and j their own pair is
+ * are searched by i only up to the earlier of i's next crossing and j's next event, whatever it
+ * is (which bounds the root search): in a scene with a turning body every event of a body (a
+ * collision, a wall, a crossing, a wake-up, a stale contact) is followed by its full
+ * prediction, so a contact after i's crossing is found by i's prediction then, and one after
+ * j's next event by j's, since bodies in contact are in adjacent cells (a contact after j's
+ * next event found now would be computed from a course that j may not keep: the search of it
+ * was the engine's largest waste).  After a collision of i and j their own pair is
  * searched once, by j (hd_predict_after_pair).  In a pure disk scene a prediction walks interior
  * cells by index offsets, without the periodic and wall logic of HD_FOR_NEIGHBOURS, and takes
  * their list heads without a branch on whether each is empty (gather_cells).
@@ -142,9 +146,10 @@ static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, dou
     predict_disk_pair(s, bi, j, sx, sy, ix, iy, disk_contact(s, bi, bj), best);
     return;
   }
-  /* the search ends at the first crossing of either body: whichever crosses first predicts
-   * again against its new neighbourhood, which holds the other if they can still meet */
-  double lim = dmin(*best, dmin(horizon, bj->c_t - s->c.t));
+  /* the search ends at i's crossing or j's next event, whichever comes first: that body is
+   * predicted again then in full, against a neighbourhood that holds the other if they can
+   * still meet (the file's head) */
+  double lim = dmin(*best, dmin(horizon, bj->ev_t - s->c.t));
   if (lim < 0.0) lim = 0.0;
   hd_kin kj = bj->k;
   hd_kin_advance(&kj, dtj);
@@ -217,7 +222,7 @@ static void predict_disks(hd_sim *s, int32_t i, int32_t cx, int32_t cy, double c
 /* A neighbour whose contact search is pending, with a lower bound on its contact time. */
 typedef struct hd_cand {
   double t;              /* no contact before t (relative to now) */
-  double lim;            /* the search ends at the earlier next crossing of the two bodies */
+  double lim;            /* the search ends at i's next crossing or j's next event, if earlier */
   double sx, sy;         /* periodic shift of the neighbour */
   int32_t j;             /* the neighbour */
   int begun;             /* ca is under way (else t is the enclosing circles' bound) */
@@ -265,7 +270,7 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
     double c = rx * rx + ry * ry - R * R, b = rx * vx + ry * vy, v2 = vx * vx + vy * vy,
            disc = b * b - v2 * c;
     double t = dmax(c, 0.0) / dmax(sqrt(dmax(disc, 0.0)) - b, DBL_MIN);
-    double lim = dmin(cross, bj->c_t - now);
+    double lim = dmin(cross, bj->ev_t - now);
     /* kept unless it cannot touch before the earliest contact so far, or within the horizon */
     int keep = ((c <= 0.0) | ((b < 0.0) & (disc > 0.0))) & (t < *best) & (t <= lim);
     if (nc == HD_MAX_CAND) { /* a crowd: the rest one by one (still exact, only slower) */
