@@ -36,7 +36,18 @@
  * smaller tmax only ends it sooner: the steps do not depend on tmax (only the Newton polish
  * below stays <= tmax), so the contact found is the one hd_predict_pair finds alone.  A dimer's
  * sin and cos at t = 0 may be given (hd_ca_sincos, the same function): shared by the searches of
- * all its neighbours.
+ * all its neighbours.  The safe steps of the pairs go two per SSE2 instruction (safe_steps: the
+ * same operations on each lane, the same steps).
+ *
+ * Single steps (clusters only, ca_single): when one disk pair p alone limits a step at t, every
+ * other pair's bounds, taken at t, keep its gap positive up to t + its own step (the bounds hold
+ * for any tau), so the search goes on evaluating pair p alone (ca_eval_one_general: the same
+ * values as the full evaluation) up to the smallest of the other steps; a contact of p before
+ * that is the earliest.  A search of two linear trimers that finds a contact then takes ~2.4
+ * calls of hd_ca_step instead of ~7.4 (test predict_single_steps); the times of the steps, and
+ * so the contact times, differ from the full steps' in the last bits.  Dimers (4 pairs, whose
+ * evaluation costs little more than one pair's) keep the full steps: single steps made them 5 %
+ * slower (bench/issue27-ab.md).
  *
  * Tolerances (all relative to D; velocities relative to L) and their effect:
  *   TOL_C = 1e-12  a pair is "in contact" when CA brings its gap to h <= TOL_C D.  One or two
@@ -416,6 +427,26 @@ static void ca_eval(const hd_ca_geom *c, double t, double *h, double *g, double 
   ca_eval_sc(c, t, sa, ca, h, g, r);
 }
 
+/* Pair p alone of ca_eval for two clusters (general code, not a wall): the same operations as
+ * ca_eval_general's for that pair, so the same values bit for bit. */
+static void ca_eval_one_general(const hd_ca_geom *c, double t, int p, double *h, double *g,
+                                double *r) {
+  const hd_shape *A = c->sha, *B = c->shb;
+  const int i = p / c->nb, j = p % c->nb;
+  double sa, ca, sb, cb;
+  ca_sincos(c->pa + c->wa * t, &sa, &ca);
+  ca_sincos(c->pb + c->wb * t, &sb, &cb);
+  double rx0 = c->dx + c->dvx * t, ry0 = c->dy + c->dvy * t;
+  double bx = B->ox[j] * cb - B->oy[j] * sb, by = B->ox[j] * sb + B->oy[j] * cb;
+  double ax = A->ox[i] * ca - A->oy[i] * sa, ay = A->ox[i] * sa + A->oy[i] * ca;
+  double rx = rx0 + bx - ax, ry = ry0 + by - ay;
+  double vx = c->dvx - c->wb * by + c->wa * ay, vy = c->dvy + c->wb * bx - c->wa * ax;
+  double rr = sqrt(rx * rx + ry * ry);
+  *h = rr - 0.5 * (A->dk[i] + B->dk[j]);
+  *g = rx * vx + ry * vy;
+  *r = rr;
+}
+
 /* The gap rate h' = g / r of a pair evaluated by ca_eval (-inf for coincident centres). */
 static inline double ca_rate(double g, double r) {
   return r > 0.0 ? g / r : -HUGE_VAL;
@@ -444,7 +475,7 @@ static inline double safe_step(double h, double g, double r, double L, double K)
  * same steps bit for bit as safe_step (a pair's sqrt and two divisions are what a step of a
  * cluster waits on: 9 pairs of linear trimers, 4 of dimers).  h, g, r have room for np + 1. */
 static inline double safe_steps(double *h, double *g, double *r, int np, uint64_t far, double L,
-                                double K, double step) {
+                                double K, double step, int *pmin, double *sother_out) {
 #if defined(__SSE2__)
   if (np & 1) h[np] = 1.0, g[np] = 0.0, r[np] = 1.0; /* a pad lane, never selected */
   double st[HD_CA_MAXP + 1];
@@ -472,9 +503,26 @@ static inline double safe_steps(double *h, double *g, double *r, int np, uint64_
     __m128d gt = _mm_cmpgt_pd(tl, tq);
     _mm_storeu_pd(st + p, _mm_or_pd(_mm_and_pd(gt, tl), _mm_andnot_pd(gt, tq)));
   }
+  if (pmin) { /* the smallest far step (pair *pmin) and the smallest of the others */
+    double sfar = HUGE_VAL, sother = step;
+    *pmin = -1;
+    for (int p = 0; p < np; p++) {
+      if (!((far >> p) & 1u)) continue;
+      if (st[p] < sfar) {
+        if (sfar < sother) sother = sfar;
+        sfar = st[p];
+        *pmin = p;
+      } else if (st[p] < sother) {
+        sother = st[p];
+      }
+    }
+    *sother_out = sother;
+    return sfar < step ? sfar : step;
+  }
   for (int p = 0; p < np; p++)
     if ((far >> p) & 1u) step = st[p] < step ? st[p] : step;
 #else
+  if (pmin) *pmin = -1; /* (no single steps without SSE2) */
   for (int p = 0; p < np; p++) { /* no branch on the data: the steps overlap in the CPU */
     double st = safe_step(h[p], g[p], r[p], L, K);
     if ((far >> p) & 1u) step = st < step ? st : step;
@@ -525,6 +573,71 @@ static void ca_init(hd_ca *s, double t0, double tend) {
   s->fresh = 1;
   s->it = 0;
   s->sc0 = 0;
+}
+
+/* Newton steps for the gap of candidate pair p (gap hp <= TOL_C D at tp, rate hdp < 0) towards
+ * its root, each kept only inside [tp, tlim) and at most tmax, and only while it lowers |h| and
+ * the pair still approaches.  Returns the polished time.  one: evaluate pair p alone (clusters:
+ * ca_eval_one_general, the same values), else all pairs. */
+static double ca_polish(const hd_ca_geom *c, int p, double tp, double hp, double hdp, double tlim,
+                        double tmax, int one) {
+  for (int k = 0; k < 3 && hp > 0.0; k++) {
+    double t1 = tp + hp / (-hdp);
+    if (!(t1 < tlim) || !(t1 <= tmax)) break;
+    double h1[HD_CA_MAXP + 1], g1[HD_CA_MAXP + 1], r1[HD_CA_MAXP + 1], hd1;
+    if (one) {
+      ca_eval_one_general(c, t1, p, &h1[p], &g1[p], &r1[p]);
+    } else {
+      ca_eval(c, t1, h1, g1, r1);
+    }
+    hd1 = ca_rate(g1[p], r1[p]);
+    if (!(fabs(h1[p]) < hp) || !(hd1 < 0.0)) break;
+    tp = t1;
+    hp = h1[p];
+    hdp = hd1;
+  }
+  return tp;
+}
+
+/* Single steps of two clusters: pair p alone limits the step of a search at t, and every other
+ * pair (and every ignored one) keeps its gap positive up to tsafe > t + its own step (their
+ * bounds (i) and (ii) hold from t on, for any tau).  Then the search goes on with pair p alone,
+ * evaluating only it (ca_eval_one_general), up to tsafe: a contact of p before tsafe is the
+ * earliest of the bodies.  It stops at a contact of p (polished as in ca_advance, inside
+ * [t, tsafe)), at min(tend, tmax) (no contact: 0), when p touches without approaching (sliding:
+ * the full step takes it, 2), at tsafe (2), or after HD_CA_SINGLE steps (2; s->t is a lower
+ * bound on the contact).  Each single step counts as a step (HD_CA_MAXIT), and the callers'
+ * look at a stop request every HD_CA_POLL + 1 steps is kept: it returns under way when the
+ * count reaches one. */
+#define HD_CA_SINGLE 64
+static int ca_single(hd_ca *s, int p, double t, double hp, double gp, double rp, double tsafe,
+                     double tmax, double *tout, int *pout) {
+  const hd_ca_geom *c = &s->g;
+  const double hc = TOL_C * c->D, vtol = VTOL * c->L + HD_DISK_VROUND * c->vs;
+  for (int k = 0; k < HD_CA_SINGLE; k++) {
+    if (k > 0 && (++s->it > HD_CA_MAXIT || (s->it & HD_CA_POLL) == 0))
+      return s->it > HD_CA_MAXIT ? 0 : 2;
+    double tn = t + safe_step(hp, gp, rp, c->L, c->K);
+    if (!(tn > t)) tn = nextafter(t, HUGE_VAL);
+    if (!(tn < tsafe)) {
+      tn = tsafe; /* the others' bound: the full step from there */
+      s->t = tn;
+      return tn <= s->tend && tn <= tmax ? 2 : 0;
+    }
+    s->t = tn;
+    if (!(tn <= s->tend && tn <= tmax)) return 0;
+    ca_eval_one_general(c, tn, p, &hp, &gp, &rp);
+    t = tn;
+    if (hp != hp || gp != gp) return 0; /* NaN state */
+    if (hp <= hc) {
+      double hd = ca_rate(gp, rp);
+      if (!(hd < -vtol)) return 2; /* touching, not approaching: the full step decides */
+      *tout = ca_polish(c, p, t, hp, hd, tsafe, tmax, 1);
+      *pout = p;
+      return 1;
+    }
+  }
+  return 2;
 }
 
 /* One CA step: evaluates the pairs at s->t (the pair state at t = 0 is first checked for
@@ -603,25 +716,17 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
     }
   }
   s->ign = ign;
-  step = safe_steps(h, g, r, np, far, c->L, c->K, step);
+  const int single = c->sha != NULL && !c->wall; /* clusters: single steps */
+  int pmin = -1;
+  double sother = HUGE_VAL;
+  step = safe_steps(h, g, r, np, far, c->L, c->K, step, single ? &pmin : NULL, &sother);
   if (cand) {
     /* polish each candidate by Newton steps inside [t, t + step) and keep the earliest */
     double tbest = HUGE_VAL;
     int pbest = -1;
     for (int p = 0; p < np; p++) {
       if (!((cand >> p) & 1u)) continue;
-      double tp = t, hp = h[p], hdp = ca_rate(g[p], r[p]);
-      for (int k = 0; k < 3 && hp > 0.0; k++) {
-        double t1 = tp + hp / (-hdp);
-        if (!(t1 < t + step) || !(t1 <= tmax)) break;
-        double h1[HD_CA_MAXP + 1], g1[HD_CA_MAXP + 1], r1[HD_CA_MAXP + 1];
-        ca_eval(c, t1, h1, g1, r1);
-        double hd1 = ca_rate(g1[p], r1[p]);
-        if (!(fabs(h1[p]) < hp) || !(hd1 < 0.0)) break;
-        tp = t1;
-        hp = h1[p];
-        hdp = hd1;
-      }
+      double tp = ca_polish(c, p, t, h[p], ca_rate(g[p], r[p]), t + step, tmax, single);
       if (tp < tbest) {
         tbest = tp;
         pbest = p;
@@ -631,6 +736,8 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
     *pout = pbest;
     return 1;
   }
+  if (pmin >= 0 && sother > step)
+    return ca_single(s, pmin, t, h[pmin], g[pmin], r[pmin], t + sother, tmax, tout, pout);
   double tn = t + step;
   if (!(tn > t)) tn = nextafter(t, HUGE_VAL);
   s->t = tn;

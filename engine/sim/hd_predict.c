@@ -294,7 +294,10 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
       if (cs[ord[q]].t < cs[ord[k]].t) k = q;
     hd_cand *c = &cs[ord[k]];
     if (!(c->t < *best)) break;
-    if ((steps & HD_CA_POLL) == 0 && hd_stop_requested) { /* cut: no contact before c->t */
+    /* a stop request is looked at every HD_CA_POLL + 1 calls, and when a search's own count of
+     * steps (the single steps of clusters included) reaches such a multiple */
+    if (((steps & HD_CA_POLL) == 0 || (c->begun && (c->ca.it & HD_CA_POLL) == 0)) &&
+        hd_stop_requested) { /* cut: no contact before c->t */
       s->cut_t = dmin(s->cut_t, c->t);
       break;
     }
