@@ -1476,8 +1476,7 @@ static void predict_single_steps(void **state) {
       calls += calls_n;
     }
     assert_int_equal(hits, want);
-    printf("# %s: %.2f calls of hd_ca_step per contact found\n", cl[k].name,
-           (double)calls / hits);
+    printf("# %s: %.2f calls of hd_ca_step per contact found\n", cl[k].name, (double)calls / hits);
     assert_true((double)calls / hits <= 3.0);
   }
   gsl_rng_free(r);

@@ -492,7 +492,8 @@ static inline double safe_steps(double *h, double *g, double *r, int np, uint64_
       __m128d m = _mm_and_pd(neg, one), m1 = _mm_sub_pd(one, m);
       __m128d num = _mm_add_pd(_mm_mul_pd(m, _mm_mul_pd(_mm_mul_pd(two, vh), vr)),
                                _mm_mul_pd(m1, _mm_add_pd(vg, sq)));
-      __m128d den = _mm_add_pd(_mm_mul_pd(m, _mm_sub_pd(sq, vg)), _mm_mul_pd(m1, _mm_mul_pd(vr, vK)));
+      __m128d den =
+          _mm_add_pd(_mm_mul_pd(m, _mm_sub_pd(sq, vg)), _mm_mul_pd(m1, _mm_mul_pd(vr, vK)));
       tq = _mm_div_pd(num, den);
     } else {
       /* g < 0 ? h * r / (-g) : HUGE_VAL */
@@ -503,6 +504,10 @@ static inline double safe_steps(double *h, double *g, double *r, int np, uint64_
     __m128d gt = _mm_cmpgt_pd(tl, tq);
     _mm_storeu_pd(st + p, _mm_or_pd(_mm_and_pd(gt, tl), _mm_andnot_pd(gt, tq)));
   }
+#else
+  double st[HD_CA_MAXP + 1];
+  for (int p = 0; p < np; p++) st[p] = safe_step(h[p], g[p], r[p], L, K);
+#endif
   if (pmin) { /* the smallest far step (pair *pmin) and the smallest of the others */
     double sfar = HUGE_VAL, sother = step;
     *pmin = -1;
@@ -521,13 +526,6 @@ static inline double safe_steps(double *h, double *g, double *r, int np, uint64_
   }
   for (int p = 0; p < np; p++)
     if ((far >> p) & 1u) step = st[p] < step ? st[p] : step;
-#else
-  if (pmin) *pmin = -1; /* (no single steps without SSE2) */
-  for (int p = 0; p < np; p++) { /* no branch on the data: the steps overlap in the CPU */
-    double st = safe_step(h[p], g[p], r[p], L, K);
-    if ((far >> p) & 1u) step = st < step ? st : step;
-  }
-#endif
   return step;
 }
 
@@ -736,7 +734,10 @@ static int ca_advance(hd_ca *s, double tmax, double *tout, int *pout) {
     *pout = pbest;
     return 1;
   }
-  if (pmin >= 0 && sother > step)
+  /* single steps only when the others' bound lies beyond the full step in floating point too
+   * (else a first single step could not move t: review), and not on a step whose count the
+   * callers look at for a stop request (ca_single counts on from there) */
+  if (pmin >= 0 && t + sother > t + step && (s->it & HD_CA_POLL) != 0)
     return ca_single(s, pmin, t, h[pmin], g[pmin], r[pmin], t + sother, tmax, tout, pout);
   double tn = t + step;
   if (!(tn > t)) tn = nextafter(t, HUGE_VAL);

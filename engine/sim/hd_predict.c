@@ -5,13 +5,13 @@
  * still valid: disk-disk contact times are exact and unbounded (closed form), so the stored one
  * is the earliest with every body of the cells that stay adjacent.  Contacts involving a dimer
  * are searched by i only up to the earlier of i's next crossing and j's next event, whatever it
- * is (which bounds the root search): in a scene with a turning body every event of a body (a
- * collision, a wall, a crossing, a wake-up, a stale contact) is followed by its full
- * prediction, so a contact after i's crossing is found by i's prediction then, and one after
- * j's next event by j's, since bodies in contact are in adjacent cells (a contact after j's
- * next event found now would be computed from a course that j may not keep: the search of it
- * was the engine's largest waste).  After a collision of i and j their own pair is
- * searched once, by j (hd_predict_after_pair).  In a pure disk scene a prediction walks interior
+ * is (which bounds the root search): in every scene but pure disks (the only ones with partial
+ * crossings, `partial_cross`) every event of a body (a collision, a wall, a crossing, a wake-up,
+ * a stale contact) is followed by its full prediction, so a contact after i's crossing is found
+ * by i's prediction then, and one after j's next event by j's, since bodies in contact are in
+ * adjacent cells (a contact after j's next event found now would be computed from a course that
+ * j may not keep: the search of it was the engine's largest waste).  After a collision of i and
+ * j their own pair is searched once, by j (hd_predict_after_pair).  In a pure disk scene a prediction walks interior
  * cells by index offsets, without the periodic and wall logic of HD_FOR_NEIGHBOURS, and takes
  * their list heads without a branch on whether each is empty (gather_cells).
  * hd_predict_prefetch_near and _far are the event queue's prefetch hints (hd_queue.h) for large
@@ -38,8 +38,8 @@ static inline double select_bits(int c, double a, double b) {
 
 /* Time until body b, in cell (cx, cy), leaves it (>= 0), or INFINITY; sets b->c_dir.  A body
  * that never leaves its cell but spins gets a wake-up HD_WAKE_TURNS turns ahead instead (c_dir
- * HD_WAKE): the contact searches of dimers end at the earlier crossing of the two bodies, and
- * without it two dimers at rest that spin at nearly one rate were searched without end (10^8
+ * HD_WAKE): the contact searches of dimers end at a body's crossing or its partner's next event,
+ * and without it two dimers at rest that spin at nearly one rate were searched without end (10^8
  * steps, ~7 s, then "no contact": a contact at t ~ 7e7 was missed; review). */
 static inline double crossing_time(const hd_sim *s, hd_body *b, int32_t cx, int32_t cy) {
   /* Both faces ahead are timed side by side and chosen without branches on the signs of the

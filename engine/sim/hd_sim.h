@@ -7,8 +7,10 @@
  *
  * Invalidation: every velocity change bumps a body's ncoll; a pair event remembers the partner's
  * ncoll and is stale when it differs.  Cell crossings do not change velocities and invalidate
- * nothing.  Predictions are made only up to the body's next cell crossing (a partner that could
- * be met later is found again after the crossing), which bounds every root search. */
+ * nothing.  The root search of a pair is made only up to the body's next cell crossing or the
+ * partner's next event, whichever comes first (each is followed by that body's full prediction
+ * outside pure disk scenes, which finds the pair again if they can still meet; hd_predict.c):
+ * this bounds every root search. */
 #ifndef HD_SIM_H
 #define HD_SIM_H
 
