@@ -339,6 +339,21 @@ static inline void ca_sincos(double x, double *sp, double *cp) {
   *cp = cg * (c * even + s * odd);
 }
 
+/* Gap, r.r' and |r| of disk i of cluster A and disk j of cluster B (general code, a body pair):
+ * (rx0, ry0) = R_B - R_A at t, (ax, ay) and (bx, by) the two disks' turned offsets.  Shared by
+ * ca_eval_general and ca_eval_one_general, so that a pair evaluated alone has the same values
+ * bit for bit. */
+static inline void cluster_pair(const hd_ca_geom *c, int i, int j, double rx0, double ry0,
+                                double ax, double ay, double bx, double by, double *h, double *g,
+                                double *r) {
+  double rx = rx0 + bx - ax, ry = ry0 + by - ay;
+  double vx = c->dvx - c->wb * by + c->wa * ay, vy = c->dvy + c->wb * bx - c->wa * ax;
+  double rr = sqrt(rx * rx + ry * ry);
+  *h = rr - 0.5 * (c->sha->dk[i] + c->shb->dk[j]);
+  *g = rx * vx + ry * vy;
+  *r = rr;
+}
+
 /* ca_eval_sc for general clusters: disk k of a body is at R + Rot(phi) o_k and moves at
  * V + omega x (Rot(phi) o_k); each pair has its own contact distance (d_i + d_j) / 2.  A wall:
  * the gap of disk k is the centre's gap (c->dx + c->dvx t) plus the disk's offset along the
@@ -369,13 +384,8 @@ static void ca_eval_general(const hd_ca_geom *c, double t, double sa, double ca,
   for (int i = 0; i < c->na; i++) {
     double ax = A->ox[i] * ca - A->oy[i] * sa, ay = A->ox[i] * sa + A->oy[i] * ca;
     for (int j = 0; j < c->nb; j++) {
-      double rx = rx0 + bx[j] - ax, ry = ry0 + by[j] - ay;
-      double vx = c->dvx - c->wb * by[j] + c->wa * ay, vy = c->dvy + c->wb * bx[j] - c->wa * ax;
-      double rr = sqrt(rx * rx + ry * ry);
       int p = i * c->nb + j;
-      h[p] = rr - 0.5 * (A->dk[i] + B->dk[j]);
-      g[p] = rx * vx + ry * vy;
-      r[p] = rr;
+      cluster_pair(c, i, j, rx0, ry0, ax, ay, bx[j], by[j], &h[p], &g[p], &r[p]);
     }
   }
 }
@@ -427,8 +437,8 @@ static void ca_eval(const hd_ca_geom *c, double t, double *h, double *g, double 
   ca_eval_sc(c, t, sa, ca, h, g, r);
 }
 
-/* Pair p alone of ca_eval for two clusters (general code, not a wall): the same operations as
- * ca_eval_general's for that pair, so the same values bit for bit. */
+/* Pair p alone of ca_eval for two clusters (general code, not a wall): the same values as
+ * ca_eval_general's for that pair, bit for bit (the same turned offsets and cluster_pair). */
 static void ca_eval_one_general(const hd_ca_geom *c, double t, int p, double *h, double *g,
                                 double *r) {
   const hd_shape *A = c->sha, *B = c->shb;
@@ -439,12 +449,7 @@ static void ca_eval_one_general(const hd_ca_geom *c, double t, int p, double *h,
   double rx0 = c->dx + c->dvx * t, ry0 = c->dy + c->dvy * t;
   double bx = B->ox[j] * cb - B->oy[j] * sb, by = B->ox[j] * sb + B->oy[j] * cb;
   double ax = A->ox[i] * ca - A->oy[i] * sa, ay = A->ox[i] * sa + A->oy[i] * ca;
-  double rx = rx0 + bx - ax, ry = ry0 + by - ay;
-  double vx = c->dvx - c->wb * by + c->wa * ay, vy = c->dvy + c->wb * bx - c->wa * ax;
-  double rr = sqrt(rx * rx + ry * ry);
-  *h = rr - 0.5 * (A->dk[i] + B->dk[j]);
-  *g = rx * vx + ry * vy;
-  *r = rr;
+  cluster_pair(c, i, j, rx0, ry0, ax, ay, bx, by, h, g, r);
 }
 
 /* The gap rate h' = g / r of a pair evaluated by ca_eval (-inf for coincident centres). */

@@ -11,11 +11,11 @@
  * by i's prediction then, and one after j's next event by j's, since bodies in contact are in
  * adjacent cells (a contact after j's next event found now would be computed from a course that
  * j may not keep: the search of it was the engine's largest waste).  After a collision of i and
- * j their own pair is searched once, by j (hd_predict_after_pair).  In a pure disk scene a prediction walks interior
- * cells by index offsets, without the periodic and wall logic of HD_FOR_NEIGHBOURS, and takes
- * their list heads without a branch on whether each is empty (gather_cells).
- * hd_predict_prefetch_near and _far are the event queue's prefetch hints (hd_queue.h) for large
- * systems. */
+ * j their own pair is searched once, by j (hd_predict_after_pair).  In a pure disk scene a
+ * prediction walks interior cells by index offsets, without the periodic and wall logic of
+ * HD_FOR_NEIGHBOURS, and takes their list heads without a branch on whether each is empty
+ * (gather_cells).  hd_predict_prefetch_near and _far are the event queue's prefetch hints
+ * (hd_queue.h) for large systems. */
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -135,6 +135,12 @@ static inline double disk_contact(const hd_sim *s, const hd_body *bi, const hd_b
                                     : 0.5 * (s->shape[bi->species].d + s->shape[bj->species].d);
 }
 
+/* Where a contact search of i against j ends, relative to now: at i's next crossing (cross)
+ * or j's next event, whichever comes first (this file's head says why). */
+static inline double search_end(const hd_sim *s, const hd_body *bj, double cross) {
+  return dmin(cross, bj->ev_t - s->c.t);
+}
+
 /* Contacts of body i with body j (shifted by sx, sy); *best relative to now. */
 static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, double sy,
                                double horizon, double *best) {
@@ -146,10 +152,7 @@ static inline void predict_one(hd_sim *s, hd_body *bi, int32_t j, double sx, dou
     predict_disk_pair(s, bi, j, sx, sy, ix, iy, disk_contact(s, bi, bj), best);
     return;
   }
-  /* the search ends at i's crossing or j's next event, whichever comes first: that body is
-   * predicted again then in full, against a neighbourhood that holds the other if they can
-   * still meet (the file's head) */
-  double lim = dmin(*best, dmin(horizon, bj->ev_t - s->c.t));
+  double lim = dmin(*best, search_end(s, bj, horizon));
   if (lim < 0.0) lim = 0.0;
   hd_kin kj = bj->k;
   hd_kin_advance(&kj, dtj);
@@ -270,7 +273,7 @@ static void predict_sorted(hd_sim *s, int32_t i, int32_t skip, double cross, dou
     double c = rx * rx + ry * ry - R * R, b = rx * vx + ry * vy, v2 = vx * vx + vy * vy,
            disc = b * b - v2 * c;
     double t = dmax(c, 0.0) / dmax(sqrt(dmax(disc, 0.0)) - b, DBL_MIN);
-    double lim = dmin(cross, bj->ev_t - now);
+    double lim = search_end(s, bj, cross);
     /* kept unless it cannot touch before the earliest contact so far, or within the horizon */
     int keep = ((c <= 0.0) | ((b < 0.0) & (disc > 0.0))) & (t < *best) & (t <= lim);
     if (nc == HD_MAX_CAND) { /* a crowd: the rest one by one (still exact, only slower) */
